@@ -1,0 +1,1 @@
+# Installation rules (filled in by the packaging work).

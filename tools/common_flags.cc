@@ -1,0 +1,16 @@
+#include "tools/common_flags.h"
+
+DEFINE_string(output, "", "output file or directory");
+DEFINE_bool(json, false, "print a JSON summary on stdout");
+DEFINE_bool(quiet, false, "suppress progress output");
+DEFINE_double(epsilon, 1.0,
+              "transport: step epsilon; branching: twin-boundary energy");
+DEFINE_double(width, 0,
+              "render: image width in pixels (0: default)");
+DEFINE_double(height, 0,
+              "render: image height in pixels (0: default); branching: "
+              "domain height H");
+DEFINE_double(mu, 1.0, "membrane Lame weight mu (> 0)");
+DEFINE_double(lambda, 1.0, "membrane Lame weight lambda (> 0)");
+DEFINE_double(eta, 0.01, "bending weight eta (>= 0, squared thickness)");
+DEFINE_string(png, "", "also write a PNG film strip of the frames here");

@@ -1,0 +1,19 @@
+// Flags shared by several verbs of the `shellspace` command (one binary, so a
+// flag name has one definition).
+#ifndef SHELLSPACE_TOOLS_COMMON_FLAGS_H_
+#define SHELLSPACE_TOOLS_COMMON_FLAGS_H_
+
+#include <gflags/gflags.h>
+
+DECLARE_string(output);
+DECLARE_bool(json);
+DECLARE_bool(quiet);
+DECLARE_double(epsilon);
+DECLARE_double(width);
+DECLARE_double(height);
+DECLARE_double(mu);
+DECLARE_double(lambda);
+DECLARE_double(eta);
+DECLARE_string(png);
+
+#endif  // SHELLSPACE_TOOLS_COMMON_FLAGS_H_

@@ -1,0 +1,38 @@
+// Registry of the `shellspace` command's verbs. Each verb lives in its own
+// tools/verb_*.cc, defines its gflags there and registers itself with
+// SHELLSPACE_REGISTER_VERB; `shellspace VERB --help` lists the flags defined
+// in that file.
+#ifndef SHELLSPACE_TOOLS_VERB_H_
+#define SHELLSPACE_TOOLS_VERB_H_
+
+#include <functional>
+#include <map>
+#include <string>
+
+namespace shellspace {
+
+struct Verb {
+  std::string name;
+  std::string usage;   // one line: the verb's synopsis
+  std::string source;  // __FILE__ of the verb, to list its flags in --help
+  // Runs the verb after flags are parsed; returns the exit code. Throws
+  // InputError for bad input (printed as one line by main).
+  std::function<int()> run;
+};
+
+std::map<std::string, Verb>& VerbRegistry();
+
+struct VerbRegistrar {
+  VerbRegistrar(const std::string& name, const std::string& usage,
+                const std::string& source, std::function<int()> run) {
+    VerbRegistry()[name] = Verb{name, usage, source, std::move(run)};
+  }
+};
+
+#define SHELLSPACE_REGISTER_VERB(name, usage, function) \
+  static ::shellspace::VerbRegistrar verb_registrar_##function(name, usage, \
+                                                               __FILE__, function)
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_TOOLS_VERB_H_
