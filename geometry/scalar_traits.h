@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <ceres/jet.h>
 
 namespace shellspace {

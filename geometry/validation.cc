@@ -1,0 +1,66 @@
+#include "geometry/validation.h"
+
+#include <cmath>
+
+namespace shellspace {
+
+Topology ValidateShell(const Mesh& mesh, const std::string& name) {
+  for (int i = 0; i < mesh.num_vertices(); ++i) {
+    for (int c = 0; c < 3; ++c) {
+      if (!std::isfinite(mesh.positions(i, c))) {
+        throw InputError(name + ": vertex " + std::to_string(i) +
+                         " has a non-finite coordinate");
+      }
+    }
+  }
+  Topology topology;
+  try {
+    topology = Topology::Build(mesh);
+  } catch (const InputError& error) {
+    throw InputError(name + ": " + error.what());
+  }
+  double mean_sq = 0;
+  for (const auto& e : topology.edges) {
+    mean_sq += (mesh.vertex(e[0]) - mesh.vertex(e[1])).squaredNorm();
+  }
+  mean_sq /= std::max<size_t>(1, topology.edges.size());
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    const Eigen::Vector3d a = mesh.vertex(mesh.faces(f, 0));
+    const Eigen::Vector3d b = mesh.vertex(mesh.faces(f, 1));
+    const Eigen::Vector3d c = mesh.vertex(mesh.faces(f, 2));
+    const double area = 0.5 * (b - a).cross(c - a).norm();
+    if (!(area > 1e-12 * mean_sq)) {
+      throw InputError(name + ": triangle " + std::to_string(f) +
+                       " is degenerate (area " + std::to_string(area) + ")");
+    }
+  }
+  return topology;
+}
+
+void CheckCompatible(const Mesh& mesh, const std::string& name,
+                     const Mesh& other, const std::string& other_name) {
+  const std::string prefix =
+      "incompatible connectivity of " + name + " and " + other_name + ": ";
+  if (mesh.num_vertices() != other.num_vertices()) {
+    throw InputError(prefix + std::to_string(mesh.num_vertices()) + " vs " +
+                     std::to_string(other.num_vertices()) + " vertices");
+  }
+  if (mesh.num_faces() != other.num_faces()) {
+    throw InputError(prefix + std::to_string(mesh.num_faces()) + " vs " +
+                     std::to_string(other.num_faces()) + " faces");
+  }
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    bool same = false;
+    for (int shift = 0; shift < 3 && !same; ++shift) {
+      same = true;
+      for (int c = 0; c < 3; ++c) {
+        same &= mesh.faces(f, c) == other.faces(f, (c + shift) % 3);
+      }
+    }
+    if (!same) {
+      throw InputError(prefix + "face " + std::to_string(f) + " differs");
+    }
+  }
+}
+
+}  // namespace shellspace

@@ -1,0 +1,34 @@
+// Shared helpers of the test suite: data paths, loading shells, running the CLI.
+#ifndef SHELLSPACE_TESTS_TEST_SUPPORT_H_
+#define SHELLSPACE_TESTS_TEST_SUPPORT_H_
+
+#include <string>
+
+#include "cost_functions/deformation_energy.h"
+#include "geometry/mesh.h"
+
+namespace shellspace::testing {
+
+// Absolute path of a file under ../shared/data.
+std::string DataPath(const std::string& relative);
+
+// Reads and validates a mesh of ../shared/data.
+Mesh LoadData(const std::string& relative);
+
+// ShellSpace of a mesh with the given material.
+ShellSpace MakeSpace(const Mesh& mesh, const ShellMaterial& material = {});
+
+// A fresh empty temporary directory.
+std::string TempDir();
+
+// Runs `shellspace ARGS` with stdout and stderr captured; returns exit code.
+int RunCli(const std::string& args, std::string* out = nullptr,
+           std::string* err = nullptr);
+
+// A random rigid motion (rotation by a random unit quaternion, translation
+// with entries in [-1, 1]) applied to `p`, with a fixed seed.
+Positions RandomRigidMotion(const Positions& p, unsigned seed);
+
+}  // namespace shellspace::testing
+
+#endif  // SHELLSPACE_TESTS_TEST_SUPPORT_H_
