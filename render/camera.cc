@@ -1,0 +1,60 @@
+#include "render/camera.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace shellspace {
+
+void ViewFrame(const ViewAngles& view, Eigen::Vector3d* right,
+               Eigen::Vector3d* up, Eigen::Vector3d* forward) {
+  const double a = view.azimuth * M_PI / 180;
+  const double e = view.elevation * M_PI / 180;
+  *forward = -Eigen::Vector3d(std::cos(e) * std::sin(a), std::sin(e),
+                              std::cos(e) * std::cos(a));
+  *right = Eigen::Vector3d(std::cos(a), 0, -std::sin(a));
+  *up = right->cross(*forward);
+}
+
+void BoundingBox(const std::vector<Positions>& frames, Eigen::Vector3d* lower,
+                 Eigen::Vector3d* upper) {
+  const double inf = std::numeric_limits<double>::infinity();
+  *lower = Eigen::Vector3d::Constant(inf);
+  *upper = Eigen::Vector3d::Constant(-inf);
+  bool any = false;
+  for (size_t k = 0; k < frames.size(); ++k) {
+    const Positions& p = frames[k];
+    if (p.rows() == 0) continue;
+    if (!p.allFinite()) {
+      throw InputError("frame " + std::to_string(k) +
+                       " has a non-finite vertex coordinate");
+    }
+    *lower = lower->cwiseMin(p.colwise().minCoeff().transpose());
+    *upper = upper->cwiseMax(p.colwise().maxCoeff().transpose());
+    any = true;
+  }
+  if (!any) throw InputError("nothing to render: the frames have no vertices");
+}
+
+Camera FrameBox(const Eigen::Vector3d& lower, const Eigen::Vector3d& upper,
+                const ViewAngles& view, int width, int height, double margin) {
+  Camera camera;
+  ViewFrame(view, &camera.right, &camera.up, &camera.forward);
+  camera.center = 0.5 * (lower + upper);
+  camera.width = width;
+  camera.height = height;
+  // The box is symmetric about its centre, so its projection is too.
+  const Eigen::Vector3d half = 0.5 * (upper - lower);
+  const double extent_x = 2 * camera.right.cwiseAbs().dot(half);
+  const double extent_y = 2 * camera.up.cwiseAbs().dot(half);
+  const double usable = 1 - 2 * margin;
+  const double tiny = 1e-12 * std::max(1.0, half.norm());
+  double scale = std::numeric_limits<double>::infinity();
+  if (extent_x > tiny) scale = std::min(scale, usable * width / extent_x);
+  if (extent_y > tiny) scale = std::min(scale, usable * height / extent_y);
+  camera.scale = std::isfinite(scale) ? scale : 1;
+  return camera;
+}
+
+}  // namespace shellspace

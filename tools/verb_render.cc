@@ -1,0 +1,108 @@
+// `shellspace render`: a PNG film strip of a sequence of shells.
+#include <gflags/gflags.h>
+
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <sstream>
+#include <string>
+
+#include "geometry/mesh.h"
+#include "render/film_strip.h"
+#include "render/frame_sequence.h"
+#include "render/view.h"
+#include "tools/common_flags.h"
+#include "tools/verb.h"
+
+DEFINE_string(input, "",
+              "render: a directory (all *.ply, *.obj, *.off in natural name "
+              "order) or a comma-separated list of mesh files");
+DEFINE_string(view, "front",
+              "render: front (along -z, +y up), back, side (along -x), left, "
+              "top (along -y), bottom, iso, or AZIMUTH,ELEVATION in degrees "
+              "(e.g. --view=30,20; azimuth about +y from the front view, "
+              "elevation towards +y)");
+DEFINE_string(shading, "gouraud", "render: flat or gouraud");
+
+namespace shellspace {
+namespace {
+
+// A frame side from a --width/--height flag: 0 means `fallback`, otherwise a
+// positive whole number of pixels.
+int FrameSide(const char* name, double value, int fallback) {
+  if (value == 0) return fallback;
+  if (!(value > 0) || value != std::floor(value) || value > 8192) {
+    std::ostringstream message;
+    message << "--" << name << " must be a positive whole number of pixels "
+            << "(at most 8192), got " << value;
+    throw InputError(message.str());
+  }
+  return static_cast<int>(value);
+}
+
+std::string JsonString(const std::string& text) {
+  std::string out = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char escaped[8];
+      std::snprintf(escaped, sizeof(escaped), "\\u%04x", c);
+      out += escaped;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+int RunRender() {
+  if (FLAGS_input.empty()) throw InputError("--input is required");
+  if (FLAGS_output.empty()) throw InputError("--output is required");
+  RenderOptions options;
+  options.width = FrameSide("width", FLAGS_width, options.width);
+  options.height = FrameSide("height", FLAGS_height, options.height);
+  try {
+    options.view = ParseView(FLAGS_view);
+    options.shading = ParseShading(FLAGS_shading);
+  } catch (const InputError& error) {
+    throw InputError(std::string("--") + error.what());
+  }
+  const FrameSequence sequence = ReadFrameSequence(FLAGS_input);
+  const RgbImage image =
+      RenderFilmStrip(sequence.frames, sequence.faces, options);
+  WritePng(image, FLAGS_output);
+
+  if (FLAGS_json) {
+    std::cout << "{\"output\": " << JsonString(FLAGS_output)
+              << ", \"frames\": " << sequence.frames.size()
+              << ", \"frame_width\": " << options.width
+              << ", \"frame_height\": " << options.height
+              << ", \"width\": " << image.width
+              << ", \"height\": " << image.height
+              << ", \"view\": {\"azimuth\": " << options.view.azimuth
+              << ", \"elevation\": " << options.view.elevation << "}"
+              << ", \"shading\": " << JsonString(ShadingName(options.shading))
+              << ", \"inputs\": [";
+    for (size_t k = 0; k < sequence.paths.size(); ++k) {
+      std::cout << (k ? ", " : "") << JsonString(sequence.paths[k]);
+    }
+    std::cout << "]}\n";
+  } else if (!FLAGS_quiet) {
+    std::cout << "wrote " << FLAGS_output << ": " << sequence.frames.size()
+              << " frame(s), " << image.width << "x" << image.height
+              << " pixels\n";
+  }
+  return 0;
+}
+
+}  // namespace
+
+SHELLSPACE_REGISTER_VERB(
+    "render",
+    "render --input DIR|a.ply,b.ply --output strip.png [--width W --height H "
+    "--view V]",
+    RunRender);
+
+}  // namespace shellspace
