@@ -14,3 +14,7 @@ DEFINE_double(mu, 1.0, "membrane Lame weight mu (> 0)");
 DEFINE_double(lambda, 1.0, "membrane Lame weight lambda (> 0)");
 DEFINE_double(eta, 0.01, "bending weight eta (>= 0, squared thickness)");
 DEFINE_string(png, "", "also write a PNG film strip of the frames here");
+DEFINE_string(reference, "", "reference (undeformed) shell: PLY, OBJ or OFF");
+DEFINE_string(mask, "",
+              "vertex mask file: one 0-based index per line, '#' comments; "
+              "listed vertices are held fixed");

@@ -15,5 +15,7 @@ DECLARE_double(mu);
 DECLARE_double(lambda);
 DECLARE_double(eta);
 DECLARE_string(png);
+DECLARE_string(reference);
+DECLARE_string(mask);
 
 #endif  // SHELLSPACE_TOOLS_COMMON_FLAGS_H_

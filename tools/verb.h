@@ -29,9 +29,11 @@ struct VerbRegistrar {
   }
 };
 
-#define SHELLSPACE_REGISTER_VERB(name, usage, function) \
-  static ::shellspace::VerbRegistrar verb_registrar_##function(name, usage, \
-                                                               __FILE__, function)
+#define SHELLSPACE_VERB_CONCAT_INNER(a, b) a##b
+#define SHELLSPACE_VERB_CONCAT(a, b) SHELLSPACE_VERB_CONCAT_INNER(a, b)
+#define SHELLSPACE_REGISTER_VERB(name, usage, function)          \
+  static ::shellspace::VerbRegistrar SHELLSPACE_VERB_CONCAT(     \
+      verb_registrar_, __LINE__)(name, usage, __FILE__, function)
 
 }  // namespace shellspace
 

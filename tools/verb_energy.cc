@@ -1,0 +1,50 @@
+// `shellspace energy`: W_mem, W_bend and W of a (reference, deformed) pair.
+#include <gflags/gflags.h>
+
+#include <cstdio>
+#include <iostream>
+
+#include "tools/common_flags.h"
+#include "tools/json_writer.h"
+#include "tools/shell_inputs.h"
+#include "tools/verb.h"
+
+DEFINE_string(deformed, "", "deformed shell with the reference's connectivity");
+
+namespace shellspace {
+namespace {
+
+int RunEnergy() {
+  RequireFlag("reference", FLAGS_reference);
+  RequireFlag("deformed", FLAGS_deformed);
+  const Mesh reference = LoadShell(FLAGS_reference);
+  const Mesh deformed =
+      LoadCompatibleShell(FLAGS_deformed, reference, FLAGS_reference);
+  const ShellSpace space = SpaceFromFlags(reference);
+  const DeformationEnergy e = EvaluateDeformationEnergy(
+      space, reference.positions, deformed.positions);
+  if (FLAGS_json) {
+    std::cout << JsonObject()
+                     .Add("membrane", e.membrane)
+                     .Add("bending", e.bending)
+                     .Add("total", e.total)
+                     .Add("mu", space.material.mu)
+                     .Add("lambda", space.material.lambda)
+                     .Add("eta", space.material.eta)
+                     .str()
+              << "\n";
+  } else {
+    std::printf("W_mem  %.12g\nW_bend %.12g\nW      %.12g  (eta = %g)\n",
+                e.membrane, e.bending, e.total, space.material.eta);
+  }
+  return 0;
+}
+
+}  // namespace
+}  // namespace shellspace
+
+SHELLSPACE_REGISTER_VERB(
+    "energy",
+    "energy --reference R.ply --deformed D.ply [--mu 1 --lambda 1 --eta 0.01] "
+    "[--json]",
+    shellspace::RunEnergy);

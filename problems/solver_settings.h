@@ -1,0 +1,62 @@
+// Solver settings shared by all problem builders, and the per-iteration
+// progress line of long solves.
+#ifndef SHELLSPACE_PROBLEMS_SOLVER_SETTINGS_H_
+#define SHELLSPACE_PROBLEMS_SOLVER_SETTINGS_H_
+
+#include <chrono>
+#include <iosfwd>
+#include <string>
+
+#include <ceres/iteration_callback.h>
+#include <ceres/solver.h>
+
+namespace shellspace {
+
+// Settings of the sparse Levenberg-Marquardt solves. Convergence is declared
+// on the relative gradient norm max|grad| / max(1, |grad_0|) <=
+// gradient_tolerance (a Ceres gradient_tolerance on the projected gradient
+// scaled by the initial one) or on the relative cost decrease.
+struct SolverSettings {
+  int max_iterations = 200;
+  double function_tolerance = 1e-12;
+  double gradient_tolerance = 1e-8;   // relative to the initial gradient
+  double parameter_tolerance = 1e-12;
+  int num_threads = 2;
+  bool progress = false;              // one line per iteration on stderr
+  std::string progress_label = "solve";
+};
+
+// Ceres options for a sparse LM solve (SPARSE_NORMAL_CHOLESKY over
+// SuiteSparse) with these settings. `initial_gradient_norm` (max norm of the
+// gradient at the initial guess) turns the relative gradient tolerance into
+// Ceres' absolute one.
+ceres::Solver::Options MakeSolverOptions(const SolverSettings& settings,
+                                         double initial_gradient_norm);
+
+// Prints "label iter N cost C |grad| G step S  T s" per iteration on stderr.
+class ProgressPrinter : public ceres::IterationCallback {
+ public:
+  explicit ProgressPrinter(std::string label);
+  ceres::CallbackReturnType operator()(
+      const ceres::IterationSummary& summary) override;
+
+ private:
+  std::string label_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_PROBLEMS_SOLVER_SETTINGS_H_
+
+namespace shellspace {
+
+// Max-norm of the gradient of the problem's cost at the current parameters.
+double GradientMaxNorm(ceres::Problem* problem);
+
+// Solves `problem` with MakeSolverOptions(settings, GradientMaxNorm(problem))
+// and, if settings.progress, a ProgressPrinter.
+ceres::Solver::Summary SolveWithSettings(ceres::Problem* problem,
+                                         const SolverSettings& settings);
+
+}  // namespace shellspace
