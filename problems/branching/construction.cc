@@ -1,0 +1,71 @@
+#include "problems/branching/construction.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace shellspace::branching {
+
+double Construction::PeriodOf(int k) const {
+  return h0 * std::pow(static_cast<double>(pattern.r), -k);
+}
+
+double Construction::OffsetOf(int k) const {
+  double offset = 0.0;
+  for (int j = 1; j <= k; ++j) offset += pattern.next_offset * PeriodOf(j);
+  return offset;
+}
+
+int Construction::GenerationAt(double x, double* s) const {
+  double right = length;
+  double l = length * (1.0 - theta);
+  for (int k = 0; k < max_generations; ++k) {
+    const double left = right - l;
+    if (x >= left || k + 1 == max_generations) {
+      *s = std::clamp((right - x) / l, 0.0, 1.0);
+      return k;
+    }
+    right = left;
+    l *= theta;
+  }
+  *s = 1.0;
+  return max_generations - 1;
+}
+
+int Construction::VariantAt(double x, double y, double* distance) const {
+  double s = 0.0;
+  const int k = GenerationAt(x, &s);
+  const double h = PeriodOf(k);
+  const double eta = (y - OffsetOf(k)) / h;
+  const ColumnState column = StateAt(pattern, s);
+  double d = 0.0;
+  const int variant = branching::VariantAt(column, eta, &d);
+  if (distance != nullptr) *distance = d * h;
+  return variant;
+}
+
+RgbImage RenderConstruction(const Construction& construction, double height,
+                            int width_px, int height_px) {
+  RgbImage image(width_px, height_px);
+  const double dx = construction.length / width_px;
+  const double dy = height / height_px;
+  for (int px = 0; px < width_px; ++px) {
+    const double x = (px + 0.5) * dx;
+    for (int py = 0; py < height_px; ++py) {
+      const double y = height - (py + 0.5) * dy;
+      double d = 0.0;
+      const int v = construction.VariantAt(x, y, &d);
+      std::uint8_t* rgb = image.at(px, py);
+      const bool edge = d < 0.6 * dy;
+      if (edge) {
+        rgb[0] = 30, rgb[1] = 30, rgb[2] = 30;
+      } else if (v > 0) {
+        rgb[0] = 235, rgb[1] = 140, rgb[2] = 40;
+      } else {
+        rgb[0] = 45, rgb[1] = 95, rgb[2] = 200;
+      }
+    }
+  }
+  return image;
+}
+
+}  // namespace shellspace::branching

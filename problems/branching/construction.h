@@ -1,0 +1,41 @@
+// A self-similar branching construction on (0, L) x [0, H): a cell pattern
+// (km_family.h / lens_family.h) repeated over generations k = 0, 1, ... with
+// period h_k = h0 r^-k on x in [x_{k+1}, x_k], x_0 = L, x_{k+1} = x_k - l_k,
+// l_k = L (1 - theta) theta^k (generation 0 farthest from the austenite at
+// x = 0). Generation k's period starts at y = offset_k, offset_0 = 0,
+// offset_{k+1} = offset_k + next_offset h_{k+1}.
+#ifndef SHELLSPACE_PROBLEMS_BRANCHING_CONSTRUCTION_H_
+#define SHELLSPACE_PROBLEMS_BRANCHING_CONSTRUCTION_H_
+
+#include <string>
+#include <vector>
+
+#include "problems/branching/cell_pattern.h"
+#include "render/png_writer.h"
+
+namespace shellspace::branching {
+
+struct Construction {
+  CellPattern pattern;
+  double length = 1.0;  // L
+  double h0 = 0.25;     // first (coarsest) period
+  double theta = 0.3;   // length ratio l_{k+1} / l_k
+  int max_generations = 60;
+
+  // u_y (+-1) at (x, y), and optionally the y-distance to the nearest
+  // interface of that column (for smoothing to a diffuse profile).
+  int VariantAt(double x, double y, double* distance = nullptr) const;
+  // Generation index and cell coordinate s of x in (0, L].
+  int GenerationAt(double x, double* s) const;
+  double PeriodOf(int k) const;
+  double OffsetOf(int k) const;
+};
+
+// Draws u_y of the construction over (0, L) x [0, H) (austenite at the left,
+// +1 orange, -1 blue, interfaces dark).
+RgbImage RenderConstruction(const Construction& construction, double height,
+                            int width_px, int height_px);
+
+}  // namespace shellspace::branching
+
+#endif  // SHELLSPACE_PROBLEMS_BRANCHING_CONSTRUCTION_H_

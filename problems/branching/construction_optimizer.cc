@@ -1,0 +1,156 @@
+#include "problems/branching/construction_optimizer.h"
+
+#include <chrono>
+#include <cmath>
+
+#include <ceres/ceres.h>
+
+#include "cost_functions/branching/km_energy_cost_function.h"
+#include "cost_functions/branching/lens_energy_cost_function.h"
+#include "geometry/mesh.h"
+#include "problems/branching/km_family.h"
+#include "problems/branching/self_similar_series.h"
+
+namespace shellspace::branching {
+
+namespace {
+
+void CheckScales(double epsilon, double length) {
+  if (!(epsilon > 0) || !(length > 0)) {
+    throw InputError("branching construction: epsilon and length must be > 0");
+  }
+}
+
+ConstructionResult Finish(ConstructionResult result, const CellPattern& cell,
+                          double epsilon, double length) {
+  const CellCoefficients c = EvaluateCell(cell);
+  result.A = c.A;
+  result.B = c.B;
+  const SeriesEnergy e = SeriesEnergyAt(c.A, c.B, result.r, epsilon, length,
+                                        result.h0, result.theta);
+  result.elastic = e.elastic;
+  result.interfacial = e.interfacial;
+  result.constant =
+      e.total() / (std::pow(epsilon, 2.0 / 3.0) * std::cbrt(length));
+  return result;
+}
+
+ceres::Solver::Options LmOptions() {
+  ceres::Solver::Options options;
+  options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  options.linear_solver_type = ceres::DENSE_QR;
+  options.max_num_iterations = 500;
+  options.function_tolerance = 1e-15;
+  options.gradient_tolerance = 1e-14;
+  options.parameter_tolerance = 1e-14;
+  options.logging_type = ceres::SILENT;
+  return options;
+}
+
+}  // namespace
+
+Construction ConstructionResult::ToConstruction(double length) const {
+  Construction c;
+  c.pattern = family == "km" ? KmCellPattern() : LensCellPattern(shape);
+  c.length = length;
+  c.h0 = h0;
+  c.theta = theta;
+  return c;
+}
+
+ConstructionResult EvaluateKm(double epsilon, double length, double h0,
+                              double theta) {
+  CheckScales(epsilon, length);
+  ConstructionResult result;
+  result.family = "km";
+  result.r = 2;
+  result.h0 = h0;
+  result.theta = theta;
+  return Finish(result, KmCellPattern(), epsilon, length);
+}
+
+ConstructionResult EvaluateLens(double epsilon, double length, double h0,
+                                double theta, const LensShape& shape) {
+  CheckScales(epsilon, length);
+  ConstructionResult result;
+  result.family = "lens";
+  result.r = kLensRatio;
+  result.h0 = h0;
+  result.theta = theta;
+  result.shape = shape;
+  return Finish(result, LensCellPattern(shape), epsilon, length);
+}
+
+ConstructionResult DefaultKm(double epsilon, double length) {
+  const double theta = KmOptimalTheta();
+  return EvaluateKm(epsilon, length,
+                    OptimalFirstPeriod(kKmA, kKmB, 2, epsilon, length, theta),
+                    theta);
+}
+
+ConstructionResult DefaultLens(double epsilon, double length) {
+  const LensShape shape;
+  const double theta = OptimalTheta(kLensRatio);
+  const double A = LensReducedA(shape), B = LensReducedB(shape);
+  return EvaluateLens(
+      epsilon, length,
+      OptimalFirstPeriod(A, B, kLensRatio, epsilon, length, theta), theta,
+      shape);
+}
+
+ConstructionResult OptimizeKm(double epsilon, double length, double h0,
+                              double theta) {
+  CheckScales(epsilon, length);
+  const auto start = std::chrono::steady_clock::now();
+  const CellCoefficients c = EvaluateCell(KmCellPattern());
+  double p[2] = {h0, theta};
+  ceres::Problem problem;
+  problem.AddResidualBlock(
+      KmEnergyCostFunction::Create(c.A, c.B, 2, epsilon, length), nullptr, p);
+  const double margin = 1e-6;
+  problem.SetParameterLowerBound(p, 0, 1e-12 * length);
+  problem.SetParameterLowerBound(p, 1, 0.25 + margin);
+  problem.SetParameterUpperBound(p, 1, 0.5 - margin);
+  ceres::Solver::Summary summary;
+  ceres::Solve(LmOptions(), &problem, &summary);
+  ConstructionResult result = EvaluateKm(epsilon, length, p[0], p[1]);
+  result.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  result.termination = ceres::TerminationTypeToString(summary.termination_type);
+  result.seconds = std::chrono::duration<double>(
+                       std::chrono::steady_clock::now() - start)
+                       .count();
+  return result;
+}
+
+ConstructionResult OptimizeLens(double epsilon, double length, double h0,
+                                double theta, const LensShape& start_shape) {
+  CheckScales(epsilon, length);
+  CheckLensShape(start_shape);
+  const auto start = std::chrono::steady_clock::now();
+  double p[5] = {h0, theta, start_shape.tau, start_shape.a1, start_shape.a2};
+  ceres::Problem problem;
+  problem.AddResidualBlock(LensEnergyCostFunction::Create(epsilon, length),
+                           nullptr, p);
+  const double margin = 1e-6;
+  problem.SetParameterLowerBound(p, 0, 1e-12 * length);
+  problem.SetParameterLowerBound(p, 1, 1.0 / 9.0 + margin);
+  problem.SetParameterUpperBound(p, 1, 1.0 / 3.0 - margin);
+  problem.SetParameterLowerBound(p, 2, 0.0);
+  problem.SetParameterUpperBound(p, 2, kLensTauMax);
+  for (int k = 3; k < 5; ++k) {
+    problem.SetParameterLowerBound(p, k, -kLensCurvatureMax);
+    problem.SetParameterUpperBound(p, k, kLensCurvatureMax);
+  }
+  ceres::Solver::Summary summary;
+  ceres::Solve(LmOptions(), &problem, &summary);
+  ConstructionResult result =
+      EvaluateLens(epsilon, length, p[0], p[1], LensShape{p[2], p[3], p[4]});
+  result.iterations = static_cast<int>(summary.iterations.size()) - 1;
+  result.termination = ceres::TerminationTypeToString(summary.termination_type);
+  result.seconds = std::chrono::duration<double>(
+                       std::chrono::steady_clock::now() - start)
+                       .count();
+  return result;
+}
+
+}  // namespace shellspace::branching

@@ -1,0 +1,132 @@
+#include "problems/branching/relaxed_problem.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "cost_functions/branching/double_well_cost_function.h"
+#include "cost_functions/branching/elastic_cost_function.h"
+#include "cost_functions/branching/gradient_cost_function.h"
+#include "geometry/mesh.h"
+
+namespace shellspace::branching {
+
+RelaxedEnergy EvaluateRelaxedEnergy(const RelaxedField& field, double epsilon,
+                                    double delta) {
+  const RelaxedGrid& g = field.grid;
+  const double dy = g.dy();
+  RelaxedEnergy e;
+  for (int i = 1; i <= g.nx; ++i) {
+    const double dx = g.dx(i);
+    const double wx = g.wx(i);
+    for (int j = 0; j < g.ny; ++j) {
+      const double ux = (field.at(i, j) - field.at(i - 1, j)) / dx;
+      e.elastic += dx * dy / g.height * ux * ux;
+      const double uyy = (field.at(i, (j + g.ny - 1) % g.ny) -
+                          2.0 * field.at(i, j) + field.at(i, (j + 1) % g.ny)) /
+                         (dy * dy);
+      e.gradient += 0.75 * epsilon * delta * wx * dy / g.height * uyy * uyy;
+      const double uy = field.uy(i, j);
+      const double well = 1.0 - uy * uy;
+      e.well += 0.75 * epsilon / delta * wx * dy / g.height * well * well;
+    }
+  }
+  return e;
+}
+
+void AddRelaxedResiduals(RelaxedField* field, double epsilon, double delta,
+                         ceres::Problem* problem) {
+  const RelaxedGrid& g = field->grid;
+  const double dy = g.dy();
+  auto node = [&](int i, int j) { return &field->u[g.index(i, (j + g.ny) % g.ny)]; };
+  for (int j = 0; j < g.ny; ++j) {
+    problem->AddParameterBlock(node(0, j), 1);
+    problem->SetParameterBlockConstant(node(0, j));
+  }
+  for (int i = 1; i <= g.nx; ++i) {
+    const double dx = g.dx(i);
+    const double wx = g.wx(i);
+    for (int j = 0; j < g.ny; ++j) {
+      problem->AddResidualBlock(ElasticCostFunction::Create(dx, dy, g.height),
+                                nullptr, node(i - 1, j), node(i, j));
+      problem->AddResidualBlock(
+          GradientCostFunction::Create(epsilon, delta, wx, dy, g.height),
+          nullptr, node(i, j - 1), node(i, j), node(i, j + 1));
+      problem->AddResidualBlock(
+          DoubleWellCostFunction::Create(epsilon, delta, wx, dy, g.height),
+          nullptr, node(i, j), node(i, j + 1));
+    }
+  }
+}
+
+namespace {
+
+class ProgressCallback : public ceres::IterationCallback {
+ public:
+  ProgressCallback(double delta,
+                   const std::function<void(double, int, double)>& progress)
+      : delta_(delta), progress_(progress) {}
+  ceres::CallbackReturnType operator()(
+      const ceres::IterationSummary& summary) override {
+    progress_(delta_, summary.iteration, 2.0 * summary.cost);
+    return ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  double delta_;
+  const std::function<void(double, int, double)>& progress_;
+};
+
+}  // namespace
+
+std::vector<RelaxedStage> SolveRelaxed(RelaxedField* field, double epsilon,
+                                       const RelaxedSolveOptions& options) {
+  if (options.deltas.empty()) {
+    throw InputError("branching solve: empty continuation schedule");
+  }
+  std::vector<RelaxedStage> stages;
+  for (double delta : options.deltas) {
+    if (!(delta > 0)) throw InputError("branching solve: delta must be > 0");
+    const auto start = std::chrono::steady_clock::now();
+    ceres::Problem problem;
+    AddRelaxedResiduals(field, epsilon, delta, &problem);
+    ceres::Solver::Options solver;
+    solver.minimizer_type = ceres::TRUST_REGION;
+    solver.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+    solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+    solver.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
+    solver.max_num_iterations = options.max_iterations;
+    solver.function_tolerance = options.function_tolerance;
+    solver.gradient_tolerance = 1e-14;
+    solver.parameter_tolerance = 1e-12;
+    solver.num_threads = options.num_threads;
+    solver.logging_type = ceres::SILENT;
+    std::unique_ptr<ProgressCallback> callback;
+    if (options.progress) {
+      callback = std::make_unique<ProgressCallback>(delta, options.progress);
+      solver.callbacks.push_back(callback.get());
+    }
+    ceres::Solver::Summary summary;
+    ceres::Solve(solver, &problem, &summary);
+    RelaxedStage stage;
+    stage.delta = delta;
+    stage.iterations = static_cast<int>(summary.iterations.size()) - 1;
+    stage.seconds = std::chrono::duration<double>(
+                        std::chrono::steady_clock::now() - start)
+                        .count();
+    stage.energy = EvaluateRelaxedEnergy(*field, epsilon, delta);
+    stage.termination = ceres::TerminationTypeToString(summary.termination_type);
+    stages.push_back(stage);
+  }
+  return stages;
+}
+
+std::vector<double> ContinuationDeltas(double delta, int steps, double factor) {
+  if (steps < 1) throw InputError("branching: continuation steps must be >= 1");
+  std::vector<double> deltas;
+  for (int k = steps - 1; k >= 0; --k) {
+    deltas.push_back(delta * std::pow(factor, k));
+  }
+  return deltas;
+}
+
+}  // namespace shellspace::branching
