@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <cstdio>
 #include <fstream>
 #include <iomanip>
@@ -85,8 +86,13 @@ bool ReadAsciiPly(const std::string& path, Mesh* mesh) {
         std::array<double, 3> p{0, 0, 0};
         int found = 0;
         for (const std::string& property : element.properties) {
-          double value;
-          if (!(values >> value)) {
+          // strtod, unlike operator>>, parses "nan" and "inf": they are
+          // reported as non-finite coordinates by the validation.
+          std::string token;
+          char* end = nullptr;
+          double value = 0;
+          if (values >> token) value = std::strtod(token.c_str(), &end);
+          if (end == nullptr || *end != '\0') {
             throw InputError(path + ": malformed vertex line " +
                              std::to_string(r));
           }
