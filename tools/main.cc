@@ -19,6 +19,16 @@ std::map<std::string, Verb>& VerbRegistry() {
   return registry;
 }
 
+std::set<std::string>& VerbsWithSubcommand() {
+  static std::set<std::string> verbs;
+  return verbs;
+}
+
+std::vector<std::string>& VerbPositionalArgs() {
+  static std::vector<std::string> args;
+  return args;
+}
+
 namespace {
 
 void PrintUsage() {
@@ -67,11 +77,18 @@ int main(int argc, char** argv) {
       return 0;
     }
   }
+  // A verb with a sub-command keeps its first non-flag word.
+  int first_flag = 2;
+  if (shellspace::VerbsWithSubcommand().count(name) && argc > 2 &&
+      argv[2][0] != '-') {
+    shellspace::VerbPositionalArgs().push_back(argv[2]);
+    first_flag = 3;
+  }
   // Let gflags parse everything after the verb.
   std::vector<char*> args;
   std::string program = std::string(argv[0]) + " " + name;
   args.push_back(program.data());
-  for (int i = 2; i < argc; ++i) args.push_back(argv[i]);
+  for (int i = first_flag; i < argc; ++i) args.push_back(argv[i]);
   int new_argc = static_cast<int>(args.size());
   char** new_argv = args.data();
   gflags::SetUsageMessage("shellspace " + it->second.usage);

@@ -7,7 +7,9 @@
 
 #include <functional>
 #include <map>
+#include <set>
 #include <string>
+#include <vector>
 
 namespace shellspace {
 
@@ -28,6 +30,22 @@ struct VerbRegistrar {
     VerbRegistry()[name] = Verb{name, usage, source, std::move(run)};
   }
 };
+
+// Verbs with a sub-command (`shellspace branching simulate --flags`): for a
+// verb registered with SHELLSPACE_VERB_TAKES_SUBCOMMAND, main keeps a first
+// non-flag word after the verb out of gflags and stores it here.
+std::set<std::string>& VerbsWithSubcommand();
+std::vector<std::string>& VerbPositionalArgs();
+
+struct VerbSubcommandRegistrar {
+  explicit VerbSubcommandRegistrar(const std::string& name) {
+    VerbsWithSubcommand().insert(name);
+  }
+};
+
+#define SHELLSPACE_VERB_TAKES_SUBCOMMAND(name)                          \
+  static ::shellspace::VerbSubcommandRegistrar SHELLSPACE_VERB_CONCAT( \
+      verb_subcommand_, __LINE__)(name)
 
 #define SHELLSPACE_VERB_CONCAT_INNER(a, b) a##b
 #define SHELLSPACE_VERB_CONCAT(a, b) SHELLSPACE_VERB_CONCAT_INNER(a, b)

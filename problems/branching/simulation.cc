@@ -1,0 +1,118 @@
+#include "problems/branching/simulation.h"
+
+#include <chrono>
+#include <cmath>
+
+#include "geometry/mesh.h"
+#include "problems/branching/construction_optimizer.h"
+#include "problems/branching/initial_guess.h"
+#include "problems/branching/km_family.h"
+#include "problems/branching/self_similar_series.h"
+
+namespace shellspace::branching {
+
+double SimulationSettings::Delta() const {
+  return delta > 0.0 ? delta : 3.0 * height / ny;
+}
+
+void CheckSimulationSettings(const SimulationSettings& s) {
+  if (!(s.epsilon > 0) || !std::isfinite(s.epsilon)) {
+    throw InputError("--epsilon must be a positive number");
+  }
+  if (!(s.length > 0) || !std::isfinite(s.length)) {
+    throw InputError("--length must be a positive number");
+  }
+  if (!(s.height > 0) || !std::isfinite(s.height)) {
+    throw InputError("--height must be a positive number");
+  }
+  if (s.nx < 2 || s.nx > 4096) throw InputError("--nx must lie in [2, 4096]");
+  if (s.ny < 8 || s.ny > 8192) throw InputError("--ny must lie in [8, 8192]");
+  if (!(s.grading >= 1.0 && s.grading <= 4.0)) {
+    throw InputError("--grading must lie in [1, 4]");
+  }
+  if (s.delta < 0 || !std::isfinite(s.delta)) {
+    throw InputError("--delta must be >= 0 (0: 3 dy)");
+  }
+  if (s.delta > 0 && s.height / s.ny > s.delta / 2.0) {
+    throw InputError("--delta is not resolved: need H/ny <= delta/2");
+  }
+  if (s.continuation < 1 || s.continuation > 8) {
+    throw InputError("--continuation must lie in [1, 8]");
+  }
+  if (s.init != "laminate" && s.init != "random" && s.init != "km" &&
+      s.init != "lens") {
+    throw InputError("--init must be laminate, random, km or lens");
+  }
+  if (s.periods < 0) throw InputError("--periods must be >= 0");
+  if (s.max_iterations < 0) throw InputError("--lm_iterations must be >= 0");
+}
+
+SimulationResult InitialSimulation(const SimulationSettings& s) {
+  CheckSimulationSettings(s);
+  SimulationResult result(
+      RelaxedGrid(s.length, s.height, s.nx, s.ny, s.grading));
+  result.delta = s.Delta();
+  const int periods =
+      s.periods > 0 ? s.periods : KmPeriodsFor(s.epsilon, s.length, s.height);
+  result.periods = periods;
+  const double h0 = s.height / periods;
+  if (s.init == "laminate") {
+    InitLaminate(&result.field, periods, result.delta);
+  } else if (s.init == "random") {
+    InitRandom(&result.field, s.seed, result.delta);
+  } else if (s.init == "km") {
+    ConstructionResult km = EvaluateKm(s.epsilon, s.length, h0,
+                                       KmOptimalTheta());
+    InitConstruction(&result.field, km.ToConstruction(s.length), result.delta);
+  } else {
+    ConstructionResult lens = DefaultLens(s.epsilon, s.length);
+    lens.shape = LensShape{0.5, 0.0, 0.0};
+    // The lens period in H: the nearest integer count to its optimal h0.
+    const int n = s.periods > 0
+                      ? s.periods
+                      : std::max(1, static_cast<int>(
+                                        std::lround(s.height / lens.h0)));
+    result.periods = n;
+    lens.h0 = s.height / n;
+    InitConstruction(&result.field, lens.ToConstruction(s.length),
+                     result.delta);
+  }
+  return result;
+}
+
+SimulationResult RunSimulation(const SimulationSettings& s) {
+  const auto start = std::chrono::steady_clock::now();
+  SimulationResult result = InitialSimulation(s);
+  RelaxedSolveOptions options;
+  options.deltas = ContinuationDeltas(result.delta, s.continuation);
+  options.max_iterations = s.max_iterations;
+  options.num_threads = s.num_threads;
+  options.progress = s.progress;
+  result.stages = SolveRelaxed(&result.field, s.epsilon, options);
+  result.energy = result.stages.back().energy;
+  for (const RelaxedStage& stage : result.stages) {
+    result.iterations += stage.iterations;
+  }
+  result.interfaces = CountInterfaces(result.field);
+  result.seconds = std::chrono::duration<double>(
+                       std::chrono::steady_clock::now() - start)
+                       .count();
+  return result;
+}
+
+std::vector<int> CountInterfaces(const RelaxedField& field) {
+  const RelaxedGrid& g = field.grid;
+  std::vector<int> counts;
+  for (int i = 1; i <= g.nx; ++i) {
+    int count = 0;
+    for (int j = 0; j < g.ny; ++j) {
+      const bool a = field.uy(i, j) > 0.0;
+      const bool b = field.uy(i, (j + 1) % g.ny) > 0.0;
+      count += a != b;
+    }
+    counts.push_back(count);
+  }
+  return counts;
+}
+
+}  // namespace shellspace::branching

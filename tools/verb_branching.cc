@@ -1,0 +1,254 @@
+// `shellspace branching simulate|construct [flags]`: the Kohn–Müller branching
+// problem (spec branching.md).
+//
+//   simulate  — relaxed diffuse-interface simulation on a graded grid (sparse
+//               LM, continuation in delta); writes DIR/u.csv, DIR/uy.png,
+//               DIR/interfaces.csv, DIR/summary.json.
+//   construct — the reduced sharp-interface model: the KM or lens
+//               self-similar construction, optionally optimised; writes
+//               DIR/pattern.png and DIR/summary.json.
+//
+// Shared flags (tools/common_flags.h): --epsilon (branching default 1e-3 when
+// not given: the shared default 1.0 belongs to `transport`), --height (the
+// domain height H, a double; 0 = 0.5), --output, --json, --quiet.
+#include <gflags/gflags.h>
+
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "geometry/mesh.h"
+#include "problems/branching/construction_optimizer.h"
+#include "problems/branching/field_output.h"
+#include "problems/branching/km_family.h"
+#include "problems/branching/simulation.h"
+#include "render/png_writer.h"
+#include "tools/common_flags.h"
+#include "tools/json_writer.h"
+#include "tools/verb.h"
+
+DEFINE_double(length, 1.0, "branching: domain length L (distance from the austenite)");
+DEFINE_int32(nx, 64, "branching simulate: number of x-cells");
+DEFINE_int32(ny, 128, "branching simulate: number of y-nodes (periodic)");
+DEFINE_string(init, "km",
+              "branching simulate: initial guess laminate|random|km|lens");
+DEFINE_double(delta, 0.0,
+              "branching simulate: interface width (0: 3 H/ny, the rule "
+              "dy = delta/3)");
+DEFINE_double(grading, 2.0,
+              "branching simulate: x-grading exponent, x_i = L (i/nx)^g");
+DEFINE_int32(continuation, 3,
+             "branching simulate: continuation stages in delta (factor 2)");
+DEFINE_int32(periods, 0,
+             "branching simulate: periods of the initial pattern in H (0: "
+             "nearest to the optimal KM period)");
+DEFINE_int32(init_seed, 1, "branching simulate: seed of --init random");
+DEFINE_int32(lm_iterations, 200,
+             "branching simulate: LM iterations per continuation stage");
+DEFINE_string(family, "km", "branching construct: km|lens");
+DEFINE_bool(optimize, false,
+            "branching construct: optimise h0, theta (and the lens shape) by LM");
+
+namespace shellspace {
+namespace {
+
+using namespace branching;
+
+double BranchingEpsilon() {
+  gflags::CommandLineFlagInfo info;
+  gflags::GetCommandLineFlagInfo("epsilon", &info);
+  return info.is_default ? 1e-3 : FLAGS_epsilon;
+}
+
+double BranchingHeight() { return FLAGS_height > 0 ? FLAGS_height : 0.5; }
+
+std::string PrepareOutput() {
+  if (FLAGS_output.empty()) throw InputError("--output DIR is required");
+  std::error_code error;
+  if (std::filesystem::exists(FLAGS_output, error) &&
+      !std::filesystem::is_directory(FLAGS_output, error)) {
+    throw InputError("--output exists and is not a directory: " + FLAGS_output);
+  }
+  return FLAGS_output;
+}
+
+void MakeOutputDirectory(const std::string& dir) {
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  if (error) throw InputError("cannot create directory " + dir);
+}
+
+JsonObject EnergyJson(double elastic, double interfacial) {
+  JsonObject e;
+  e.Add("elastic", elastic).Add("interfacial", interfacial)
+      .Add("total", elastic + interfacial);
+  return e;
+}
+
+int RunSimulate() {
+  if (FLAGS_height < 0) throw InputError("--height must be positive");
+  SimulationSettings s;
+  s.epsilon = BranchingEpsilon();
+  s.length = FLAGS_length;
+  s.height = BranchingHeight();
+  s.nx = FLAGS_nx;
+  s.ny = FLAGS_ny;
+  s.grading = FLAGS_grading;
+  s.delta = FLAGS_delta;
+  s.continuation = FLAGS_continuation;
+  s.init = FLAGS_init;
+  s.periods = FLAGS_periods;
+  if (FLAGS_init_seed < 0) throw InputError("--init_seed must be >= 0");
+  s.seed = static_cast<unsigned>(FLAGS_init_seed);
+  s.max_iterations = FLAGS_lm_iterations;
+  CheckSimulationSettings(s);
+  const std::string dir = PrepareOutput();
+  if (!FLAGS_quiet) {
+    std::cerr << "branching simulate: eps " << s.epsilon << ", L " << s.length
+              << ", H " << s.height << ", grid " << s.nx << " x " << s.ny
+              << ", delta " << s.Delta() << ", init " << s.init << "\n";
+    s.progress = [](double delta, int iteration, double energy) {
+      if (iteration % 10 == 0) {
+        std::cerr << "  delta " << delta << "  iteration " << iteration
+                  << "  energy " << energy << "\n";
+      }
+    };
+  }
+  const SimulationResult result = RunSimulation(s);
+  const double scale = std::pow(s.epsilon, 2.0 / 3.0) * std::cbrt(s.length);
+
+  JsonObject summary;
+  summary.Add("command", "branching simulate")
+      .Add("epsilon", s.epsilon).Add("length", s.length)
+      .Add("height", s.height).Add("nx", s.nx).Add("ny", s.ny)
+      .Add("grading", s.grading).Add("delta", result.delta)
+      .Add("init", s.init).Add("periods", result.periods)
+      .Add("energy", EnergyJson(result.energy.elastic,
+                                result.energy.interfacial()))
+      .Add("energy_over_eps23_L13", result.energy.total() / scale)
+      .Add("km_constant", KmClosedFormConstant())
+      .Add("iterations", result.iterations).Add("seconds", result.seconds);
+  std::string stages = "[";
+  for (size_t k = 0; k < result.stages.size(); ++k) {
+    const RelaxedStage& st = result.stages[k];
+    JsonObject o;
+    o.Add("delta", st.delta).Add("iterations", st.iterations)
+        .Add("energy", st.energy.total()).Add("seconds", st.seconds)
+        .Add("termination", st.termination);
+    stages += (k ? ", " : "") + o.str();
+  }
+  summary.Raw("stages", stages + "]");
+  std::vector<double> x, counts;
+  for (size_t k = 0; k < result.interfaces.size(); ++k) {
+    x.push_back(result.field.grid.x(static_cast<int>(k) + 1));
+    counts.push_back(result.interfaces[k]);
+  }
+  summary.Add("x", x).Add("interfaces", counts);
+
+  MakeOutputDirectory(dir);
+  const int width_px = 800;
+  const int height_px = std::clamp(
+      static_cast<int>(std::lround(width_px * s.height / s.length)), 200, 1600);
+  WritePng(RenderSlope(result.field, width_px, height_px), dir + "/uy.png");
+  WriteTextFile(dir + "/u.csv", FieldCsv(result.field));
+  WriteTextFile(dir + "/interfaces.csv",
+                InterfaceCsv(result.field, result.interfaces));
+  WriteTextFile(dir + "/summary.json", summary.str() + "\n");
+  if (FLAGS_json) std::cout << summary.str() << "\n";
+  if (!FLAGS_quiet) {
+    std::cerr << "energy " << result.energy.total() << " (elastic "
+              << result.energy.elastic << ", interfacial "
+              << result.energy.interfacial() << "), E / (eps^2/3 L^1/3) = "
+              << result.energy.total() / scale << "; interfaces at x = L: "
+              << result.interfaces.back() << ", near x = 0: "
+              << result.interfaces.front() << "; wrote " << dir << "\n";
+  }
+  return 0;
+}
+
+int RunConstruct() {
+  if (FLAGS_family != "km" && FLAGS_family != "lens") {
+    throw InputError("--family must be km or lens");
+  }
+  const double epsilon = BranchingEpsilon();
+  if (!(epsilon > 0) || !(FLAGS_length > 0)) {
+    throw InputError("--epsilon and --length must be positive");
+  }
+  const std::string dir = PrepareOutput();
+  ConstructionResult result;
+  if (FLAGS_family == "km") {
+    result = DefaultKm(epsilon, FLAGS_length);
+    if (FLAGS_optimize) {
+      result = OptimizeKm(epsilon, FLAGS_length, 0.5 * result.h0, 0.3);
+    }
+  } else {
+    result = DefaultLens(epsilon, FLAGS_length);
+    if (FLAGS_optimize) {
+      result = OptimizeLens(epsilon, FLAGS_length, result.h0, result.theta,
+                            LensShape{0.2, 0.0, 0.0});
+    }
+  }
+  JsonObject params;
+  params.Add("r", result.r).Add("h0", result.h0).Add("theta", result.theta);
+  if (result.family == "lens") {
+    params.Add("tau", result.shape.tau).Add("a1", result.shape.a1)
+        .Add("a2", result.shape.a2);
+  }
+  JsonObject summary;
+  summary.Add("command", "branching construct").Add("family", result.family)
+      .Add("optimized", FLAGS_optimize).Add("epsilon", epsilon)
+      .Add("length", FLAGS_length).Add("constant", result.constant)
+      .Add("parameters", params).Add("A", result.A).Add("B", result.B)
+      .Add("energy", EnergyJson(result.elastic, result.interfacial))
+      .Add("km_constant_closed_form", KmClosedFormConstant())
+      .Add("ratio_to_km", result.constant / KmClosedFormConstant());
+  if (FLAGS_optimize) {
+    summary.Add("iterations", result.iterations)
+        .Add("seconds", result.seconds)
+        .Add("termination", result.termination);
+  }
+  const double height = FLAGS_height > 0 ? FLAGS_height : 2.0 * result.h0;
+  const int width_px = 900;
+  const int height_px = std::clamp(
+      static_cast<int>(std::lround(width_px * height / FLAGS_length)), 100,
+      1800);
+  const RgbImage image = RenderConstruction(
+      result.ToConstruction(FLAGS_length), height, width_px, height_px);
+  MakeOutputDirectory(dir);
+  WritePng(image, dir + "/pattern.png");
+  WriteTextFile(dir + "/summary.json", summary.str() + "\n");
+  if (FLAGS_json) {
+    std::cout << summary.str() << "\n";
+  } else if (!FLAGS_quiet) {
+    std::cout << result.family << ": constant " << result.constant
+              << " (C_KM closed form " << KmClosedFormConstant() << ", ratio "
+              << result.constant / KmClosedFormConstant() << "), h0 "
+              << result.h0 << ", theta " << result.theta << "\n";
+  }
+  return 0;
+}
+
+int RunBranching() {
+  const std::vector<std::string>& positional = VerbPositionalArgs();
+  if (positional.size() != 1) {
+    throw InputError("expected a sub-command: branching simulate|construct");
+  }
+  if (positional[0] == "simulate") return RunSimulate();
+  if (positional[0] == "construct") return RunConstruct();
+  throw InputError("unknown sub-command '" + positional[0] +
+                   "' (expected simulate or construct)");
+}
+
+}  // namespace
+
+SHELLSPACE_VERB_TAKES_SUBCOMMAND("branching");
+SHELLSPACE_REGISTER_VERB(
+    "branching",
+    "branching simulate|construct [--epsilon E --length L --height H --nx N "
+    "--ny M --init laminate|random|km|lens | --family km|lens --optimize] "
+    "--output DIR [--json]",
+    RunBranching);
+
+}  // namespace shellspace
