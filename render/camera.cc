@@ -37,6 +37,21 @@ void BoundingBox(const std::vector<Positions>& frames, Eigen::Vector3d* lower,
   if (!any) throw InputError("nothing to render: the frames have no vertices");
 }
 
+namespace {
+
+// Sets camera.scale for projected extents extent_x, extent_y (world units).
+void FitScale(double extent_x, double extent_y, double size, double margin,
+              Camera* camera) {
+  const double usable = 1 - 2 * margin;
+  const double tiny = 1e-12 * std::max(1.0, size);
+  double scale = std::numeric_limits<double>::infinity();
+  if (extent_x > tiny) scale = std::min(scale, usable * camera->width / extent_x);
+  if (extent_y > tiny) scale = std::min(scale, usable * camera->height / extent_y);
+  camera->scale = std::isfinite(scale) ? scale : 1;
+}
+
+}  // namespace
+
 Camera FrameBox(const Eigen::Vector3d& lower, const Eigen::Vector3d& upper,
                 const ViewAngles& view, int width, int height, double margin) {
   Camera camera;
@@ -48,12 +63,35 @@ Camera FrameBox(const Eigen::Vector3d& lower, const Eigen::Vector3d& upper,
   const Eigen::Vector3d half = 0.5 * (upper - lower);
   const double extent_x = 2 * camera.right.cwiseAbs().dot(half);
   const double extent_y = 2 * camera.up.cwiseAbs().dot(half);
-  const double usable = 1 - 2 * margin;
-  const double tiny = 1e-12 * std::max(1.0, half.norm());
-  double scale = std::numeric_limits<double>::infinity();
-  if (extent_x > tiny) scale = std::min(scale, usable * width / extent_x);
-  if (extent_y > tiny) scale = std::min(scale, usable * height / extent_y);
-  camera.scale = std::isfinite(scale) ? scale : 1;
+  FitScale(extent_x, extent_y, half.norm(), margin, &camera);
+  return camera;
+}
+
+Camera FrameVertices(const std::vector<Positions>& frames,
+                     const ViewAngles& view, int width, int height,
+                     double margin) {
+  Eigen::Vector3d lower, upper;
+  BoundingBox(frames, &lower, &upper);  // validates
+  Camera camera;
+  ViewFrame(view, &camera.right, &camera.up, &camera.forward);
+  camera.width = width;
+  camera.height = height;
+  const double inf = std::numeric_limits<double>::infinity();
+  Eigen::Vector3d lo = Eigen::Vector3d::Constant(inf);
+  Eigen::Vector3d hi = Eigen::Vector3d::Constant(-inf);
+  Eigen::Matrix3d basis;  // rows: right, up, forward
+  basis << camera.right.transpose(), camera.up.transpose(),
+      camera.forward.transpose();
+  for (const Positions& p : frames) {
+    for (int i = 0; i < p.rows(); ++i) {
+      const Eigen::Vector3d q = basis * p.row(i).transpose();
+      lo = lo.cwiseMin(q);
+      hi = hi.cwiseMax(q);
+    }
+  }
+  camera.center = basis.transpose() * (0.5 * (lo + hi));
+  FitScale(hi.x() - lo.x(), hi.y() - lo.y(), (upper - lower).norm(), margin,
+           &camera);
   return camera;
 }
 

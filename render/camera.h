@@ -60,6 +60,18 @@ void BoundingBox(const std::vector<Positions>& frames, Eigen::Vector3d* lower,
 Camera FrameBox(const Eigen::Vector3d& lower, const Eigen::Vector3d& upper,
                 const ViewAngles& view, int width, int height, double margin);
 
+// The tighter camera that frames the vertices of all frames themselves: with
+// [lo_x, hi_x] the range of right . p and [lo_y, hi_y] that of up . p over all
+// vertices p of all frames, center projects to the middle of both ranges and
+//   scale = min((1 - 2 margin) width / (hi_x - lo_x),
+//               (1 - 2 margin) height / (hi_y - lo_y))
+// (zero ranges as in FrameBox), so the projected vertices touch the margins
+// on at least one side. One camera for all frames: motion stays visible.
+// Throws InputError as BoundingBox does.
+Camera FrameVertices(const std::vector<Positions>& frames,
+                     const ViewAngles& view, int width, int height,
+                     double margin);
+
 }  // namespace shellspace
 
 #endif  // SHELLSPACE_RENDER_CAMERA_H_

@@ -80,12 +80,10 @@ RgbImage RenderFilmStrip(const std::vector<Positions>& frames,
                        std::to_string(frames[0].rows()));
     }
   }
-  Eigen::Vector3d lower, upper;
-  BoundingBox(frames, &lower, &upper);
   const int factor = options.supersample;
   const Camera camera =
-      FrameBox(lower, upper, options.view, options.width * factor,
-               options.height * factor, options.margin);
+      FrameVertices(frames, options.view, options.width * factor,
+                    options.height * factor, options.margin);
 
   const int count = static_cast<int>(frames.size());
   const int columns = std::min(count, options.max_per_row);

@@ -34,7 +34,7 @@ struct RenderOptions {
 void ValidateRenderOptions(const RenderOptions& options);
 
 // Renders each frame (positions of one shell, all sharing `faces`) with the
-// same camera, FrameBox (camera.h) of the bounding box of ALL frames, and
+// same camera, FrameVertices (camera.h) of the vertices of ALL frames, and
 // lays the frames out left to right, top to bottom: with n frames,
 // columns = min(n, max_per_row) and rows = ceil(n / columns), so the image is
 // columns * width by rows * height pixels; frame k occupies the cell at

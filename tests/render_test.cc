@@ -189,6 +189,32 @@ TEST(CameraTest, FrameBoxFitsTheBoxIntoTheMargins) {
   EXPECT_LT(lo.z(), hi.z());      // z = 1 is nearer to a front viewer
 }
 
+TEST(CameraTest, FrameVerticesTouchesTheMargins) {
+  // A tilted segment's vertices in the iso view: the camera centres their
+  // projection and fits the longer projected side exactly into the margins.
+  Positions points(3, 3);
+  points << 0, 0, 0, 1, 2, 3, -2, 0.5, 1;
+  const Positions shifted = points.rowwise() + Eigen::RowVector3d(5, -1, 2);
+  const Camera camera =
+      FrameVertices({points, shifted}, ParseView("iso"), 300, 200, 0.1);
+  double lo_x = 1e9, hi_x = -1e9, lo_y = 1e9, hi_y = -1e9;
+  for (const Positions* p : {static_cast<const Positions*>(&points), &shifted}) {
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector3d q = camera.Project(p->row(i).transpose());
+      lo_x = std::min(lo_x, q.x());
+      hi_x = std::max(hi_x, q.x());
+      lo_y = std::min(lo_y, q.y());
+      hi_y = std::max(hi_y, q.y());
+    }
+  }
+  EXPECT_NEAR(lo_x + hi_x, 300, 1e-9);
+  EXPECT_NEAR(lo_y + hi_y, 200, 1e-9);
+  EXPECT_TRUE(std::abs(hi_x - lo_x - 240) < 1e-9 ||
+              std::abs(hi_y - lo_y - 160) < 1e-9);
+  EXPECT_LE(hi_x - lo_x, 240 + 1e-9);
+  EXPECT_LE(hi_y - lo_y, 160 + 1e-9);
+}
+
 // ---------------------------------------------------------------- coverage
 
 TEST(RenderTest, SquareFillsTheFramedArea) {
@@ -211,7 +237,10 @@ TEST(RenderTest, SquareFillsTheFramedArea) {
 }
 
 // Covered fraction of a sphere about the origin, seen from `view`, against
-// the disc of the framing rule of FrameBox computed here from the mesh's box.
+// the disc of the framing rule (camera.h: the vertices' projected extents fit
+// into the frame inset by 5 %), computed here independently: in the front
+// view the extents are those of x and y; in any view they are within the
+// sphere's diameter 2 r.
 void ExpectSphereCoverage(const Mesh& sphere, const std::string& view,
                           double low, double high) {
   const int size = 240;
@@ -223,10 +252,13 @@ void ExpectSphereCoverage(const Mesh& sphere, const std::string& view,
   for (int i = 0; i < sphere.num_vertices(); ++i) {
     radius = std::max(radius, sphere.positions.row(i).norm());
   }
-  // Front view: the box extents along x and y bound the projection.
-  const Eigen::RowVector3d extent = sphere.positions.colwise().maxCoeff() -
-                                    sphere.positions.colwise().minCoeff();
-  const double scale = 0.9 * size / std::max(extent.x(), extent.y());
+  double extent = 2 * radius;
+  if (view == "front") {
+    const Eigen::RowVector3d box = sphere.positions.colwise().maxCoeff() -
+                                   sphere.positions.colwise().minCoeff();
+    extent = std::max(box.x(), box.y());
+  }
+  const double scale = 0.9 * size / extent;
   const double expected = M_PI * std::pow(scale * radius, 2) / (size * size);
   const double actual =
       static_cast<double>(CoveredPixels(image, options)) / (size * size);
@@ -236,7 +268,10 @@ void ExpectSphereCoverage(const Mesh& sphere, const std::string& view,
 
 TEST(RenderTest, FineSphereCoversItsDisc) {
   // 64 segments: the silhouette polygon has > 99.5 % of the disc's area.
-  ExpectSphereCoverage(UvSphere(32, 64, 1.0), "front", 0.99, 1.005);
+  const Mesh sphere = UvSphere(32, 64, 1.0);
+  ExpectSphereCoverage(sphere, "front", 0.99, 1.005);
+  ExpectSphereCoverage(sphere, "iso", 0.99, 1.01);
+  ExpectSphereCoverage(sphere, "-70,-35", 0.99, 1.01);
 }
 
 TEST(RenderTest, UnitSphereMeshCoversNearlyItsDisc) {
