@@ -1,0 +1,8 @@
+# CTest registration of the installed-package test: install the project from
+# this build tree into a temporary prefix, build tests/consumer against it and
+# run it (run_consumer_test.sh). Include from tests/CMakeLists.txt with
+#   include(${CMAKE_CURRENT_SOURCE_DIR}/consumer/consumer_test.cmake)
+# It needs the library and the CLI built, which a complete build provides.
+add_test(NAME consumer_package
+  COMMAND ${CMAKE_CURRENT_LIST_DIR}/run_consumer_test.sh ${PROJECT_BINARY_DIR})
+set_tests_properties(consumer_package PROPERTIES TIMEOUT 600)
