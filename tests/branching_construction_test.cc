@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "cost_functions/branching/km_energy_cost_function.h"
+#include "cost_functions/branching/lens_energy_cost_function.h"
 #include "problems/branching/cell_pattern.h"
 #include "problems/branching/construction_optimizer.h"
 #include "problems/branching/km_family.h"
@@ -66,6 +68,52 @@ TEST(BranchingLens, OptimizedConstantBelowKm) {
               lens.termination.c_str());
   EXPECT_LT(lens.constant, KmClosedFormConstant());
   EXPECT_LE(lens.constant, start.constant);
+}
+
+// The Ceres cost functions reproduce the evaluator's energy (sum r^2).
+TEST(BranchingConstruction, CostFunctionsEqualEvaluator) {
+  const double p[5] = {0.3, 0.2, 0.35, 0.3, -0.4};
+  const double* blocks[1] = {p};
+  double r[kLensEnergyPoints + 1];
+  LensEnergyCostFunction lens(2e-3, 1.5);
+  ASSERT_TRUE(lens.Evaluate(blocks, r, nullptr));
+  double e = 0.0;
+  for (double v : r) e += v * v;
+  const ConstructionResult ev =
+      EvaluateLens(2e-3, 1.5, p[0], p[1], LensShape{p[2], p[3], p[4]});
+  EXPECT_NEAR(e, ev.elastic + ev.interfacial, 1e-12 * e);
+
+  const double q[2] = {0.2, 0.4};
+  const double* kblocks[1] = {q};
+  double rk[2];
+  KmEnergyCostFunction km(1.0 / 32.0, 8.0, 2, 2e-3, 1.5);
+  ASSERT_TRUE(km.Evaluate(kblocks, rk, nullptr));
+  const ConstructionResult evk = EvaluateKm(2e-3, 1.5, q[0], q[1]);
+  EXPECT_NEAR(rk[0] * rk[0], evk.elastic, 1e-14);
+  EXPECT_NEAR(rk[1] * rk[1], evk.interfacial, 1e-14);
+}
+
+// Independent expectations for the lens optimum: with A = J / (1 - tau),
+// B = 12 - 8 tau, C ~ A^(1/3) B^(2/3) is minimal at tau = 1/2; the profile
+// J is bounded below by the squared geodesic length of the metric
+// (1 - 2W) dW^2 from W = 0 to 1/6: J >= ((1 - (2/3)^(3/2)) / 3)^2, and the
+// cubic profile comes close to it; h0 and theta satisfy the series optimum.
+TEST(BranchingLens, OptimumMatchesAnalyticStructure) {
+  const ConstructionResult start = DefaultLens(1e-3, 1.0);
+  const ConstructionResult lens =
+      OptimizeLens(1e-3, 1.0, start.h0, start.theta, LensShape{0.2, 0.0, 0.0});
+  EXPECT_NEAR(lens.shape.tau, 0.5, 1e-5);
+  const double geodesic = (1.0 - std::pow(2.0 / 3.0, 1.5)) / 3.0;
+  const double J = LensReducedA(lens.shape) * (1.0 - lens.shape.tau);
+  EXPECT_GE(J, geodesic * geodesic * (1.0 - 1e-12));
+  EXPECT_LE(J, geodesic * geodesic * (1.0 + 1e-3));
+  EXPECT_LT(J, LensReducedA(LensShape{}));  // better than the straight wedge
+  EXPECT_NEAR(lens.theta, OptimalTheta(3), 1e-5);
+  EXPECT_NEAR(lens.h0,
+              OptimalFirstPeriod(lens.A, lens.B, 3, 1e-3, 1.0, lens.theta),
+              1e-6 * lens.h0);
+  EXPECT_NEAR(lens.constant, SeriesConstant(lens.A, lens.B, 3, lens.theta),
+              1e-9 * lens.constant);
 }
 
 }  // namespace
