@@ -4,6 +4,8 @@
 #include <cmath>
 #include <vector>
 #include <cstdio>
+#include <cstdlib>
+#include <string>
 
 namespace shellspace {
 

@@ -6,7 +6,7 @@ cd "$(dirname "$0")/.."
 
 packages=(build-essential cmake libceres-dev libeigen3-dev libgoogle-glog-dev
           libgflags-dev libopenmesh-dev libgtest-dev libbenchmark-dev
-          libsuitesparse-dev libpng-dev)
+          libsuitesparse-dev libpng-dev libopenblas-dev)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" ||

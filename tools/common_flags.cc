@@ -18,3 +18,9 @@ DEFINE_string(reference, "", "reference (undeformed) shell: PLY, OBJ or OFF");
 DEFINE_string(mask, "",
               "vertex mask file: one 0-based index per line, '#' comments; "
               "listed vertices are held fixed");
+DEFINE_int32(steps, 8, "number of time steps K (the path has K + 1 shapes)");
+DEFINE_double(tolerance, 1e-8,
+              "stop when the gradient max-norm falls below this fraction of "
+              "its initial value");
+DEFINE_int32(max_iterations, 200, "maximum Levenberg-Marquardt iterations");
+DEFINE_bool(report, false, "print Ceres full solver report (timings) on stderr");

@@ -19,3 +19,8 @@ DECLARE_string(reference);
 DECLARE_string(mask);
 
 #endif  // SHELLSPACE_TOOLS_COMMON_FLAGS_H_
+
+DECLARE_int32(steps);
+DECLARE_double(tolerance);
+DECLARE_int32(max_iterations);
+DECLARE_bool(report);

@@ -52,6 +52,14 @@ SolverSettings SettingsFromFlags(const std::string& label) {
   SolverSettings settings;
   settings.progress = !FLAGS_quiet;
   settings.progress_label = label;
+  if (!(FLAGS_tolerance > 0 && FLAGS_tolerance < 1)) {
+    throw InputError("--tolerance must lie in (0, 1)");
+  }
+  if (FLAGS_max_iterations < 1) {
+    throw InputError("--max_iterations must be at least 1");
+  }
+  settings.gradient_tolerance = FLAGS_tolerance;
+  settings.max_iterations = FLAGS_max_iterations;
   return settings;
 }
 

@@ -1,0 +1,28 @@
+// The --json summary and frame output shared by the path-producing verbs.
+#ifndef SHELLSPACE_TOOLS_PATH_SUMMARY_H_
+#define SHELLSPACE_TOOLS_PATH_SUMMARY_H_
+
+#include <string>
+#include <vector>
+
+#include <ceres/solver.h>
+
+#include "cost_functions/deformation_energy.h"
+#include "problems/geodesic.h"
+#include "tools/json_writer.h"
+
+namespace shellspace {
+
+// JSON with path_energy, step_energies, iterations, final_gradient_norm
+// (max norm), termination, seconds, frames.
+JsonObject PathSummary(const ShellSpace& space, const ShellPath& path,
+                       const std::vector<ceres::Solver::Summary>& summaries,
+                       double seconds);
+
+// Writes DIR/shape_000.ply ... and, if --png is set, a film strip.
+void WritePathOutputs(const std::string& dir, const Faces& faces,
+                      const ShellPath& path);
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_TOOLS_PATH_SUMMARY_H_
