@@ -33,9 +33,9 @@ namespace {
 
 // Holds the masked vertices constant, or pins the rigid gauge.
 void FixVerticesOrGauge(Positions* shape, const std::vector<int>& fixed,
-                        ceres::Problem* problem) {
+                        ceres::Problem* problem, bool pin_gauge = true) {
   for (int v : fixed) problem->SetParameterBlockConstant(shape->data() + 3 * v);
-  if (fixed.empty()) PinRigidMotions(shape, problem);
+  if (fixed.empty() && pin_gauge) PinRigidMotions(shape, problem);
 }
 
 }  // namespace
@@ -64,7 +64,8 @@ GeodesicResult SolveGeodesic(const ShellSpace& space, const GeodesicInput& input
       AddDeformationEnergy(space, ref, def, K, &problem);
     }
     for (int k = 1; k < K; ++k) {
-      FixVerticesOrGauge(&result.path[k], input.fixed_vertices, &problem);
+      FixVerticesOrGauge(&result.path[k], input.fixed_vertices, &problem,
+                         input.pin_gauge);
     }
     result.summary = SolveWithSettings(&problem, settings);
   }

@@ -28,6 +28,10 @@ struct GeodesicInput {
   int steps = 8;                     // K >= 1
   std::vector<int> fixed_vertices;   // Dirichlet mask (may be empty)
   ShellPath initial;                 // optional K + 1 shapes; else linear
+  // Without a mask: pin the rigid gauge of each inner shape (true), or leave
+  // it free for LM's damping to handle (false; for tests of gauge
+  // independence).
+  bool pin_gauge = true;
 };
 
 struct GeodesicResult {

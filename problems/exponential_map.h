@@ -1,0 +1,59 @@
+// The discrete exponential map (calculus.md): single forward/backward steps,
+// geodesic shooting EXP_K, and the discrete logarithm LOG_K.
+#ifndef SHELLSPACE_PROBLEMS_EXPONENTIAL_MAP_H_
+#define SHELLSPACE_PROBLEMS_EXPONENTIAL_MAP_H_
+
+#include <vector>
+
+#include <ceres/solver.h>
+
+#include "problems/geodesic.h"
+
+namespace shellspace {
+
+enum class StepDirection { kForward, kBackward };
+
+struct ExpStepResult {
+  Positions shape;
+  double residual_norm = 0;  // max-norm of F at the result
+  ceres::Solver::Summary summary;
+};
+
+// One step of the discrete geodesic through (a, b) beyond b:
+//  forward  (a, b) = (s_{k-1}, s_k): s_{k+1} with
+//           D_2 W[s_{k-1}, s_k] + D_1 W[s_k, s_{k+1}] = 0;
+//  backward (a, b) = (s_{k+1}, s_k): s_{k-1} with
+//           D_2 W[s_{k-1}, s_k] + D_1 W[s_k, s_{k+1}] = 0.
+// Solved as least squares of the per-vertex residuals F_v
+// (cost_functions/gradient_field_residual.h) by sparse LM, from 2 b - a (or b
+// if that has degenerate triangles). Vertices in `fixed_vertices` keep their
+// positions in b; without them the rigid gauge is pinned.
+ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
+                      const Positions& b, StepDirection direction,
+                      const std::vector<int>& fixed_vertices,
+                      const SolverSettings& settings);
+
+// Geodesic shooting: from (s_0, s_1) computes s_2 .. s_steps by forward
+// steps (backward: from (s_0, s_1) the shapes s_{-1} .. s_{-(steps-1)}
+// before s_0). Returns the whole path in time order (steps + 1 shapes).
+ShellPath Shoot(const ShellSpace& space, const Positions& s0,
+                const Positions& s1, int steps, StepDirection direction,
+                const std::vector<int>& fixed_vertices,
+                const SolverSettings& settings,
+                std::vector<ceres::Solver::Summary>* summaries = nullptr);
+
+// EXP_K(v) at s_0: s_1 = s_0 + v/K, then K - 1 forward steps; returns s_K.
+Positions ExpK(const ShellSpace& space, const Positions& s0,
+               const Positions& variation, int steps,
+               const std::vector<int>& fixed_vertices,
+               const SolverSettings& settings);
+
+// LOG_K(a -> b) = K (s_1 - a) for the discrete geodesic (a, s_1, ..., b).
+Positions LogK(const ShellSpace& space, const Positions& a, const Positions& b,
+               int steps, const std::vector<int>& fixed_vertices,
+               const SolverSettings& settings,
+               GeodesicResult* geodesic = nullptr);
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_PROBLEMS_EXPONENTIAL_MAP_H_
