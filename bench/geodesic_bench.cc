@@ -1,0 +1,103 @@
+// The geodesic-calculus workloads of the issue, one run each (heavy: not
+// part of the test suite): finger0 -> finger1 geodesic (mask, eta = 0.001,
+// K = 8, to a relative gradient norm of 1e-8), cactus0 -> cactus1 geodesic
+// (bottom mask, K = 8), an 8-step EXP shot on the finger, and a transport
+// of finger_var - finger0 along the finger geodesic.
+#include <benchmark/benchmark.h>
+
+#include <chrono>
+
+#include "geometry/mesh_io.h"
+#include "problems/exponential_map.h"
+#include "problems/parallel_transport.h"
+
+namespace shellspace {
+namespace {
+
+std::string Data(const std::string& name) {
+  return std::string(SHELLSPACE_DATA_DIR) + "/" + name;
+}
+
+void ReportSummary(benchmark::State& state, const ceres::Solver::Summary& s) {
+  state.counters["iterations"] = static_cast<double>(s.iterations.size());
+  state.counters["jacobian_s"] = s.jacobian_evaluation_time_in_seconds;
+  state.counters["residual_s"] = s.residual_evaluation_time_in_seconds;
+  state.counters["linear_solver_s"] = s.linear_solver_time_in_seconds;
+}
+
+GeodesicResult FingerGeodesic(const Mesh& a, const Mesh& b,
+                              const ShellSpace& space,
+                              const std::vector<int>& mask) {
+  GeodesicInput input;
+  input.start = a.positions;
+  input.end = b.positions;
+  input.steps = 8;
+  input.fixed_vertices = mask;
+  return SolveGeodesic(space, input, SolverSettings{});
+}
+
+void BM_FingerGeodesic(benchmark::State& state) {
+  const Mesh a = ReadMesh(Data("finger/finger0.ply"));
+  const Mesh b = ReadMesh(Data("finger/finger1.ply"));
+  ShellMaterial material;
+  material.eta = 0.001;
+  const ShellSpace space(a, Topology::Build(a), material);
+  const auto mask = ReadMask(Data("finger/finger_mask.txt"), a.num_vertices());
+  for (auto _ : state) {
+    const GeodesicResult g = FingerGeodesic(a, b, space, mask);
+    ReportSummary(state, g.summary);
+    state.counters["E_K"] = g.path_energy;
+  }
+}
+BENCHMARK(BM_FingerGeodesic)->Iterations(1)->Unit(benchmark::kSecond);
+
+void BM_CactusGeodesic(benchmark::State& state) {
+  const Mesh a = ReadMesh(Data("cactus/cactus0.ply"));
+  const Mesh b = ReadMesh(Data("cactus/cactus1.ply"));
+  const ShellSpace space(a, Topology::Build(a), ShellMaterial{});
+  GeodesicInput input;
+  input.start = a.positions;
+  input.end = b.positions;
+  input.steps = 8;
+  input.fixed_vertices =
+      ReadMask(Data("cactus/cactus_bottom_mask.txt"), a.num_vertices());
+  for (auto _ : state) {
+    const GeodesicResult g = SolveGeodesic(space, input, SolverSettings{});
+    ReportSummary(state, g.summary);
+    state.counters["E_K"] = g.path_energy;
+  }
+}
+BENCHMARK(BM_CactusGeodesic)->Iterations(1)->Unit(benchmark::kSecond);
+
+void BM_FingerShootAndTransport(benchmark::State& state) {
+  const Mesh a = ReadMesh(Data("finger/finger0.ply"));
+  const Mesh b = ReadMesh(Data("finger/finger1.ply"));
+  const Mesh var = ReadMesh(Data("finger/finger_var.ply"));
+  ShellMaterial material;
+  material.eta = 0.001;
+  const ShellSpace space(a, Topology::Build(a), material);
+  const auto mask = ReadMask(Data("finger/finger_mask.txt"), a.num_vertices());
+  const GeodesicResult g = FingerGeodesic(a, b, space, mask);
+  for (auto _ : state) {
+    const auto t0 = std::chrono::steady_clock::now();
+    std::vector<ceres::Solver::Summary> summaries;
+    const ShellPath shot = Shoot(space, g.path[0], g.path[1], 8,
+                                 StepDirection::kForward, mask, SolverSettings{},
+                                 &summaries);
+    const auto t1 = std::chrono::steady_clock::now();
+    const TransportResult t = ParallelTransport(
+        space, g.path, var.positions - a.positions, 1.0, mask, SolverSettings{});
+    const auto t2 = std::chrono::steady_clock::now();
+    state.counters["shoot_s"] = std::chrono::duration<double>(t1 - t0).count();
+    state.counters["transport_s"] = std::chrono::duration<double>(t2 - t1).count();
+    state.counters["shoot_end_error"] =
+        (shot.back() - g.path.back()).rowwise().norm().maxCoeff();
+    benchmark::DoNotOptimize(t.shapes.size());
+  }
+}
+BENCHMARK(BM_FingerShootAndTransport)->Iterations(1)->Unit(benchmark::kSecond);
+
+}  // namespace
+}  // namespace shellspace
+
+BENCHMARK_MAIN();

@@ -1,0 +1,68 @@
+// Evaluation of W[cactus0, cactus1] (5,261 vertices): residuals and Jacobians
+// w.r.t. both arguments through ceres::Problem::Evaluate, with 1 and 2
+// threads; and the assembly of the sparse Hessian D_2^2 W.
+#include <benchmark/benchmark.h>
+
+#include <ceres/crs_matrix.h>
+#include <ceres/problem.h>
+
+#include "cost_functions/energy_derivatives.h"
+#include "geometry/mesh_io.h"
+#include "geometry/topology.h"
+
+namespace shellspace {
+namespace {
+
+struct Cactus {
+  Mesh reference = ReadMesh(std::string(SHELLSPACE_DATA_DIR) + "/cactus/cactus0.ply");
+  Mesh deformed = ReadMesh(std::string(SHELLSPACE_DATA_DIR) + "/cactus/cactus1.ply");
+  ShellSpace space{reference, Topology::Build(reference), ShellMaterial{}};
+};
+
+void BM_ResidualsAndJacobians(benchmark::State& state) {
+  Cactus cactus;
+  Positions ref = cactus.reference.positions, def = cactus.deformed.positions;
+  ceres::Problem problem;
+  AddDeformationEnergy(cactus.space, ShellArgument::Variable(&ref),
+                       ShellArgument::Variable(&def), 1.0, &problem);
+  ceres::Problem::EvaluateOptions options;
+  options.num_threads = static_cast<int>(state.range(0));
+  double cost = 0;
+  std::vector<double> residuals;
+  ceres::CRSMatrix jacobian;
+  for (auto _ : state) {
+    problem.Evaluate(options, &cost, &residuals, nullptr, &jacobian);
+    benchmark::DoNotOptimize(cost);
+  }
+  state.counters["W"] = cost;
+}
+BENCHMARK(BM_ResidualsAndJacobians)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+
+void BM_GradientBothArguments(benchmark::State& state) {
+  Cactus cactus;
+  for (auto _ : state) {
+    auto g1 = EnergyGradient(cactus.space, cactus.reference.positions,
+                             cactus.deformed.positions, ShellSide::kReference);
+    auto g2 = EnergyGradient(cactus.space, cactus.reference.positions,
+                             cactus.deformed.positions, ShellSide::kDeformed);
+    benchmark::DoNotOptimize(g1.data());
+    benchmark::DoNotOptimize(g2.data());
+  }
+}
+BENCHMARK(BM_GradientBothArguments)->Unit(benchmark::kMillisecond);
+
+void BM_HessianDeformed(benchmark::State& state) {
+  Cactus cactus;
+  for (auto _ : state) {
+    SparseMatrix h = EnergyHessian(cactus.space, cactus.reference.positions,
+                                   cactus.deformed.positions,
+                                   ShellSide::kDeformed, ShellSide::kDeformed);
+    benchmark::DoNotOptimize(h.nonZeros());
+  }
+}
+BENCHMARK(BM_HessianDeformed)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace shellspace
+
+BENCHMARK_MAIN();
