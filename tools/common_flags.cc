@@ -24,3 +24,5 @@ DEFINE_double(tolerance, 1e-8,
               "its initial value");
 DEFINE_int32(max_iterations, 200, "maximum Levenberg-Marquardt iterations");
 DEFINE_bool(report, false, "print Ceres full solver report (timings) on stderr");
+DEFINE_string(start, "", "first shell s_0 of the path");
+DEFINE_string(end, "", "last shell s_K of the path");

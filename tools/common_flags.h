@@ -24,3 +24,5 @@ DECLARE_int32(steps);
 DECLARE_double(tolerance);
 DECLARE_int32(max_iterations);
 DECLARE_bool(report);
+DECLARE_string(start);
+DECLARE_string(end);

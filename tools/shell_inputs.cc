@@ -35,6 +35,17 @@ Mesh LoadCompatibleShell(const std::string& path, const Mesh& like,
   return mesh;
 }
 
+ShellPair LoadStartEndFromFlags() {
+  RequireFlag("start", FLAGS_start);
+  RequireFlag("end", FLAGS_end);
+  RequireFlag("output", FLAGS_output);
+  if (FLAGS_steps < 1) throw InputError("--steps must be at least 1");
+  ShellPair pair;
+  pair.start = LoadShell(FLAGS_start);
+  pair.end = LoadCompatibleShell(FLAGS_end, pair.start, FLAGS_start);
+  return pair;
+}
+
 ShellMaterial MaterialFromFlags() {
   ShellMaterial material;
   material.mu = FLAGS_mu;

@@ -22,6 +22,14 @@ Mesh LoadShell(const std::string& path);
 Mesh LoadCompatibleShell(const std::string& path, const Mesh& like,
                          const std::string& like_path);
 
+// Loads the shell pair of --start and --end (after checking --start, --end,
+// --output are given and --steps >= 1): the first validated, the second
+// checked compatible with it.
+struct ShellPair {
+  Mesh start, end;
+};
+ShellPair LoadStartEndFromFlags();
+
 // The material from --mu, --lambda, --eta (validated).
 ShellMaterial MaterialFromFlags();
 

@@ -14,8 +14,6 @@
 #include "tools/shell_inputs.h"
 #include "tools/verb.h"
 
-DECLARE_string(start);
-DECLARE_string(end);
 DEFINE_string(first, "", "shoot: the shell s_0");
 DEFINE_string(second, "", "shoot: the shell s_1 (s_1 - s_0 is the initial velocity / K)");
 DEFINE_bool(backward, false, "shoot: extrapolate backward in time, before s_0");
@@ -66,13 +64,8 @@ int RunShoot() {
 }
 
 int RunLog() {
-  RequireFlag("start", FLAGS_start);
-  RequireFlag("end", FLAGS_end);
-  RequireFlag("output", FLAGS_output);
-  if (FLAGS_steps < 1) throw InputError("--steps must be at least 1");
   const auto clock = std::chrono::steady_clock::now();
-  const Mesh start = LoadShell(FLAGS_start);
-  const Mesh end = LoadCompatibleShell(FLAGS_end, start, FLAGS_start);
+  const auto [start, end] = LoadStartEndFromFlags();
   const ShellSpace space = SpaceFromFlags(start);
   GeodesicResult geodesic;
   const Positions log =

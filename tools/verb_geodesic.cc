@@ -11,20 +11,13 @@
 #include "tools/shell_inputs.h"
 #include "tools/verb.h"
 
-DEFINE_string(start, "", "first shell s_0 of the path");
-DEFINE_string(end, "", "last shell s_K of the path");
 
 namespace shellspace {
 namespace {
 
 int RunGeodesic() {
-  RequireFlag("start", FLAGS_start);
-  RequireFlag("end", FLAGS_end);
-  RequireFlag("output", FLAGS_output);
-  if (FLAGS_steps < 1) throw InputError("--steps must be at least 1");
   const auto clock = std::chrono::steady_clock::now();
-  const Mesh start = LoadShell(FLAGS_start);
-  const Mesh end = LoadCompatibleShell(FLAGS_end, start, FLAGS_start);
+  const auto [start, end] = LoadStartEndFromFlags();
   const ShellSpace space = SpaceFromFlags(start);
   GeodesicInput input;
   input.start = start.positions;
