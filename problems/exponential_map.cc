@@ -58,6 +58,8 @@ ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
   if (fixed_vertices.empty()) PinRigidMotions(&result.shape, &problem);
   SolverSettings step_settings = settings;
   step_settings.gradient_tolerance = std::min(settings.gradient_tolerance, 1e-10);
+  step_settings.initial_trust_region_radius =
+1e16;  // Gauss-Newton from the start
   result.summary = SolveWithSettings(&problem, step_settings);
   // Recompute F at the result for the reported residual.
   Eigen::VectorXd residual = constant;

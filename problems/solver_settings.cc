@@ -22,6 +22,10 @@ ceres::Solver::Options MakeSolverOptions(const SolverSettings& settings,
       settings.gradient_tolerance * std::max(1.0, initial_gradient_norm);
   options.parameter_tolerance = settings.parameter_tolerance;
   options.num_threads = settings.num_threads;
+  options.initial_trust_region_radius = settings.initial_trust_region_radius;
+  options.max_trust_region_radius =
+      std::max(options.max_trust_region_radius,
+               settings.initial_trust_region_radius);
   options.logging_type = ceres::SILENT;
   options.minimizer_progress_to_stdout = false;
   return options;

@@ -22,6 +22,10 @@ struct SolverSettings {
   double gradient_tolerance = 1e-8;   // relative to the initial gradient
   double parameter_tolerance = 1e-12;
   int num_threads = 2;
+  // LM's initial trust-region radius (Ceres' default 1e4). Root-finding
+  // problems with a square, nonsingular Jacobian (EXP steps) want nearly
+  // Gauss-Newton steps from the start: a large radius.
+  double initial_trust_region_radius = 1e4;
   bool progress = false;              // one line per iteration on stderr
   std::string progress_label = "solve";
 };
