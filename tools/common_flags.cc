@@ -26,3 +26,5 @@ DEFINE_int32(max_iterations, 200, "maximum Levenberg-Marquardt iterations");
 DEFINE_bool(report, false, "print Ceres full solver report (timings) on stderr");
 DEFINE_string(start, "", "first shell s_0 of the path");
 DEFINE_string(end, "", "last shell s_K of the path");
+DEFINE_string(inputs, "", "comma-separated list of input shells");
+DEFINE_string(at, "", "comma-separated time indices of the keyframes / inputs");

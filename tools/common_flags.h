@@ -26,3 +26,5 @@ DECLARE_int32(max_iterations);
 DECLARE_bool(report);
 DECLARE_string(start);
 DECLARE_string(end);
+DECLARE_string(inputs);
+DECLARE_string(at);
