@@ -50,24 +50,25 @@ Eigen::VectorXd EnergyGradient(const ShellSpace& space,
   return gradient;
 }
 
-SparseMatrix EnergyHessian(const ShellSpace& space, const Positions& reference,
-                           const Positions& deformed, ShellSide rows,
-                           ShellSide cols) {
-  std::vector<Eigen::Triplet<double>> triplets;
+std::pair<SparseMatrix, SparseMatrix> EnergyHessianColumns(
+    const ShellSpace& space, const Positions& reference,
+    const Positions& deformed, ShellSide cols) {
+  std::vector<Eigen::Triplet<double>> rows_reference, rows_deformed;
   ElementSecondDerivatives<3> d3;
   ElementSecondDerivatives<4> d4;
   auto accumulate = [&](const int* vs, int count, const double* ref,
                         const double* def, const auto& element) {
     using E = std::decay_t<decltype(element)>;
     auto add = [&](const auto& d) {
-      const auto& block = rows == ShellSide::kReference ? d.d_grad_reference
-                                                        : d.d_grad_deformed;
       for (int a = 0; a < count; ++a) {
         for (int b = 0; b < count; ++b) {
           for (int i = 0; i < 3; ++i) {
             for (int j = 0; j < 3; ++j) {
-              triplets.emplace_back(3 * vs[a] + i, 3 * vs[b] + j,
-                                    block(3 * a + i, 3 * b + j));
+              const int r = 3 * vs[a] + i, c = 3 * vs[b] + j;
+              rows_reference.emplace_back(r, c,
+                                          d.d_grad_reference(3 * a + i, 3 * b + j));
+              rows_deformed.emplace_back(r, c,
+                                         d.d_grad_deformed(3 * a + i, 3 * b + j));
             }
           }
         }
@@ -80,9 +81,20 @@ SparseMatrix EnergyHessian(const ShellSpace& space, const Positions& reference,
     }
   };
   ForEachElement(space, reference, deformed, accumulate);
-  SparseMatrix hessian(3 * space.num_vertices, 3 * space.num_vertices);
-  hessian.setFromTriplets(triplets.begin(), triplets.end());
-  return hessian;
+  const int n = 3 * space.num_vertices;
+  std::pair<SparseMatrix, SparseMatrix> out{SparseMatrix(n, n),
+                                            SparseMatrix(n, n)};
+  out.first.setFromTriplets(rows_reference.begin(), rows_reference.end());
+  out.second.setFromTriplets(rows_deformed.begin(), rows_deformed.end());
+  return out;
+}
+
+SparseMatrix EnergyHessian(const ShellSpace& space, const Positions& reference,
+                           const Positions& deformed, ShellSide rows,
+                           ShellSide cols) {
+  auto blocks = EnergyHessianColumns(space, reference, deformed, cols);
+  return rows == ShellSide::kReference ? std::move(blocks.first)
+                                       : std::move(blocks.second);
 }
 
 }  // namespace shellspace

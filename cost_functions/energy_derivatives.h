@@ -7,6 +7,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <utility>
 
 #include "cost_functions/deformation_energy.h"
 #include "cost_functions/element_hessian.h"
@@ -28,6 +29,14 @@ Eigen::VectorXd EnergyGradient(const ShellSpace& space,
 SparseMatrix EnergyHessian(const ShellSpace& space, const Positions& reference,
                            const Positions& deformed, ShellSide rows,
                            ShellSide cols);
+
+// Both second-derivative blocks with columns on the side `cols`, from one
+// dual-number pass: first = d_cols D_1 W (rows reference), second = d_cols
+// D_2 W (rows deformed). E.g. cols = kDeformed gives (mixed D_1 D_2 W,
+// D_2^2 W).
+std::pair<SparseMatrix, SparseMatrix> EnergyHessianColumns(
+    const ShellSpace& space, const Positions& reference,
+    const Positions& deformed, ShellSide cols);
 
 // Calls visit(vertices, count, reference_coords, deformed_coords, element)
 // for each membrane (count 3) and bending (count 4) element of `space`.
