@@ -1,0 +1,148 @@
+#include "problems/leave_one_out.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <limits>
+
+#include "geometry/rigid_alignment.h"
+#include "problems/elastic_mean.h"
+#include "problems/procrustes_pca.h"
+
+namespace shellspace {
+namespace {
+
+double SecondsSince(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since)
+      .count();
+}
+
+// W[truth, reconstruction], or NaN if the reconstruction has a degenerate
+// triangle (EvaluateDeformationEnergy throws).
+double EnergyToTruth(const ShellSpace& space, const Positions& truth,
+                     const Positions& reconstruction) {
+  try {
+    return EvaluateDeformationEnergy(space, truth, reconstruction).total;
+  } catch (const InputError&) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+}
+
+}  // namespace
+
+double MeanVertexErrorUpToRigidMotion(const Positions& reconstruction,
+                                      const Positions& truth) {
+  if (reconstruction.rows() != truth.rows() || truth.rows() == 0) {
+    throw InputError("vertex error: shapes of different sizes");
+  }
+  const Positions aligned = AlignRigidly(reconstruction, truth);
+  return (aligned - truth).rowwise().norm().mean();
+}
+
+LeaveOneOutTable EvaluateLeaveOneOut(const ShellSpace& space,
+                                     const std::vector<Positions>& shapes,
+                                     const LeaveOneOutOptions& options,
+                                     const SolverSettings& settings) {
+  const auto clock = std::chrono::steady_clock::now();
+  CheckShapeSet(space, shapes, "leave-one-out");
+  const int n = static_cast<int>(shapes.size());
+  if (n < 3) throw InputError("leave-one-out needs at least 3 shapes");
+  if (options.max_modes < 0) throw InputError("leave-one-out: modes < 0");
+  std::vector<int> folds = options.held_out;
+  if (folds.empty()) {
+    for (int h = 0; h < n; ++h) folds.push_back(h);
+  }
+  for (int h : folds) {
+    if (h < 0 || h >= n) {
+      throw InputError("leave-one-out: held-out index " + std::to_string(h) +
+                       " out of range");
+    }
+  }
+  auto log = [&](const std::string& line) {
+    if (options.log) options.log(line);
+  };
+
+  const bool warm = options.initial_mean.size() > 0;
+  if (warm) CheckShapeSet(space, {options.initial_mean}, "leave-one-out start");
+
+  const int num_m = options.max_modes + 1;
+  LeaveOneOutTable table;
+  for (int h : folds) {
+    const auto fold_clock = std::chrono::steady_clock::now();
+    std::vector<Positions> others;
+    for (int i = 0; i < n; ++i) {
+      if (i != h) others.push_back(shapes[i]);
+    }
+    const Positions& truth = shapes[h];
+    LeaveOneOutFold fold;
+    fold.held_out = h;
+
+    const ElasticMeanResult mean = ComputeElasticMean(
+        space, others, settings,
+        warm ? &options.initial_mean : nullptr);
+    fold.mean_energy = mean.energy;
+    fold.mean_iterations = static_cast<int>(mean.summary.iterations.size());
+    const ShellPcaModel shell =
+        ComputeShellPca(space, mean.mean, others, options.pca, settings);
+    fold.shell_eigenvalues = shell.eigenvalues;
+    const Positions v =
+        ShellDisplacement(space, shell.mean, truth, options.pca, settings);
+    const Eigen::VectorXd c = ShellModeCoefficients(
+        shell, v, static_cast<int>(shell.modes.size()));
+
+    const ProcrustesPcaModel procrustes = ComputeProcrustesPca(others);
+    fold.procrustes_eigenvalues = procrustes.eigenvalues;
+
+    for (int m = 0; m < num_m; ++m) {
+      const int ms = std::min<int>(m, static_cast<int>(shell.modes.size()));
+      const Positions shell_reconstruction = ShellFromCoefficients(
+          space, shell, c.head(ms), options.pca, settings);
+      fold.shell_vertex_error.push_back(
+          MeanVertexErrorUpToRigidMotion(shell_reconstruction, truth));
+      fold.shell_energy.push_back(
+          EnergyToTruth(space, truth, shell_reconstruction));
+
+      const int mp =
+          std::min<int>(m, static_cast<int>(procrustes.modes.size()));
+      const Positions procrustes_reconstruction =
+          ProcrustesReconstruct(procrustes, truth, mp);
+      fold.procrustes_vertex_error.push_back(
+          MeanVertexErrorUpToRigidMotion(procrustes_reconstruction, truth));
+      fold.procrustes_energy.push_back(
+          EnergyToTruth(space, truth, procrustes_reconstruction));
+    }
+    fold.seconds = SecondsSince(fold_clock);
+    char line[256];
+    std::snprintf(line, sizeof(line),
+                  "fold %d (held out %d): m=%d shell err %.4g W %.4g | "
+                  "procrustes err %.4g W %.4g  (%.1f s)",
+                  static_cast<int>(table.folds.size()) + 1, h,
+                  options.max_modes, fold.shell_vertex_error.back(),
+                  fold.shell_energy.back(),
+                  fold.procrustes_vertex_error.back(),
+                  fold.procrustes_energy.back(), fold.seconds);
+    log(line);
+    table.folds.push_back(std::move(fold));
+  }
+
+  for (int m = 0; m < num_m; ++m) {
+    LeaveOneOutRow row;
+    row.modes = m;
+    for (const LeaveOneOutFold& fold : table.folds) {
+      row.shell_vertex_error += fold.shell_vertex_error[m];
+      row.shell_energy += fold.shell_energy[m];
+      row.procrustes_vertex_error += fold.procrustes_vertex_error[m];
+      row.procrustes_energy += fold.procrustes_energy[m];
+    }
+    const double count = static_cast<double>(table.folds.size());
+    row.shell_vertex_error /= count;
+    row.shell_energy /= count;
+    row.procrustes_vertex_error /= count;
+    row.procrustes_energy /= count;
+    table.rows.push_back(row);
+  }
+  table.seconds = SecondsSince(clock);
+  return table;
+}
+
+}  // namespace shellspace

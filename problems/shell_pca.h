@@ -1,0 +1,110 @@
+// Shell PCA (calculus.md, "Elastic mean and shell PCA"): principal modes of a
+// set of shells at their elastic mean in the Hessian metric
+//   g(u, w) = 1/2 u^T D_2^2 W[s_bar, s_bar] w,
+// with displacements v_i = LOG_K(s_bar -> S_i) (or, cheaply, S_i - s_bar
+// after rigid alignment), Gram matrix Gamma_ij = g(v_i, v_j) / n, eigenpairs
+// lambda_1 >= lambda_2 >= ... and modes w_j = sum_i a^j_i v_i / sqrt(n
+// lambda_j), so that g(w_j, w_k) = delta_jk. Mode shapes and reconstructions
+// are EXP_K shots from s_bar.
+#ifndef SHELLSPACE_PROBLEMS_SHELL_PCA_H_
+#define SHELLSPACE_PROBLEMS_SHELL_PCA_H_
+
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include "cost_functions/deformation_energy.h"
+#include "problems/solver_settings.h"
+
+namespace shellspace {
+
+// The Hessian metric at a shell s: g(u, w) = 1/2 u^T H w with
+// H = D_2^2 W[s, s] (= 2 J^T J for the residual Jacobian J at (s, s), since
+// every residual vanishes at rest). Positive semi-definite with the 6 rigid
+// motions (infinitesimal) in its kernel.
+class ShellMetric {
+ public:
+  ShellMetric(const ShellSpace& space, const Positions& at);
+
+  // g(u, w) = 1/2 u^T H w for variations u, w (vertex-major, like Positions).
+  double Inner(const Positions& u, const Positions& w) const;
+  // sqrt(g(u, u)).
+  double Norm(const Positions& u) const;
+  const Eigen::SparseMatrix<double>& hessian() const { return hessian_; }
+
+ private:
+  Eigen::SparseMatrix<double> hessian_;
+};
+
+// Eigen-decomposition of a Gram matrix Gamma_ij = <v_i, v_j> / n of n
+// displacements in some inner product: eigenvalues lambda_1 >= ... >=
+// lambda_n (all n, unclipped), and the modes w_j = sum_i a^j_i v_i /
+// sqrt(n lambda_j) (unit length in that inner product) for the leading
+// lambda_j > relative_cutoff * max(lambda_1, 0).
+struct GramModes {
+  Eigen::VectorXd eigenvalues;
+  std::vector<Positions> modes;
+};
+GramModes ModesFromGram(const Eigen::MatrixXd& gram,
+                        const std::vector<Positions>& displacements,
+                        double relative_cutoff = 1e-10);
+
+// How the displacement of S_i from s_bar is measured.
+enum class DisplacementKind {
+  kLog,               // v_i = LOG_K(s_bar -> A(S_i))
+  kAlignedDifference  // v_i = A(S_i) - s_bar (the cheap option)
+};
+// A = AlignRigidly(., s_bar) in both cases (W and LOG do not depend on it;
+// it only gives LOG_K's linear initial path a good start).
+
+struct ShellPcaOptions {
+  DisplacementKind displacement = DisplacementKind::kLog;
+  int steps = 2;  // K of LOG_K and EXP_K (>= 1)
+  double relative_cutoff = 1e-10;  // of ModesFromGram
+};
+
+struct ShellPcaModel {
+  Positions mean;                       // s_bar
+  std::vector<Positions> displacements; // v_i
+  Eigen::MatrixXd gram;                 // Gamma_ij = g(v_i, v_j) / n
+  Eigen::VectorXd eigenvalues;          // lambda_1 >= ... >= lambda_n
+  std::vector<Positions> modes;         // w_j, g(w_j, w_k) = delta_jk
+  ShellMetric metric;
+};
+
+// The displacement of `shape` from `mean` (ShellPcaOptions::displacement).
+Positions ShellDisplacement(const ShellSpace& space, const Positions& mean,
+                            const Positions& shape,
+                            const ShellPcaOptions& options,
+                            const SolverSettings& settings);
+
+// Shell PCA of `shapes` at `mean` (usually their elastic mean). Throws
+// InputError on inconsistent inputs or options.
+ShellPcaModel ComputeShellPca(const ShellSpace& space, const Positions& mean,
+                              const std::vector<Positions>& shapes,
+                              const ShellPcaOptions& options,
+                              const SolverSettings& settings);
+
+// The shape of mode j (0-based) at amplitude t: EXP_K(s_bar, t sqrt(lambda_j)
+// w_j), aligned rigidly to s_bar.
+Positions ShellModeShape(const ShellSpace& space, const ShellPcaModel& model,
+                         int j, double t, const ShellPcaOptions& options,
+                         const SolverSettings& settings);
+
+// Coefficients c_j = g(v, w_j), j < m, of a displacement v: the g-orthogonal
+// projection of v onto the span of the first m modes is sum_j c_j w_j.
+Eigen::VectorXd ShellModeCoefficients(const ShellPcaModel& model,
+                                      const Positions& v, int m);
+
+// EXP_K(s_bar, sum_{j<m} c_j w_j) for the first m = coefficients.size()
+// modes (s_bar itself for m = 0), aligned rigidly to s_bar.
+Positions ShellFromCoefficients(const ShellSpace& space,
+                                const ShellPcaModel& model,
+                                const Eigen::VectorXd& coefficients,
+                                const ShellPcaOptions& options,
+                                const SolverSettings& settings);
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_PROBLEMS_SHELL_PCA_H_

@@ -1,0 +1,374 @@
+// Tests of the elastic mean, shell PCA, Procrustes PCA, the leave-one-out
+// evaluation, and the `mean` / `pca` verbs, on small meshes (the 162-vertex
+// spheres and the 121-vertex plates).
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "cost_functions/energy_derivatives.h"
+#include "geometry/mesh_io.h"
+#include "geometry/rigid_alignment.h"
+#include "problems/elastic_mean.h"
+#include "problems/leave_one_out.h"
+#include "problems/procrustes_pca.h"
+#include "problems/shell_pca.h"
+#include "tests/test_support.h"
+
+namespace shellspace {
+namespace {
+
+using testing::DataPath;
+using testing::LoadData;
+using testing::MakeSpace;
+using testing::RandomRigidMotion;
+using testing::RunCli;
+using testing::TempDir;
+
+const char* const kSpheres[] = {"sphere/unitSphere1.ply",
+                                "sphere/unitSphere1_defX.ply",
+                                "sphere/unitSphere1_defY.ply",
+                                "sphere/unitSphere1_defZ.ply"};
+
+std::vector<Positions> LoadSpheres() {
+  std::vector<Positions> shapes;
+  for (const char* name : kSpheres) shapes.push_back(LoadData(name).positions);
+  return shapes;
+}
+
+SolverSettings Tight() {
+  SolverSettings settings;
+  settings.gradient_tolerance = 1e-10;
+  settings.function_tolerance = 1e-14;
+  return settings;
+}
+
+Positions Noise(int rows, double scale, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal;
+  Positions p(rows, 3);
+  for (int i = 0; i < p.size(); ++i) p.data()[i] = scale * normal(rng);
+  return p;
+}
+
+// max-norm of sum_i D_2 W[S_i, s] relative to the largest single term.
+double RelativeMeanGradient(const ShellSpace& space,
+                            const std::vector<Positions>& shapes,
+                            const Positions& s) {
+  Eigen::VectorXd sum = Eigen::VectorXd::Zero(s.size());
+  double scale = 0;
+  for (const Positions& shape : shapes) {
+    const Eigen::VectorXd g =
+        EnergyGradient(space, shape, s, ShellSide::kDeformed);
+    sum += g;
+    scale = std::max(scale, g.cwiseAbs().maxCoeff());
+  }
+  return sum.cwiseAbs().maxCoeff() / scale;
+}
+
+TEST(ElasticMeanTest, MeanOfCopiesIsTheShape) {
+  const Mesh mesh = LoadData("sphere/unitSphere1_defX.ply");
+  const ShellSpace space = MakeSpace(mesh);
+  const Positions& shape = mesh.positions;
+  const std::vector<Positions> copies = {shape, RandomRigidMotion(shape, 1),
+                                         RandomRigidMotion(shape, 2)};
+  // From the default guess (the aligned average: the shape itself).
+  const ElasticMeanResult plain = ComputeElasticMean(space, copies, Tight());
+  EXPECT_LT(plain.energy, 1e-14);
+  EXPECT_LT(RelativeDistanceUpToRigidMotion(plain.mean, shape), 1e-8);
+  // From a perturbed guess, so that the solver has work to do.
+  const Positions initial =
+      RandomRigidMotion(shape, 3) + Noise(shape.rows(), 0.03, 4);
+  ASSERT_GT(RelativeDistanceUpToRigidMotion(initial, shape), 1e-2);
+  const ElasticMeanResult result =
+      ComputeElasticMean(space, copies, Tight(), &initial);
+  EXPECT_TRUE(result.summary.IsSolutionUsable());
+  EXPECT_LT(result.energy, 1e-12);
+  EXPECT_LT(RelativeDistanceUpToRigidMotion(result.mean, shape), 1e-6);
+  // Reported aligned to the first input.
+  EXPECT_LT((result.mean - shape).cwiseAbs().maxCoeff(), 1e-5);
+}
+
+TEST(ElasticMeanTest, InvariantUnderRigidMotionsOfTheInputs) {
+  const std::vector<Positions> shapes = LoadSpheres();
+  const ShellSpace space = MakeSpace(LoadData(kSpheres[0]));
+  const ElasticMeanResult a = ComputeElasticMean(space, shapes, Tight());
+  std::vector<Positions> moved;
+  for (size_t i = 0; i < shapes.size(); ++i) {
+    moved.push_back(RandomRigidMotion(shapes[i], 10 + i));
+  }
+  const ElasticMeanResult b = ComputeElasticMean(space, moved, Tight());
+  ASSERT_GT(a.energy, 1e-4);  // the inputs differ: a non-trivial mean
+  EXPECT_NEAR(a.energy, b.energy, 1e-9 * a.energy);
+  EXPECT_LT(RelativeDistanceUpToRigidMotion(a.mean, b.mean), 1e-6);
+  // b is reported in the pose of the moved first input.
+  EXPECT_LT((AlignRigidly(a.mean, moved[0]) - b.mean).cwiseAbs().maxCoeff(),
+            1e-5);
+  // A stationary point that beats the initial guess, and not an input.
+  EXPECT_LT(RelativeMeanGradient(space, shapes, a.mean), 1e-6);
+  double at_average = 0;
+  const Positions average = AlignedVertexAverage(shapes);
+  for (const Positions& s : shapes) {
+    at_average += EvaluateDeformationEnergy(space, s, average).total;
+  }
+  EXPECT_LT(a.energy, at_average);
+  for (const Positions& s : shapes) {
+    EXPECT_GT(RelativeDistanceUpToRigidMotion(a.mean, s), 1e-3);
+  }
+}
+
+TEST(ElasticMeanTest, RejectsBadInputs) {
+  const ShellSpace space = MakeSpace(LoadData(kSpheres[0]));
+  EXPECT_THROW(ComputeElasticMean(space, {}, SolverSettings{}), InputError);
+  const Positions plate = LoadData("plate/plate121.ply").positions;
+  EXPECT_THROW(ComputeElasticMean(space, {plate}, SolverSettings{}),
+               InputError);
+}
+
+TEST(ShellPcaTest, MetricIsSemidefiniteWithTheRigidMotionsInItsKernel) {
+  const Mesh mesh = LoadData("sphere/unitSphere1_defX.ply");
+  const ShellSpace space = MakeSpace(mesh);
+  const ShellMetric metric(space, mesh.positions);
+  const Positions u = Noise(mesh.num_vertices(), 1.0, 7);
+  const double guu = metric.Inner(u, u);
+  EXPECT_GT(guu, 0);
+  const Positions w = Noise(mesh.num_vertices(), 1.0, 8);
+  EXPECT_NEAR(metric.Inner(u, w), metric.Inner(w, u), 1e-10 * guu);
+  // Infinitesimal rigid motion x -> omega x x + t.
+  const Eigen::RowVector3d omega(0.3, -0.5, 0.8), t(1.0, 2.0, -0.5);
+  Positions rigid(mesh.num_vertices(), 3);
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    rigid.row(v) = omega.cross(mesh.positions.row(v)) + t;
+  }
+  EXPECT_LT(metric.Inner(rigid, rigid),
+            1e-10 * guu * rigid.squaredNorm() / u.squaredNorm());
+}
+
+void ExpectOrthonormalModes(const ShellPcaModel& model, int expected_modes) {
+  const int n = static_cast<int>(model.displacements.size());
+  ASSERT_EQ(model.eigenvalues.size(), n);
+  ASSERT_GE(static_cast<int>(model.modes.size()), expected_modes);
+  const double largest = model.eigenvalues(0);
+  ASSERT_GT(largest, 0);
+  for (int j = 0; j < n; ++j) {
+    EXPECT_GE(model.eigenvalues(j), -1e-12 * largest) << j;
+    if (j > 0) EXPECT_LE(model.eigenvalues(j), model.eigenvalues(j - 1));
+  }
+  for (int i = 0; i < n; ++i) {
+    for (int k = 0; k < n; ++k) {
+      EXPECT_NEAR(model.gram(i, k),
+                  model.metric.Inner(model.displacements[i],
+                                     model.displacements[k]) / n,
+                  1e-12 * largest * n);
+    }
+  }
+  for (size_t j = 0; j < model.modes.size(); ++j) {
+    for (size_t k = 0; k < model.modes.size(); ++k) {
+      EXPECT_NEAR(model.metric.Inner(model.modes[j], model.modes[k]),
+                  j == k ? 1.0 : 0.0, 1e-8)
+          << j << " " << k;
+    }
+  }
+  // Every displacement lies in the span of the modes (in the metric).
+  for (int i = 0; i < n; ++i) {
+    const Positions& v = model.displacements[i];
+    const Eigen::VectorXd c =
+        ShellModeCoefficients(model, v, static_cast<int>(model.modes.size()));
+    Positions projection = Positions::Zero(v.rows(), 3);
+    for (int j = 0; j < c.size(); ++j) projection += c(j) * model.modes[j];
+    const Positions rest = v - projection;
+    EXPECT_LT(model.metric.Inner(rest, rest),
+              1e-8 * model.metric.Inner(v, v))
+        << i;
+  }
+}
+
+TEST(ShellPcaTest, LogModesAreOrthonormalInTheMetric) {
+  const std::vector<Positions> shapes = LoadSpheres();
+  const ShellSpace space = MakeSpace(LoadData(kSpheres[0]));
+  const ElasticMeanResult mean = ComputeElasticMean(space, shapes, Tight());
+  ShellPcaOptions options;
+  options.steps = 2;
+  const ShellPcaModel model =
+      ComputeShellPca(space, mean.mean, shapes, options, Tight());
+  ExpectOrthonormalModes(model, 3);
+  // The LOGs at the mean sum to about zero (first-order optimality), so the
+  // last eigenvalue is tiny compared with the first.
+  EXPECT_LT(model.eigenvalues(3), 1e-2 * model.eigenvalues(0));
+  // All modes: EXP of the projected LOG gives back a training shape.
+  for (int i = 0; i < 2; ++i) {
+    const Eigen::VectorXd c = ShellModeCoefficients(
+        model, model.displacements[i], static_cast<int>(model.modes.size()));
+    const Positions back =
+        ShellFromCoefficients(space, model, c, options, Tight());
+    EXPECT_LT(RelativeDistanceUpToRigidMotion(back, shapes[i]), 1e-3) << i;
+    EXPECT_GT(RelativeDistanceUpToRigidMotion(model.mean, shapes[i]), 1e-2);
+  }
+  // Mode shapes at +-1 are on either side of the mean.
+  const Positions plus = ShellModeShape(space, model, 0, 1.0, options, Tight());
+  const Positions minus =
+      ShellModeShape(space, model, 0, -1.0, options, Tight());
+  EXPECT_GT(RelativeDistanceUpToRigidMotion(plus, minus), 1e-3);
+  EXPECT_THROW(ShellModeShape(space, model, 10, 1.0, options, Tight()),
+               InputError);
+}
+
+TEST(ShellPcaTest, DifferenceModesAreOrthonormalOnPlates) {
+  std::vector<Positions> shapes;
+  for (const char* name : {"plate/plate121.ply", "plate/plate121_rolledA.ply",
+                           "plate/plate121_rolledB.ply"}) {
+    shapes.push_back(LoadData(name).positions);
+  }
+  const ShellSpace space = MakeSpace(LoadData("plate/plate121.ply"));
+  const ElasticMeanResult mean = ComputeElasticMean(space, shapes, Tight());
+  ShellPcaOptions options;
+  options.displacement = DisplacementKind::kAlignedDifference;
+  const ShellPcaModel model =
+      ComputeShellPca(space, mean.mean, shapes, options, Tight());
+  ExpectOrthonormalModes(model, 2);
+}
+
+TEST(ProcrustesPcaTest, ModesAreOrthonormalAndInvariantUnderRigidMotions) {
+  const std::vector<Positions> shapes = LoadSpheres();
+  const ProcrustesPcaModel model = ComputeProcrustesPca(shapes);
+  ASSERT_GE(model.modes.size(), 3u);
+  for (size_t j = 0; j < model.modes.size(); ++j) {
+    for (size_t k = 0; k < model.modes.size(); ++k) {
+      EXPECT_NEAR(model.modes[j].cwiseProduct(model.modes[k]).sum(),
+                  j == k ? 1.0 : 0.0, 1e-10);
+    }
+  }
+  for (int j = 0; j < model.eigenvalues.size(); ++j) {
+    EXPECT_GE(model.eigenvalues(j), -1e-12 * model.eigenvalues(0));
+  }
+  // All modes reconstruct a training shape (up to rigid motion).
+  const Positions back = ProcrustesReconstruct(
+      model, shapes[2], static_cast<int>(model.modes.size()));
+  EXPECT_LT(RelativeDistanceUpToRigidMotion(back, shapes[2]), 1e-8);
+  std::vector<Positions> moved;
+  for (size_t i = 0; i < shapes.size(); ++i) {
+    moved.push_back(RandomRigidMotion(shapes[i], 20 + i));
+  }
+  const ProcrustesPcaModel other = ComputeProcrustesPca(moved);
+  EXPECT_LT((model.eigenvalues - other.eigenvalues).cwiseAbs().maxCoeff(),
+            1e-9 * model.eigenvalues(0));
+  EXPECT_LT(RelativeDistanceUpToRigidMotion(model.mean, other.mean), 1e-8);
+}
+
+TEST(LeaveOneOutTest, TableOnTheSpheres) {
+  const std::vector<Positions> shapes = LoadSpheres();
+  const ShellSpace space = MakeSpace(LoadData(kSpheres[0]));
+  LeaveOneOutOptions options;
+  options.max_modes = 2;
+  const LeaveOneOutTable table =
+      EvaluateLeaveOneOut(space, shapes, options, SolverSettings{});
+  ASSERT_EQ(table.rows.size(), 3u);
+  ASSERT_EQ(table.folds.size(), 4u);
+  for (const LeaveOneOutRow& row : table.rows) {
+    EXPECT_TRUE(std::isfinite(row.shell_vertex_error));
+    EXPECT_TRUE(std::isfinite(row.shell_energy));
+    EXPECT_GT(row.procrustes_vertex_error, 0);
+    EXPECT_GT(row.shell_energy, 0);
+  }
+  // 3 training shapes per fold: 3 eigenvalues.
+  for (const LeaveOneOutFold& fold : table.folds) {
+    EXPECT_GT(fold.shell_energy[0], 0);
+    EXPECT_EQ(fold.shell_eigenvalues.size(), 3);
+  }
+  options.held_out = {7};
+  EXPECT_THROW(EvaluateLeaveOneOut(space, shapes, options, SolverSettings{}),
+               InputError);
+  EXPECT_THROW(EvaluateLeaveOneOut(space, {shapes[0], shapes[1]},
+                                   LeaveOneOutOptions{}, SolverSettings{}),
+               InputError);
+}
+
+std::string SphereList(int count) {
+  std::string list;
+  for (int i = 0; i < count; ++i) {
+    list += (i ? "," : "") + DataPath(kSpheres[i]);
+  }
+  return list;
+}
+
+TEST(StatisticsCliTest, MeanWritesTheShapeAndJson) {
+  const std::string out = TempDir() + "/M.ply";
+  std::string stdout_text, stderr_text;
+  ASSERT_EQ(RunCli("mean --inputs " + SphereList(3) + " --output " + out +
+                       " --json --quiet",
+                   &stdout_text, &stderr_text),
+            0)
+      << stderr_text;
+  EXPECT_TRUE(std::filesystem::exists(out));
+  EXPECT_NE(stdout_text.find("\"energy\""), std::string::npos);
+  // The written shape is the library's elastic mean.
+  std::vector<Positions> shapes = LoadSpheres();
+  shapes.resize(3);
+  const ElasticMeanResult mean = ComputeElasticMean(
+      MakeSpace(LoadData(kSpheres[0])), shapes, SolverSettings{});
+  EXPECT_LT(RelativeDistanceUpToRigidMotion(ReadMesh(out).positions, mean.mean),
+            1e-6);
+}
+
+TEST(StatisticsCliTest, PcaWritesModesAndLeaveOneOutTable) {
+  const std::string dir = TempDir() + "/pca";
+  std::string stdout_text, stderr_text;
+  ASSERT_EQ(RunCli("pca --inputs " + SphereList(4) + " --modes 2 --output " +
+                       dir + " --baseline procrustes --loo --json --quiet",
+                   &stdout_text, &stderr_text),
+            0)
+      << stderr_text;
+  for (const char* name :
+       {"mean.ply", "mode_1_minus.ply", "mode_1_plus.ply", "mode_2_plus.ply",
+        "procrustes_mean.ply", "procrustes_mode_2_minus.ply", "pca.json"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir + "/" + name)) << name;
+  }
+  EXPECT_NE(stdout_text.find("\"eigenvalues\""), std::string::npos);
+  EXPECT_NE(stdout_text.find("\"leave_one_out\""), std::string::npos);
+  EXPECT_NE(stdout_text.find("\"procrustes_vertex_error\""), std::string::npos);
+}
+
+TEST(StatisticsCliTest, BadInputsFailWithOneLineAndNoOutput) {
+  const std::string base = TempDir();
+  struct Case {
+    std::string args, expected;
+  };
+  const std::vector<Case> cases = {
+      {"mean --inputs " + DataPath(kSpheres[0]) + "," +
+           DataPath("plate/plate121.ply") + " --output " + base + "/a.ply",
+       "plate121"},
+      {"mean --inputs " + DataPath(kSpheres[0]) + ",missing.ply --output " +
+           base + "/b.ply",
+       "missing.ply"},
+      {"mean --output " + base + "/c.ply", "--inputs"},
+      {"pca --inputs " + SphereList(4) + " --modes 0 --output " + base + "/d",
+       "--modes"},
+      {"pca --inputs " + SphereList(3) + " --modes 3 --output " + base + "/e",
+       "--modes"},
+      {"pca --inputs " + SphereList(3) + " --modes 1 --baseline linear "
+           "--output " + base + "/f",
+       "--baseline"},
+      {"pca --inputs " + SphereList(2) + " --modes 1 --loo --output " + base +
+           "/g",
+       "at least 3"},
+  };
+  for (const Case& c : cases) {
+    std::string stdout_text, stderr_text;
+    EXPECT_EQ(RunCli(c.args + " --quiet", &stdout_text, &stderr_text), 1)
+        << c.args;
+    EXPECT_NE(stderr_text.find(c.expected), std::string::npos)
+        << c.args << "\n" << stderr_text;
+    EXPECT_EQ(std::count(stderr_text.begin(), stderr_text.end(), '\n'), 1)
+        << stderr_text;
+  }
+  for (const char* name : {"a.ply", "b.ply", "c.ply", "d", "e", "f", "g"}) {
+    EXPECT_FALSE(std::filesystem::exists(base + "/" + name)) << name;
+  }
+}
+
+}  // namespace
+}  // namespace shellspace

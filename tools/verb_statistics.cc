@@ -1,0 +1,343 @@
+// `shellspace mean` and `shellspace pca`: the elastic mean of a set of shells,
+// shell PCA at that mean (modes shot by EXP_K), the Procrustes PCA baseline,
+// and the leave-one-out comparison of the two (calculus.md, "Elastic mean and
+// shell PCA").
+#include <gflags/gflags.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+
+#include "geometry/mesh_io.h"
+#include "problems/elastic_mean.h"
+#include "problems/leave_one_out.h"
+#include "problems/procrustes_pca.h"
+#include "problems/shell_pca.h"
+#include "render/film_strip.h"
+#include "tools/common_flags.h"
+#include "tools/json_writer.h"
+#include "tools/shell_inputs.h"
+#include "tools/verb.h"
+
+DEFINE_int32(modes, 3,
+             "pca: number of modes written (and m = 1..modes of --loo)");
+DEFINE_string(baseline, "",
+              "pca: 'procrustes' also writes the Procrustes PCA model "
+              "(procrustes_mean.ply, procrustes_mode_J_{minus,plus}.ply)");
+DEFINE_bool(loo, false,
+            "pca: leave-one-out evaluation of shell vs Procrustes PCA "
+            "(m = 0..modes), table printed and in the JSON");
+DEFINE_double(amplitude, 1.0,
+              "pca: mode shapes at +- amplitude sqrt(lambda_j) w_j");
+DEFINE_int32(log_steps, 2,
+             "pca: K of LOG_K (displacements) and EXP_K (mode shapes, "
+             "reconstructions)");
+DEFINE_string(displacement, "log",
+              "pca: 'log' (v_i = LOG_K(mean -> S_i)) or 'difference' "
+              "(v_i = S_i - mean after rigid alignment)");
+
+namespace shellspace {
+namespace {
+
+double Seconds(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since)
+      .count();
+}
+
+struct InputSet {
+  std::vector<std::string> paths;
+  Mesh first;
+  std::vector<Positions> shapes;
+};
+
+// Loads --inputs (at least `minimum` shells with one connectivity).
+InputSet LoadInputs(size_t minimum) {
+  RequireFlag("inputs", FLAGS_inputs);
+  InputSet set;
+  set.paths = SplitList(FLAGS_inputs, "inputs");
+  if (set.paths.size() < minimum) {
+    throw InputError("--inputs needs at least " + std::to_string(minimum) +
+                     " shells, got " + std::to_string(set.paths.size()));
+  }
+  set.first = LoadShell(set.paths[0]);
+  set.shapes.push_back(set.first.positions);
+  for (size_t i = 1; i < set.paths.size(); ++i) {
+    set.shapes.push_back(
+        LoadCompatibleShell(set.paths[i], set.first, set.paths[0]).positions);
+  }
+  return set;
+}
+
+void CheckSolve(const ceres::Solver::Summary& summary, const char* what) {
+  if (summary.termination_type == ceres::FAILURE) {
+    throw InputError(std::string(what) + " failed: " + summary.message);
+  }
+}
+
+std::vector<double> ToVector(const Eigen::VectorXd& v) {
+  return std::vector<double>(v.data(), v.data() + v.size());
+}
+
+// Writes all (name, mesh) pairs under `dir` via temporary names, then renames
+// them, so that a failure leaves no partial set.
+void WriteAll(const std::string& dir,
+              const std::vector<std::pair<std::string, Positions>>& shapes,
+              const Faces& faces) {
+  MakeDirectory(dir);
+  for (const auto& [name, positions] : shapes) {
+    WriteMesh(Mesh{positions, faces}, dir + "/" + name + ".part.ply");
+  }
+  for (const auto& [name, positions] : shapes) {
+    const std::string path = dir + "/" + name;
+    if (std::rename((path + ".part.ply").c_str(), path.c_str()) != 0) {
+      throw InputError("cannot write " + path);
+    }
+  }
+}
+
+int RunMean() {
+  RequireFlag("output", FLAGS_output);
+  const auto clock = std::chrono::steady_clock::now();
+  const InputSet inputs = LoadInputs(1);
+  const ShellSpace space = SpaceFromFlags(inputs.first);
+  const ElasticMeanResult result =
+      ComputeElasticMean(space, inputs.shapes, SettingsFromFlags("mean"));
+  CheckSolve(result.summary, "elastic mean");
+  if (FLAGS_report) std::cerr << result.summary.FullReport() << "\n";
+  WriteMesh(Mesh{result.mean, inputs.first.faces}, FLAGS_output);
+  if (FLAGS_json) {
+    const auto& s = result.summary;
+    std::cout << JsonObject()
+                     .Add("energy", result.energy)
+                     .Add("energies", result.energies)
+                     .Add("inputs", static_cast<int>(inputs.shapes.size()))
+                     .Add("iterations", static_cast<int>(s.iterations.size()))
+                     .Add("final_gradient_norm",
+                          s.iterations.empty()
+                              ? 0.0
+                              : s.iterations.back().gradient_max_norm)
+                     .Add("termination",
+                          ceres::TerminationTypeToString(s.termination_type))
+                     .Add("converged", s.IsSolutionUsable())
+                     .Add("seconds", Seconds(clock))
+                     .Add("output", FLAGS_output)
+                     .str()
+              << "\n";
+  } else if (!FLAGS_quiet) {
+    std::cerr << result.summary.BriefReport() << "\n";
+    std::cout << "sum_i W[S_i, mean] = " << result.energy << " over "
+              << inputs.shapes.size() << " shells; wrote " << FLAGS_output
+              << "\n";
+  }
+  return 0;
+}
+
+std::string TableText(const LeaveOneOutTable& table) {
+  std::ostringstream out;
+  char line[256];
+  std::snprintf(line, sizeof(line), "%2s  %14s %14s  %14s %14s\n", "m",
+                "shell err", "shell W", "procrustes err", "procrustes W");
+  out << "leave-one-out over " << table.folds.size()
+      << " folds (mean vertex error after rigid alignment; W[truth, "
+         "reconstruction])\n"
+      << line;
+  for (const LeaveOneOutRow& row : table.rows) {
+    std::snprintf(line, sizeof(line), "%2d  %14.6g %14.6g  %14.6g %14.6g\n",
+                  row.modes, row.shell_vertex_error, row.shell_energy,
+                  row.procrustes_vertex_error, row.procrustes_energy);
+    out << line;
+  }
+  return out.str();
+}
+
+std::string TableJson(const LeaveOneOutTable& table) {
+  std::string rows = "[";
+  for (size_t i = 0; i < table.rows.size(); ++i) {
+    const LeaveOneOutRow& row = table.rows[i];
+    rows += (i ? ", " : "") +
+            JsonObject()
+                .Add("modes", row.modes)
+                .Add("shell_vertex_error", row.shell_vertex_error)
+                .Add("shell_energy", row.shell_energy)
+                .Add("procrustes_vertex_error", row.procrustes_vertex_error)
+                .Add("procrustes_energy", row.procrustes_energy)
+                .str();
+  }
+  rows += "]";
+  std::string folds = "[";
+  for (size_t i = 0; i < table.folds.size(); ++i) {
+    const LeaveOneOutFold& f = table.folds[i];
+    folds += (i ? ", " : "") +
+             JsonObject()
+                 .Add("held_out", f.held_out)
+                 .Add("mean_energy", f.mean_energy)
+                 .Add("mean_iterations", f.mean_iterations)
+                 .Add("shell_vertex_error", f.shell_vertex_error)
+                 .Add("shell_energy", f.shell_energy)
+                 .Add("procrustes_vertex_error", f.procrustes_vertex_error)
+                 .Add("procrustes_energy", f.procrustes_energy)
+                 .Add("seconds", f.seconds)
+                 .str();
+  }
+  folds += "]";
+  return JsonObject()
+      .Add("energy_order", "W[truth, reconstruction]")
+      .Add("vertex_error",
+           "mean over vertices of |aligned reconstruction - truth|")
+      .Raw("rows", rows)
+      .Raw("folds", folds)
+      .Add("seconds", table.seconds)
+      .str();
+}
+
+int RunPca() {
+  RequireFlag("output", FLAGS_output);
+  if (FLAGS_modes < 1) throw InputError("--modes must be at least 1");
+  if (FLAGS_baseline != "" && FLAGS_baseline != "procrustes") {
+    throw InputError("--baseline must be 'procrustes' (or empty), got '" +
+                     FLAGS_baseline + "'");
+  }
+  if (!std::isfinite(FLAGS_amplitude) || FLAGS_amplitude < 0) {
+    throw InputError("--amplitude must be a finite non-negative number");
+  }
+  if (FLAGS_log_steps < 1) throw InputError("--log_steps must be at least 1");
+  ShellPcaOptions options;
+  options.steps = FLAGS_log_steps;
+  if (FLAGS_displacement == "log") {
+    options.displacement = DisplacementKind::kLog;
+  } else if (FLAGS_displacement == "difference") {
+    options.displacement = DisplacementKind::kAlignedDifference;
+  } else {
+    throw InputError("--displacement must be 'log' or 'difference', got '" +
+                     FLAGS_displacement + "'");
+  }
+  const auto clock = std::chrono::steady_clock::now();
+  const InputSet inputs = LoadInputs(FLAGS_loo ? 3 : 2);
+  const int n = static_cast<int>(inputs.shapes.size());
+  if (FLAGS_modes > n - 1) {
+    throw InputError("--modes " + std::to_string(FLAGS_modes) + " exceeds " +
+                     std::to_string(n - 1) + " (number of inputs - 1)");
+  }
+  if (FLAGS_loo && FLAGS_modes > n - 2) {
+    throw InputError("--loo with --modes " + std::to_string(FLAGS_modes) +
+                     " needs at least " + std::to_string(FLAGS_modes + 2) +
+                     " inputs");
+  }
+  const ShellSpace space = SpaceFromFlags(inputs.first);
+  const SolverSettings settings = SettingsFromFlags("pca");
+  SolverSettings inner = settings;
+  inner.progress = false;
+
+  // Shell model.
+  const ElasticMeanResult mean =
+      ComputeElasticMean(space, inputs.shapes, settings);
+  CheckSolve(mean.summary, "elastic mean");
+  if (!FLAGS_quiet) std::cerr << "pca: elastic mean done\n";
+  const ShellPcaModel shell =
+      ComputeShellPca(space, mean.mean, inputs.shapes, options, inner);
+  const int shell_modes =
+      std::min<int>(FLAGS_modes, static_cast<int>(shell.modes.size()));
+  std::vector<std::pair<std::string, Positions>> files = {
+      {"mean.ply", mean.mean}};
+  std::vector<Positions> strip = {mean.mean};
+  for (int j = 0; j < shell_modes; ++j) {
+    const std::string stem = "mode_" + std::to_string(j + 1);
+    files.emplace_back(stem + "_minus.ply",
+                       ShellModeShape(space, shell, j, -FLAGS_amplitude,
+                                      options, inner));
+    files.emplace_back(stem + "_plus.ply",
+                       ShellModeShape(space, shell, j, FLAGS_amplitude,
+                                      options, inner));
+    strip.push_back(files[files.size() - 2].second);
+    strip.push_back(files.back().second);
+  }
+  if (!FLAGS_quiet) std::cerr << "pca: shell modes done\n";
+
+  JsonObject json;
+  json.Add("inputs", n)
+      .Add("mean_energy", mean.energy)
+      .Add("mean_iterations", static_cast<int>(mean.summary.iterations.size()))
+      .Add("displacement", FLAGS_displacement)
+      .Add("log_steps", FLAGS_log_steps)
+      .Add("eigenvalues", ToVector(shell.eigenvalues))
+      .Add("modes", shell_modes)
+      .Add("amplitude", FLAGS_amplitude);
+
+  if (FLAGS_baseline == "procrustes") {
+    const ProcrustesPcaModel procrustes = ComputeProcrustesPca(inputs.shapes);
+    files.emplace_back("procrustes_mean.ply", procrustes.mean);
+    const int pm =
+        std::min<int>(FLAGS_modes, static_cast<int>(procrustes.modes.size()));
+    for (int j = 0; j < pm; ++j) {
+      const std::string stem = "procrustes_mode_" + std::to_string(j + 1);
+      files.emplace_back(stem + "_minus.ply",
+                         ProcrustesModeShape(procrustes, j, -FLAGS_amplitude));
+      files.emplace_back(stem + "_plus.ply",
+                         ProcrustesModeShape(procrustes, j, FLAGS_amplitude));
+    }
+    json.Add("procrustes_eigenvalues", ToVector(procrustes.eigenvalues))
+        .Add("procrustes_modes", pm);
+  }
+
+  std::string table_text;
+  if (FLAGS_loo) {
+    LeaveOneOutOptions loo;
+    loo.max_modes = FLAGS_modes;
+    loo.pca = options;
+    loo.initial_mean = mean.mean;  // warm start; same minimiser per fold
+    if (!FLAGS_quiet) {
+      loo.log = [](const std::string& line) { std::cerr << "loo: " << line << "\n"; };
+    }
+    const LeaveOneOutTable table =
+        EvaluateLeaveOneOut(space, inputs.shapes, loo, inner);
+    json.Raw("leave_one_out", TableJson(table));
+    table_text = TableText(table);
+  }
+  json.Add("seconds", Seconds(clock)).Add("output", FLAGS_output);
+
+  // All results computed: write the files (PLY set, then the JSON summary).
+  WriteAll(FLAGS_output, files, inputs.first.faces);
+  {
+    const std::string path = FLAGS_output + "/pca.json";
+    std::ofstream out(path);
+    out << json.str() << "\n";
+    if (!out) throw InputError("cannot write " + path);
+  }
+  if (!FLAGS_png.empty()) {
+    RenderOptions render;
+    WriteFilmStrip(strip, inputs.first.faces, render, FLAGS_png);
+  }
+  if (FLAGS_json) {
+    std::cout << json.str() << "\n";
+    if (!FLAGS_quiet && !table_text.empty()) std::cerr << table_text;
+  } else {
+    if (!table_text.empty()) std::cout << table_text;
+    if (!FLAGS_quiet) {
+      std::cout << "eigenvalues:";
+      for (int j = 0; j < shell.eigenvalues.size(); ++j) {
+        std::cout << " " << shell.eigenvalues(j);
+      }
+      std::cout << "\nwrote " << FLAGS_output << "/mean.ply and "
+                << shell_modes << " mode pairs\n";
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+}  // namespace shellspace
+
+SHELLSPACE_REGISTER_VERB(
+    "mean",
+    "mean --inputs a.ply,b.ply,... --output M.ply [--json] (elastic mean "
+    "argmin_s sum_i W[S_i, s])",
+    shellspace::RunMean);
+SHELLSPACE_REGISTER_VERB(
+    "pca",
+    "pca --inputs a.ply,b.ply,... --modes m --output DIR [--baseline "
+    "procrustes] [--loo] [--amplitude t] [--log_steps K] [--displacement "
+    "log|difference] [--json] [--png strip.png]",
+    shellspace::RunPca);
