@@ -31,8 +31,8 @@ ceres::Solver::Options MakeSolverOptions(const SolverSettings& settings,
   return options;
 }
 
-ProgressPrinter::ProgressPrinter(std::string label)
-    : label_(std::move(label)), start_(std::chrono::steady_clock::now()) {}
+ProgressPrinter::ProgressPrinter(std::string label, double cost_factor)
+    : label_(std::move(label)), cost_factor_(cost_factor), start_(std::chrono::steady_clock::now()) {}
 
 ceres::CallbackReturnType ProgressPrinter::operator()(
     const ceres::IterationSummary& s) {
@@ -40,7 +40,7 @@ ceres::CallbackReturnType ProgressPrinter::operator()(
                              std::chrono::steady_clock::now() - start_)
                              .count();
   std::fprintf(stderr, "%s iter %3d  energy %.10e  |grad| %.3e  step %s  %.2f s\n",
-               label_.c_str(), s.iteration, 2 * s.cost, s.gradient_max_norm,
+               label_.c_str(), s.iteration, cost_factor_ * s.cost, s.gradient_max_norm,
                s.step_is_successful ? "ok " : "rej", seconds);
   return ceres::SOLVER_CONTINUE;
 }

@@ -40,12 +40,15 @@ ceres::Solver::Options MakeSolverOptions(const SolverSettings& settings,
 // Prints "label iter N cost C |grad| G step S  T s" per iteration on stderr.
 class ProgressPrinter : public ceres::IterationCallback {
  public:
-  explicit ProgressPrinter(std::string label);
+  // The printed energy is cost_factor * Ceres' cost (2: least squares
+  // report 1/2 sum r^2).
+  explicit ProgressPrinter(std::string label, double cost_factor = 2.0);
   ceres::CallbackReturnType operator()(
       const ceres::IterationSummary& summary) override;
 
  private:
   std::string label_;
+  double cost_factor_;
   std::chrono::steady_clock::time_point start_;
 };
 
