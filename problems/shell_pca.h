@@ -20,8 +20,8 @@
 namespace shellspace {
 
 // The Hessian metric at a shell s: g(u, w) = 1/2 u^T H w with
-// H = D_2^2 W[s, s] (= 2 J^T J for the residual Jacobian J at (s, s), since
-// every residual vanishes at rest). Positive semi-definite with the 6 rigid
+// H = D_2^2 W[s, s] (= J^T J for the residual Jacobian J at (s, s), with W
+// = 1/2 sum r^2 = the Ceres cost, since every residual vanishes at rest). Positive semi-definite with the 6 rigid
 // motions (infinitesimal) in its kernel.
 class ShellMetric {
  public:
@@ -55,8 +55,9 @@ enum class DisplacementKind {
   kLog,               // v_i = LOG_K(s_bar -> A(S_i))
   kAlignedDifference  // v_i = A(S_i) - s_bar (the cheap option)
 };
-// A = AlignRigidly(., s_bar) in both cases (W and LOG do not depend on it;
-// it only gives LOG_K's linear initial path a good start).
+// A = AlignRigidly(., s_bar) (unweighted Kabsch) in both cases (W and LOG
+// do not depend on it; it only gives LOG_K's linear initial path a good
+// start).
 
 struct ShellPcaOptions {
   DisplacementKind displacement = DisplacementKind::kLog;
