@@ -3,6 +3,7 @@
 // regression for small sigma.
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <random>
 
 #include "geometry/rigid_alignment.h"
@@ -126,6 +127,7 @@ TEST_F(SplineTest, RegressionWithSmallSigmaInterpolates) {
   SplineSettings settings;
   settings.inner = TightInner();
   settings.gradient_tolerance = 1e-10;
+  settings.max_iterations = 40;
   const std::vector<Positions> data = {a_.positions, b_.positions, c_.positions};
   const SplineResult r =
       SolveRegression(space_, data, {0, 1, 2}, 2, 1e-6, {}, settings);
@@ -137,6 +139,31 @@ TEST_F(SplineTest, RegressionWithSmallSigmaInterpolates) {
       SolveRegression(space_, data, {0, 1, 2}, 2, 1.0, r.path, settings);
   EXPECT_LT(smooth.spline_energy, r.spline_energy);
   EXPECT_GT(smooth.data_energy, r.data_energy);
+}
+
+TEST(SplineCliTest, LThetaFramesAndErrors) {
+  const std::string dir = testing::TempDir();
+  const std::string keys = testing::DataPath("plate/plate121.ply") + "," +
+                           testing::DataPath("plate/plate121_rolledA.ply") +
+                           "," + testing::DataPath("plate/plate121_rolledB.ply");
+  std::string out, err;
+  ASSERT_EQ(testing::RunCli("spline --quiet --json --method ltheta --keyframes " +
+                                keys + " --at 0,2,4 --steps 4 --output " + dir +
+                                "/s",
+                            &out, &err),
+            0)
+      << err;
+  EXPECT_NE(out.find("\"spline_energy\""), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(dir + "/s/shape_004.ply"));
+  EXPECT_FALSE(std::filesystem::exists(dir + "/s/shape_005.ply"));
+  for (const std::string& bad :
+       {"spline --keyframes " + keys + " --at 0,2 --steps 4 --output " + dir + "/b",
+        "spline --keyframes " + keys + " --at 0,3,2 --steps 4 --output " + dir + "/b",
+        "spline --keyframes " + keys + " --at 0,2,4 --steps 4 --method cubic --output " + dir + "/b",
+        "regress --inputs " + keys + " --at 0,1,2 --steps 2 --sigma -1 --output " + dir + "/b"}) {
+    EXPECT_EQ(testing::RunCli(bad, nullptr, &err), 1) << bad;
+    EXPECT_FALSE(std::filesystem::exists(dir + "/b")) << bad;
+  }
 }
 
 }  // namespace
