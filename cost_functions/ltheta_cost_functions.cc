@@ -1,8 +1,7 @@
 #include "cost_functions/ltheta_cost_functions.h"
 
-#include <cmath>
-
 #include <Eigen/Core>
+#include <cmath>
 
 #include "geometry/element_geometry.h"
 
@@ -10,7 +9,9 @@ namespace shellspace {
 namespace {
 
 // The vertex of a 3-double parameter block.
-Eigen::Vector3d Vertex(const double* p) { return Eigen::Vector3d(p[0], p[1], p[2]); }
+Eigen::Vector3d Vertex(const double* p) {
+  return Eigen::Vector3d(p[0], p[1], p[2]);
+}
 
 bool AllFinite(const Eigen::Vector3d* v, int n) {
   for (int m = 0; m < n; ++m) {
@@ -42,8 +43,7 @@ double WrapAngle(double angle) {
 bool EdgeLengthCostFunction::Evaluate(double const* const* parameters,
                                       double* residuals,
                                       double** jacobians) const {
-  const Eigen::Vector3d e =
-      Vertex(parameters[1]) - Vertex(parameters[0]);
+  const Eigen::Vector3d e = Vertex(parameters[1]) - Vertex(parameters[0]);
   const double length = e.norm();
   if (!(length > 0) || !std::isfinite(length)) return false;
   residuals[0] = weight_ * (length - target_);
@@ -55,9 +55,8 @@ bool EdgeLengthCostFunction::Evaluate(double const* const* parameters,
 bool TriangleAreaCostFunction::Evaluate(double const* const* parameters,
                                         double* residuals,
                                         double** jacobians) const {
-  const TriangleArea<double> triangle(Vertex(parameters[0]),
-                                      Vertex(parameters[1]),
-                                      Vertex(parameters[2]));
+  const TriangleArea<double> triangle(
+      Vertex(parameters[0]), Vertex(parameters[1]), Vertex(parameters[2]));
   if (!(triangle.area > 0) || !std::isfinite(triangle.area) ||
       !AllFinite(triangle.grad, 3)) {
     return false;
@@ -70,9 +69,9 @@ bool TriangleAreaCostFunction::Evaluate(double const* const* parameters,
 bool DihedralAngleCostFunction::Evaluate(double const* const* parameters,
                                          double* residuals,
                                          double** jacobians) const {
-  const DihedralAngle<double> flap(
-      Vertex(parameters[0]), Vertex(parameters[1]),
-      Vertex(parameters[2]), Vertex(parameters[3]));
+  const DihedralAngle<double> flap(Vertex(parameters[0]), Vertex(parameters[1]),
+                                   Vertex(parameters[2]),
+                                   Vertex(parameters[3]));
   if (!std::isfinite(flap.theta) || !AllFinite(flap.grad, 4)) return false;
   residuals[0] = weight_ * WrapAngle(flap.theta - target_);
   WriteJacobians(weight_, flap.grad, 4, jacobians);

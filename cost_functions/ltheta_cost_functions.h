@@ -3,7 +3,7 @@
 // and dihedral angles theta*_e by minimising the sum of squares
 //
 //   1/2 sum_e (l_e - l*_e)^2 / L_e^2 + 1/2 sum_f (a_f - a*_f)^2 / A_f
-//     + 1/2 eta sum_{e interior} 3 L_e^2 / (A_{f1} + A_{f2}) (theta_e - theta*_e)^2
+//     + 1/2 eta sum_{e interior} 3 L_e^2 / (A_f1 + A_f2) (theta_e - theta*_e)^2
 //
 // (L, A: lengths and areas of a reference shell). Each term is one Ceres
 // residual r with 1/2 r^2 the term, i.e. r = weight * (quantity - target):
@@ -85,8 +85,7 @@ class TriangleAreaCostFunction : public ceres::SizedCostFunction<1, 3, 3, 3> {
 class DihedralAngleCostFunction
     : public ceres::SizedCostFunction<1, 3, 3, 3, 3> {
  public:
-  static DihedralAngleCostFunction* Create(double target_angle,
-                                           double weight) {
+  static DihedralAngleCostFunction* Create(double target_angle, double weight) {
     return new DihedralAngleCostFunction(target_angle, weight);
   }
 

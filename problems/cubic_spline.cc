@@ -1,10 +1,9 @@
 #include "problems/cubic_spline.h"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <string>
-
-#include <Eigen/LU>
 
 #include "geometry/mesh.h"
 
@@ -60,13 +59,14 @@ Eigen::MatrixXd CubicSplineWeights(const std::vector<double>& knots,
   if (m < 1) throw InputError("cubic spline: no knots");
   for (int j = 0; j < m; ++j) {
     if (!std::isfinite(knots[j]) || (j > 0 && !(knots[j] > knots[j - 1]))) {
-      throw InputError("cubic spline: knots must be finite and strictly "
-                       "increasing");
+      throw InputError(
+          "cubic spline: knots must be finite and strictly "
+          "increasing");
     }
   }
   const bool periodic = ends == SplineEnds::kPeriodic;
-  if (periodic && !(period > knots.back() - knots.front() &&
-                    std::isfinite(period))) {
+  if (periodic &&
+      !(period > knots.back() - knots.front() && std::isfinite(period))) {
     throw InputError("cubic spline: the period " + std::to_string(period) +
                      " must exceed the knot span");
   }

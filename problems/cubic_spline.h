@@ -25,9 +25,8 @@
 #ifndef SHELLSPACE_PROBLEMS_CUBIC_SPLINE_H_
 #define SHELLSPACE_PROBLEMS_CUBIC_SPLINE_H_
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 namespace shellspace {
 

@@ -1,12 +1,12 @@
 #include "problems/ltheta_spline.h"
 
+#include <ceres/problem.h>
+
+#include <Eigen/Geometry>
 #include <chrono>
 #include <cmath>
 #include <string>
 #include <utility>
-
-#include <Eigen/Geometry>
-#include <ceres/problem.h>
 
 #include "cost_functions/ltheta_cost_functions.h"
 #include "geometry/element_geometry.h"
@@ -73,8 +73,9 @@ void CheckInputs(const ShellSpace& space,
                        (periodic ? " (periodic: index K is index 0)" : ""));
     }
     if (j > 0 && at[j] <= at[j - 1]) {
-      throw InputError("LΘA spline: keyframe indices must be strictly "
-                       "increasing");
+      throw InputError(
+          "LΘA spline: keyframe indices must be strictly "
+          "increasing");
     }
     if (keyframes[j].rows() != space.num_vertices) {
       throw InputError("LΘA spline: keyframe " + std::to_string(j) + " has " +
@@ -97,8 +98,9 @@ LThetaQuantities ComputeLThetaQuantities(const ShellSpace& space,
   LThetaQuantities q;
   q.lengths.resize(topo.edges.size());
   for (size_t e = 0; e < topo.edges.size(); ++e) {
-    q.lengths[e] = (Vertex(shape, topo.edges[e][1]) -
-                    Vertex(shape, topo.edges[e][0])).norm();
+    q.lengths[e] =
+        (Vertex(shape, topo.edges[e][1]) - Vertex(shape, topo.edges[e][0]))
+            .norm();
   }
   q.areas.resize(space.faces.rows());
   for (int f = 0; f < space.faces.rows(); ++f) {
@@ -124,8 +126,9 @@ LThetaWeights LThetaResidualWeights(const ShellSpace& space,
   if (!(ref.lengths.size() == 0 || ref.lengths.minCoeff() > 0) ||
       !(ref.areas.size() == 0 || ref.areas.minCoeff() > 0) ||
       !ref.lengths.allFinite() || !ref.areas.allFinite()) {
-    throw InputError("LΘA spline: the first keyframe has a degenerate edge "
-                     "or triangle");
+    throw InputError(
+        "LΘA spline: the first keyframe has a degenerate edge "
+        "or triangle");
   }
   LThetaWeights w;
   w.edge = ref.lengths.cwiseInverse();
@@ -136,8 +139,8 @@ LThetaWeights LThetaResidualWeights(const ShellSpace& space,
     const EdgeFlap& flap = space.topology.interior_edges[e];
     const double length2 =
         (Vertex(reference, flap.j) - Vertex(reference, flap.i)).squaredNorm();
-    w.dihedral[e] = std::sqrt(3 * eta * length2 /
-                              (ref.areas[flap.face_0] + ref.areas[flap.face_1]));
+    w.dihedral[e] = std::sqrt(
+        3 * eta * length2 / (ref.areas[flap.face_0] + ref.areas[flap.face_1]));
   }
   return w;
 }
@@ -169,11 +172,10 @@ Positions ReconstructFromLTheta(const ShellSpace& space,
   if (space.material.eta > 0) {
     for (size_t e = 0; e < topo.interior_edges.size(); ++e) {
       const EdgeFlap& flap = topo.interior_edges[e];
-      problem.AddResidualBlock(
-          DihedralAngleCostFunction::Create(target.dihedrals[e],
-                                            weights.dihedral[e]),
-          nullptr, data + 3 * flap.i, data + 3 * flap.j, data + 3 * flap.k,
-          data + 3 * flap.l);
+      problem.AddResidualBlock(DihedralAngleCostFunction::Create(
+                                   target.dihedrals[e], weights.dihedral[e]),
+                               nullptr, data + 3 * flap.i, data + 3 * flap.j,
+                               data + 3 * flap.k, data + 3 * flap.l);
     }
   }
   PinRigidMotions(&x, &problem);
@@ -243,13 +245,12 @@ ShellPath LThetaSpline(const ShellSpace& space,
     if (before < 0) {
       guess = *neighbours.front().second;  // before the first keyframe
     } else if (before + 1 == static_cast<int>(neighbours.size())) {
-      guess = *neighbours.back().second;   // after the last keyframe
+      guess = *neighbours.back().second;  // after the last keyframe
     } else {
       const auto& [index_a, a] = neighbours[before];
       const auto& [index_b, b] = neighbours[before + 1];
-      guess = BlendKeyframes(*a, *b,
-                             static_cast<double>(k - index_a) /
-                                 (index_b - index_a));
+      guess = BlendKeyframes(
+          *a, *b, static_cast<double>(k - index_a) / (index_b - index_a));
     }
     LThetaQuantities target;
     target.lengths = targets.row(k).head(num_edges).transpose();
@@ -259,9 +260,8 @@ ShellPath LThetaSpline(const ShellSpace& space,
     frame_settings.progress_label =
         settings.progress_label + " ltheta frame " + std::to_string(k);
     ceres::Solver::Summary summary;
-    const Positions solved = ReconstructFromLTheta(space, target, weights,
-                                                   guess, frame_settings,
-                                                   &summary);
+    const Positions solved = ReconstructFromLTheta(
+        space, target, weights, guess, frame_settings, &summary);
     path[k] = AlignRigidly(solved, guess);
     if (report != nullptr) {
       report->solved_frames.push_back(k);

@@ -9,7 +9,7 @@
 // values l*, a*, theta* by sparse Levenberg-Marquardt on
 //
 //   1/2 sum_e (l_e - l*_e)^2 / L_e^2 + 1/2 sum_f (a_f - a*_f)^2 / A_f
-//     + 1/2 eta sum_{e interior} 3 L_e^2 / (A_{f1} + A_{f2}) (theta_e - theta*_e)^2
+//     + 1/2 eta sum_{e interior} 3 L_e^2 / (A_f1 + A_f2) (theta_e - theta*_e)^2
 //
 // with L, A the lengths and areas of the first keyframe and eta the bending
 // weight of the space's material; one residual per element
@@ -17,10 +17,10 @@
 #ifndef SHELLSPACE_PROBLEMS_LTHETA_SPLINE_H_
 #define SHELLSPACE_PROBLEMS_LTHETA_SPLINE_H_
 
-#include <vector>
+#include <ceres/solver.h>
 
 #include <Eigen/Core>
-#include <ceres/solver.h>
+#include <vector>
 
 #include "cost_functions/deformation_energy.h"
 #include "problems/geodesic.h"
@@ -67,10 +67,10 @@ Positions ReconstructFromLTheta(const ShellSpace& space,
 
 // Per-frame record of an LΘA spline solve.
 struct LThetaSplineReport {
-  std::vector<int> solved_frames;                  // non-keyframe indices k
-  std::vector<ceres::Solver::Summary> summaries;   // one per solved frame
-  double spline_seconds = 0;   // quantities and their splines
-  double solve_seconds = 0;    // all reconstructions
+  std::vector<int> solved_frames;                 // non-keyframe indices k
+  std::vector<ceres::Solver::Summary> summaries;  // one per solved frame
+  double spline_seconds = 0;  // quantities and their splines
+  double solve_seconds = 0;   // all reconstructions
 };
 
 // The LΘA spline through `keyframes` at the strictly increasing indices `at`

@@ -1,6 +1,12 @@
 // Tests of the LΘA spline (calculus.md, "LΘA approximation"): the analytic
 // Jacobians of its three residuals, the cubic splines in time, and the
 // per-frame reconstruction.
+#include "problems/ltheta_spline.h"
+
+#include <ceres/gradient_checker.h>
+#include <ceres/manifold.h>
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -8,15 +14,10 @@
 #include <random>
 #include <vector>
 
-#include <ceres/gradient_checker.h>
-#include <ceres/manifold.h>
-#include <gtest/gtest.h>
-
 #include "cost_functions/ltheta_cost_functions.h"
 #include "geometry/element_geometry.h"
 #include "geometry/rigid_alignment.h"
 #include "problems/cubic_spline.h"
-#include "problems/ltheta_spline.h"
 #include "tests/test_support.h"
 
 namespace shellspace {
@@ -38,8 +39,8 @@ std::vector<Eigen::Vector3d> RandomPoints(int n, unsigned seed) {
 // i = (0,0,0), j = (1,0,0), k = (0.5,0.8,0), l = (0.5,-0.8,0) with every
 // coordinate perturbed by up to 0.3, so |theta| ranges over about [0, 1.5].
 std::vector<Eigen::Vector3d> RandomFlap(unsigned seed) {
-  std::vector<Eigen::Vector3d> flap = {{0, 0, 0}, {1, 0, 0}, {0.5, 0.8, 0},
-                                       {0.5, -0.8, 0}};
+  std::vector<Eigen::Vector3d> flap = {
+      {0, 0, 0}, {1, 0, 0}, {0.5, 0.8, 0}, {0.5, -0.8, 0}};
   const auto noise = RandomPoints(4, seed);
   for (int v = 0; v < 4; ++v) flap[v] += 0.3 * noise[v];
   return flap;
@@ -222,8 +223,8 @@ TEST(CubicSplineTest, NaturalSplineMatchesClosedForm) {
   // beyond t = 2.
   const Eigen::MatrixXd values = (Eigen::MatrixXd(3, 1) << 0, 1, 0).finished();
   const std::vector<double> times = {0.25, 0.5, 1.5, 1.75, 3.0};
-  const Eigen::MatrixXd s = InterpolateCubicSpline({0, 1, 2}, values, times,
-                                                   SplineEnds::kNatural);
+  const Eigen::MatrixXd s =
+      InterpolateCubicSpline({0, 1, 2}, values, times, SplineEnds::kNatural);
   auto closed = [](double t) { return -0.5 * t * t * t + 1.5 * t; };
   EXPECT_NEAR(s(0, 0), closed(0.25), 1e-15);
   EXPECT_NEAR(s(1, 0), 0.6875, 1e-15);
@@ -311,9 +312,9 @@ TEST(CubicSplineTest, PeriodicSplineThroughUnevenKnotsIsPeriodicAndC2) {
     EXPECT_NEAR(second_left, second_right, 5e-2) << t;
   }
   // Two knots: still well defined and through both.
-  const Eigen::MatrixXd two = InterpolateCubicSpline(
-      {0, 3}, (Eigen::MatrixXd(2, 1) << 1, 2).finished(), {0, 3, 6},
-      SplineEnds::kPeriodic, 6);
+  const Eigen::MatrixXd two =
+      InterpolateCubicSpline({0, 3}, (Eigen::MatrixXd(2, 1) << 1, 2).finished(),
+                             {0, 3, 6}, SplineEnds::kPeriodic, 6);
   EXPECT_NEAR(two(0, 0), 1, 1e-14);
   EXPECT_NEAR(two(1, 0), 2, 1e-14);
   EXPECT_NEAR(two(2, 0), 1, 1e-14);
@@ -338,9 +339,9 @@ TEST(CubicSplineTest, AtStepsAndInputErrors) {
   EXPECT_THROW(InterpolateCubicSplineAtSteps({0, 6}, values.topRows(2), 6,
                                              SplineEnds::kPeriodic),
                InputError);
-  EXPECT_THROW(InterpolateCubicSpline({0, 1}, values, {0.5},
-                                      SplineEnds::kNatural),
-               InputError);
+  EXPECT_THROW(
+      InterpolateCubicSpline({0, 1}, values, {0.5}, SplineEnds::kNatural),
+      InputError);
 }
 
 // ---------------------------------------------------------------------------
@@ -372,8 +373,8 @@ class LThetaSplineTest : public ::testing::Test {
 TEST_F(LThetaSplineTest, PassesThroughItsKeyframes) {
   const std::vector<Positions> keys = {plate_.positions, rolled_a_, rolled_b_};
   LThetaSplineReport report;
-  const ShellPath path =
-      LThetaSpline(space_, keys, {0, 2, 5}, 6, false, SolverSettings{}, &report);
+  const ShellPath path = LThetaSpline(space_, keys, {0, 2, 5}, 6, false,
+                                      SolverSettings{}, &report);
   ASSERT_EQ(path.size(), 7u);
   EXPECT_TRUE(path[0] == keys[0]);
   EXPECT_TRUE(path[2] == keys[1]);
@@ -384,8 +385,8 @@ TEST_F(LThetaSplineTest, PassesThroughItsKeyframes) {
   }
   // Inner frames are genuine shells between their neighbouring keyframes a,
   // b: a copy of neither, and nearer to one of them than they are apart.
-  const std::vector<std::array<int, 3>> frames = {{1, 0, 1}, {3, 1, 2},
-                                                  {4, 1, 2}};
+  const std::vector<std::array<int, 3>> frames = {
+      {1, 0, 1}, {3, 1, 2}, {4, 1, 2}};
   for (const auto& [k, a, b] : frames) {
     const double to_a = RelativeDistanceUpToRigidMotion(path[k], keys[a]);
     const double to_b = RelativeDistanceUpToRigidMotion(path[k], keys[b]);
@@ -404,7 +405,8 @@ TEST_F(LThetaSplineTest, PassesThroughItsKeyframes) {
   EXPECT_TRUE(closed[6] == closed[0]);
 }
 
-TEST_F(LThetaSplineTest, UniformlyScaledFlatSheetKeepsSplineLengthsAndStaysFlat) {
+TEST_F(LThetaSplineTest,
+       UniformlyScaledFlatSheetKeepsSplineLengthsAndStaysFlat) {
   // Keyframes: the plate scaled by 1, 1.2, 1.44 at 0, 2, 4. Every length
   // follows the natural spline through (0, 1), (2, 1.2), (4, 1.44) times its
   // rest length (1.09625 at k = 1), every area the spline through the
@@ -412,7 +414,8 @@ TEST_F(LThetaSplineTest, UniformlyScaledFlatSheetKeepsSplineLengthsAndStaysFlat)
   // are a slight compromise between the two, in the plane of the sheet.
   const Positions& p = plate_.positions;
   const std::vector<Positions> keys = {p, 1.2 * p, 1.44 * p};
-  const ShellPath path = LThetaSpline(space_, keys, {0, 2, 4}, 4, false, Tight());
+  const ShellPath path =
+      LThetaSpline(space_, keys, {0, 2, 4}, 4, false, Tight());
   const Eigen::MatrixXd scales = InterpolateCubicSplineAtSteps(
       {0, 2, 4}, (Eigen::MatrixXd(3, 1) << 1, 1.2, 1.44).finished(), 4,
       SplineEnds::kNatural);
