@@ -141,6 +141,36 @@ TEST_F(SplineTest, RegressionWithSmallSigmaInterpolates) {
   EXPECT_GT(smooth.data_energy, r.data_energy);
 }
 
+// Growing sigma lowers F_K monotonically (and raises the data term): four
+// sphere poses at 0..3, K = 3, each solve warm-started from the previous.
+TEST(RegressionTest, GrowingSigmaLowersSplineEnergy) {
+  std::vector<Positions> data;
+  Mesh first;
+  for (const char* name : {"sphere/unitSphere1.ply", "sphere/unitSphere1_defX.ply",
+                           "sphere/unitSphere1_defY.ply",
+                           "sphere/unitSphere1_defZ.ply"}) {
+    Mesh m = testing::LoadData(name);
+    if (data.empty()) first = m;
+    data.push_back(m.positions);
+  }
+  const ShellSpace space = testing::MakeSpace(first);
+  SplineSettings settings;
+  settings.max_iterations = 25;
+  ShellPath warm;
+  double previous_f = 1e300, previous_data = -1;
+  for (double sigma : {1e-4, 1e-3, 1e-2, 1e-1}) {
+    const SplineResult r =
+        SolveRegression(space, data, {0, 1, 2, 3}, 3, sigma, warm, settings);
+    EXPECT_LT(r.spline_energy, previous_f) << sigma;
+    EXPECT_GT(r.data_energy, previous_data) << sigma;
+    previous_f = r.spline_energy;
+    previous_data = r.data_energy;
+    warm = r.path;
+    std::cout << "sigma " << sigma << ": F_K " << r.spline_energy
+              << ", data term " << r.data_energy << "\n";
+  }
+}
+
 TEST(SplineCliTest, LThetaFramesAndErrors) {
   const std::string dir = testing::TempDir();
   const std::string keys = testing::DataPath("plate/plate121.ply") + "," +
