@@ -81,15 +81,17 @@ void BM_FingerShootAndTransport(benchmark::State& state) {
   for (auto _ : state) {
     const auto t0 = std::chrono::steady_clock::now();
     std::vector<ceres::Solver::Summary> summaries;
-    const ShellPath shot = Shoot(space, g.path[0], g.path[1], 8,
-                                 StepDirection::kForward, mask, SolverSettings{},
-                                 &summaries);
+    const ShellPath shot =
+        Shoot(space, g.path[0], g.path[1], 8, StepDirection::kForward, mask,
+              SolverSettings{}, &summaries);
     const auto t1 = std::chrono::steady_clock::now();
-    const TransportResult t = ParallelTransport(
-        space, g.path, var.positions - a.positions, 1.0, mask, SolverSettings{});
+    const TransportResult t =
+        ParallelTransport(space, g.path, var.positions - a.positions, 1.0, mask,
+                          SolverSettings{});
     const auto t2 = std::chrono::steady_clock::now();
     state.counters["shoot_s"] = std::chrono::duration<double>(t1 - t0).count();
-    state.counters["transport_s"] = std::chrono::duration<double>(t2 - t1).count();
+    state.counters["transport_s"] =
+        std::chrono::duration<double>(t2 - t1).count();
     state.counters["shoot_end_error"] =
         (shot.back() - g.path.back()).rowwise().norm().maxCoeff();
     benchmark::DoNotOptimize(t.shapes.size());

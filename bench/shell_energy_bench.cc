@@ -2,7 +2,6 @@
 // w.r.t. both arguments through ceres::Problem::Evaluate, with 1 and 2
 // threads; and the assembly of the sparse Hessian D_2^2 W.
 #include <benchmark/benchmark.h>
-
 #include <ceres/crs_matrix.h>
 #include <ceres/problem.h>
 
@@ -14,8 +13,10 @@ namespace shellspace {
 namespace {
 
 struct Cactus {
-  Mesh reference = ReadMesh(std::string(SHELLSPACE_DATA_DIR) + "/cactus/cactus0.ply");
-  Mesh deformed = ReadMesh(std::string(SHELLSPACE_DATA_DIR) + "/cactus/cactus1.ply");
+  Mesh reference =
+      ReadMesh(std::string(SHELLSPACE_DATA_DIR) + "/cactus/cactus0.ply");
+  Mesh deformed =
+      ReadMesh(std::string(SHELLSPACE_DATA_DIR) + "/cactus/cactus1.ply");
   ShellSpace space{reference, Topology::Build(reference), ShellMaterial{}};
 };
 
@@ -36,7 +37,10 @@ void BM_ResidualsAndJacobians(benchmark::State& state) {
   }
   state.counters["W"] = cost;
 }
-BENCHMARK(BM_ResidualsAndJacobians)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_ResidualsAndJacobians)
+    ->Arg(1)
+    ->Arg(2)
+    ->Unit(benchmark::kMillisecond);
 
 void BM_GradientBothArguments(benchmark::State& state) {
   Cactus cactus;

@@ -27,7 +27,8 @@ struct CactusKeyframes {
 
 void BM_CactusSplines(benchmark::State& state) {
   CactusKeyframes data;
-  const ShellSpace space(data.first, Topology::Build(data.first), ShellMaterial{});
+  const ShellSpace space(data.first, Topology::Build(data.first),
+                         ShellMaterial{});
   const std::vector<int> at = {0, 2, 4, 6};
   for (auto _ : state) {
     const auto t0 = std::chrono::steady_clock::now();
@@ -46,7 +47,8 @@ void BM_CactusSplines(benchmark::State& state) {
     state.counters["ltheta_s"] = std::chrono::duration<double>(t1 - t0).count();
     state.counters["F_ltheta"] = ltheta_energy.spline_energy;
     state.counters["F_eval_s"] = std::chrono::duration<double>(t2 - t1).count();
-    state.counters["nonlinear_s"] = std::chrono::duration<double>(t3 - t2).count();
+    state.counters["nonlinear_s"] =
+        std::chrono::duration<double>(t3 - t2).count();
     state.counters["F_nonlinear"] = nonlinear.spline_energy;
     state.counters["lbfgs_iterations"] =
         static_cast<double>(nonlinear.summary.iterations.size());

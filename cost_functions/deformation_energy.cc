@@ -84,18 +84,16 @@ DeformationEnergy EvaluateDeformationEnergy(const ShellSpace& space,
               k = space.faces(f, 2);
     const FirstFundamentalForm<double> gbar(
         vertex(reference, i), vertex(reference, j), vertex(reference, k));
-    const FirstFundamentalForm<double> g(vertex(deformed, i),
-                                         vertex(deformed, j),
-                                         vertex(deformed, k));
+    const FirstFundamentalForm<double> g(
+        vertex(deformed, i), vertex(deformed, j), vertex(deformed, k));
     const double det_gbar = gbar.g11 * gbar.g22 - gbar.g12 * gbar.g12;
     const double det_g = g.g11 * g.g22 - g.g12 * g.g12;
     if (!(det_gbar > 0) || !(det_g > 0)) {
       throw InputError("triangle " + std::to_string(f) + " is degenerate");
     }
     // tr(gbar^-1 g) with gbar^-1 = adj(gbar) / det gbar.
-    const double tr = (gbar.g22 * g.g11 - 2 * gbar.g12 * g.g12 +
-                       gbar.g11 * g.g22) /
-                      det_gbar;
+    const double tr =
+        (gbar.g22 * g.g11 - 2 * gbar.g12 * g.g12 + gbar.g11 * g.g22) / det_gbar;
     const double det = det_g / det_gbar;
     const double area = 0.5 * std::sqrt(det_gbar);
     energy.membrane += area * (m.mu / 2 * tr + m.lambda / 4 * det -

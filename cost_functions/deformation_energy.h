@@ -3,9 +3,9 @@
 #ifndef SHELLSPACE_COST_FUNCTIONS_DEFORMATION_ENERGY_H_
 #define SHELLSPACE_COST_FUNCTIONS_DEFORMATION_ENERGY_H_
 
-#include <vector>
-
 #include <ceres/problem.h>
+
+#include <vector>
 
 #include "cost_functions/bending_element.h"
 #include "cost_functions/membrane_element.h"
@@ -45,8 +45,7 @@ struct ShellSpace {
   int num_vertices = 0;
 
   ShellSpace() = default;
-  ShellSpace(const Mesh& mesh, const Topology& topo,
-             const ShellMaterial& mat)
+  ShellSpace(const Mesh& mesh, const Topology& topo, const ShellMaterial& mat)
       : faces(mesh.faces),
         topology(topo),
         material(mat),

@@ -4,10 +4,10 @@
 #ifndef SHELLSPACE_COST_FUNCTIONS_ELEMENT_COST_FUNCTION_H_
 #define SHELLSPACE_COST_FUNCTIONS_ELEMENT_COST_FUNCTION_H_
 
+#include <ceres/cost_function.h>
+
 #include <array>
 #include <cmath>
-
-#include <ceres/cost_function.h>
 
 #include "geometry/scalar_traits.h"
 
@@ -36,7 +36,8 @@ class ElementCostFunction : public ceres::CostFunction {
         kVertices * (int(reference_variable_) + int(deformed_variable_));
     mutable_parameter_block_sizes()->assign(blocks, 3);
     for (int v = 0; v < kVertices; ++v) {
-      if (fixed_reference) reference_[v] = Vec3<double>(fixed_reference + 3 * v);
+      if (fixed_reference)
+        reference_[v] = Vec3<double>(fixed_reference + 3 * v);
       if (fixed_deformed) deformed_[v] = Vec3<double>(fixed_deformed + 3 * v);
     }
   }

@@ -5,8 +5,9 @@
 #ifndef SHELLSPACE_COST_FUNCTIONS_ELEMENT_HESSIAN_H_
 #define SHELLSPACE_COST_FUNCTIONS_ELEMENT_HESSIAN_H_
 
-#include <Eigen/Core>
 #include <ceres/jet.h>
+
+#include <Eigen/Core>
 
 #include "geometry/scalar_traits.h"
 
@@ -56,7 +57,8 @@ struct ElementSecondDerivatives {
       return false;
     }
     energy = 0;
-    for (int i = 0; i < m; ++i) energy += 0.5 * weight * residuals[i].a * residuals[i].a;
+    for (int i = 0; i < m; ++i)
+      energy += 0.5 * weight * residuals[i].a * residuals[i].a;
     for (int col = 0; col < n; ++col) {
       J g_ref(0.0), g_def(0.0);
       for (int i = 0; i < m; ++i) {

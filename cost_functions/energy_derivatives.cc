@@ -41,7 +41,8 @@ Eigen::VectorXd EnergyGradient(const ShellSpace& space,
     for (int a = 0; a < count; ++a) {
       for (int c = 0; c < 3; ++c) {
         double g = 0;
-        for (int i = 0; i < E::kNumResiduals; ++i) g += jac(i, 3 * a + c) * r[i];
+        for (int i = 0; i < E::kNumResiduals; ++i)
+          g += jac(i, 3 * a + c) * r[i];
         gradient(3 * vs[a] + c) += g;
       }
     }
@@ -65,10 +66,10 @@ std::pair<SparseMatrix, SparseMatrix> EnergyHessianColumns(
           for (int i = 0; i < 3; ++i) {
             for (int j = 0; j < 3; ++j) {
               const int r = 3 * vs[a] + i, c = 3 * vs[b] + j;
-              rows_reference.emplace_back(r, c,
-                                          d.d_grad_reference(3 * a + i, 3 * b + j));
-              rows_deformed.emplace_back(r, c,
-                                         d.d_grad_deformed(3 * a + i, 3 * b + j));
+              rows_reference.emplace_back(
+                  r, c, d.d_grad_reference(3 * a + i, 3 * b + j));
+              rows_deformed.emplace_back(
+                  r, c, d.d_grad_deformed(3 * a + i, 3 * b + j));
             }
           }
         }

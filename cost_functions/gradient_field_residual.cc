@@ -10,17 +10,19 @@ GradientFieldCache::GradientFieldCache(const ShellSpace& space,
                                        const Positions& fixed,
                                        ShellSide unknown_side,
                                        const Positions* unknown)
-    : space_(space), fixed_(fixed), unknown_side_(unknown_side),
+    : space_(space),
+      fixed_(fixed),
+      unknown_side_(unknown_side),
       unknown_(unknown) {
   // Element list in ForEachElement order.
-  ForEachElement(space, fixed, fixed,
-                 [&](const int* vs, int count, const double*, const double*,
-                     const auto&) {
-                   Element e;
-                   e.count = count;
-                   std::copy(vs, vs + count, e.vertices);
-                   elements_.push_back(e);
-                 });
+  ForEachElement(
+      space, fixed, fixed,
+      [&](const int* vs, int count, const double*, const double*, const auto&) {
+        Element e;
+        e.count = count;
+        std::copy(vs, vs + count, e.vertices);
+        elements_.push_back(e);
+      });
 }
 
 void GradientFieldCache::PrepareForEvaluation(bool evaluate_jacobians,
@@ -45,10 +47,10 @@ void GradientFieldCache::PrepareForEvaluation(bool evaluate_jacobians,
         }
       }
       auto store = [&](const auto& d) {
-        const auto& grad = unknown_is_reference ? d.grad_deformed
-                                                : d.grad_reference;
-        const auto& jac = unknown_is_reference ? d.d_grad_deformed
-                                               : d.d_grad_reference;
+        const auto& grad =
+            unknown_is_reference ? d.grad_deformed : d.grad_reference;
+        const auto& jac =
+            unknown_is_reference ? d.d_grad_deformed : d.d_grad_reference;
         const int m = 3 * e.count;
         for (int r = 0; r < m; ++r) {
           e.gradient[r] = grad(r);
@@ -84,7 +86,8 @@ VertexGradientResidual* VertexGradientResidual::Create(
   std::copy(constant, constant + 3, residual->constant_);
   for (int index : incident) {
     const auto& e = cache->elements()[index];
-    for (int a = 0; a < e.count; ++a) residual->stencil_.push_back(e.vertices[a]);
+    for (int a = 0; a < e.count; ++a)
+      residual->stencil_.push_back(e.vertices[a]);
   }
   auto& stencil = residual->stencil_;
   std::sort(stencil.begin(), stencil.end());

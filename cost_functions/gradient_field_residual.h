@@ -9,11 +9,11 @@
 #ifndef SHELLSPACE_COST_FUNCTIONS_GRADIENT_FIELD_RESIDUAL_H_
 #define SHELLSPACE_COST_FUNCTIONS_GRADIENT_FIELD_RESIDUAL_H_
 
-#include <memory>
-#include <vector>
-
 #include <ceres/cost_function.h>
 #include <ceres/evaluation_callback.h>
+
+#include <memory>
+#include <vector>
 
 #include "cost_functions/energy_derivatives.h"
 
@@ -34,10 +34,10 @@ class GradientFieldCache : public ceres::EvaluationCallback {
                             bool new_evaluation_point) override;
 
   struct Element {
-    int count;                    // 3 (membrane) or 4 (bending)
+    int count;  // 3 (membrane) or 4 (bending)
     int vertices[4];
-    double gradient[12];          // d e / d fixed, per local coordinate
-    double jacobian[12][12];      // d gradient / d unknown (row: fixed coord)
+    double gradient[12];      // d e / d fixed, per local coordinate
+    double jacobian[12][12];  // d gradient / d unknown (row: fixed coord)
   };
   const std::vector<Element>& elements() const { return elements_; }
   // False if some element was degenerate at the current point.
@@ -74,8 +74,8 @@ class VertexGradientResidual : public ceres::CostFunction {
   double constant_[3] = {0, 0, 0};
   struct Term {
     int element;
-    int local_v;                  // v's local index in the element
-    int local_to_block[4];        // element local vertex -> stencil block
+    int local_v;            // v's local index in the element
+    int local_to_block[4];  // element local vertex -> stencil block
   };
   std::vector<Term> terms_;
   std::vector<int> stencil_;

@@ -15,8 +15,7 @@ namespace shellspace {
 // the reference is variable, then [X_i, X_j, X_k] if the deformed triangle is
 // variable; Jacobian blocks are 4 x 3 row-major. Units: residuals scale like
 // length (energy like area).
-class MembraneCostFunction
-    : public ElementCostFunction<MembraneElement, 3> {
+class MembraneCostFunction : public ElementCostFunction<MembraneElement, 3> {
  public:
   using ElementCostFunction::ElementCostFunction;
 

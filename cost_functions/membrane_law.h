@@ -52,8 +52,8 @@ struct MembraneLaw {
   // residuals[4]; if `jacobian` is non-null, jacobian[m][q] = d r_m / d q for
   // q = (a, b, c, abar). Returns false if det G <= 0 or is not finite.
   template <typename T>
-  bool Evaluate(const T& a, const T& b, const T& c, const T& area,
-                T* residuals, T (*jacobian)[4]) const {
+  bool Evaluate(const T& a, const T& b, const T& c, const T& area, T* residuals,
+                T (*jacobian)[4]) const {
     const T t = a + c;
     const T d = a * c - b * b;
     const double d_value = ScalarValue(d);
@@ -84,8 +84,7 @@ struct MembraneLaw {
       const T dc = (q == 2) ? T(1) : T(0);
       jacobian[0][q] = dw * (a - c) + w * (da - dc);
       jacobian[1][q] = T(2) * (dw * b + w * db);
-      jacobian[2][q] =
-          k2 * (dpsi_sd * dsd + psi_sd * darea[q] / (T(2) * area));
+      jacobian[2][q] = k2 * (dpsi_sd * dsd + psi_sd * darea[q] / (T(2) * area));
       jacobian[3][q] = k3 * (dpsi_d * dd[q] + psi_d * darea[q] / (T(2) * area));
     }
     return true;

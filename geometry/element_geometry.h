@@ -15,8 +15,8 @@
 
 namespace shellspace {
 
-// First fundamental form in the edge basis, g = [[E1.E1, E1.E2],[E1.E2, E2.E2]],
-// stored as (g11, g12, g22). Gradient: dg11/dE1 = 2 E1, dg12/dE1 = E2,
+// First fundamental form in the edge basis, g = [[E1.E1, E1.E2],[E1.E2,
+// E2.E2]], stored as (g11, g12, g22). Gradient: dg11/dE1 = 2 E1, dg12/dE1 = E2,
 // dg12/dE2 = E1, dg22/dE2 = 2 E2 (and d/dX_i = -(d/dE1 + d/dE2)).
 template <typename T>
 struct FirstFundamentalForm {

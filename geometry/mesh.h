@@ -2,18 +2,17 @@
 #ifndef SHELLSPACE_GEOMETRY_MESH_H_
 #define SHELLSPACE_GEOMETRY_MESH_H_
 
+#include <Eigen/Core>
+#include <Eigen/Geometry>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
-#include <Eigen/Core>
-#include <Eigen/Geometry>
-
 namespace shellspace {
 
 // Nodal positions of a shell, one row (x, y, z) per vertex. Row-major so that
-// the coordinates of vertex i are the contiguous doubles data() + 3 i: these are
-// the per-vertex Ceres parameter blocks.
+// the coordinates of vertex i are the contiguous doubles data() + 3 i: these
+// are the per-vertex Ceres parameter blocks.
 using Positions = Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor>;
 // Vertex indices of the triangles, counter-clockwise (outward normal by the
 // right-hand rule), one row per face.

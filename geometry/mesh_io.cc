@@ -2,11 +2,10 @@
 
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
-
 #include <algorithm>
 #include <cctype>
-#include <cstdlib>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -57,7 +56,8 @@ bool ReadAsciiPly(const std::string& path, Mesh* mesh) {
       words >> element.name >> element.count;
       elements.push_back(element);
     } else if (keyword == "property") {
-      if (elements.empty()) throw InputError(path + ": PLY property before element");
+      if (elements.empty())
+        throw InputError(path + ": PLY property before element");
       std::string type, name;
       words >> type;
       if (type == "list") {
@@ -186,9 +186,9 @@ Mesh ReadMesh(const std::string& path) {
     mesh = ReadWithOpenMesh(path);
   }
   if (mesh.num_vertices() == 0 || mesh.num_faces() == 0) {
-    throw InputError(path + ": mesh has no " +
-                     std::string(mesh.num_vertices() == 0 ? "vertices"
-                                                          : "faces"));
+    throw InputError(
+        path + ": mesh has no " +
+        std::string(mesh.num_vertices() == 0 ? "vertices" : "faces"));
   }
   return mesh;
 }

@@ -9,10 +9,11 @@ Positions AlignRigidly(const Positions& source, const Positions& target) {
   const Eigen::RowVector3d ct = target.colwise().mean();
   const Eigen::Matrix3d cov =
       (source.rowwise() - cs).transpose() * (target.rowwise() - ct);
-  Eigen::JacobiSVD<Eigen::Matrix3d> svd(cov,
-                                        Eigen::ComputeFullU | Eigen::ComputeFullV);
+  Eigen::JacobiSVD<Eigen::Matrix3d> svd(
+      cov, Eigen::ComputeFullU | Eigen::ComputeFullV);
   Eigen::Matrix3d d = Eigen::Matrix3d::Identity();
-  if ((svd.matrixV() * svd.matrixU().transpose()).determinant() < 0) d(2, 2) = -1;
+  if ((svd.matrixV() * svd.matrixU().transpose()).determinant() < 0)
+    d(2, 2) = -1;
   const Eigen::Matrix3d r = svd.matrixV() * d * svd.matrixU().transpose();
   Positions out = (source.rowwise() - cs) * r.transpose();
   out.rowwise() += ct;

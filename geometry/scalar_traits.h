@@ -3,11 +3,11 @@
 #ifndef SHELLSPACE_GEOMETRY_SCALAR_TRAITS_H_
 #define SHELLSPACE_GEOMETRY_SCALAR_TRAITS_H_
 
-#include <cmath>
+#include <ceres/jet.h>
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
-#include <ceres/jet.h>
+#include <cmath>
 
 namespace shellspace {
 

@@ -32,9 +32,8 @@ Topology Topology::Build(const Mesh& mesh) {
       if (!half_edges.emplace(std::make_pair(u, w), f).second) {
         throw InputError("non-manifold or inconsistently oriented edge (" +
                          std::to_string(u) + ", " + std::to_string(w) +
-                         ") in faces " +
-                         std::to_string(half_edges[{u, w}]) + " and " +
-                         std::to_string(f));
+                         ") in faces " + std::to_string(half_edges[{u, w}]) +
+                         " and " + std::to_string(f));
       }
       const auto key = std::make_pair(std::min(u, w), std::max(u, w));
       auto it = edge_index.find(key);

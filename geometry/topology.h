@@ -33,8 +33,8 @@ struct EdgeFlap {
 struct Topology {
   std::vector<std::array<int, 2>> edges;
   std::vector<std::array<int, 2>> edge_faces;
-  std::vector<EdgeFlap> interior_edges;  // one flap per interior edge
-  std::vector<int> boundary_edges;       // indices into `edges`
+  std::vector<EdgeFlap> interior_edges;        // one flap per interior edge
+  std::vector<int> boundary_edges;             // indices into `edges`
   std::vector<std::vector<int>> vertex_faces;  // faces around each vertex
 
   // Builds the topology. Throws InputError for out-of-range indices, repeated

@@ -60,11 +60,10 @@ struct TriangleDistortion {
 
     // Reference side: chain through the frame parameters (l11, rho, l22).
     const T r = l11 / l22;
-    const T d_param[4][3] = {
-        {T(-2) * a / l11, T(0), T(0)},              // a
-        {-b / l11, -r * a, -b / l22},               // b
-        {T(0), T(-2) * r * b, T(-2) * c / l22},     // c
-        {T(0.5) * l22, T(0), T(0.5) * l11}};        // abar
+    const T d_param[4][3] = {{T(-2) * a / l11, T(0), T(0)},           // a
+                             {-b / l11, -r * a, -b / l22},            // b
+                             {T(0), T(-2) * r * b, T(-2) * c / l22},  // c
+                             {T(0.5) * l22, T(0), T(0.5) * l11}};     // abar
     const Vec3<T> dl11[2] = {eb1 / l11, zero};
     const Vec3<T> drho[2] = {(eb2 - T(2) * rho * eb1) / l11_sq, eb1 / l11_sq};
     const Vec3<T> dl22[2] = {-rho * p / l22, p / l22};

@@ -3,9 +3,9 @@
 #ifndef SHELLSPACE_PROBLEMS_ELASTIC_DEFORMATION_H_
 #define SHELLSPACE_PROBLEMS_ELASTIC_DEFORMATION_H_
 
-#include <vector>
-
 #include <ceres/solver.h>
+
+#include <vector>
 
 #include "cost_functions/deformation_energy.h"
 #include "problems/solver_settings.h"

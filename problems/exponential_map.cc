@@ -48,28 +48,33 @@ ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
     VertexGradientResidual* residual = VertexGradientResidual::Create(
         &cache, v, constant.data() + 3 * v, incident[v]);
     std::vector<double*> blocks;
-    for (int w : residual->stencil()) blocks.push_back(result.shape.data() + 3 * w);
+    for (int w : residual->stencil())
+      blocks.push_back(result.shape.data() + 3 * w);
     problem.AddResidualBlock(residual, nullptr, blocks);
   }
   for (int v : fixed_vertices) {
     double* block = result.shape.data() + 3 * v;
-    if (problem.HasParameterBlock(block)) problem.SetParameterBlockConstant(block);
+    if (problem.HasParameterBlock(block))
+      problem.SetParameterBlockConstant(block);
   }
   if (fixed_vertices.empty()) PinRigidMotions(&result.shape, &problem);
   SolverSettings step_settings = settings;
-  step_settings.gradient_tolerance = std::min(settings.gradient_tolerance, 1e-10);
+  step_settings.gradient_tolerance =
+      std::min(settings.gradient_tolerance, 1e-10);
   step_settings.initial_trust_region_radius =
-1e16;  // Gauss-Newton from the start
+      1e16;  // Gauss-Newton from the start
   result.summary = SolveWithSettings(&problem, step_settings);
   // Recompute F at the result for the reported residual.
   Eigen::VectorXd residual = constant;
-  residual += forward ? EnergyGradient(space, b, result.shape, ShellSide::kReference)
-                      : EnergyGradient(space, result.shape, b, ShellSide::kDeformed);
+  residual +=
+      forward ? EnergyGradient(space, b, result.shape, ShellSide::kReference)
+              : EnergyGradient(space, result.shape, b, ShellSide::kDeformed);
   result.residual_norm = 0;
   for (int v = 0; v < space.num_vertices; ++v) {
     if (!is_fixed[v]) {
-      result.residual_norm = std::max(
-          result.residual_norm, residual.segment<3>(3 * v).cwiseAbs().maxCoeff());
+      result.residual_norm =
+          std::max(result.residual_norm,
+                   residual.segment<3>(3 * v).cwiseAbs().maxCoeff());
     }
   }
   return result;

@@ -3,9 +3,9 @@
 #ifndef SHELLSPACE_PROBLEMS_EXPONENTIAL_MAP_H_
 #define SHELLSPACE_PROBLEMS_EXPONENTIAL_MAP_H_
 
-#include <vector>
-
 #include <ceres/solver.h>
+
+#include <vector>
 
 #include "problems/geodesic.h"
 

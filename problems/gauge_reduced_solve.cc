@@ -1,8 +1,7 @@
 #include "problems/gauge_reduced_solve.h"
 
-#include <vector>
-
 #include <Eigen/SparseCholesky>
+#include <vector>
 
 #include "problems/rigid_gauge.h"
 
@@ -15,8 +14,7 @@ Eigen::VectorXd SolveModuloRigidMotions(const Eigen::SparseMatrix<double>& h,
   const auto [a, b, c] = ChooseGaugeVertices(shape);
   const Eigen::Vector3d pa = shape.row(a), pb = shape.row(b), pc = shape.row(c);
   const Eigen::Vector3d u = (pb - pa).normalized();
-  const Eigen::Vector3d w =
-      ((pc - pa) - (pc - pa).dot(u) * u).normalized();
+  const Eigen::Vector3d w = ((pc - pa) - (pc - pa).dot(u) * u).normalized();
   std::vector<Eigen::Triplet<double>> t;
   int column = 0;
   for (int v = 0; v < n; ++v) {

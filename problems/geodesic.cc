@@ -40,7 +40,8 @@ void FixVerticesOrGauge(Positions* shape, const std::vector<int>& fixed,
 
 }  // namespace
 
-GeodesicResult SolveGeodesic(const ShellSpace& space, const GeodesicInput& input,
+GeodesicResult SolveGeodesic(const ShellSpace& space,
+                             const GeodesicInput& input,
                              const SolverSettings& settings) {
   if (input.steps < 1) throw InputError("--steps must be at least 1");
   GeodesicResult result;
@@ -59,8 +60,9 @@ GeodesicResult SolveGeodesic(const ShellSpace& space, const GeodesicInput& input
       const ShellArgument ref =
           k == 1 ? ShellArgument::Fixed(result.path[0])
                  : ShellArgument::Variable(&result.path[k - 1]);
-      const ShellArgument def = k == K ? ShellArgument::Fixed(result.path[K])
-                                       : ShellArgument::Variable(&result.path[k]);
+      const ShellArgument def = k == K
+                                    ? ShellArgument::Fixed(result.path[K])
+                                    : ShellArgument::Variable(&result.path[k]);
       AddDeformationEnergy(space, ref, def, K, &problem);
     }
     for (int k = 1; k < K; ++k) {

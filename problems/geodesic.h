@@ -4,9 +4,9 @@
 #ifndef SHELLSPACE_PROBLEMS_GEODESIC_H_
 #define SHELLSPACE_PROBLEMS_GEODESIC_H_
 
-#include <vector>
-
 #include <ceres/solver.h>
+
+#include <vector>
 
 #include "cost_functions/deformation_energy.h"
 #include "problems/solver_settings.h"
@@ -25,9 +25,9 @@ ShellPath LinearPath(const Positions& a, const Positions& b, int steps);
 
 struct GeodesicInput {
   Positions start, end;
-  int steps = 8;                     // K >= 1
-  std::vector<int> fixed_vertices;   // Dirichlet mask (may be empty)
-  ShellPath initial;                 // optional K + 1 shapes; else linear
+  int steps = 8;                    // K >= 1
+  std::vector<int> fixed_vertices;  // Dirichlet mask (may be empty)
+  ShellPath initial;                // optional K + 1 shapes; else linear
   // Without a mask: pin the rigid gauge of each inner shape (true), or leave
   // it free for LM's damping to handle (false; for tests of gauge
   // independence).
@@ -35,9 +35,9 @@ struct GeodesicInput {
 };
 
 struct GeodesicResult {
-  ShellPath path;                    // s_0 = start ... s_K = end
-  double path_energy = 0;            // E_K
-  std::vector<double> step_energies; // W[s_{k-1}, s_k]
+  ShellPath path;                     // s_0 = start ... s_K = end
+  double path_energy = 0;             // E_K
+  std::vector<double> step_energies;  // W[s_{k-1}, s_k]
   ceres::Solver::Summary summary;
 };
 
@@ -47,7 +47,8 @@ struct GeodesicResult {
 // initial (linearly interpolated) positions in every shape; without one the
 // rigid motions of every inner shape are pinned (rigid_gauge.h) at three
 // vertices of the initial path.
-GeodesicResult SolveGeodesic(const ShellSpace& space, const GeodesicInput& input,
+GeodesicResult SolveGeodesic(const ShellSpace& space,
+                             const GeodesicInput& input,
                              const SolverSettings& settings);
 
 // argmin_s weight_a W[a, s] + weight_b W[s, b] from `initial`, with the

@@ -2,12 +2,14 @@
 
 namespace shellspace {
 
-TransportResult ParallelTransport(const ShellSpace& space, const ShellPath& path,
+TransportResult ParallelTransport(const ShellSpace& space,
+                                  const ShellPath& path,
                                   const Positions& variation, double epsilon,
                                   const std::vector<int>& fixed_vertices,
                                   const SolverSettings& settings) {
   if (!(epsilon > 0)) throw InputError("--epsilon must be positive");
-  if (path.size() < 2) throw InputError("transport needs a path of >= 2 shapes");
+  if (path.size() < 2)
+    throw InputError("transport needs a path of >= 2 shapes");
   TransportResult result;
   result.variations.push_back(variation);
   Positions p = path[0] + epsilon * variation;

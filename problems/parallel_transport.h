@@ -19,7 +19,8 @@ struct TransportResult {
 // (s_{k-1}, m_k); xi_k = (p_k - s_k) / eps. eps = 1 transports a finite
 // shape difference (detail transfer); small eps the tangent vector.
 // `fixed_vertices` are held in the midpoint and EXP problems.
-TransportResult ParallelTransport(const ShellSpace& space, const ShellPath& path,
+TransportResult ParallelTransport(const ShellSpace& space,
+                                  const ShellPath& path,
                                   const Positions& variation, double epsilon,
                                   const std::vector<int>& fixed_vertices,
                                   const SolverSettings& settings);

@@ -18,8 +18,8 @@ bool AffineSubspaceManifold::Plus(const double* x, const double* delta,
 bool AffineSubspaceManifold::PlusJacobian(const double* /*x*/,
                                           double* jacobian) const {
   // Row-major 3 x m.
-  Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic,
-                           Eigen::RowMajor>>
+  Eigen::Map<
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>
       out(jacobian, 3, basis_.cols());
   out = basis_;
   return true;
@@ -29,15 +29,15 @@ bool AffineSubspaceManifold::Minus(const double* y, const double* x,
                                    double* y_minus_x) const {
   Eigen::Map<Eigen::VectorXd> out(y_minus_x, basis_.cols());
   out = basis_.transpose() * (Eigen::Map<const Eigen::Vector3d>(y) -
-                            Eigen::Map<const Eigen::Vector3d>(x));
+                              Eigen::Map<const Eigen::Vector3d>(x));
   return true;
 }
 
 bool AffineSubspaceManifold::MinusJacobian(const double* /*x*/,
                                            double* jacobian) const {
   // Row-major m x 3.
-  Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic,
-                           Eigen::RowMajor>>
+  Eigen::Map<
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>
       out(jacobian, basis_.cols(), 3);
   out = basis_.transpose();
   return true;
@@ -70,7 +70,8 @@ std::array<int, 3> PinRigidMotions(Positions* shape, ceres::Problem* problem) {
   problem->SetParameterBlockConstant(shape->data() + 3 * a);
   problem->SetManifold(shape->data() + 3 * b,
                        new AffineSubspaceManifold(Eigen::MatrixXd(u)));
-  problem->SetManifold(shape->data() + 3 * c, new AffineSubspaceManifold(plane));
+  problem->SetManifold(shape->data() + 3 * c,
+                       new AffineSubspaceManifold(plane));
   return {a, b, c};
 }
 

@@ -3,11 +3,11 @@
 #ifndef SHELLSPACE_PROBLEMS_RIGID_GAUGE_H_
 #define SHELLSPACE_PROBLEMS_RIGID_GAUGE_H_
 
-#include <array>
-
-#include <Eigen/Core>
 #include <ceres/manifold.h>
 #include <ceres/problem.h>
+
+#include <Eigen/Core>
+#include <array>
 
 #include "geometry/mesh.h"
 

@@ -2,10 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <vector>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
+#include <vector>
 
 namespace shellspace {
 
@@ -23,25 +23,27 @@ ceres::Solver::Options MakeSolverOptions(const SolverSettings& settings,
   options.parameter_tolerance = settings.parameter_tolerance;
   options.num_threads = settings.num_threads;
   options.initial_trust_region_radius = settings.initial_trust_region_radius;
-  options.max_trust_region_radius =
-      std::max(options.max_trust_region_radius,
-               settings.initial_trust_region_radius);
+  options.max_trust_region_radius = std::max(
+      options.max_trust_region_radius, settings.initial_trust_region_radius);
   options.logging_type = ceres::SILENT;
   options.minimizer_progress_to_stdout = false;
   return options;
 }
 
 ProgressPrinter::ProgressPrinter(std::string label, double cost_factor)
-    : label_(std::move(label)), cost_factor_(cost_factor), start_(std::chrono::steady_clock::now()) {}
+    : label_(std::move(label)),
+      cost_factor_(cost_factor),
+      start_(std::chrono::steady_clock::now()) {}
 
 ceres::CallbackReturnType ProgressPrinter::operator()(
     const ceres::IterationSummary& s) {
-  const double seconds = std::chrono::duration<double>(
-                             std::chrono::steady_clock::now() - start_)
-                             .count();
-  std::fprintf(stderr, "%s iter %3d  energy %.10e  |grad| %.3e  step %s  %.2f s\n",
-               label_.c_str(), s.iteration, cost_factor_ * s.cost, s.gradient_max_norm,
-               s.step_is_successful ? "ok " : "rej", seconds);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_)
+          .count();
+  std::fprintf(
+      stderr, "%s iter %3d  energy %.10e  |grad| %.3e  step %s  %.2f s\n",
+      label_.c_str(), s.iteration, cost_factor_ * s.cost, s.gradient_max_norm,
+      s.step_is_successful ? "ok " : "rej", seconds);
   return ceres::SOLVER_CONTINUE;
 }
 

@@ -3,12 +3,12 @@
 #ifndef SHELLSPACE_PROBLEMS_SOLVER_SETTINGS_H_
 #define SHELLSPACE_PROBLEMS_SOLVER_SETTINGS_H_
 
+#include <ceres/iteration_callback.h>
+#include <ceres/solver.h>
+
 #include <chrono>
 #include <iosfwd>
 #include <string>
-
-#include <ceres/iteration_callback.h>
-#include <ceres/solver.h>
 
 namespace shellspace {
 
@@ -19,14 +19,14 @@ namespace shellspace {
 struct SolverSettings {
   int max_iterations = 200;
   double function_tolerance = 1e-12;
-  double gradient_tolerance = 1e-8;   // relative to the initial gradient
+  double gradient_tolerance = 1e-8;  // relative to the initial gradient
   double parameter_tolerance = 1e-12;
   int num_threads = 2;
   // LM's initial trust-region radius (Ceres' default 1e4). Root-finding
   // problems with a square, nonsingular Jacobian (EXP steps) want nearly
   // Gauss-Newton steps from the start: a large radius.
   double initial_trust_region_radius = 1e4;
-  bool progress = false;              // one line per iteration on stderr
+  bool progress = false;  // one line per iteration on stderr
   std::string progress_label = "solve";
 };
 

@@ -1,9 +1,9 @@
 #include "problems/spline.h"
 
+#include <ceres/gradient_problem.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <ceres/gradient_problem.h>
 
 namespace shellspace {
 namespace {
@@ -40,7 +40,8 @@ class ScaledObjective : public ceres::FirstOrderFunction {
   ScaledObjective(const SplineObjective& inner, double scale)
       : inner_(inner), inverse_scale_(1.0 / scale) {}
   int NumParameters() const override { return inner_.NumParameters(); }
-  bool Evaluate(const double* x, double* cost, double* gradient) const override {
+  bool Evaluate(const double* x, double* cost,
+                double* gradient) const override {
     if (!inner_.Evaluate(x, cost, gradient)) return false;
     *cost *= inverse_scale_;
     if (gradient) {
@@ -163,7 +164,8 @@ SplineResult SolveRegression(const ShellSpace& space,
   spec.initial =
       initial.empty() ? PiecewiseLinearPath(inputs, at, steps, false) : initial;
   spec.is_free.assign(spec.initial.size(), 1);
-  for (size_t i = 0; i < at.size(); ++i) spec.data.push_back({inputs[i], at[i]});
+  for (size_t i = 0; i < at.size(); ++i)
+    spec.data.push_back({inputs[i], at[i]});
   return Run(space, spec, settings);
 }
 

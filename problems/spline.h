@@ -4,9 +4,9 @@
 #ifndef SHELLSPACE_PROBLEMS_SPLINE_H_
 #define SHELLSPACE_PROBLEMS_SPLINE_H_
 
-#include <vector>
-
 #include <ceres/gradient_problem_solver.h>
+
+#include <vector>
 
 #include "problems/spline_energy.h"
 
@@ -23,11 +23,11 @@ struct SplineResult {
 // Settings of the outer L-BFGS loop.
 struct SplineSettings {
   int max_iterations = 100;
-  double gradient_tolerance = 1e-8;   // relative to the initial gradient
+  double gradient_tolerance = 1e-8;  // relative to the initial gradient
   double function_tolerance = 1e-10;
   bool progress = false;
   std::string progress_label = "spline";
-  SolverSettings inner;               // the midpoint solves
+  SolverSettings inner;  // the midpoint solves
 };
 
 // Spline through `keyframes` at path indices `at` (strictly increasing, in

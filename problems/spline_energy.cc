@@ -18,8 +18,9 @@ void PolishMidpoint(const ShellSpace& space, const Positions& a,
     const Eigen::VectorXd g =
         EnergyGradient(space, a, *m, ShellSide::kDeformed) +
         EnergyGradient(space, *m, b, ShellSide::kReference);
-    const double scale =
-        EnergyGradient(space, a, *m, ShellSide::kDeformed).cwiseAbs().maxCoeff();
+    const double scale = EnergyGradient(space, a, *m, ShellSide::kDeformed)
+                             .cwiseAbs()
+                             .maxCoeff();
     if (g.cwiseAbs().maxCoeff() <= 1e-13 * std::max(scale, 1e-300)) return;
     const SparseMatrix h =
         EnergyHessianColumns(space, a, *m, ShellSide::kDeformed).second +
@@ -57,7 +58,8 @@ SplineObjective::SplineObjective(const ShellSpace& space, SplineSpec spec,
     }
   }
   if (spec_.periodic) {
-    for (int k = 0; k < K; ++k) terms_.push_back({(k + K - 1) % K, k, (k + 1) % K});
+    for (int k = 0; k < K; ++k)
+      terms_.push_back({(k + K - 1) % K, k, (k + 1) % K});
   } else {
     for (int k = 1; k < K; ++k) terms_.push_back({k - 1, k, k + 1});
   }
@@ -127,8 +129,8 @@ bool SplineObjective::Evaluate(const double* parameters, double* cost,
     const int n3 = 3 * space_.num_vertices;
     std::vector<Eigen::VectorXd> grad(path.size(), Eigen::VectorXd::Zero(n3));
     for (const SplineDatum& d : spec_.data) {
-      grad[d.index] += EnergyGradient(space_, d.shape, path[d.index],
-                                      ShellSide::kDeformed);
+      grad[d.index] +=
+          EnergyGradient(space_, d.shape, path[d.index], ShellSide::kDeformed);
     }
     for (size_t t = 0; t < terms_.size(); ++t) {
       const Term& term = terms_[t];
@@ -138,12 +140,12 @@ bool SplineObjective::Evaluate(const double* parameters, double* cost,
           scale * EnergyGradient(space_, s, m, ShellSide::kReference);
       if (!spec_.is_free[term.previous] && !spec_.is_free[term.next]) continue;
       // W[s_{k-1}, m] with columns on m: (d_m D_1 W = mixed, D_2^2 W).
-      const auto left =
-          EnergyHessianColumns(space_, path[term.previous], m, ShellSide::kDeformed);
+      const auto left = EnergyHessianColumns(space_, path[term.previous], m,
+                                             ShellSide::kDeformed);
       // W[m, s_{k+1}] with columns on s_{k+1}: (d_{s_{k+1}} D_1 W, ...) and
       // with columns on m: (D_1^2 W, d_m D_2 W).
-      const auto right_m =
-          EnergyHessianColumns(space_, m, path[term.next], ShellSide::kReference);
+      const auto right_m = EnergyHessianColumns(space_, m, path[term.next],
+                                                ShellSide::kReference);
       const SparseMatrix h = left.second + right_m.first;
       const Eigen::VectorXd rhs =
           -EnergyGradient(space_, s, m, ShellSide::kDeformed);
@@ -154,7 +156,8 @@ bool SplineObjective::Evaluate(const double* parameters, double* cost,
       grad[term.next] += scale * (right_m.second * p);
     }
     for (size_t i = 0; i < free_shapes_.size(); ++i) {
-      Eigen::Map<Eigen::VectorXd>(gradient + i * n3, n3) = grad[free_shapes_[i]];
+      Eigen::Map<Eigen::VectorXd>(gradient + i * n3, n3) =
+          grad[free_shapes_[i]];
     }
   } catch (const InputError&) {
     return false;  // a degenerate shape or midpoint: reject the point

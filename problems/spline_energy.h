@@ -4,9 +4,9 @@
 #ifndef SHELLSPACE_PROBLEMS_SPLINE_ENERGY_H_
 #define SHELLSPACE_PROBLEMS_SPLINE_ENERGY_H_
 
-#include <vector>
-
 #include <ceres/first_order_function.h>
+
+#include <vector>
 
 #include "problems/geodesic.h"
 
@@ -23,12 +23,12 @@ struct SplineDatum {
 //  - Periodic: shapes s_0 .. s_{K-1}, midpoint terms k = 0 .. K-1 with
 //    neighbours taken mod K.
 struct SplineSpec {
-  int steps = 0;              // K
+  int steps = 0;  // K
   bool periodic = false;
   ShellPath initial;          // K + 1 (or K if periodic) shapes
   std::vector<char> is_free;  // one flag per shape; fixed shapes are data
   std::vector<SplineDatum> data;
-  double sigma = 1.0;         // weight of F_K
+  double sigma = 1.0;  // weight of F_K
 };
 
 // R[s] = sum_j W[S_j, s_{k_j}] + sigma F_K[s], F_K = 4 K^3 sum_k W[s_k,

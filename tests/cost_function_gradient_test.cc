@@ -1,11 +1,10 @@
 // Analytic Jacobians of the membrane and bending cost functions against
 // ceres::GradientChecker (central differences), on random and on real meshes,
 // for every combination of variable reference / deformed arguments.
+#include <ceres/gradient_checker.h>
 #include <gtest/gtest.h>
 
 #include <random>
-
-#include <ceres/gradient_checker.h>
 
 #include "cost_functions/bending_cost_function.h"
 #include "cost_functions/membrane_cost_function.h"
@@ -24,7 +23,8 @@ std::unique_ptr<ceres::CostFunction> MakeCost(const Element& element,
                                               Mode mode,
                                               std::vector<double*>* params) {
   params->clear();
-  const double* fixed_ref = mode == Mode::kReferenceFixed ? ref.data() : nullptr;
+  const double* fixed_ref =
+      mode == Mode::kReferenceFixed ? ref.data() : nullptr;
   const double* fixed_def = mode == Mode::kDeformedFixed ? def.data() : nullptr;
   for (int v = 0; v < kVertices && !fixed_ref; ++v) {
     params->push_back(ref.data() + 3 * v);
@@ -54,10 +54,10 @@ double Check(const ceres::CostFunction& cost,
   EXPECT_EQ(results.jacobians.size(), params.size());
   double max_error = 0, scale = 0;
   for (size_t b = 0; b < results.jacobians.size(); ++b) {
-    max_error = std::max(max_error, (results.jacobians[b] -
-                                     results.numeric_jacobians[b])
-                                        .cwiseAbs()
-                                        .maxCoeff());
+    max_error = std::max(max_error,
+                         (results.jacobians[b] - results.numeric_jacobians[b])
+                             .cwiseAbs()
+                             .maxCoeff());
     scale = std::max(scale, results.numeric_jacobians[b].cwiseAbs().maxCoeff());
   }
   const double relative = max_error / std::max(scale, 1e-300);
@@ -74,7 +74,8 @@ std::vector<double> Gather(const Positions& p, const std::vector<int>& vs) {
   for (int v : vs) centroid += p.row(v) / vs.size();
   double diameter = 0;
   for (int a : vs) {
-    for (int b : vs) diameter = std::max(diameter, (p.row(a) - p.row(b)).norm());
+    for (int b : vs)
+      diameter = std::max(diameter, (p.row(a) - p.row(b)).norm());
   }
   std::vector<double> out;
   for (int v : vs) {
@@ -97,11 +98,11 @@ TEST(CostFunctionGradientTest, RandomTriangles) {
     if (trial % 5 == 0) {
       for (int i = 0; i < 9; ++i) def[i] = ref[i] + 1e-3 * u(rng);
     }
-    for (Mode mode : {Mode::kBothVariable, Mode::kReferenceFixed,
-                      Mode::kDeformedFixed}) {
+    for (Mode mode :
+         {Mode::kBothVariable, Mode::kReferenceFixed, Mode::kDeformedFixed}) {
       std::vector<double*> params;
-      auto cost = MakeCost<MembraneCostFunction, 3>(membrane, ref, def, mode,
-                                                    &params);
+      auto cost =
+          MakeCost<MembraneCostFunction, 3>(membrane, ref, def, mode, &params);
       Check(*cost, params, 1e-8);
     }
   }
@@ -118,8 +119,8 @@ TEST(CostFunctionGradientTest, RandomEdgeFlaps) {
     std::vector<double> def(12);
     for (double& x : ref) x += 0.3 * u(rng);
     for (int i = 0; i < 12; ++i) def[i] = ref[i] + 0.4 * u(rng);
-    for (Mode mode : {Mode::kBothVariable, Mode::kReferenceFixed,
-                      Mode::kDeformedFixed}) {
+    for (Mode mode :
+         {Mode::kBothVariable, Mode::kReferenceFixed, Mode::kDeformedFixed}) {
       std::vector<double*> params;
       auto cost =
           MakeCost<BendingCostFunction, 4>(bending, ref, def, mode, &params);
@@ -176,8 +177,7 @@ class WrongJacobian : public ceres::CostFunction {
     set_num_residuals(inner_->num_residuals());
     *mutable_parameter_block_sizes() = inner_->parameter_block_sizes();
   }
-  bool Evaluate(double const* const* p, double* r,
-                double** j) const override {
+  bool Evaluate(double const* const* p, double* r, double** j) const override {
     if (!inner_->Evaluate(p, r, j)) return false;
     if (j && j[1]) j[1][2] += 1e-3;
     return true;
@@ -193,14 +193,16 @@ TEST(CostFunctionGradientTest, CheckerDetectsWrongJacobian) {
   for (int which = 0; which < 2; ++which) {
     std::vector<double*> params;
     std::unique_ptr<ceres::CostFunction> inner =
-        which == 0 ? MakeCost<MembraneCostFunction, 3>(
-                         MembraneElement(), ref, def, Mode::kBothVariable,
-                         &params)
-                   : MakeCost<BendingCostFunction, 4>(
-                         BendingElement(), ref, def, Mode::kBothVariable,
-                         &params);
+        which == 0
+            ? MakeCost<MembraneCostFunction, 3>(MembraneElement(), ref, def,
+                                                Mode::kBothVariable, &params)
+            : MakeCost<BendingCostFunction, 4>(BendingElement(), ref, def,
+                                               Mode::kBothVariable, &params);
     WrongJacobian wrong(std::move(inner));
-    ceres::GradientChecker checker(&wrong, static_cast<const std::vector<const ceres::Manifold*>*>(nullptr), ceres::NumericDiffOptions());
+    ceres::GradientChecker checker(
+        &wrong,
+        static_cast<const std::vector<const ceres::Manifold*>*>(nullptr),
+        ceres::NumericDiffOptions());
     ceres::GradientChecker::ProbeResults results;
     EXPECT_FALSE(checker.Probe(params.data(), 1e-6, &results));
   }

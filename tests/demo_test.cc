@@ -27,7 +27,8 @@ TEST(DemoTest, ProceduralFingerIsAValidClosedTopShell) {
   // (R, R) + cap offset with R = 8 / pi, and the base does not move.
   for (int v : FingerBaseVertices()) {
     if (finger.positions(v, 1) == 0.0) {
-      EXPECT_LT((bent.positions.row(v) - finger.positions.row(v)).norm(), 1e-12);
+      EXPECT_LT((bent.positions.row(v) - finger.positions.row(v)).norm(),
+                1e-12);
     }
   }
   const double R = 8 / std::acos(-1.0);
@@ -39,7 +40,8 @@ TEST(DemoTest, ProceduralFingerIsAValidClosedTopShell) {
 TEST(DemoTest, WritesFramesSummaryAndFilmStrip) {
   const std::string dir = testing::TempDir() + "/demo";
   std::string out, err;
-  ASSERT_EQ(testing::RunCli("demo --quiet --output " + dir, &out, &err), 0) << err;
+  ASSERT_EQ(testing::RunCli("demo --quiet --output " + dir, &out, &err), 0)
+      << err;
   for (int k = 0; k <= 12; ++k) {
     char name[64];
     std::snprintf(name, sizeof(name), "/frames/shape_%03d.ply", k);

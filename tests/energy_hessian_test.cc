@@ -3,9 +3,8 @@
 // mixed blocks against differences of the analytic gradients.
 #include <gtest/gtest.h>
 
-#include <random>
-
 #include <Eigen/Eigenvalues>
+#include <random>
 
 #include "cost_functions/energy_derivatives.h"
 #include "tests/test_support.h"
@@ -75,21 +74,24 @@ TEST_P(EnergyHessianTest, HessiansMatchGradientDifferences) {
               r ? def.positions : Perturb(def.positions, j, step), rows);
         };
         const Eigen::VectorXd numeric = (gradient(h) - gradient(-h)) / (2 * h);
-        worst = std::max(worst,
-                         (hessian.col(j) - numeric).cwiseAbs().maxCoeff() / scale);
+        worst = std::max(
+            worst, (hessian.col(j) - numeric).cwiseAbs().maxCoeff() / scale);
       }
       EXPECT_LT(worst, 1e-6) << int(rows) << int(cols);
     }
   }
   // Symmetry of the pure blocks and transpose relation of the mixed ones.
-  const SparseMatrix h22 = EnergyHessian(space, ref.positions, def.positions,
-                                         ShellSide::kDeformed, ShellSide::kDeformed);
+  const SparseMatrix h22 =
+      EnergyHessian(space, ref.positions, def.positions, ShellSide::kDeformed,
+                    ShellSide::kDeformed);
   EXPECT_LT((Eigen::MatrixXd(h22) - Eigen::MatrixXd(h22.transpose())).norm(),
             1e-9 * h22.norm());
-  const SparseMatrix h12 = EnergyHessian(space, ref.positions, def.positions,
-                                         ShellSide::kReference, ShellSide::kDeformed);
-  const SparseMatrix h21 = EnergyHessian(space, ref.positions, def.positions,
-                                         ShellSide::kDeformed, ShellSide::kReference);
+  const SparseMatrix h12 =
+      EnergyHessian(space, ref.positions, def.positions, ShellSide::kReference,
+                    ShellSide::kDeformed);
+  const SparseMatrix h21 =
+      EnergyHessian(space, ref.positions, def.positions, ShellSide::kDeformed,
+                    ShellSide::kReference);
   EXPECT_LT((Eigen::MatrixXd(h12) - Eigen::MatrixXd(h21.transpose())).norm(),
             1e-9 * h12.norm());
 }
@@ -107,8 +109,10 @@ TEST(EnergyHessianRestTest, RigidNullSpaceAtRest) {
     for (int i = 0; i < n; ++i) {
       const Eigen::Vector3d x = mesh.vertex(i);
       Eigen::Vector3d d = Eigen::Vector3d::Zero();
-      if (mode < 3) d(mode) = 1;
-      else d = Eigen::Vector3d::Unit(mode - 3).cross(x);
+      if (mode < 3)
+        d(mode) = 1;
+      else
+        d = Eigen::Vector3d::Unit(mode - 3).cross(x);
       v.segment<3>(3 * i) = d;
     }
     EXPECT_LT((h * v).norm(), 1e-10 * h.norm() * v.norm()) << mode;
@@ -118,11 +122,13 @@ TEST(EnergyHessianRestTest, RigidNullSpaceAtRest) {
   EXPECT_GT(eig.eigenvalues()(6), 1e-8 * eig.eigenvalues().maxCoeff());
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    RealMeshes, EnergyHessianTest,
-    ::testing::Values(Pair{"simple/square4.ply", "simple/square4_bent.ply"},
-                      Pair{"sphere/unitSphere1.ply", "sphere/unitSphere1_defX.ply"},
-                      Pair{"plate/plate121.ply", "plate/plate121_rolledA.ply"}));
+INSTANTIATE_TEST_SUITE_P(RealMeshes, EnergyHessianTest,
+                         ::testing::Values(Pair{"simple/square4.ply",
+                                                "simple/square4_bent.ply"},
+                                           Pair{"sphere/unitSphere1.ply",
+                                                "sphere/unitSphere1_defX.ply"},
+                                           Pair{"plate/plate121.ply",
+                                                "plate/plate121_rolledA.ply"}));
 
 }  // namespace
 }  // namespace shellspace

@@ -59,9 +59,9 @@ TEST(EnergyPropertiesTest, UniformStretchOfFlatSheet) {
     scaled = ((scaled.rowwise() - center) * s).rowwise() + center;
     const double mu = material.mu, lambda = material.lambda;
     const double expected =
-        area * (mu * s * s + lambda / 4 * std::pow(s, 4) -
-                (mu / 2 + lambda / 4) * std::log(std::pow(s, 4)) - mu -
-                lambda / 4);
+        area *
+        (mu * s * s + lambda / 4 * std::pow(s, 4) -
+         (mu / 2 + lambda / 4) * std::log(std::pow(s, 4)) - mu - lambda / 4);
     const DeformationEnergy e =
         EvaluateDeformationEnergy(space, plate.positions, scaled);
     EXPECT_NEAR(e.membrane, expected, 1e-10 * std::max(1.0, expected)) << s;

@@ -74,7 +74,8 @@ TEST_F(GeodesicCalculusTest, ShootingReproducesGeodesic) {
   const ShellPath forward = Shoot(space_, g.path[0], g.path[1], 4,
                                   StepDirection::kForward, {}, Tight());
   for (int k = 2; k <= 4; ++k) {
-    EXPECT_LT(RelativeDistanceUpToRigidMotion(forward[k], g.path[k]), 1e-5) << k;
+    EXPECT_LT(RelativeDistanceUpToRigidMotion(forward[k], g.path[k]), 1e-5)
+        << k;
   }
   const ShellPath backward = Shoot(space_, g.path[3], g.path[4], 4,
                                    StepDirection::kBackward, {}, Tight());
@@ -118,11 +119,13 @@ TEST_F(GeodesicCalculusTest, TransportOfZeroAndAlongConstantPath) {
   const Positions zero = Positions::Zero(start_.num_vertices(), 3);
   const TransportResult none =
       ParallelTransport(space_, g.path, zero, 1.0, {}, Tight());
-  const double scale = (end_.positions - start_.positions).cwiseAbs().maxCoeff();
+  const double scale =
+      (end_.positions - start_.positions).cwiseAbs().maxCoeff();
   for (const Positions& xi : none.variations) {
     // Zero up to a rigid motion of s_k: compare aligned shapes.
-    EXPECT_LT(RelativeDistanceUpToRigidMotion(none.shapes.back(), g.path.back()),
-              1e-6);
+    EXPECT_LT(
+        RelativeDistanceUpToRigidMotion(none.shapes.back(), g.path.back()),
+        1e-6);
   }
   EXPECT_LT((AlignRigidly(none.shapes.back(), g.path.back()) - g.path.back())
                 .cwiseAbs()

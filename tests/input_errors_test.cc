@@ -44,8 +44,9 @@ TEST(InputErrorsTest, LibraryErrors) {
   const std::string dir = testing::TempDir();
   EXPECT_NE(ErrorOf(dir + "/missing.ply").find("cannot open"),
             std::string::npos);
-  EXPECT_NE(ErrorOf(Write(dir, "garbage.off", "not a mesh\n")).find("cannot read"),
-            std::string::npos);
+  EXPECT_NE(
+      ErrorOf(Write(dir, "garbage.off", "not a mesh\n")).find("cannot read"),
+      std::string::npos);
   EXPECT_NE(ErrorOf(Write(dir, "quad.ply",
                           Ply(4, 1, "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n")))
                 .find("only triangle"),
@@ -57,10 +58,12 @@ TEST(InputErrorsTest, LibraryErrors) {
                               "3 0 1 2\n3 1 0 3\n3 0 1 4\n")))
                 .find("non-manifold"),
             std::string::npos);
-  EXPECT_NE(ErrorOf(Write(dir, "degenerate.ply",
-                          Ply(4, 2, "0 0 0\n1 0 0\n2 0 0\n0 1 0\n3 0 1 2\n3 0 3 1\n")))
-                .find("degenerate"),
-            std::string::npos);
+  EXPECT_NE(
+      ErrorOf(
+          Write(dir, "degenerate.ply",
+                Ply(4, 2, "0 0 0\n1 0 0\n2 0 0\n0 1 0\n3 0 1 2\n3 0 3 1\n")))
+          .find("degenerate"),
+      std::string::npos);
   EXPECT_NE(ErrorOf(Write(dir, "nan.ply",
                           Ply(3, 1, "0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n")))
                 .find("non-finite"),
@@ -115,7 +118,8 @@ TEST(InputErrorsTest, CliReportsOneLineAndWritesNothing) {
     const int code = testing::RunCli(args, nullptr, &err);
     EXPECT_NE(code, 0) << args;
     EXPECT_FALSE(err.empty()) << args;
-    EXPECT_LE(std::count(err.begin(), err.end(), '\n'), 1) << args << "\n" << err;
+    EXPECT_LE(std::count(err.begin(), err.end(), '\n'), 1) << args << "\n"
+                                                           << err;
     EXPECT_FALSE(std::filesystem::exists(out)) << args;
   }
 }

@@ -1,8 +1,7 @@
 // The reference values of ../shared/spec/reference_values.md, through both the
 // direct energy formula and the residual form 1/2 sum r^2.
-#include <gtest/gtest.h>
-
 #include <ceres/problem.h>
+#include <gtest/gtest.h>
 
 #include "cost_functions/deformation_energy.h"
 #include "tests/test_support.h"
@@ -70,9 +69,9 @@ TEST(ReferenceValuesTest, OtherLameWeights) {
   const DeformationEnergy e =
       EvaluateDeformationEnergy(space, ref.positions, def.positions);
   EXPECT_NEAR(e.membrane / 2.689382348512, 1.0, 1e-10);
-  EXPECT_NEAR(ResidualEnergy(space, ref.positions, def.positions) /
-                  2.689382348512,
-              1.0, 1e-10);
+  EXPECT_NEAR(
+      ResidualEnergy(space, ref.positions, def.positions) / 2.689382348512, 1.0,
+      1e-10);
 }
 
 }  // namespace

@@ -1,13 +1,14 @@
 // Riemannian splines and regression: the adjoint gradient against central
 // differences, spline through keyframes on a geodesic, interpolation of
 // regression for small sigma.
+#include "problems/spline.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
 #include <random>
 
 #include "geometry/rigid_alignment.h"
-#include "problems/spline.h"
 #include "tests/test_support.h"
 
 namespace shellspace {
@@ -107,11 +108,12 @@ TEST_F(SplineTest, KeyframesOnAGeodesicGiveTheGeodesic) {
   SplineSettings settings;
   settings.inner = tight;
   settings.max_iterations = 60;
-  const ShellPath linear =
-      PiecewiseLinearPath({g.path[0], g.path[2], g.path[4]}, {0, 2, 4}, 4, false);
+  const ShellPath linear = PiecewiseLinearPath(
+      {g.path[0], g.path[2], g.path[4]}, {0, 2, 4}, 4, false);
   const double f_linear = objective.SplineEnergyOf(linear);
-  const SplineResult spline = SolveSpline(
-      space_, {g.path[0], g.path[2], g.path[4]}, {0, 2, 4}, 4, false, {}, settings);
+  const SplineResult spline =
+      SolveSpline(space_, {g.path[0], g.path[2], g.path[4]}, {0, 2, 4}, 4,
+                  false, {}, settings);
   EXPECT_LT(spline.spline_energy, 0.05 * f_linear);
   for (int k : {1, 3}) {
     EXPECT_LT(RelativeDistanceUpToRigidMotion(spline.path[k], g.path[k]),
@@ -128,7 +130,8 @@ TEST_F(SplineTest, RegressionWithSmallSigmaInterpolates) {
   settings.inner = TightInner();
   settings.gradient_tolerance = 1e-10;
   settings.max_iterations = 40;
-  const std::vector<Positions> data = {a_.positions, b_.positions, c_.positions};
+  const std::vector<Positions> data = {a_.positions, b_.positions,
+                                       c_.positions};
   const SplineResult r =
       SolveRegression(space_, data, {0, 1, 2}, 2, 1e-6, {}, settings);
   for (int k = 0; k < 3; ++k) {
@@ -146,9 +149,9 @@ TEST_F(SplineTest, RegressionWithSmallSigmaInterpolates) {
 TEST(RegressionTest, GrowingSigmaLowersSplineEnergy) {
   std::vector<Positions> data;
   Mesh first;
-  for (const char* name : {"sphere/unitSphere1.ply", "sphere/unitSphere1_defX.ply",
-                           "sphere/unitSphere1_defY.ply",
-                           "sphere/unitSphere1_defZ.ply"}) {
+  for (const char* name :
+       {"sphere/unitSphere1.ply", "sphere/unitSphere1_defX.ply",
+        "sphere/unitSphere1_defY.ply", "sphere/unitSphere1_defZ.ply"}) {
     Mesh m = testing::LoadData(name);
     if (data.empty()) first = m;
     data.push_back(m.positions);
@@ -175,22 +178,27 @@ TEST(SplineCliTest, LThetaFramesAndErrors) {
   const std::string dir = testing::TempDir();
   const std::string keys = testing::DataPath("plate/plate121.ply") + "," +
                            testing::DataPath("plate/plate121_rolledA.ply") +
-                           "," + testing::DataPath("plate/plate121_rolledB.ply");
+                           "," +
+                           testing::DataPath("plate/plate121_rolledB.ply");
   std::string out, err;
-  ASSERT_EQ(testing::RunCli("spline --quiet --json --method ltheta --keyframes " +
-                                keys + " --at 0,2,4 --steps 4 --output " + dir +
-                                "/s",
-                            &out, &err),
-            0)
+  ASSERT_EQ(
+      testing::RunCli("spline --quiet --json --method ltheta --keyframes " +
+                          keys + " --at 0,2,4 --steps 4 --output " + dir + "/s",
+                      &out, &err),
+      0)
       << err;
   EXPECT_NE(out.find("\"spline_energy\""), std::string::npos);
   EXPECT_TRUE(std::filesystem::exists(dir + "/s/shape_004.ply"));
   EXPECT_FALSE(std::filesystem::exists(dir + "/s/shape_005.ply"));
   for (const std::string& bad :
-       {"spline --keyframes " + keys + " --at 0,2 --steps 4 --output " + dir + "/b",
-        "spline --keyframes " + keys + " --at 0,3,2 --steps 4 --output " + dir + "/b",
-        "spline --keyframes " + keys + " --at 0,2,4 --steps 4 --method cubic --output " + dir + "/b",
-        "regress --inputs " + keys + " --at 0,1,2 --steps 2 --sigma -1 --output " + dir + "/b"}) {
+       {"spline --keyframes " + keys + " --at 0,2 --steps 4 --output " + dir +
+            "/b",
+        "spline --keyframes " + keys + " --at 0,3,2 --steps 4 --output " + dir +
+            "/b",
+        "spline --keyframes " + keys +
+            " --at 0,2,4 --steps 4 --method cubic --output " + dir + "/b",
+        "regress --inputs " + keys +
+            " --at 0,1,2 --steps 2 --sigma -1 --output " + dir + "/b"}) {
     EXPECT_EQ(testing::RunCli(bad, nullptr, &err), 1) << bad;
     EXPECT_FALSE(std::filesystem::exists(dir + "/b")) << bad;
   }

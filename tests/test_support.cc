@@ -1,12 +1,11 @@
 #include "tests/test_support.h"
 
+#include <Eigen/Geometry>
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
 #include <random>
 #include <sstream>
-
-#include <Eigen/Geometry>
 
 #include "geometry/mesh_io.h"
 #include "geometry/validation.h"
@@ -44,8 +43,8 @@ std::string Slurp(const std::string& path) {
 
 int RunCli(const std::string& args, std::string* out, std::string* err) {
   const std::string dir = TempDir();
-  const std::string command = std::string(SHELLSPACE_CLI) + " " + args +
-                              " > " + dir + "/out 2> " + dir + "/err";
+  const std::string command = std::string(SHELLSPACE_CLI) + " " + args + " > " +
+                              dir + "/out 2> " + dir + "/err";
   const int status = std::system(command.c_str());
   if (out) *out = Slurp(dir + "/out");
   if (err) *err = Slurp(dir + "/err");

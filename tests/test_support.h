@@ -1,4 +1,5 @@
-// Shared helpers of the test suite: data paths, loading shells, running the CLI.
+// Shared helpers of the test suite: data paths, loading shells, running the
+// CLI.
 #ifndef SHELLSPACE_TESTS_TEST_SUPPORT_H_
 #define SHELLSPACE_TESTS_TEST_SUPPORT_H_
 

@@ -5,8 +5,7 @@ DEFINE_bool(json, false, "print a JSON summary on stdout");
 DEFINE_bool(quiet, false, "suppress progress output");
 DEFINE_double(epsilon, 1.0,
               "transport: step epsilon; branching: twin-boundary energy");
-DEFINE_double(width, 0,
-              "render: image width in pixels (0: default)");
+DEFINE_double(width, 0, "render: image width in pixels (0: default)");
 DEFINE_double(height, 0,
               "render: image height in pixels (0: default); branching: "
               "domain height H");
@@ -23,7 +22,8 @@ DEFINE_double(tolerance, 1e-8,
               "stop when the gradient max-norm falls below this fraction of "
               "its initial value");
 DEFINE_int32(max_iterations, 200, "maximum Levenberg-Marquardt iterations");
-DEFINE_bool(report, false, "print Ceres full solver report (timings) on stderr");
+DEFINE_bool(report, false,
+            "print Ceres full solver report (timings) on stderr");
 DEFINE_string(start, "", "first shell s_0 of the path");
 DEFINE_string(end, "", "last shell s_K of the path");
 DEFINE_string(inputs, "", "comma-separated list of input shells");

@@ -45,8 +45,8 @@ void PrintVerbHelp(const Verb& verb) {
   gflags::GetAllFlags(&flags);
   for (const auto& flag : flags) {
     const bool own = flag.filename == verb.source;
-    const bool common = flag.filename.find("tools/common_flags") !=
-                        std::string::npos;
+    const bool common =
+        flag.filename.find("tools/common_flags") != std::string::npos;
     if (!own && !common) continue;
     std::cout << "  --" << flag.name << " (" << flag.description
               << ") default: \"" << flag.default_value << "\"\n";

@@ -2,10 +2,10 @@
 #ifndef SHELLSPACE_TOOLS_PATH_SUMMARY_H_
 #define SHELLSPACE_TOOLS_PATH_SUMMARY_H_
 
+#include <ceres/solver.h>
+
 #include <string>
 #include <vector>
-
-#include <ceres/solver.h>
 
 #include "cost_functions/deformation_energy.h"
 #include "problems/geodesic.h"

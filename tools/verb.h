@@ -43,14 +43,14 @@ struct VerbSubcommandRegistrar {
   }
 };
 
-#define SHELLSPACE_VERB_TAKES_SUBCOMMAND(name)                          \
+#define SHELLSPACE_VERB_TAKES_SUBCOMMAND(name)                         \
   static ::shellspace::VerbSubcommandRegistrar SHELLSPACE_VERB_CONCAT( \
       verb_subcommand_, __LINE__)(name)
 
 #define SHELLSPACE_VERB_CONCAT_INNER(a, b) a##b
 #define SHELLSPACE_VERB_CONCAT(a, b) SHELLSPACE_VERB_CONCAT_INNER(a, b)
-#define SHELLSPACE_REGISTER_VERB(name, usage, function)          \
-  static ::shellspace::VerbRegistrar SHELLSPACE_VERB_CONCAT(     \
+#define SHELLSPACE_REGISTER_VERB(name, usage, function)      \
+  static ::shellspace::VerbRegistrar SHELLSPACE_VERB_CONCAT( \
       verb_registrar_, __LINE__)(name, usage, __FILE__, function)
 
 }  // namespace shellspace

@@ -15,10 +15,14 @@
 #include "tools/verb.h"
 
 DEFINE_string(first, "", "shoot: the shell s_0");
-DEFINE_string(second, "", "shoot: the shell s_1 (s_1 - s_0 is the initial velocity / K)");
+DEFINE_string(second, "",
+              "shoot: the shell s_1 (s_1 - s_0 is the initial velocity / K)");
 DEFINE_bool(backward, false, "shoot: extrapolate backward in time, before s_0");
-DEFINE_string(path, "", "transport: directory of the path's frames shape_000.ply ...");
-DEFINE_string(variation, "", "transport: shell s_0 + xi_0 (the variation xi_0 at the first frame)");
+DEFINE_string(path, "",
+              "transport: directory of the path's frames shape_000.ply ...");
+DEFINE_string(
+    variation, "",
+    "transport: shell s_0 + xi_0 (the variation xi_0 at the first frame)");
 
 namespace shellspace {
 namespace {
@@ -68,10 +72,9 @@ int RunLog() {
   const auto [start, end] = LoadStartEndFromFlags();
   const ShellSpace space = SpaceFromFlags(start);
   GeodesicResult geodesic;
-  const Positions log =
-      LogK(space, start.positions, end.positions, FLAGS_steps,
-           MaskOrEmpty(start.num_vertices()), SettingsFromFlags("log"),
-           &geodesic);
+  const Positions log = LogK(space, start.positions, end.positions, FLAGS_steps,
+                             MaskOrEmpty(start.num_vertices()),
+                             SettingsFromFlags("log"), &geodesic);
   WriteMesh(Mesh{start.positions + log, start.faces}, FLAGS_output);
   if (FLAGS_json) {
     std::cout << PathSummary(space, geodesic.path, {geodesic.summary},
@@ -91,7 +94,8 @@ int RunTransport() {
   if (!(FLAGS_epsilon > 0)) throw InputError("--epsilon must be positive");
   const auto clock = std::chrono::steady_clock::now();
   const std::vector<std::string> files = ListFrameFiles(FLAGS_path);
-  if (files.size() < 2) throw InputError(FLAGS_path + ": need at least 2 frames");
+  if (files.size() < 2)
+    throw InputError(FLAGS_path + ": need at least 2 frames");
   const Mesh first = LoadShell(files[0]);
   ShellPath path = {first.positions};
   for (size_t k = 1; k < files.size(); ++k) {

@@ -12,7 +12,6 @@
 #include "tools/shell_inputs.h"
 #include "tools/verb.h"
 
-
 DEFINE_string(targets, "",
               "mesh giving the prescribed positions of the masked vertices "
               "(also the initial guess)");
@@ -41,9 +40,9 @@ int RunDeform() {
     throw InputError("solver failed: " + result.summary.message);
   }
   WriteMesh(Mesh{result.deformed, reference.faces}, FLAGS_output);
-  const double seconds = std::chrono::duration<double>(
-                             std::chrono::steady_clock::now() - start)
-                             .count();
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+          .count();
   if (FLAGS_json) {
     std::cout << JsonObject()
                      .Add("membrane", result.energy.membrane)

@@ -21,8 +21,8 @@ int RunEnergy() {
   const Mesh deformed =
       LoadCompatibleShell(FLAGS_deformed, reference, FLAGS_reference);
   const ShellSpace space = SpaceFromFlags(reference);
-  const DeformationEnergy e = EvaluateDeformationEnergy(
-      space, reference.positions, deformed.positions);
+  const DeformationEnergy e =
+      EvaluateDeformationEnergy(space, reference.positions, deformed.positions);
   if (FLAGS_json) {
     std::cout << JsonObject()
                      .Add("membrane", e.membrane)

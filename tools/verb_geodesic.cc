@@ -11,7 +11,6 @@
 #include "tools/shell_inputs.h"
 #include "tools/verb.h"
 
-
 namespace shellspace {
 namespace {
 

@@ -125,7 +125,8 @@ int RunRegress() {
   if (FLAGS_steps < 2) throw InputError("--steps must be at least 2");
   const auto clock = std::chrono::steady_clock::now();
   Mesh first;
-  const std::vector<Positions> inputs = LoadShells(FLAGS_inputs, "inputs", &first);
+  const std::vector<Positions> inputs =
+      LoadShells(FLAGS_inputs, "inputs", &first);
   const std::vector<int> at = ParseIndices(FLAGS_at);
   const ShellSpace space = SpaceFromFlags(first);
   const SplineResult result =

@@ -9,17 +9,17 @@
 // by the consumer's own residual and the three other corners held fixed (so
 // the grid has to stretch and bend, not just tilt). No data files: the mesh is
 // built here. Exits non-zero unless the solution is sane.
+#include <ceres/ceres.h>
+#include <shellspace/cost_functions/deformation_energy.h>
+#include <shellspace/geometry/mesh.h>
+#include <shellspace/geometry/topology.h>
+
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <exception>
 #include <vector>
-
-#include <Eigen/Core>
-#include <ceres/ceres.h>
-#include <shellspace/cost_functions/deformation_energy.h>
-#include <shellspace/geometry/mesh.h>
-#include <shellspace/geometry/topology.h>
 
 namespace {
 
@@ -96,10 +96,9 @@ int Run() {
   shellspace::AddDeformationEnergy(
       space, shellspace::ShellArgument::Fixed(reference.positions),
       shellspace::ShellArgument::Variable(&deformed), 1.0, &problem);
-  problem.AddResidualBlock(
-      new ceres::AutoDiffCostFunction<PullToTarget, 3, 3>(
-          new PullToTarget(target, kPullStiffness)),
-      nullptr, deformed.data() + 3 * pulled);
+  problem.AddResidualBlock(new ceres::AutoDiffCostFunction<PullToTarget, 3, 3>(
+                               new PullToTarget(target, kPullStiffness)),
+                           nullptr, deformed.data() + 3 * pulled);
   for (const int vertex : anchored) {
     problem.SetParameterBlockConstant(deformed.data() + 3 * vertex);
   }
@@ -126,8 +125,8 @@ int Run() {
                           std::max(std::abs(energy.total), 1e-300);
   double anchor_shift = 0;
   for (const int vertex : anchored) {
-    anchor_shift += (deformed.row(vertex) - reference.positions.row(vertex))
-                        .norm();
+    anchor_shift +=
+        (deformed.row(vertex) - reference.positions.row(vertex)).norm();
   }
 
   std::vector<const char*> failures;
@@ -154,10 +153,9 @@ int Run() {
       "W = %.10g (membrane %.6g, bending %.6g), |W - (cost - pull)|/W = "
       "%.2e, pulled-vertex distance to target %.4g -> %.4g\n",
       failures.empty() ? "OK" : "FAILED", summary.initial_cost,
-      summary.final_cost,
-      static_cast<int>(summary.iterations.size()) - 1, energy.total,
-      energy.membrane, energy.bending, mismatch, (start - target).norm(),
-      (end - target).norm());
+      summary.final_cost, static_cast<int>(summary.iterations.size()) - 1,
+      energy.total, energy.membrane, energy.bending, mismatch,
+      (start - target).norm(), (end - target).norm());
   for (const char* failure : failures) {
     std::fprintf(stderr, "shellspace consumer: FAILED: %s\n", failure);
   }
