@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstring>
 #include <thread>
+#include <type_traits>
 
 namespace shellspace {
 
@@ -57,9 +58,37 @@ void GradientFieldCache::PrepareForEvaluation(bool evaluate_jacobians,
           for (int c = 0; c < m; ++c) e.jacobian[r][c] = jac(r, c);
         }
       };
+      // Residual-only evaluations need just the gradient of the fixed side:
+      // J^T r in doubles, no dual numbers.
+      auto gradient_only = [&](const auto& element, auto vertices_tag) {
+        using E = std::decay_t<decltype(element)>;
+        constexpr int kV = decltype(vertices_tag)::value;
+        Vec3<double> x_ref[kV], x_def[kV];
+        for (int a = 0; a < kV; ++a) {
+          x_ref[a] = Vec3<double>(ref + 3 * a);
+          x_def[a] = Vec3<double>(def + 3 * a);
+        }
+        typename E::template Jacobian<double> jac;
+        double r[E::kNumResiduals];
+        if (!element.Evaluate(x_ref, x_def, r,
+                              unknown_is_reference ? nullptr : &jac,
+                              unknown_is_reference ? &jac : nullptr)) {
+          return false;
+        }
+        for (int col = 0; col < 3 * kV; ++col) {
+          double g = 0;
+          for (int m = 0; m < E::kNumResiduals; ++m) g += jac(m, col) * r[m];
+          e.gradient[col] = g;
+        }
+        return true;
+      };
       const ShellSide active = unknown_side_;
       bool good;
-      if (e.count == 3) {
+      if (!evaluate_jacobians) {
+        good = e.count == 3
+                   ? gradient_only(membrane, std::integral_constant<int, 3>())
+                   : gradient_only(bending, std::integral_constant<int, 4>());
+      } else if (e.count == 3) {
         good = d3.Compute(membrane, ref, def, active, 1.0);
         if (good) store(d3);
       } else {
@@ -69,7 +98,6 @@ void GradientFieldCache::PrepareForEvaluation(bool evaluate_jacobians,
       ok[i] = good;
     }
   };
-  (void)evaluate_jacobians;  // the dual-number pass yields both at once
   const int half = n / 2;
   std::thread second(work, half, n);
   work(0, half);

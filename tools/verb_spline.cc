@@ -62,7 +62,7 @@ SplineSettings SplineSettingsFromFlags(const std::string& label) {
   return settings;
 }
 
-void Report(const ShellSpace& space, const Faces& faces,
+void Report(const Faces& faces,
             const SplineResult& result, double seconds, JsonObject extra) {
   WritePathOutputs(FLAGS_output, faces, result.path);
   if (FLAGS_json) {
@@ -85,7 +85,6 @@ void Report(const ShellSpace& space, const Faces& faces,
     std::cout << "F_K = " << result.spline_energy << "; wrote " << FLAGS_output
               << "/shape_*.ply\n";
   }
-  (void)space;
 }
 
 int RunSpline() {
@@ -111,7 +110,7 @@ int RunSpline() {
   if (FLAGS_method == "ltheta") settings.max_iterations = 0;
   SplineResult result = SolveSpline(space, keyframes, at, FLAGS_steps,
                                     FLAGS_periodic, ltheta, settings);
-  Report(space, first.faces, result, Seconds(clock),
+  Report(first.faces, result, Seconds(clock),
          JsonObject()
              .Add("method", FLAGS_method)
              .Add("ltheta_seconds", ltheta_seconds));
@@ -132,7 +131,7 @@ int RunRegress() {
   const SplineResult result =
       SolveRegression(space, inputs, at, FLAGS_steps, FLAGS_sigma, {},
                       SplineSettingsFromFlags("regress"));
-  Report(space, first.faces, result, Seconds(clock),
+  Report(first.faces, result, Seconds(clock),
          JsonObject().Add("sigma", FLAGS_sigma));
   return 0;
 }
