@@ -22,6 +22,7 @@ DEFINE_double(tolerance, 1e-8,
               "stop when the gradient max-norm falls below this fraction of "
               "its initial value");
 DEFINE_int32(max_iterations, 200, "maximum Levenberg-Marquardt iterations");
+DEFINE_int32(threads, 2, "threads of the Ceres solves (>= 1)");
 DEFINE_bool(report, false,
             "print Ceres full solver report (timings) on stderr");
 DEFINE_string(start, "", "first shell s_0 of the path");

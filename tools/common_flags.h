@@ -23,6 +23,7 @@ DECLARE_string(mask);
 DECLARE_int32(steps);
 DECLARE_double(tolerance);
 DECLARE_int32(max_iterations);
+DECLARE_int32(threads);
 DECLARE_bool(report);
 DECLARE_string(start);
 DECLARE_string(end);

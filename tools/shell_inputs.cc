@@ -71,6 +71,8 @@ SolverSettings SettingsFromFlags(const std::string& label) {
   }
   settings.gradient_tolerance = FLAGS_tolerance;
   settings.max_iterations = FLAGS_max_iterations;
+  if (FLAGS_threads < 1) throw InputError("--threads must be at least 1");
+  settings.num_threads = FLAGS_threads;
   return settings;
 }
 
