@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdio>
 #include <limits>
+#include <string>
 
 #include "geometry/rigid_alignment.h"
 #include "problems/elastic_mean.h"
@@ -78,29 +79,39 @@ LeaveOneOutTable EvaluateLeaveOneOut(const ShellSpace& space,
     fold.held_out = h;
 
     const ElasticMeanResult mean = ComputeElasticMean(
-        space, others, settings,
-        warm ? &options.initial_mean : nullptr);
+        space, others, settings, warm ? &options.initial_mean : nullptr);
     fold.mean_energy = mean.energy;
-    fold.mean_iterations = static_cast<int>(mean.summary.iterations.size());
+    fold.mean_iterations = mean.lm_iterations;
+    fold.mean_newton_iterations = mean.newton_iterations;
+    fold.mean_converged = mean.converged;
     const ShellPcaModel shell =
         ComputeShellPca(space, mean.mean, others, options.pca, settings);
     fold.shell_eigenvalues = shell.eigenvalues;
     const Positions v =
         ShellDisplacement(space, shell.mean, truth, options.pca, settings);
-    const Eigen::VectorXd c = ShellModeCoefficients(
-        shell, v, static_cast<int>(shell.modes.size()));
+    const Eigen::VectorXd c =
+        ShellModeCoefficients(shell, v, static_cast<int>(shell.modes.size()));
 
     const ProcrustesPcaModel procrustes = ComputeProcrustesPca(others);
     fold.procrustes_eigenvalues = procrustes.eigenvalues;
 
     for (int m = 0; m < num_m; ++m) {
       const int ms = std::min<int>(m, static_cast<int>(shell.modes.size()));
-      const Positions shell_reconstruction = ShellFromCoefficients(
-          space, shell, c.head(ms), options.pca, settings);
-      fold.shell_vertex_error.push_back(
-          MeanVertexErrorUpToRigidMotion(shell_reconstruction, truth));
-      fold.shell_energy.push_back(
-          EnergyToTruth(space, truth, shell_reconstruction));
+      ExpShotReport shot;
+      try {
+        const Positions shell_reconstruction = ShellFromCoefficients(
+            space, shell, c.head(ms), options.pca, settings, &shot);
+        fold.shell_vertex_error.push_back(
+            MeanVertexErrorUpToRigidMotion(shell_reconstruction, truth));
+        fold.shell_energy.push_back(
+            EnergyToTruth(space, truth, shell_reconstruction));
+      } catch (const InputError&) {
+        shot.ok = false;
+        fold.shell_vertex_error.push_back(
+            std::numeric_limits<double>::quiet_NaN());
+        fold.shell_energy.push_back(std::numeric_limits<double>::quiet_NaN());
+      }
+      fold.shell_shots.push_back(shot);
 
       const int mp =
           std::min<int>(m, static_cast<int>(procrustes.modes.size()));
@@ -112,16 +123,23 @@ LeaveOneOutTable EvaluateLeaveOneOut(const ShellSpace& space,
           EnergyToTruth(space, truth, procrustes_reconstruction));
     }
     fold.seconds = SecondsSince(fold_clock);
-    char line[256];
-    std::snprintf(line, sizeof(line),
-                  "fold %d (held out %d): m=%d shell err %.4g W %.4g | "
-                  "procrustes err %.4g W %.4g  (%.1f s)",
-                  static_cast<int>(table.folds.size()) + 1, h,
-                  options.max_modes, fold.shell_vertex_error.back(),
-                  fold.shell_energy.back(),
-                  fold.procrustes_vertex_error.back(),
-                  fold.procrustes_energy.back(), fold.seconds);
-    log(line);
+    std::string text = "fold " + std::to_string(table.folds.size() + 1) +
+                       " (held out " + std::to_string(h) + "):";
+    for (int m = 0; m < num_m; ++m) {
+      char item[200];
+      std::snprintf(item, sizeof(item),
+                    " m=%d shell %.4g/%.4g (K=%d%s) procrustes %.4g/%.4g;", m,
+                    fold.shell_vertex_error[m], fold.shell_energy[m],
+                    fold.shell_shots[m].steps,
+                    fold.shell_shots[m].ok ? "" : " FAILED",
+                    fold.procrustes_vertex_error[m], fold.procrustes_energy[m]);
+      text += item;
+    }
+    char tail[96];
+    std::snprintf(tail, sizeof(tail), " mean %d LM + %d Newton%s (%.1f s)",
+                  fold.mean_iterations, fold.mean_newton_iterations,
+                  fold.mean_converged ? "" : " NOT CONVERGED", fold.seconds);
+    log(text + tail);
     table.folds.push_back(std::move(fold));
   }
 

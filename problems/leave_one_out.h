@@ -3,7 +3,8 @@
 // both models from the other shapes and reconstruct S_h from their first m
 // modes.
 //   shell:      s_bar = elastic mean of the others, v = LOG_K(s_bar -> S_h),
-//               c_j = g(v, w_j), R = EXP_K(s_bar, sum_{j<m} c_j w_j);
+//               c_j = g(v, w_j), R = EXP_K(s_bar, sum_{j<m} c_j w_j)
+//               (safeguarded shot, shell_pca.h ShootFromMean);
 //   Procrustes: x_bar = Procrustes mean, x = A(S_h) aligned to x_bar,
 //               R = x_bar + sum_{j<m} <x - x_bar, w_j> w_j.
 // Errors of a reconstruction R of the truth T:
@@ -23,9 +24,9 @@
 namespace shellspace {
 
 struct LeaveOneOutOptions {
-  int max_modes = 5;             // m = 0 .. max_modes (m = 0: the mean)
-  std::vector<int> held_out;     // folds to run (indices); empty = all
-  ShellPcaOptions pca;           // displacement kind and K
+  int max_modes = 5;          // m = 0 .. max_modes (m = 0: the mean)
+  std::vector<int> held_out;  // folds to run (indices); empty = all
+  ShellPcaOptions pca;        // displacement kind and K
   // Initial guess of every fold's elastic mean (e.g. the elastic mean of
   // all n shapes: faster, same minimiser up to solver tolerance). Empty: the
   // aligned vertex average of the fold's shapes.
@@ -38,7 +39,7 @@ struct LeaveOneOutOptions {
 struct LeaveOneOutRow {
   int modes = 0;
   double shell_vertex_error = 0;
-  double shell_energy = 0;          // mean W[truth, reconstruction]
+  double shell_energy = 0;  // mean W[truth, reconstruction]
   double procrustes_vertex_error = 0;
   double procrustes_energy = 0;
 };
@@ -46,16 +47,22 @@ struct LeaveOneOutRow {
 // Per fold and m: [fold][m].
 struct LeaveOneOutFold {
   int held_out = 0;
-  double mean_energy = 0;           // sum_{i != h} W[S_i, s_bar]
-  int mean_iterations = 0;
+  double mean_energy = 0;          // sum_{i != h} W[S_i, s_bar]
+  int mean_iterations = 0;         // LM iterations of the elastic mean
+  int mean_newton_iterations = 0;  // its Newton steps
+  bool mean_converged = false;     // ElasticMeanResult::converged
   Eigen::VectorXd shell_eigenvalues, procrustes_eigenvalues;
   std::vector<double> shell_vertex_error, shell_energy;
   std::vector<double> procrustes_vertex_error, procrustes_energy;
+  // The EXP shots of the shell reconstructions, per m (m = 0: the mean,
+  // nothing shot). A shot that throws (degenerate triangle) leaves its
+  // report with ok = false and the errors NaN.
+  std::vector<ExpShotReport> shell_shots;
   double seconds = 0;
 };
 
 struct LeaveOneOutTable {
-  std::vector<LeaveOneOutRow> rows;   // m = 0 .. max_modes
+  std::vector<LeaveOneOutRow> rows;  // m = 0 .. max_modes
   std::vector<LeaveOneOutFold> folds;
   double seconds = 0;
 };

@@ -1,10 +1,10 @@
 #include "problems/shell_pca.h"
 
+#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
-
-#include <Eigen/Eigenvalues>
 
 #include "cost_functions/energy_derivatives.h"
 #include "geometry/rigid_alignment.h"
@@ -19,13 +19,90 @@ Eigen::Map<const Eigen::VectorXd> Flat(const Positions& p) {
 }
 
 void CheckOptions(const ShellPcaOptions& options) {
-  if (options.steps < 1) throw InputError("shell PCA: steps must be at least 1");
+  if (options.steps < 1)
+    throw InputError("shell PCA: steps must be at least 1");
+  if (options.exp_steps < 0) {
+    throw InputError("shell PCA: EXP steps must be non-negative");
+  }
+  if (options.max_exp_steps < std::max(options.exp_steps, 1)) {
+    throw InputError("shell PCA: max EXP steps below the EXP steps");
+  }
+  if (!(options.max_energy_drift > 0)) {
+    throw InputError("shell PCA: the energy drift bound must be positive");
+  }
   if (!(options.relative_cutoff >= 0)) {
     throw InputError("shell PCA: relative cutoff must be non-negative");
   }
 }
 
+// One EXP_K shot from (s0, s0 + v/K), step by step. Returns false as soon as
+// a step fails the safeguard if `abort_early`; *drift gets the largest
+// relative step-energy drift so far (+inf for a failed LM solve).
+bool ShootOnce(const ShellSpace& space, const Positions& s0,
+               const Positions& variation, int steps, double max_drift,
+               bool abort_early, const SolverSettings& settings, Positions* end,
+               double* drift) {
+  Positions previous = s0;
+  Positions current = s0 + variation / steps;
+  const double first = EvaluateDeformationEnergy(space, s0, current).total;
+  *drift = 0;
+  bool ok = true;
+  for (int k = 2; k <= steps; ++k) {
+    ExpStepResult step = ExpStep(space, previous, current,
+                                 StepDirection::kForward, {}, settings);
+    if (!step.summary.IsSolutionUsable() ||
+        step.summary.termination_type != ceres::CONVERGENCE) {
+      *drift = std::numeric_limits<double>::infinity();
+      ok = false;
+    } else {
+      const double w =
+          EvaluateDeformationEnergy(space, current, step.shape).total;
+      *drift = std::max(*drift, std::abs(w - first) / first);
+      if (!(*drift <= max_drift)) ok = false;
+    }
+    previous = std::move(current);
+    current = std::move(step.shape);
+    if (!ok && abort_early) return false;
+  }
+  *end = std::move(current);
+  return ok;
+}
+
 }  // namespace
+
+Positions ShootFromMean(const ShellSpace& space, const Positions& mean,
+                        const Positions& variation,
+                        const ShellPcaOptions& options,
+                        const SolverSettings& settings, ExpShotReport* report) {
+  CheckOptions(options);
+  ExpShotReport local;
+  ExpShotReport& r = report ? *report : local;
+  r = ExpShotReport{};
+  if (variation.cwiseAbs().maxCoeff() == 0) {
+    r.ok = true;
+    return mean;
+  }
+  int steps = options.exp_steps > 0 ? options.exp_steps : options.steps;
+  steps = std::min(steps, options.max_exp_steps);
+  for (;;) {
+    const bool last = 2 * steps > options.max_exp_steps;
+    ++r.attempts;
+    r.steps = steps;
+    Positions end;
+    bool ok = false;
+    try {
+      ok = ShootOnce(space, mean, variation, steps, options.max_energy_drift,
+                     !last, settings, &end, &r.energy_drift);
+    } catch (const InputError&) {
+      if (last) throw;
+    }
+    if (ok || last) {
+      r.ok = ok;
+      return end;
+    }
+    steps *= 2;
+  }
+}
 
 ShellMetric::ShellMetric(const ShellSpace& space, const Positions& at)
     : hessian_(EnergyHessian(space, at, at, ShellSide::kDeformed,
@@ -120,7 +197,7 @@ Positions ShellModeShape(const ShellSpace& space, const ShellPcaModel& model,
   const Positions variation =
       t * std::sqrt(model.eigenvalues(j)) * model.modes[j];
   return AlignRigidly(
-      ExpK(space, model.mean, variation, options.steps, {}, settings),
+      ShootFromMean(space, model.mean, variation, options, settings),
       model.mean);
 }
 
@@ -140,17 +217,17 @@ Positions ShellFromCoefficients(const ShellSpace& space,
                                 const ShellPcaModel& model,
                                 const Eigen::VectorXd& coefficients,
                                 const ShellPcaOptions& options,
-                                const SolverSettings& settings) {
+                                const SolverSettings& settings,
+                                ExpShotReport* report) {
   CheckOptions(options);
   const int m = static_cast<int>(coefficients.size());
   if (m > static_cast<int>(model.modes.size())) {
     throw InputError("shell PCA: more coefficients than modes");
   }
-  if (m == 0) return model.mean;
   Positions variation = Positions::Zero(model.mean.rows(), 3);
   for (int j = 0; j < m; ++j) variation += coefficients(j) * model.modes[j];
   return AlignRigidly(
-      ExpK(space, model.mean, variation, options.steps, {}, settings),
+      ShootFromMean(space, model.mean, variation, options, settings, report),
       model.mean);
 }
 

@@ -9,10 +9,9 @@
 #ifndef SHELLSPACE_PROBLEMS_SHELL_PCA_H_
 #define SHELLSPACE_PROBLEMS_SHELL_PCA_H_
 
-#include <vector>
-
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <vector>
 
 #include "cost_functions/deformation_energy.h"
 #include "problems/solver_settings.h"
@@ -21,8 +20,9 @@ namespace shellspace {
 
 // The Hessian metric at a shell s: g(u, w) = 1/2 u^T H w with
 // H = D_2^2 W[s, s] (= J^T J for the residual Jacobian J at (s, s), with W
-// = 1/2 sum r^2 = the Ceres cost, since every residual vanishes at rest). Positive semi-definite with the 6 rigid
-// motions (infinitesimal) in its kernel.
+// = 1/2 sum r^2 = the Ceres cost, since every residual vanishes at rest).
+// Positive semi-definite with the 6 rigid motions (infinitesimal) in its
+// kernel.
 class ShellMetric {
  public:
   ShellMetric(const ShellSpace& space, const Positions& at);
@@ -61,16 +61,48 @@ enum class DisplacementKind {
 
 struct ShellPcaOptions {
   DisplacementKind displacement = DisplacementKind::kLog;
-  int steps = 2;  // K of LOG_K and EXP_K (>= 1)
+  int steps = 2;  // K of LOG_K (>= 1)
+  // K of EXP_K for mode shapes and reconstructions; 0: the same K as LOG_K
+  // (then EXP_K(LOG_K(S)) = S exactly). See ShootFromMean for the safeguard.
+  int exp_steps = 0;
+  int max_exp_steps = 16;          // the safeguard doubles K up to this
+  double max_energy_drift = 0.5;   // allowed |W_k - W_1| / W_1 along EXP_K
   double relative_cutoff = 1e-10;  // of ModesFromGram
 };
 
+// How an EXP shot went: the K used, the number of shots tried, the largest
+// relative step-energy drift max_k |W[s_{k-1}, s_k] - W[s_0, s_1]| / W[s_0,
+// s_1] of the returned path, and whether it passed the safeguard.
+struct ExpShotReport {
+  int steps = 0;
+  int attempts = 0;
+  double energy_drift = 0;
+  bool ok = false;
+};
+
+// EXP_K(s_bar, v) with a safeguard against the instability of shooting a
+// large variation in few steps (s_1 = s_bar + v/K is a linear step: for a
+// large v/K it shortens rotating parts and the forward steps amplify the
+// error into rough surfaces or an LM failure, "Matrix not positive
+// definite"). A discrete geodesic keeps its step energies W[s_{k-1}, s_k]
+// nearly constant (the discrete energy conservation), so a shot is accepted
+// if every step's LM solve converged and max_k |W_k - W_1| <=
+// max_energy_drift * W_1. Otherwise K is doubled (K = exp_steps, 2 K, 4 K,
+// ... <= max_exp_steps; exp_steps = 0 means `steps`) and the shot repeated;
+// the last shot is returned even if it fails the test (report->ok = false).
+// Throws InputError if the last shot meets a degenerate triangle.
+Positions ShootFromMean(const ShellSpace& space, const Positions& mean,
+                        const Positions& variation,
+                        const ShellPcaOptions& options,
+                        const SolverSettings& settings,
+                        ExpShotReport* report = nullptr);
+
 struct ShellPcaModel {
-  Positions mean;                       // s_bar
-  std::vector<Positions> displacements; // v_i
-  Eigen::MatrixXd gram;                 // Gamma_ij = g(v_i, v_j) / n
-  Eigen::VectorXd eigenvalues;          // lambda_1 >= ... >= lambda_n
-  std::vector<Positions> modes;         // w_j, g(w_j, w_k) = delta_jk
+  Positions mean;                        // s_bar
+  std::vector<Positions> displacements;  // v_i
+  Eigen::MatrixXd gram;                  // Gamma_ij = g(v_i, v_j) / n
+  Eigen::VectorXd eigenvalues;           // lambda_1 >= ... >= lambda_n
+  std::vector<Positions> modes;          // w_j, g(w_j, w_k) = delta_jk
   ShellMetric metric;
 };
 
@@ -88,7 +120,7 @@ ShellPcaModel ComputeShellPca(const ShellSpace& space, const Positions& mean,
                               const SolverSettings& settings);
 
 // The shape of mode j (0-based) at amplitude t: EXP_K(s_bar, t sqrt(lambda_j)
-// w_j), aligned rigidly to s_bar.
+// w_j) by ShootFromMean, aligned rigidly to s_bar.
 Positions ShellModeShape(const ShellSpace& space, const ShellPcaModel& model,
                          int j, double t, const ShellPcaOptions& options,
                          const SolverSettings& settings);
@@ -98,13 +130,15 @@ Positions ShellModeShape(const ShellSpace& space, const ShellPcaModel& model,
 Eigen::VectorXd ShellModeCoefficients(const ShellPcaModel& model,
                                       const Positions& v, int m);
 
-// EXP_K(s_bar, sum_{j<m} c_j w_j) for the first m = coefficients.size()
-// modes (s_bar itself for m = 0), aligned rigidly to s_bar.
+// EXP_K(s_bar, sum_{j<m} c_j w_j) by ShootFromMean for the first m =
+// coefficients.size() modes (s_bar itself for m = 0), aligned rigidly to
+// s_bar.
 Positions ShellFromCoefficients(const ShellSpace& space,
                                 const ShellPcaModel& model,
                                 const Eigen::VectorXd& coefficients,
                                 const ShellPcaOptions& options,
-                                const SolverSettings& settings);
+                                const SolverSettings& settings,
+                                ExpShotReport* report = nullptr);
 
 }  // namespace shellspace
 

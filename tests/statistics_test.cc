@@ -1,14 +1,14 @@
 // Tests of the elastic mean, shell PCA, Procrustes PCA, the leave-one-out
 // evaluation, and the `mean` / `pca` verbs, on small meshes (the 162-vertex
 // spheres and the 121-vertex plates).
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <random>
 #include <string>
 #include <vector>
-
-#include <gtest/gtest.h>
 
 #include "cost_functions/energy_derivatives.h"
 #include "geometry/mesh_io.h"
@@ -29,10 +29,9 @@ using testing::RandomRigidMotion;
 using testing::RunCli;
 using testing::TempDir;
 
-const char* const kSpheres[] = {"sphere/unitSphere1.ply",
-                                "sphere/unitSphere1_defX.ply",
-                                "sphere/unitSphere1_defY.ply",
-                                "sphere/unitSphere1_defZ.ply"};
+const char* const kSpheres[] = {
+    "sphere/unitSphere1.ply", "sphere/unitSphere1_defX.ply",
+    "sphere/unitSphere1_defY.ply", "sphere/unitSphere1_defZ.ply"};
 
 std::vector<Positions> LoadSpheres() {
   std::vector<Positions> shapes;
@@ -121,6 +120,40 @@ TEST(ElasticMeanTest, InvariantUnderRigidMotionsOfTheInputs) {
   }
 }
 
+TEST(ElasticMeanTest, NewtonFinishReachesATightGradientAndTheLmMean) {
+  const std::vector<Positions> shapes = LoadSpheres();
+  const ShellSpace space = MakeSpace(LoadData(kSpheres[0]));
+  SolverSettings settings;
+  settings.gradient_tolerance = 1e-11;
+  settings.max_iterations = 1000;
+  const ElasticMeanResult newton = ComputeElasticMean(space, shapes, settings);
+  // LM hands over at 1e-4 relative; Newton takes it to the target.
+  EXPECT_TRUE(newton.converged);
+  EXPECT_FALSE(newton.newton_fell_back);
+  EXPECT_GE(newton.newton_iterations, 1);
+  EXPECT_LE(newton.newton_iterations, 6);  // quadratic convergence
+  EXPECT_LE(newton.gradient_norm,
+            1e-11 * std::max(1.0, newton.initial_gradient_norm));
+  // The reported gradient is the true one at the (aligned) mean.
+  EXPECT_LT(RelativeMeanGradient(space, shapes, newton.mean), 1e-9);
+  EXPECT_NEAR(
+      newton.gradient_norm,
+      ElasticMeanGradient(space, shapes, newton.mean).cwiseAbs().maxCoeff(),
+      1e-12);
+
+  // LM alone, to the same target, finds the same mean.
+  ElasticMeanOptions lm_only;
+  lm_only.newton = false;
+  const ElasticMeanResult lm =
+      ComputeElasticMean(space, shapes, settings, nullptr, lm_only);
+  EXPECT_EQ(lm.newton_iterations, 0);
+  EXPECT_LT(RelativeDistanceUpToRigidMotion(lm.mean, newton.mean), 1e-6);
+  EXPECT_NEAR(lm.energy, newton.energy, 1e-10 * newton.energy);
+  EXPECT_LE(newton.energy, lm.energy + 1e-12 * lm.energy);
+  // LM stopped early, then Newton: fewer LM iterations than LM alone.
+  EXPECT_LT(newton.lm_iterations, lm.lm_iterations);
+}
+
 TEST(ElasticMeanTest, RejectsBadInputs) {
   const ShellSpace space = MakeSpace(LoadData(kSpheres[0]));
   EXPECT_THROW(ComputeElasticMean(space, {}, SolverSettings{}), InputError);
@@ -160,10 +193,11 @@ void ExpectOrthonormalModes(const ShellPcaModel& model, int expected_modes) {
   }
   for (int i = 0; i < n; ++i) {
     for (int k = 0; k < n; ++k) {
-      EXPECT_NEAR(model.gram(i, k),
-                  model.metric.Inner(model.displacements[i],
-                                     model.displacements[k]) / n,
-                  1e-12 * largest * n);
+      EXPECT_NEAR(
+          model.gram(i, k),
+          model.metric.Inner(model.displacements[i], model.displacements[k]) /
+              n,
+          1e-12 * largest * n);
     }
   }
   for (size_t j = 0; j < model.modes.size(); ++j) {
@@ -181,8 +215,7 @@ void ExpectOrthonormalModes(const ShellPcaModel& model, int expected_modes) {
     Positions projection = Positions::Zero(v.rows(), 3);
     for (int j = 0; j < c.size(); ++j) projection += c(j) * model.modes[j];
     const Positions rest = v - projection;
-    EXPECT_LT(model.metric.Inner(rest, rest),
-              1e-8 * model.metric.Inner(v, v))
+    EXPECT_LT(model.metric.Inner(rest, rest), 1e-8 * model.metric.Inner(v, v))
         << i;
   }
 }
@@ -214,6 +247,81 @@ TEST(ShellPcaTest, LogModesAreOrthonormalInTheMetric) {
       ShellModeShape(space, model, 0, -1.0, options, Tight());
   EXPECT_GT(RelativeDistanceUpToRigidMotion(plus, minus), 1e-3);
   EXPECT_THROW(ShellModeShape(space, model, 10, 1.0, options, Tight()),
+               InputError);
+}
+
+TEST(ShellPcaTest, PoseOnTheFirstModeCurveIsRecovered) {
+  const std::vector<Positions> shapes = LoadSpheres();
+  const ShellSpace space = MakeSpace(LoadData(kSpheres[0]));
+  const ElasticMeanResult mean = ComputeElasticMean(space, shapes, Tight());
+  ShellPcaOptions options;
+  options.steps = 3;
+  options.exp_steps = 3;  // LOG_3 and EXP_3: EXP_3(LOG_3(T)) = T
+  const ShellPcaModel model =
+      ComputeShellPca(space, mean.mean, shapes, options, Tight());
+  ASSERT_GE(model.modes.size(), 3u);
+  // T = EXP_3(s_bar, a w_1), a = 0.8 sqrt(lambda_1), in another pose.
+  const double a = 0.8 * std::sqrt(model.eigenvalues(0));
+  const Positions truth = RandomRigidMotion(
+      ShellModeShape(space, model, 0, 0.8, options, Tight()), 5);
+  ASSERT_GT(RelativeDistanceUpToRigidMotion(truth, model.mean), 1e-2);
+  // LOG_3(s_bar -> T) = a w_1: coefficients (a, 0, 0, ...).
+  const Positions v =
+      ShellDisplacement(space, model.mean, truth, options, Tight());
+  const Eigen::VectorXd c =
+      ShellModeCoefficients(model, v, static_cast<int>(model.modes.size()));
+  EXPECT_NEAR(c(0), a, 1e-5 * a);
+  for (int j = 1; j < c.size(); ++j) EXPECT_LT(std::abs(c(j)), 1e-5 * a) << j;
+  // One mode reconstructs T.
+  ExpShotReport report;
+  const Positions back =
+      ShellFromCoefficients(space, model, c.head(1), options, Tight(), &report);
+  EXPECT_TRUE(report.ok);
+  EXPECT_EQ(report.steps, 3);
+  EXPECT_EQ(report.attempts, 1);
+  EXPECT_LT(RelativeDistanceUpToRigidMotion(back, truth), 1e-5);
+  EXPECT_LT(EvaluateDeformationEnergy(space, truth, back).total,
+            1e-8 * EvaluateDeformationEnergy(space, truth, model.mean).total);
+}
+
+TEST(ShellPcaTest, ExpShotSafeguardDoublesTheSteps) {
+  const std::vector<Positions> shapes = LoadSpheres();
+  const ShellSpace space = MakeSpace(LoadData(kSpheres[0]));
+  const ElasticMeanResult mean = ComputeElasticMean(space, shapes, Tight());
+  ShellPcaOptions options;
+  const ShellPcaModel model =
+      ComputeShellPca(space, mean.mean, shapes, options, Tight());
+  const Positions variation = std::sqrt(model.eigenvalues(0)) * model.modes[0];
+  // A discrete geodesic conserves its step energies: EXP_4 of a one-sigma
+  // variation passes at once, with a small drift.
+  options.exp_steps = 4;
+  options.max_exp_steps = 16;
+  ExpShotReport report;
+  const Positions shot =
+      ShootFromMean(space, model.mean, variation, options, Tight(), &report);
+  EXPECT_TRUE(report.ok);
+  EXPECT_EQ(report.steps, 4);
+  EXPECT_EQ(report.attempts, 1);
+  EXPECT_LT(report.energy_drift, 0.05);
+  EXPECT_GT(RelativeDistanceUpToRigidMotion(shot, model.mean), 1e-2);
+  // An impossible drift bound: K = 4, 8, 16 are tried and the last returned,
+  // flagged; EXP_16 and EXP_4 of the same variation nearly agree.
+  options.max_energy_drift = 1e-12;
+  const Positions last =
+      ShootFromMean(space, model.mean, variation, options, Tight(), &report);
+  EXPECT_FALSE(report.ok);
+  EXPECT_EQ(report.steps, 16);
+  EXPECT_EQ(report.attempts, 3);
+  EXPECT_GT(report.energy_drift, 1e-12);
+  EXPECT_LT(RelativeDistanceUpToRigidMotion(last, shot), 0.05);
+  // Zero variation: the mean itself, nothing shot.
+  const Positions zero =
+      ShootFromMean(space, model.mean, Positions::Zero(variation.rows(), 3),
+                    options, Tight(), &report);
+  EXPECT_TRUE(report.ok);
+  EXPECT_EQ(zero, model.mean);
+  options.max_exp_steps = 2;
+  EXPECT_THROW(ShootFromMean(space, model.mean, variation, options, Tight()),
                InputError);
 }
 
@@ -278,6 +386,9 @@ TEST(LeaveOneOutTest, TableOnTheSpheres) {
   for (const LeaveOneOutFold& fold : table.folds) {
     EXPECT_GT(fold.shell_energy[0], 0);
     EXPECT_EQ(fold.shell_eigenvalues.size(), 3);
+    EXPECT_TRUE(fold.mean_converged);
+    ASSERT_EQ(fold.shell_shots.size(), 3u);
+    for (const ExpShotReport& shot : fold.shell_shots) EXPECT_TRUE(shot.ok);
   }
   options.held_out = {7};
   EXPECT_THROW(EvaluateLeaveOneOut(space, shapes, options, SolverSettings{}),
@@ -349,23 +460,32 @@ TEST(StatisticsCliTest, BadInputsFailWithOneLineAndNoOutput) {
        "--modes"},
       {"pca --inputs " + SphereList(3) + " --modes 3 --output " + base + "/e",
        "--modes"},
-      {"pca --inputs " + SphereList(3) + " --modes 1 --baseline linear "
-           "--output " + base + "/f",
+      {"pca --inputs " + SphereList(3) +
+           " --modes 1 --baseline linear "
+           "--output " +
+           base + "/f",
        "--baseline"},
       {"pca --inputs " + SphereList(2) + " --modes 1 --loo --output " + base +
            "/g",
        "at least 3"},
+      {"pca --inputs " + SphereList(3) + " --modes 1 --exp_steps 0 --output " +
+           base + "/h",
+       "--exp_steps"},
+      {"mean --inputs " + SphereList(3) + " --threads 0 --output " + base +
+           "/i.ply",
+       "--threads"},
   };
   for (const Case& c : cases) {
     std::string stdout_text, stderr_text;
     EXPECT_EQ(RunCli(c.args + " --quiet", &stdout_text, &stderr_text), 1)
         << c.args;
-    EXPECT_NE(stderr_text.find(c.expected), std::string::npos)
-        << c.args << "\n" << stderr_text;
+    EXPECT_NE(stderr_text.find(c.expected), std::string::npos) << c.args << "\n"
+                                                               << stderr_text;
     EXPECT_EQ(std::count(stderr_text.begin(), stderr_text.end(), '\n'), 1)
         << stderr_text;
   }
-  for (const char* name : {"a.ply", "b.ply", "c.ply", "d", "e", "f", "g"}) {
+  for (const char* name :
+       {"a.ply", "b.ply", "c.ply", "d", "e", "f", "g", "h", "i.ply"}) {
     EXPECT_FALSE(std::filesystem::exists(base + "/" + name)) << name;
   }
 }

@@ -32,9 +32,12 @@ DEFINE_bool(loo, false,
             "(m = 0..modes), table printed and in the JSON");
 DEFINE_double(amplitude, 1.0,
               "pca: mode shapes at +- amplitude sqrt(lambda_j) w_j");
-DEFINE_int32(log_steps, 2,
-             "pca: K of LOG_K (displacements) and EXP_K (mode shapes, "
-             "reconstructions)");
+DEFINE_int32(log_steps, 2, "pca: K of LOG_K (displacements)");
+DEFINE_int32(exp_steps, 4,
+             "pca: K of EXP_K (mode shapes, reconstructions); doubled up to "
+             "--max_exp_steps while a shot fails or its step energies drift "
+             "by more than 50%");
+DEFINE_int32(max_exp_steps, 16, "pca: largest K of the EXP safeguard");
 DEFINE_string(displacement, "log",
               "pca: 'log' (v_i = LOG_K(mean -> S_i)) or 'difference' "
               "(v_i = S_i - mean after rigid alignment)");
@@ -114,14 +117,14 @@ int RunMean() {
                      .Add("energy", result.energy)
                      .Add("energies", result.energies)
                      .Add("inputs", static_cast<int>(inputs.shapes.size()))
-                     .Add("iterations", static_cast<int>(s.iterations.size()))
-                     .Add("final_gradient_norm",
-                          s.iterations.empty()
-                              ? 0.0
-                              : s.iterations.back().gradient_max_norm)
+                     .Add("iterations", result.lm_iterations)
+                     .Add("newton_iterations", result.newton_iterations)
+                     .Add("newton_fell_back", result.newton_fell_back)
+                     .Add("initial_gradient_norm", result.initial_gradient_norm)
+                     .Add("final_gradient_norm", result.gradient_norm)
                      .Add("termination",
                           ceres::TerminationTypeToString(s.termination_type))
-                     .Add("converged", s.IsSolutionUsable())
+                     .Add("converged", result.converged)
                      .Add("seconds", Seconds(clock))
                      .Add("output", FLAGS_output)
                      .str()
@@ -129,8 +132,10 @@ int RunMean() {
   } else if (!FLAGS_quiet) {
     std::cerr << result.summary.BriefReport() << "\n";
     std::cout << "sum_i W[S_i, mean] = " << result.energy << " over "
-              << inputs.shapes.size() << " shells; wrote " << FLAGS_output
-              << "\n";
+              << inputs.shapes.size() << " shells (" << result.lm_iterations
+              << " LM + " << result.newton_iterations
+              << " Newton iterations, |grad| " << result.gradient_norm
+              << "); wrote " << FLAGS_output << "\n";
   }
   return 0;
 }
@@ -170,15 +175,27 @@ std::string TableJson(const LeaveOneOutTable& table) {
   std::string folds = "[";
   for (size_t i = 0; i < table.folds.size(); ++i) {
     const LeaveOneOutFold& f = table.folds[i];
+    std::vector<double> shot_steps, shot_drift;
+    std::vector<double> shot_ok;  // 1: passed the safeguard
+    for (const ExpShotReport& r : f.shell_shots) {
+      shot_steps.push_back(r.steps);
+      shot_drift.push_back(r.energy_drift);
+      shot_ok.push_back(r.ok ? 1.0 : 0.0);
+    }
     folds += (i ? ", " : "") +
              JsonObject()
                  .Add("held_out", f.held_out)
                  .Add("mean_energy", f.mean_energy)
                  .Add("mean_iterations", f.mean_iterations)
+                 .Add("mean_newton_iterations", f.mean_newton_iterations)
+                 .Add("mean_converged", f.mean_converged)
                  .Add("shell_vertex_error", f.shell_vertex_error)
                  .Add("shell_energy", f.shell_energy)
                  .Add("procrustes_vertex_error", f.procrustes_vertex_error)
                  .Add("procrustes_energy", f.procrustes_energy)
+                 .Add("shell_exp_steps", shot_steps)
+                 .Add("shell_exp_energy_drift", shot_drift)
+                 .Add("shell_exp_ok", shot_ok)
                  .Add("seconds", f.seconds)
                  .str();
   }
@@ -204,8 +221,14 @@ int RunPca() {
     throw InputError("--amplitude must be a finite non-negative number");
   }
   if (FLAGS_log_steps < 1) throw InputError("--log_steps must be at least 1");
+  if (FLAGS_exp_steps < 1) throw InputError("--exp_steps must be at least 1");
+  if (FLAGS_max_exp_steps < FLAGS_exp_steps) {
+    throw InputError("--max_exp_steps must be at least --exp_steps");
+  }
   ShellPcaOptions options;
   options.steps = FLAGS_log_steps;
+  options.exp_steps = FLAGS_exp_steps;
+  options.max_exp_steps = FLAGS_max_exp_steps;
   if (FLAGS_displacement == "log") {
     options.displacement = DisplacementKind::kLog;
   } else if (FLAGS_displacement == "difference") {
@@ -245,12 +268,12 @@ int RunPca() {
   std::vector<Positions> strip = {mean.mean};
   for (int j = 0; j < shell_modes; ++j) {
     const std::string stem = "mode_" + std::to_string(j + 1);
-    files.emplace_back(stem + "_minus.ply",
-                       ShellModeShape(space, shell, j, -FLAGS_amplitude,
-                                      options, inner));
-    files.emplace_back(stem + "_plus.ply",
-                       ShellModeShape(space, shell, j, FLAGS_amplitude,
-                                      options, inner));
+    files.emplace_back(
+        stem + "_minus.ply",
+        ShellModeShape(space, shell, j, -FLAGS_amplitude, options, inner));
+    files.emplace_back(
+        stem + "_plus.ply",
+        ShellModeShape(space, shell, j, FLAGS_amplitude, options, inner));
     strip.push_back(files[files.size() - 2].second);
     strip.push_back(files.back().second);
   }
@@ -259,9 +282,12 @@ int RunPca() {
   JsonObject json;
   json.Add("inputs", n)
       .Add("mean_energy", mean.energy)
-      .Add("mean_iterations", static_cast<int>(mean.summary.iterations.size()))
+      .Add("mean_iterations", mean.lm_iterations)
+      .Add("mean_newton_iterations", mean.newton_iterations)
+      .Add("mean_gradient_norm", mean.gradient_norm)
       .Add("displacement", FLAGS_displacement)
       .Add("log_steps", FLAGS_log_steps)
+      .Add("exp_steps", FLAGS_exp_steps)
       .Add("eigenvalues", ToVector(shell.eigenvalues))
       .Add("modes", shell_modes)
       .Add("amplitude", FLAGS_amplitude);
@@ -289,7 +315,9 @@ int RunPca() {
     loo.pca = options;
     loo.initial_mean = mean.mean;  // warm start; same minimiser per fold
     if (!FLAGS_quiet) {
-      loo.log = [](const std::string& line) { std::cerr << "loo: " << line << "\n"; };
+      loo.log = [](const std::string& line) {
+        std::cerr << "loo: " << line << "\n";
+      };
     }
     const LeaveOneOutTable table =
         EvaluateLeaveOneOut(space, inputs.shapes, loo, inner);
@@ -320,8 +348,8 @@ int RunPca() {
       for (int j = 0; j < shell.eigenvalues.size(); ++j) {
         std::cout << " " << shell.eigenvalues(j);
       }
-      std::cout << "\nwrote " << FLAGS_output << "/mean.ply and "
-                << shell_modes << " mode pairs\n";
+      std::cout << "\nwrote " << FLAGS_output << "/mean.ply and " << shell_modes
+                << " mode pairs\n";
     }
   }
   return 0;
@@ -338,6 +366,7 @@ SHELLSPACE_REGISTER_VERB(
 SHELLSPACE_REGISTER_VERB(
     "pca",
     "pca --inputs a.ply,b.ply,... --modes m --output DIR [--baseline "
-    "procrustes] [--loo] [--amplitude t] [--log_steps K] [--displacement "
-    "log|difference] [--json] [--png strip.png]",
+    "procrustes] [--loo] [--amplitude t] [--log_steps K] [--exp_steps K] "
+    "[--max_exp_steps K] [--displacement log|difference] [--threads N] "
+    "[--json] [--png strip.png]",
     shellspace::RunPca);
