@@ -1,11 +1,15 @@
-// The statistics workloads of issue 4, one run each (heavy: not part of the
-// test suite): the elastic mean of the 4 faces (7118 vertices), and one
-// leave-one-out fold of the shell-vs-Procrustes PCA evaluation over the 19
-// cactus poses (cactus0 held out, m = 0..5, LOG_2/EXP_2 displacements; every
-// LM solve capped at 30 iterations: the elastic-mean and LOG solves of the
-// cactus converge only linearly, a large-residual least-squares problem).
+// The statistics workloads of issue 4, one run each, single-threaded (heavy:
+// not part of the test suite):
+//  - the elastic mean of the 4 faces (7118 vertices), LM alone (arg 0) and LM
+//    with the Newton finish (arg 1), both to the default relative gradient
+//    tolerance 1e-8;
+//  - one leave-one-out fold of the shell-vs-Procrustes PCA evaluation over
+//    the 19 cactus poses (arg = the held-out pose, m = 0..5, LOG_2
+//    displacements, safeguarded EXP_4 reconstructions, the fold's mean warm
+//    started from the aligned vertex average of its 18 poses).
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
 #include <string>
 #include <vector>
 
@@ -30,19 +34,27 @@ void BM_FaceElasticMean(benchmark::State& state) {
   for (const Mesh& mesh : meshes) shapes.push_back(mesh.positions);
   const ShellSpace space(meshes[0], Topology::Build(meshes[0]),
                          ShellMaterial{});
+  SolverSettings settings;
+  settings.num_threads = 1;
+  ElasticMeanOptions options;
+  options.newton = state.range(0) != 0;
   for (auto _ : state) {
     const ElasticMeanResult result =
-        ComputeElasticMean(space, shapes, SolverSettings{});
-    const auto& s = result.summary;
+        ComputeElasticMean(space, shapes, settings, nullptr, options);
     state.counters["energy"] = result.energy;
-    state.counters["iterations"] = static_cast<double>(s.iterations.size());
-    state.counters["converged"] =
-        s.termination_type == ceres::CONVERGENCE ? 1 : 0;
-    state.counters["linear_solver_s"] = s.linear_solver_time_in_seconds;
-    state.counters["jacobian_s"] = s.jacobian_evaluation_time_in_seconds;
+    state.counters["lm_iterations"] = result.lm_iterations;
+    state.counters["newton_iterations"] = result.newton_iterations;
+    state.counters["gradient_max_norm"] = result.gradient_norm;
+    state.counters["initial_gradient_max_norm"] = result.initial_gradient_norm;
+    state.counters["converged"] = result.converged ? 1 : 0;
   }
 }
-BENCHMARK(BM_FaceElasticMean)->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK(BM_FaceElasticMean)
+    ->ArgName("newton")
+    ->Arg(0)
+    ->Arg(1)
+    ->Iterations(1)
+    ->Unit(benchmark::kSecond);
 
 void BM_CactusLeaveOneOutFold(benchmark::State& state) {
   std::vector<Positions> shapes;
@@ -56,15 +68,27 @@ void BM_CactusLeaveOneOutFold(benchmark::State& state) {
   LeaveOneOutOptions options;
   options.max_modes = 5;
   options.held_out = {static_cast<int>(state.range(0))};
+  options.pca.steps = 2;      // LOG_2
+  options.pca.exp_steps = 4;  // EXP_4, safeguard up to EXP_16
+  options.pca.max_exp_steps = 16;
   SolverSettings settings;
-  settings.max_iterations = 30;
+  settings.num_threads = 1;
   for (auto _ : state) {
     const LeaveOneOutTable table =
         EvaluateLeaveOneOut(space, shapes, options, settings);
     const LeaveOneOutFold& fold = table.folds[0];
-    state.counters["mean_iterations"] = fold.mean_iterations;
+    state.counters["mean_lm_iterations"] = fold.mean_iterations;
+    state.counters["mean_newton_iterations"] = fold.mean_newton_iterations;
+    state.counters["mean_converged"] = fold.mean_converged ? 1 : 0;
     state.counters["mean_energy"] = fold.mean_energy;
-    for (int m : {1, 5}) {
+    int failed_shots = 0, max_exp_steps = 0;
+    for (const ExpShotReport& shot : fold.shell_shots) {
+      failed_shots += shot.ok ? 0 : 1;
+      max_exp_steps = std::max(max_exp_steps, shot.steps);
+    }
+    state.counters["failed_exp_shots"] = failed_shots;
+    state.counters["max_exp_steps"] = max_exp_steps;
+    for (int m = 1; m <= 5; ++m) {
       const std::string suffix = "_m" + std::to_string(m);
       state.counters["shell_err" + suffix] = fold.shell_vertex_error[m];
       state.counters["shell_W" + suffix] = fold.shell_energy[m];
