@@ -86,7 +86,8 @@ struct ExpShotReport {
 // error into rough surfaces or an LM failure, "Matrix not positive
 // definite"). A discrete geodesic keeps its step energies W[s_{k-1}, s_k]
 // nearly constant (the discrete energy conservation), so a shot is accepted
-// if every step's LM solve converged and max_k |W_k - W_1| <=
+// if every step's LM solve (capped at 50 iterations) converged or reached a
+// residual |F|_inf <= 1e-6 |D_2 W[s_{k-1}, s_k]|_inf, and max_k |W_k - W_1| <=
 // max_energy_drift * W_1. Otherwise K is doubled (K = exp_steps, 2 K, 4 K,
 // ... <= max_exp_steps; exp_steps = 0 means `steps`) and the shot repeated;
 // the last shot is returned even if it fails the test (report->ok = false).
