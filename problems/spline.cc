@@ -33,7 +33,7 @@ void CheckIndices(const std::vector<int>& at, size_t count, int steps,
 
 // The objective divided by a constant. L-BFGS' first trial step is the
 // negative gradient itself; scaling the objective so that this step moves
-// vertices by 1 % of the shape's size keeps it from crumpling the shapes
+// vertices by 0.1 % of the shape's size keeps it from crumpling the shapes
 // (a failed evaluation would end the line search).
 class ScaledObjective : public ceres::FirstOrderFunction {
  public:
@@ -71,7 +71,7 @@ SplineResult Run(const ShellSpace& space, SplineSpec spec,
     const Positions& shape = spec.initial.front();
     const double size =
         (shape.colwise().maxCoeff() - shape.colwise().minCoeff()).norm();
-    const double scale = std::max(norm / (0.01 * size), 1e-300);
+    const double scale = std::max(norm / (0.001 * size), 1e-300);
     ceres::GradientProblem problem(new ScaledObjective(objective, scale));
     ceres::GradientProblemSolver::Options options;
     options.line_search_direction_type = ceres::LBFGS;
@@ -91,6 +91,7 @@ SplineResult Run(const ShellSpace& space, SplineSpec spec,
         EvaluateDeformationEnergy(space, d.shape, result.path[d.index]).total;
   }
   result.objective = result.data_energy + spec.sigma * result.spline_energy;
+  result.timings = objective.timings();
   if (spec.periodic) result.path.push_back(result.path.front());
   return result;
 }

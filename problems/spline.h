@@ -18,6 +18,7 @@ struct SplineResult {
   double data_energy = 0;    // sum_j W[S_j, s_{k_j}] (regression)
   double objective = 0;      // data + sigma F_K
   ceres::GradientProblemSolver::Summary summary;
+  SplineTimings timings;  // where the evaluations spent their time
 };
 
 // Settings of the outer L-BFGS loop.

@@ -1,42 +1,102 @@
 #include "problems/spline_energy.h"
 
+#include <Eigen/SparseCholesky>
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include "cost_functions/energy_derivatives.h"
-#include "problems/gauge_reduced_solve.h"
+#include "problems/rigid_gauge.h"
 
 namespace shellspace {
 
 namespace {
 
-// Up to two Newton steps on G(m) = D_2 W[a, m] + D_1 W[m, b] = 0 with the
-// exact Hessian: LM stops with |m - m*| ~ sqrt(eps) relative, which makes
-// F_K noisy at 1e-8; Newton's quadratic convergence brings m to round-off.
-void PolishMidpoint(const ShellSpace& space, const Positions& a,
-                    const Positions& b, Positions* m) {
-  for (int step = 0; step < 2; ++step) {
-    const Eigen::VectorXd g =
-        EnergyGradient(space, a, *m, ShellSide::kDeformed) +
-        EnergyGradient(space, *m, b, ShellSide::kReference);
-    const double scale = EnergyGradient(space, a, *m, ShellSide::kDeformed)
-                             .cwiseAbs()
-                             .maxCoeff();
-    if (g.cwiseAbs().maxCoeff() <= 1e-13 * std::max(scale, 1e-300)) return;
-    const SparseMatrix h =
-        EnergyHessianColumns(space, a, *m, ShellSide::kDeformed).second +
-        EnergyHessianColumns(space, *m, b, ShellSide::kReference).first;
-    const Eigen::VectorXd dm = SolveModuloRigidMotions(h, -g, *m);
-    Positions candidate = *m;
-    Eigen::Map<Eigen::VectorXd>(candidate.data(), candidate.size()) += dm;
-    const Eigen::VectorXd g_new =
-        EnergyGradient(space, a, candidate, ShellSide::kDeformed) +
-        EnergyGradient(space, candidate, b, ShellSide::kReference);
-    if (!(g_new.cwiseAbs().maxCoeff() < g.cwiseAbs().maxCoeff())) return;
-    *m = candidate;
-  }
+double SecondsSince(std::chrono::steady_clock::time_point since) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - since)
+      .count();
 }
 
+double MaxNorm(const Eigen::VectorXd& v) {
+  return v.size() ? v.cwiseAbs().maxCoeff() : 0.0;
+}
+
+// Newton's stopping rules on G(m) (relative to |D_2 W[a, m]|): converged
+// (round-off leaves |G| ~ 1e-11 on the cactus), and the floor below which a
+// step that does not halve |G| ends the iteration instead of handing over to
+// LM.
+constexpr double kNewtonTolerance = 1e-10;
+constexpr double kRoundOffFloor = 1e-8;
+// The Hessian of the last Newton step (taken at the previous iterate) serves
+// the adjoint if that step moved no vertex coordinate by more than this times
+// the bounding-box diagonal (p_k is then as accurate); otherwise H_k is
+// assembled once more at the final midpoint. (A small |G| does not bound the
+// step: H_k of a thin shell is badly conditioned.)
+constexpr double kReuseHessianBelow = 1e-9;
+constexpr int kMaxNewtonSteps = 10;
+// LM restarted from a warm start (Newton failed: a trial point of the line
+// search far from the last one) gets this many iterations; if the midpoint is
+// not found then, the trial point is rejected and the line search shrinks.
+constexpr int kMaxWarmLmIterations = 50;
+
+// H p = rhs modulo rigid motions, factorised once and solved for several
+// right-hand sides (the Newton step and the adjoint p_k): with the gauge
+// vertices (a, b, c) of ChooseGaugeVertices(shape), u = (X_b - X_a)/|.| and w
+// the unit normal to u in the plane abc, p = T q where T is the identity on
+// every other coordinate, zero on a, u on b and [u w] on c, and (T^T H T) q =
+// T^T rhs by sparse LDL^T (as SolveModuloRigidMotions).
+class GaugeReducedFactor {
+ public:
+  // False unless T^T H T is positive definite.
+  bool Compute(const SparseMatrix& h, const Positions& shape) {
+    const int n = static_cast<int>(shape.rows());
+    const auto [a, b, c] = ChooseGaugeVertices(shape);
+    const Eigen::Vector3d pa = shape.row(a), pb = shape.row(b),
+                          pc = shape.row(c);
+    const Eigen::Vector3d u = (pb - pa).normalized();
+    const Eigen::Vector3d w = ((pc - pa) - (pc - pa).dot(u) * u).normalized();
+    std::vector<Eigen::Triplet<double>> t;
+    int column = 0;
+    for (int v = 0; v < n; ++v) {
+      if (v == a) continue;
+      if (v == b || v == c) {
+        const int directions = v == b ? 1 : 2;  // the line ab / plane abc
+        for (int d = 0; d < directions; ++d) {
+          const Eigen::Vector3d& dir = d == 0 ? u : w;
+          for (int k = 0; k < 3; ++k) t.emplace_back(3 * v + k, column, dir(k));
+          ++column;
+        }
+        continue;
+      }
+      for (int k = 0; k < 3; ++k) t.emplace_back(3 * v + k, column++, 1.0);
+    }
+    basis_.resize(3 * n, column);
+    basis_.setFromTriplets(t.begin(), t.end());
+    ldlt_.compute(SparseMatrix(basis_.transpose() * h * basis_));
+    return ldlt_.info() == Eigen::Success && ldlt_.vectorD().minCoeff() > 0;
+  }
+  Eigen::VectorXd Solve(const Eigen::VectorXd& rhs) const {
+    return basis_ * ldlt_.solve(basis_.transpose() * rhs);
+  }
+
+ private:
+  SparseMatrix basis_;
+  Eigen::SimplicialLDLT<SparseMatrix> ldlt_;
+};
+
 }  // namespace
+
+// m_k, and (when `has_adjoint`) the factorised H_k and the mixed blocks of
+// the adjoint gradient at m_k.
+struct SplineObjective::Midpoint {
+  Positions m;
+  bool has_adjoint = false;
+  GaugeReducedFactor factor;  // H_k = D_2^2 W[s_{k-1}, m] + D_1^2 W[m, s_{k+1}]
+  SparseMatrix mixed_previous;  // d_m D_1 W[s_{k-1}, m]: rows s_{k-1}
+  SparseMatrix mixed_next;      // d_m D_2 W[m, s_{k+1}]: rows s_{k+1}
+};
+
+SplineObjective::~SplineObjective() = default;
 
 SplineObjective::SplineObjective(const ShellSpace& space, SplineSpec spec,
                                  const SolverSettings& inner_settings)
@@ -68,7 +128,9 @@ SplineObjective::SplineObjective(const ShellSpace& space, SplineSpec spec,
   }
   num_parameters_ =
       static_cast<int>(free_shapes_.size()) * 3 * space_.num_vertices;
-  midpoints_.resize(terms_.size());
+  for (size_t t = 0; t < terms_.size(); ++t) {
+    midpoints_.push_back(std::make_unique<Midpoint>());
+  }
 }
 
 std::vector<double> SplineObjective::InitialParameters() const {
@@ -91,23 +153,154 @@ ShellPath SplineObjective::PathFrom(const double* parameters) const {
   return path;
 }
 
-double SplineObjective::SplineEnergyOf(const ShellPath& path) const {
-  const double K = spec_.steps;
-  double sum = 0;
+bool SplineObjective::SolveMidpoint(const Positions& a, const Positions& b,
+                                    bool adjoint, Midpoint* mid) const {
+  // LM runs: from a warm start, first one capped at kMaxWarmLmIterations,
+  // then (if Newton still fails) one with the full inner settings; from no
+  // warm start, one full run from the average of a and b.
+  bool lm_done = false;  // the full run is done: no more LM
+  int lm_runs = 0;
+  const auto run_lm = [&]() {
+    SolverSettings settings = inner_settings_;
+    if (mid->m.size() == 0) {
+      mid->m = 0.5 * (a + b);
+      lm_done = true;
+    } else if (lm_runs == 0) {
+      settings.max_iterations =
+          std::min(settings.max_iterations, kMaxWarmLmIterations);
+    } else {
+      lm_done = true;
+    }
+    ++lm_runs;
+    const auto clock = std::chrono::steady_clock::now();
+    ceres::Solver::Summary summary;
+    mid->m = SolveWeightedMidpoint(space_, a, b, 1.0, 1.0, mid->m, {}, settings,
+                                   &summary);
+    timings_.lm_seconds += SecondsSince(clock);
+    ++timings_.lm_solves;
+    timings_.lm_iterations += static_cast<int>(summary.iterations.size());
+    mid->has_adjoint = false;
+    return summary.IsSolutionUsable();
+  };
+  const auto residual = [&](const Positions& m, double* scale) {
+    const Eigen::VectorXd g_a =
+        EnergyGradient(space_, a, m, ShellSide::kDeformed);
+    *scale = std::max(MaxNorm(g_a), 1e-300);
+    return Eigen::VectorXd(g_a +
+                           EnergyGradient(space_, m, b, ShellSide::kReference));
+  };
+  mid->has_adjoint = false;
+  if (mid->m.size() == 0 && !run_lm()) return false;
+  double scale = 0;
+  Eigen::VectorXd g = residual(mid->m, &scale);
+  const auto clock = std::chrono::steady_clock::now();
+  const double lm_seconds_before = timings_.lm_seconds;
+  bool converged = false;
+  for (int step = 0; step < kMaxNewtonSteps && !converged; ++step) {
+    const double norm = MaxNorm(g);
+    if (norm <= kNewtonTolerance * scale && (mid->has_adjoint || !adjoint)) {
+      converged = true;
+      break;
+    }
+    // H_k and the mixed blocks at the current iterate.
+    const auto left =
+        EnergyHessianColumns(space_, a, mid->m, ShellSide::kDeformed);
+    const auto right =
+        EnergyHessianColumns(space_, mid->m, b, ShellSide::kReference);
+    ++timings_.newton_steps;
+    if (!mid->factor.Compute(left.second + right.first, mid->m)) {
+      if (lm_done || !run_lm()) break;  // H_k indefinite even after LM
+      g = residual(mid->m, &scale);
+      continue;
+    }
+    mid->mixed_previous = left.first;
+    mid->mixed_next = right.second;
+    mid->has_adjoint = true;
+    if (norm <= kNewtonTolerance * scale) {
+      converged = true;  // H_k was needed for the adjoint only
+      break;
+    }
+    Positions candidate = mid->m;
+    const Eigen::VectorXd dm = mid->factor.Solve(-g);
+    Eigen::Map<Eigen::VectorXd>(candidate.data(), candidate.size()) += dm;
+    double candidate_scale = 0;
+    const Eigen::VectorXd g_new = residual(candidate, &candidate_scale);
+    const double new_norm = MaxNorm(g_new);
+    if (!(new_norm <= 0.5 * norm)) {
+      if (norm <= kRoundOffFloor * scale) {
+        converged = true;  // at round-off; H_k is at mid->m
+        continue;
+      }
+      if (!lm_done) {  // far from the midpoint: LM from here
+        if (!run_lm()) break;
+        g = residual(mid->m, &scale);
+        continue;
+      }
+      if (!(new_norm < norm)) {
+        // Damped Newton: H_k is positive definite, so dm descends the
+        // midpoint energy E(m) = W[a, m] + W[m, b]; halve it until E drops.
+        const auto energy = [&](const Positions& m) {
+          return EvaluateDeformationEnergy(space_, a, m).total +
+                 EvaluateDeformationEnergy(space_, m, b).total;
+        };
+        const double e0 = energy(mid->m);
+        bool decreased = false;
+        for (int halving = 1; halving <= 20 && !decreased; ++halving) {
+          candidate = mid->m;
+          Eigen::Map<Eigen::VectorXd>(candidate.data(), candidate.size()) +=
+              std::ldexp(1.0, -halving) * dm;
+          decreased = energy(candidate) < e0;
+        }
+        if (!decreased) break;  // not a usable midpoint
+        mid->m = candidate;
+        g = residual(mid->m, &scale);
+        mid->has_adjoint = false;
+        continue;
+      }
+      // A decrease after the full LM solve: take it.
+    }
+    mid->m = candidate;
+    g = g_new;
+    scale = candidate_scale;
+    // H_k from before the step serves the adjoint only after a small step.
+    const double diagonal =
+        (mid->m.colwise().maxCoeff() - mid->m.colwise().minCoeff()).norm();
+    if (MaxNorm(dm) > kReuseHessianBelow * diagonal) mid->has_adjoint = false;
+  }
+  if (!converged && MaxNorm(g) <= kRoundOffFloor * scale &&
+      (mid->has_adjoint || !adjoint)) {
+    converged = true;
+  }
+  timings_.newton_seconds +=
+      SecondsSince(clock) - (timings_.lm_seconds - lm_seconds_before);
+  return converged;
+}
+
+bool SplineObjective::SolveMidpoints(const ShellPath& path,
+                                     bool adjoint) const {
+  ++timings_.evaluations;
+  if (adjoint) ++timings_.gradient_evaluations;
   for (size_t t = 0; t < terms_.size(); ++t) {
     const Term& term = terms_[t];
-    const Positions& a = path[term.previous];
-    const Positions& b = path[term.next];
-    const Positions initial =
-        midpoints_[t].size() ? midpoints_[t] : Positions(0.5 * (a + b));
-    ceres::Solver::Summary summary;
-    midpoints_[t] = SolveWeightedMidpoint(space_, a, b, 1.0, 1.0, initial, {},
-                                          inner_settings_, &summary);
-    if (!summary.IsSolutionUsable()) return NAN;
-    PolishMidpoint(space_, a, b, &midpoints_[t]);
-    sum += EvaluateDeformationEnergy(space_, path[term.center], midpoints_[t])
+    const bool needs_adjoint =
+        adjoint && (spec_.is_free[term.previous] || spec_.is_free[term.next]);
+    if (!SolveMidpoint(path[term.previous], path[term.next], needs_adjoint,
+                       midpoints_[t].get())) {
+      return false;
+    }
+  }
+  return true;
+}
+
+double SplineObjective::SplineEnergyOf(const ShellPath& path) const {
+  if (!SolveMidpoints(path, false)) return NAN;
+  double sum = 0;
+  for (size_t t = 0; t < terms_.size(); ++t) {
+    sum += EvaluateDeformationEnergy(space_, path[terms_[t].center],
+                                     midpoints_[t]->m)
                .total;
   }
+  const double K = spec_.steps;
   return 4 * K * K * K * sum;
 }
 
@@ -117,7 +310,14 @@ bool SplineObjective::Evaluate(const double* parameters, double* cost,
   const double K = spec_.steps;
   const double scale = spec_.sigma * 4 * K * K * K;
   try {
-    const double spline = SplineEnergyOf(path);
+    if (!SolveMidpoints(path, gradient != nullptr)) return false;
+    double spline = 0;
+    for (size_t t = 0; t < terms_.size(); ++t) {
+      spline += EvaluateDeformationEnergy(space_, path[terms_[t].center],
+                                          midpoints_[t]->m)
+                    .total;
+    }
+    spline *= 4 * K * K * K;
     if (!std::isfinite(spline)) return false;
     double data = 0;
     for (const SplineDatum& d : spec_.data) {
@@ -126,6 +326,7 @@ bool SplineObjective::Evaluate(const double* parameters, double* cost,
     *cost = data + spec_.sigma * spline;
     if (gradient == nullptr) return true;
 
+    const auto clock = std::chrono::steady_clock::now();
     const int n3 = 3 * space_.num_vertices;
     std::vector<Eigen::VectorXd> grad(path.size(), Eigen::VectorXd::Zero(n3));
     for (const SplineDatum& d : spec_.data) {
@@ -134,31 +335,22 @@ bool SplineObjective::Evaluate(const double* parameters, double* cost,
     }
     for (size_t t = 0; t < terms_.size(); ++t) {
       const Term& term = terms_[t];
-      const Positions& m = midpoints_[t];
+      const Midpoint& mid = *midpoints_[t];
       const Positions& s = path[term.center];
       grad[term.center] +=
-          scale * EnergyGradient(space_, s, m, ShellSide::kReference);
+          scale * EnergyGradient(space_, s, mid.m, ShellSide::kReference);
       if (!spec_.is_free[term.previous] && !spec_.is_free[term.next]) continue;
-      // W[s_{k-1}, m] with columns on m: (d_m D_1 W = mixed, D_2^2 W).
-      const auto left = EnergyHessianColumns(space_, path[term.previous], m,
-                                             ShellSide::kDeformed);
-      // W[m, s_{k+1}] with columns on s_{k+1}: (d_{s_{k+1}} D_1 W, ...) and
-      // with columns on m: (D_1^2 W, d_m D_2 W).
-      const auto right_m = EnergyHessianColumns(space_, m, path[term.next],
-                                                ShellSide::kReference);
-      const SparseMatrix h = left.second + right_m.first;
-      const Eigen::VectorXd rhs =
-          -EnergyGradient(space_, s, m, ShellSide::kDeformed);
-      const Eigen::VectorXd p = SolveModuloRigidMotions(h, rhs, m);
-      // left.first = d_m D_1 W[s_{k-1}, m]: rows s_{k-1}, columns m.
-      grad[term.previous] += scale * (left.first * p);
-      // right_m.second = d_m D_2 W[m, s_{k+1}]: rows s_{k+1}, columns m.
-      grad[term.next] += scale * (right_m.second * p);
+      // H_k p_k = -D_2 W[s_k, m_k] modulo rigid motions.
+      const Eigen::VectorXd p = mid.factor.Solve(
+          -EnergyGradient(space_, s, mid.m, ShellSide::kDeformed));
+      grad[term.previous] += scale * (mid.mixed_previous * p);
+      grad[term.next] += scale * (mid.mixed_next * p);
     }
     for (size_t i = 0; i < free_shapes_.size(); ++i) {
       Eigen::Map<Eigen::VectorXd>(gradient + i * n3, n3) =
           grad[free_shapes_[i]];
     }
+    timings_.gradient_seconds += SecondsSince(clock);
   } catch (const InputError&) {
     return false;  // a degenerate shape or midpoint: reject the point
   }

@@ -6,6 +6,7 @@
 
 #include <ceres/first_order_function.h>
 
+#include <memory>
 #include <vector>
 
 #include "problems/geodesic.h"
@@ -31,11 +32,33 @@ struct SplineSpec {
   double sigma = 1.0;  // weight of F_K
 };
 
+// Where the evaluations of a SplineObjective spend their time (wall clock,
+// accumulated over all Evaluate / SplineEnergyOf calls).
+struct SplineTimings {
+  int evaluations = 0;           // F_K evaluations (midpoint sweeps)
+  int gradient_evaluations = 0;  // of which with the adjoint gradient
+  int lm_solves = 0;             // midpoints (re)started by sparse LM
+  int lm_iterations = 0;         // their LM iterations
+  int newton_steps = 0;          // Hessian assemblies + factorisations
+  double lm_seconds = 0;         // sparse LM midpoint solves
+  double newton_seconds = 0;     // Newton steps (incl. the adjoint's H)
+  double gradient_seconds = 0;   // adjoint back-substitutions and sums
+};
+
 // R[s] = sum_j W[S_j, s_{k_j}] + sigma F_K[s], F_K = 4 K^3 sum_k W[s_k,
-// m_k], m_k = argmin_m W[s_{k-1}, m] + W[m, s_{k+1}] (geodesic midpoint,
-// solved by sparse LM, warm-started from the previous evaluation's midpoint).
-// Gradient by the adjoint: with H_k = D_2^2 W[s_{k-1}, m_k] + D_1^2 W[m_k,
-// s_{k+1}] and H_k p_k = -D_2 W[s_k, m_k] (solved modulo rigid motions),
+// m_k], m_k = argmin_m W[s_{k-1}, m] + W[m, s_{k+1}] (geodesic midpoint).
+// Midpoints: Newton's method on G(m) = D_2 W[s_{k-1}, m] + D_1 W[m, s_{k+1}]
+// = 0 with the exact Hessian H_k (gauge-reduced LDL^T), started from the
+// previous evaluation's midpoint; sparse LM first when there is none, or when
+// Newton fails (H_k not positive definite, or a step that does not halve
+// |G|; a warm LM restart is capped at 50 iterations, then run once more in
+// full; the full LM solve stands if Newton cannot improve on it). Newton stops
+// at |G| <= 1e-10 |D_2 W[s_{k-1}, m]| (max norms) or at the round-off floor (no
+// halving below 1e-8 of it). The last Newton step's factorised H_k and mixed
+// blocks serve the adjoint below when that step started from |G| <= 1e-6 |D_2
+// W| (else they are recomputed). Gradient by the adjoint: with H_k = D_2^2
+// W[s_{k-1}, m_k] + D_1^2 W[m_k, s_{k+1}] and H_k p_k = -D_2 W[s_k, m_k]
+// (solved modulo rigid motions),
 //   dF/ds_k     += 4K^3 D_1 W[s_k, m_k],
 //   dF/ds_{k-1} += 4K^3 (d_{s_{k-1}} d_m W[s_{k-1}, m_k]) p_k,
 //   dF/ds_{k+1} += 4K^3 (d_{s_{k+1}} d_m W[m_k, s_{k+1}]) p_k,
@@ -45,6 +68,7 @@ class SplineObjective : public ceres::FirstOrderFunction {
  public:
   SplineObjective(const ShellSpace& space, SplineSpec spec,
                   const SolverSettings& inner_settings);
+  ~SplineObjective() override;
 
   int NumParameters() const override { return num_parameters_; }
   bool Evaluate(const double* parameters, double* cost,
@@ -55,18 +79,27 @@ class SplineObjective : public ceres::FirstOrderFunction {
   // F_K alone (without sigma and data) of a path, solving the midpoints.
   double SplineEnergyOf(const ShellPath& path) const;
   int num_shapes() const { return static_cast<int>(spec_.initial.size()); }
+  const SplineTimings& timings() const { return timings_; }
 
  private:
   struct Term {
     int previous, center, next;
   };
+  struct Midpoint;  // the midpoint m_k and its adjoint data
+  // Solves all midpoints of `path`; with `adjoint`, also leaves H_k factorised
+  // and the mixed blocks of the terms with a free neighbour. False if a
+  // midpoint solve fails.
+  bool SolveMidpoints(const ShellPath& path, bool adjoint) const;
+  bool SolveMidpoint(const Positions& a, const Positions& b, bool adjoint,
+                     Midpoint* midpoint) const;
   const ShellSpace& space_;
   SplineSpec spec_;
   SolverSettings inner_settings_;
   std::vector<Term> terms_;
   std::vector<int> free_shapes_;
   int num_parameters_ = 0;
-  mutable std::vector<Positions> midpoints_;  // warm starts, one per term
+  mutable std::vector<std::unique_ptr<Midpoint>> midpoints_;  // per term
+  mutable SplineTimings timings_;
 };
 
 }  // namespace shellspace

@@ -80,6 +80,36 @@ TEST_F(SplineTest, RegressionAndPeriodicGradientsMatchCentralDifferences) {
   CheckGradient(SplineObjective(space_, spec, TightInner()), 2);
 }
 
+// The warm-started evaluation (Newton from the previous midpoints, the last
+// Newton step's Hessian reused for the adjoint) agrees with a cold one (LM
+// from the average of the neighbours, then Newton) at the same point.
+TEST_F(SplineTest, WarmStartedEvaluationMatchesColdEvaluation) {
+  SplineSpec spec;
+  spec.steps = 4;
+  spec.initial = PiecewiseLinearPath({a_.positions, b_.positions, c_.positions},
+                                     {0, 2, 4}, 4, false);
+  spec.is_free = {0, 1, 0, 1, 0};
+  const SplineObjective warm(space_, spec, TightInner());
+  std::vector<double> x = warm.InitialParameters();
+  double f = 0;
+  std::vector<double> g_warm(x.size()), g_cold(x.size());
+  ASSERT_TRUE(warm.Evaluate(x.data(), &f, g_warm.data()));
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (double& v : x) v += 1e-3 * u(rng);  // as in CheckGradient
+  double f_warm = 0, f_cold = 0;
+  ASSERT_TRUE(warm.Evaluate(x.data(), &f_warm, g_warm.data()));
+  const SplineObjective cold(space_, spec, TightInner());
+  ASSERT_TRUE(cold.Evaluate(x.data(), &f_cold, g_cold.data()));
+  EXPECT_NEAR(f_warm, f_cold, 1e-10 * f_cold);
+  double scale = 0, difference = 0;
+  for (size_t i = 0; i < x.size(); ++i) {
+    scale = std::max(scale, std::abs(g_cold[i]));
+    difference = std::max(difference, std::abs(g_warm[i] - g_cold[i]));
+  }
+  EXPECT_LT(difference, 1e-7 * scale);
+}
+
 TEST_F(SplineTest, KeyframesOnAGeodesicGiveTheGeodesic) {
   GeodesicInput input;
   input.start = a_.positions;
