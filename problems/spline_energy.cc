@@ -154,16 +154,17 @@ ShellPath SplineObjective::PathFrom(const double* parameters) const {
 }
 
 bool SplineObjective::SolveMidpoint(const Positions& a, const Positions& b,
-                                    bool adjoint, Midpoint* mid) const {
+                                    const Positions& cold_start, bool adjoint,
+                                    Midpoint* mid) const {
   // LM runs: from a warm start, first one capped at kMaxWarmLmIterations,
   // then (if Newton still fails) one with the full inner settings; from no
-  // warm start, one full run from the average of a and b.
+  // warm start, one full run from `cold_start`.
   bool lm_done = false;  // the full run is done: no more LM
   int lm_runs = 0;
   const auto run_lm = [&]() {
     SolverSettings settings = inner_settings_;
     if (mid->m.size() == 0) {
-      mid->m = 0.5 * (a + b);
+      mid->m = cold_start;
       lm_done = true;
     } else if (lm_runs == 0) {
       settings.max_iterations =
@@ -284,8 +285,18 @@ bool SplineObjective::SolveMidpoints(const ShellPath& path,
     const Term& term = terms_[t];
     const bool needs_adjoint =
         adjoint && (spec_.is_free[term.previous] || spec_.is_free[term.next]);
-    if (!SolveMidpoint(path[term.previous], path[term.next], needs_adjoint,
-                       midpoints_[t].get())) {
+    // Without a warm start: from the average of the neighbours, else (it
+    // can be crumpled, e.g. cactus9 and cactus15) from s_k.
+    const Positions& a = path[term.previous];
+    const Positions& b = path[term.next];
+    Midpoint* mid = midpoints_[t].get();
+    const bool cold = mid->m.size() == 0;
+    if (SolveMidpoint(a, b, Positions(0.5 * (a + b)), needs_adjoint, mid)) {
+      continue;
+    }
+    if (!cold) return false;
+    mid->m.resize(0, 3);
+    if (!SolveMidpoint(a, b, path[term.center], needs_adjoint, mid)) {
       return false;
     }
   }

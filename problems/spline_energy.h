@@ -49,7 +49,8 @@ struct SplineTimings {
 // m_k], m_k = argmin_m W[s_{k-1}, m] + W[m, s_{k+1}] (geodesic midpoint).
 // Midpoints: Newton's method on G(m) = D_2 W[s_{k-1}, m] + D_1 W[m, s_{k+1}]
 // = 0 with the exact Hessian H_k (gauge-reduced LDL^T), started from the
-// previous evaluation's midpoint; sparse LM first when there is none, or when
+// previous evaluation's midpoint; sparse LM first when there is none (from
+// (s_{k-1} + s_{k+1})/2, failing that from s_k), or when
 // Newton fails (H_k not positive definite, or a step that does not halve
 // |G|; a warm LM restart is capped at 50 iterations, then run once more in
 // full; the full LM solve stands if Newton cannot improve on it). Newton stops
@@ -90,7 +91,8 @@ class SplineObjective : public ceres::FirstOrderFunction {
   // and the mixed blocks of the terms with a free neighbour. False if a
   // midpoint solve fails.
   bool SolveMidpoints(const ShellPath& path, bool adjoint) const;
-  bool SolveMidpoint(const Positions& a, const Positions& b, bool adjoint,
+  bool SolveMidpoint(const Positions& a, const Positions& b,
+                     const Positions& cold_start, bool adjoint,
                      Midpoint* midpoint) const;
   const ShellSpace& space_;
   SplineSpec spec_;
