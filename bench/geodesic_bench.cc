@@ -9,6 +9,8 @@
 
 #include "geometry/mesh_io.h"
 #include "problems/exponential_map.h"
+#include "problems/gauge_reduced_solve.h"
+#include "problems/path_hessian.h"
 #include "problems/parallel_transport.h"
 
 namespace shellspace {
@@ -50,6 +52,31 @@ void BM_FingerGeodesic(benchmark::State& state) {
   }
 }
 BENCHMARK(BM_FingerGeodesic)->Iterations(1)->Unit(benchmark::kSecond);
+
+// One assembly of the exact path Hessian (finger, K = 8, mask) on the linear
+// interpolation, with 1 or 2 threads: the per-step cost of the Newton stage.
+void BM_FingerPathHessian(benchmark::State& state) {
+  const Mesh a = ReadMesh(Data("finger/finger0.ply"));
+  const Mesh b = ReadMesh(Data("finger/finger1.ply"));
+  ShellMaterial material;
+  material.eta = 0.001;
+  const ShellSpace space(a, Topology::Build(a), material);
+  const auto mask = ReadMask(Data("finger/finger_mask.txt"), a.num_vertices());
+  const int K = 8;
+  ShellPath path;
+  for (int k = 0; k <= K; ++k) {
+    const double t = double(k) / K;
+    path.push_back((1 - t) * a.positions + t * b.positions);
+  }
+  const std::vector<Eigen::SparseMatrix<double>> bases(
+      K - 1, FreeVertexBasis(a.num_vertices(), mask));
+  const PathHessianAssembler assembler(space);
+  for (auto _ : state) {
+    const auto h = assembler.Assemble(path, bases, state.range(0));
+    state.counters["nonzeros"] = static_cast<double>(h.nonZeros());
+  }
+}
+BENCHMARK(BM_FingerPathHessian)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 void BM_CactusGeodesic(benchmark::State& state) {
   const Mesh a = ReadMesh(Data("cactus/cactus0.ply"));

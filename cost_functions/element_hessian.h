@@ -25,7 +25,10 @@ enum class ShellSide { kReference, kDeformed };
 // the Hessian D_2^2 e and d_grad_reference the mixed block d_Xbar d_X e (rows
 // Xbar, columns X); with active = kReference, d_grad_reference = D_1^2 e and
 // d_grad_deformed = d_X d_Xbar e (rows X, columns Xbar). Returns false if the
-// element is degenerate.
+// element is degenerate. With `rows` = kReference (kDeformed) only
+// grad_reference and d_grad_reference (grad_deformed, d_grad_deformed) are
+// computed -- one residual Jacobian fewer in dual numbers; the others are
+// left unchanged.
 template <int kVertices>
 struct ElementSecondDerivatives {
   static constexpr int n = 3 * kVertices;
@@ -34,9 +37,12 @@ struct ElementSecondDerivatives {
       d_grad_deformed;
   double energy = 0;
 
+  enum class Rows { kBoth, kReference, kDeformed };
+
   template <class Element>
   bool Compute(const Element& element, const double* reference,
-               const double* deformed, ShellSide active, double weight) {
+               const double* deformed, ShellSide active, double weight,
+               Rows rows = Rows::kBoth) {
     using J = ceres::Jet<double, n>;
     Vec3<J> ref[kVertices], def[kVertices];
     for (int v = 0; v < kVertices; ++v) {
@@ -53,22 +59,28 @@ struct ElementSecondDerivatives {
     constexpr int m = Element::kNumResiduals;
     J residuals[m];
     typename Element::template Jacobian<J> jac_ref, jac_def;
-    if (!element.Evaluate(ref, def, residuals, &jac_ref, &jac_def)) {
+    const bool want_ref = rows != Rows::kDeformed;
+    const bool want_def = rows != Rows::kReference;
+    if (!element.Evaluate(ref, def, residuals, want_ref ? &jac_ref : nullptr,
+                          want_def ? &jac_def : nullptr)) {
       return false;
     }
     energy = 0;
     for (int i = 0; i < m; ++i)
       energy += 0.5 * weight * residuals[i].a * residuals[i].a;
     for (int col = 0; col < n; ++col) {
-      J g_ref(0.0), g_def(0.0);
-      for (int i = 0; i < m; ++i) {
-        g_ref += jac_ref(i, col) * residuals[i];
-        g_def += jac_def(i, col) * residuals[i];
+      if (want_ref) {
+        J g(0.0);
+        for (int i = 0; i < m; ++i) g += jac_ref(i, col) * residuals[i];
+        grad_reference(col) = weight * g.a;
+        d_grad_reference.row(col) = weight * g.v.transpose();
       }
-      grad_reference(col) = weight * g_ref.a;
-      grad_deformed(col) = weight * g_def.a;
-      d_grad_reference.row(col) = weight * g_ref.v.transpose();
-      d_grad_deformed.row(col) = weight * g_def.v.transpose();
+      if (want_def) {
+        J g(0.0);
+        for (int i = 0; i < m; ++i) g += jac_def(i, col) * residuals[i];
+        grad_deformed(col) = weight * g.a;
+        d_grad_deformed.row(col) = weight * g.v.transpose();
+      }
     }
     return true;
   }

@@ -7,9 +7,7 @@
 
 namespace shellspace {
 
-Eigen::VectorXd SolveModuloRigidMotions(const Eigen::SparseMatrix<double>& h,
-                                        const Eigen::VectorXd& rhs,
-                                        const Positions& shape) {
+Eigen::SparseMatrix<double> RigidGaugeBasis(const Positions& shape) {
   const int n = static_cast<int>(shape.rows());
   const auto [a, b, c] = ChooseGaugeVertices(shape);
   const Eigen::Vector3d pa = shape.row(a), pb = shape.row(b), pc = shape.row(c);
@@ -32,6 +30,28 @@ Eigen::VectorXd SolveModuloRigidMotions(const Eigen::SparseMatrix<double>& h,
   }
   Eigen::SparseMatrix<double> basis(3 * n, column);
   basis.setFromTriplets(t.begin(), t.end());
+  return basis;
+}
+
+Eigen::SparseMatrix<double> FreeVertexBasis(
+    int num_vertices, const std::vector<int>& fixed_vertices) {
+  std::vector<bool> fixed(num_vertices, false);
+  for (int v : fixed_vertices) fixed[v] = true;
+  std::vector<Eigen::Triplet<double>> t;
+  int column = 0;
+  for (int v = 0; v < num_vertices; ++v) {
+    if (fixed[v]) continue;
+    for (int k = 0; k < 3; ++k) t.emplace_back(3 * v + k, column++, 1.0);
+  }
+  Eigen::SparseMatrix<double> basis(3 * num_vertices, column);
+  basis.setFromTriplets(t.begin(), t.end());
+  return basis;
+}
+
+Eigen::VectorXd SolveModuloRigidMotions(const Eigen::SparseMatrix<double>& h,
+                                        const Eigen::VectorXd& rhs,
+                                        const Positions& shape) {
+  const Eigen::SparseMatrix<double> basis = RigidGaugeBasis(shape);
   const Eigen::SparseMatrix<double> reduced =
       Eigen::SparseMatrix<double>(basis.transpose() * h * basis);
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(reduced);

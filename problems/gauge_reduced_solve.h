@@ -5,12 +5,25 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <vector>
 
 #include "geometry/mesh.h"
 
 namespace shellspace {
 
-// With the gauge vertices (a, b, c) of ChooseGaugeVertices(shape) and u =
+// Basis T (3n x (3n - 6)) of the coordinates left free by PinRigidMotions:
+// with the gauge vertices (a, b, c) of ChooseGaugeVertices(shape), u =
+// (X_b - X_a)/|.| and w the unit in-plane normal to u, T is the identity on
+// every other coordinate, zero on a, u on b and [u w] on c. A rigidly
+// invariant energy restricted to x + T q has no rigid null space.
+Eigen::SparseMatrix<double> RigidGaugeBasis(const Positions& shape);
+
+// Basis T (3n x 3m) selecting the coordinates of the m vertices not listed in
+// `fixed_vertices` (Dirichlet mask), in vertex order.
+Eigen::SparseMatrix<double> FreeVertexBasis(int num_vertices,
+                                            const std::vector<int>& fixed_vertices);
+
+// With T = RigidGaugeBasis(shape) (the gauge vertices (a, b, c) of ChooseGaugeVertices(shape) and u =
 // (X_b - X_a)/|.|, w the unit in-plane normal to u: p = T q, where T is the
 // identity on every other coordinate, zero on a, u on b and [u w] on c (the
 // 3n - 6 directions left by PinRigidMotions); solves (T^T H T) q = T^T rhs by

@@ -1,5 +1,6 @@
 #include "problems/geodesic.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "problems/rigid_gauge.h"
@@ -69,7 +70,38 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
       FixVerticesOrGauge(&result.path[k], input.fixed_vertices, &problem,
                          input.pin_gauge);
     }
-    result.summary = SolveWithSettings(&problem, settings);
+    const double g0 = GradientMaxNorm(&problem);
+    const double tolerance = settings.gradient_tolerance * std::max(1.0, g0);
+    SolverSettings lm = settings;
+    const bool newton = input.newton_from > 0;
+    if (newton) {
+      lm.gradient_tolerance =
+          std::max(settings.gradient_tolerance, input.newton_from);
+    }
+    result.summary = SolveWithSettings(&problem, lm, g0);
+    result.iterations = static_cast<int>(result.summary.iterations.size()) - 1;
+    result.final_gradient = result.summary.iterations.empty()
+                                ? g0
+                                : result.summary.iterations.back()
+                                      .gradient_max_norm;
+    if (newton && result.final_gradient > tolerance) {
+      PathNewtonSettings polish;
+      polish.gradient_tolerance = tolerance;
+      polish.num_threads = settings.num_threads;
+      polish.progress = settings.progress;
+      polish.progress_label = settings.progress_label + " newton";
+      result.newton = PolishPathNewton(space, input.fixed_vertices, polish,
+                                       &result.path);
+      result.iterations += result.newton.steps;
+      result.final_gradient = result.newton.final_gradient;
+      if (!result.newton.converged) {  // LM finishes the job
+        result.summary = SolveWithSettings(&problem, settings, g0);
+        result.iterations +=
+            static_cast<int>(result.summary.iterations.size()) - 1;
+        result.final_gradient =
+            result.summary.iterations.back().gradient_max_norm;
+      }
+    }
   }
   result.path_energy = PathEnergy(space, result.path, &result.step_energies);
   return result;

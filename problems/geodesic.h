@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "cost_functions/deformation_energy.h"
+#include "problems/path_newton.h"
 #include "problems/solver_settings.h"
 
 namespace shellspace {
@@ -32,16 +33,25 @@ struct GeodesicInput {
   // it free for LM's damping to handle (false; for tests of gauge
   // independence).
   bool pin_gauge = true;
+  // LM (Gauss-Newton) hands over to Newton's method (path_newton.h) once the
+  // gradient has dropped to newton_from times the initial one: Gauss-Newton
+  // converges only linearly near a geodesic. If Newton does not reach the
+  // tolerance, LM continues. 0 disables Newton.
+  double newton_from = 1e-3;
 };
 
 struct GeodesicResult {
   ShellPath path;                     // s_0 = start ... s_K = end
   double path_energy = 0;             // E_K
   std::vector<double> step_energies;  // W[s_{k-1}, s_k]
-  ceres::Solver::Summary summary;
+  ceres::Solver::Summary summary;          // the LM stage(s)
+  PathNewtonReport newton;                 // the Newton stage
+  int iterations = 0;                      // LM iterations + Newton steps
+  double final_gradient = 0;               // max |grad E_K| (free coords)
 };
 
-// Geodesic interpolation: minimises E_K over s_1..s_{K-1} by sparse LM. Each
+// Geodesic interpolation: minimises E_K over s_1..s_{K-1} by sparse LM
+// followed by Newton (see GeodesicInput::newton_from). Each
 // W[s_{k-1}, s_k] adds its membrane and bending residuals scaled by sqrt(K);
 // the end shapes are data. With a mask the listed vertices stay at their
 // initial (linearly interpolated) positions in every shape; without one the

@@ -64,9 +64,11 @@ double GradientMaxNorm(ceres::Problem* problem) {
 }
 
 ceres::Solver::Summary SolveWithSettings(ceres::Problem* problem,
-                                         const SolverSettings& settings) {
-  ceres::Solver::Options options =
-      MakeSolverOptions(settings, GradientMaxNorm(problem));
+                                         const SolverSettings& settings,
+                                         double reference_gradient_norm) {
+  ceres::Solver::Options options = MakeSolverOptions(
+      settings, reference_gradient_norm >= 0 ? reference_gradient_norm
+                                             : GradientMaxNorm(problem));
   ProgressPrinter printer(settings.progress_label);
   if (settings.progress) options.callbacks.push_back(&printer);
   ceres::Solver::Summary summary;

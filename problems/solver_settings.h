@@ -40,9 +40,10 @@ ceres::Solver::Options MakeSolverOptions(const SolverSettings& settings,
 // Prints "label iter N cost C |grad| G step S  T s" per iteration on stderr.
 class ProgressPrinter : public ceres::IterationCallback {
  public:
-  // The printed energy is cost_factor * Ceres' cost (2: least squares
-  // report 1/2 sum r^2).
-  explicit ProgressPrinter(std::string label, double cost_factor = 2.0);
+  // The printed energy is cost_factor * Ceres' cost (1 for the shell
+  // energies: W = 1/2 sum r^2 is Ceres' cost, and E_K with the sqrt(K)
+  // residual scaling).
+  explicit ProgressPrinter(std::string label, double cost_factor = 1.0);
   ceres::CallbackReturnType operator()(
       const ceres::IterationSummary& summary) override;
 
@@ -52,18 +53,17 @@ class ProgressPrinter : public ceres::IterationCallback {
   std::chrono::steady_clock::time_point start_;
 };
 
-}  // namespace shellspace
-
-#endif  // SHELLSPACE_PROBLEMS_SOLVER_SETTINGS_H_
-
-namespace shellspace {
-
 // Max-norm of the gradient of the problem's cost at the current parameters.
 double GradientMaxNorm(ceres::Problem* problem);
 
-// Solves `problem` with MakeSolverOptions(settings, GradientMaxNorm(problem))
-// and, if settings.progress, a ProgressPrinter.
+// Solves `problem` with MakeSolverOptions(settings, g0) and, if
+// settings.progress, a ProgressPrinter. g0 = reference_gradient_norm if it is
+// >= 0 (a solve continuing an earlier one keeps that one's reference), else
+// GradientMaxNorm(problem) at the initial guess.
 ceres::Solver::Summary SolveWithSettings(ceres::Problem* problem,
-                                         const SolverSettings& settings);
+                                         const SolverSettings& settings,
+                                         double reference_gradient_norm = -1);
 
 }  // namespace shellspace
+
+#endif  // SHELLSPACE_PROBLEMS_SOLVER_SETTINGS_H_

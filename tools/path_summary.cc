@@ -8,7 +8,7 @@ namespace shellspace {
 
 JsonObject PathSummary(const ShellSpace& space, const ShellPath& path,
                        const std::vector<ceres::Solver::Summary>& summaries,
-                       double seconds) {
+                       double seconds, const PathNewtonReport* newton) {
   std::vector<double> steps;
   const double energy = PathEnergy(space, path, &steps);
   int iterations = 0;
@@ -23,8 +23,14 @@ JsonObject PathSummary(const ShellSpace& space, const ShellPath& path,
     termination = ceres::TerminationTypeToString(s.termination_type);
     usable &= s.IsSolutionUsable() || s.iterations.empty();
   }
-  return JsonObject()
-      .Add("path_energy", energy)
+  if (newton != nullptr) {
+    iterations += newton->steps;
+    if (newton->converged && newton->steps > 0) {
+      gradient = newton->final_gradient;
+    }
+  }
+  JsonObject json;
+  json.Add("path_energy", energy)
       .Add("step_energies", steps)
       .Add("iterations", iterations)
       .Add("final_gradient_norm", gradient)
@@ -32,6 +38,13 @@ JsonObject PathSummary(const ShellSpace& space, const ShellPath& path,
       .Add("converged", usable)
       .Add("seconds", seconds)
       .Add("frames", static_cast<int>(path.size()));
+  if (newton != nullptr) {
+    json.Add("newton_steps", newton->steps)
+        .Add("newton_seconds", newton->seconds)
+        .Add("factorizations", newton->factorizations)
+        .Add("cg_iterations", newton->cg_iterations);
+  }
+  return json;
 }
 
 void WritePathOutputs(const std::string& dir, const Faces& faces,

@@ -14,10 +14,14 @@
 namespace shellspace {
 
 // JSON with path_energy, step_energies, iterations, final_gradient_norm
-// (max norm), termination, seconds, frames.
+// (max norm), termination, seconds, frames. With a Newton stage (`newton`,
+// geodesic interpolation) its steps count as iterations, its final gradient
+// is reported if it converged, and newton_steps, newton_seconds,
+// factorizations and cg_iterations are added.
 JsonObject PathSummary(const ShellSpace& space, const ShellPath& path,
                        const std::vector<ceres::Solver::Summary>& summaries,
-                       double seconds);
+                       double seconds,
+                       const PathNewtonReport* newton = nullptr);
 
 // Writes DIR/shape_000.ply ... and, if --png is set, a film strip.
 void WritePathOutputs(const std::string& dir, const Faces& faces,

@@ -36,7 +36,8 @@ int RunGeodesic() {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock)
           .count();
   if (FLAGS_json) {
-    std::cout << PathSummary(space, result.path, {result.summary}, seconds)
+    std::cout << PathSummary(space, result.path, {result.summary}, seconds,
+                             &result.newton)
                      .Add("output", FLAGS_output)
                      .str()
               << "\n";
