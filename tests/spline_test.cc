@@ -157,6 +157,54 @@ TEST_F(SplineTest, KeyframesOnAGeodesicGiveTheGeodesic) {
   }
 }
 
+// Euclidean limit: for keyframes within delta of a rest shape, F_K is the
+// quadratic (1/2) K^3 sum_k |s_{k-1} - 2 s_k + s_{k+1}|^2_G up to O(delta^3),
+// whose minimiser through the keyframes is the discrete cubic spline of the
+// vertex positions (per coordinate; at 0, 2, 4 with K = 4:
+// s_1 = (5 s_0 + 8 s_2 - s_4) / 12, s_3 = (-s_0 + 8 s_2 + 5 s_4) / 12).
+// So the cubic spline is a critical point of F_K up to O(delta^2): the
+// adjoint gradient there, relative to that on the piecewise linear path,
+// falls linearly in delta.
+TEST_F(SplineTest, CubicSplineIsCriticalInTheEuclideanLimit) {
+  const Positions& rest = a_.positions;
+  const Eigen::Vector3d lo = rest.colwise().minCoeff(),
+                        hi = rest.colwise().maxCoeff();
+  const double size = (hi - lo).norm();
+  Positions bump(rest.rows(), 3), shear(rest.rows(), 3);
+  for (int v = 0; v < rest.rows(); ++v) {
+    const double x = (rest(v, 0) - lo(0)) / (hi(0) - lo(0));
+    const double y = (rest(v, 1) - lo(1)) / (hi(1) - lo(1));
+    bump.row(v) = Eigen::Vector3d(0.3 * x * y, 0, std::sin(M_PI * x) *
+                                                      std::sin(M_PI * y));
+    shear.row(v) = Eigen::Vector3d(0, 0.2 * x * x, std::cos(M_PI * x) * y * y);
+  }
+  auto ratio = [&](double delta) {
+    const std::vector<Positions> keys = {rest, rest + delta * size * bump,
+                                         rest + delta * size * shear};
+    SplineSpec spec;
+    spec.steps = 4;
+    spec.is_free = {0, 1, 0, 1, 0};
+    auto gradient_norm = [&](const ShellPath& path) {
+      spec.initial = path;
+      const SplineObjective objective(space_, spec, TightInner());
+      std::vector<double> x = objective.InitialParameters(), g(x.size());
+      double f = 0;
+      EXPECT_TRUE(objective.Evaluate(x.data(), &f, g.data()));
+      return Eigen::Map<Eigen::VectorXd>(g.data(), g.size()).norm();
+    };
+    const ShellPath cubic = {
+        keys[0], (5 * keys[0] + 8 * keys[1] - keys[2]) / 12, keys[1],
+        (-keys[0] + 8 * keys[1] + 5 * keys[2]) / 12, keys[2]};
+    const ShellPath linear = PiecewiseLinearPath(keys, {0, 2, 4}, 4, false);
+    return gradient_norm(cubic) / gradient_norm(linear);
+  };
+  const double coarse = ratio(0.02), fine = ratio(0.01);
+  std::cout << "|grad F_K(cubic)| / |grad F_K(linear)|: " << coarse
+            << " (delta 0.02), " << fine << " (delta 0.01)\n";
+  EXPECT_LT(coarse, 0.2);
+  EXPECT_NEAR(fine / coarse, 0.5, 0.15);  // first order in delta
+}
+
 TEST_F(SplineTest, RegressionWithSmallSigmaInterpolates) {
   SplineSettings settings;
   settings.inner = TightInner();
