@@ -4,6 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
+
+#include "problems/spline_preconditioner.h"
 
 namespace shellspace {
 namespace {
@@ -31,48 +34,101 @@ void CheckIndices(const std::vector<int>& at, size_t count, int steps,
   }
 }
 
-// The objective divided by a constant. L-BFGS' first trial step is the
-// negative gradient itself; scaling the objective so that this step moves
-// vertices by 0.1 % of the shape's size keeps it from crumpling the shapes
-// (a failed evaluation would end the line search).
-class ScaledObjective : public ceres::FirstOrderFunction {
+// L-BFGS works on y with x = x0 + T y (SplinePreconditioner; T = I
+// without preconditioning), on the objective divided by a constant `scale`
+// (see Run).
+class PreconditionedObjective : public ceres::FirstOrderFunction {
  public:
-  ScaledObjective(const SplineObjective& inner, double scale)
-      : inner_(inner), inverse_scale_(1.0 / scale) {}
+  PreconditionedObjective(const SplineObjective& inner,
+                          const SplinePreconditioner* preconditioner,
+                          std::vector<double> x0, double scale)
+      : inner_(inner),
+        preconditioner_(preconditioner),
+        x0_(std::move(x0)),
+        inverse_scale_(1.0 / scale) {}
   int NumParameters() const override { return inner_.NumParameters(); }
-  bool Evaluate(const double* x, double* cost,
+  bool Evaluate(const double* y, double* cost,
                 double* gradient) const override {
-    if (!inner_.Evaluate(x, cost, gradient)) return false;
+    const std::vector<double> x = ToX(y);
+    std::vector<double> gx(gradient ? x.size() : 0);
+    if (!inner_.Evaluate(x.data(), cost, gradient ? gx.data() : nullptr)) {
+      return false;
+    }
     *cost *= inverse_scale_;
     if (gradient) {
+      if (preconditioner_) {
+        preconditioner_->ApplyTransposed(gx.data(), gradient);
+      } else {
+        std::copy(gx.begin(), gx.end(), gradient);
+      }
       for (int i = 0; i < NumParameters(); ++i) gradient[i] *= inverse_scale_;
     }
     return true;
   }
+  std::vector<double> ToX(const double* y) const {
+    std::vector<double> x(x0_.size());
+    if (preconditioner_) {
+      preconditioner_->Apply(y, x.data());
+    } else {
+      std::copy(y, y + x.size(), x.begin());
+    }
+    for (size_t i = 0; i < x.size(); ++i) x[i] += x0_[i];
+    return x;
+  }
+  void set_scale(double scale) { inverse_scale_ = 1.0 / scale; }
 
  private:
   const SplineObjective& inner_;
+  const SplinePreconditioner* preconditioner_;
+  std::vector<double> x0_;
   double inverse_scale_;
 };
 
+double MaxNorm(const std::vector<double>& v) {
+  double norm = 0;
+  for (double g : v) norm = std::max(norm, std::abs(g));
+  return norm;
+}
+
+// The first L-BFGS trial step is -gradient in y. The objective is divided by
+// `scale` so that this step moves no vertex by more than `max_first_move` of
+// the shape's size (a crumpled trial shape fails to evaluate and ends the
+// line search): with preconditioning scale = 1 unless the model step is
+// larger (the model Hessian is the identity, so the unit step is the model's
+// Newton step); without, the gradient step is scaled to max_first_move.
 SplineResult Run(const ShellSpace& space, SplineSpec spec,
                  const SplineSettings& settings) {
   const SplineObjective objective(space, spec, settings.inner);
-  std::vector<double> x = objective.InitialParameters();
+  std::vector<double> x0 = objective.InitialParameters();
   SplineResult result;
-  if (!x.empty()) {
+  std::vector<double> x = x0;
+  if (!x0.empty()) {
+    std::unique_ptr<SplinePreconditioner> preconditioner;
+    if (settings.precondition) {
+      preconditioner = std::make_unique<SplinePreconditioner>(
+          space, spec, settings.preconditioner_regularization);
+    }
+    // The problem owns the function; `scaled` stays valid while it lives.
+    auto* function =
+        new PreconditionedObjective(objective, preconditioner.get(), x0, 1.0);
+    ceres::GradientProblem problem(function);
+    PreconditionedObjective& scaled = *function;
+    std::vector<double> y(x0.size(), 0.0), gradient(x0.size());
     double cost = 0;
-    std::vector<double> gradient(x.size());
-    if (!objective.Evaluate(x.data(), &cost, gradient.data())) {
+    if (!scaled.Evaluate(y.data(), &cost, gradient.data())) {
       throw InputError("the initial path has degenerate shapes or midpoints");
     }
-    double norm = 0;
-    for (double g : gradient) norm = std::max(norm, std::abs(g));
+    const double norm = MaxNorm(gradient);
+    for (double& g : gradient) g = -g;
+    std::vector<double> first_move = scaled.ToX(gradient.data());
+    for (size_t i = 0; i < x0.size(); ++i) first_move[i] -= x0[i];
     const Positions& shape = spec.initial.front();
     const double size =
         (shape.colwise().maxCoeff() - shape.colwise().minCoeff()).norm();
-    const double scale = std::max(norm / (0.001 * size), 1e-300);
-    ceres::GradientProblem problem(new ScaledObjective(objective, scale));
+    const double move = MaxNorm(first_move) / (settings.max_first_move * size);
+    const double scale = std::max(preconditioner ? std::max(move, 1.0) : move,
+                                  1e-300);
+    scaled.set_scale(scale);
     ceres::GradientProblemSolver::Options options;
     options.line_search_direction_type = ceres::LBFGS;
     options.max_num_iterations = settings.max_iterations;
@@ -82,7 +138,8 @@ SplineResult Run(const ShellSpace& space, SplineSpec spec,
     options.logging_type = ceres::SILENT;
     ProgressPrinter printer(settings.progress_label, scale);
     if (settings.progress) options.callbacks.push_back(&printer);
-    ceres::Solve(options, problem, x.data(), &result.summary);
+    ceres::Solve(options, problem, y.data(), &result.summary);
+    x = scaled.ToX(y.data());
   }
   result.path = objective.PathFrom(x.data());
   result.spline_energy = objective.SplineEnergyOf(result.path);

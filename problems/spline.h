@@ -29,6 +29,13 @@ struct SplineSettings {
   bool progress = false;
   std::string progress_label = "spline";
   SolverSettings inner;  // the midpoint solves
+  // L-BFGS in the variables of SplinePreconditioner (spline_preconditioner.h;
+  // metrics of the initial free shapes); false: in the vertex coordinates.
+  bool precondition = true;
+  double preconditioner_regularization = 1e-6;
+  // Bound on the first trial step's largest vertex move, relative to the
+  // size of the path's first shape.
+  double max_first_move = 0.01;
 };
 
 // Spline through `keyframes` at path indices `at` (strictly increasing, in

@@ -134,9 +134,11 @@ TEST_F(SplineTest, KeyframesOnAGeodesicGiveTheGeodesic) {
   double gmax = 0;
   for (double v : gradient) gmax = std::max(gmax, std::abs(v));
   EXPECT_LT(gmax, 1e-6);
-  // From the piecewise linear path, 60 L-BFGS iterations drive F_K down by
-  // more than an order of magnitude and halve the distance to the geodesic
-  // (L-BFGS converges slowly on this stiff problem: see the closing notes).
+  // From the piecewise linear path, 60 preconditioned L-BFGS iterations
+  // drive F_K down by four orders of magnitude and come within 2 % of the
+  // linear path's distance to the geodesic (measured: F_K 2.4e-4 of 25.3,
+  // distance 2.6e-4 vs 3.8e-2); in the vertex coordinates L-BFGS only gets
+  // to F_K = 0.33 (the stiff membrane against the soft bending modes).
   SplineSettings settings;
   settings.inner = tight;
   settings.max_iterations = 60;
@@ -146,12 +148,17 @@ TEST_F(SplineTest, KeyframesOnAGeodesicGiveTheGeodesic) {
   const SplineResult spline =
       SolveSpline(space_, {g.path[0], g.path[2], g.path[4]}, {0, 2, 4}, 4,
                   false, {}, settings);
-  EXPECT_LT(spline.spline_energy, 0.05 * f_linear);
+  EXPECT_LT(spline.spline_energy, 1e-4 * f_linear);
   for (int k : {1, 3}) {
     EXPECT_LT(RelativeDistanceUpToRigidMotion(spline.path[k], g.path[k]),
-              0.5 * RelativeDistanceUpToRigidMotion(linear[k], g.path[k]))
+              0.02 * RelativeDistanceUpToRigidMotion(linear[k], g.path[k]))
         << k;
   }
+  settings.precondition = false;
+  const SplineResult plain =
+      SolveSpline(space_, {g.path[0], g.path[2], g.path[4]}, {0, 2, 4}, 4,
+                  false, {}, settings);
+  EXPECT_GT(plain.spline_energy, 100 * spline.spline_energy);
   for (int k : {0, 2, 4}) {
     EXPECT_EQ((spline.path[k] - g.path[k]).cwiseAbs().maxCoeff(), 0.0) << k;
   }
