@@ -61,11 +61,12 @@ void BM_CactusSplines(benchmark::State& state) {
     std::fprintf(stderr,
                  "nonlinear: %d F_K evaluations (%d with gradient); %d LM "
                  "midpoint solves (%d iterations, %.1f s), %d Newton steps "
-                 "(%.1f s), adjoint sums %.1f s; %s\n",
+                 "(%d factorisations, %d CG iterations, %.1f s), adjoint "
+                 "%.1f s; %s\n",
                  t.evaluations, t.gradient_evaluations, t.lm_solves,
                  t.lm_iterations, t.lm_seconds, t.newton_steps,
-                 t.newton_seconds, t.gradient_seconds,
-                 nonlinear.summary.BriefReport().c_str());
+                 t.factorizations, t.cg_iterations, t.newton_seconds,
+                 t.gradient_seconds, nonlinear.summary.BriefReport().c_str());
     state.counters["ltheta_s"] = Seconds(t0, t1);
     state.counters["F_ltheta"] = ltheta_energy.spline_energy;
     state.counters["F_eval_s"] = Seconds(t1, t2);
@@ -76,6 +77,8 @@ void BM_CactusSplines(benchmark::State& state) {
     state.counters["lm_s"] = t.lm_seconds;
     state.counters["newton_s"] = t.newton_seconds;
     state.counters["adjoint_s"] = t.gradient_seconds;
+    state.counters["factorizations"] = t.factorizations;
+    state.counters["cg_iterations"] = t.cg_iterations;
   }
 }
 BENCHMARK(BM_CactusSplines)->Arg(30)->Iterations(1)->Unit(benchmark::kSecond);

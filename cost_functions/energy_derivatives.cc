@@ -1,5 +1,7 @@
 #include "cost_functions/energy_derivatives.h"
 
+#include <ceres/jet.h>
+
 #include <vector>
 
 namespace shellspace {
@@ -49,6 +51,45 @@ Eigen::VectorXd EnergyGradient(const ShellSpace& space,
   };
   ForEachElement(space, reference, deformed, accumulate);
   return gradient;
+}
+
+Eigen::VectorXd EnergyGradientDerivative(const ShellSpace& space,
+                                         const Positions& reference,
+                                         const Positions& deformed,
+                                         ShellSide gradient, ShellSide moved,
+                                         const Eigen::VectorXd& p) {
+  using J = ceres::Jet<double, 1>;
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(3 * space.num_vertices);
+  auto accumulate = [&](const int* vs, int count, const double* ref,
+                        const double* def, const auto& element) {
+    using E = std::decay_t<decltype(element)>;
+    constexpr int kV = E::kNumResiduals == 4 ? 3 : 4;
+    Vec3<J> x_ref[kV], x_def[kV];
+    for (int a = 0; a < kV; ++a) {
+      for (int c = 0; c < 3; ++c) {
+        x_ref[a](c) = J(ref[3 * a + c]);
+        x_def[a](c) = J(def[3 * a + c]);
+        J& x = moved == ShellSide::kReference ? x_ref[a](c) : x_def[a](c);
+        x.v[0] = p(3 * vs[a] + c);
+      }
+    }
+    J r[E::kNumResiduals];
+    typename E::template Jacobian<J> jac;
+    const bool of_reference = gradient == ShellSide::kReference;
+    if (!element.Evaluate(x_ref, x_def, r, of_reference ? &jac : nullptr,
+                          of_reference ? nullptr : &jac)) {
+      throw InputError("degenerate triangle while differentiating W");
+    }
+    for (int a = 0; a < count; ++a) {
+      for (int c = 0; c < 3; ++c) {
+        J g(0.0);
+        for (int i = 0; i < E::kNumResiduals; ++i) g += jac(i, 3 * a + c) * r[i];
+        out(3 * vs[a] + c) += g.v[0];
+      }
+    }
+  };
+  ForEachElement(space, reference, deformed, accumulate);
+  return out;
 }
 
 std::pair<SparseMatrix, SparseMatrix> EnergyHessianColumns(

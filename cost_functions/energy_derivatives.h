@@ -21,6 +21,18 @@ Eigen::VectorXd EnergyGradient(const ShellSpace& space,
                                const Positions& reference,
                                const Positions& deformed, ShellSide side);
 
+// d/de D W[reference + e p, deformed] (moved kReference) or
+// d/de D W[reference, deformed + e p] (moved kDeformed) at e = 0, with D =
+// D_1 (gradient kReference) or D_2 (kDeformed): the product of the block
+// EnergyHessian(gradient, moved) with p, without assembling it (dual numbers
+// with one derivative over the element gradients). Throws InputError if an
+// element is degenerate.
+Eigen::VectorXd EnergyGradientDerivative(const ShellSpace& space,
+                                         const Positions& reference,
+                                         const Positions& deformed,
+                                         ShellSide gradient, ShellSide moved,
+                                         const Eigen::VectorXd& p);
+
 // The block d_rows d_cols W[reference, deformed] (3n x 3n): (kDeformed,
 // kDeformed) = D_2^2 W, (kReference, kReference) = D_1^2 W, (kReference,
 // kDeformed) = the mixed D_1 D_2 W (rows reference, columns deformed), and

@@ -1,12 +1,13 @@
 #include "problems/spline_energy.h"
 
-#include <Eigen/SparseCholesky>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 
 #include "cost_functions/energy_derivatives.h"
-#include "problems/rigid_gauge.h"
+#include "problems/gauge_reduced_solve.h"
+#include "problems/path_hessian.h"
+#include "problems/reusable_cholesky.h"
 
 namespace shellspace {
 
@@ -39,68 +40,76 @@ constexpr int kMaxNewtonSteps = 10;
 // not found then, the trial point is rejected and the line search shrinks.
 constexpr int kMaxWarmLmIterations = 50;
 
-// H p = rhs modulo rigid motions, factorised once and solved for several
-// right-hand sides (the Newton step and the adjoint p_k): with the gauge
-// vertices (a, b, c) of ChooseGaugeVertices(shape), u = (X_b - X_a)/|.| and w
-// the unit normal to u in the plane abc, p = T q where T is the identity on
-// every other coordinate, zero on a, u on b and [u w] on c, and (T^T H T) q =
-// T^T rhs by sparse LDL^T (as SolveModuloRigidMotions).
-class GaugeReducedFactor {
+// H_k = D_2^2 W[a, m] + D_1^2 W[m, b] restricted to the rigid gauge of m
+// (p = T q with T = RigidGaugeBasis(m)), assembled by PathHessianAssembler
+// on the path (a, m, b) (which gives 2 H_k), and solved by ReusableCholesky:
+// its factor serves as CG preconditioner for later Newton steps and later
+// L-BFGS evaluations of the same term, refactorised when CG stalls.
+class MidpointHessian {
  public:
-  // False unless T^T H T is positive definite.
-  bool Compute(const SparseMatrix& h, const Positions& shape) {
-    const int n = static_cast<int>(shape.rows());
-    const auto [a, b, c] = ChooseGaugeVertices(shape);
-    const Eigen::Vector3d pa = shape.row(a), pb = shape.row(b),
-                          pc = shape.row(c);
-    const Eigen::Vector3d u = (pb - pa).normalized();
-    const Eigen::Vector3d w = ((pc - pa) - (pc - pa).dot(u) * u).normalized();
-    std::vector<Eigen::Triplet<double>> t;
-    int column = 0;
-    for (int v = 0; v < n; ++v) {
-      if (v == a) continue;
-      if (v == b || v == c) {
-        const int directions = v == b ? 1 : 2;  // the line ab / plane abc
-        for (int d = 0; d < directions; ++d) {
-          const Eigen::Vector3d& dir = d == 0 ? u : w;
-          for (int k = 0; k < 3; ++k) t.emplace_back(3 * v + k, column, dir(k));
-          ++column;
-        }
-        continue;
-      }
-      for (int k = 0; k < 3; ++k) t.emplace_back(3 * v + k, column++, 1.0);
+  void Assemble(const PathHessianAssembler& assembler, const Positions& a,
+                const Positions& m, const Positions& b, int threads) {
+    basis_ = RigidGaugeBasis(m);
+    lower_ = 0.5 * assembler.Assemble({a, m, b}, {basis_}, threads);
+    vertex_of_.resize(basis_.cols());
+    for (int c = 0; c < basis_.cols(); ++c) {
+      vertex_of_[c] = basis_.innerIndexPtr()[basis_.outerIndexPtr()[c]] / 3;
     }
-    basis_.resize(3 * n, column);
-    basis_.setFromTriplets(t.begin(), t.end());
-    ldlt_.compute(SparseMatrix(basis_.transpose() * h * basis_));
-    return ldlt_.info() == Eigen::Success && ldlt_.vectorD().minCoeff() > 0;
   }
-  Eigen::VectorXd Solve(const Eigen::VectorXd& rhs) const {
-    return basis_ * ldlt_.solve(basis_.transpose() * rhs);
+  // H p = rhs to relative residual `tolerance`; false if H is not positive
+  // definite (modulo rigid motions).
+  bool Solve(const Eigen::VectorXd& rhs, double tolerance,
+             Eigen::VectorXd* p) {
+    Eigen::VectorXd q;
+    const Eigen::VectorXd reduced = basis_.transpose() * rhs;
+    if (!solver_.Solve(lower_, vertex_of_, basis_.rows() / 3, reduced,
+                       tolerance, &q)) {
+      return false;
+    }
+    *p = basis_ * q;
+    return true;
   }
+  const ReusableCholesky::Stats& stats() const { return solver_.stats(); }
 
  private:
-  SparseMatrix basis_;
-  Eigen::SimplicialLDLT<SparseMatrix> ldlt_;
+  SparseMatrix basis_, lower_;
+  std::vector<int> vertex_of_;
+  ReusableCholesky solver_;
 };
+
+// Relative residual of the linear solves: Newton steps (tighter as |G|
+// falls) and the adjoint.
+double NewtonForcing(double norm, double scale) {
+  return std::clamp(norm / scale, 1e-12, 1e-3);
+}
+constexpr double kAdjointTolerance = 1e-10;
 
 }  // namespace
 
-// m_k, and (when `has_adjoint`) the factorised H_k and the mixed blocks of
-// the adjoint gradient at m_k.
+// m_k, and (when `has_adjoint`) H_k at m_k for the adjoint gradient.
 struct SplineObjective::Midpoint {
   Positions m;
   bool has_adjoint = false;
-  GaugeReducedFactor factor;  // H_k = D_2^2 W[s_{k-1}, m] + D_1^2 W[m, s_{k+1}]
-  SparseMatrix mixed_previous;  // d_m D_1 W[s_{k-1}, m]: rows s_{k-1}
-  SparseMatrix mixed_next;      // d_m D_2 W[m, s_{k+1}]: rows s_{k+1}
+  MidpointHessian hessian;  // H_k = D_2^2 W[s_{k-1}, m] + D_1^2 W[m, s_{k+1}]
 };
 
 SplineObjective::~SplineObjective() = default;
 
+SplineTimings SplineObjective::timings() const {
+  SplineTimings t = timings_;
+  for (const auto& mid : midpoints_) {
+    t.factorizations += mid->hessian.stats().factorizations;
+    t.cg_iterations += mid->hessian.stats().cg_iterations;
+  }
+  return t;
+}
+
 SplineObjective::SplineObjective(const ShellSpace& space, SplineSpec spec,
                                  const SolverSettings& inner_settings)
-    : space_(space), spec_(std::move(spec)), inner_settings_(inner_settings) {
+    : space_(space),
+      spec_(std::move(spec)),
+      inner_settings_(inner_settings),
+      assembler_(std::make_unique<PathHessianAssembler>(space)) {
   const int K = spec_.steps;
   const int shapes = spec_.periodic ? K : K + 1;
   if (K < 2) throw InputError("--steps must be at least 2 for a spline");
@@ -203,26 +212,23 @@ bool SplineObjective::SolveMidpoint(const Positions& a, const Positions& b,
       converged = true;
       break;
     }
-    // H_k and the mixed blocks at the current iterate.
-    const auto left =
-        EnergyHessianColumns(space_, a, mid->m, ShellSide::kDeformed);
-    const auto right =
-        EnergyHessianColumns(space_, mid->m, b, ShellSide::kReference);
+    // H_k at the current iterate.
+    mid->hessian.Assemble(*assembler_, a, mid->m, b,
+                          inner_settings_.num_threads);
     ++timings_.newton_steps;
-    if (!mid->factor.Compute(left.second + right.first, mid->m)) {
-      if (lm_done || !run_lm()) break;  // H_k indefinite even after LM
-      g = residual(mid->m, &scale);
-      continue;
-    }
-    mid->mixed_previous = left.first;
-    mid->mixed_next = right.second;
     mid->has_adjoint = true;
     if (norm <= kNewtonTolerance * scale) {
       converged = true;  // H_k was needed for the adjoint only
       break;
     }
+    Eigen::VectorXd dm;
+    if (!mid->hessian.Solve(-g, NewtonForcing(norm, scale), &dm)) {
+      mid->has_adjoint = false;
+      if (lm_done || !run_lm()) break;  // H_k indefinite even after LM
+      g = residual(mid->m, &scale);
+      continue;
+    }
     Positions candidate = mid->m;
-    const Eigen::VectorXd dm = mid->factor.Solve(-g);
     Eigen::Map<Eigen::VectorXd>(candidate.data(), candidate.size()) += dm;
     double candidate_scale = 0;
     const Eigen::VectorXd g_new = residual(candidate, &candidate_scale);
@@ -346,16 +352,31 @@ bool SplineObjective::Evaluate(const double* parameters, double* cost,
     }
     for (size_t t = 0; t < terms_.size(); ++t) {
       const Term& term = terms_[t];
-      const Midpoint& mid = *midpoints_[t];
+      Midpoint& mid = *midpoints_[t];
       const Positions& s = path[term.center];
       grad[term.center] +=
           scale * EnergyGradient(space_, s, mid.m, ShellSide::kReference);
       if (!spec_.is_free[term.previous] && !spec_.is_free[term.next]) continue;
-      // H_k p_k = -D_2 W[s_k, m_k] modulo rigid motions.
-      const Eigen::VectorXd p = mid.factor.Solve(
-          -EnergyGradient(space_, s, mid.m, ShellSide::kDeformed));
-      grad[term.previous] += scale * (mid.mixed_previous * p);
-      grad[term.next] += scale * (mid.mixed_next * p);
+      // H_k p_k = -D_2 W[s_k, m_k] modulo rigid motions; the mixed blocks
+      // applied to p_k as directional derivatives of the gradients.
+      Eigen::VectorXd p;
+      if (!mid.hessian.Solve(
+              -EnergyGradient(space_, s, mid.m, ShellSide::kDeformed),
+              kAdjointTolerance, &p)) {
+        return false;
+      }
+      if (spec_.is_free[term.previous]) {
+        grad[term.previous] +=
+            scale * EnergyGradientDerivative(space_, path[term.previous], mid.m,
+                                             ShellSide::kReference,
+                                             ShellSide::kDeformed, p);
+      }
+      if (spec_.is_free[term.next]) {
+        grad[term.next] +=
+            scale * EnergyGradientDerivative(space_, mid.m, path[term.next],
+                                             ShellSide::kDeformed,
+                                             ShellSide::kReference, p);
+      }
     }
     for (size_t i = 0; i < free_shapes_.size(); ++i) {
       Eigen::Map<Eigen::VectorXd>(gradient + i * n3, n3) =

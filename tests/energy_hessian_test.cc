@@ -96,6 +96,29 @@ TEST_P(EnergyHessianTest, HessiansMatchGradientDifferences) {
             1e-9 * h12.norm());
 }
 
+// The directional derivative of a gradient is the Hessian block times the
+// direction, for all four (gradient, moved) combinations.
+TEST_P(EnergyHessianTest, GradientDerivativeIsHessianTimesDirection) {
+  const Mesh ref = testing::LoadData(GetParam().reference);
+  const Mesh def = testing::LoadData(GetParam().deformed);
+  const ShellSpace space = testing::MakeSpace(ref);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  Eigen::VectorXd p(3 * ref.num_vertices());
+  for (int i = 0; i < p.size(); ++i) p(i) = u(rng);
+  for (ShellSide gradient : {ShellSide::kReference, ShellSide::kDeformed}) {
+    for (ShellSide moved : {ShellSide::kReference, ShellSide::kDeformed}) {
+      const Eigen::VectorXd expected =
+          EnergyHessian(space, ref.positions, def.positions, gradient, moved) *
+          p;
+      const Eigen::VectorXd actual = EnergyGradientDerivative(
+          space, ref.positions, def.positions, gradient, moved, p);
+      EXPECT_LT((actual - expected).norm(), 1e-12 * expected.norm())
+          << int(gradient) << int(moved);
+    }
+  }
+}
+
 // At rest the Hessian D_2^2 W[s, s] annihilates the 6 rigid motions.
 TEST(EnergyHessianRestTest, RigidNullSpaceAtRest) {
   const Mesh mesh = testing::LoadData("sphere/unitSphere1.ply");
