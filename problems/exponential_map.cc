@@ -1,6 +1,7 @@
 #include "problems/exponential_map.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "cost_functions/energy_derivatives.h"
 #include "cost_functions/gradient_field_residual.h"
@@ -11,7 +12,8 @@ namespace shellspace {
 ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
                       const Positions& b, StepDirection direction,
                       const std::vector<int>& fixed_vertices,
-                      const SolverSettings& settings) {
+                      const SolverSettings& settings,
+                      const Positions* alternative_start) {
   const bool forward = direction == StepDirection::kForward;
   // Constant part: forward D_2 W[a, b]; backward D_1 W[b, a].
   const Eigen::VectorXd constant =
@@ -20,13 +22,40 @@ ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
   const ShellSide unknown_side =
       forward ? ShellSide::kDeformed : ShellSide::kReference;
 
+  std::vector<char> is_fixed(space.num_vertices, 0);
+  for (int v : fixed_vertices) is_fixed[v] = 1;
+  // max |F| over the unknown vertices at s (infinite if s is degenerate).
+  const auto residual_norm = [&](const Positions& s) {
+    Eigen::VectorXd f = constant;
+    try {
+      f += forward ? EnergyGradient(space, b, s, ShellSide::kReference)
+                   : EnergyGradient(space, s, b, ShellSide::kDeformed);
+    } catch (const InputError&) {
+      return HUGE_VAL;
+    }
+    double norm = 0;
+    for (int v = 0; v < space.num_vertices; ++v) {
+      if (!is_fixed[v]) {
+        norm = std::max(norm, f.segment<3>(3 * v).cwiseAbs().maxCoeff());
+      }
+    }
+    return norm;
+  };
+
   ExpStepResult result;
   result.shape = 2 * b - a;
-  for (int v : fixed_vertices) result.shape.row(v) = b.row(v);
+  if (alternative_start != nullptr) {
+    Positions alternative = *alternative_start;
+    for (int v : fixed_vertices) alternative.row(v) = result.shape.row(v);
+    if (residual_norm(alternative) < residual_norm(result.shape)) {
+      result.shape = alternative;
+    }
+  }
   GradientFieldCache cache(space, b, unknown_side, &result.shape);
   cache.PrepareForEvaluation(false, true);
   if (!cache.ok()) {
     result.shape = b;
+    for (int v : fixed_vertices) result.shape.row(v) = 2 * b.row(v) - a.row(v);
     cache.PrepareForEvaluation(false, true);
   }
 
@@ -37,9 +66,6 @@ ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
       incident[element.vertices[k]].push_back(e);
     }
   }
-  std::vector<char> is_fixed(space.num_vertices, 0);
-  for (int v : fixed_vertices) is_fixed[v] = 1;
-
   ceres::Problem::Options options;
   options.evaluation_callback = &cache;
   ceres::Problem problem(options);
@@ -64,19 +90,7 @@ ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
   step_settings.initial_trust_region_radius =
       1e16;  // Gauss-Newton from the start
   result.summary = SolveWithSettings(&problem, step_settings);
-  // Recompute F at the result for the reported residual.
-  Eigen::VectorXd residual = constant;
-  residual +=
-      forward ? EnergyGradient(space, b, result.shape, ShellSide::kReference)
-              : EnergyGradient(space, result.shape, b, ShellSide::kDeformed);
-  result.residual_norm = 0;
-  for (int v = 0; v < space.num_vertices; ++v) {
-    if (!is_fixed[v]) {
-      result.residual_norm =
-          std::max(result.residual_norm,
-                   residual.segment<3>(3 * v).cwiseAbs().maxCoeff());
-    }
-  }
+  result.residual_norm = residual_norm(result.shape);  // F at the result
   return result;
 }
 

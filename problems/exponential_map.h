@@ -26,12 +26,18 @@ struct ExpStepResult {
 //           D_2 W[s_{k-1}, s_k] + D_1 W[s_k, s_{k+1}] = 0.
 // Solved as least squares of the per-vertex residuals F_v
 // (cost_functions/gradient_field_residual.h) by sparse LM, from 2 b - a (or b
-// if that has degenerate triangles). Vertices in `fixed_vertices` keep their
-// positions in b; without them the rigid gauge is pinned.
+// if that has degenerate triangles). Vertices in `fixed_vertices` are not
+// unknowns: they move on linearly, to 2 b - a (their positions in b if the
+// mask does not move), as geodesic interpolation moves them (linear
+// interpolation of the end shapes), so that shooting from (s_0, s_1) of a
+// masked geodesic continues its mask; without them the rigid gauge is pinned.
+// `alternative_start` (optional): a second initial guess, used instead if
+// its residual max |F| is smaller (its masked vertices are overwritten).
 ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
                       const Positions& b, StepDirection direction,
                       const std::vector<int>& fixed_vertices,
-                      const SolverSettings& settings);
+                      const SolverSettings& settings,
+                      const Positions* alternative_start = nullptr);
 
 // Geodesic shooting: from (s_0, s_1) computes s_2 .. s_steps by forward
 // steps (backward: from (s_0, s_1) the shapes s_{-1} .. s_{-(steps-1)}

@@ -1,5 +1,9 @@
 #include "problems/parallel_transport.h"
 
+#include <algorithm>
+
+#include "cost_functions/energy_derivatives.h"
+
 namespace shellspace {
 
 TransportResult ParallelTransport(const ShellSpace& space,
@@ -18,9 +22,20 @@ TransportResult ParallelTransport(const ShellSpace& space,
     const Positions initial = 0.5 * (p + path[k]);
     const Positions midpoint = SolveWeightedMidpoint(
         space, p, path[k], 1.0, 1.0, initial, fixed_vertices, settings);
-    p = ExpStep(space, path[k - 1], midpoint, StepDirection::kForward,
-                fixed_vertices, settings)
-            .shape;
+    // Besides 2 m_k - s_{k-1}, start from s_k + (p_{k-1} - s_{k-1}): the
+    // previous rung's variation at the new base point (the same point in
+    // Euclidean space; the better one of the two on curved paths).
+    const Positions carried = path[k] + (p - path[k - 1]);
+    const ExpStepResult step =
+        ExpStep(space, path[k - 1], midpoint, StepDirection::kForward,
+                fixed_vertices, settings, &carried);
+    p = step.shape;
+    const double scale =
+        EnergyGradient(space, path[k - 1], midpoint, ShellSide::kDeformed)
+            .cwiseAbs()
+            .maxCoeff();
+    result.exp_residuals.push_back(step.residual_norm /
+                                   std::max(scale, 1e-300));
     result.shapes.push_back(p);
     result.variations.push_back((p - path[k]) / epsilon);
   }

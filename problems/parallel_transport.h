@@ -11,6 +11,11 @@ namespace shellspace {
 struct TransportResult {
   std::vector<Positions> variations;  // xi_0 .. xi_K
   std::vector<Positions> shapes;      // p_k = s_k + eps xi_k
+  // Per rung k = 1..K: max |F| of the EXP step's Euler-Lagrange residual at
+  // p_k relative to max |D_2 W[s_{k-1}, m_k]| (0: solved exactly). Thin
+  // shells make the EXP step badly conditioned; a large value says the rung
+  // was not solved.
+  std::vector<double> exp_residuals;
 };
 
 // Transports the variation xi_0 at s_0 along path (s_0 .. s_K):

@@ -41,7 +41,8 @@ bool ReusableCholesky::Factorize(const Eigen::SparseMatrix<double>& lower,
   factor_->llt.compute(permuted);
   factorized_ = factor_->llt.info() == Eigen::Success;
   ++stats_.factorizations;
-  stats_.factorization_seconds += Since(start);
+  last_factorization_seconds_ = Since(start);
+  stats_.factorization_seconds += last_factorization_seconds_;
   return factorized_;
 }
 
@@ -65,6 +66,7 @@ bool ReusableCholesky::Solve(const Eigen::SparseMatrix<double>& lower,
     double rz = r.dot(z);
     bool converged = r.norm() <= target;
     for (int it = 0; it < max_cg_iterations && !converged; ++it) {
+      if (Since(start) >= last_factorization_seconds_) break;
       ++stats_.cg_iterations;
       const Eigen::VectorXd hd = h * d;
       const double curvature = d.dot(hd);

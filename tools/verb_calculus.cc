@@ -114,6 +114,7 @@ int RunTransport() {
     }
     std::cout << JsonObject()
                      .Add("variation_max_norms", norms)
+                     .Add("exp_residuals", result.exp_residuals)
                      .Add("epsilon", FLAGS_epsilon)
                      .Add("frames", static_cast<int>(result.shapes.size()))
                      .Add("seconds", Seconds(clock))
