@@ -53,13 +53,9 @@ TEST_F(GeodesicCalculusTest, ConvergedGeodesicIsStationaryWithEqualSteps) {
   // Interior Euler-Lagrange residual D_2 W[s_{k-1}, s_k] + D_1 W[s_k, s_{k+1}].
   for (int k = 1; k < 4; ++k) {
     const Eigen::VectorXd initial =
-        EnergyGradient(space_, linear.path[k - 1], linear.path[k],
-                       ShellSide::kDeformed) +
-        EnergyGradient(space_, linear.path[k], linear.path[k + 1],
-                       ShellSide::kReference);
+        testing::InteriorPathGradient(space_, linear.path, k);
     const Eigen::VectorXd gradient =
-        EnergyGradient(space_, g.path[k - 1], g.path[k], ShellSide::kDeformed) +
-        EnergyGradient(space_, g.path[k], g.path[k + 1], ShellSide::kReference);
+        testing::InteriorPathGradient(space_, g.path, k);
     EXPECT_LT(gradient.cwiseAbs().maxCoeff(),
               1e-8 * initial.cwiseAbs().maxCoeff())
         << k;

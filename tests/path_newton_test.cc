@@ -282,10 +282,7 @@ TEST(PathNewtonTest, NewtonPolishAgreesWithPureLevenbergMarquardt) {
   double g = 0;
   for (int k = 1; k < 4; ++k) {
     const Eigen::VectorXd gk =
-        EnergyGradient(space, newton.path[k - 1], newton.path[k],
-                       ShellSide::kDeformed) +
-        EnergyGradient(space, newton.path[k], newton.path[k + 1],
-                       ShellSide::kReference);
+        testing::InteriorPathGradient(space, newton.path, k);
     const Eigen::VectorXd reduced =
         RigidGaugeBasis(newton.path[k]).transpose() * gk;
     g = std::max(g, 4.0 * reduced.cwiseAbs().maxCoeff());

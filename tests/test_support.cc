@@ -7,6 +7,7 @@
 #include <random>
 #include <sstream>
 
+#include "cost_functions/energy_derivatives.h"
 #include "geometry/mesh_io.h"
 #include "geometry/validation.h"
 
@@ -24,6 +25,13 @@ Mesh LoadData(const std::string& relative) {
 
 ShellSpace MakeSpace(const Mesh& mesh, const ShellMaterial& material) {
   return ShellSpace(mesh, Topology::Build(mesh), material);
+}
+
+Eigen::VectorXd InteriorPathGradient(const ShellSpace& space,
+                                     const std::vector<Positions>& path,
+                                     int k) {
+  return EnergyGradient(space, path[k - 1], path[k], ShellSide::kDeformed) +
+         EnergyGradient(space, path[k], path[k + 1], ShellSide::kReference);
 }
 
 std::string TempDir() {

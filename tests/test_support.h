@@ -3,7 +3,9 @@
 #ifndef SHELLSPACE_TESTS_TEST_SUPPORT_H_
 #define SHELLSPACE_TESTS_TEST_SUPPORT_H_
 
+#include <Eigen/Core>
 #include <string>
+#include <vector>
 
 #include "cost_functions/deformation_energy.h"
 #include "geometry/mesh.h"
@@ -18,6 +20,12 @@ Mesh LoadData(const std::string& relative);
 
 // ShellSpace of a mesh with the given material.
 ShellSpace MakeSpace(const Mesh& mesh, const ShellMaterial& material = {});
+
+// The Euler-Lagrange residual of E_K / K at the inner shape k of `path`:
+// D_2 W[s_{k-1}, s_k] + D_1 W[s_k, s_{k+1}] (3n, vertex-major).
+Eigen::VectorXd InteriorPathGradient(const ShellSpace& space,
+                                     const std::vector<Positions>& path,
+                                     int k);
 
 // A fresh empty temporary directory.
 std::string TempDir();
