@@ -10,6 +10,8 @@
 #include "cost_functions/energy_derivatives.h"
 #include "geometry/rigid_alignment.h"
 #include "problems/gauge_reduced_solve.h"
+#include "problems/path_hessian.h"
+#include "problems/reusable_cholesky.h"
 #include "problems/rigid_gauge.h"
 
 namespace shellspace {
@@ -89,23 +91,28 @@ bool NewtonFinish(const ShellSpace& space, const std::vector<Positions>& shapes,
                   const SolverSettings& settings, Positions* s,
                   int* iterations) {
   const auto clock = std::chrono::steady_clock::now();
+  const PathHessianAssembler assembler(space);
+  ReusableCholesky solver;
   GradientNorms current = NormsAt(space, shapes, *s);
   for (int it = 0; it < options.max_newton_iterations; ++it) {
     if (current.inf <= target) return true;
     if (!std::isfinite(current.two)) return false;
-    SparseMatrix h;
+    // H = sum_i D_2^2 W[S_i, s] modulo rigid motions (p = T q).
     Eigen::VectorXd p;
     try {
-      for (const Positions& shape : shapes) {
-        SparseMatrix hi =
-            EnergyHessianColumns(space, shape, *s, ShellSide::kDeformed).second;
-        if (h.size() == 0) {
-          h = std::move(hi);
-        } else {
-          h += hi;
-        }
+      const SparseMatrix basis = RigidGaugeBasis(*s);
+      const SparseMatrix h = assembler.AssembleDeformedSum(
+          shapes, *s, basis, settings.num_threads);
+      std::vector<int> vertex_of(basis.cols());
+      for (int c = 0; c < basis.cols(); ++c) {
+        vertex_of[c] = basis.innerIndexPtr()[basis.outerIndexPtr()[c]] / 3;
       }
-      p = SolveModuloRigidMotions(h, -current.g, *s);
+      Eigen::VectorXd q;
+      const Eigen::VectorXd rhs = -(basis.transpose() * current.g);
+      if (!solver.Solve(h, vertex_of, space.num_vertices, rhs, 1e-10, &q)) {
+        return false;  // H not positive definite
+      }
+      p = basis * q;
     } catch (const InputError&) {
       return false;
     }

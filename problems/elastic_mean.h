@@ -34,7 +34,9 @@ Positions AlignedVertexAverage(const std::vector<Positions>& shapes);
 // stalls far out on the cactus: relative gradient 3e-2 after 100
 // iterations), or when LM stops for any other reason, Newton's method on
 //   G(s) = sum_i D_2 W[S_i, s] = 0,  H(s) = sum_i D_2^2 W[S_i, s]
-// takes over: H p = -G solved modulo rigid motions (SolveModuloRigidMotions),
+// takes over: H p = -G solved modulo rigid motions (H assembled by
+// PathHessianAssembler::AssembleDeformedSum on RigidGaugeBasis, factorised by
+// ReusableCholesky),
 // s <- s + t p with t the first of 1, 1/2, ..., 1/16 that either satisfies
 // Armijo's condition E(s + t p) <= E(s) + 1e-4 t G . p on E = sum_i W[S_i, .]
 // or lowers |G|_2 (near the mean the energy decrease is below round-off and

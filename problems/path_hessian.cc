@@ -169,7 +169,6 @@ Eigen::SparseMatrix<double> PathHessianAssembler::Assemble(
   if (inner < 1 || static_cast<int>(bases.size()) != inner) {
     throw std::invalid_argument("PathHessianAssembler: need K >= 2 and K - 1 bases");
   }
-  const int n = space_.num_vertices;
   const size_t block_values = 9 * pair_row_.size();
   std::vector<BlockArray> d22(inner), d11(inner), lower(inner);
   ParallelFor(K, threads, [&](int task) {
@@ -183,6 +182,39 @@ Eigen::SparseMatrix<double> PathHessianAssembler::Assemble(
     AddElementBlocks(path[k - 1], path[k], K, a, b, c);
   });
 
+  std::vector<std::vector<const BlockArray*>> diagonal(inner);
+  std::vector<const BlockArray*> below(inner, nullptr);
+  for (int i = 0; i < inner; ++i) {
+    diagonal[i] = {&d22[i], &d11[i]};
+    if (i + 1 < inner) below[i] = &lower[i];
+  }
+  return Compress(diagonal, below, bases);
+}
+
+Eigen::SparseMatrix<double> PathHessianAssembler::AssembleDeformedSum(
+    const std::vector<Positions>& references, const Positions& deformed,
+    const Eigen::SparseMatrix<double>& basis, int threads) const {
+  const int parts = std::max(1, std::min<int>(threads, references.size()));
+  const size_t block_values = 9 * pair_row_.size();
+  std::vector<BlockArray> sums(parts);
+  ParallelFor(parts, parts, [&](int part) {
+    sums[part].assign(block_values, 0.0);
+    for (size_t i = part; i < references.size(); i += parts) {
+      AddElementBlocks(references[i], deformed, 1.0, &sums[part], nullptr,
+                       nullptr);
+    }
+  });
+  std::vector<std::vector<const BlockArray*>> diagonal(1);
+  for (const BlockArray& sum : sums) diagonal[0].push_back(&sum);
+  return Compress(diagonal, {nullptr}, {basis});
+}
+
+Eigen::SparseMatrix<double> PathHessianAssembler::Compress(
+    const std::vector<std::vector<const BlockArray*>>& diagonal,
+    const std::vector<const BlockArray*>& lower,
+    const std::vector<Eigen::SparseMatrix<double>>& bases) const {
+  const int n = space_.num_vertices;
+  const int inner = static_cast<int>(bases.size());
   std::vector<std::vector<VertexColumns>> layout(inner);
   std::vector<int> offset(inner + 1, 0);
   for (int i = 0; i < inner; ++i) {
@@ -213,7 +245,10 @@ Eigen::SparseMatrix<double> PathHessianAssembler::Assemble(
           const VertexColumns& cv = layout[i][pair_row_[p]];
           if (cv.count == 0 || cv.first + cv.count <= column) continue;
           for (int e = 0; e < 9; ++e) {
-            diagonal_block[e] = d22[i][9 * p + e] + d11[i][9 * p + e];
+            diagonal_block[e] = 0;
+            for (const BlockArray* part : diagonal[i]) {
+              diagonal_block[e] += (*part)[9 * p + e];
+            }
           }
           for (int iv = 0; iv < cv.count; ++iv) {
             if (cv.first + iv < column) continue;
@@ -221,12 +256,13 @@ Eigen::SparseMatrix<double> PathHessianAssembler::Assemble(
             values.push_back(ReducedEntry(cv, iv, diagonal_block, cw, jw));
           }
         }
-        if (i + 1 == inner) continue;
+        if (lower[i] == nullptr) continue;
         for (int p = pair_start_[w]; p < pair_start_[w + 1]; ++p) {
           const VertexColumns& cv = layout[i + 1][pair_row_[p]];
           for (int iv = 0; iv < cv.count; ++iv) {
             inner_index.push_back(cv.first + iv);
-            values.push_back(ReducedEntry(cv, iv, &lower[i][9 * p], cw, jw));
+            values.push_back(
+                ReducedEntry(cv, iv, lower[i]->data() + 9 * p, cw, jw));
           }
         }
       }

@@ -41,6 +41,13 @@ class PathHessianAssembler {
       const std::vector<Eigen::SparseMatrix<double>>& bases,
       int threads) const;
 
+  // The lower triangle of T^T (sum_i D_2^2 W[references_i, deformed]) T for
+  // one shape (the Hessian of the elastic-mean energy), T = `basis` (as
+  // above). References are processed in parallel.
+  Eigen::SparseMatrix<double> AssembleDeformedSum(
+      const std::vector<Positions>& references, const Positions& deformed,
+      const Eigen::SparseMatrix<double>& basis, int threads) const;
+
   int num_vertex_pairs() const { return static_cast<int>(pair_row_.size()); }
 
  private:
@@ -49,6 +56,14 @@ class PathHessianAssembler {
   void AddElementBlocks(const Positions& reference, const Positions& deformed,
                         double weight, BlockArray* d22, BlockArray* d11,
                         BlockArray* mixed_transposed) const;
+
+  // T^T H T (lower triangle) from the diagonal blocks of each slice (the sum
+  // of the arrays diagonal[i]) and the blocks below the diagonal (lower[i]:
+  // rows slice i + 1, columns slice i).
+  Eigen::SparseMatrix<double> Compress(
+      const std::vector<std::vector<const BlockArray*>>& diagonal,
+      const std::vector<const BlockArray*>& lower,
+      const std::vector<Eigen::SparseMatrix<double>>& bases) const;
 
   const ShellSpace& space_;
   std::vector<int> pair_start_;  // pairs with column vertex w: [start_w, start_w+1)

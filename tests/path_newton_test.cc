@@ -150,6 +150,30 @@ TEST(PathHessianAssemblerTest, MatchesEnergyHessianBlocksWithRigidGauge) {
   EXPECT_EQ(llt.info(), Eigen::Success);
 }
 
+TEST(PathHessianAssemblerTest, DeformedSumMatchesEnergyHessians) {
+  std::vector<Positions> references;
+  for (const char* name : {"sphere/unitSphere1_defX.ply",
+                           "sphere/unitSphere1_defY.ply",
+                           "sphere/unitSphere1_defZ.ply"}) {
+    references.push_back(testing::LoadData(name).positions);
+  }
+  const Mesh s = testing::LoadData("sphere/unitSphere1.ply");
+  const ShellSpace space = testing::MakeSpace(s);
+  const SparseMatrix basis = RigidGaugeBasis(s.positions);
+  SparseMatrix sum(3 * s.num_vertices(), 3 * s.num_vertices());
+  for (const Positions& r : references) {
+    sum += EnergyHessian(space, r, s.positions, ShellSide::kDeformed,
+                         ShellSide::kDeformed);
+  }
+  const SparseMatrix reduced(basis.transpose() * sum * basis);
+  const SparseMatrix expected = reduced.triangularView<Eigen::Lower>();
+  for (int threads : {1, 2, 5}) {
+    const SparseMatrix h = PathHessianAssembler(space).AssembleDeformedSum(
+        references, s.positions, basis, threads);
+    EXPECT_LT(RelativeDifference(h, expected), 1e-13) << threads;
+  }
+}
+
 TEST(PathHessianAssemblerTest, DegenerateTriangleThrowsInputError) {
   const Mesh a = testing::LoadData("plate/plate121.ply");
   const ShellSpace space = testing::MakeSpace(a);
