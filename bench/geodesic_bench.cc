@@ -95,10 +95,7 @@ void BM_CactusMidpointHessian(benchmark::State& state) {
   const ShellSpace space(a, Topology::Build(a), ShellMaterial{});
   const Positions m = 0.5 * (a.positions + b.positions);
   const std::vector<Eigen::SparseMatrix<double>> bases = {RigidGaugeBasis(m)};
-  std::vector<int> vertex_of;
-  for (int c = 0; c < bases[0].cols(); ++c) {
-    vertex_of.push_back(bases[0].innerIndexPtr()[bases[0].outerIndexPtr()[c]] / 3);
-  }
+  const std::vector<int> vertex_of = BasisColumnVertices(bases[0]);
   const PathHessianAssembler assembler(space);
   const Eigen::VectorXd rhs = Eigen::VectorXd::Ones(bases[0].cols());
   for (auto _ : state) {

@@ -84,7 +84,7 @@ void BM_CactusRegression(benchmark::State& state) {
 }
 BENCHMARK(BM_CactusRegression)
     ->ArgName("max_iterations")
-    ->Arg(10)
+    ->Arg(20)
     ->Iterations(1)
     ->Unit(benchmark::kSecond);
 

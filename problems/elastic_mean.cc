@@ -103,10 +103,7 @@ bool NewtonFinish(const ShellSpace& space, const std::vector<Positions>& shapes,
       const SparseMatrix basis = RigidGaugeBasis(*s);
       const SparseMatrix h = assembler.AssembleDeformedSum(
           shapes, *s, basis, settings.num_threads);
-      std::vector<int> vertex_of(basis.cols());
-      for (int c = 0; c < basis.cols(); ++c) {
-        vertex_of[c] = basis.innerIndexPtr()[basis.outerIndexPtr()[c]] / 3;
-      }
+      const std::vector<int> vertex_of = BasisColumnVertices(basis);
       Eigen::VectorXd q;
       const Eigen::VectorXd rhs = -(basis.transpose() * current.g);
       if (!solver.Solve(h, vertex_of, space.num_vertices, rhs, 1e-10, &q)) {

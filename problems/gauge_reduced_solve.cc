@@ -33,6 +33,14 @@ Eigen::SparseMatrix<double> RigidGaugeBasis(const Positions& shape) {
   return basis;
 }
 
+std::vector<int> BasisColumnVertices(const Eigen::SparseMatrix<double>& basis) {
+  std::vector<int> vertex(basis.cols());
+  for (int c = 0; c < basis.cols(); ++c) {
+    vertex[c] = basis.innerIndexPtr()[basis.outerIndexPtr()[c]] / 3;
+  }
+  return vertex;
+}
+
 Eigen::SparseMatrix<double> FreeVertexBasis(
     int num_vertices, const std::vector<int>& fixed_vertices) {
   std::vector<bool> fixed(num_vertices, false);

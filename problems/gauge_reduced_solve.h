@@ -18,6 +18,10 @@ namespace shellspace {
 // invariant energy restricted to x + T q has no rigid null space.
 Eigen::SparseMatrix<double> RigidGaugeBasis(const Positions& shape);
 
+// The mesh vertex of each column of such a basis (columns are supported on
+// the three coordinates of one vertex).
+std::vector<int> BasisColumnVertices(const Eigen::SparseMatrix<double>& basis);
+
 // Basis T (3n x 3m) selecting the coordinates of the m vertices not listed in
 // `fixed_vertices` (Dirichlet mask), in vertex order.
 Eigen::SparseMatrix<double> FreeVertexBasis(int num_vertices,

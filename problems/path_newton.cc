@@ -7,6 +7,7 @@
 
 #include "cost_functions/energy_derivatives.h"
 #include "problems/gauge_reduced_solve.h"
+#include "problems/geodesic.h"
 #include "problems/parallel_for.h"
 #include "problems/path_hessian.h"
 #include "problems/reusable_cholesky.h"
@@ -14,15 +15,6 @@
 namespace shellspace {
 
 namespace {
-
-double PathEnergyOf(const ShellSpace& space, const ShellPath& path) {
-  const int K = static_cast<int>(path.size()) - 1;
-  double sum = 0;
-  for (int k = 1; k <= K; ++k) {
-    sum += EvaluateDeformationEnergy(space, path[k - 1], path[k]).total;
-  }
-  return K * sum;
-}
 
 // The free-coordinate bases of the inner shapes and their offsets in the
 // reduced unknown vector.
@@ -43,11 +35,9 @@ ReducedCoordinates MakeReducedCoordinates(const ShellSpace& space,
                           ? RigidGaugeBasis(path[k])
                           : FreeVertexBasis(space.num_vertices, fixed));
     r.offset.push_back(r.size);
-    const SparseMatrix& b = r.basis.back();
-    for (int c = 0; c < b.cols(); ++c) {
-      r.vertex_of.push_back(b.innerIndexPtr()[b.outerIndexPtr()[c]] / 3);
-    }
-    r.size += static_cast<int>(b.cols());
+    const std::vector<int> vertices = BasisColumnVertices(r.basis.back());
+    r.vertex_of.insert(r.vertex_of.end(), vertices.begin(), vertices.end());
+    r.size += static_cast<int>(vertices.size());
   }
   return r;
 }
@@ -104,7 +94,7 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
   const PathHessianAssembler assembler(space);
   ReducedCoordinates r = MakeReducedCoordinates(space, fixed_vertices, *path);
   Eigen::VectorXd g = ReducedGradient(space, *path, r, threads);
-  double energy = PathEnergyOf(space, *path);
+  double energy = PathEnergy(space, *path);
   report.initial_gradient = report.final_gradient = g.cwiseAbs().maxCoeff();
   report.stop_reason = "max steps";
   ReusableCholesky linear_solver;
@@ -137,7 +127,7 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
       ShellPath candidate = StepPath(*path, r, length * p);
       double candidate_energy = 0;
       try {
-        candidate_energy = PathEnergyOf(space, candidate);
+        candidate_energy = PathEnergy(space, candidate);
       } catch (const InputError&) {
         continue;  // a degenerate triangle: shorter step
       }

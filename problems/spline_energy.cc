@@ -51,10 +51,7 @@ class MidpointHessian {
                 const Positions& m, const Positions& b, int threads) {
     basis_ = RigidGaugeBasis(m);
     lower_ = 0.5 * assembler.Assemble({a, m, b}, {basis_}, threads);
-    vertex_of_.resize(basis_.cols());
-    for (int c = 0; c < basis_.cols(); ++c) {
-      vertex_of_[c] = basis_.innerIndexPtr()[basis_.outerIndexPtr()[c]] / 3;
-    }
+    vertex_of_ = BasisColumnVertices(basis_);
   }
   // H p = rhs to relative residual `tolerance`; false if H is not positive
   // definite (modulo rigid motions).
