@@ -91,6 +91,11 @@ int main(int argc, char** argv) {
   for (int i = first_flag; i < argc; ++i) args.push_back(argv[i]);
   int new_argc = static_cast<int>(args.size());
   char** new_argv = args.data();
+  // Ceres' warnings (an LM step retried after a failed factorisation of a
+  // nearly singular Gauss-Newton matrix, in EXP steps) are routine here and
+  // our own progress lines say how a solve goes: hidden unless the user
+  // passes --minloglevel=0.
+  FLAGS_minloglevel = google::GLOG_ERROR;
   gflags::SetUsageMessage("shellspace " + it->second.usage);
   gflags::ParseCommandLineNonHelpFlags(&new_argc, &new_argv, true);
   if (new_argc > 1) {
