@@ -72,35 +72,40 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
     }
     const double g0 = GradientMaxNorm(&problem);
     const double tolerance = settings.gradient_tolerance * std::max(1.0, g0);
-    SolverSettings lm = settings;
-    const bool newton = input.newton_from > 0;
-    if (newton) {
-      lm.gradient_tolerance =
-          std::max(settings.gradient_tolerance, input.newton_from);
-    }
-    result.summary = SolveWithSettings(&problem, lm, g0);
-    result.iterations = static_cast<int>(result.summary.iterations.size()) - 1;
-    result.final_gradient = result.summary.iterations.empty()
-                                ? g0
-                                : result.summary.iterations.back()
-                                      .gradient_max_norm;
-    if (newton && result.final_gradient > tolerance) {
-      PathNewtonSettings polish;
-      polish.gradient_tolerance = tolerance;
-      polish.num_threads = settings.num_threads;
-      polish.progress = settings.progress;
-      polish.progress_label = settings.progress_label + " newton";
-      result.newton = PolishPathNewton(space, input.fixed_vertices, polish,
-                                       &result.path);
-      result.iterations += result.newton.steps;
-      result.final_gradient = result.newton.final_gradient;
-      if (!result.newton.converged) {  // LM finishes the job
-        result.summary = SolveWithSettings(&problem, settings, g0);
+    result.final_gradient = g0;
+    // LM down to `relative` (or the tolerance), continuing from where it is.
+    const auto run_lm = [&](double relative) {
+      SolverSettings lm = settings;
+      lm.gradient_tolerance = std::max(settings.gradient_tolerance, relative);
+      result.summary = SolveWithSettings(&problem, lm, g0);
+      if (!result.summary.iterations.empty()) {
         result.iterations +=
             static_cast<int>(result.summary.iterations.size()) - 1;
         result.final_gradient =
             result.summary.iterations.back().gradient_max_norm;
       }
+    };
+    double threshold = input.newton_from;
+    for (int attempt = 0;; ++attempt) {
+      const bool newton = threshold > settings.gradient_tolerance &&
+                          attempt < GeodesicInput::kMaxNewtonAttempts;
+      run_lm(newton ? threshold : settings.gradient_tolerance);
+      if (!newton || result.final_gradient <= tolerance ||
+          result.summary.termination_type == ceres::FAILURE) {
+        break;
+      }
+      PathNewtonSettings polish;
+      polish.gradient_tolerance = tolerance;
+      polish.num_threads = settings.num_threads;
+      polish.progress = settings.progress;
+      polish.progress_label = settings.progress_label + " newton";
+      const PathNewtonReport report =
+          PolishPathNewton(space, input.fixed_vertices, polish, &result.path);
+      result.newton.Append(report);
+      result.iterations += report.steps;
+      result.final_gradient = report.final_gradient;
+      if (report.converged) break;
+      threshold *= 0.1;  // not yet in Newton's basin: more LM first
     }
   }
   result.path_energy = PathEnergy(space, result.path, &result.step_energies);

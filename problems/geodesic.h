@@ -35,9 +35,12 @@ struct GeodesicInput {
   bool pin_gauge = true;
   // LM (Gauss-Newton) hands over to Newton's method (path_newton.h) once the
   // gradient has dropped to newton_from times the initial one: Gauss-Newton
-  // converges only linearly near a geodesic. If Newton does not reach the
-  // tolerance, LM continues. 0 disables Newton.
+  // converges only linearly near a geodesic. If Newton stops short of the
+  // tolerance (Hessian not positive definite: not yet in its basin), LM
+  // continues to a ten times smaller gradient and Newton tries again, at
+  // most kMaxNewtonAttempts times; then LM alone. 0 disables Newton.
   double newton_from = 1e-3;
+  static constexpr int kMaxNewtonAttempts = 3;
 };
 
 struct GeodesicResult {
@@ -45,7 +48,7 @@ struct GeodesicResult {
   double path_energy = 0;             // E_K
   std::vector<double> step_energies;  // W[s_{k-1}, s_k]
   ceres::Solver::Summary summary;          // the LM stage(s)
-  PathNewtonReport newton;                 // the Newton stage
+  PathNewtonReport newton;                 // the Newton stage(s), summed
   int iterations = 0;                      // LM iterations + Newton steps
   double final_gradient = 0;               // max |grad E_K| (free coords)
 };

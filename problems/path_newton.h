@@ -34,6 +34,24 @@ struct PathNewtonReport {
   double cg_seconds = 0;             // of which: CG
   bool converged = false;        // final_gradient <= tolerance
   std::string stop_reason;       // why it stopped (converged, not SPD, ...)
+
+  // Adds a later attempt: counts and times summed, the rest from `later`
+  // (initial_gradient stays the first attempt's).
+  void Append(const PathNewtonReport& later) {
+    if (attempts == 0) initial_gradient = later.initial_gradient;
+    ++attempts;
+    steps += later.steps;
+    seconds += later.seconds;
+    assembly_seconds += later.assembly_seconds;
+    factorizations += later.factorizations;
+    factorization_seconds += later.factorization_seconds;
+    cg_iterations += later.cg_iterations;
+    cg_seconds += later.cg_seconds;
+    final_gradient = later.final_gradient;
+    converged = later.converged;
+    stop_reason = later.stop_reason;
+  }
+  int attempts = 0;  // PolishPathNewton calls summed by Append
 };
 
 // Newton polish of the inner shapes s_1..s_{K-1} of `path` (K + 1 shapes,

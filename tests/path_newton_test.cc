@@ -314,5 +314,29 @@ TEST(PathNewtonTest, NewtonPolishAgreesWithPureLevenbergMarquardt) {
   EXPECT_NEAR(g, newton.final_gradient, 1e-3 * newton.final_gradient + 1e-14);
 }
 
+// Newton tried far from the geodesic (at half the initial gradient) meets an
+// indefinite Hessian, LM goes on, and a later attempt converges to the same
+// geodesic.
+TEST(PathNewtonTest, EarlyNewtonRetriesAfterMoreLm) {
+  const Mesh a = testing::LoadData("plate/plate121.ply");
+  const Mesh b = testing::LoadData("plate/plate121_rolledA.ply");
+  const ShellSpace space = testing::MakeSpace(a);
+  SolverSettings settings;
+  settings.gradient_tolerance = 1e-10;
+  GeodesicInput input;
+  input.start = a.positions;
+  input.end = b.positions;
+  input.steps = 4;
+  input.newton_from = 0.5;
+  const GeodesicResult early = SolveGeodesic(space, input, settings);
+  input.newton_from = 0;
+  const GeodesicResult lm = SolveGeodesic(space, input, settings);
+  std::cout << "attempts " << early.newton.attempts << ", steps "
+            << early.newton.steps << ", " << early.newton.stop_reason << "\n";
+  EXPECT_GE(early.newton.attempts, 2);
+  EXPECT_TRUE(early.newton.converged);
+  EXPECT_NEAR(early.path_energy, lm.path_energy, 1e-9 * lm.path_energy);
+}
+
 }  // namespace
 }  // namespace shellspace
