@@ -5,9 +5,19 @@
 
 #include "cost_functions/energy_derivatives.h"
 #include "cost_functions/gradient_field_residual.h"
+#include "problems/exp_step_newton.h"
 #include "problems/rigid_gauge.h"
 
 namespace shellspace {
+
+namespace {
+// Newton's target for max |F| relative to max |D_2 W[s_{k-1}, s_k]|, the
+// level below which a stalled Newton run (round-off) is still accepted, and
+// its step limit.
+constexpr double kExpNewtonTolerance = 1e-11;
+constexpr double kExpNewtonAccept = 1e-8;
+constexpr int kMaxExpNewtonSteps = 20;
+}  // namespace
 
 ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
                       const Positions& b, StepDirection direction,
@@ -49,6 +59,31 @@ ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
     for (int v : fixed_vertices) alternative.row(v) = result.shape.row(v);
     if (residual_norm(alternative) < residual_norm(result.shape)) {
       result.shape = alternative;
+    }
+  }
+  // Newton on F with the exact Jacobian first (exp_step_newton.h); sparse
+  // LM on |F|^2 below only if Newton does not get there, from the same
+  // initial guess (where Newton fails, its iterates wander: LM from them
+  // did worse on the finger's last transport rung).
+  double scale = 1e-300;  // max |c| over the unknown vertices
+  for (int v = 0; v < space.num_vertices; ++v) {
+    if (!is_fixed[v]) {
+      scale = std::max(scale, constant.segment<3>(3 * v).cwiseAbs().maxCoeff());
+    }
+  }
+  {
+    Positions trial = result.shape;
+    const ExpNewtonReport newton =
+        SolveExpStepNewton(space, b, unknown_side, constant, fixed_vertices,
+                           kExpNewtonTolerance * scale, kMaxExpNewtonSteps,
+                           &trial);
+    result.newton_steps = newton.steps;
+    if (newton.final_residual <= kExpNewtonAccept * scale) {
+      result.shape = std::move(trial);
+      result.residual_norm = newton.final_residual;
+      result.summary.termination_type = ceres::CONVERGENCE;
+      result.summary.message = "Newton on F: " + newton.stop_reason;
+      return result;
     }
   }
   GradientFieldCache cache(space, b, unknown_side, &result.shape);
@@ -147,3 +182,4 @@ Positions LogK(const ShellSpace& space, const Positions& a, const Positions& b,
 }
 
 }  // namespace shellspace
+

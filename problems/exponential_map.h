@@ -16,6 +16,9 @@ enum class StepDirection { kForward, kBackward };
 struct ExpStepResult {
   Positions shape;
   double residual_norm = 0;  // max-norm of F at the result
+  int newton_steps = 0;      // Newton steps on F (exp_step_newton.h)
+  // The LM solve, if Newton did not converge; else a summary with
+  // termination CONVERGENCE, no iterations and message "Newton on F: ...".
   ceres::Solver::Summary summary;
 };
 
@@ -24,9 +27,11 @@ struct ExpStepResult {
 //           D_2 W[s_{k-1}, s_k] + D_1 W[s_k, s_{k+1}] = 0;
 //  backward (a, b) = (s_{k+1}, s_k): s_{k-1} with
 //           D_2 W[s_{k-1}, s_k] + D_1 W[s_k, s_{k+1}] = 0.
-// Solved as least squares of the per-vertex residuals F_v
-// (cost_functions/gradient_field_residual.h) by sparse LM, from 2 b - a (or b
-// if that has degenerate triangles). Vertices in `fixed_vertices` are not
+// Solved by Newton's method on F with the exact Jacobian and sparse LU
+// (exp_step_newton.h) to max |F| <= 1e-11 max |D_2 W[s_{k-1}, s_k]| (or
+// 1e-8 if round-off stalls it), else as least squares of the per-vertex
+// residuals F_v (cost_functions/gradient_field_residual.h) by sparse LM,
+// from 2 b - a (or b if that has degenerate triangles). Vertices in `fixed_vertices` are not
 // unknowns: they move on linearly, to 2 b - a (their positions in b if the
 // mask does not move), as geodesic interpolation moves them (linear
 // interpolation of the end shapes), so that shooting from (s_0, s_1) of a

@@ -111,6 +111,33 @@ TEST_F(GeodesicCalculusTest, ShootingReproducesAMaskedGeodesic) {
   EXPECT_LT((backward[0] - g.path[0]).cwiseAbs().maxCoeff(), 1e-5 * size);
 }
 
+// One EXP step is solved by Newton on F (exact mixed-Hessian Jacobian,
+// sparse LU) in a handful of steps, without falling back to LM.
+TEST_F(GeodesicCalculusTest, ExpStepConvergesByNewton) {
+  const GeodesicResult g = Geodesic(4);
+  for (StepDirection direction :
+       {StepDirection::kForward, StepDirection::kBackward}) {
+    const bool forward = direction == StepDirection::kForward;
+    const ExpStepResult step =
+        forward ? ExpStep(space_, g.path[1], g.path[2], direction, {}, Tight())
+                : ExpStep(space_, g.path[3], g.path[2], direction, {}, Tight());
+    const double scale =
+        (forward ? EnergyGradient(space_, g.path[1], g.path[2],
+                                  ShellSide::kDeformed)
+                 : EnergyGradient(space_, g.path[2], g.path[3],
+                                  ShellSide::kReference))
+            .cwiseAbs()
+            .maxCoeff();
+    EXPECT_GE(step.newton_steps, 1);
+    EXPECT_LE(step.newton_steps, 10);
+    EXPECT_TRUE(step.summary.iterations.empty());  // no LM
+    EXPECT_LT(step.residual_norm, 1e-8 * scale);
+    EXPECT_LT(RelativeDistanceUpToRigidMotion(step.shape,
+                                              forward ? g.path[3] : g.path[1]),
+              1e-5);
+  }
+}
+
 TEST_F(GeodesicCalculusTest, ExpOfLogIsIdentity) {
   const Positions log =
       LogK(space_, start_.positions, end_.positions, 4, {}, Tight());
