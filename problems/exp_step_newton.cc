@@ -40,7 +40,27 @@ double TwoNorm(const Eigen::VectorXd& f, const std::vector<char>& is_fixed) {
   return std::sqrt(sum);
 }
 
+std::vector<char> FixedFlags(int num_vertices,
+                             const std::vector<int>& fixed_vertices) {
+  std::vector<char> is_fixed(num_vertices, 0);
+  for (int v : fixed_vertices) is_fixed[v] = 1;
+  return is_fixed;
+}
+
 }  // namespace
+
+double ExpResidualMaxNorm(const ShellSpace& space, const Positions& fixed,
+                          ShellSide unknown_side,
+                          const Eigen::VectorXd& constant,
+                          const std::vector<int>& fixed_vertices,
+                          const Positions& s) {
+  try {
+    return MaxNorm(Residual(space, fixed, unknown_side, constant, s),
+                   FixedFlags(space.num_vertices, fixed_vertices));
+  } catch (const InputError&) {
+    return HUGE_VAL;
+  }
+}
 
 ExpNewtonReport SolveExpStepNewton(const ShellSpace& space,
                                    const Positions& fixed,
@@ -50,8 +70,8 @@ ExpNewtonReport SolveExpStepNewton(const ShellSpace& space,
                                    double tolerance, int max_steps,
                                    Positions* s) {
   ExpNewtonReport report;
-  std::vector<char> is_fixed(space.num_vertices, 0);
-  for (int v : fixed_vertices) is_fixed[v] = 1;
+  const std::vector<char> is_fixed =
+      FixedFlags(space.num_vertices, fixed_vertices);
   const bool gauge = fixed_vertices.empty();
   const SparseMatrix rows = gauge
                                 ? RigidGaugeBasis(fixed)

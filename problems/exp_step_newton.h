@@ -19,6 +19,14 @@ struct ExpNewtonReport {
   std::string stop_reason;
 };
 
+// max |F(s)| over the vertices not in `fixed_vertices` (F as below); +inf
+// if s has a degenerate triangle.
+double ExpResidualMaxNorm(const ShellSpace& space, const Positions& fixed,
+                          ShellSide unknown_side,
+                          const Eigen::VectorXd& constant,
+                          const std::vector<int>& fixed_vertices,
+                          const Positions& s);
+
 // Solves F(s) = c + D_fixed W = 0 (gradient_field_residual.h: forward step
 // unknown_side = kDeformed, F = D_2 W[s_{k-1}, s_k] + D_1 W[s_k, s]; backward
 // unknown_side = kReference, F = D_2 W[s, s_k] + D_1 W[s_k, s_{k+1}]) for s,

@@ -34,22 +34,9 @@ ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
 
   std::vector<char> is_fixed(space.num_vertices, 0);
   for (int v : fixed_vertices) is_fixed[v] = 1;
-  // max |F| over the unknown vertices at s (infinite if s is degenerate).
   const auto residual_norm = [&](const Positions& s) {
-    Eigen::VectorXd f = constant;
-    try {
-      f += forward ? EnergyGradient(space, b, s, ShellSide::kReference)
-                   : EnergyGradient(space, s, b, ShellSide::kDeformed);
-    } catch (const InputError&) {
-      return HUGE_VAL;
-    }
-    double norm = 0;
-    for (int v = 0; v < space.num_vertices; ++v) {
-      if (!is_fixed[v]) {
-        norm = std::max(norm, f.segment<3>(3 * v).cwiseAbs().maxCoeff());
-      }
-    }
-    return norm;
+    return ExpResidualMaxNorm(space, b, unknown_side, constant, fixed_vertices,
+                              s);
   };
 
   ExpStepResult result;
