@@ -146,17 +146,29 @@ LeaveOneOutTable EvaluateLeaveOneOut(const ShellSpace& space,
   for (int m = 0; m < num_m; ++m) {
     LeaveOneOutRow row;
     row.modes = m;
+    int shell_count = 0;
     for (const LeaveOneOutFold& fold : table.folds) {
-      row.shell_vertex_error += fold.shell_vertex_error[m];
-      row.shell_energy += fold.shell_energy[m];
       row.procrustes_vertex_error += fold.procrustes_vertex_error[m];
       row.procrustes_energy += fold.procrustes_energy[m];
+      if (!fold.shell_shots[m].ok) {
+        ++row.shell_failed;
+        continue;
+      }
+      ++shell_count;
+      row.shell_vertex_error += fold.shell_vertex_error[m];
+      row.shell_energy += fold.shell_energy[m];
+      row.procrustes_vertex_error_shell_folds += fold.procrustes_vertex_error[m];
+      row.procrustes_energy_shell_folds += fold.procrustes_energy[m];
     }
     const double count = static_cast<double>(table.folds.size());
-    row.shell_vertex_error /= count;
-    row.shell_energy /= count;
     row.procrustes_vertex_error /= count;
     row.procrustes_energy /= count;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const double shell = shell_count > 0 ? 1.0 / shell_count : nan;
+    row.shell_vertex_error *= shell;
+    row.shell_energy *= shell;
+    row.procrustes_vertex_error_shell_folds *= shell;
+    row.procrustes_energy_shell_folds *= shell;
     table.rows.push_back(row);
   }
   table.seconds = SecondsSince(clock);

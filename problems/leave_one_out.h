@@ -35,11 +35,18 @@ struct LeaveOneOutOptions {
   std::function<void(const std::string&)> log;
 };
 
-// One row of the table: averages over the folds for m modes.
+// One row of the table: averages over the folds for m modes. The shell
+// averages skip folds whose EXP shot failed (ExpShotReport::ok false: its
+// reconstruction is not a solution of the EXP equations, and its errors
+// would only measure the failure); shell_failed counts them. Procrustes
+// averages are over all folds, and over the shell's folds in *_shell_folds.
 struct LeaveOneOutRow {
   int modes = 0;
+  int shell_failed = 0;
   double shell_vertex_error = 0;
   double shell_energy = 0;  // mean W[truth, reconstruction]
+  double procrustes_vertex_error_shell_folds = 0;
+  double procrustes_energy_shell_folds = 0;
   double procrustes_vertex_error = 0;
   double procrustes_energy = 0;
 };

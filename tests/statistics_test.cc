@@ -381,6 +381,15 @@ TEST(LeaveOneOutTest, TableOnTheSpheres) {
     EXPECT_TRUE(std::isfinite(row.shell_energy));
     EXPECT_GT(row.procrustes_vertex_error, 0);
     EXPECT_GT(row.shell_energy, 0);
+    // Every shot passes here: the shell averages run over all folds, and
+    // the Procrustes averages over the shell's folds are the plain ones.
+    EXPECT_EQ(row.shell_failed, 0);
+    double shell_energy = 0;
+    for (const LeaveOneOutFold& fold : table.folds) {
+      shell_energy += fold.shell_energy[row.modes] / table.folds.size();
+    }
+    EXPECT_NEAR(row.shell_energy, shell_energy, 1e-14 * shell_energy);
+    EXPECT_DOUBLE_EQ(row.procrustes_energy_shell_folds, row.procrustes_energy);
   }
   // 3 training shapes per fold: 3 eigenvalues.
   for (const LeaveOneOutFold& fold : table.folds) {

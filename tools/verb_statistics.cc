@@ -143,16 +143,19 @@ int RunMean() {
 std::string TableText(const LeaveOneOutTable& table) {
   std::ostringstream out;
   char line[256];
-  std::snprintf(line, sizeof(line), "%2s  %14s %14s  %14s %14s\n", "m",
-                "shell err", "shell W", "procrustes err", "procrustes W");
+  std::snprintf(line, sizeof(line), "%2s  %14s %14s %6s  %14s %14s\n", "m",
+                "shell err", "shell W", "failed", "procrustes err",
+                "procrustes W");
   out << "leave-one-out over " << table.folds.size()
       << " folds (mean vertex error after rigid alignment; W[truth, "
-         "reconstruction])\n"
+         "reconstruction]; shell columns over the folds whose EXP shot "
+         "succeeded, 'failed' the others)\n"
       << line;
   for (const LeaveOneOutRow& row : table.rows) {
-    std::snprintf(line, sizeof(line), "%2d  %14.6g %14.6g  %14.6g %14.6g\n",
+    std::snprintf(line, sizeof(line), "%2d  %14.6g %14.6g %6d  %14.6g %14.6g\n",
                   row.modes, row.shell_vertex_error, row.shell_energy,
-                  row.procrustes_vertex_error, row.procrustes_energy);
+                  row.shell_failed, row.procrustes_vertex_error,
+                  row.procrustes_energy);
     out << line;
   }
   return out.str();
@@ -169,6 +172,11 @@ std::string TableJson(const LeaveOneOutTable& table) {
                 .Add("shell_energy", row.shell_energy)
                 .Add("procrustes_vertex_error", row.procrustes_vertex_error)
                 .Add("procrustes_energy", row.procrustes_energy)
+                .Add("shell_failed", row.shell_failed)
+                .Add("procrustes_vertex_error_shell_folds",
+                     row.procrustes_vertex_error_shell_folds)
+                .Add("procrustes_energy_shell_folds",
+                     row.procrustes_energy_shell_folds)
                 .str();
   }
   rows += "]";
