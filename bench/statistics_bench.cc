@@ -61,16 +61,24 @@ BENCHMARK(BM_FaceElasticMean)
     ->Iterations(1)
     ->Unit(benchmark::kSecond);
 
-void BM_CactusLeaveOneOutFold(benchmark::State& state) {
+// The cactus poses 0..18 (without cactus8 if asked) and the mesh of cactus0.
+struct CactusPoses {
   std::vector<Positions> shapes;
   Mesh first;
-  const bool without_pose_8 = state.range(1) != 0;
-  for (int i = 0; i < 19; ++i) {
-    if (without_pose_8 && i == 8) continue;
-    Mesh mesh = ReadMesh(Data("cactus/cactus" + std::to_string(i) + ".ply"));
-    if (i == 0) first = mesh;
-    shapes.push_back(mesh.positions);
+  explicit CactusPoses(bool without_pose_8) {
+    for (int i = 0; i < 19; ++i) {
+      if (without_pose_8 && i == 8) continue;
+      Mesh mesh = ReadMesh(Data("cactus/cactus" + std::to_string(i) + ".ply"));
+      if (i == 0) first = mesh;
+      shapes.push_back(mesh.positions);
+    }
   }
+};
+
+void BM_CactusLeaveOneOutFold(benchmark::State& state) {
+  const CactusPoses poses(state.range(1) != 0);
+  const std::vector<Positions>& shapes = poses.shapes;
+  const Mesh& first = poses.first;
   const ShellSpace space(first, Topology::Build(first), ShellMaterial{});
   LeaveOneOutOptions options;
   options.max_modes = 5;
@@ -130,14 +138,9 @@ BENCHMARK(BM_CactusLeaveOneOutFold)
 // process per core runs one part; each fold prints its line (all m) on
 // stderr, the rows of the part are counters. Args: p, P.
 void BM_CactusLeaveOneOutPart(benchmark::State& state) {
-  std::vector<Positions> shapes;
-  Mesh first;
-  for (int i = 0; i < 19; ++i) {
-    if (i == 8) continue;
-    Mesh mesh = ReadMesh(Data("cactus/cactus" + std::to_string(i) + ".ply"));
-    if (i == 0) first = mesh;
-    shapes.push_back(mesh.positions);
-  }
+  const CactusPoses poses(true);
+  const std::vector<Positions>& shapes = poses.shapes;
+  const Mesh& first = poses.first;
   const ShellSpace space(first, Topology::Build(first), ShellMaterial{});
   LeaveOneOutOptions options;
   options.max_modes = 5;
