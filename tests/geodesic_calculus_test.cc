@@ -13,14 +13,7 @@
 namespace shellspace {
 namespace {
 
-SolverSettings Tight() {
-  SolverSettings settings;
-  settings.gradient_tolerance = 1e-12;
-  settings.function_tolerance = 1e-16;
-  settings.parameter_tolerance = 1e-16;
-  settings.max_iterations = 500;
-  return settings;
-}
+SolverSettings Tight() { return testing::TightSettings(1e-12); }
 
 class GeodesicCalculusTest : public ::testing::Test {
  protected:

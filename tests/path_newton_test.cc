@@ -278,11 +278,7 @@ TEST(PathNewtonTest, NewtonPolishAgreesWithPureLevenbergMarquardt) {
   const Mesh a = testing::LoadData("plate/plate121.ply");
   const Mesh b = testing::LoadData("plate/plate121_rolledA.ply");
   const ShellSpace space = testing::MakeSpace(a);
-  SolverSettings settings;
-  settings.gradient_tolerance = 1e-11;
-  settings.function_tolerance = 1e-16;
-  settings.parameter_tolerance = 1e-16;
-  settings.max_iterations = 500;
+  const SolverSettings settings = testing::TightSettings(1e-11);
   GeodesicInput input;
   input.start = a.positions;
   input.end = b.positions;

@@ -34,6 +34,15 @@ Eigen::VectorXd InteriorPathGradient(const ShellSpace& space,
          EnergyGradient(space, path[k], path[k + 1], ShellSide::kReference);
 }
 
+SolverSettings TightSettings(double gradient_tolerance) {
+  SolverSettings settings;
+  settings.gradient_tolerance = gradient_tolerance;
+  settings.function_tolerance = 1e-16;
+  settings.parameter_tolerance = 1e-16;
+  settings.max_iterations = 500;
+  return settings;
+}
+
 std::string TempDir() {
   char pattern[] = "/tmp/shellspace_test_XXXXXX";
   const char* dir = mkdtemp(pattern);

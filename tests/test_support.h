@@ -9,6 +9,7 @@
 
 #include "cost_functions/deformation_energy.h"
 #include "geometry/mesh.h"
+#include "problems/solver_settings.h"
 
 namespace shellspace::testing {
 
@@ -26,6 +27,11 @@ ShellSpace MakeSpace(const Mesh& mesh, const ShellMaterial& material = {});
 Eigen::VectorXd InteriorPathGradient(const ShellSpace& space,
                                      const std::vector<Positions>& path,
                                      int k);
+
+// Settings of solves meant to converge to round-off: the given relative
+// gradient tolerance, function and parameter tolerances 1e-16, 500 LM
+// iterations.
+SolverSettings TightSettings(double gradient_tolerance);
 
 // A fresh empty temporary directory.
 std::string TempDir();
