@@ -12,6 +12,10 @@ namespace {
 
 // Near a singular J the Newton step can be huge: halve down to this.
 constexpr double kMinStepLength = 1.0 / (1 << 20);
+// Newton that has not halved max |F| after this many accepted steps is not
+// converging (damped steps crawling along a valley of |F| with no root
+// nearby): give up, the caller has a fallback.
+constexpr int kProgressSteps = 8;
 
 // F(s) over all coordinates (the masked rows are ignored by the norms).
 Eigen::VectorXd Residual(const ShellSpace& space, const Positions& fixed,
@@ -67,7 +71,8 @@ ExpNewtonReport SolveExpStepNewton(const ShellSpace& space,
                                    ShellSide unknown_side,
                                    const Eigen::VectorXd& constant,
                                    const std::vector<int>& fixed_vertices,
-                                   double tolerance, int max_steps,
+                                   double tolerance,
+                                   double stall_tolerance, int max_steps,
                                    Positions* s) {
   ExpNewtonReport report;
   const std::vector<char> is_fixed =
@@ -113,7 +118,7 @@ ExpNewtonReport SolveExpStepNewton(const ShellSpace& space,
       break;
     }
     const Eigen::VectorXd step = columns * q;
-    bool accepted = false;
+    bool accepted = false, stalled = false;
     const double two_norm = TwoNorm(f, is_fixed);
     for (double length = 1; length >= kMinStepLength && !accepted;
          length *= 0.5) {
@@ -131,6 +136,7 @@ ExpNewtonReport SolveExpStepNewton(const ShellSpace& space,
           !(TwoNorm(f_new, is_fixed) < two_norm)) {
         continue;
       }
+      stalled = norm <= stall_tolerance && !(norm <= 0.5 * report.final_residual);
       *s = candidate;
       f = std::move(f_new);
       report.final_residual = norm;
@@ -139,6 +145,15 @@ ExpNewtonReport SolveExpStepNewton(const ShellSpace& space,
     }
     if (!accepted) {
       report.stop_reason = "no decrease of |F| along the Newton step";
+      break;
+    }
+    if (stalled && !(report.final_residual <= tolerance)) {
+      report.stop_reason = "round-off floor";
+      break;
+    }
+    if (report.steps >= kProgressSteps &&
+        !(report.final_residual <= 0.5 * report.initial_residual)) {
+      report.stop_reason = "no progress";
       break;
     }
   }

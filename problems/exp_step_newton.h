@@ -39,15 +39,20 @@ double ExpResidualMaxNorm(const ShellSpace& space, const Positions& fixed,
 // J^T J, as Ceres' LM) squares the condition number of J, which for thin
 // shells is already large; Newton works with J itself. A step is accepted
 // if it lowers max |F| or |F|_2, halving it at most 20 times; stops at
-// max |F| <= tolerance, after max_steps, or when no step is accepted
-// (*s is left at the best point reached). Masked vertices of *s are not
-// touched.
+// max |F| <= tolerance, after max_steps, when no step is accepted (*s is
+// left at the best point reached), or at the round-off floor: an accepted
+// step that leaves max |F| <= stall_tolerance but does not halve it (the
+// quadratic convergence is over; on the cactus the floor is ~1.7e-11 of
+// |c| and further steps only shuffle round-off, 0.5 s each), or when 8
+// accepted steps have not halved max |F| (no root nearby). Masked
+// vertices of *s are not touched.
 ExpNewtonReport SolveExpStepNewton(const ShellSpace& space,
                                    const Positions& fixed,
                                    ShellSide unknown_side,
                                    const Eigen::VectorXd& constant,
                                    const std::vector<int>& fixed_vertices,
-                                   double tolerance, int max_steps,
+                                   double tolerance,
+                                   double stall_tolerance, int max_steps,
                                    Positions* s);
 
 }  // namespace shellspace

@@ -62,7 +62,8 @@ ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
     Positions trial = result.shape;
     const ExpNewtonReport newton =
         SolveExpStepNewton(space, b, unknown_side, constant, fixed_vertices,
-                           kExpNewtonTolerance * scale, kMaxExpNewtonSteps,
+                           kExpNewtonTolerance * scale,
+                           kExpNewtonAccept * scale, kMaxExpNewtonSteps,
                            &trial);
     result.newton_steps = newton.steps;
     if (newton.final_residual <= kExpNewtonAccept * scale) {

@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <string>
 
@@ -35,29 +36,39 @@ void CheckOptions(const ShellPcaOptions& options) {
   }
 }
 
-// A healthy EXP step converges in a handful of Gauss-Newton iterations; a
-// step that needs more than this is failing (and would otherwise run to
-// settings.max_iterations before the safeguard can react).
-constexpr int kMaxExpStepIterations = 50;
+// A healthy EXP step converges by Newton (exp_step_newton.h); the LM
+// fallback of ExpStep gets this many iterations in a shot before the step
+// counts as failed (a step that needs more is failing and would otherwise
+// run to settings.max_iterations before the safeguard can react).
+constexpr int kMaxExpStepIterations = 25;
 
-// One EXP_K shot from (s0, s0 + v/K), step by step. A step passes if its LM
+// How one EXP_K shot went.
+struct ShotOutcome {
+  bool ok = false;          // every step solved, drift within the bound
+  int unsolved_step = 0;    // k of the first step without a solution, or 0
+  double unsolved_residual = 0;  // its max |F| / max |D_2 W[s_{k-1}, s_k]|
+  double drift = 0;         // largest relative step-energy drift so far
+};
+
+// One EXP_K shot from (s0, s0 + v/K), step by step. A step is solved if its
 // solve is usable and either converged or left a residual |F|_inf <= 1e-6
-// |D_2 W[s_{k-1}, s_k]|_inf (then hitting the iteration cap is harmless), and
-// its energy is within max_drift of the first step's. Returns false as soon
-// as a step fails if `abort_early`; *drift gets the largest relative
-// step-energy drift so far (+inf for a failed step).
-bool ShootOnce(const ShellSpace& space, const Positions& s0,
-               const Positions& variation, int steps, double max_drift,
-               bool abort_early, const SolverSettings& settings, Positions* end,
-               double* drift) {
+// |D_2 W[s_{k-1}, s_k]|_inf (then hitting the iteration cap is harmless);
+// the shot is ok if every step is solved and within max_drift of the first
+// step's energy. The shot stops at the first unsolved step (what follows
+// would be shot from a non-solution), and at the first drift violation if
+// `abort_on_drift`; *end is set only if it ran to the end.
+ShotOutcome ShootOnce(const ShellSpace& space, const Positions& s0,
+                      const Positions& variation, int steps, double max_drift,
+                      bool abort_on_drift, const SolverSettings& settings,
+                      Positions* end) {
   SolverSettings step_settings = settings;
   step_settings.max_iterations =
       std::min(settings.max_iterations, kMaxExpStepIterations);
   Positions previous = s0;
   Positions current = s0 + variation / steps;
   const double first = EvaluateDeformationEnergy(space, s0, current).total;
-  *drift = 0;
-  bool ok = true;
+  ShotOutcome outcome;
+  outcome.ok = true;
   for (int k = 2; k <= steps; ++k) {
     ExpStepResult step = ExpStep(space, previous, current,
                                  StepDirection::kForward, {}, step_settings);
@@ -69,20 +80,23 @@ bool ShootOnce(const ShellSpace& space, const Positions& s0,
                         (step.summary.termination_type == ceres::CONVERGENCE ||
                          step.residual_norm <= 1e-6 * scale);
     if (!solved) {
-      *drift = std::numeric_limits<double>::infinity();
-      ok = false;
-    } else {
-      const double w =
-          EvaluateDeformationEnergy(space, current, step.shape).total;
-      *drift = std::max(*drift, std::abs(w - first) / first);
-      if (!(*drift <= max_drift)) ok = false;
+      outcome.ok = false;
+      outcome.unsolved_step = k;
+      outcome.unsolved_residual = step.residual_norm / scale;
+      outcome.drift = std::numeric_limits<double>::infinity();
+      return outcome;
+    }
+    const double w = EvaluateDeformationEnergy(space, current, step.shape).total;
+    outcome.drift = std::max(outcome.drift, std::abs(w - first) / first);
+    if (!(outcome.drift <= max_drift)) {
+      outcome.ok = false;
+      if (abort_on_drift) return outcome;
     }
     previous = std::move(current);
     current = std::move(step.shape);
-    if (!ok && abort_early) return false;
   }
   *end = std::move(current);
-  return ok;
+  return outcome;
 }
 
 }  // namespace
@@ -106,15 +120,26 @@ Positions ShootFromMean(const ShellSpace& space, const Positions& mean,
     ++r.attempts;
     r.steps = steps;
     Positions end;
-    bool ok = false;
+    ShotOutcome outcome;
     try {
-      ok = ShootOnce(space, mean, variation, steps, options.max_energy_drift,
-                     !last, settings, &end, &r.energy_drift);
+      outcome = ShootOnce(space, mean, variation, steps,
+                          options.max_energy_drift, !last, settings, &end);
     } catch (const InputError&) {
       if (last) throw;
+      outcome.unsolved_step = -1;  // a degenerate triangle: more steps
     }
-    if (ok || last) {
-      r.ok = ok;
+    r.energy_drift = outcome.drift;
+    if (last && outcome.unsolved_step > 0) {
+      char text[200];
+      std::snprintf(text, sizeof(text),
+                    "EXP shot: step %d of EXP_%d has no solution (max |F| = "
+                    "%.3g of |D_2 W|) after %d attempt(s) up to K = %d",
+                    outcome.unsolved_step, steps, outcome.unsolved_residual,
+                    r.attempts, steps);
+      throw InputError(text);
+    }
+    if (outcome.ok || last) {
+      r.ok = outcome.ok;
       return end;
     }
     steps *= 2;

@@ -86,12 +86,16 @@ struct ExpShotReport {
 // error into rough surfaces or an LM failure, "Matrix not positive
 // definite"). A discrete geodesic keeps its step energies W[s_{k-1}, s_k]
 // nearly constant (the discrete energy conservation), so a shot is accepted
-// if every step's LM solve (capped at 50 iterations) converged or reached a
-// residual |F|_inf <= 1e-6 |D_2 W[s_{k-1}, s_k]|_inf, and max_k |W_k - W_1| <=
-// max_energy_drift * W_1. Otherwise K is doubled (K = exp_steps, 2 K, 4 K,
-// ... <= max_exp_steps; exp_steps = 0 means `steps`) and the shot repeated;
-// the last shot is returned even if it fails the test (report->ok = false).
-// Throws InputError if the last shot meets a degenerate triangle.
+// if every step is solved (ExpStep's Newton converged, or its LM fallback,
+// capped at 25 iterations, converged or reached a residual |F|_inf <= 1e-6
+// |D_2 W[s_{k-1}, s_k]|_inf) and max_k |W_k - W_1| <= max_energy_drift *
+// W_1. Otherwise K is doubled (K = exp_steps, 2 K, 4 K, ... <=
+// max_exp_steps; exp_steps = 0 means `steps`) and the shot repeated. A shot
+// stops at its first unsolved step. The last shot is returned if it solved
+// every step, even if it fails the drift bound (report->ok = false); if it
+// has an unsolved step (no EXP solution near the extrapolation: e.g. a
+// variation that folds a patch of the mesh) or meets a degenerate triangle,
+// InputError is thrown, naming the step, and *report says what was tried.
 Positions ShootFromMean(const ShellSpace& space, const Positions& mean,
                         const Positions& variation,
                         const ShellPcaOptions& options,

@@ -121,8 +121,10 @@ TEST_F(GeodesicCalculusTest, ExpStepConvergesByNewton) {
                                   ShellSide::kReference))
             .cwiseAbs()
             .maxCoeff();
+    // Quadratic convergence from 2 b - a, then a stop at the round-off
+    // floor (not 20 steps shuffling round-off).
     EXPECT_GE(step.newton_steps, 1);
-    EXPECT_LE(step.newton_steps, 10);
+    EXPECT_LE(step.newton_steps, 5);
     EXPECT_TRUE(step.summary.iterations.empty());  // no LM
     EXPECT_LT(step.residual_norm, 1e-8 * scale);
     EXPECT_LT(RelativeDistanceUpToRigidMotion(step.shape,

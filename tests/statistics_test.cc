@@ -325,6 +325,33 @@ TEST(ShellPcaTest, ExpShotSafeguardDoublesTheSteps) {
                InputError);
 }
 
+TEST(ShellPcaTest, ExpShotWithoutSolutionStopsAndNamesTheStep) {
+  // A variation 8 (x^2, y^2, z^2) of the unit sphere (a stretch to ~8 times
+  // its size, uneven): already the first EXP step has no solution near the
+  // extrapolation, for K = 4, 8, 16. Every attempt stops at its first
+  // unsolved step (a fast failure, not K - 1 steps shot from
+  // non-solutions), and the last one throws, naming the step.
+  const Positions sphere = LoadData(kSpheres[0]).positions;
+  const ShellSpace space = MakeSpace(LoadData(kSpheres[0]));
+  const Positions variation = 8.0 * sphere.array().square().matrix();
+  ShellPcaOptions options;
+  options.exp_steps = 4;
+  options.max_exp_steps = 16;
+  ExpShotReport report;
+  try {
+    ShootFromMean(space, sphere, variation, options, Tight(), &report);
+    ADD_FAILURE() << "the shot should have thrown";
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("step 2 of EXP_16 has no solution"),
+              std::string::npos)
+        << message;
+  }
+  EXPECT_FALSE(report.ok);
+  EXPECT_EQ(report.attempts, 3);
+  EXPECT_EQ(report.steps, 16);
+}
+
 TEST(ShellPcaTest, DifferenceModesAreOrthonormalOnPlates) {
   std::vector<Positions> shapes;
   for (const char* name : {"plate/plate121.ply", "plate/plate121_rolledA.ply",
