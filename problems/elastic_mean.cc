@@ -223,4 +223,23 @@ ElasticMeanResult ComputeElasticMean(const ShellSpace& space,
   return result;
 }
 
+double Median(std::vector<double> values) {
+  if (values.empty()) return std::numeric_limits<double>::quiet_NaN();
+  std::sort(values.begin(), values.end());
+  const size_t n = values.size();
+  return n % 2 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
+}
+
+std::vector<int> FarInputs(const std::vector<double>& energies,
+                           double factor) {
+  std::vector<int> far;
+  if (energies.size() < 3) return far;
+  const double median = Median(energies);
+  if (!(median > 0)) return far;
+  for (int i = 0; i < static_cast<int>(energies.size()); ++i) {
+    if (energies[i] > factor * median) far.push_back(i);
+  }
+  return far;
+}
+
 }  // namespace shellspace

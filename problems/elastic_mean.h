@@ -91,6 +91,18 @@ Eigen::VectorXd ElasticMeanGradient(const ShellSpace& space,
                                     const std::vector<Positions>& shapes,
                                     const Positions& s);
 
+// The median of `values` (the mean of the two middle ones for an even
+// count); NaN for none.
+double Median(std::vector<double> values);
+
+// Inputs far from the others: the indices i with W[S_i, s_bar] > factor *
+// Median_j W[S_j, s_bar] (energies as ElasticMeanResult::energies), in
+// increasing order; none for fewer than 3 inputs or a zero median. A lone
+// far input dominates the mean's energy and the leading PCA mode; on the
+// cactus, cactus8 (a folded patch) has W = 2.07 against a median of 0.045.
+std::vector<int> FarInputs(const std::vector<double>& energies,
+                           double factor = 10.0);
+
 }  // namespace shellspace
 
 #endif  // SHELLSPACE_PROBLEMS_ELASTIC_MEAN_H_

@@ -352,6 +352,16 @@ TEST(ShellPcaTest, ExpShotWithoutSolutionStopsAndNamesTheStep) {
   EXPECT_EQ(report.steps, 16);
 }
 
+TEST(ElasticMeanTest, FarInputsAreTheOutliersOfTheMeanEnergies) {
+  EXPECT_DOUBLE_EQ(Median({3.0, 1.0, 2.0}), 2.0);
+  EXPECT_DOUBLE_EQ(Median({4.0, 1.0, 3.0, 2.0}), 2.5);
+  EXPECT_EQ(FarInputs({0.05, 0.04, 2.0, 0.06}), std::vector<int>({2}));
+  EXPECT_EQ(FarInputs({0.05, 0.04, 0.3, 0.06}), std::vector<int>());
+  EXPECT_EQ(FarInputs({0.05, 0.04, 0.3, 0.06}, 5.0), std::vector<int>({2}));
+  EXPECT_EQ(FarInputs({0.05, 2.0}), std::vector<int>());  // too few
+  EXPECT_EQ(FarInputs({0.0, 0.0, 1.0}), std::vector<int>());  // zero median
+}
+
 TEST(ShellPcaTest, DifferenceModesAreOrthonormalOnPlates) {
   std::vector<Positions> shapes;
   for (const char* name : {"plate/plate121.ply", "plate/plate121_rolledA.ply",
@@ -477,6 +487,65 @@ TEST(StatisticsCliTest, PcaWritesModesAndLeaveOneOutTable) {
   EXPECT_NE(stdout_text.find("\"eigenvalues\""), std::string::npos);
   EXPECT_NE(stdout_text.find("\"leave_one_out\""), std::string::npos);
   EXPECT_NE(stdout_text.find("\"procrustes_vertex_error\""), std::string::npos);
+}
+
+TEST(StatisticsCliTest, MeanWarnsAboutAFarInput) {
+  // The four spheres twice over and one blown up to twice its size: the big
+  // one is far (W[S, mean] more than 10 times the median), the others are
+  // not.
+  const std::string big = TempDir() + "/big.ply";
+  Mesh sphere = LoadData(kSpheres[1]);
+  sphere.positions *= 2.0;
+  WriteMesh(sphere, big);
+  const std::string out = TempDir() + "/far_mean.ply";
+  std::string stdout_text, stderr_text;
+  ASSERT_EQ(RunCli("mean --inputs " + SphereList(4) + "," + SphereList(4) +
+                       "," + big +
+                       " --output " + out + " --json",
+                   &stdout_text, &stderr_text),
+            0)
+      << stderr_text;
+  EXPECT_NE(stderr_text.find("warning: input " + big + " is far"),
+            std::string::npos)
+      << stderr_text;
+  EXPECT_NE(stdout_text.find("\"far_inputs\": [\"" + big + "\"]"),
+            std::string::npos)
+      << stdout_text;
+  ASSERT_EQ(RunCli("mean --inputs " + SphereList(4) + " --output " + out +
+                       " --json",
+                   &stdout_text, &stderr_text),
+            0);
+  EXPECT_EQ(stderr_text.find("warning"), std::string::npos) << stderr_text;
+  EXPECT_NE(stdout_text.find("\"far_inputs\": []"), std::string::npos);
+}
+
+TEST(StatisticsCliTest, PcaSkipsModeShapesWithoutAnExpSolution) {
+  // At 40 standard deviations the EXP shots of the sphere modes break down
+  // (no solution of a step near the extrapolation, for K = 4, 8, 16): those
+  // shapes are not written, listed in the JSON, and the rest is written.
+  const std::string dir = TempDir() + "/pca_far";
+  std::string stdout_text, stderr_text;
+  ASSERT_EQ(RunCli("pca --inputs " + SphereList(4) + " --modes 2 --output " +
+                       dir + " --amplitude 40 --json",
+                   &stdout_text, &stderr_text),
+            0)
+      << stderr_text;
+  const auto begin = stdout_text.find("\"failed_mode_shapes\": [");
+  ASSERT_NE(begin, std::string::npos) << stdout_text;
+  const std::string failed =
+      stdout_text.substr(begin, stdout_text.find(']', begin) - begin);
+  EXPECT_NE(failed.find("mode_1_plus.ply"), std::string::npos) << failed;
+  for (const char* name : {"mode_1_minus.ply", "mode_1_plus.ply",
+                           "mode_2_minus.ply", "mode_2_plus.ply"}) {
+    const bool listed = failed.find(name) != std::string::npos;
+    EXPECT_EQ(std::filesystem::exists(dir + "/" + name), !listed) << name;
+    EXPECT_EQ(stderr_text.find(std::string(name) + " not written") !=
+                  std::string::npos,
+              listed)
+        << name;
+  }
+  EXPECT_TRUE(std::filesystem::exists(dir + "/mean.ply"));
+  EXPECT_TRUE(std::filesystem::exists(dir + "/pca.json"));
 }
 
 TEST(StatisticsCliTest, BadInputsFailWithOneLineAndNoOutput) {

@@ -36,6 +36,14 @@ class JsonObject {
     }
     return Raw(key, s + "]");
   }
+  JsonObject& Add(const std::string& key,
+                  const std::vector<std::string>& values) {
+    std::string s = "[";
+    for (size_t i = 0; i < values.size(); ++i) {
+      s += (i ? ", " : "") + Quote(values[i]);
+    }
+    return Raw(key, s + "]");
+  }
   JsonObject& Add(const std::string& key, const JsonObject& object) {
     return Raw(key, object.str());
   }

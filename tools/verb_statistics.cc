@@ -4,6 +4,7 @@
 // shell PCA").
 #include <gflags/gflags.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -101,6 +102,27 @@ void WriteAll(const std::string& dir,
   }
 }
 
+// The inputs far from the others (FarInputs), by path, each with a warning
+// on stderr unless --quiet: such an input dominates the mean and the leading
+// shell PCA mode, and EXP shots along that mode may have no solution.
+std::vector<std::string> WarnAboutFarInputs(const InputSet& inputs,
+                                            const ElasticMeanResult& mean,
+                                            const char* verb) {
+  std::vector<std::string> far;
+  const double median = Median(mean.energies);
+  for (int i : FarInputs(mean.energies)) {
+    far.push_back(inputs.paths[i]);
+    if (FLAGS_quiet) continue;
+    char text[160];
+    std::snprintf(text, sizeof(text),
+                  ": W[S, mean] = %.4g, %.0f times the median %.4g",
+                  mean.energies[i], mean.energies[i] / median, median);
+    std::cerr << verb << ": warning: input " << inputs.paths[i]
+              << " is far from the others" << text << "\n";
+  }
+  return far;
+}
+
 int RunMean() {
   RequireFlag("output", FLAGS_output);
   const auto clock = std::chrono::steady_clock::now();
@@ -109,6 +131,8 @@ int RunMean() {
   const ElasticMeanResult result =
       ComputeElasticMean(space, inputs.shapes, SettingsFromFlags("mean"));
   CheckSolve(result.summary, "elastic mean");
+  const std::vector<std::string> far =
+      WarnAboutFarInputs(inputs, result, "mean");
   if (FLAGS_report) std::cerr << result.summary.FullReport() << "\n";
   WriteMesh(Mesh{result.mean, inputs.first.faces}, FLAGS_output);
   if (FLAGS_json) {
@@ -116,6 +140,7 @@ int RunMean() {
     std::cout << JsonObject()
                      .Add("energy", result.energy)
                      .Add("energies", result.energies)
+                     .Add("far_inputs", far)
                      .Add("inputs", static_cast<int>(inputs.shapes.size()))
                      .Add("iterations", result.lm_iterations)
                      .Add("newton_iterations", result.newton_iterations)
@@ -266,6 +291,7 @@ int RunPca() {
   const ElasticMeanResult mean =
       ComputeElasticMean(space, inputs.shapes, settings);
   CheckSolve(mean.summary, "elastic mean");
+  const std::vector<std::string> far = WarnAboutFarInputs(inputs, mean, "pca");
   if (!FLAGS_quiet) std::cerr << "pca: elastic mean done\n";
   const ShellPcaModel shell =
       ComputeShellPca(space, mean.mean, inputs.shapes, options, inner);
@@ -274,16 +300,26 @@ int RunPca() {
   std::vector<std::pair<std::string, Positions>> files = {
       {"mean.ply", mean.mean}};
   std::vector<Positions> strip = {mean.mean};
+  // A mode shape whose EXP shot has no solution (ShootFromMean throws) is
+  // not written; it is listed in the JSON and warned about.
+  std::vector<std::string> failed_shapes;
   for (int j = 0; j < shell_modes; ++j) {
-    const std::string stem = "mode_" + std::to_string(j + 1);
-    files.emplace_back(
-        stem + "_minus.ply",
-        ShellModeShape(space, shell, j, -FLAGS_amplitude, options, inner));
-    files.emplace_back(
-        stem + "_plus.ply",
-        ShellModeShape(space, shell, j, FLAGS_amplitude, options, inner));
-    strip.push_back(files[files.size() - 2].second);
-    strip.push_back(files.back().second);
+    for (const double sign : {-1.0, 1.0}) {
+      const std::string name = "mode_" + std::to_string(j + 1) +
+                               (sign < 0 ? "_minus.ply" : "_plus.ply");
+      try {
+        files.emplace_back(name, ShellModeShape(space, shell, j,
+                                                sign * FLAGS_amplitude,
+                                                options, inner));
+        strip.push_back(files.back().second);
+      } catch (const InputError& e) {
+        failed_shapes.push_back(name);
+        if (!FLAGS_quiet) {
+          std::cerr << "pca: warning: " << name << " not written: " << e.what()
+                    << "\n";
+        }
+      }
+    }
   }
   if (!FLAGS_quiet) std::cerr << "pca: shell modes done\n";
 
@@ -298,6 +334,8 @@ int RunPca() {
       .Add("exp_steps", FLAGS_exp_steps)
       .Add("eigenvalues", ToVector(shell.eigenvalues))
       .Add("modes", shell_modes)
+      .Add("failed_mode_shapes", failed_shapes)
+      .Add("far_inputs", far)
       .Add("amplitude", FLAGS_amplitude);
 
   if (FLAGS_baseline == "procrustes") {
