@@ -157,12 +157,14 @@ Positions ExpK(const ShellSpace& space, const Positions& s0,
 
 Positions LogK(const ShellSpace& space, const Positions& a, const Positions& b,
                int steps, const std::vector<int>& fixed_vertices,
-               const SolverSettings& settings, GeodesicResult* geodesic) {
+               const SolverSettings& settings, GeodesicResult* geodesic,
+               const ShellPath* initial) {
   GeodesicInput input;
   input.start = a;
   input.end = b;
   input.steps = steps;
   input.fixed_vertices = fixed_vertices;
+  if (initial != nullptr) input.initial = *initial;  // ends replaced
   GeodesicResult result = SolveGeodesic(space, input, settings);
   const Positions log = steps * (result.path[1] - a);
   if (geodesic) *geodesic = std::move(result);

@@ -59,11 +59,14 @@ Positions ExpK(const ShellSpace& space, const Positions& s0,
                const std::vector<int>& fixed_vertices,
                const SolverSettings& settings);
 
-// LOG_K(a -> b) = K (s_1 - a) for the discrete geodesic (a, s_1, ..., b).
+// LOG_K(a -> b) = K (s_1 - a) for the discrete geodesic (a, s_1, ..., b),
+// solved from `initial` (K + 1 shapes, its ends replaced by a and b) if
+// given, else from the linear path.
 Positions LogK(const ShellSpace& space, const Positions& a, const Positions& b,
                int steps, const std::vector<int>& fixed_vertices,
                const SolverSettings& settings,
-               GeodesicResult* geodesic = nullptr);
+               GeodesicResult* geodesic = nullptr,
+               const ShellPath* initial = nullptr);
 
 }  // namespace shellspace
 

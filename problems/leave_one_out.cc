@@ -66,14 +66,31 @@ LeaveOneOutTable EvaluateLeaveOneOut(const ShellSpace& space,
   const bool warm = options.initial_mean.size() > 0;
   if (warm) CheckShapeSet(space, {options.initial_mean}, "leave-one-out start");
 
+  std::vector<ShellPath> warm_paths;  // initial_mean -> S_i, i = 0..n-1
+  if (warm && options.warm_logs &&
+      options.pca.displacement == DisplacementKind::kLog) {
+    const auto warm_clock = std::chrono::steady_clock::now();
+    warm_paths = ComputeShellPca(space, options.initial_mean, shapes,
+                                 options.pca, settings)
+                     .log_paths;
+    char line[96];
+    std::snprintf(line, sizeof(line), "LOG paths from the initial mean (%.1f s)",
+                  SecondsSince(warm_clock));
+    log(line);
+  }
+
   const int num_m = options.max_modes + 1;
   LeaveOneOutTable table;
   for (int h : folds) {
     const auto fold_clock = std::chrono::steady_clock::now();
     std::vector<Positions> others;
+    std::vector<ShellPath> others_warm;
     for (int i = 0; i < n; ++i) {
-      if (i != h) others.push_back(shapes[i]);
+      if (i == h) continue;
+      others.push_back(shapes[i]);
+      if (!warm_paths.empty()) others_warm.push_back(warm_paths[i]);
     }
+    const bool warm_log = !warm_paths.empty();
     const Positions& truth = shapes[h];
     LeaveOneOutFold fold;
     fold.held_out = h;
@@ -85,10 +102,14 @@ LeaveOneOutTable EvaluateLeaveOneOut(const ShellSpace& space,
     fold.mean_newton_iterations = mean.newton_iterations;
     fold.mean_converged = mean.converged;
     const ShellPcaModel shell =
-        ComputeShellPca(space, mean.mean, others, options.pca, settings);
+        ComputeShellPca(space, mean.mean, others, options.pca, settings,
+                        warm_log ? &others_warm : nullptr);
     fold.shell_eigenvalues = shell.eigenvalues;
+    GeodesicResult truth_log;
     const Positions v =
-        ShellDisplacement(space, shell.mean, truth, options.pca, settings);
+        ShellDisplacement(space, shell.mean, truth, options.pca, settings,
+                          warm_log ? &warm_paths[h] : nullptr, &truth_log);
+    fold.log_iterations = shell.log_iterations + truth_log.iterations;
     const Eigen::VectorXd c =
         ShellModeCoefficients(shell, v, static_cast<int>(shell.modes.size()));
 
@@ -135,10 +156,12 @@ LeaveOneOutTable EvaluateLeaveOneOut(const ShellSpace& space,
                     fold.procrustes_vertex_error[m], fold.procrustes_energy[m]);
       text += item;
     }
-    char tail[96];
-    std::snprintf(tail, sizeof(tail), " mean %d LM + %d Newton%s (%.1f s)",
+    char tail[128];
+    std::snprintf(tail, sizeof(tail),
+                  " mean %d LM + %d Newton%s, LOGs %d iterations (%.1f s)",
                   fold.mean_iterations, fold.mean_newton_iterations,
-                  fold.mean_converged ? "" : " NOT CONVERGED", fold.seconds);
+                  fold.mean_converged ? "" : " NOT CONVERGED",
+                  fold.log_iterations, fold.seconds);
     log(text + tail);
     table.folds.push_back(std::move(fold));
   }

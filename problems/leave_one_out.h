@@ -31,6 +31,11 @@ struct LeaveOneOutOptions {
   // all n shapes: faster, same minimiser up to solver tolerance). Empty: the
   // aligned vertex average of the fold's shapes.
   Positions initial_mean;
+  // With initial_mean and LOG displacements: solve the LOG_K geodesics from
+  // initial_mean to all n shapes once and start every fold's LOGs from them
+  // (WarmLogPath): the folds' means are near initial_mean, so each LOG
+  // needs a few iterations instead of a solve from the linear path.
+  bool warm_logs = true;
   // Called with one line per finished step (fold progress), if set.
   std::function<void(const std::string&)> log;
 };
@@ -58,6 +63,7 @@ struct LeaveOneOutFold {
   int mean_iterations = 0;         // LM iterations of the elastic mean
   int mean_newton_iterations = 0;  // its Newton steps
   bool mean_converged = false;     // ElasticMeanResult::converged
+  int log_iterations = 0;  // LM + Newton of the fold's LOG_K solves
   Eigen::VectorXd shell_eigenvalues, procrustes_eigenvalues;
   std::vector<double> shell_vertex_error, shell_energy;
   std::vector<double> procrustes_vertex_error, procrustes_energy;

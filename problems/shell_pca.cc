@@ -190,30 +190,72 @@ GramModes ModesFromGram(const Eigen::MatrixXd& gram,
   return result;
 }
 
+ShellPath WarmLogPath(const ShellPath& old, const Positions& mean,
+                      const Positions& end) {
+  const int steps = static_cast<int>(old.size()) - 1;
+  if (steps < 1 || old[0].rows() != mean.rows() ||
+      end.rows() != mean.rows()) {
+    throw InputError("warm LOG path: wrong number of shapes or vertices");
+  }
+  const Positions start_shift = mean - AlignRigidly(old[0], mean);
+  const Positions end_shift = end - AlignRigidly(old[steps], end);
+  ShellPath path(steps + 1);
+  for (int k = 0; k <= steps; ++k) {
+    const double t = static_cast<double>(k) / steps;
+    const Positions linear = (1 - t) * mean + t * end;
+    path[k] = AlignRigidly(old[k], linear) + (1 - t) * start_shift +
+              t * end_shift;
+  }
+  path.front() = mean;
+  path.back() = end;
+  return path;
+}
+
 Positions ShellDisplacement(const ShellSpace& space, const Positions& mean,
                             const Positions& shape,
                             const ShellPcaOptions& options,
-                            const SolverSettings& settings) {
+                            const SolverSettings& settings,
+                            const ShellPath* warm, GeodesicResult* geodesic) {
   CheckOptions(options);
   const Positions aligned = AlignRigidly(shape, mean);
   if (options.displacement == DisplacementKind::kAlignedDifference) {
     return aligned - mean;
   }
-  return LogK(space, mean, aligned, options.steps, {}, settings);
+  ShellPath initial;
+  if (warm != nullptr) {
+    if (static_cast<int>(warm->size()) != options.steps + 1) {
+      throw InputError("shell PCA: a warm LOG path needs K + 1 shapes");
+    }
+    initial = WarmLogPath(*warm, mean, aligned);
+  }
+  return LogK(space, mean, aligned, options.steps, {}, settings, geodesic,
+              warm != nullptr ? &initial : nullptr);
 }
 
 ShellPcaModel ComputeShellPca(const ShellSpace& space, const Positions& mean,
                               const std::vector<Positions>& shapes,
                               const ShellPcaOptions& options,
-                              const SolverSettings& settings) {
+                              const SolverSettings& settings,
+                              const std::vector<ShellPath>* warm) {
   CheckOptions(options);
   CheckShapeSet(space, shapes, "shell PCA");
   CheckShapeSet(space, {mean}, "shell PCA mean");
-  ShellPcaModel model{mean, {}, {}, {}, {}, ShellMetric(space, mean)};
+  if (warm != nullptr && warm->size() != shapes.size()) {
+    throw InputError("shell PCA: one warm LOG path per shape needed");
+  }
+  ShellPcaModel model{mean, {}, {}, {}, {}, ShellMetric(space, mean), {}};
   const int n = static_cast<int>(shapes.size());
-  for (const Positions& shape : shapes) {
+  const bool log = options.displacement == DisplacementKind::kLog;
+  if (log) model.log_paths.resize(n);
+  for (int i = 0; i < n; ++i) {
+    GeodesicResult geodesic;
     model.displacements.push_back(
-        ShellDisplacement(space, mean, shape, options, settings));
+        ShellDisplacement(space, mean, shapes[i], options, settings,
+                          warm != nullptr ? &(*warm)[i] : nullptr, &geodesic));
+    if (log) {
+      model.log_paths[i] = std::move(geodesic.path);
+      model.log_iterations += geodesic.iterations;
+    }
   }
   // Gamma = V^T H V / (2 n) with the displacements as the columns of V.
   Eigen::MatrixXd v(mean.size(), n);

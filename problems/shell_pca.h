@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "cost_functions/deformation_energy.h"
+#include "problems/geodesic.h"
 #include "problems/solver_settings.h"
 
 namespace shellspace {
@@ -109,20 +110,43 @@ struct ShellPcaModel {
   Eigen::VectorXd eigenvalues;           // lambda_1 >= ... >= lambda_n
   std::vector<Positions> modes;          // w_j, g(w_j, w_k) = delta_jk
   ShellMetric metric;
+  // kLog: the LOG_K geodesics (s_bar, ..., A(S_i)) behind v_i, and the LM
+  // iterations + Newton steps of their solves.
+  std::vector<ShellPath> log_paths;
+  int log_iterations = 0;
 };
 
+// The initial guess of a LOG_K geodesic from `mean` to `end` made from a
+// geodesic `old` (K + 1 shapes) between nearby ends, e.g. from the mean of a
+// superset of the shapes: with t = k/K, L_k = (1 - t) mean + t end and A_k
+// the rigid alignment to L_k,
+//   s_k = A_k(old_k) + (1 - t) (mean - A_0(old_0)) + t (end - A_K(old_K)),
+// so s_0 = mean, s_K = end, and in between it bends like `old` (a linear
+// path would start LM from scratch: on the cactus 7-9 s per LOG_2, 26 s and
+// not converged in 30 iterations for cactus8's).
+ShellPath WarmLogPath(const ShellPath& old, const Positions& mean,
+                      const Positions& end);
+
 // The displacement of `shape` from `mean` (ShellPcaOptions::displacement).
+// kLog: LOG_K(mean -> A(shape)), its geodesic solve in *geodesic if given,
+// solved from WarmLogPath(*warm, ...) if `warm` is given (else from the
+// linear path).
 Positions ShellDisplacement(const ShellSpace& space, const Positions& mean,
                             const Positions& shape,
                             const ShellPcaOptions& options,
-                            const SolverSettings& settings);
+                            const SolverSettings& settings,
+                            const ShellPath* warm = nullptr,
+                            GeodesicResult* geodesic = nullptr);
 
-// Shell PCA of `shapes` at `mean` (usually their elastic mean). Throws
-// InputError on inconsistent inputs or options.
+// Shell PCA of `shapes` at `mean` (usually their elastic mean); `warm`
+// (optional, kLog): one LOG_K path per shape to start its LOG from (see
+// ShellDisplacement), e.g. ShellPcaModel::log_paths of a model at a nearby
+// mean. Throws InputError on inconsistent inputs or options.
 ShellPcaModel ComputeShellPca(const ShellSpace& space, const Positions& mean,
                               const std::vector<Positions>& shapes,
                               const ShellPcaOptions& options,
-                              const SolverSettings& settings);
+                              const SolverSettings& settings,
+                              const std::vector<ShellPath>* warm = nullptr);
 
 // The shape of mode j (0-based) at amplitude t: EXP_K(s_bar, t sqrt(lambda_j)
 // w_j) by ShootFromMean, aligned rigidly to s_bar.

@@ -444,6 +444,84 @@ TEST(LeaveOneOutTest, TableOnTheSpheres) {
                InputError);
 }
 
+TEST(LeaveOneOutTest, WarmLogsGiveTheSameTable) {
+  // Folds whose LOGs start from the LOG paths at the mean of all shapes
+  // (the default with an initial mean) reach the same geodesics as LOGs
+  // from the linear path: the same table up to solver tolerance.
+  const std::vector<Positions> shapes = LoadSpheres();
+  const ShellSpace space = MakeSpace(LoadData(kSpheres[0]));
+  LeaveOneOutOptions options;
+  options.max_modes = 2;
+  options.held_out = {0, 2};
+  options.initial_mean = ComputeElasticMean(space, shapes, Tight()).mean;
+  const LeaveOneOutTable warm =
+      EvaluateLeaveOneOut(space, shapes, options, Tight());
+  options.warm_logs = false;
+  const LeaveOneOutTable cold =
+      EvaluateLeaveOneOut(space, shapes, options, Tight());
+  for (int f = 0; f < 2; ++f) {
+    const LeaveOneOutFold& a = warm.folds[f];
+    const LeaveOneOutFold& b = cold.folds[f];
+    EXPECT_LE(a.log_iterations, b.log_iterations);
+    EXPECT_LT((a.shell_eigenvalues - b.shell_eigenvalues).cwiseAbs().maxCoeff(),
+              1e-6 * b.shell_eigenvalues(0));
+    for (int m = 0; m <= 2; ++m) {
+      EXPECT_NEAR(a.shell_energy[m], b.shell_energy[m],
+                  1e-5 * b.shell_energy[m]);
+      EXPECT_NEAR(a.shell_vertex_error[m], b.shell_vertex_error[m],
+                  1e-5 * b.shell_vertex_error[m]);
+    }
+  }
+}
+
+TEST(ShellPcaTest, WarmLogPathHasTheNewEndsAndIgnoresRigidMotions) {
+  const std::vector<Positions> shapes = LoadSpheres();
+  const ShellSpace space = MakeSpace(LoadData(kSpheres[0]));
+  ShellPcaOptions options;
+  options.steps = 3;
+  // An old LOG_3 path from shapes[0] to shapes[1]; new ends: a perturbed
+  // start and a rigidly moved end.
+  GeodesicResult old_log;
+  ShellDisplacement(space, shapes[0], shapes[1], options, Tight(), nullptr,
+                    &old_log);
+  const ShellPath& old = old_log.path;
+  ASSERT_EQ(old.size(), 4u);
+  const Positions start = shapes[0] + Noise(shapes[0].rows(), 1e-3, 3);
+  const Positions end = RandomRigidMotion(shapes[1], 7);
+  const ShellPath path = WarmLogPath(old, start, end);
+  ASSERT_EQ(path.size(), 4u);
+  EXPECT_EQ(path.front(), start);
+  EXPECT_EQ(path.back(), end);
+  // Moving the old path rigidly as a whole changes nothing.
+  ShellPath moved = old;
+  for (Positions& p : moved) p = RandomRigidMotion(p, 11);
+  const ShellPath again = WarmLogPath(moved, start, end);
+  for (int k = 1; k < 3; ++k) {
+    EXPECT_LT((again[k] - path[k]).cwiseAbs().maxCoeff(), 1e-10) << k;
+    // and the inner shapes keep the old path's shape.
+    EXPECT_LT(RelativeDistanceUpToRigidMotion(path[k], old[k]), 2e-3) << k;
+  }
+  // A LOG solved from it lands on the geodesic from the linear path. The
+  // inner shapes' rigid gauge is pinned at the initial path, so s_1 and
+  // LOG = K (s_1 - s_0) may differ by a small rigid motion, which the
+  // metric nearly ignores (infinitesimal rigid motions are its kernel).
+  GeodesicResult cold_log, warm_log;
+  const Positions cold = ShellDisplacement(space, start, end, options,
+                                           Tight(), nullptr, &cold_log);
+  const Positions warm =
+      ShellDisplacement(space, start, end, options, Tight(), &old, &warm_log);
+  for (int k = 1; k < 3; ++k) {
+    EXPECT_LT(
+        RelativeDistanceUpToRigidMotion(warm_log.path[k], cold_log.path[k]),
+        1e-7)
+        << k;
+  }
+  EXPECT_LT(warm_log.iterations, cold_log.iterations);
+  const ShellMetric metric(space, start);
+  EXPECT_LT(metric.Norm(warm - cold), 1e-4 * metric.Norm(cold));
+  EXPECT_THROW(WarmLogPath({shapes[0]}, start, end), InputError);
+}
+
 std::string SphereList(int count) {
   std::string list;
   for (int i = 0; i < count; ++i) {
