@@ -5,6 +5,7 @@
 
 #include "cost_functions/energy_derivatives.h"
 #include "problems/gauge_reduced_solve.h"
+#include "problems/path_hessian.h"
 
 namespace shellspace {
 
@@ -91,6 +92,7 @@ ExpNewtonReport SolveExpStepNewton(const ShellSpace& space,
   }
   report.initial_residual = report.final_residual = MaxNorm(f, is_fixed);
   report.stop_reason = "max steps";
+  const PathHessianAssembler assembler(space);
   while (true) {
     if (report.final_residual <= tolerance) {
       report.converged = true;
@@ -99,13 +101,14 @@ ExpNewtonReport SolveExpStepNewton(const ShellSpace& space,
     }
     if (report.steps >= max_steps) break;
     const SparseMatrix columns = gauge ? RigidGaugeBasis(*s) : rows;
-    // J = dF/ds: rows on the fixed shell's gradient, columns on s.
-    const SparseMatrix jacobian =
+    // J = dF/ds: rows on the fixed shell's gradient, columns on s, reduced
+    // to R^T J C straight from the element blocks.
+    const SparseMatrix reduced =
         unknown_side == ShellSide::kDeformed
-            ? EnergyHessianColumns(space, fixed, *s, ShellSide::kDeformed).first
-            : EnergyHessianColumns(space, *s, fixed, ShellSide::kReference)
-                  .second;
-    const SparseMatrix reduced(rows.transpose() * jacobian * columns);
+            ? assembler.AssembleMixed(fixed, *s, ShellSide::kReference, rows,
+                                      columns)
+            : assembler.AssembleMixed(*s, fixed, ShellSide::kDeformed, rows,
+                                      columns);
     Eigen::UmfPackLU<SparseMatrix> lu(reduced);
     if (lu.info() != Eigen::Success) {
       report.stop_reason = "singular Jacobian";

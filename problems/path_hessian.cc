@@ -102,7 +102,8 @@ void PathHessianAssembler::AddElementBlocks(const Positions& reference,
                                             const Positions& deformed,
                                             double weight, BlockArray* d22,
                                             BlockArray* d11,
-                                            BlockArray* mixed_transposed) const {
+                                            BlockArray* mixed_transposed,
+                                            BlockArray* mixed) const {
   ElementSecondDerivatives<3> d3;
   ElementSecondDerivatives<4> d4;
   size_t next_slot = 0;
@@ -134,7 +135,7 @@ void PathHessianAssembler::AddElementBlocks(const Positions& reference,
       }
     };
     auto derive = [&](auto& d) {
-      if (d22 != nullptr || mixed_transposed != nullptr) {
+      if (d22 != nullptr || mixed_transposed != nullptr || mixed != nullptr) {
         if (!d.Compute(element, ref, def, ShellSide::kDeformed, weight)) {
           throw InputError("degenerate triangle while differentiating W");
         }
@@ -142,6 +143,7 @@ void PathHessianAssembler::AddElementBlocks(const Positions& reference,
         if (mixed_transposed != nullptr) {
           scatter_transposed(d.d_grad_reference, mixed_transposed);
         }
+        if (mixed != nullptr) scatter(d.d_grad_reference, mixed);
       }
       if (d11 != nullptr) {
         using Rows = typename std::decay_t<decltype(d)>::Rows;
@@ -207,6 +209,51 @@ Eigen::SparseMatrix<double> PathHessianAssembler::AssembleDeformedSum(
   std::vector<std::vector<const BlockArray*>> diagonal(1);
   for (const BlockArray& sum : sums) diagonal[0].push_back(&sum);
   return Compress(diagonal, {nullptr}, {basis});
+}
+
+Eigen::SparseMatrix<double> PathHessianAssembler::AssembleMixed(
+    const Positions& reference, const Positions& deformed, ShellSide rows,
+    const Eigen::SparseMatrix<double>& row_basis,
+    const Eigen::SparseMatrix<double>& col_basis) const {
+  const int n = space_.num_vertices;
+  BlockArray blocks(9 * pair_row_.size(), 0.0);
+  if (rows == ShellSide::kReference) {
+    AddElementBlocks(reference, deformed, 1.0, nullptr, nullptr, nullptr,
+                     &blocks);
+  } else {
+    AddElementBlocks(reference, deformed, 1.0, nullptr, nullptr, &blocks);
+  }
+  const std::vector<VertexColumns> row_layout = VertexLayout(row_basis, n, 0);
+  const std::vector<VertexColumns> col_layout = VertexLayout(col_basis, n, 0);
+  std::vector<int> outer, inner_index;
+  std::vector<double> values;
+  outer.reserve(col_basis.cols() + 1);
+  const size_t estimate = 9 * pair_row_.size();
+  inner_index.reserve(estimate);
+  values.reserve(estimate);
+  for (int w = 0; w < n; ++w) {
+    const VertexColumns& cw = col_layout[w];
+    for (int jw = 0; jw < cw.count; ++jw) {
+      if (cw.first + jw != static_cast<int>(outer.size())) {
+        throw std::logic_error(
+            "PathHessianAssembler: basis columns not in vertex order");
+      }
+      outer.push_back(static_cast<int>(values.size()));
+      for (int p = pair_start_[w]; p < pair_start_[w + 1]; ++p) {
+        const VertexColumns& cv = row_layout[pair_row_[p]];
+        for (int iv = 0; iv < cv.count; ++iv) {
+          inner_index.push_back(cv.first + iv);
+          values.push_back(
+              ReducedEntry(cv, iv, blocks.data() + 9 * p, cw, jw));
+        }
+      }
+    }
+  }
+  outer.push_back(static_cast<int>(values.size()));
+  return Eigen::Map<const Eigen::SparseMatrix<double>>(
+      static_cast<int>(row_basis.cols()), static_cast<int>(col_basis.cols()),
+      static_cast<int>(values.size()), outer.data(), inner_index.data(),
+      values.data());
 }
 
 Eigen::SparseMatrix<double> PathHessianAssembler::Compress(

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "cost_functions/deformation_energy.h"
+#include "cost_functions/element_hessian.h"
 
 namespace shellspace {
 
@@ -48,14 +49,31 @@ class PathHessianAssembler {
       const std::vector<Positions>& references, const Positions& deformed,
       const Eigen::SparseMatrix<double>& basis, int threads) const;
 
+  // R^T M C for the mixed second derivative of W[reference, deformed], R =
+  // `row_basis`, C = `col_basis` (each as T above, possibly different):
+  //   rows kReference: M = D_1 D_2 W (rows reference, columns deformed), the
+  //     Jacobian of D_1 W[reference, .] w.r.t. the deformed shell;
+  //   rows kDeformed:  M = (D_1 D_2 W)^T (rows deformed, columns reference),
+  //     the Jacobian of D_2 W[., deformed] w.r.t. the reference.
+  // The whole matrix (not symmetric), sorted row indices. Throws InputError
+  // if an element is degenerate.
+  Eigen::SparseMatrix<double> AssembleMixed(
+      const Positions& reference, const Positions& deformed, ShellSide rows,
+      const Eigen::SparseMatrix<double>& row_basis,
+      const Eigen::SparseMatrix<double>& col_basis) const;
+
   int num_vertex_pairs() const { return static_cast<int>(pair_row_.size()); }
 
  private:
   // 3 x 3 blocks (row-major), one per vertex pair, for one slice.
   using BlockArray = std::vector<double>;
+  // Adds weight times the blocks of W[reference, deformed] to the non-null
+  // arrays: D_2^2 W, D_1^2 W, the mixed block with rows deformed
+  // (mixed_transposed) and with rows reference (mixed).
   void AddElementBlocks(const Positions& reference, const Positions& deformed,
                         double weight, BlockArray* d22, BlockArray* d11,
-                        BlockArray* mixed_transposed) const;
+                        BlockArray* mixed_transposed,
+                        BlockArray* mixed = nullptr) const;
 
   // T^T H T (lower triangle) from the diagonal blocks of each slice (the sum
   // of the arrays diagonal[i]) and the blocks below the diagonal (lower[i]:

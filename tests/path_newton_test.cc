@@ -174,6 +174,38 @@ TEST(PathHessianAssemblerTest, DeformedSumMatchesEnergyHessians) {
   }
 }
 
+TEST(PathHessianAssemblerTest, MixedBlocksMatchEnergyHessians) {
+  // The EXP Jacobians: R^T (D_1 D_2 W) C and R^T (D_1 D_2 W)^T C, with
+  // different row and column bases (rigid gauges of the two shells, a
+  // Dirichlet mask), against EnergyHessian's mixed blocks.
+  const Mesh a = testing::LoadData("sphere/unitSphere1.ply");
+  const Positions b = testing::LoadData("sphere/unitSphere1_defX.ply").positions;
+  const ShellSpace space = testing::MakeSpace(a);
+  const PathHessianAssembler assembler(space);
+  const SparseMatrix mixed = EnergyHessian(
+      space, a.positions, b, ShellSide::kReference, ShellSide::kDeformed);
+  const SparseMatrix mixed_t = EnergyHessian(
+      space, a.positions, b, ShellSide::kDeformed, ShellSide::kReference);
+  const SparseMatrix ra = RigidGaugeBasis(a.positions);
+  const SparseMatrix rb = RigidGaugeBasis(b);
+  const SparseMatrix mask = FreeVertexBasis(a.num_vertices(), {0, 5, 9});
+  EXPECT_LT(RelativeDifference(
+                assembler.AssembleMixed(a.positions, b, ShellSide::kReference,
+                                        ra, rb),
+                SparseMatrix(ra.transpose() * mixed * rb)),
+            1e-13);
+  EXPECT_LT(RelativeDifference(
+                assembler.AssembleMixed(a.positions, b, ShellSide::kDeformed,
+                                        rb, ra),
+                SparseMatrix(rb.transpose() * mixed_t * ra)),
+            1e-13);
+  EXPECT_LT(RelativeDifference(
+                assembler.AssembleMixed(a.positions, b, ShellSide::kReference,
+                                        mask, mask),
+                SparseMatrix(mask.transpose() * mixed * mask)),
+            1e-13);
+}
+
 TEST(PathHessianAssemblerTest, DegenerateTriangleThrowsInputError) {
   const Mesh a = testing::LoadData("plate/plate121.ply");
   const ShellSpace space = testing::MakeSpace(a);
