@@ -565,6 +565,7 @@ TEST(StatisticsCliTest, PcaWritesModesAndLeaveOneOutTable) {
   EXPECT_NE(stdout_text.find("\"eigenvalues\""), std::string::npos);
   EXPECT_NE(stdout_text.find("\"leave_one_out\""), std::string::npos);
   EXPECT_NE(stdout_text.find("\"procrustes_vertex_error\""), std::string::npos);
+  EXPECT_NE(stdout_text.find("\"log_iterations\""), std::string::npos);
 }
 
 TEST(StatisticsCliTest, MeanWarnsAboutAFarInput) {

@@ -222,6 +222,7 @@ std::string TableJson(const LeaveOneOutTable& table) {
                  .Add("mean_iterations", f.mean_iterations)
                  .Add("mean_newton_iterations", f.mean_newton_iterations)
                  .Add("mean_converged", f.mean_converged)
+                 .Add("log_iterations", f.log_iterations)
                  .Add("shell_vertex_error", f.shell_vertex_error)
                  .Add("shell_energy", f.shell_energy)
                  .Add("procrustes_vertex_error", f.procrustes_vertex_error)
