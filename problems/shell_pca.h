@@ -71,9 +71,10 @@ struct ShellPcaOptions {
   double relative_cutoff = 1e-10;  // of ModesFromGram
 };
 
-// How an EXP shot went: the K used, the number of shots tried, the largest
-// relative step-energy drift max_k |W[s_{k-1}, s_k] - W[s_0, s_1]| / W[s_0,
-// s_1] of the returned path, and whether it passed the safeguard.
+// How an EXP shot went: the K of the last attempt, the number of attempts,
+// the largest relative step-energy drift max_k |W[s_{k-1}, s_k] - W[s_0,
+// s_1]| / W[s_0, s_1] of the last attempt (+inf if one of its steps had no
+// solution), and whether it passed the safeguard.
 struct ExpShotReport {
   int steps = 0;
   int attempts = 0;
