@@ -75,30 +75,37 @@ struct CactusPoses {
   }
 };
 
-void BM_CactusLeaveOneOutFold(benchmark::State& state) {
-  const CactusPoses poses(state.range(1) != 0);
-  const std::vector<Positions>& shapes = poses.shapes;
-  const Mesh& first = poses.first;
-  const ShellSpace space(first, Topology::Build(first), ShellMaterial{});
+// The leave-one-out protocol of both benchmarks below: LOG_2, EXP_4 with the
+// safeguard up to EXP_16, m = 0..5, one thread, 30 LM iterations per solve
+// (plus the Newton finish). As the pca verb, every fold's mean starts from
+// the mean of all the poses (one uncapped solve, made here, not timed).
+struct CactusLeaveOneOut {
+  CactusPoses poses;
+  ShellSpace space;
   LeaveOneOutOptions options;
-  options.max_modes = 5;
-  options.held_out = {static_cast<int>(state.range(0))};
-  // As the pca verb: every fold's mean starts from the mean of all 19 (one
-  // uncapped solve, not timed in the fold's counters).
-  {
-    SolverSettings uncapped;
-    uncapped.num_threads = 1;
-    options.initial_mean = ComputeElasticMean(space, shapes, uncapped).mean;
-  }
-  options.pca.steps = 2;      // LOG_2
-  options.pca.exp_steps = 4;  // EXP_4, safeguard up to EXP_16
-  options.pca.max_exp_steps = 16;
   SolverSettings settings;
-  settings.num_threads = 1;
-  settings.max_iterations = 30;
+  explicit CactusLeaveOneOut(bool without_pose_8)
+      : poses(without_pose_8),
+        space(poses.first, Topology::Build(poses.first), ShellMaterial{}) {
+    options.max_modes = 5;
+    options.pca.steps = 2;
+    options.pca.exp_steps = 4;
+    options.pca.max_exp_steps = 16;
+    settings.num_threads = 1;
+    options.initial_mean =
+        ComputeElasticMean(space, poses.shapes, settings).mean;
+    settings.max_iterations = 30;
+  }
+  LeaveOneOutTable Run() const {
+    return EvaluateLeaveOneOut(space, poses.shapes, options, settings);
+  }
+};
+
+void BM_CactusLeaveOneOutFold(benchmark::State& state) {
+  CactusLeaveOneOut loo(state.range(1) != 0);
+  loo.options.held_out = {static_cast<int>(state.range(0))};
   for (auto _ : state) {
-    const LeaveOneOutTable table =
-        EvaluateLeaveOneOut(space, shapes, options, settings);
+    const LeaveOneOutTable table = loo.Run();
     const LeaveOneOutFold& fold = table.folds[0];
     state.counters["mean_lm_iterations"] = fold.mean_iterations;
     state.counters["mean_newton_iterations"] = fold.mean_newton_iterations;
@@ -138,28 +145,15 @@ BENCHMARK(BM_CactusLeaveOneOutFold)
 // core runs one part; each fold prints its line (all m) on stderr, the rows
 // of the part are counters. Args: p, P, 1 to leave cactus8 out.
 void BM_CactusLeaveOneOutPart(benchmark::State& state) {
-  const CactusPoses poses(state.range(2) != 0);
-  const std::vector<Positions>& shapes = poses.shapes;
-  const Mesh& first = poses.first;
-  const ShellSpace space(first, Topology::Build(first), ShellMaterial{});
-  LeaveOneOutOptions options;
-  options.max_modes = 5;
-  for (int h = 0; h < static_cast<int>(shapes.size()); ++h) {
-    if (h % state.range(1) == state.range(0)) options.held_out.push_back(h);
+  CactusLeaveOneOut loo(state.range(2) != 0);
+  for (int h = 0; h < static_cast<int>(loo.poses.shapes.size()); ++h) {
+    if (h % state.range(1) == state.range(0)) loo.options.held_out.push_back(h);
   }
-  options.pca.steps = 2;
-  options.pca.exp_steps = 4;
-  options.pca.max_exp_steps = 16;
-  options.log = [](const std::string& line) {
+  loo.options.log = [](const std::string& line) {
     std::fprintf(stderr, "loo: %s\n", line.c_str());
   };
-  SolverSettings settings;
-  settings.num_threads = 1;
-  options.initial_mean = ComputeElasticMean(space, shapes, settings).mean;
-  settings.max_iterations = 30;
   for (auto _ : state) {
-    const LeaveOneOutTable table =
-        EvaluateLeaveOneOut(space, shapes, options, settings);
+    const LeaveOneOutTable table = loo.Run();
     for (const LeaveOneOutRow& row : table.rows) {
       const std::string m = "_m" + std::to_string(row.modes);
       state.counters["shell_err" + m] = row.shell_vertex_error;
