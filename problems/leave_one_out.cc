@@ -70,9 +70,12 @@ LeaveOneOutTable EvaluateLeaveOneOut(const ShellSpace& space,
   if (warm && options.warm_logs &&
       options.pca.displacement == DisplacementKind::kLog) {
     const auto warm_clock = std::chrono::steady_clock::now();
-    warm_paths = ComputeShellPca(space, options.initial_mean, shapes,
-                                 options.pca, settings)
-                     .log_paths;
+    for (const Positions& shape : shapes) {
+      GeodesicResult geodesic;
+      ShellDisplacement(space, options.initial_mean, shape, options.pca,
+                        settings, nullptr, &geodesic);
+      warm_paths.push_back(std::move(geodesic.path));
+    }
     char line[96];
     std::snprintf(line, sizeof(line), "LOG paths from the initial mean (%.1f s)",
                   SecondsSince(warm_clock));
