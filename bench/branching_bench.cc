@@ -8,10 +8,10 @@
 
 #include <benchmark/benchmark.h>
 
-#include "problems/branching/construction_optimizer.h"
-#include "problems/branching/km_family.h"
-#include "problems/branching/scaling_ladder.h"
-#include "problems/branching/simulation.h"
+#include "shellspace/problems/branching/construction_optimizer.h"
+#include "shellspace/problems/branching/km_family.h"
+#include "shellspace/problems/branching/scaling_ladder.h"
+#include "shellspace/problems/branching/simulation.h"
 
 namespace shellspace::branching {
 namespace {

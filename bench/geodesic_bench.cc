@@ -8,12 +8,12 @@
 #include <algorithm>
 #include <chrono>
 
-#include "geometry/mesh_io.h"
-#include "problems/exponential_map.h"
-#include "problems/gauge_reduced_solve.h"
-#include "problems/path_hessian.h"
-#include "problems/reusable_cholesky.h"
-#include "problems/parallel_transport.h"
+#include "shellspace/io/mesh_io.h"
+#include "shellspace/problems/calculus/exponential_map.h"
+#include "shellspace/solvers/gauge_reduced_solve.h"
+#include "shellspace/problems/calculus/path_hessian.h"
+#include "shellspace/solvers/reusable_cholesky.h"
+#include "shellspace/problems/calculus/parallel_transport.h"
 
 namespace shellspace {
 namespace {

@@ -8,9 +8,9 @@
 #include <string>
 #include <vector>
 
-#include "geometry/mesh_io.h"
-#include "geometry/validation.h"
-#include "problems/ltheta_spline.h"
+#include "shellspace/io/mesh_io.h"
+#include "shellspace/geometry/validation.h"
+#include "shellspace/problems/splines/ltheta_spline.h"
 
 namespace shellspace {
 namespace {

@@ -15,9 +15,9 @@
 #include <cmath>
 #include <cstdio>
 
-#include "geometry/mesh_io.h"
-#include "geometry/rigid_alignment.h"
-#include "problems/spline.h"
+#include "shellspace/io/mesh_io.h"
+#include "shellspace/geometry/rigid_alignment.h"
+#include "shellspace/problems/splines/spline.h"
 
 namespace shellspace {
 namespace {

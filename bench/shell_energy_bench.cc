@@ -5,9 +5,9 @@
 #include <ceres/crs_matrix.h>
 #include <ceres/problem.h>
 
-#include "cost_functions/energy_derivatives.h"
-#include "geometry/mesh_io.h"
-#include "geometry/topology.h"
+#include "shellspace/cost_functions/shell/energy_derivatives.h"
+#include "shellspace/io/mesh_io.h"
+#include "shellspace/geometry/topology.h"
 
 namespace shellspace {
 namespace {

@@ -8,9 +8,9 @@
 #include <chrono>
 #include <cstdio>
 
-#include "geometry/mesh_io.h"
-#include "problems/ltheta_spline.h"
-#include "problems/spline.h"
+#include "shellspace/io/mesh_io.h"
+#include "shellspace/problems/splines/ltheta_spline.h"
+#include "shellspace/problems/splines/spline.h"
 
 namespace shellspace {
 namespace {

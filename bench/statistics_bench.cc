@@ -18,10 +18,10 @@
 #include <string>
 #include <vector>
 
-#include "geometry/mesh_io.h"
-#include "geometry/topology.h"
-#include "problems/elastic_mean.h"
-#include "problems/leave_one_out.h"
+#include "shellspace/io/mesh_io.h"
+#include "shellspace/geometry/topology.h"
+#include "shellspace/problems/statistics/elastic_mean.h"
+#include "shellspace/problems/statistics/leave_one_out.h"
 
 namespace shellspace {
 namespace {

@@ -16,11 +16,7 @@ mark_as_advanced(SHELLSPACE_INSTALL_CMAKEDIR)
 
 # The library is static and position independent, so that consumers may link
 # it into shared objects as well as executables.
-set_target_properties(shellspace PROPERTIES
-  POSITION_INDEPENDENT_CODE ON
-  EXPORT_NAME shellspace)
-
-install(TARGETS shellspace
+install(TARGETS shellspace ${SHELLSPACE_ROOMS}
   EXPORT shellspaceTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR}
   LIBRARY DESTINATION ${CMAKE_INSTALL_LIBDIR}
@@ -29,9 +25,10 @@ install(TARGETS shellspace
 install(TARGETS shellspace_cli
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 
-# Public headers keep their source-tree layout under include/shellspace/, which
-# is where the library's own "geometry/mesh.h"-style includes resolve from.
-foreach(shellspace_header_dir geometry cost_functions problems render)
+# Public headers keep their source-tree layout under include/shellspace/; the
+# library's own includes are "shellspace/<room>/...", so only include/ is on a
+# consumer's include path.
+foreach(shellspace_header_dir geometry cost_functions solvers problems io render)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${shellspace_header_dir}/
     DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/shellspace/${shellspace_header_dir}
     FILES_MATCHING PATTERN "*.h")

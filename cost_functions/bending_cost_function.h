@@ -2,8 +2,8 @@
 #ifndef SHELLSPACE_COST_FUNCTIONS_BENDING_COST_FUNCTION_H_
 #define SHELLSPACE_COST_FUNCTIONS_BENDING_COST_FUNCTION_H_
 
-#include "cost_functions/bending_element.h"
-#include "cost_functions/element_cost_function.h"
+#include "shellspace/cost_functions/shell/bending_element.h"
+#include "shellspace/cost_functions/element_cost_function.h"
 
 namespace shellspace {
 

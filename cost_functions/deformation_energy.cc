@@ -1,10 +1,10 @@
-#include "cost_functions/deformation_energy.h"
+#include "shellspace/cost_functions/deformation_energy.h"
 
 #include <cmath>
 
-#include "cost_functions/bending_cost_function.h"
-#include "cost_functions/membrane_cost_function.h"
-#include "geometry/element_geometry.h"
+#include "shellspace/cost_functions/bending_cost_function.h"
+#include "shellspace/cost_functions/membrane_cost_function.h"
+#include "shellspace/geometry/element_geometry.h"
 
 namespace shellspace {
 

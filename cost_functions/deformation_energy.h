@@ -7,10 +7,10 @@
 
 #include <vector>
 
-#include "cost_functions/bending_element.h"
-#include "cost_functions/membrane_element.h"
-#include "geometry/mesh.h"
-#include "geometry/topology.h"
+#include "shellspace/cost_functions/shell/bending_element.h"
+#include "shellspace/cost_functions/shell/membrane_element.h"
+#include "shellspace/geometry/mesh.h"
+#include "shellspace/geometry/topology.h"
 
 namespace shellspace {
 

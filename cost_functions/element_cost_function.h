@@ -9,7 +9,7 @@
 #include <array>
 #include <cmath>
 
-#include "geometry/scalar_traits.h"
+#include "shellspace/geometry/scalar_traits.h"
 
 namespace shellspace {
 

@@ -1,4 +1,4 @@
-#include "cost_functions/gradient_field_residual.h"
+#include "shellspace/cost_functions/gradient_field_residual.h"
 
 #include <algorithm>
 #include <cstring>

@@ -15,7 +15,7 @@
 #include <memory>
 #include <vector>
 
-#include "cost_functions/energy_derivatives.h"
+#include "shellspace/cost_functions/shell/energy_derivatives.h"
 
 namespace shellspace {
 

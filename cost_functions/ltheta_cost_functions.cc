@@ -1,9 +1,9 @@
-#include "cost_functions/ltheta_cost_functions.h"
+#include "shellspace/cost_functions/ltheta_cost_functions.h"
 
 #include <Eigen/Core>
 #include <cmath>
 
-#include "geometry/element_geometry.h"
+#include "shellspace/geometry/element_geometry.h"
 
 namespace shellspace {
 namespace {

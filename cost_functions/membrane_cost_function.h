@@ -2,8 +2,8 @@
 #ifndef SHELLSPACE_COST_FUNCTIONS_MEMBRANE_COST_FUNCTION_H_
 #define SHELLSPACE_COST_FUNCTIONS_MEMBRANE_COST_FUNCTION_H_
 
-#include "cost_functions/element_cost_function.h"
-#include "cost_functions/membrane_element.h"
+#include "shellspace/cost_functions/element_cost_function.h"
+#include "shellspace/cost_functions/shell/membrane_element.h"
 
 namespace shellspace {
 

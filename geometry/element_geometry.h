@@ -11,7 +11,7 @@
 
 #include <cmath>
 
-#include "geometry/scalar_traits.h"
+#include "shellspace/geometry/scalar_traits.h"
 
 namespace shellspace {
 

@@ -1,4 +1,4 @@
-#include "geometry/procedural_shapes.h"
+#include "shellspace/geometry/procedural_shapes.h"
 
 #include <algorithm>
 #include <cmath>

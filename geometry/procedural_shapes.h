@@ -4,7 +4,7 @@
 
 #include <vector>
 
-#include "geometry/mesh.h"
+#include "shellspace/geometry/mesh.h"
 
 namespace shellspace {
 

@@ -1,4 +1,4 @@
-#include "geometry/rigid_alignment.h"
+#include "shellspace/geometry/rigid_alignment.h"
 
 #include <Eigen/SVD>
 

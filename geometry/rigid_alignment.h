@@ -2,7 +2,7 @@
 #ifndef SHELLSPACE_GEOMETRY_RIGID_ALIGNMENT_H_
 #define SHELLSPACE_GEOMETRY_RIGID_ALIGNMENT_H_
 
-#include "geometry/mesh.h"
+#include "shellspace/geometry/mesh.h"
 
 namespace shellspace {
 

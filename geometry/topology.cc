@@ -1,4 +1,4 @@
-#include "geometry/topology.h"
+#include "shellspace/geometry/topology.h"
 
 #include <map>
 #include <string>

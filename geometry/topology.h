@@ -5,7 +5,7 @@
 #include <array>
 #include <vector>
 
-#include "geometry/mesh.h"
+#include "shellspace/geometry/mesh.h"
 
 namespace shellspace {
 
@@ -13,8 +13,8 @@ namespace shellspace {
 // "edge flap", as in Discrete Shells):
 //
 //            k (opposite in face_0)
-//           / \
-//          /   \
+//           / \ .
+//          /   \ .
 //         i-----j      the shared edge, oriented i -> j as in face_0
 //          \   /
 //           \ /

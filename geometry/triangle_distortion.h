@@ -4,7 +4,7 @@
 #ifndef SHELLSPACE_GEOMETRY_TRIANGLE_DISTORTION_H_
 #define SHELLSPACE_GEOMETRY_TRIANGLE_DISTORTION_H_
 
-#include "geometry/scalar_traits.h"
+#include "shellspace/geometry/scalar_traits.h"
 
 namespace shellspace {
 

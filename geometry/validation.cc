@@ -1,4 +1,4 @@
-#include "geometry/validation.h"
+#include "shellspace/geometry/validation.h"
 
 #include <cmath>
 

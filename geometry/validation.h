@@ -4,8 +4,8 @@
 
 #include <string>
 
-#include "geometry/mesh.h"
-#include "geometry/topology.h"
+#include "shellspace/geometry/mesh.h"
+#include "shellspace/geometry/topology.h"
 
 namespace shellspace {
 

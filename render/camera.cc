@@ -1,4 +1,4 @@
-#include "render/camera.h"
+#include "shellspace/render/camera.h"
 
 #include <algorithm>
 #include <cmath>

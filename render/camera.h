@@ -6,8 +6,8 @@
 
 #include <Eigen/Core>
 
-#include "geometry/mesh.h"
-#include "render/view.h"
+#include "shellspace/geometry/mesh.h"
+#include "shellspace/render/view.h"
 
 namespace shellspace {
 

@@ -1,11 +1,11 @@
-#include "render/film_strip.h"
+#include "shellspace/render/film_strip.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 
-#include "render/camera.h"
-#include "render/rasterizer.h"
+#include "shellspace/render/camera.h"
+#include "shellspace/render/rasterizer.h"
 
 namespace shellspace {
 namespace {

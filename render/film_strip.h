@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
-#include "geometry/mesh.h"
-#include "render/png_writer.h"
-#include "render/shading.h"
-#include "render/view.h"
+#include "shellspace/geometry/mesh.h"
+#include "shellspace/io/png_writer.h"
+#include "shellspace/render/shading.h"
+#include "shellspace/render/view.h"
 
 namespace shellspace {
 

@@ -1,4 +1,4 @@
-#include "render/rasterizer.h"
+#include "shellspace/render/rasterizer.h"
 
 #include <algorithm>
 #include <cmath>

@@ -4,9 +4,9 @@
 
 #include <vector>
 
-#include "geometry/mesh.h"
-#include "render/camera.h"
-#include "render/shading.h"
+#include "shellspace/geometry/mesh.h"
+#include "shellspace/render/camera.h"
+#include "shellspace/render/shading.h"
 
 namespace shellspace {
 

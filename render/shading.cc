@@ -1,8 +1,8 @@
-#include "render/shading.h"
+#include "shellspace/render/shading.h"
 
 #include <cctype>
 
-#include "geometry/mesh.h"
+#include "shellspace/geometry/mesh.h"
 
 namespace shellspace {
 

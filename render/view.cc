@@ -1,10 +1,10 @@
-#include "render/view.h"
+#include "shellspace/render/view.h"
 
 #include <cctype>
 #include <cmath>
 #include <cstdlib>
 
-#include "geometry/mesh.h"
+#include "shellspace/geometry/mesh.h"
 
 namespace shellspace {
 namespace {

@@ -1,4 +1,4 @@
-#include "tools/common_flags.h"
+#include "shellspace/tools/common_flags.h"
 
 DEFINE_string(output, "", "output file or directory");
 DEFINE_bool(json, false, "print a JSON summary on stdout");

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "geometry/mesh.h"
-#include "tools/verb.h"
+#include "shellspace/geometry/mesh.h"
+#include "shellspace/tools/verb.h"
 
 namespace shellspace {
 

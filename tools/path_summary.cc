@@ -1,8 +1,8 @@
-#include "tools/path_summary.h"
+#include "shellspace/tools/path_summary.h"
 
-#include "render/film_strip.h"
-#include "tools/common_flags.h"
-#include "tools/shell_inputs.h"
+#include "shellspace/render/film_strip.h"
+#include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/shell_inputs.h"
 
 namespace shellspace {
 

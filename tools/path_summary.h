@@ -7,9 +7,9 @@
 #include <string>
 #include <vector>
 
-#include "cost_functions/deformation_energy.h"
-#include "problems/geodesic.h"
-#include "tools/json_writer.h"
+#include "shellspace/cost_functions/deformation_energy.h"
+#include "shellspace/problems/calculus/geodesic.h"
+#include "shellspace/io/json_writer.h"
 
 namespace shellspace {
 

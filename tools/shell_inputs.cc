@@ -1,12 +1,12 @@
-#include "tools/shell_inputs.h"
+#include "shellspace/tools/shell_inputs.h"
 
 #include <cstdio>
 #include <filesystem>
 #include <sstream>
 
-#include "geometry/mesh_io.h"
-#include "geometry/validation.h"
-#include "tools/common_flags.h"
+#include "shellspace/io/mesh_io.h"
+#include "shellspace/geometry/validation.h"
+#include "shellspace/tools/common_flags.h"
 
 namespace shellspace {
 

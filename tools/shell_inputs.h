@@ -5,9 +5,9 @@
 #include <string>
 #include <vector>
 
-#include "cost_functions/deformation_energy.h"
-#include "geometry/mesh.h"
-#include "problems/solver_settings.h"
+#include "shellspace/cost_functions/deformation_energy.h"
+#include "shellspace/geometry/mesh.h"
+#include "shellspace/solvers/solver_settings.h"
 
 namespace shellspace {
 

@@ -19,15 +19,15 @@
 #include <string>
 #include <vector>
 
-#include "geometry/mesh.h"
-#include "problems/branching/construction_optimizer.h"
-#include "problems/branching/field_output.h"
-#include "problems/branching/km_family.h"
-#include "problems/branching/simulation.h"
-#include "render/png_writer.h"
-#include "tools/common_flags.h"
-#include "tools/json_writer.h"
-#include "tools/verb.h"
+#include "shellspace/geometry/mesh.h"
+#include "shellspace/problems/branching/construction_optimizer.h"
+#include "shellspace/problems/branching/field_output.h"
+#include "shellspace/problems/branching/km_family.h"
+#include "shellspace/problems/branching/simulation.h"
+#include "shellspace/io/png_writer.h"
+#include "shellspace/tools/common_flags.h"
+#include "shellspace/io/json_writer.h"
+#include "shellspace/tools/verb.h"
 
 DEFINE_double(length, 1.0, "branching: domain length L (distance from the austenite)");
 DEFINE_int32(nx, 64, "branching simulate: number of x-cells");

@@ -5,14 +5,14 @@
 #include <chrono>
 #include <iostream>
 
-#include "geometry/mesh_io.h"
-#include "problems/exponential_map.h"
-#include "problems/parallel_transport.h"
-#include "render/frame_sequence.h"
-#include "tools/common_flags.h"
-#include "tools/path_summary.h"
-#include "tools/shell_inputs.h"
-#include "tools/verb.h"
+#include "shellspace/io/mesh_io.h"
+#include "shellspace/problems/calculus/exponential_map.h"
+#include "shellspace/problems/calculus/parallel_transport.h"
+#include "shellspace/io/frame_sequence.h"
+#include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/path_summary.h"
+#include "shellspace/tools/shell_inputs.h"
+#include "shellspace/tools/verb.h"
 
 DEFINE_string(first, "", "shoot: the shell s_0");
 DEFINE_string(second, "",

@@ -5,12 +5,12 @@
 #include <cstdio>
 #include <iostream>
 
-#include "geometry/mesh_io.h"
-#include "problems/elastic_deformation.h"
-#include "tools/common_flags.h"
-#include "tools/json_writer.h"
-#include "tools/shell_inputs.h"
-#include "tools/verb.h"
+#include "shellspace/io/mesh_io.h"
+#include "shellspace/problems/calculus/elastic_deformation.h"
+#include "shellspace/tools/common_flags.h"
+#include "shellspace/io/json_writer.h"
+#include "shellspace/tools/shell_inputs.h"
+#include "shellspace/tools/verb.h"
 
 DEFINE_string(targets, "",
               "mesh giving the prescribed positions of the masked vertices "

@@ -9,14 +9,14 @@
 #include <fstream>
 #include <iostream>
 
-#include "geometry/mesh_io.h"
-#include "geometry/procedural_shapes.h"
-#include "problems/exponential_map.h"
-#include "render/film_strip.h"
-#include "tools/common_flags.h"
-#include "tools/path_summary.h"
-#include "tools/shell_inputs.h"
-#include "tools/verb.h"
+#include "shellspace/io/mesh_io.h"
+#include "shellspace/geometry/procedural_shapes.h"
+#include "shellspace/problems/calculus/exponential_map.h"
+#include "shellspace/render/film_strip.h"
+#include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/path_summary.h"
+#include "shellspace/tools/shell_inputs.h"
+#include "shellspace/tools/verb.h"
 
 DEFINE_int32(extrapolate, 4, "demo: EXP steps beyond the end shape");
 

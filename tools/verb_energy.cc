@@ -4,10 +4,10 @@
 #include <cstdio>
 #include <iostream>
 
-#include "tools/common_flags.h"
-#include "tools/json_writer.h"
-#include "tools/shell_inputs.h"
-#include "tools/verb.h"
+#include "shellspace/tools/common_flags.h"
+#include "shellspace/io/json_writer.h"
+#include "shellspace/tools/shell_inputs.h"
+#include "shellspace/tools/verb.h"
 
 DEFINE_string(deformed, "", "deformed shell with the reference's connectivity");
 

@@ -4,12 +4,12 @@
 #include <chrono>
 #include <iostream>
 
-#include "geometry/mesh_io.h"
-#include "problems/geodesic.h"
-#include "tools/common_flags.h"
-#include "tools/path_summary.h"
-#include "tools/shell_inputs.h"
-#include "tools/verb.h"
+#include "shellspace/io/mesh_io.h"
+#include "shellspace/problems/calculus/geodesic.h"
+#include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/path_summary.h"
+#include "shellspace/tools/shell_inputs.h"
+#include "shellspace/tools/verb.h"
 
 namespace shellspace {
 namespace {

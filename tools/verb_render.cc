@@ -7,12 +7,12 @@
 #include <sstream>
 #include <string>
 
-#include "geometry/mesh.h"
-#include "render/film_strip.h"
-#include "render/frame_sequence.h"
-#include "render/view.h"
-#include "tools/common_flags.h"
-#include "tools/verb.h"
+#include "shellspace/geometry/mesh.h"
+#include "shellspace/render/film_strip.h"
+#include "shellspace/io/frame_sequence.h"
+#include "shellspace/render/view.h"
+#include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/verb.h"
 
 DEFINE_string(input, "",
               "render: a directory (all *.ply, *.obj, *.off in natural name "

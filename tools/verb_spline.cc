@@ -5,12 +5,12 @@
 #include <chrono>
 #include <iostream>
 
-#include "problems/ltheta_spline.h"
-#include "problems/spline.h"
-#include "tools/common_flags.h"
-#include "tools/path_summary.h"
-#include "tools/shell_inputs.h"
-#include "tools/verb.h"
+#include "shellspace/problems/splines/ltheta_spline.h"
+#include "shellspace/problems/splines/spline.h"
+#include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/path_summary.h"
+#include "shellspace/tools/shell_inputs.h"
+#include "shellspace/tools/verb.h"
 
 DEFINE_string(keyframes, "", "spline: comma-separated keyframe shells");
 DEFINE_string(method, "nonlinear",

@@ -12,16 +12,16 @@
 #include <iostream>
 #include <sstream>
 
-#include "geometry/mesh_io.h"
-#include "problems/elastic_mean.h"
-#include "problems/leave_one_out.h"
-#include "problems/procrustes_pca.h"
-#include "problems/shell_pca.h"
-#include "render/film_strip.h"
-#include "tools/common_flags.h"
-#include "tools/json_writer.h"
-#include "tools/shell_inputs.h"
-#include "tools/verb.h"
+#include "shellspace/io/mesh_io.h"
+#include "shellspace/problems/statistics/elastic_mean.h"
+#include "shellspace/problems/statistics/leave_one_out.h"
+#include "shellspace/problems/statistics/procrustes_pca.h"
+#include "shellspace/problems/statistics/shell_pca.h"
+#include "shellspace/render/film_strip.h"
+#include "shellspace/tools/common_flags.h"
+#include "shellspace/io/json_writer.h"
+#include "shellspace/tools/shell_inputs.h"
+#include "shellspace/tools/verb.h"
 
 DEFINE_int32(modes, 3,
              "pca: number of modes written (and m = 1..modes of --loo)");

@@ -1,10 +1,10 @@
-#include "cost_functions/branching/lens_energy_cost_function.h"
+#include "shellspace/cost_functions/branching/lens_energy_cost_function.h"
 
 #include <cmath>
 #include <vector>
 
-#include "problems/branching/cell_pattern.h"
-#include "problems/branching/lens_family.h"
+#include "shellspace/cost_functions/branching/cell_pattern.h"
+#include "shellspace/cost_functions/branching/lens_family.h"
 
 namespace shellspace::branching {
 

@@ -1,4 +1,4 @@
-#include "problems/branching/construction.h"
+#include "shellspace/problems/branching/construction.h"
 
 #include <algorithm>
 #include <cmath>

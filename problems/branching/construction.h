@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "problems/branching/cell_pattern.h"
-#include "render/png_writer.h"
+#include "shellspace/cost_functions/branching/cell_pattern.h"
+#include "shellspace/io/png_writer.h"
 
 namespace shellspace::branching {
 

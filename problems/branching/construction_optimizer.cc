@@ -1,15 +1,15 @@
-#include "problems/branching/construction_optimizer.h"
+#include "shellspace/problems/branching/construction_optimizer.h"
 
 #include <chrono>
 #include <cmath>
 
 #include <ceres/ceres.h>
 
-#include "cost_functions/branching/km_energy_cost_function.h"
-#include "cost_functions/branching/lens_energy_cost_function.h"
-#include "geometry/mesh.h"
-#include "problems/branching/km_family.h"
-#include "problems/branching/self_similar_series.h"
+#include "shellspace/cost_functions/branching/km_energy_cost_function.h"
+#include "shellspace/cost_functions/branching/lens_energy_cost_function.h"
+#include "shellspace/geometry/mesh.h"
+#include "shellspace/problems/branching/km_family.h"
+#include "shellspace/problems/branching/self_similar_series.h"
 
 namespace shellspace::branching {
 

@@ -8,8 +8,8 @@
 
 #include <string>
 
-#include "problems/branching/construction.h"
-#include "problems/branching/lens_family.h"
+#include "shellspace/problems/branching/construction.h"
+#include "shellspace/cost_functions/branching/lens_family.h"
 
 namespace shellspace::branching {
 

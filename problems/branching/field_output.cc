@@ -1,4 +1,4 @@
-#include "problems/branching/field_output.h"
+#include "shellspace/problems/branching/field_output.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,7 +6,7 @@
 #include <fstream>
 #include <sstream>
 
-#include "geometry/mesh.h"
+#include "shellspace/geometry/mesh.h"
 
 namespace shellspace::branching {
 

@@ -6,8 +6,8 @@
 #include <string>
 #include <vector>
 
-#include "problems/branching/relaxed_grid.h"
-#include "render/png_writer.h"
+#include "shellspace/problems/branching/relaxed_grid.h"
+#include "shellspace/io/png_writer.h"
 
 namespace shellspace::branching {
 

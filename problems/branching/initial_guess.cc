@@ -1,12 +1,12 @@
-#include "problems/branching/initial_guess.h"
+#include "shellspace/problems/branching/initial_guess.h"
 
 #include <algorithm>
 #include <cmath>
 #include <random>
 #include <vector>
 
-#include "problems/branching/km_family.h"
-#include "problems/branching/self_similar_series.h"
+#include "shellspace/problems/branching/km_family.h"
+#include "shellspace/problems/branching/self_similar_series.h"
 
 namespace shellspace::branching {
 

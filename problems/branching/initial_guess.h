@@ -16,8 +16,8 @@
 #include <functional>
 #include <string>
 
-#include "problems/branching/construction.h"
-#include "problems/branching/relaxed_grid.h"
+#include "shellspace/problems/branching/construction.h"
+#include "shellspace/problems/branching/relaxed_grid.h"
 
 namespace shellspace::branching {
 

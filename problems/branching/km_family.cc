@@ -1,4 +1,4 @@
-#include "problems/branching/km_family.h"
+#include "shellspace/problems/branching/km_family.h"
 
 #include <cmath>
 

@@ -29,7 +29,7 @@
 #ifndef SHELLSPACE_PROBLEMS_BRANCHING_KM_FAMILY_H_
 #define SHELLSPACE_PROBLEMS_BRANCHING_KM_FAMILY_H_
 
-#include "problems/branching/cell_pattern.h"
+#include "shellspace/cost_functions/branching/cell_pattern.h"
 
 namespace shellspace::branching {
 

@@ -1,8 +1,8 @@
-#include "problems/branching/relaxed_grid.h"
+#include "shellspace/problems/branching/relaxed_grid.h"
 
 #include <cmath>
 
-#include "geometry/mesh.h"
+#include "shellspace/geometry/mesh.h"
 
 namespace shellspace::branching {
 

@@ -1,12 +1,12 @@
-#include "problems/branching/relaxed_problem.h"
+#include "shellspace/problems/branching/relaxed_problem.h"
 
 #include <chrono>
 #include <cmath>
 
-#include "cost_functions/branching/double_well_cost_function.h"
-#include "cost_functions/branching/elastic_cost_function.h"
-#include "cost_functions/branching/gradient_cost_function.h"
-#include "geometry/mesh.h"
+#include "shellspace/cost_functions/branching/double_well_cost_function.h"
+#include "shellspace/cost_functions/branching/elastic_cost_function.h"
+#include "shellspace/cost_functions/branching/gradient_cost_function.h"
+#include "shellspace/geometry/mesh.h"
 
 namespace shellspace::branching {
 

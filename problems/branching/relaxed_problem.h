@@ -19,7 +19,7 @@
 
 #include <ceres/ceres.h>
 
-#include "problems/branching/relaxed_grid.h"
+#include "shellspace/problems/branching/relaxed_grid.h"
 
 namespace shellspace::branching {
 

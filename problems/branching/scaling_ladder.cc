@@ -1,13 +1,13 @@
-#include "problems/branching/scaling_ladder.h"
+#include "shellspace/problems/branching/scaling_ladder.h"
 
 #include <algorithm>
 #include <cmath>
 #include <set>
 
-#include "geometry/mesh.h"
-#include "problems/branching/km_family.h"
-#include "problems/branching/self_similar_series.h"
-#include "problems/branching/simulation.h"
+#include "shellspace/geometry/mesh.h"
+#include "shellspace/problems/branching/km_family.h"
+#include "shellspace/problems/branching/self_similar_series.h"
+#include "shellspace/problems/branching/simulation.h"
 
 namespace shellspace::branching {
 

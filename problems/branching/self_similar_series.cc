@@ -1,8 +1,8 @@
-#include "problems/branching/self_similar_series.h"
+#include "shellspace/problems/branching/self_similar_series.h"
 
 #include <cmath>
 
-#include "geometry/mesh.h"
+#include "shellspace/geometry/mesh.h"
 
 namespace shellspace::branching {
 

@@ -1,13 +1,13 @@
-#include "problems/branching/simulation.h"
+#include "shellspace/problems/branching/simulation.h"
 
 #include <chrono>
 #include <cmath>
 
-#include "geometry/mesh.h"
-#include "problems/branching/construction_optimizer.h"
-#include "problems/branching/initial_guess.h"
-#include "problems/branching/km_family.h"
-#include "problems/branching/self_similar_series.h"
+#include "shellspace/geometry/mesh.h"
+#include "shellspace/problems/branching/construction_optimizer.h"
+#include "shellspace/problems/branching/initial_guess.h"
+#include "shellspace/problems/branching/km_family.h"
+#include "shellspace/problems/branching/self_similar_series.h"
 
 namespace shellspace::branching {
 

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "problems/branching/relaxed_problem.h"
+#include "shellspace/problems/branching/relaxed_problem.h"
 
 namespace shellspace::branching {
 

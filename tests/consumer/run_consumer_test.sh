@@ -49,7 +49,7 @@ includedir="${includedir:-include}"
 
 quietly cmake --install "${build_dir}" --prefix "${prefix}"
 package_dir="${prefix}/${libdir}/cmake/shellspace"
-for installed in "${libdir}/libshellspace.a" "${bindir}/shellspace" \
+for installed in "${libdir}/libshellspace_cost_functions.a" "${bindir}/shellspace" \
     "${libdir}/cmake/shellspace/shellspaceConfig.cmake" \
     "${libdir}/cmake/shellspace/shellspaceConfigVersion.cmake" \
     "${libdir}/cmake/shellspace/shellspaceTargets.cmake" \

@@ -1,0 +1,32 @@
+# The rooms of the library (README, "Layout"): one static library per folder,
+# linked only to the rooms below it. Each room's CMakeLists.txt calls
+#
+#   shellspace_room(NAME <room> [RECURSE] [PUBLIC deps...] [PRIVATE deps...])
+#
+# which builds every .cc of that folder (and, with RECURSE, of its
+# subfolders) into the target shellspace_<room>, exported as
+# shellspace::<room>. Sources include every project header as
+# "shellspace/<room>/<file>.h": the build tree reaches them through the
+# symbolic link build/include/shellspace -> the source tree, an installed
+# tree through <prefix>/include/shellspace/.
+
+function(shellspace_room)
+  cmake_parse_arguments(ROOM "RECURSE" "NAME" "PUBLIC;PRIVATE" ${ARGN})
+  if(ROOM_RECURSE)
+    file(GLOB_RECURSE sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cc)
+  else()
+    file(GLOB sources CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/*.cc)
+  endif()
+  set(target shellspace_${ROOM_NAME})
+  add_library(${target} STATIC ${sources})
+  add_library(shellspace::${ROOM_NAME} ALIAS ${target})
+  set_target_properties(${target} PROPERTIES EXPORT_NAME ${ROOM_NAME}
+    POSITION_INDEPENDENT_CODE ON)
+  target_include_directories(${target} PUBLIC
+    $<BUILD_INTERFACE:${SHELLSPACE_BUILD_INCLUDE_DIR}>
+    $<INSTALL_INTERFACE:include>)
+  target_link_libraries(${target} PUBLIC ${ROOM_PUBLIC} PRIVATE ${ROOM_PRIVATE})
+  target_compile_options(${target} PRIVATE ${SHELLSPACE_WARNINGS})
+  target_compile_definitions(${target} PRIVATE _USE_MATH_DEFINES)
+  set_property(GLOBAL APPEND PROPERTY SHELLSPACE_ROOMS ${target})
+endfunction()

@@ -1,0 +1,91 @@
+// Second derivatives of one element's energy e = 1/2 |r|^2, obtained by
+// differentiating the element's analytic gradient (J^T r, the same stencil as
+// the cost functions) with forward-mode dual numbers (ceres::Jet). Exact to
+// round-off; no finite differences.
+#ifndef SHELLSPACE_COST_FUNCTIONS_SHELL_ELEMENT_HESSIAN_H_
+#define SHELLSPACE_COST_FUNCTIONS_SHELL_ELEMENT_HESSIAN_H_
+
+#include <ceres/jet.h>
+
+#include <Eigen/Core>
+
+#include "shellspace/geometry/scalar_traits.h"
+
+namespace shellspace {
+
+// Which argument of W the derivatives are taken with respect to.
+enum class ShellSide { kReference, kDeformed };
+
+// For an element with kVertices vertices (3: membrane, 4: bending), with
+// n = 3 kVertices:
+//   grad_reference = d e / d Xbar   (n),  grad_deformed = d e / d X  (n),
+//   d_grad_reference = d grad_reference / d Y  (n x n),
+//   d_grad_deformed  = d grad_deformed  / d Y  (n x n),
+// where Y is the `active` side. So with active = kDeformed, d_grad_deformed is
+// the Hessian D_2^2 e and d_grad_reference the mixed block d_Xbar d_X e (rows
+// Xbar, columns X); with active = kReference, d_grad_reference = D_1^2 e and
+// d_grad_deformed = d_X d_Xbar e (rows X, columns Xbar). Returns false if the
+// element is degenerate. With `rows` = kReference (kDeformed) only
+// grad_reference and d_grad_reference (grad_deformed, d_grad_deformed) are
+// computed -- one residual Jacobian fewer in dual numbers; the others are
+// left unchanged.
+template <int kVertices>
+struct ElementSecondDerivatives {
+  static constexpr int n = 3 * kVertices;
+  Eigen::Matrix<double, n, 1> grad_reference, grad_deformed;
+  Eigen::Matrix<double, n, n, Eigen::RowMajor> d_grad_reference,
+      d_grad_deformed;
+  double energy = 0;
+
+  enum class Rows { kBoth, kReference, kDeformed };
+
+  template <class Element>
+  bool Compute(const Element& element, const double* reference,
+               const double* deformed, ShellSide active, double weight,
+               Rows rows = Rows::kBoth) {
+    using J = ceres::Jet<double, n>;
+    Vec3<J> ref[kVertices], def[kVertices];
+    for (int v = 0; v < kVertices; ++v) {
+      for (int c = 0; c < 3; ++c) {
+        ref[v](c) = J(reference[3 * v + c]);
+        def[v](c) = J(deformed[3 * v + c]);
+        if (active == ShellSide::kReference) {
+          ref[v](c).v[3 * v + c] = 1.0;
+        } else {
+          def[v](c).v[3 * v + c] = 1.0;
+        }
+      }
+    }
+    constexpr int m = Element::kNumResiduals;
+    J residuals[m];
+    typename Element::template Jacobian<J> jac_ref, jac_def;
+    const bool want_ref = rows != Rows::kDeformed;
+    const bool want_def = rows != Rows::kReference;
+    if (!element.Evaluate(ref, def, residuals, want_ref ? &jac_ref : nullptr,
+                          want_def ? &jac_def : nullptr)) {
+      return false;
+    }
+    energy = 0;
+    for (int i = 0; i < m; ++i)
+      energy += 0.5 * weight * residuals[i].a * residuals[i].a;
+    for (int col = 0; col < n; ++col) {
+      if (want_ref) {
+        J g(0.0);
+        for (int i = 0; i < m; ++i) g += jac_ref(i, col) * residuals[i];
+        grad_reference(col) = weight * g.a;
+        d_grad_reference.row(col) = weight * g.v.transpose();
+      }
+      if (want_def) {
+        J g(0.0);
+        for (int i = 0; i < m; ++i) g += jac_def(i, col) * residuals[i];
+        grad_deformed(col) = weight * g.a;
+        d_grad_deformed.row(col) = weight * g.v.transpose();
+      }
+    }
+    return true;
+  }
+};
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_COST_FUNCTIONS_SHELL_ELEMENT_HESSIAN_H_

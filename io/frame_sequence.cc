@@ -1,0 +1,129 @@
+#include "shellspace/io/frame_sequence.h"
+
+#include <algorithm>
+#include <cctype>
+#include <filesystem>
+#include <system_error>
+
+#include "shellspace/io/mesh_io.h"
+
+namespace shellspace {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool IsDigit(char c) { return std::isdigit(static_cast<unsigned char>(c)); }
+
+bool HasMeshExtension(const fs::path& path) {
+  std::string ext = path.extension().string();
+  for (char& c : ext) {
+    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  }
+  return ext == ".ply" || ext == ".obj" || ext == ".off";
+}
+
+std::string Trim(const std::string& text) {
+  const size_t begin = text.find_first_not_of(" \t");
+  if (begin == std::string::npos) return "";
+  return text.substr(begin, text.find_last_not_of(" \t") - begin + 1);
+}
+
+std::vector<std::string> ListDirectory(const std::string& dir) {
+  std::vector<std::string> files;
+  std::error_code error;
+  for (fs::directory_iterator it(dir, error), end; !error && it != end;
+       it.increment(error)) {
+    std::error_code type_error;
+    if (it->is_regular_file(type_error) && HasMeshExtension(it->path())) {
+      files.push_back(it->path().string());
+    }
+  }
+  if (error) throw InputError("cannot list directory " + dir);
+  if (files.empty()) {
+    throw InputError("no .ply, .obj or .off meshes in directory " + dir);
+  }
+  std::sort(files.begin(), files.end(), NaturalLess);
+  return files;
+}
+
+}  // namespace
+
+bool NaturalLess(const std::string& a, const std::string& b) {
+  size_t i = 0, j = 0;
+  while (i < a.size() && j < b.size()) {
+    if (IsDigit(a[i]) && IsDigit(b[j])) {
+      size_t i_end = i, j_end = j;
+      while (i_end < a.size() && IsDigit(a[i_end])) ++i_end;
+      while (j_end < b.size() && IsDigit(b[j_end])) ++j_end;
+      // Compare the runs as numbers: skip leading zeros, then by length,
+      // then digit by digit.
+      size_t i_start = i, j_start = j;
+      while (i_start + 1 < i_end && a[i_start] == '0') ++i_start;
+      while (j_start + 1 < j_end && b[j_start] == '0') ++j_start;
+      const size_t i_len = i_end - i_start, j_len = j_end - j_start;
+      if (i_len != j_len) return i_len < j_len;
+      const int order = a.compare(i_start, i_len, b, j_start, j_len);
+      if (order != 0) return order < 0;
+      i = i_end;
+      j = j_end;
+    } else {
+      if (a[i] != b[j]) {
+        return static_cast<unsigned char>(a[i]) <
+               static_cast<unsigned char>(b[j]);
+      }
+      ++i;
+      ++j;
+    }
+  }
+  if ((a.size() - i) != (b.size() - j)) return a.size() - i < b.size() - j;
+  return a < b;  // equal up to leading zeros: keep a total order
+}
+
+std::vector<std::string> ListFrameFiles(const std::string& input) {
+  const std::string trimmed = Trim(input);
+  if (trimmed.empty()) throw InputError("no input meshes given");
+  if (trimmed.find(',') == std::string::npos) {
+    std::error_code error;
+    if (fs::is_directory(trimmed, error)) return ListDirectory(trimmed);
+    if (!fs::exists(trimmed, error)) {
+      throw InputError("input " + trimmed + " does not exist");
+    }
+    return {trimmed};
+  }
+  std::vector<std::string> files;
+  size_t start = 0;
+  while (true) {
+    const size_t comma = trimmed.find(',', start);
+    const std::string item = Trim(trimmed.substr(
+        start, comma == std::string::npos ? std::string::npos : comma - start));
+    if (item.empty()) {
+      throw InputError("empty entry in the input list '" + trimmed + "'");
+    }
+    files.push_back(item);
+    if (comma == std::string::npos) break;
+    start = comma + 1;
+  }
+  return files;
+}
+
+FrameSequence ReadFrameSequence(const std::string& input) {
+  FrameSequence sequence;
+  sequence.paths = ListFrameFiles(input);
+  for (const std::string& path : sequence.paths) {
+    Mesh mesh = ReadMesh(path);
+    if (sequence.frames.empty()) {
+      sequence.faces = mesh.faces;
+    } else if (mesh.num_vertices() != sequence.frames[0].rows()) {
+      throw InputError(path + " has " + std::to_string(mesh.num_vertices()) +
+                       " vertices, " + sequence.paths[0] + " has " +
+                       std::to_string(sequence.frames[0].rows()));
+    } else if (mesh.faces.rows() != sequence.faces.rows() ||
+               mesh.faces != sequence.faces) {
+      throw InputError(path + " has other faces than " + sequence.paths[0]);
+    }
+    sequence.frames.push_back(std::move(mesh.positions));
+  }
+  return sequence;
+}
+
+}  // namespace shellspace

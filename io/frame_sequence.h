@@ -1,0 +1,37 @@
+// Reading a sequence of shells (frames) for rendering.
+#ifndef SHELLSPACE_IO_FRAME_SEQUENCE_H_
+#define SHELLSPACE_IO_FRAME_SEQUENCE_H_
+
+#include <string>
+#include <vector>
+
+#include "shellspace/geometry/mesh.h"
+
+namespace shellspace {
+
+// Frames of one shell: per-frame positions sharing one connectivity.
+struct FrameSequence {
+  std::vector<std::string> paths;   // the file of each frame
+  std::vector<Positions> frames;
+  Faces faces;
+};
+
+// The mesh files named by `input`: either a directory, giving every regular
+// file in it ending in .ply, .obj or .off (any case) in natural name order
+// (digit runs compare as numbers, so shape_2 comes before shape_10), or a
+// comma-separated list of files, kept in the given order. Throws InputError
+// if `input` is empty, a directory does not exist or holds no meshes, or a
+// list entry is empty.
+std::vector<std::string> ListFrameFiles(const std::string& input);
+
+// Reads the meshes of ListFrameFiles(input) with ReadMesh. Throws InputError
+// as ListFrameFiles and ReadMesh do, and if a mesh has another vertex count
+// or other faces than the first one.
+FrameSequence ReadFrameSequence(const std::string& input);
+
+// True if `a` comes before `b` in natural order (see ListFrameFiles).
+bool NaturalLess(const std::string& a, const std::string& b);
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_IO_FRAME_SEQUENCE_H_

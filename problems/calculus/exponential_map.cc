@@ -1,0 +1,175 @@
+#include "shellspace/problems/calculus/exponential_map.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "shellspace/cost_functions/shell/energy_derivatives.h"
+#include "shellspace/cost_functions/gradient_field_residual.h"
+#include "shellspace/problems/calculus/exp_step_newton.h"
+#include "shellspace/solvers/rigid_gauge.h"
+
+namespace shellspace {
+
+namespace {
+// Newton's target for max |F| relative to max |D_2 W[s_{k-1}, s_k]|, the
+// level below which a stalled Newton run (round-off) is still accepted, and
+// its step limit.
+constexpr double kExpNewtonTolerance = 1e-11;
+constexpr double kExpNewtonAccept = 1e-8;
+constexpr int kMaxExpNewtonSteps = 20;
+}  // namespace
+
+ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
+                      const Positions& b, StepDirection direction,
+                      const std::vector<int>& fixed_vertices,
+                      const SolverSettings& settings,
+                      const Positions* alternative_start) {
+  const bool forward = direction == StepDirection::kForward;
+  // Constant part: forward D_2 W[a, b]; backward D_1 W[b, a].
+  const Eigen::VectorXd constant =
+      forward ? EnergyGradient(space, a, b, ShellSide::kDeformed)
+              : EnergyGradient(space, b, a, ShellSide::kReference);
+  const ShellSide unknown_side =
+      forward ? ShellSide::kDeformed : ShellSide::kReference;
+
+  std::vector<char> is_fixed(space.num_vertices, 0);
+  for (int v : fixed_vertices) is_fixed[v] = 1;
+  const auto residual_norm = [&](const Positions& s) {
+    return ExpResidualMaxNorm(space, b, unknown_side, constant, fixed_vertices,
+                              s);
+  };
+
+  ExpStepResult result;
+  result.shape = 2 * b - a;
+  if (alternative_start != nullptr) {
+    Positions alternative = *alternative_start;
+    for (int v : fixed_vertices) alternative.row(v) = result.shape.row(v);
+    if (residual_norm(alternative) < residual_norm(result.shape)) {
+      result.shape = alternative;
+    }
+  }
+  // Newton on F with the exact Jacobian first (exp_step_newton.h); sparse
+  // LM on |F|^2 below only if Newton does not get there, from the same
+  // initial guess (where Newton fails, its iterates wander: LM from them
+  // did worse on the finger's last transport rung).
+  double scale = 1e-300;  // max |c| over the unknown vertices
+  for (int v = 0; v < space.num_vertices; ++v) {
+    if (!is_fixed[v]) {
+      scale = std::max(scale, constant.segment<3>(3 * v).cwiseAbs().maxCoeff());
+    }
+  }
+  {
+    Positions trial = result.shape;
+    const ExpNewtonReport newton =
+        SolveExpStepNewton(space, b, unknown_side, constant, fixed_vertices,
+                           kExpNewtonTolerance * scale,
+                           kExpNewtonAccept * scale, kMaxExpNewtonSteps,
+                           &trial);
+    result.newton_steps = newton.steps;
+    if (newton.final_residual <= kExpNewtonAccept * scale) {
+      result.shape = std::move(trial);
+      result.residual_norm = newton.final_residual;
+      result.summary.termination_type = ceres::CONVERGENCE;
+      result.summary.message = "Newton on F: " + newton.stop_reason;
+      return result;
+    }
+  }
+  GradientFieldCache cache(space, b, unknown_side, &result.shape);
+  cache.PrepareForEvaluation(false, true);
+  if (!cache.ok()) {
+    result.shape = b;
+    for (int v : fixed_vertices) result.shape.row(v) = 2 * b.row(v) - a.row(v);
+    cache.PrepareForEvaluation(false, true);
+  }
+
+  std::vector<std::vector<int>> incident(space.num_vertices);
+  for (int e = 0; e < static_cast<int>(cache.elements().size()); ++e) {
+    const auto& element = cache.elements()[e];
+    for (int k = 0; k < element.count; ++k) {
+      incident[element.vertices[k]].push_back(e);
+    }
+  }
+  ceres::Problem::Options options;
+  options.evaluation_callback = &cache;
+  ceres::Problem problem(options);
+  for (int v = 0; v < space.num_vertices; ++v) {
+    if (is_fixed[v] || incident[v].empty()) continue;
+    VertexGradientResidual* residual = VertexGradientResidual::Create(
+        &cache, v, constant.data() + 3 * v, incident[v]);
+    std::vector<double*> blocks;
+    for (int w : residual->stencil())
+      blocks.push_back(result.shape.data() + 3 * w);
+    problem.AddResidualBlock(residual, nullptr, blocks);
+  }
+  for (int v : fixed_vertices) {
+    double* block = result.shape.data() + 3 * v;
+    if (problem.HasParameterBlock(block))
+      problem.SetParameterBlockConstant(block);
+  }
+  if (fixed_vertices.empty()) PinRigidMotions(&result.shape, &problem);
+  SolverSettings step_settings = settings;
+  step_settings.gradient_tolerance =
+      std::min(settings.gradient_tolerance, 1e-10);
+  step_settings.initial_trust_region_radius =
+      1e16;  // Gauss-Newton from the start
+  result.summary = SolveWithSettings(&problem, step_settings);
+  result.residual_norm = residual_norm(result.shape);  // F at the result
+  return result;
+}
+
+ShellPath Shoot(const ShellSpace& space, const Positions& s0,
+                const Positions& s1, int steps, StepDirection direction,
+                const std::vector<int>& fixed_vertices,
+                const SolverSettings& settings,
+                std::vector<ceres::Solver::Summary>* summaries) {
+  if (steps < 1) throw InputError("--steps must be at least 1");
+  ShellPath path = {s0, s1};
+  if (direction == StepDirection::kForward) {
+    for (int k = 2; k <= steps; ++k) {
+      ExpStepResult step = ExpStep(space, path[k - 2], path[k - 1], direction,
+                                   fixed_vertices, settings);
+      if (summaries) summaries->push_back(step.summary);
+      path.push_back(step.shape);
+    }
+    return path;
+  }
+  // Backward: build s_{-1}, s_{-2}, ... in front of (s0, s1).
+  ShellPath reversed = {s1, s0};
+  for (int k = 2; k <= steps; ++k) {
+    ExpStepResult step = ExpStep(space, reversed[k - 2], reversed[k - 1],
+                                 direction, fixed_vertices, settings);
+    if (summaries) summaries->push_back(step.summary);
+    reversed.push_back(step.shape);
+  }
+  std::reverse(reversed.begin(), reversed.end());
+  return reversed;
+}
+
+Positions ExpK(const ShellSpace& space, const Positions& s0,
+               const Positions& variation, int steps,
+               const std::vector<int>& fixed_vertices,
+               const SolverSettings& settings) {
+  const Positions s1 = s0 + variation / steps;
+  return Shoot(space, s0, s1, steps, StepDirection::kForward, fixed_vertices,
+               settings)
+      .back();
+}
+
+Positions LogK(const ShellSpace& space, const Positions& a, const Positions& b,
+               int steps, const std::vector<int>& fixed_vertices,
+               const SolverSettings& settings, GeodesicResult* geodesic,
+               const ShellPath* initial) {
+  GeodesicInput input;
+  input.start = a;
+  input.end = b;
+  input.steps = steps;
+  input.fixed_vertices = fixed_vertices;
+  if (initial != nullptr) input.initial = *initial;  // ends replaced
+  GeodesicResult result = SolveGeodesic(space, input, settings);
+  const Positions log = steps * (result.path[1] - a);
+  if (geodesic) *geodesic = std::move(result);
+  return log;
+}
+
+}  // namespace shellspace
+

@@ -1,0 +1,73 @@
+// The discrete exponential map (calculus.md): single forward/backward steps,
+// geodesic shooting EXP_K, and the discrete logarithm LOG_K.
+#ifndef SHELLSPACE_PROBLEMS_CALCULUS_EXPONENTIAL_MAP_H_
+#define SHELLSPACE_PROBLEMS_CALCULUS_EXPONENTIAL_MAP_H_
+
+#include <ceres/solver.h>
+
+#include <vector>
+
+#include "shellspace/problems/calculus/geodesic.h"
+
+namespace shellspace {
+
+enum class StepDirection { kForward, kBackward };
+
+struct ExpStepResult {
+  Positions shape;
+  double residual_norm = 0;  // max-norm of F at the result
+  int newton_steps = 0;      // Newton steps on F (exp_step_newton.h)
+  // The LM solve, if Newton did not converge; else a summary with
+  // termination CONVERGENCE, no iterations and message "Newton on F: ...".
+  ceres::Solver::Summary summary;
+};
+
+// One step of the discrete geodesic through (a, b) beyond b:
+//  forward  (a, b) = (s_{k-1}, s_k): s_{k+1} with
+//           D_2 W[s_{k-1}, s_k] + D_1 W[s_k, s_{k+1}] = 0;
+//  backward (a, b) = (s_{k+1}, s_k): s_{k-1} with
+//           D_2 W[s_{k-1}, s_k] + D_1 W[s_k, s_{k+1}] = 0.
+// Solved by Newton's method on F with the exact Jacobian and sparse LU
+// (exp_step_newton.h) to max |F| <= 1e-11 max |D_2 W[s_{k-1}, s_k]| (or
+// 1e-8 if round-off stalls it), else as least squares of the per-vertex
+// residuals F_v (cost_functions/gradient_field_residual.h) by sparse LM,
+// from 2 b - a (or b if that has degenerate triangles). Vertices in `fixed_vertices` are not
+// unknowns: they move on linearly, to 2 b - a (their positions in b if the
+// mask does not move), as geodesic interpolation moves them (linear
+// interpolation of the end shapes), so that shooting from (s_0, s_1) of a
+// masked geodesic continues its mask; without them the rigid gauge is pinned.
+// `alternative_start` (optional): a second initial guess, used instead if
+// its residual max |F| is smaller (its masked vertices are overwritten).
+ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
+                      const Positions& b, StepDirection direction,
+                      const std::vector<int>& fixed_vertices,
+                      const SolverSettings& settings,
+                      const Positions* alternative_start = nullptr);
+
+// Geodesic shooting: from (s_0, s_1) computes s_2 .. s_steps by forward
+// steps (backward: from (s_0, s_1) the shapes s_{-1} .. s_{-(steps-1)}
+// before s_0). Returns the whole path in time order (steps + 1 shapes).
+ShellPath Shoot(const ShellSpace& space, const Positions& s0,
+                const Positions& s1, int steps, StepDirection direction,
+                const std::vector<int>& fixed_vertices,
+                const SolverSettings& settings,
+                std::vector<ceres::Solver::Summary>* summaries = nullptr);
+
+// EXP_K(v) at s_0: s_1 = s_0 + v/K, then K - 1 forward steps; returns s_K.
+Positions ExpK(const ShellSpace& space, const Positions& s0,
+               const Positions& variation, int steps,
+               const std::vector<int>& fixed_vertices,
+               const SolverSettings& settings);
+
+// LOG_K(a -> b) = K (s_1 - a) for the discrete geodesic (a, s_1, ..., b),
+// solved from `initial` (K + 1 shapes, its ends replaced by a and b) if
+// given, else from the linear path.
+Positions LogK(const ShellSpace& space, const Positions& a, const Positions& b,
+               int steps, const std::vector<int>& fixed_vertices,
+               const SolverSettings& settings,
+               GeodesicResult* geodesic = nullptr,
+               const ShellPath* initial = nullptr);
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_PROBLEMS_CALCULUS_EXPONENTIAL_MAP_H_

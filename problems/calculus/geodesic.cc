@@ -1,0 +1,150 @@
+#include "shellspace/problems/calculus/geodesic.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "shellspace/solvers/rigid_gauge.h"
+
+namespace shellspace {
+
+double PathEnergy(const ShellSpace& space, const ShellPath& path,
+                  std::vector<double>* step_energies) {
+  const int steps = static_cast<int>(path.size()) - 1;
+  double sum = 0;
+  if (step_energies) step_energies->clear();
+  for (int k = 1; k <= steps; ++k) {
+    const double w =
+        EvaluateDeformationEnergy(space, path[k - 1], path[k]).total;
+    if (step_energies) step_energies->push_back(w);
+    sum += w;
+  }
+  return steps * sum;
+}
+
+ShellPath LinearPath(const Positions& a, const Positions& b, int steps) {
+  ShellPath path;
+  for (int k = 0; k <= steps; ++k) {
+    const double t = static_cast<double>(k) / steps;
+    path.push_back((1 - t) * a + t * b);
+  }
+  return path;
+}
+
+namespace {
+
+// Holds the masked vertices constant, or pins the rigid gauge.
+void FixVerticesOrGauge(Positions* shape, const std::vector<int>& fixed,
+                        ceres::Problem* problem, bool pin_gauge = true) {
+  for (int v : fixed) problem->SetParameterBlockConstant(shape->data() + 3 * v);
+  if (fixed.empty() && pin_gauge) PinRigidMotions(shape, problem);
+}
+
+}  // namespace
+
+GeodesicResult SolveGeodesic(const ShellSpace& space,
+                             const GeodesicInput& input,
+                             const SolverSettings& settings) {
+  if (input.steps < 1) throw InputError("--steps must be at least 1");
+  GeodesicResult result;
+  result.path = input.initial.empty()
+                    ? LinearPath(input.start, input.end, input.steps)
+                    : input.initial;
+  if (static_cast<int>(result.path.size()) != input.steps + 1) {
+    throw InputError("initial path must have K + 1 shapes");
+  }
+  result.path.front() = input.start;
+  result.path.back() = input.end;
+  const int K = input.steps;
+  if (K >= 2) {
+    ceres::Problem problem;
+    for (int k = 1; k <= K; ++k) {
+      const ShellArgument ref =
+          k == 1 ? ShellArgument::Fixed(result.path[0])
+                 : ShellArgument::Variable(&result.path[k - 1]);
+      const ShellArgument def = k == K
+                                    ? ShellArgument::Fixed(result.path[K])
+                                    : ShellArgument::Variable(&result.path[k]);
+      AddDeformationEnergy(space, ref, def, K, &problem);
+    }
+    for (int k = 1; k < K; ++k) {
+      FixVerticesOrGauge(&result.path[k], input.fixed_vertices, &problem,
+                         input.pin_gauge);
+    }
+    const double g0 = GradientMaxNorm(&problem);
+    const double tolerance = settings.gradient_tolerance * std::max(1.0, g0);
+    result.final_gradient = g0;
+    // LM down to `relative` (or the tolerance), continuing from where it is.
+    const auto run_lm = [&](double relative) {
+      SolverSettings lm = settings;
+      lm.gradient_tolerance = std::max(settings.gradient_tolerance, relative);
+      result.summary = SolveWithSettings(&problem, lm, g0);
+      if (!result.summary.iterations.empty()) {
+        result.iterations +=
+            static_cast<int>(result.summary.iterations.size()) - 1;
+        result.final_gradient =
+            result.summary.iterations.back().gradient_max_norm;
+      }
+    };
+    double threshold = input.newton_from;
+    for (int attempt = 0;; ++attempt) {
+      const bool newton = threshold > settings.gradient_tolerance &&
+                          attempt < GeodesicInput::kMaxNewtonAttempts;
+      run_lm(newton ? threshold : settings.gradient_tolerance);
+      if (!newton || result.final_gradient <= tolerance ||
+          result.summary.termination_type == ceres::FAILURE) {
+        break;
+      }
+      PathNewtonSettings polish;
+      polish.gradient_tolerance = tolerance;
+      polish.num_threads = settings.num_threads;
+      polish.progress = settings.progress;
+      polish.progress_label = settings.progress_label + " newton";
+      const PathNewtonReport report =
+          PolishPathNewton(space, input.fixed_vertices, polish, &result.path);
+      result.newton.Append(report);
+      result.iterations += report.steps;
+      result.final_gradient = report.final_gradient;
+      if (report.converged) break;
+      threshold *= 0.1;  // not yet in Newton's basin: more LM first
+    }
+  }
+  result.path_energy = PathEnergy(space, result.path, &result.step_energies);
+  return result;
+}
+
+Positions SolveWeightedMidpoint(const ShellSpace& space, const Positions& a,
+                                const Positions& b, double weight_a,
+                                double weight_b, const Positions& initial,
+                                const std::vector<int>& fixed_vertices,
+                                const SolverSettings& settings,
+                                ceres::Solver::Summary* summary) {
+  Positions s = initial;
+  ceres::Problem problem;
+  if (weight_a > 0) {
+    AddDeformationEnergy(space, ShellArgument::Fixed(a),
+                         ShellArgument::Variable(&s), weight_a, &problem);
+  }
+  if (weight_b > 0) {
+    AddDeformationEnergy(space, ShellArgument::Variable(&s),
+                         ShellArgument::Fixed(b), weight_b, &problem);
+  }
+  FixVerticesOrGauge(&s, fixed_vertices, &problem);
+  const ceres::Solver::Summary local = SolveWithSettings(&problem, settings);
+  if (summary) *summary = local;
+  return s;
+}
+
+Positions GeodesicAtTime(const ShellSpace& space, const ShellPath& path,
+                         double t, const std::vector<int>& fixed_vertices,
+                         const SolverSettings& settings) {
+  if (!(t >= 0 && t <= 1)) throw InputError("time t must lie in [0, 1]");
+  const int K = static_cast<int>(path.size()) - 1;
+  const int k = std::min(static_cast<int>(std::floor(t * K)), K);
+  const double lambda = t * K - k;
+  if (k == K || lambda <= 0) return path[k];
+  const Positions initial = (1 - lambda) * path[k] + lambda * path[k + 1];
+  return SolveWeightedMidpoint(space, path[k], path[k + 1], 1 - lambda, lambda,
+                               initial, fixed_vertices, settings);
+}
+
+}  // namespace shellspace

@@ -1,0 +1,88 @@
+// Discrete geodesics (calculus.md): geodesic interpolation minimising the path
+// energy E_K = K sum_k W[s_{k-1}, s_k], the weighted 3-shape problem behind
+// midpoints and convex geodesic combinations, and evaluation of E_K.
+#ifndef SHELLSPACE_PROBLEMS_CALCULUS_GEODESIC_H_
+#define SHELLSPACE_PROBLEMS_CALCULUS_GEODESIC_H_
+
+#include <ceres/solver.h>
+
+#include <vector>
+
+#include "shellspace/cost_functions/deformation_energy.h"
+#include "shellspace/problems/calculus/path_newton.h"
+#include "shellspace/solvers/solver_settings.h"
+
+namespace shellspace {
+
+using ShellPath = std::vector<Positions>;
+
+// Path energy E_K = K sum_{k=1..K} W[s_{k-1}, s_k] of a path with K + 1
+// shapes; fills the per-step energies W[s_{k-1}, s_k] if given.
+double PathEnergy(const ShellSpace& space, const ShellPath& path,
+                  std::vector<double>* step_energies = nullptr);
+
+// Linear interpolation of vertex positions: K + 1 shapes from a to b.
+ShellPath LinearPath(const Positions& a, const Positions& b, int steps);
+
+struct GeodesicInput {
+  Positions start, end;
+  int steps = 8;                    // K >= 1
+  std::vector<int> fixed_vertices;  // Dirichlet mask (may be empty)
+  ShellPath initial;                // optional K + 1 shapes; else linear
+  // Without a mask: pin the rigid gauge of each inner shape (true), or leave
+  // it free for LM's damping to handle (false; for tests of gauge
+  // independence).
+  bool pin_gauge = true;
+  // LM (Gauss-Newton) hands over to Newton's method (path_newton.h) once the
+  // gradient has dropped to newton_from times the initial one: Gauss-Newton
+  // converges only linearly near a geodesic. If Newton stops short of the
+  // tolerance (Hessian not positive definite: not yet in its basin), LM
+  // continues to a ten times smaller gradient and Newton tries again, at
+  // most kMaxNewtonAttempts times; then LM alone. 0 disables Newton.
+  double newton_from = 1e-3;
+  static constexpr int kMaxNewtonAttempts = 3;
+};
+
+struct GeodesicResult {
+  ShellPath path;                     // s_0 = start ... s_K = end
+  double path_energy = 0;             // E_K
+  std::vector<double> step_energies;  // W[s_{k-1}, s_k]
+  ceres::Solver::Summary summary;          // the LM stage(s)
+  PathNewtonReport newton;                 // the Newton stage(s), summed
+  int iterations = 0;                      // LM iterations + Newton steps
+  double final_gradient = 0;               // max |grad E_K| (free coords)
+};
+
+// Geodesic interpolation: minimises E_K over s_1..s_{K-1} by sparse LM
+// followed by Newton (see GeodesicInput::newton_from). Each
+// W[s_{k-1}, s_k] adds its membrane and bending residuals scaled by sqrt(K);
+// the end shapes are data. With a mask the listed vertices stay at their
+// initial (linearly interpolated) positions in every shape; without one the
+// rigid motions of every inner shape are pinned (rigid_gauge.h) at three
+// vertices of the initial path.
+GeodesicResult SolveGeodesic(const ShellSpace& space,
+                             const GeodesicInput& input,
+                             const SolverSettings& settings);
+
+// argmin_s weight_a W[a, s] + weight_b W[s, b] from `initial`, with the
+// vertices in `fixed_vertices` held at their initial positions (gauge pinned
+// if there are none). (1, 1) is the geodesic midpoint of a and b;
+// (1 - lambda, lambda) the convex geodesic combination.
+Positions SolveWeightedMidpoint(const ShellSpace& space, const Positions& a,
+                                const Positions& b, double weight_a,
+                                double weight_b, const Positions& initial,
+                                const std::vector<int>& fixed_vertices,
+                                const SolverSettings& settings,
+                                ceres::Solver::Summary* summary = nullptr);
+
+// The shape at time t in [0, 1] on a discrete geodesic with K + 1 shapes:
+// with k = floor(t K), lambda = t K - k, the convex geodesic combination
+// argmin_s (1 - lambda) W[s_k, s] + lambda W[s, s_{k+1}] (s_k itself when
+// lambda = 0).
+Positions GeodesicAtTime(const ShellSpace& space, const ShellPath& path,
+                         double t, const std::vector<int>& fixed_vertices,
+                         const SolverSettings& settings);
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_PROBLEMS_CALCULUS_GEODESIC_H_

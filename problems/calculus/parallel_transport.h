@@ -1,0 +1,35 @@
+// Discrete parallel transport along a path by Schild's ladder (calculus.md).
+#ifndef SHELLSPACE_PROBLEMS_CALCULUS_PARALLEL_TRANSPORT_H_
+#define SHELLSPACE_PROBLEMS_CALCULUS_PARALLEL_TRANSPORT_H_
+
+#include <vector>
+
+#include "shellspace/problems/calculus/exponential_map.h"
+
+namespace shellspace {
+
+struct TransportResult {
+  std::vector<Positions> variations;  // xi_0 .. xi_K
+  std::vector<Positions> shapes;      // p_k = s_k + eps xi_k
+  // Per rung k = 1..K: max |F| of the EXP step's Euler-Lagrange residual at
+  // p_k relative to max |D_2 W[s_{k-1}, m_k]| (0: solved exactly). Thin
+  // shells make the EXP step badly conditioned; a large value says the rung
+  // was not solved.
+  std::vector<double> exp_residuals;
+};
+
+// Transports the variation xi_0 at s_0 along path (s_0 .. s_K):
+// p_0 = s_0 + eps xi_0; for k = 1..K: m_k = geodesic midpoint of (p_{k-1},
+// s_k) (argmin W[p_{k-1}, m] + W[m, s_k]); p_k = forward EXP step from
+// (s_{k-1}, m_k); xi_k = (p_k - s_k) / eps. eps = 1 transports a finite
+// shape difference (detail transfer); small eps the tangent vector.
+// `fixed_vertices` are held in the midpoint and EXP problems.
+TransportResult ParallelTransport(const ShellSpace& space,
+                                  const ShellPath& path,
+                                  const Positions& variation, double epsilon,
+                                  const std::vector<int>& fixed_vertices,
+                                  const SolverSettings& settings);
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_PROBLEMS_CALCULUS_PARALLEL_TRANSPORT_H_

@@ -1,0 +1,324 @@
+#include "shellspace/problems/calculus/path_hessian.h"
+
+#include <algorithm>
+#include <array>
+#include <stdexcept>
+
+#include "shellspace/cost_functions/shell/energy_derivatives.h"
+#include "shellspace/geometry/parallel_for.h"
+
+namespace shellspace {
+
+namespace {
+
+// The columns of T_k on one vertex: `count` consecutive columns starting at
+// `first`, t = the 3 x count block (column-major).
+struct VertexColumns {
+  int first = -1;
+  int count = 0;
+  double t[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+};
+
+std::vector<VertexColumns> VertexLayout(const Eigen::SparseMatrix<double>& basis,
+                                        int num_vertices, int offset) {
+  std::vector<VertexColumns> layout(num_vertices);
+  for (int c = 0; c < basis.outerSize(); ++c) {
+    Eigen::SparseMatrix<double>::InnerIterator it(basis, c);
+    if (!it) throw std::logic_error("PathHessianAssembler: empty basis column");
+    VertexColumns& vc = layout[it.row() / 3];
+    if (vc.first < 0) vc.first = offset + c;
+    if (vc.first + vc.count != offset + c || vc.count == 3) {
+      throw std::logic_error(
+          "PathHessianAssembler: basis columns not grouped by vertex");
+    }
+    for (; it; ++it) vc.t[3 * vc.count + it.row() % 3] = it.value();
+    ++vc.count;
+  }
+  return layout;
+}
+
+// (T_v^T B T_w)(i, j) for a row-major 3 x 3 block B.
+double ReducedEntry(const VertexColumns& v, int i, const double* b,
+                    const VertexColumns& w, int j) {
+  double sum = 0;
+  for (int r = 0; r < 3; ++r) {
+    const double tv = v.t[3 * i + r];
+    if (tv == 0) continue;
+    for (int s = 0; s < 3; ++s) sum += tv * b[3 * r + s] * w.t[3 * j + s];
+  }
+  return sum;
+}
+
+}  // namespace
+
+PathHessianAssembler::PathHessianAssembler(const ShellSpace& space)
+    : space_(space) {
+  // The elements in ForEachElement's order: faces, then (if eta > 0) the
+  // interior edge flaps.
+  std::vector<std::array<int, 4>> elements;
+  std::vector<int> counts;
+  for (int f = 0; f < space.faces.rows(); ++f) {
+    elements.push_back({space.faces(f, 0), space.faces(f, 1), space.faces(f, 2), -1});
+    counts.push_back(3);
+  }
+  if (space.material.eta > 0) {
+    for (const EdgeFlap& flap : space.topology.interior_edges) {
+      elements.push_back({flap.i, flap.j, flap.k, flap.l});
+      counts.push_back(4);
+    }
+  }
+  const int n = space.num_vertices;
+  std::vector<std::vector<int>> rows(n);
+  for (size_t e = 0; e < elements.size(); ++e) {
+    for (int a = 0; a < counts[e]; ++a) {
+      for (int b = 0; b < counts[e]; ++b) {
+        rows[elements[e][b]].push_back(elements[e][a]);
+      }
+    }
+  }
+  pair_start_.assign(n + 1, 0);
+  for (int w = 0; w < n; ++w) {
+    std::sort(rows[w].begin(), rows[w].end());
+    rows[w].erase(std::unique(rows[w].begin(), rows[w].end()), rows[w].end());
+    pair_start_[w + 1] = pair_start_[w] + static_cast<int>(rows[w].size());
+    pair_row_.insert(pair_row_.end(), rows[w].begin(), rows[w].end());
+  }
+  auto slot = [&](int v, int w) {
+    const auto first = pair_row_.begin() + pair_start_[w];
+    const auto last = pair_row_.begin() + pair_start_[w + 1];
+    return static_cast<int>(std::lower_bound(first, last, v) -
+                            pair_row_.begin());
+  };
+  for (size_t e = 0; e < elements.size(); ++e) {
+    for (int a = 0; a < counts[e]; ++a) {
+      for (int b = 0; b < counts[e]; ++b) {
+        slots_.push_back(slot(elements[e][a], elements[e][b]));
+      }
+    }
+  }
+}
+
+void PathHessianAssembler::AddElementBlocks(const Positions& reference,
+                                            const Positions& deformed,
+                                            double weight, BlockArray* d22,
+                                            BlockArray* d11,
+                                            BlockArray* mixed_transposed,
+                                            BlockArray* mixed) const {
+  ElementSecondDerivatives<3> d3;
+  ElementSecondDerivatives<4> d4;
+  size_t next_slot = 0;
+  auto visit = [&](const int*, int count, const double* ref, const double* def,
+                   const auto& element) {
+    const int* slot = &slots_[next_slot];
+    next_slot += count * count;
+    // out[slot(a, b)](i, j) += m(3a + i, 3b + j)
+    auto scatter = [&](const auto& m, BlockArray* out) {
+      for (int a = 0; a < count; ++a) {
+        for (int b = 0; b < count; ++b) {
+          double* block = out->data() + 9 * slot[a * count + b];
+          for (int i = 0; i < 3; ++i) {
+            for (int j = 0; j < 3; ++j) block[3 * i + j] += m(3 * a + i, 3 * b + j);
+          }
+        }
+      }
+    };
+    // out[slot(b, a)](j, i) += m(3a + i, 3b + j): rows deformed, columns
+    // reference.
+    auto scatter_transposed = [&](const auto& m, BlockArray* out) {
+      for (int a = 0; a < count; ++a) {
+        for (int b = 0; b < count; ++b) {
+          double* block = out->data() + 9 * slot[b * count + a];
+          for (int i = 0; i < 3; ++i) {
+            for (int j = 0; j < 3; ++j) block[3 * j + i] += m(3 * a + i, 3 * b + j);
+          }
+        }
+      }
+    };
+    auto derive = [&](auto& d) {
+      if (d22 != nullptr || mixed_transposed != nullptr || mixed != nullptr) {
+        if (!d.Compute(element, ref, def, ShellSide::kDeformed, weight)) {
+          throw InputError("degenerate triangle while differentiating W");
+        }
+        if (d22 != nullptr) scatter(d.d_grad_deformed, d22);
+        if (mixed_transposed != nullptr) {
+          scatter_transposed(d.d_grad_reference, mixed_transposed);
+        }
+        if (mixed != nullptr) scatter(d.d_grad_reference, mixed);
+      }
+      if (d11 != nullptr) {
+        using Rows = typename std::decay_t<decltype(d)>::Rows;
+        if (!d.Compute(element, ref, def, ShellSide::kReference, weight,
+                       Rows::kReference)) {
+          throw InputError("degenerate triangle while differentiating W");
+        }
+        scatter(d.d_grad_reference, d11);
+      }
+    };
+    if (count == 3) {
+      derive(d3);
+    } else {
+      derive(d4);
+    }
+  };
+  ForEachElement(space_, reference, deformed, visit);
+}
+
+Eigen::SparseMatrix<double> PathHessianAssembler::Assemble(
+    const std::vector<Positions>& path,
+    const std::vector<Eigen::SparseMatrix<double>>& bases, int threads) const {
+  const int K = static_cast<int>(path.size()) - 1;
+  const int inner = K - 1;
+  if (inner < 1 || static_cast<int>(bases.size()) != inner) {
+    throw std::invalid_argument("PathHessianAssembler: need K >= 2 and K - 1 bases");
+  }
+  const size_t block_values = 9 * pair_row_.size();
+  std::vector<BlockArray> d22(inner), d11(inner), lower(inner);
+  ParallelFor(K, threads, [&](int task) {
+    const int k = task + 1;  // W[s_{k-1}, s_k]
+    BlockArray* a = nullptr;
+    BlockArray* b = nullptr;
+    BlockArray* c = nullptr;
+    if (k <= K - 1) (a = &d22[k - 1])->assign(block_values, 0.0);
+    if (k >= 2) (b = &d11[k - 2])->assign(block_values, 0.0);
+    if (k >= 2 && k <= K - 1) (c = &lower[k - 2])->assign(block_values, 0.0);
+    AddElementBlocks(path[k - 1], path[k], K, a, b, c);
+  });
+
+  std::vector<std::vector<const BlockArray*>> diagonal(inner);
+  std::vector<const BlockArray*> below(inner, nullptr);
+  for (int i = 0; i < inner; ++i) {
+    diagonal[i] = {&d22[i], &d11[i]};
+    if (i + 1 < inner) below[i] = &lower[i];
+  }
+  return Compress(diagonal, below, bases);
+}
+
+Eigen::SparseMatrix<double> PathHessianAssembler::AssembleDeformedSum(
+    const std::vector<Positions>& references, const Positions& deformed,
+    const Eigen::SparseMatrix<double>& basis, int threads) const {
+  const int parts = std::max(1, std::min<int>(threads, references.size()));
+  const size_t block_values = 9 * pair_row_.size();
+  std::vector<BlockArray> sums(parts);
+  ParallelFor(parts, parts, [&](int part) {
+    sums[part].assign(block_values, 0.0);
+    for (size_t i = part; i < references.size(); i += parts) {
+      AddElementBlocks(references[i], deformed, 1.0, &sums[part], nullptr,
+                       nullptr);
+    }
+  });
+  std::vector<std::vector<const BlockArray*>> diagonal(1);
+  for (const BlockArray& sum : sums) diagonal[0].push_back(&sum);
+  return Compress(diagonal, {nullptr}, {basis});
+}
+
+Eigen::SparseMatrix<double> PathHessianAssembler::AssembleMixed(
+    const Positions& reference, const Positions& deformed, ShellSide rows,
+    const Eigen::SparseMatrix<double>& row_basis,
+    const Eigen::SparseMatrix<double>& col_basis) const {
+  const int n = space_.num_vertices;
+  BlockArray blocks(9 * pair_row_.size(), 0.0);
+  if (rows == ShellSide::kReference) {
+    AddElementBlocks(reference, deformed, 1.0, nullptr, nullptr, nullptr,
+                     &blocks);
+  } else {
+    AddElementBlocks(reference, deformed, 1.0, nullptr, nullptr, &blocks);
+  }
+  const std::vector<VertexColumns> row_layout = VertexLayout(row_basis, n, 0);
+  const std::vector<VertexColumns> col_layout = VertexLayout(col_basis, n, 0);
+  std::vector<int> outer, inner_index;
+  std::vector<double> values;
+  outer.reserve(col_basis.cols() + 1);
+  const size_t estimate = 9 * pair_row_.size();
+  inner_index.reserve(estimate);
+  values.reserve(estimate);
+  for (int w = 0; w < n; ++w) {
+    const VertexColumns& cw = col_layout[w];
+    for (int jw = 0; jw < cw.count; ++jw) {
+      if (cw.first + jw != static_cast<int>(outer.size())) {
+        throw std::logic_error(
+            "PathHessianAssembler: basis columns not in vertex order");
+      }
+      outer.push_back(static_cast<int>(values.size()));
+      for (int p = pair_start_[w]; p < pair_start_[w + 1]; ++p) {
+        const VertexColumns& cv = row_layout[pair_row_[p]];
+        for (int iv = 0; iv < cv.count; ++iv) {
+          inner_index.push_back(cv.first + iv);
+          values.push_back(
+              ReducedEntry(cv, iv, blocks.data() + 9 * p, cw, jw));
+        }
+      }
+    }
+  }
+  outer.push_back(static_cast<int>(values.size()));
+  return Eigen::Map<const Eigen::SparseMatrix<double>>(
+      static_cast<int>(row_basis.cols()), static_cast<int>(col_basis.cols()),
+      static_cast<int>(values.size()), outer.data(), inner_index.data(),
+      values.data());
+}
+
+Eigen::SparseMatrix<double> PathHessianAssembler::Compress(
+    const std::vector<std::vector<const BlockArray*>>& diagonal,
+    const std::vector<const BlockArray*>& lower,
+    const std::vector<Eigen::SparseMatrix<double>>& bases) const {
+  const int n = space_.num_vertices;
+  const int inner = static_cast<int>(bases.size());
+  std::vector<std::vector<VertexColumns>> layout(inner);
+  std::vector<int> offset(inner + 1, 0);
+  for (int i = 0; i < inner; ++i) {
+    layout[i] = VertexLayout(bases[i], n, offset[i]);
+    offset[i + 1] = offset[i] + static_cast<int>(bases[i].cols());
+  }
+  const int size = offset[inner];
+  std::vector<int> outer;
+  std::vector<int> inner_index;
+  std::vector<double> values;
+  outer.reserve(size + 1);
+  const size_t estimate = static_cast<size_t>(size) * 3 *
+                          (pair_row_.size() / std::max(1, n) + 1) * 3 / 2;
+  inner_index.reserve(estimate);
+  values.reserve(estimate);
+  double diagonal_block[9];
+  for (int i = 0; i < inner; ++i) {
+    for (int w = 0; w < n; ++w) {
+      const VertexColumns& cw = layout[i][w];
+      for (int jw = 0; jw < cw.count; ++jw) {
+        const int column = cw.first + jw;
+        if (column != static_cast<int>(outer.size())) {
+          throw std::logic_error(
+              "PathHessianAssembler: basis columns not in vertex order");
+        }
+        outer.push_back(static_cast<int>(values.size()));
+        for (int p = pair_start_[w]; p < pair_start_[w + 1]; ++p) {
+          const VertexColumns& cv = layout[i][pair_row_[p]];
+          if (cv.count == 0 || cv.first + cv.count <= column) continue;
+          for (int e = 0; e < 9; ++e) {
+            diagonal_block[e] = 0;
+            for (const BlockArray* part : diagonal[i]) {
+              diagonal_block[e] += (*part)[9 * p + e];
+            }
+          }
+          for (int iv = 0; iv < cv.count; ++iv) {
+            if (cv.first + iv < column) continue;
+            inner_index.push_back(cv.first + iv);
+            values.push_back(ReducedEntry(cv, iv, diagonal_block, cw, jw));
+          }
+        }
+        if (lower[i] == nullptr) continue;
+        for (int p = pair_start_[w]; p < pair_start_[w + 1]; ++p) {
+          const VertexColumns& cv = layout[i + 1][pair_row_[p]];
+          for (int iv = 0; iv < cv.count; ++iv) {
+            inner_index.push_back(cv.first + iv);
+            values.push_back(
+                ReducedEntry(cv, iv, lower[i]->data() + 9 * p, cw, jw));
+          }
+        }
+      }
+    }
+  }
+  outer.push_back(static_cast<int>(values.size()));
+  return Eigen::Map<const Eigen::SparseMatrix<double>>(
+      size, size, static_cast<int>(values.size()), outer.data(),
+      inner_index.data(), values.data());
+}
+
+}  // namespace shellspace

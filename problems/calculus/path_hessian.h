@@ -1,0 +1,94 @@
+// The exact Hessian of the path energy with respect to the inner shapes,
+// assembled directly into a fixed sparsity pattern.
+#ifndef SHELLSPACE_PROBLEMS_CALCULUS_PATH_HESSIAN_H_
+#define SHELLSPACE_PROBLEMS_CALCULUS_PATH_HESSIAN_H_
+
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "shellspace/cost_functions/deformation_energy.h"
+#include "shellspace/cost_functions/shell/element_hessian.h"
+
+namespace shellspace {
+
+// For a path (s_0, ..., s_K) and E_K = K sum_k W[s_{k-1}, s_k], the Hessian
+// w.r.t. the inner shapes s_1..s_{K-1} is block tridiagonal:
+//   H_kk     = K (D_2^2 W[s_{k-1}, s_k] + D_1^2 W[s_k, s_{k+1}]),
+//   H_k+1,k  = K (D_1 D_2 W[s_k, s_{k+1}])^T   (rows s_{k+1}, columns s_k).
+// With s_k = x_k + T_k q_k (T_k: 3n x m_k, each column supported on the
+// three coordinates of one vertex, columns in vertex order -- as
+// FreeVertexBasis and RigidGaugeBasis are), Assemble returns the lower
+// triangle of T^T H T (sum_k m_k square, unknowns of slice k after those of
+// slice k - 1), with sorted row indices.
+//
+// Layout: every element (face: membrane, interior edge flap: bending) adds,
+// for each ordered pair (a, b) of its vertices, a 3 x 3 block to the vertex
+// pair (v_a, v_b). The pairs of the mesh are enumerated once (CSR over the
+// column vertex) and every element knows the slot of each of its pairs, so
+// one assembly is: per element, the second derivatives of its energy
+// (ElementSecondDerivatives: dual numbers over the analytic gradient, the
+// same stencil as the cost functions) scattered into per-slice block arrays,
+// then one pass T_v^T B T_w over the blocks into compressed columns. No
+// triplets, no sparse products.
+class PathHessianAssembler {
+ public:
+  explicit PathHessianAssembler(const ShellSpace& space);
+
+  // `path` has K + 1 >= 3 shapes; `bases[k - 1]` is T_k. Elements of the
+  // W[s_{k-1}, s_k] are processed in parallel over k. Throws InputError if an
+  // element is degenerate.
+  Eigen::SparseMatrix<double> Assemble(
+      const std::vector<Positions>& path,
+      const std::vector<Eigen::SparseMatrix<double>>& bases,
+      int threads) const;
+
+  // The lower triangle of T^T (sum_i D_2^2 W[references_i, deformed]) T for
+  // one shape (the Hessian of the elastic-mean energy), T = `basis` (as
+  // above). References are processed in parallel.
+  Eigen::SparseMatrix<double> AssembleDeformedSum(
+      const std::vector<Positions>& references, const Positions& deformed,
+      const Eigen::SparseMatrix<double>& basis, int threads) const;
+
+  // R^T M C for the mixed second derivative of W[reference, deformed], R =
+  // `row_basis`, C = `col_basis` (each as T above, possibly different):
+  //   rows kReference: M = D_1 D_2 W (rows reference, columns deformed), the
+  //     Jacobian of D_1 W[reference, .] w.r.t. the deformed shell;
+  //   rows kDeformed:  M = (D_1 D_2 W)^T (rows deformed, columns reference),
+  //     the Jacobian of D_2 W[., deformed] w.r.t. the reference.
+  // The whole matrix (not symmetric), sorted row indices. Throws InputError
+  // if an element is degenerate.
+  Eigen::SparseMatrix<double> AssembleMixed(
+      const Positions& reference, const Positions& deformed, ShellSide rows,
+      const Eigen::SparseMatrix<double>& row_basis,
+      const Eigen::SparseMatrix<double>& col_basis) const;
+
+  int num_vertex_pairs() const { return static_cast<int>(pair_row_.size()); }
+
+ private:
+  // 3 x 3 blocks (row-major), one per vertex pair, for one slice.
+  using BlockArray = std::vector<double>;
+  // Adds weight times the blocks of W[reference, deformed] to the non-null
+  // arrays: D_2^2 W, D_1^2 W, the mixed block with rows deformed
+  // (mixed_transposed) and with rows reference (mixed).
+  void AddElementBlocks(const Positions& reference, const Positions& deformed,
+                        double weight, BlockArray* d22, BlockArray* d11,
+                        BlockArray* mixed_transposed,
+                        BlockArray* mixed = nullptr) const;
+
+  // T^T H T (lower triangle) from the diagonal blocks of each slice (the sum
+  // of the arrays diagonal[i]) and the blocks below the diagonal (lower[i]:
+  // rows slice i + 1, columns slice i).
+  Eigen::SparseMatrix<double> Compress(
+      const std::vector<std::vector<const BlockArray*>>& diagonal,
+      const std::vector<const BlockArray*>& lower,
+      const std::vector<Eigen::SparseMatrix<double>>& bases) const;
+
+  const ShellSpace& space_;
+  std::vector<int> pair_start_;  // pairs with column vertex w: [start_w, start_w+1)
+  std::vector<int> pair_row_;    // their row vertices, ascending
+  std::vector<int> slots_;       // per element, count^2 slots (a, b) -> pair
+};
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_PROBLEMS_CALCULUS_PATH_HESSIAN_H_

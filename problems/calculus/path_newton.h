@@ -1,0 +1,85 @@
+// Newton's method on the Euler-Lagrange equations of the path energy
+// (calculus.md): the finishing stage of geodesic interpolation.
+#ifndef SHELLSPACE_PROBLEMS_CALCULUS_PATH_NEWTON_H_
+#define SHELLSPACE_PROBLEMS_CALCULUS_PATH_NEWTON_H_
+
+#include <string>
+#include <vector>
+
+#include "shellspace/cost_functions/deformation_energy.h"
+
+namespace shellspace {
+
+using ShellPath = std::vector<Positions>;
+
+struct PathNewtonSettings {
+  int max_steps = 8;
+  // Stop when max |G| <= gradient_tolerance (absolute, max norm over the
+  // free coordinates; the same quantity as Ceres' gradient_max_norm).
+  double gradient_tolerance = 0;
+  int num_threads = 2;  // Hessian blocks are assembled in parallel
+  bool progress = false;
+  std::string progress_label = "newton";
+};
+
+struct PathNewtonReport {
+  int steps = 0;                 // accepted Newton steps
+  double initial_gradient = 0;   // max |G| before / after
+  double final_gradient = 0;
+  double seconds = 0;
+  double assembly_seconds = 0;       // of which: Hessian assembly
+  int factorizations = 0;            // sparse Cholesky factorisations
+  double factorization_seconds = 0;  // of which: factorisations
+  int cg_iterations = 0;             // CG iterations on a reused factor
+  double cg_seconds = 0;             // of which: CG
+  bool converged = false;        // final_gradient <= tolerance
+  std::string stop_reason;       // why it stopped (converged, not SPD, ...)
+
+  // Adds a later attempt: counts and times summed, the rest from `later`
+  // (initial_gradient stays the first attempt's).
+  void Append(const PathNewtonReport& later) {
+    if (attempts == 0) initial_gradient = later.initial_gradient;
+    ++attempts;
+    steps += later.steps;
+    seconds += later.seconds;
+    assembly_seconds += later.assembly_seconds;
+    factorizations += later.factorizations;
+    factorization_seconds += later.factorization_seconds;
+    cg_iterations += later.cg_iterations;
+    cg_seconds += later.cg_seconds;
+    final_gradient = later.final_gradient;
+    converged = later.converged;
+    stop_reason = later.stop_reason;
+  }
+  int attempts = 0;  // PolishPathNewton calls summed by Append
+};
+
+// Newton polish of the inner shapes s_1..s_{K-1} of `path` (K + 1 shapes,
+// ends fixed) for E_K = K sum_k W[s_{k-1}, s_k]. The gradient
+//   G_k = K (D_2 W[s_{k-1}, s_k] + D_1 W[s_k, s_{k+1}])
+// and the exact block-tridiagonal Hessian
+//   H_kk = K (D_2^2 W[s_{k-1}, s_k] + D_1^2 W[s_k, s_{k+1}]),
+//   H_k,k+1 = K D_1 D_2 W[s_k, s_{k+1}]   (rows s_k, columns s_{k+1})
+// are restricted to the free coordinates of each inner shape: the vertices
+// not in `fixed_vertices`, or, without a mask, the 3n - 6 directions of
+// RigidGaugeBasis (gauge_reduced_solve.h). H is assembled by
+// PathHessianAssembler; each step solves H p = -G inexactly (relative
+// residual min(1e-2, |G|/|G_0|), never tighter than a quarter of the
+// tolerance needs) by ReusableCholesky: CG preconditioned by the last
+// Cholesky factor, a new factorisation only when CG stalls. A step is
+// accepted on sufficient decrease of E_K (Armijo, c = 1e-4) or, once E_K
+// changes only at round-off level, on a smaller max |G|; halving the step
+// twice at most.
+// Gauss-Newton (Ceres' LM on the residuals) converges only linearly near a
+// geodesic, whose residuals are not zero; from its result Newton converges
+// quadratically. Stops (leaving the last accepted path) if H is not positive
+// definite on the free coordinates (far from a minimiser), a step fails, or
+// the tolerance or max_steps is reached.
+PathNewtonReport PolishPathNewton(const ShellSpace& space,
+                                  const std::vector<int>& fixed_vertices,
+                                  const PathNewtonSettings& settings,
+                                  ShellPath* path);
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_PROBLEMS_CALCULUS_PATH_NEWTON_H_

@@ -1,0 +1,230 @@
+#include "shellspace/problems/splines/spline.h"
+
+#include <ceres/gradient_problem.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+
+#include "shellspace/problems/splines/spline_preconditioner.h"
+
+namespace shellspace {
+namespace {
+
+void CheckIndices(const std::vector<int>& at, size_t count, int steps,
+                  bool periodic, bool need_ends) {
+  if (at.size() != count) {
+    throw InputError("--at must give one index per shape (" +
+                     std::to_string(count) + ")");
+  }
+  if (count < 2) throw InputError("need at least two keyframes / inputs");
+  for (size_t i = 0; i < at.size(); ++i) {
+    const int limit = periodic ? steps - 1 : steps;
+    if (at[i] < 0 || at[i] > limit) {
+      throw InputError("index " + std::to_string(at[i]) + " outside [0, " +
+                       std::to_string(limit) + "]");
+    }
+    if (i > 0 && at[i] <= at[i - 1]) {
+      throw InputError("--at must be strictly increasing");
+    }
+  }
+  if (need_ends && !periodic && (at.front() != 0 || at.back() != steps)) {
+    throw InputError("a spline needs keyframes at 0 and at K = " +
+                     std::to_string(steps));
+  }
+}
+
+// L-BFGS works on y with x = x0 + T y (SplinePreconditioner; T = I
+// without preconditioning), on the objective divided by a constant `scale`
+// (see Run).
+class PreconditionedObjective : public ceres::FirstOrderFunction {
+ public:
+  PreconditionedObjective(const SplineObjective& inner,
+                          const SplinePreconditioner* preconditioner,
+                          std::vector<double> x0, double scale)
+      : inner_(inner),
+        preconditioner_(preconditioner),
+        x0_(std::move(x0)),
+        inverse_scale_(1.0 / scale) {}
+  int NumParameters() const override { return inner_.NumParameters(); }
+  bool Evaluate(const double* y, double* cost,
+                double* gradient) const override {
+    const std::vector<double> x = ToX(y);
+    std::vector<double> gx(gradient ? x.size() : 0);
+    if (!inner_.Evaluate(x.data(), cost, gradient ? gx.data() : nullptr)) {
+      return false;
+    }
+    *cost *= inverse_scale_;
+    if (gradient) {
+      if (preconditioner_) {
+        preconditioner_->ApplyTransposed(gx.data(), gradient);
+      } else {
+        std::copy(gx.begin(), gx.end(), gradient);
+      }
+      for (int i = 0; i < NumParameters(); ++i) gradient[i] *= inverse_scale_;
+    }
+    return true;
+  }
+  std::vector<double> ToX(const double* y) const {
+    std::vector<double> x(x0_.size());
+    if (preconditioner_) {
+      preconditioner_->Apply(y, x.data());
+    } else {
+      std::copy(y, y + x.size(), x.begin());
+    }
+    for (size_t i = 0; i < x.size(); ++i) x[i] += x0_[i];
+    return x;
+  }
+  void set_scale(double scale) { inverse_scale_ = 1.0 / scale; }
+
+ private:
+  const SplineObjective& inner_;
+  const SplinePreconditioner* preconditioner_;
+  std::vector<double> x0_;
+  double inverse_scale_;
+};
+
+double MaxNorm(const std::vector<double>& v) {
+  double norm = 0;
+  for (double g : v) norm = std::max(norm, std::abs(g));
+  return norm;
+}
+
+// The first L-BFGS trial step is -gradient in y. The objective is divided by
+// `scale` so that this step moves no vertex by more than `max_first_move` of
+// the shape's size (a crumpled trial shape fails to evaluate and ends the
+// line search): with preconditioning scale = 1 unless the model step is
+// larger (the model Hessian is the identity, so the unit step is the model's
+// Newton step); without, the gradient step is scaled to max_first_move.
+SplineResult Run(const ShellSpace& space, SplineSpec spec,
+                 const SplineSettings& settings) {
+  const SplineObjective objective(space, spec, settings.inner);
+  std::vector<double> x0 = objective.InitialParameters();
+  SplineResult result;
+  std::vector<double> x = x0;
+  if (!x0.empty()) {
+    std::unique_ptr<SplinePreconditioner> preconditioner;
+    if (settings.precondition) {
+      preconditioner = std::make_unique<SplinePreconditioner>(
+          space, spec, settings.preconditioner_regularization);
+    }
+    // The problem owns the function; `scaled` stays valid while it lives.
+    auto* function =
+        new PreconditionedObjective(objective, preconditioner.get(), x0, 1.0);
+    ceres::GradientProblem problem(function);
+    PreconditionedObjective& scaled = *function;
+    std::vector<double> y(x0.size(), 0.0), gradient(x0.size());
+    double cost = 0;
+    if (!scaled.Evaluate(y.data(), &cost, gradient.data())) {
+      throw InputError("the initial path has degenerate shapes or midpoints");
+    }
+    const double norm = MaxNorm(gradient);
+    for (double& g : gradient) g = -g;
+    std::vector<double> first_move = scaled.ToX(gradient.data());
+    for (size_t i = 0; i < x0.size(); ++i) first_move[i] -= x0[i];
+    const Positions& shape = spec.initial.front();
+    const double size =
+        (shape.colwise().maxCoeff() - shape.colwise().minCoeff()).norm();
+    const double move = MaxNorm(first_move) / (settings.max_first_move * size);
+    const double scale = std::max(preconditioner ? std::max(move, 1.0) : move,
+                                  1e-300);
+    scaled.set_scale(scale);
+    ceres::GradientProblemSolver::Options options;
+    options.line_search_direction_type = ceres::LBFGS;
+    options.max_num_iterations = settings.max_iterations;
+    options.gradient_tolerance =
+        settings.gradient_tolerance * std::max(norm, 1e-300) / scale;
+    options.function_tolerance = settings.function_tolerance;
+    options.logging_type = ceres::SILENT;
+    ProgressPrinter printer(settings.progress_label, scale);
+    if (settings.progress) options.callbacks.push_back(&printer);
+    ceres::Solve(options, problem, y.data(), &result.summary);
+    x = scaled.ToX(y.data());
+  }
+  result.path = objective.PathFrom(x.data());
+  result.spline_energy = objective.SplineEnergyOf(result.path);
+  for (const SplineDatum& d : spec.data) {
+    result.data_energy +=
+        EvaluateDeformationEnergy(space, d.shape, result.path[d.index]).total;
+  }
+  result.objective = result.data_energy + spec.sigma * result.spline_energy;
+  result.timings = objective.timings();
+  if (spec.periodic) result.path.push_back(result.path.front());
+  return result;
+}
+
+}  // namespace
+
+ShellPath PiecewiseLinearPath(const std::vector<Positions>& shapes,
+                              const std::vector<int>& at, int steps,
+                              bool periodic) {
+  const int count = periodic ? steps : steps + 1;
+  ShellPath path(count);
+  const int n = static_cast<int>(at.size());
+  for (int k = 0; k < count; ++k) {
+    // The keyframe interval [at[i], at[i+1]] holding k.
+    int i = 0;
+    while (i + 1 < n && at[i + 1] <= k) ++i;
+    if (periodic && (k < at.front() || k > at.back())) {
+      const int from = at.back(), to = at.front() + steps;
+      const int kk = k < at.front() ? k + steps : k;
+      const double t = static_cast<double>(kk - from) / (to - from);
+      path[k] = (1 - t) * shapes.back() + t * shapes.front();
+    } else if (k <= at.front()) {
+      path[k] = shapes.front();
+    } else if (k >= at.back()) {
+      path[k] = shapes.back();
+    } else {
+      const double t = static_cast<double>(k - at[i]) / (at[i + 1] - at[i]);
+      path[k] = (1 - t) * shapes[i] + t * shapes[i + 1];
+    }
+  }
+  return path;
+}
+
+SplineResult SolveSpline(const ShellSpace& space,
+                         const std::vector<Positions>& keyframes,
+                         const std::vector<int>& at, int steps, bool periodic,
+                         const ShellPath& initial,
+                         const SplineSettings& settings) {
+  if (steps < 2) throw InputError("--steps must be at least 2");
+  CheckIndices(at, keyframes.size(), steps, periodic, true);
+  SplineSpec spec;
+  spec.steps = steps;
+  spec.periodic = periodic;
+  spec.initial = initial.empty()
+                     ? PiecewiseLinearPath(keyframes, at, steps, periodic)
+                     : initial;
+  if (periodic && static_cast<int>(spec.initial.size()) == steps + 1) {
+    spec.initial.pop_back();
+  }
+  spec.is_free.assign(spec.initial.size(), 1);
+  for (size_t i = 0; i < at.size(); ++i) {
+    spec.initial[at[i]] = keyframes[i];
+    spec.is_free[at[i]] = 0;
+  }
+  return Run(space, spec, settings);
+}
+
+SplineResult SolveRegression(const ShellSpace& space,
+                             const std::vector<Positions>& inputs,
+                             const std::vector<int>& at, int steps,
+                             double sigma, const ShellPath& initial,
+                             const SplineSettings& settings) {
+  if (steps < 2) throw InputError("--steps must be at least 2");
+  if (!(sigma >= 0) || !std::isfinite(sigma)) {
+    throw InputError("--sigma must be a non-negative number");
+  }
+  CheckIndices(at, inputs.size(), steps, false, false);
+  SplineSpec spec;
+  spec.steps = steps;
+  spec.sigma = sigma;
+  spec.initial =
+      initial.empty() ? PiecewiseLinearPath(inputs, at, steps, false) : initial;
+  spec.is_free.assign(spec.initial.size(), 1);
+  for (size_t i = 0; i < at.size(); ++i)
+    spec.data.push_back({inputs[i], at[i]});
+  return Run(space, spec, settings);
+}
+
+}  // namespace shellspace

@@ -1,0 +1,70 @@
+// Riemannian splines through keyframes and shape regression (calculus.md):
+// the reduced spline / regression functional (problems/spline_energy.h)
+// minimised by L-BFGS (ceres::GradientProblemSolver).
+#ifndef SHELLSPACE_PROBLEMS_SPLINES_SPLINE_H_
+#define SHELLSPACE_PROBLEMS_SPLINES_SPLINE_H_
+
+#include <ceres/gradient_problem_solver.h>
+
+#include <vector>
+
+#include "shellspace/problems/splines/spline_energy.h"
+
+namespace shellspace {
+
+struct SplineResult {
+  ShellPath path;            // K + 1 shapes (periodic: K + 1 with s_K = s_0)
+  double spline_energy = 0;  // F_K
+  double data_energy = 0;    // sum_j W[S_j, s_{k_j}] (regression)
+  double objective = 0;      // data + sigma F_K
+  ceres::GradientProblemSolver::Summary summary;
+  SplineTimings timings;  // where the evaluations spent their time
+};
+
+// Settings of the outer L-BFGS loop.
+struct SplineSettings {
+  int max_iterations = 100;
+  double gradient_tolerance = 1e-8;  // relative to the initial gradient
+  double function_tolerance = 1e-10;
+  bool progress = false;
+  std::string progress_label = "spline";
+  SolverSettings inner;  // the midpoint solves
+  // L-BFGS in the variables of SplinePreconditioner (spline_preconditioner.h;
+  // metrics of the initial free shapes); false: in the vertex coordinates.
+  bool precondition = true;
+  double preconditioner_regularization = 1e-6;
+  // Bound on the first trial step's largest vertex move, relative to the
+  // size of the path's first shape.
+  double max_first_move = 0.01;
+};
+
+// Spline through `keyframes` at path indices `at` (strictly increasing, in
+// [0, K]; non-periodic paths need at.front() = 0 and at.back() = K; periodic
+// ones use indices in [0, K) and s_K = s_0). The inner shapes start from
+// `initial` (K + 1 shapes, e.g. the LThetaSpline) or, if empty, from the
+// piecewise linear interpolation of the keyframes.
+SplineResult SolveSpline(const ShellSpace& space,
+                         const std::vector<Positions>& keyframes,
+                         const std::vector<int>& at, int steps, bool periodic,
+                         const ShellPath& initial,
+                         const SplineSettings& settings);
+
+// Regression: min over all s_0..s_K of sum_j W[inputs_j, s_{at_j}] + sigma
+// F_K[s], initialised from `initial` or the piecewise linear interpolation of
+// the inputs (extended constantly before the first / after the last).
+SplineResult SolveRegression(const ShellSpace& space,
+                             const std::vector<Positions>& inputs,
+                             const std::vector<int>& at, int steps,
+                             double sigma, const ShellPath& initial,
+                             const SplineSettings& settings);
+
+// Piecewise linear interpolation of shapes at indices `at` over 0..K (or
+// 0..K-1 wrapping around if periodic), constant outside [at.front(),
+// at.back()].
+ShellPath PiecewiseLinearPath(const std::vector<Positions>& shapes,
+                              const std::vector<int>& at, int steps,
+                              bool periodic);
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_PROBLEMS_SPLINES_SPLINE_H_

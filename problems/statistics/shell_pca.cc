@@ -1,0 +1,318 @@
+#include "shellspace/problems/statistics/shell_pca.h"
+
+#include <Eigen/Eigenvalues>
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+
+#include "shellspace/cost_functions/shell/energy_derivatives.h"
+#include "shellspace/geometry/rigid_alignment.h"
+#include "shellspace/problems/statistics/elastic_mean.h"
+#include "shellspace/problems/calculus/exponential_map.h"
+
+namespace shellspace {
+namespace {
+
+Eigen::Map<const Eigen::VectorXd> Flat(const Positions& p) {
+  return Eigen::Map<const Eigen::VectorXd>(p.data(), p.size());
+}
+
+void CheckOptions(const ShellPcaOptions& options) {
+  if (options.steps < 1)
+    throw InputError("shell PCA: steps must be at least 1");
+  if (options.exp_steps < 0) {
+    throw InputError("shell PCA: EXP steps must be non-negative");
+  }
+  if (options.max_exp_steps < std::max(options.exp_steps, 1)) {
+    throw InputError("shell PCA: max EXP steps below the EXP steps");
+  }
+  if (!(options.max_energy_drift > 0)) {
+    throw InputError("shell PCA: the energy drift bound must be positive");
+  }
+  if (!(options.relative_cutoff >= 0)) {
+    throw InputError("shell PCA: relative cutoff must be non-negative");
+  }
+}
+
+// A healthy EXP step converges by Newton (exp_step_newton.h); the LM
+// fallback of ExpStep gets this many iterations in a shot before the step
+// counts as failed (a step that needs more is failing and would otherwise
+// run to settings.max_iterations before the safeguard can react).
+constexpr int kMaxExpStepIterations = 25;
+
+// How one EXP_K shot went.
+struct ShotOutcome {
+  bool ok = false;          // every step solved, drift within the bound
+  int unsolved_step = 0;    // k of the first step without a solution, or 0
+  double unsolved_residual = 0;  // its max |F| / max |D_2 W[s_{k-1}, s_k]|
+  double drift = 0;         // largest relative step-energy drift so far
+};
+
+// One EXP_K shot from (s0, s0 + v/K), step by step. A step is solved if its
+// solve is usable and either converged or left a residual |F|_inf <= 1e-6
+// |D_2 W[s_{k-1}, s_k]|_inf (then hitting the iteration cap is harmless);
+// the shot is ok if every step is solved and within max_drift of the first
+// step's energy. The shot stops at the first unsolved step (what follows
+// would be shot from a non-solution), and at the first drift violation if
+// `abort_on_drift`; *end is set only if it ran to the end.
+ShotOutcome ShootOnce(const ShellSpace& space, const Positions& s0,
+                      const Positions& variation, int steps, double max_drift,
+                      bool abort_on_drift, const SolverSettings& settings,
+                      Positions* end) {
+  SolverSettings step_settings = settings;
+  step_settings.max_iterations =
+      std::min(settings.max_iterations, kMaxExpStepIterations);
+  Positions previous = s0;
+  Positions current = s0 + variation / steps;
+  const double first = EvaluateDeformationEnergy(space, s0, current).total;
+  ShotOutcome outcome;
+  outcome.ok = true;
+  for (int k = 2; k <= steps; ++k) {
+    ExpStepResult step = ExpStep(space, previous, current,
+                                 StepDirection::kForward, {}, step_settings);
+    const double scale =
+        EnergyGradient(space, previous, current, ShellSide::kDeformed)
+            .cwiseAbs()
+            .maxCoeff();
+    const bool solved = step.summary.IsSolutionUsable() &&
+                        (step.summary.termination_type == ceres::CONVERGENCE ||
+                         step.residual_norm <= 1e-6 * scale);
+    if (!solved) {
+      outcome.ok = false;
+      outcome.unsolved_step = k;
+      outcome.unsolved_residual = step.residual_norm / scale;
+      outcome.drift = std::numeric_limits<double>::infinity();
+      return outcome;
+    }
+    const double w = EvaluateDeformationEnergy(space, current, step.shape).total;
+    outcome.drift = std::max(outcome.drift, std::abs(w - first) / first);
+    if (!(outcome.drift <= max_drift)) {
+      outcome.ok = false;
+      if (abort_on_drift) return outcome;
+    }
+    previous = std::move(current);
+    current = std::move(step.shape);
+  }
+  *end = std::move(current);
+  return outcome;
+}
+
+}  // namespace
+
+Positions ShootFromMean(const ShellSpace& space, const Positions& mean,
+                        const Positions& variation,
+                        const ShellPcaOptions& options,
+                        const SolverSettings& settings, ExpShotReport* report) {
+  CheckOptions(options);
+  ExpShotReport local;
+  ExpShotReport& r = report ? *report : local;
+  r = ExpShotReport{};
+  if (variation.cwiseAbs().maxCoeff() == 0) {
+    r.ok = true;
+    return mean;
+  }
+  int steps = options.exp_steps > 0 ? options.exp_steps : options.steps;
+  steps = std::min(steps, options.max_exp_steps);
+  for (;;) {
+    const bool last = 2 * steps > options.max_exp_steps;
+    ++r.attempts;
+    r.steps = steps;
+    Positions end;
+    ShotOutcome outcome;
+    try {
+      outcome = ShootOnce(space, mean, variation, steps,
+                          options.max_energy_drift, !last, settings, &end);
+    } catch (const InputError&) {
+      if (last) throw;
+      outcome.unsolved_step = -1;  // a degenerate triangle: more steps
+    }
+    r.energy_drift = outcome.drift;
+    if (last && outcome.unsolved_step > 0) {
+      char text[200];
+      std::snprintf(text, sizeof(text),
+                    "EXP shot: step %d of EXP_%d has no solution (max |F| = "
+                    "%.3g of |D_2 W|) after %d attempt(s) up to K = %d",
+                    outcome.unsolved_step, steps, outcome.unsolved_residual,
+                    r.attempts, steps);
+      throw InputError(text);
+    }
+    if (outcome.ok || last) {
+      r.ok = outcome.ok;
+      return end;
+    }
+    steps *= 2;
+  }
+}
+
+ShellMetric::ShellMetric(const ShellSpace& space, const Positions& at)
+    : hessian_(EnergyHessian(space, at, at, ShellSide::kDeformed,
+                             ShellSide::kDeformed)) {}
+
+double ShellMetric::Inner(const Positions& u, const Positions& w) const {
+  if (u.size() != hessian_.rows() || w.size() != hessian_.rows()) {
+    throw InputError("shell metric: variation of the wrong size");
+  }
+  return 0.5 * Flat(u).dot(hessian_ * Flat(w));
+}
+
+double ShellMetric::Norm(const Positions& u) const {
+  return std::sqrt(std::max(0.0, Inner(u, u)));
+}
+
+GramModes ModesFromGram(const Eigen::MatrixXd& gram,
+                        const std::vector<Positions>& displacements,
+                        double relative_cutoff) {
+  const int n = static_cast<int>(displacements.size());
+  if (n == 0 || gram.rows() != n || gram.cols() != n) {
+    throw InputError("PCA: Gram matrix does not match the displacements");
+  }
+  const Eigen::MatrixXd symmetric = 0.5 * (gram + gram.transpose());
+  Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> solver(symmetric);
+  // Eigen sorts ascending; reverse to lambda_1 >= lambda_2 >= ...
+  GramModes result;
+  result.eigenvalues = solver.eigenvalues().reverse();
+  const Eigen::MatrixXd vectors = solver.eigenvectors().rowwise().reverse();
+  const double largest = std::max(result.eigenvalues(0), 0.0);
+  for (int j = 0; j < n; ++j) {
+    const double lambda = result.eigenvalues(j);
+    if (!(lambda > relative_cutoff * largest) || !(lambda > 0)) break;
+    Positions mode = Positions::Zero(displacements[0].rows(), 3);
+    for (int i = 0; i < n; ++i) mode += vectors(i, j) * displacements[i];
+    mode /= std::sqrt(n * lambda);
+    // Sign convention: the largest-magnitude coefficient positive.
+    Eigen::Index k = 0;
+    vectors.col(j).cwiseAbs().maxCoeff(&k);
+    if (vectors(k, j) < 0) mode = -mode;
+    result.modes.push_back(std::move(mode));
+  }
+  return result;
+}
+
+ShellPath WarmLogPath(const ShellPath& old, const Positions& mean,
+                      const Positions& end) {
+  const int steps = static_cast<int>(old.size()) - 1;
+  if (steps < 1 || old[0].rows() != mean.rows() ||
+      end.rows() != mean.rows()) {
+    throw InputError("warm LOG path: wrong number of shapes or vertices");
+  }
+  const Positions start_shift = mean - AlignRigidly(old[0], mean);
+  const Positions end_shift = end - AlignRigidly(old[steps], end);
+  ShellPath path(steps + 1);
+  for (int k = 0; k <= steps; ++k) {
+    const double t = static_cast<double>(k) / steps;
+    const Positions linear = (1 - t) * mean + t * end;
+    path[k] = AlignRigidly(old[k], linear) + (1 - t) * start_shift +
+              t * end_shift;
+  }
+  path.front() = mean;
+  path.back() = end;
+  return path;
+}
+
+Positions ShellDisplacement(const ShellSpace& space, const Positions& mean,
+                            const Positions& shape,
+                            const ShellPcaOptions& options,
+                            const SolverSettings& settings,
+                            const ShellPath* warm, GeodesicResult* geodesic) {
+  CheckOptions(options);
+  const Positions aligned = AlignRigidly(shape, mean);
+  if (options.displacement == DisplacementKind::kAlignedDifference) {
+    return aligned - mean;
+  }
+  ShellPath initial;
+  if (warm != nullptr) {
+    if (static_cast<int>(warm->size()) != options.steps + 1) {
+      throw InputError("shell PCA: a warm LOG path needs K + 1 shapes");
+    }
+    initial = WarmLogPath(*warm, mean, aligned);
+  }
+  return LogK(space, mean, aligned, options.steps, {}, settings, geodesic,
+              warm != nullptr ? &initial : nullptr);
+}
+
+ShellPcaModel ComputeShellPca(const ShellSpace& space, const Positions& mean,
+                              const std::vector<Positions>& shapes,
+                              const ShellPcaOptions& options,
+                              const SolverSettings& settings,
+                              const std::vector<ShellPath>* warm) {
+  CheckOptions(options);
+  CheckShapeSet(space, shapes, "shell PCA");
+  CheckShapeSet(space, {mean}, "shell PCA mean");
+  if (warm != nullptr && warm->size() != shapes.size()) {
+    throw InputError("shell PCA: one warm LOG path per shape needed");
+  }
+  ShellPcaModel model{mean, {}, {}, {}, {}, ShellMetric(space, mean), {}};
+  const int n = static_cast<int>(shapes.size());
+  const bool log = options.displacement == DisplacementKind::kLog;
+  if (log) model.log_paths.resize(n);
+  for (int i = 0; i < n; ++i) {
+    GeodesicResult geodesic;
+    model.displacements.push_back(
+        ShellDisplacement(space, mean, shapes[i], options, settings,
+                          warm != nullptr ? &(*warm)[i] : nullptr, &geodesic));
+    if (log) {
+      model.log_paths[i] = std::move(geodesic.path);
+      model.log_iterations += geodesic.iterations;
+    }
+  }
+  // Gamma = V^T H V / (2 n) with the displacements as the columns of V.
+  Eigen::MatrixXd v(mean.size(), n);
+  for (int i = 0; i < n; ++i) v.col(i) = Flat(model.displacements[i]);
+  const Eigen::MatrixXd hv = model.metric.hessian() * v;
+  model.gram = 0.5 * v.transpose() * hv / n;
+  GramModes modes =
+      ModesFromGram(model.gram, model.displacements, options.relative_cutoff);
+  model.eigenvalues = std::move(modes.eigenvalues);
+  model.modes = std::move(modes.modes);
+  return model;
+}
+
+Positions ShellModeShape(const ShellSpace& space, const ShellPcaModel& model,
+                         int j, double t, const ShellPcaOptions& options,
+                         const SolverSettings& settings) {
+  CheckOptions(options);
+  if (j < 0 || j >= static_cast<int>(model.modes.size())) {
+    throw InputError("shell PCA: mode " + std::to_string(j + 1) +
+                     " does not exist (the model has " +
+                     std::to_string(model.modes.size()) + ")");
+  }
+  const Positions variation =
+      t * std::sqrt(model.eigenvalues(j)) * model.modes[j];
+  return AlignRigidly(
+      ShootFromMean(space, model.mean, variation, options, settings),
+      model.mean);
+}
+
+Eigen::VectorXd ShellModeCoefficients(const ShellPcaModel& model,
+                                      const Positions& v, int m) {
+  if (m < 0 || m > static_cast<int>(model.modes.size())) {
+    throw InputError("shell PCA: " + std::to_string(m) +
+                     " modes requested, the model has " +
+                     std::to_string(model.modes.size()));
+  }
+  Eigen::VectorXd c(m);
+  for (int j = 0; j < m; ++j) c(j) = model.metric.Inner(v, model.modes[j]);
+  return c;
+}
+
+Positions ShellFromCoefficients(const ShellSpace& space,
+                                const ShellPcaModel& model,
+                                const Eigen::VectorXd& coefficients,
+                                const ShellPcaOptions& options,
+                                const SolverSettings& settings,
+                                ExpShotReport* report) {
+  CheckOptions(options);
+  const int m = static_cast<int>(coefficients.size());
+  if (m > static_cast<int>(model.modes.size())) {
+    throw InputError("shell PCA: more coefficients than modes");
+  }
+  Positions variation = Positions::Zero(model.mean.rows(), 3);
+  for (int j = 0; j < m; ++j) variation += coefficients(j) * model.modes[j];
+  return AlignRigidly(
+      ShootFromMean(space, model.mean, variation, options, settings, report),
+      model.mean);
+}
+
+}  // namespace shellspace

@@ -1,0 +1,73 @@
+#include "shellspace/solvers/gauge_reduced_solve.h"
+
+#include <Eigen/SparseCholesky>
+#include <vector>
+
+#include "shellspace/solvers/rigid_gauge.h"
+
+namespace shellspace {
+
+Eigen::SparseMatrix<double> RigidGaugeBasis(const Positions& shape) {
+  const int n = static_cast<int>(shape.rows());
+  const auto [a, b, c] = ChooseGaugeVertices(shape);
+  const Eigen::Vector3d pa = shape.row(a), pb = shape.row(b), pc = shape.row(c);
+  const Eigen::Vector3d u = (pb - pa).normalized();
+  const Eigen::Vector3d w = ((pc - pa) - (pc - pa).dot(u) * u).normalized();
+  std::vector<Eigen::Triplet<double>> t;
+  int column = 0;
+  for (int v = 0; v < n; ++v) {
+    if (v == a) continue;
+    if (v == b || v == c) {
+      const int directions = v == b ? 1 : 2;  // the line ab / the plane abc
+      for (int d = 0; d < directions; ++d) {
+        const Eigen::Vector3d& dir = d == 0 ? u : w;
+        for (int k = 0; k < 3; ++k) t.emplace_back(3 * v + k, column, dir(k));
+        ++column;
+      }
+      continue;
+    }
+    for (int k = 0; k < 3; ++k) t.emplace_back(3 * v + k, column++, 1.0);
+  }
+  Eigen::SparseMatrix<double> basis(3 * n, column);
+  basis.setFromTriplets(t.begin(), t.end());
+  return basis;
+}
+
+std::vector<int> BasisColumnVertices(const Eigen::SparseMatrix<double>& basis) {
+  std::vector<int> vertex(basis.cols());
+  for (int c = 0; c < basis.cols(); ++c) {
+    vertex[c] = basis.innerIndexPtr()[basis.outerIndexPtr()[c]] / 3;
+  }
+  return vertex;
+}
+
+Eigen::SparseMatrix<double> FreeVertexBasis(
+    int num_vertices, const std::vector<int>& fixed_vertices) {
+  std::vector<bool> fixed(num_vertices, false);
+  for (int v : fixed_vertices) fixed[v] = true;
+  std::vector<Eigen::Triplet<double>> t;
+  int column = 0;
+  for (int v = 0; v < num_vertices; ++v) {
+    if (fixed[v]) continue;
+    for (int k = 0; k < 3; ++k) t.emplace_back(3 * v + k, column++, 1.0);
+  }
+  Eigen::SparseMatrix<double> basis(3 * num_vertices, column);
+  basis.setFromTriplets(t.begin(), t.end());
+  return basis;
+}
+
+Eigen::VectorXd SolveModuloRigidMotions(const Eigen::SparseMatrix<double>& h,
+                                        const Eigen::VectorXd& rhs,
+                                        const Positions& shape) {
+  const Eigen::SparseMatrix<double> basis = RigidGaugeBasis(shape);
+  const Eigen::SparseMatrix<double> reduced =
+      Eigen::SparseMatrix<double>(basis.transpose() * h * basis);
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(reduced);
+  if (ldlt.info() != Eigen::Success) {
+    throw InputError("midpoint Hessian is singular (degenerate midpoint)");
+  }
+  const Eigen::VectorXd q = ldlt.solve(basis.transpose() * rhs);
+  return basis * q;
+}
+
+}  // namespace shellspace

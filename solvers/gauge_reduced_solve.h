@@ -1,0 +1,44 @@
+// Solving H p = b for a Hessian H whose null space is the rigid motions of a
+// shell (H = second derivative of a rigidly invariant energy).
+#ifndef SHELLSPACE_SOLVERS_GAUGE_REDUCED_SOLVE_H_
+#define SHELLSPACE_SOLVERS_GAUGE_REDUCED_SOLVE_H_
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <vector>
+
+#include "shellspace/geometry/mesh.h"
+
+namespace shellspace {
+
+// Basis T (3n x (3n - 6)) of the coordinates left free by PinRigidMotions:
+// with the gauge vertices (a, b, c) of ChooseGaugeVertices(shape), u =
+// (X_b - X_a)/|.| and w the unit in-plane normal to u, T is the identity on
+// every other coordinate, zero on a, u on b and [u w] on c. A rigidly
+// invariant energy restricted to x + T q has no rigid null space.
+Eigen::SparseMatrix<double> RigidGaugeBasis(const Positions& shape);
+
+// The mesh vertex of each column of such a basis (columns are supported on
+// the three coordinates of one vertex).
+std::vector<int> BasisColumnVertices(const Eigen::SparseMatrix<double>& basis);
+
+// Basis T (3n x 3m) selecting the coordinates of the m vertices not listed in
+// `fixed_vertices` (Dirichlet mask), in vertex order.
+Eigen::SparseMatrix<double> FreeVertexBasis(int num_vertices,
+                                            const std::vector<int>& fixed_vertices);
+
+// With T = RigidGaugeBasis(shape) (the gauge vertices (a, b, c) of ChooseGaugeVertices(shape) and u =
+// (X_b - X_a)/|.|, w the unit in-plane normal to u: p = T q, where T is the
+// identity on every other coordinate, zero on a, u on b and [u w] on c (the
+// 3n - 6 directions left by PinRigidMotions); solves (T^T H T) q = T^T rhs by
+// sparse Cholesky (LDL^T). For rhs orthogonal to the rigid motions (a
+// gradient of a rigidly invariant function) this is a solution of H p = rhs;
+// p is unique up to a rigid motion. Throws InputError if the reduced matrix is
+// not positive definite.
+Eigen::VectorXd SolveModuloRigidMotions(const Eigen::SparseMatrix<double>& h,
+                                        const Eigen::VectorXd& rhs,
+                                        const Positions& shape);
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_SOLVERS_GAUGE_REDUCED_SOLVE_H_

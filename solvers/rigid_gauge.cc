@@ -1,0 +1,78 @@
+#include "shellspace/solvers/rigid_gauge.h"
+
+#include <Eigen/Geometry>
+
+namespace shellspace {
+
+AffineSubspaceManifold::AffineSubspaceManifold(const Eigen::MatrixXd& basis)
+    : basis_(basis) {}
+
+bool AffineSubspaceManifold::Plus(const double* x, const double* delta,
+                                  double* x_plus_delta) const {
+  const Eigen::Map<const Eigen::VectorXd> d(delta, basis_.cols());
+  Eigen::Map<Eigen::Vector3d> out(x_plus_delta);
+  out = Eigen::Map<const Eigen::Vector3d>(x) + basis_ * d;
+  return true;
+}
+
+bool AffineSubspaceManifold::PlusJacobian(const double* /*x*/,
+                                          double* jacobian) const {
+  // Row-major 3 x m.
+  Eigen::Map<
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>
+      out(jacobian, 3, basis_.cols());
+  out = basis_;
+  return true;
+}
+
+bool AffineSubspaceManifold::Minus(const double* y, const double* x,
+                                   double* y_minus_x) const {
+  Eigen::Map<Eigen::VectorXd> out(y_minus_x, basis_.cols());
+  out = basis_.transpose() * (Eigen::Map<const Eigen::Vector3d>(y) -
+                              Eigen::Map<const Eigen::Vector3d>(x));
+  return true;
+}
+
+bool AffineSubspaceManifold::MinusJacobian(const double* /*x*/,
+                                           double* jacobian) const {
+  // Row-major m x 3.
+  Eigen::Map<
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>
+      out(jacobian, basis_.cols(), 3);
+  out = basis_.transpose();
+  return true;
+}
+
+std::array<int, 3> ChooseGaugeVertices(const Positions& shape) {
+  const Eigen::RowVector3d centroid = shape.colwise().mean();
+  int a = 0, b = 0, c = 0;
+  (shape.rowwise() - centroid).rowwise().squaredNorm().maxCoeff(&a);
+  (shape.rowwise() - shape.row(a)).rowwise().squaredNorm().maxCoeff(&b);
+  const Eigen::Vector3d axis = (shape.row(b) - shape.row(a)).normalized();
+  double best = -1;
+  for (int i = 0; i < shape.rows(); ++i) {
+    const Eigen::Vector3d d = (shape.row(i) - shape.row(a)).transpose();
+    const double dist = (d - d.dot(axis) * axis).squaredNorm();
+    if (dist > best) best = dist, c = i;
+  }
+  return {a, b, c};
+}
+
+std::array<int, 3> PinRigidMotions(Positions* shape, ceres::Problem* problem) {
+  const auto [a, b, c] = ChooseGaugeVertices(*shape);
+  const Eigen::Vector3d pa = shape->row(a), pb = shape->row(b),
+                        pc = shape->row(c);
+  const Eigen::Vector3d u = (pb - pa).normalized();
+  Eigen::Vector3d w = (pc - pa) - (pc - pa).dot(u) * u;
+  w.normalize();
+  Eigen::MatrixXd plane(3, 2);
+  plane << u, w;
+  problem->SetParameterBlockConstant(shape->data() + 3 * a);
+  problem->SetManifold(shape->data() + 3 * b,
+                       new AffineSubspaceManifold(Eigen::MatrixXd(u)));
+  problem->SetManifold(shape->data() + 3 * c,
+                       new AffineSubspaceManifold(plane));
+  return {a, b, c};
+}
+
+}  // namespace shellspace

@@ -1,0 +1,48 @@
+// Removing the 6 rigid-motion degrees of freedom of a free shell without
+// dense rows (shells.md, "Rigid-motion gauge").
+#ifndef SHELLSPACE_SOLVERS_RIGID_GAUGE_H_
+#define SHELLSPACE_SOLVERS_RIGID_GAUGE_H_
+
+#include <ceres/manifold.h>
+#include <ceres/problem.h>
+
+#include <Eigen/Core>
+#include <array>
+
+#include "shellspace/geometry/mesh.h"
+
+namespace shellspace {
+
+// The affine subspace {x + B delta} of R^3 through the current point, with an
+// orthonormal basis B (3 x m, m = 1: a line, m = 2: a plane). Plus(x, delta) =
+// x + B delta, Minus(y, x) = B^T (y - x).
+class AffineSubspaceManifold : public ceres::Manifold {
+ public:
+  explicit AffineSubspaceManifold(const Eigen::MatrixXd& basis);
+  int AmbientSize() const override { return 3; }
+  int TangentSize() const override { return static_cast<int>(basis_.cols()); }
+  bool Plus(const double* x, const double* delta,
+            double* x_plus_delta) const override;
+  bool PlusJacobian(const double* x, double* jacobian) const override;
+  bool Minus(const double* y, const double* x,
+             double* y_minus_x) const override;
+  bool MinusJacobian(const double* x, double* jacobian) const override;
+
+ private:
+  Eigen::MatrixXd basis_;  // 3 x m, orthonormal columns
+};
+
+// Three vertices far apart: a = the vertex farthest from the centroid, b = the
+// vertex farthest from a, c = the vertex farthest from the line ab.
+std::array<int, 3> ChooseGaugeVertices(const Positions& shape);
+
+// Pins the rigid motions of `shape` (whose vertex blocks are in `problem`):
+// vertex a is held constant, b moves only along the line ab, c only in the
+// plane abc (at their current positions). Exactly 6 degrees of freedom are
+// removed; the energy at the optimum does not depend on the choice. Returns
+// the three vertices.
+std::array<int, 3> PinRigidMotions(Positions* shape, ceres::Problem* problem);
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_SOLVERS_RIGID_GAUGE_H_

@@ -1,0 +1,79 @@
+#include "shellspace/solvers/solver_settings.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+namespace shellspace {
+
+ceres::Solver::Options MakeSolverOptions(const SolverSettings& settings,
+                                         double initial_gradient_norm) {
+  ceres::Solver::Options options;
+  options.minimizer_type = ceres::TRUST_REGION;
+  options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
+  options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  options.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
+  options.max_num_iterations = settings.max_iterations;
+  options.function_tolerance = settings.function_tolerance;
+  options.gradient_tolerance =
+      settings.gradient_tolerance * std::max(1.0, initial_gradient_norm);
+  options.parameter_tolerance = settings.parameter_tolerance;
+  options.num_threads = settings.num_threads;
+  options.initial_trust_region_radius = settings.initial_trust_region_radius;
+  options.max_trust_region_radius = std::max(
+      options.max_trust_region_radius, settings.initial_trust_region_radius);
+  options.logging_type = ceres::SILENT;
+  options.minimizer_progress_to_stdout = false;
+  return options;
+}
+
+ProgressPrinter::ProgressPrinter(std::string label, double cost_factor)
+    : label_(std::move(label)),
+      cost_factor_(cost_factor),
+      start_(std::chrono::steady_clock::now()) {}
+
+ceres::CallbackReturnType ProgressPrinter::operator()(
+    const ceres::IterationSummary& s) {
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start_)
+          .count();
+  std::fprintf(
+      stderr, "%s iter %3d  energy %.10e  |grad| %.3e  step %s  %.2f s\n",
+      label_.c_str(), s.iteration, cost_factor_ * s.cost, s.gradient_max_norm,
+      s.step_is_successful ? "ok " : "rej", seconds);
+  return ceres::SOLVER_CONTINUE;
+}
+
+}  // namespace shellspace
+
+namespace shellspace {
+
+double GradientMaxNorm(ceres::Problem* problem) {
+  std::vector<double> gradient;
+  double cost = 0;
+  if (!problem->Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr,
+                         &gradient, nullptr)) {
+    return 0;
+  }
+  double norm = 0;
+  for (double g : gradient) norm = std::max(norm, std::abs(g));
+  return norm;
+}
+
+ceres::Solver::Summary SolveWithSettings(ceres::Problem* problem,
+                                         const SolverSettings& settings,
+                                         double reference_gradient_norm) {
+  ceres::Solver::Options options = MakeSolverOptions(
+      settings, reference_gradient_norm >= 0 ? reference_gradient_norm
+                                             : GradientMaxNorm(problem));
+  ProgressPrinter printer(settings.progress_label);
+  if (settings.progress) options.callbacks.push_back(&printer);
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, problem, &summary);
+  return summary;
+}
+
+}  // namespace shellspace

@@ -1,0 +1,69 @@
+// Solver settings shared by all problem builders, and the per-iteration
+// progress line of long solves.
+#ifndef SHELLSPACE_SOLVERS_SOLVER_SETTINGS_H_
+#define SHELLSPACE_SOLVERS_SOLVER_SETTINGS_H_
+
+#include <ceres/iteration_callback.h>
+#include <ceres/solver.h>
+
+#include <chrono>
+#include <iosfwd>
+#include <string>
+
+namespace shellspace {
+
+// Settings of the sparse Levenberg-Marquardt solves. Convergence is declared
+// on the relative gradient norm max|grad| / max(1, |grad_0|) <=
+// gradient_tolerance (a Ceres gradient_tolerance on the projected gradient
+// scaled by the initial one) or on the relative cost decrease.
+struct SolverSettings {
+  int max_iterations = 200;
+  double function_tolerance = 1e-12;
+  double gradient_tolerance = 1e-8;  // relative to the initial gradient
+  double parameter_tolerance = 1e-12;
+  int num_threads = 2;
+  // LM's initial trust-region radius (Ceres' default 1e4). Root-finding
+  // problems with a square, nonsingular Jacobian (EXP steps) want nearly
+  // Gauss-Newton steps from the start: a large radius.
+  double initial_trust_region_radius = 1e4;
+  bool progress = false;  // one line per iteration on stderr
+  std::string progress_label = "solve";
+};
+
+// Ceres options for a sparse LM solve (SPARSE_NORMAL_CHOLESKY over
+// SuiteSparse) with these settings. `initial_gradient_norm` (max norm of the
+// gradient at the initial guess) turns the relative gradient tolerance into
+// Ceres' absolute one.
+ceres::Solver::Options MakeSolverOptions(const SolverSettings& settings,
+                                         double initial_gradient_norm);
+
+// Prints "label iter N cost C |grad| G step S  T s" per iteration on stderr.
+class ProgressPrinter : public ceres::IterationCallback {
+ public:
+  // The printed energy is cost_factor * Ceres' cost (1 for the shell
+  // energies: W = 1/2 sum r^2 is Ceres' cost, and E_K with the sqrt(K)
+  // residual scaling).
+  explicit ProgressPrinter(std::string label, double cost_factor = 1.0);
+  ceres::CallbackReturnType operator()(
+      const ceres::IterationSummary& summary) override;
+
+ private:
+  std::string label_;
+  double cost_factor_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+// Max-norm of the gradient of the problem's cost at the current parameters.
+double GradientMaxNorm(ceres::Problem* problem);
+
+// Solves `problem` with MakeSolverOptions(settings, g0) and, if
+// settings.progress, a ProgressPrinter. g0 = reference_gradient_norm if it is
+// >= 0 (a solve continuing an earlier one keeps that one's reference), else
+// GradientMaxNorm(problem) at the initial guess.
+ceres::Solver::Summary SolveWithSettings(ceres::Problem* problem,
+                                         const SolverSettings& settings,
+                                         double reference_gradient_norm = -1);
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_SOLVERS_SOLVER_SETTINGS_H_

@@ -1,0 +1,176 @@
+// The relaxed simulation: discrete energy vs closed forms, the exact scaling
+// invariance of the spec, the Ceres problem vs the direct evaluation, a short
+// solve that refines toward the austenite, and the CLI.
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <ceres/ceres.h>
+#include <gtest/gtest.h>
+
+#include "shellspace/problems/branching/initial_guess.h"
+#include "shellspace/problems/branching/relaxed_problem.h"
+#include "shellspace/problems/branching/simulation.h"
+#include "shellspace/tests/testing/test_support.h"
+
+namespace shellspace::branching {
+namespace {
+
+// A laminate of period p = H/n, u(x, y) = U(y) on every row i >= 1 (a jump
+// to u = 0 at the austenite row). Closed forms (per unit height):
+//   interfacial = 2 eps per interface per unit x-length: 4 eps L / p
+//     (the tanh profile is the exact 1D optimum; error from dy = delta/6
+//     and the tails, well below 1 %),
+//   elastic = (1 / dx_1) mean_y U^2 = p^2 / (48 dx_1)  (the triangle wave of
+//     amplitude p/4; the smoothing lowers it by O((delta/p)^2)).
+TEST(BranchingRelaxed, LaminateEnergyClosedForm) {
+  const double epsilon = 1e-3, L = 1.0, H = 0.5, delta = 0.005;
+  const int n = 2;
+  const RelaxedGrid grid(L, H, 20, 600, 1.0);  // dy = delta / 6
+  RelaxedField field(grid);
+  InitLaminate(&field, n, delta);
+  // Remove the ramp: the same U(y) on every row.
+  for (int i = 1; i <= grid.nx; ++i) {
+    for (int j = 0; j < grid.ny; ++j) field.at(i, j) = field.at(grid.nx, j);
+  }
+  const RelaxedEnergy e = EvaluateRelaxedEnergy(field, epsilon, delta);
+  const double p = H / n;
+  EXPECT_NEAR(e.interfacial(), 4.0 * epsilon * L / p, 0.01 * 4.0 * epsilon * L / p);
+  EXPECT_NEAR(e.elastic, p * p / (48.0 * grid.dx(1)),
+              0.02 * p * p / (48.0 * grid.dx(1)));
+  // The gradient and well parts of an optimal profile are equal.
+  EXPECT_NEAR(e.gradient, e.well, 0.02 * e.well);
+}
+
+TEST(BranchingRelaxed, CeresCostEqualsDirectEnergy) {
+  SimulationSettings s;
+  s.nx = 12;
+  s.ny = 48;
+  s.init = "random";
+  SimulationResult r = InitialSimulation(s);
+  ceres::Problem problem;
+  AddRelaxedResiduals(&r.field, s.epsilon, r.delta, &problem);
+  double cost = 0.0;
+  problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr,
+                   nullptr);
+  const RelaxedEnergy e = EvaluateRelaxedEnergy(r.field, s.epsilon, r.delta);
+  EXPECT_NEAR(2.0 * cost, e.total(), 1e-12 * e.total());
+  EXPECT_EQ(problem.NumResiduals(), 3 * s.nx * s.ny);
+}
+
+// Spec: x = L x', y = lambda y', u = lambda u', delta = lambda delta',
+// lambda = eps^(1/3) L^(2/3): the energy per unit height is
+// eps^(2/3) L^(1/3) times the energy with eps = L = 1.
+TEST(BranchingRelaxed, ExactScalingInvariance) {
+  SimulationSettings a;
+  a.epsilon = 1e-3;
+  a.length = 1.0;
+  a.height = 0.4;
+  a.nx = 16;
+  a.ny = 64;
+  a.init = "km";
+  a.periods = 1;
+  a.continuation = 2;
+  SimulationSettings b = a;
+  b.epsilon = 8e-3;
+  b.length = 2.0;
+  const double rho = std::cbrt(b.epsilon / a.epsilon) *
+                     std::pow(b.length / a.length, 2.0 / 3.0);
+  b.height = a.height * rho;
+  const double factor = std::pow(b.epsilon / a.epsilon, 2.0 / 3.0) *
+                        std::cbrt(b.length / a.length);
+  SimulationResult ra = InitialSimulation(a);
+  SimulationResult rb = InitialSimulation(b);
+  for (size_t k = 0; k < ra.field.u.size(); ++k) rb.field.u[k] = rho * ra.field.u[k];
+  EXPECT_NEAR(rb.delta, rho * ra.delta, 1e-15);
+  const double ea = EvaluateRelaxedEnergy(ra.field, a.epsilon, ra.delta).total();
+  const double eb = EvaluateRelaxedEnergy(rb.field, b.epsilon, rb.delta).total();
+  EXPECT_NEAR(eb / ea, factor, 1e-11 * factor);
+  // Solved independently from their own (scaled) initial guesses.
+  const SimulationResult sa = RunSimulation(a);
+  const SimulationResult sb = RunSimulation(b);
+  EXPECT_NEAR(sb.energy.total() / sa.energy.total(), factor, 1e-5 * factor);
+  // A problem NOT related by the scaling (H unchanged) is not proportional.
+  SimulationSettings c = b;
+  c.height = a.height;
+  const SimulationResult sc = RunSimulation(c);
+  EXPECT_GT(std::fabs(sc.energy.total() / sa.energy.total() - factor),
+            1e-3 * factor);
+}
+
+TEST(BranchingRelaxed, SolveRefinesTowardAustenite) {
+  SimulationSettings s;  // eps 1e-3, L 1, H 0.5
+  s.nx = 32;
+  s.ny = 128;
+  s.init = "km";
+  s.periods = 1;
+  const SimulationResult init = InitialSimulation(s);
+  const double e0 = EvaluateRelaxedEnergy(init.field, s.epsilon, init.delta).total();
+  const SimulationResult r = RunSimulation(s);
+  EXPECT_LT(r.energy.total(), e0);
+  EXPECT_EQ(r.stages.back().termination, "CONVERGENCE");
+  ASSERT_EQ(r.interfaces.size(), 32u);
+  // Far from the austenite: the first-generation laminate, 2 interfaces per
+  // period; closer to x = 0 more interfaces cross a column.
+  EXPECT_EQ(r.interfaces.back(), 2);
+  int max_count = 0;
+  for (int c : r.interfaces) max_count = std::max(max_count, c);
+  EXPECT_GE(max_count, 2 * r.interfaces.back());
+  std::printf("interfaces per column (x = L ... x = 0):");
+  for (int k = static_cast<int>(r.interfaces.size()) - 1; k >= 0; k -= 4) {
+    std::printf(" %d", r.interfaces[k]);
+  }
+  std::printf("\n");
+  // Energy per unit height below the sharp KM upper bound (the relaxed model
+  // underestimates, spec) but of the same order.
+  const double constant = r.energy.total() / std::pow(s.epsilon, 2.0 / 3.0);
+  EXPECT_GT(constant, 1.0);
+  EXPECT_LT(constant, 6.9);
+}
+
+TEST(BranchingCli, SimulateAndConstruct) {
+  const std::string dir = testing::TempDir();
+  std::string out, err;
+  ASSERT_EQ(testing::RunCli("branching simulate --nx 16 --ny 64 --quiet --json "
+                            "--output " + dir + "/sim",
+                            &out, &err),
+            0)
+      << err;
+  EXPECT_NE(out.find("\"interfacial\""), std::string::npos);
+  for (const char* f : {"u.csv", "uy.png", "interfaces.csv", "summary.json"}) {
+    EXPECT_TRUE(std::filesystem::exists(dir + "/sim/" + f)) << f;
+  }
+  ASSERT_EQ(testing::RunCli("branching construct --family lens --optimize "
+                            "--json --output " + dir + "/lens",
+                            &out, &err),
+            0)
+      << err;
+  EXPECT_NE(out.find("\"constant\""), std::string::npos);
+  EXPECT_NE(out.find("\"tau\""), std::string::npos);
+  EXPECT_TRUE(std::filesystem::exists(dir + "/lens/pattern.png"));
+}
+
+TEST(BranchingCli, BadFlagsFailWithoutOutput) {
+  const std::string dir = testing::TempDir();
+  const char* bad[] = {
+      "branching simulate --init spiral --output ",
+      "branching simulate --nx 1 --output ",
+      "branching simulate --epsilon -1 --output ",
+      "branching construct --family zigzag --output ",
+      "branching explode --output ",
+      "branching simulate --no_such_flag --output ",
+  };
+  int k = 0;
+  for (const char* args : bad) {
+    const std::string target = dir + "/out" + std::to_string(k++);
+    std::string out, err;
+    EXPECT_NE(testing::RunCli(args + target, &out, &err), 0) << args;
+    EXPECT_FALSE(err.empty()) << args;
+    EXPECT_LE(std::count(err.begin(), err.end(), '\n'), 1) << err;
+    EXPECT_FALSE(std::filesystem::exists(target)) << args;
+  }
+}
+
+}  // namespace
+}  // namespace shellspace::branching

@@ -1,0 +1,228 @@
+// The time-discrete geodesic calculus (calculus.md): geodesics, EXP, LOG,
+// convex combinations, parallel transport, gauge independence, convergence.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "shellspace/cost_functions/shell/energy_derivatives.h"
+#include "shellspace/geometry/rigid_alignment.h"
+#include "shellspace/problems/calculus/exponential_map.h"
+#include "shellspace/problems/calculus/parallel_transport.h"
+#include "shellspace/tests/testing/test_support.h"
+
+namespace shellspace {
+namespace {
+
+SolverSettings Tight() { return testing::TightSettings(1e-12); }
+
+class GeodesicCalculusTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    start_ = testing::LoadData("plate/plate121.ply");
+    end_ = testing::LoadData("plate/plate121_rolledA.ply");
+    space_ = testing::MakeSpace(start_);
+  }
+  GeodesicResult Geodesic(int steps) const {
+    GeodesicInput input;
+    input.start = start_.positions;
+    input.end = end_.positions;
+    input.steps = steps;
+    return SolveGeodesic(space_, input, Tight());
+  }
+  Mesh start_, end_;
+  ShellSpace space_;
+};
+
+TEST_F(GeodesicCalculusTest, ConvergedGeodesicIsStationaryWithEqualSteps) {
+  const GeodesicResult linear = [&] {
+    GeodesicResult r;
+    r.path = LinearPath(start_.positions, end_.positions, 4);
+    return r;
+  }();
+  const GeodesicResult g = Geodesic(4);
+  ASSERT_TRUE(g.summary.IsSolutionUsable());
+  // The path energy drops below that of the linear path.
+  EXPECT_LT(g.path_energy, PathEnergy(space_, linear.path));
+  // Interior Euler-Lagrange residual D_2 W[s_{k-1}, s_k] + D_1 W[s_k, s_{k+1}].
+  for (int k = 1; k < 4; ++k) {
+    const Eigen::VectorXd initial =
+        testing::InteriorPathGradient(space_, linear.path, k);
+    const Eigen::VectorXd gradient =
+        testing::InteriorPathGradient(space_, g.path, k);
+    EXPECT_LT(gradient.cwiseAbs().maxCoeff(),
+              1e-8 * initial.cwiseAbs().maxCoeff())
+        << k;
+  }
+  const auto [lo, hi] =
+      std::minmax_element(g.step_energies.begin(), g.step_energies.end());
+  EXPECT_LT(*hi / *lo - 1, 0.1);  // equal to O(tau)
+}
+
+TEST_F(GeodesicCalculusTest, ShootingReproducesGeodesic) {
+  const GeodesicResult g = Geodesic(4);
+  const ShellPath forward = Shoot(space_, g.path[0], g.path[1], 4,
+                                  StepDirection::kForward, {}, Tight());
+  for (int k = 2; k <= 4; ++k) {
+    EXPECT_LT(RelativeDistanceUpToRigidMotion(forward[k], g.path[k]), 1e-5)
+        << k;
+  }
+  const ShellPath backward = Shoot(space_, g.path[3], g.path[4], 4,
+                                   StepDirection::kBackward, {}, Tight());
+  ASSERT_EQ(backward.size(), 5u);
+  EXPECT_LT(RelativeDistanceUpToRigidMotion(backward[0], g.path[0]), 1e-5);
+}
+
+// With a Dirichlet mask that moves (one edge strip of the plate, rolled
+// with the rest), geodesic interpolation moves the masked vertices linearly
+// and shooting continues them linearly: forward and backward shots of a
+// masked geodesic reproduce it (no rigid motion to factor out here).
+TEST_F(GeodesicCalculusTest, ShootingReproducesAMaskedGeodesic) {
+  std::vector<int> mask;
+  const double x0 = start_.positions.col(0).minCoeff();
+  const double width = start_.positions.col(0).maxCoeff() - x0;
+  for (int v = 0; v < start_.num_vertices(); ++v) {
+    if (start_.positions(v, 0) < x0 + 0.15 * width) mask.push_back(v);
+  }
+  ASSERT_GT(mask.size(), 5u);
+  GeodesicInput input;
+  input.start = start_.positions;
+  input.end = end_.positions;
+  input.steps = 4;
+  input.fixed_vertices = mask;
+  const GeodesicResult g = SolveGeodesic(space_, input, Tight());
+  const double size = (start_.positions.colwise().maxCoeff() -
+                       start_.positions.colwise().minCoeff())
+                          .norm();
+  const ShellPath forward = Shoot(space_, g.path[0], g.path[1], 4,
+                                  StepDirection::kForward, mask, Tight());
+  for (int k = 2; k <= 4; ++k) {
+    EXPECT_LT((forward[k] - g.path[k]).cwiseAbs().maxCoeff(), 1e-5 * size)
+        << k;
+  }
+  const ShellPath backward = Shoot(space_, g.path[3], g.path[4], 4,
+                                   StepDirection::kBackward, mask, Tight());
+  EXPECT_LT((backward[0] - g.path[0]).cwiseAbs().maxCoeff(), 1e-5 * size);
+}
+
+// One EXP step is solved by Newton on F (exact mixed-Hessian Jacobian,
+// sparse LU) in a handful of steps, without falling back to LM.
+TEST_F(GeodesicCalculusTest, ExpStepConvergesByNewton) {
+  const GeodesicResult g = Geodesic(4);
+  for (StepDirection direction :
+       {StepDirection::kForward, StepDirection::kBackward}) {
+    const bool forward = direction == StepDirection::kForward;
+    const ExpStepResult step =
+        forward ? ExpStep(space_, g.path[1], g.path[2], direction, {}, Tight())
+                : ExpStep(space_, g.path[3], g.path[2], direction, {}, Tight());
+    const double scale =
+        (forward ? EnergyGradient(space_, g.path[1], g.path[2],
+                                  ShellSide::kDeformed)
+                 : EnergyGradient(space_, g.path[2], g.path[3],
+                                  ShellSide::kReference))
+            .cwiseAbs()
+            .maxCoeff();
+    // Quadratic convergence from 2 b - a, then a stop at the round-off
+    // floor (not 20 steps shuffling round-off).
+    EXPECT_GE(step.newton_steps, 1);
+    EXPECT_LE(step.newton_steps, 5);
+    EXPECT_TRUE(step.summary.iterations.empty());  // no LM
+    EXPECT_LT(step.residual_norm, 1e-8 * scale);
+    EXPECT_LT(RelativeDistanceUpToRigidMotion(step.shape,
+                                              forward ? g.path[3] : g.path[1]),
+              1e-5);
+  }
+}
+
+TEST_F(GeodesicCalculusTest, ExpOfLogIsIdentity) {
+  const Positions log =
+      LogK(space_, start_.positions, end_.positions, 4, {}, Tight());
+  const Positions b = ExpK(space_, start_.positions, log, 4, {}, Tight());
+  EXPECT_LT(RelativeDistanceUpToRigidMotion(b, end_.positions), 1e-5);
+}
+
+TEST_F(GeodesicCalculusTest, HalfTimeCombinationIsMidpoint) {
+  const GeodesicResult g2 = Geodesic(2);
+  const Positions half = GeodesicAtTime(
+      space_, {start_.positions, end_.positions}, 0.5, {}, Tight());
+  EXPECT_LT(RelativeDistanceUpToRigidMotion(half, g2.path[1]), 1e-7);
+}
+
+TEST_F(GeodesicCalculusTest, PathEnergyDoesNotDependOnGauge) {
+  const GeodesicResult pinned = Geodesic(3);
+  GeodesicInput input;
+  input.start = start_.positions;
+  input.end = end_.positions;
+  input.steps = 3;
+  input.pin_gauge = false;
+  const GeodesicResult free_gauge = SolveGeodesic(space_, input, Tight());
+  EXPECT_NEAR(free_gauge.path_energy / pinned.path_energy, 1.0, 1e-8);
+  // And with moved end shapes (another gauge for every shape).
+  input.pin_gauge = true;
+  input.start = testing::RandomRigidMotion(start_.positions, 11);
+  input.end = testing::RandomRigidMotion(end_.positions, 12);
+  const GeodesicResult moved = SolveGeodesic(space_, input, Tight());
+  EXPECT_NEAR(moved.path_energy / pinned.path_energy, 1.0, 1e-8);
+}
+
+TEST_F(GeodesicCalculusTest, TransportOfZeroAndAlongConstantPath) {
+  const GeodesicResult g = Geodesic(3);
+  const Positions zero = Positions::Zero(start_.num_vertices(), 3);
+  const TransportResult none =
+      ParallelTransport(space_, g.path, zero, 1.0, {}, Tight());
+  const double scale =
+      (end_.positions - start_.positions).cwiseAbs().maxCoeff();
+  for (const Positions& xi : none.variations) {
+    // Zero up to a rigid motion of s_k: compare aligned shapes.
+    EXPECT_LT(
+        RelativeDistanceUpToRigidMotion(none.shapes.back(), g.path.back()),
+        1e-6);
+  }
+  EXPECT_LT((AlignRigidly(none.shapes.back(), g.path.back()) - g.path.back())
+                .cwiseAbs()
+                .maxCoeff(),
+            1e-6 * scale);
+  // Constant path: transport is the identity up to O(eps) (W is not
+  // symmetric, so the ladder's reflection is exact only as eps -> 0).
+  const ShellPath constant(4, start_.positions);
+  const Positions variation = 0.05 * (end_.positions - start_.positions);
+  auto error = [&](double eps) {
+    const TransportResult same =
+        ParallelTransport(space_, constant, variation, eps, {}, Tight());
+    const Positions target = start_.positions + eps * variation;
+    const Positions moved = AlignRigidly(same.shapes.back(), target);
+    return (moved - target).cwiseAbs().maxCoeff() /
+           (eps * variation.cwiseAbs().maxCoeff());
+  };
+  const double coarse = error(1.0), fine = error(0.1);
+  EXPECT_LT(fine, 1e-3);
+  EXPECT_LT(fine, 0.3 * coarse);
+}
+
+// E_K on the sphere pair for K = 2, 4, 8, 16: successive changes decrease.
+TEST(GeodesicConvergenceTest, PathEnergyConvergesInK) {
+  const Mesh a = testing::LoadData("sphere/unitSphere1.ply");
+  const Mesh b = testing::LoadData("sphere/unitSphere1_defX.ply");
+  const ShellSpace space = testing::MakeSpace(a);
+  std::vector<double> energies;
+  for (int K : {2, 4, 8, 16}) {
+    GeodesicInput input;
+    input.start = a.positions;
+    input.end = b.positions;
+    input.steps = K;
+    SolverSettings settings;
+    settings.gradient_tolerance = 1e-10;
+    energies.push_back(SolveGeodesic(space, input, settings).path_energy);
+  }
+  const double d1 = std::abs(energies[1] - energies[0]);
+  const double d2 = std::abs(energies[2] - energies[1]);
+  const double d3 = std::abs(energies[3] - energies[2]);
+  EXPECT_GT(d1, d2);
+  EXPECT_GT(d2, d3);
+  std::cout << "E_K (K = 2, 4, 8, 16): " << energies[0] << " " << energies[1]
+            << " " << energies[2] << " " << energies[3]
+            << "; observed order log2(d1/d2) = " << std::log2(d1 / d2)
+            << ", log2(d2/d3) = " << std::log2(d2 / d3) << "\n";
+}
+
+}  // namespace
+}  // namespace shellspace

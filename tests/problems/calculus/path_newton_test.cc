@@ -1,0 +1,370 @@
+// The Newton stage of geodesic interpolation: the directly assembled path
+// Hessian against the independently tested blocks of EnergyHessian, the
+// space-time ordering, the reusable Cholesky/CG solver, ParallelFor, and
+// Newton-polished geodesics against pure Levenberg-Marquardt ones.
+#include <gtest/gtest.h>
+
+#include <Eigen/SparseCholesky>
+#include <atomic>
+#include <random>
+#include <stdexcept>
+
+#include "shellspace/cost_functions/shell/energy_derivatives.h"
+#include "shellspace/io/mesh_io.h"
+#include "shellspace/geometry/rigid_alignment.h"
+#include "shellspace/solvers/gauge_reduced_solve.h"
+#include "shellspace/problems/calculus/geodesic.h"
+#include "shellspace/geometry/parallel_for.h"
+#include "shellspace/problems/calculus/path_hessian.h"
+#include "shellspace/solvers/reusable_cholesky.h"
+#include "shellspace/solvers/space_time_ordering.h"
+#include "shellspace/tests/testing/test_support.h"
+
+namespace shellspace {
+namespace {
+
+// Linear interpolation with a random perturbation of the inner
+// shapes (so no block vanishes by symmetry).
+ShellPath PerturbedLinearPath(const Positions& a, const Positions& b, int K,
+                              double amplitude, unsigned seed) {
+  ShellPath path = LinearPath(a, b, K);
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-amplitude, amplitude);
+  for (int k = 1; k < K; ++k) {
+    for (int i = 0; i < path[k].size(); ++i) path[k].data()[i] += u(rng);
+  }
+  return path;
+}
+
+// T^T H T from EnergyHessian blocks (the reference the assembler must match).
+SparseMatrix ReferenceReducedHessian(const ShellSpace& space,
+                                     const ShellPath& path,
+                                     const std::vector<SparseMatrix>& bases) {
+  const int K = static_cast<int>(path.size()) - 1;
+  std::vector<int> offset(K, 0);
+  for (int i = 0; i + 1 < K; ++i) offset[i + 1] = offset[i] + bases[i].cols();
+  const int size = offset[K - 1];
+  std::vector<Eigen::Triplet<double>> t;
+  auto add = [&](const SparseMatrix& block, int row0, int col0) {
+    for (int c = 0; c < block.outerSize(); ++c) {
+      for (SparseMatrix::InnerIterator it(block, c); it; ++it) {
+        if (row0 + it.row() >= col0 + it.col()) {
+          t.emplace_back(row0 + it.row(), col0 + it.col(), it.value());
+        }
+      }
+    }
+  };
+  for (int k = 1; k < K; ++k) {  // inner shape s_k, slice k - 1
+    const SparseMatrix& tk = bases[k - 1];
+    const SparseMatrix d22 = EnergyHessian(space, path[k - 1], path[k],
+                                           ShellSide::kDeformed,
+                                           ShellSide::kDeformed);
+    const SparseMatrix d11 = EnergyHessian(space, path[k], path[k + 1],
+                                           ShellSide::kReference,
+                                           ShellSide::kReference);
+    add(SparseMatrix(double(K) * tk.transpose() * (d22 + d11) * tk),
+        offset[k - 1], offset[k - 1]);
+    if (k + 1 < K) {  // rows s_{k+1}, columns s_k
+      const SparseMatrix mixed = EnergyHessian(space, path[k], path[k + 1],
+                                               ShellSide::kDeformed,
+                                               ShellSide::kReference);
+      add(SparseMatrix(double(K) * bases[k].transpose() * mixed * tk),
+          offset[k], offset[k - 1]);
+    }
+  }
+  SparseMatrix h(size, size);
+  h.setFromTriplets(t.begin(), t.end());
+  return h;
+}
+
+double RelativeDifference(const SparseMatrix& a, const SparseMatrix& b) {
+  return SparseMatrix(a - b).norm() / b.norm();
+}
+
+TEST(PathHessianAssemblerTest, MatchesEnergyHessianBlocksWithMask) {
+  const Mesh a = testing::LoadData("finger/finger0.ply");
+  const Mesh b = testing::LoadData("finger/finger1.ply");
+  ShellMaterial material;
+  material.eta = 0.001;
+  const ShellSpace space = testing::MakeSpace(a, material);
+  const auto mask = ReadMask(testing::DataPath("finger/finger_mask.txt"),
+                             a.num_vertices());
+  const int K = 4;
+  const ShellPath path =
+      PerturbedLinearPath(a.positions, b.positions, K, 1e-3, 1);
+  const std::vector<SparseMatrix> bases(
+      K - 1, FreeVertexBasis(a.num_vertices(), mask));
+  const SparseMatrix reference = ReferenceReducedHessian(space, path, bases);
+  for (int threads : {1, 2}) {
+    const SparseMatrix h =
+        PathHessianAssembler(space).Assemble(path, bases, threads);
+    ASSERT_EQ(h.rows(), 3 * (K - 1) * (a.num_vertices() - int(mask.size())));
+    EXPECT_LT(RelativeDifference(h, reference), 1e-13) << threads;
+    // Only the lower triangle, with sorted rows.
+    for (int c = 0; c < h.outerSize(); ++c) {
+      int previous = -1;
+      for (SparseMatrix::InnerIterator it(h, c); it; ++it) {
+        ASSERT_GE(it.row(), c);
+        ASSERT_GT(it.row(), previous);
+        previous = it.row();
+      }
+    }
+  }
+}
+
+TEST(PathHessianAssemblerTest, MatchesEnergyHessianBlocksWithRigidGauge) {
+  const Mesh a = testing::LoadData("plate/plate121.ply");
+  const Mesh b = testing::LoadData("plate/plate121_rolledA.ply");
+  const ShellSpace space = testing::MakeSpace(a);
+  const int K = 5;
+  const ShellPath path =
+      PerturbedLinearPath(a.positions, b.positions, K, 1e-2, 2);
+  std::vector<SparseMatrix> bases;
+  for (int k = 1; k < K; ++k) bases.push_back(RigidGaugeBasis(path[k]));
+  const SparseMatrix h = PathHessianAssembler(space).Assemble(path, bases, 2);
+  EXPECT_LT(RelativeDifference(h, ReferenceReducedHessian(space, path, bases)),
+            1e-13);
+  // Translating one inner shape changes no W: in full coordinates that is
+  // a null vector of H, at any path.
+  const std::vector<SparseMatrix> full(
+      K - 1, FreeVertexBasis(a.num_vertices(), {}));
+  const SparseMatrix h_full =
+      PathHessianAssembler(space).Assemble(path, full, 2);
+  const int n3 = 3 * a.num_vertices();
+  Eigen::VectorXd translation = Eigen::VectorXd::Zero(h_full.rows());
+  for (int v = 0; v < a.num_vertices(); ++v) {
+    translation.segment<3>(n3 + 3 * v) = Eigen::Vector3d(0.3, -0.5, 0.8);
+  }
+  const Eigen::VectorXd image = h_full.selfadjointView<Eigen::Lower>() *
+                                translation;
+  EXPECT_LT(image.norm(), 1e-10 * SparseMatrix(h_full).norm() *
+                              translation.norm());
+  // At rest (a constant path) the gauge-reduced Hessian is positive
+  // definite: the gauge removes exactly the rigid null space.
+  const ShellPath rest = LinearPath(a.positions, a.positions, K);
+  std::vector<SparseMatrix> rest_bases;
+  for (int k = 1; k < K; ++k) rest_bases.push_back(RigidGaugeBasis(rest[k]));
+  const SparseMatrix h_rest =
+      PathHessianAssembler(space).Assemble(rest, rest_bases, 2);
+  Eigen::SimplicialLLT<SparseMatrix, Eigen::Lower> llt(h_rest);
+  EXPECT_EQ(llt.info(), Eigen::Success);
+}
+
+TEST(PathHessianAssemblerTest, DeformedSumMatchesEnergyHessians) {
+  std::vector<Positions> references;
+  for (const char* name : {"sphere/unitSphere1_defX.ply",
+                           "sphere/unitSphere1_defY.ply",
+                           "sphere/unitSphere1_defZ.ply"}) {
+    references.push_back(testing::LoadData(name).positions);
+  }
+  const Mesh s = testing::LoadData("sphere/unitSphere1.ply");
+  const ShellSpace space = testing::MakeSpace(s);
+  const SparseMatrix basis = RigidGaugeBasis(s.positions);
+  SparseMatrix sum(3 * s.num_vertices(), 3 * s.num_vertices());
+  for (const Positions& r : references) {
+    sum += EnergyHessian(space, r, s.positions, ShellSide::kDeformed,
+                         ShellSide::kDeformed);
+  }
+  const SparseMatrix reduced(basis.transpose() * sum * basis);
+  const SparseMatrix expected = reduced.triangularView<Eigen::Lower>();
+  for (int threads : {1, 2, 5}) {
+    const SparseMatrix h = PathHessianAssembler(space).AssembleDeformedSum(
+        references, s.positions, basis, threads);
+    EXPECT_LT(RelativeDifference(h, expected), 1e-13) << threads;
+  }
+}
+
+TEST(PathHessianAssemblerTest, MixedBlocksMatchEnergyHessians) {
+  // The EXP Jacobians: R^T (D_1 D_2 W) C and R^T (D_1 D_2 W)^T C, with
+  // different row and column bases (rigid gauges of the two shells, a
+  // Dirichlet mask), against EnergyHessian's mixed blocks.
+  const Mesh a = testing::LoadData("sphere/unitSphere1.ply");
+  const Positions b = testing::LoadData("sphere/unitSphere1_defX.ply").positions;
+  const ShellSpace space = testing::MakeSpace(a);
+  const PathHessianAssembler assembler(space);
+  const SparseMatrix mixed = EnergyHessian(
+      space, a.positions, b, ShellSide::kReference, ShellSide::kDeformed);
+  const SparseMatrix mixed_t = EnergyHessian(
+      space, a.positions, b, ShellSide::kDeformed, ShellSide::kReference);
+  const SparseMatrix ra = RigidGaugeBasis(a.positions);
+  const SparseMatrix rb = RigidGaugeBasis(b);
+  const SparseMatrix mask = FreeVertexBasis(a.num_vertices(), {0, 5, 9});
+  EXPECT_LT(RelativeDifference(
+                assembler.AssembleMixed(a.positions, b, ShellSide::kReference,
+                                        ra, rb),
+                SparseMatrix(ra.transpose() * mixed * rb)),
+            1e-13);
+  EXPECT_LT(RelativeDifference(
+                assembler.AssembleMixed(a.positions, b, ShellSide::kDeformed,
+                                        rb, ra),
+                SparseMatrix(rb.transpose() * mixed_t * ra)),
+            1e-13);
+  EXPECT_LT(RelativeDifference(
+                assembler.AssembleMixed(a.positions, b, ShellSide::kReference,
+                                        mask, mask),
+                SparseMatrix(mask.transpose() * mixed * mask)),
+            1e-13);
+}
+
+TEST(PathHessianAssemblerTest, DegenerateTriangleThrowsInputError) {
+  const Mesh a = testing::LoadData("plate/plate121.ply");
+  const ShellSpace space = testing::MakeSpace(a);
+  ShellPath path = LinearPath(a.positions, a.positions, 3);
+  const int v0 = a.faces(0, 0), v1 = a.faces(0, 1), v2 = a.faces(0, 2);
+  path[1].row(v1) = path[1].row(v0);
+  path[1].row(v2) = path[1].row(v0);
+  const std::vector<SparseMatrix> bases(2, RigidGaugeBasis(a.positions));
+  EXPECT_THROW(PathHessianAssembler(space).Assemble(path, bases, 2),
+               InputError);
+}
+
+// A 1D Laplacian in time (3 slices) of 2D grid Laplacians, shifted to be SPD:
+// the structure of a path Hessian.
+SparseMatrix SpaceTimeLaplacian(int side, int slices, double shift,
+                                std::vector<int>* vertex_of) {
+  const int n = side * side;
+  std::vector<Eigen::Triplet<double>> t;
+  auto id = [&](int s, int x, int y) { return s * n + y * side + x; };
+  for (int s = 0; s < slices; ++s) {
+    for (int y = 0; y < side; ++y) {
+      for (int x = 0; x < side; ++x) {
+        const int i = id(s, x, y);
+        vertex_of->push_back(y * side + x);
+        t.emplace_back(i, i, 6.0 + shift * (1 + x % 3));
+        if (x + 1 < side) t.emplace_back(id(s, x + 1, y), i, -1.0);
+        if (y + 1 < side) t.emplace_back(id(s, x, y + 1), i, -1.0);
+        if (s + 1 < slices) t.emplace_back(id(s + 1, x, y), i, -1.0);
+      }
+    }
+  }
+  SparseMatrix lower(slices * n, slices * n);
+  lower.setFromTriplets(t.begin(), t.end());
+  return lower;
+}
+
+TEST(SpaceTimeOrderingTest, PermutationKeepsEachVertexTogether) {
+  std::vector<int> vertex_of;
+  const SparseMatrix lower = SpaceTimeLaplacian(12, 3, 0.1, &vertex_of);
+  const auto p = SpaceTimeOrdering(lower, vertex_of, 144);
+  std::vector<int> seen(lower.rows(), 0);
+  for (int i = 0; i < lower.rows(); ++i) ++seen[p.indices()[i]];
+  for (int count : seen) ASSERT_EQ(count, 1);
+  // The three slices of a vertex are adjacent in the new order.
+  std::vector<int> first(144, 1 << 30), last(144, -1);
+  for (int i = 0; i < lower.rows(); ++i) {
+    first[vertex_of[i]] = std::min(first[vertex_of[i]], p.indices()[i]);
+    last[vertex_of[i]] = std::max(last[vertex_of[i]], p.indices()[i]);
+  }
+  for (int v = 0; v < 144; ++v) EXPECT_EQ(last[v] - first[v], 2) << v;
+}
+
+TEST(ReusableCholeskyTest, FactorisesOnceThenReusesTheFactorForNearbyMatrices) {
+  std::vector<int> vertex_of;
+  const SparseMatrix h1 = SpaceTimeLaplacian(15, 4, 0.1, &vertex_of);
+  const SparseMatrix h2 = SpaceTimeLaplacian(15, 4, 0.12, &vertex_of);
+  const int n = static_cast<int>(h1.rows());
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(n, -1.0, 2.0);
+  ReusableCholesky solver;
+  Eigen::VectorXd x;
+  ASSERT_TRUE(solver.Solve(h1, vertex_of, 225, b, 1e-10, &x));
+  EXPECT_LT((h1.selfadjointView<Eigen::Lower>() * x - b).norm(),
+            1e-10 * b.norm());
+  EXPECT_EQ(solver.stats().factorizations, 1);
+  ASSERT_TRUE(solver.Solve(h2, vertex_of, 225, b, 1e-8, &x));
+  EXPECT_LT((h2.selfadjointView<Eigen::Lower>() * x - b).norm(),
+            1e-8 * b.norm());
+  EXPECT_EQ(solver.stats().factorizations, 1);  // CG on the old factor
+  EXPECT_EQ(solver.stats().cg_solves, 1);
+  EXPECT_GT(solver.stats().cg_iterations, 0);
+  // Far away and with no CG budget: a new factorisation, still exact.
+  const SparseMatrix h3 = SpaceTimeLaplacian(15, 4, 5.0, &vertex_of);
+  solver.max_cg_iterations = 0;
+  ASSERT_TRUE(solver.Solve(h3, vertex_of, 225, b, 1e-10, &x));
+  EXPECT_LT((h3.selfadjointView<Eigen::Lower>() * x - b).norm(),
+            1e-10 * b.norm());
+  EXPECT_EQ(solver.stats().factorizations, 2);
+}
+
+TEST(ReusableCholeskyTest, IndefiniteMatrixIsReported) {
+  std::vector<int> vertex_of;
+  const SparseMatrix h = SpaceTimeLaplacian(6, 2, -5.0, &vertex_of);
+  ReusableCholesky solver;
+  Eigen::VectorXd x;
+  EXPECT_FALSE(solver.Solve(h, vertex_of, 36, Eigen::VectorXd::Ones(h.rows()),
+                            1e-8, &x));
+}
+
+TEST(ParallelForTest, RunsEveryIndexOnceAndRethrows) {
+  std::vector<std::atomic<int>> hits(100);
+  ParallelFor(100, 3, [&](int i) { ++hits[i]; });
+  for (const auto& h : hits) EXPECT_EQ(h.load(), 1);
+  EXPECT_THROW(ParallelFor(50, 2,
+                           [](int i) {
+                             if (i == 7) throw InputError("element 7");
+                           }),
+               InputError);
+}
+
+// Newton-polished and pure-LM geodesics are the same critical point.
+TEST(PathNewtonTest, NewtonPolishAgreesWithPureLevenbergMarquardt) {
+  const Mesh a = testing::LoadData("plate/plate121.ply");
+  const Mesh b = testing::LoadData("plate/plate121_rolledA.ply");
+  const ShellSpace space = testing::MakeSpace(a);
+  const SolverSettings settings = testing::TightSettings(1e-11);
+  GeodesicInput input;
+  input.start = a.positions;
+  input.end = b.positions;
+  input.steps = 4;
+  input.newton_from = 1e-3;
+  const GeodesicResult newton = SolveGeodesic(space, input, settings);
+  input.newton_from = 0;
+  const GeodesicResult lm = SolveGeodesic(space, input, settings);
+  EXPECT_GT(newton.newton.steps, 0);
+  EXPECT_TRUE(newton.newton.converged) << newton.newton.stop_reason;
+  EXPECT_LE(newton.newton.steps, 8);
+  EXPECT_EQ(lm.newton.steps, 0);
+  EXPECT_NEAR(newton.path_energy, lm.path_energy, 1e-10 * lm.path_energy);
+  // The two stages pin the rigid motions at different vertices.
+  for (int k = 1; k < 4; ++k) {
+    EXPECT_LT(RelativeDistanceUpToRigidMotion(newton.path[k], lm.path[k]),
+              1e-6)
+        << k;
+  }
+  // The reported final gradient is the true one.
+  double g = 0;
+  for (int k = 1; k < 4; ++k) {
+    const Eigen::VectorXd gk =
+        testing::InteriorPathGradient(space, newton.path, k);
+    const Eigen::VectorXd reduced =
+        RigidGaugeBasis(newton.path[k]).transpose() * gk;
+    g = std::max(g, 4.0 * reduced.cwiseAbs().maxCoeff());
+  }
+  EXPECT_NEAR(g, newton.final_gradient, 1e-3 * newton.final_gradient + 1e-14);
+}
+
+// Newton tried far from the geodesic (at half the initial gradient) meets an
+// indefinite Hessian, LM goes on, and a later attempt converges to the same
+// geodesic.
+TEST(PathNewtonTest, EarlyNewtonRetriesAfterMoreLm) {
+  const Mesh a = testing::LoadData("plate/plate121.ply");
+  const Mesh b = testing::LoadData("plate/plate121_rolledA.ply");
+  const ShellSpace space = testing::MakeSpace(a);
+  SolverSettings settings;
+  settings.gradient_tolerance = 1e-10;
+  GeodesicInput input;
+  input.start = a.positions;
+  input.end = b.positions;
+  input.steps = 4;
+  input.newton_from = 0.5;
+  const GeodesicResult early = SolveGeodesic(space, input, settings);
+  input.newton_from = 0;
+  const GeodesicResult lm = SolveGeodesic(space, input, settings);
+  std::cout << "attempts " << early.newton.attempts << ", steps "
+            << early.newton.steps << ", " << early.newton.stop_reason << "\n";
+  EXPECT_GE(early.newton.attempts, 2);
+  EXPECT_TRUE(early.newton.converged);
+  EXPECT_NEAR(early.path_energy, lm.path_energy, 1e-9 * lm.path_energy);
+}
+
+}  // namespace
+}  // namespace shellspace

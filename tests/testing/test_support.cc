@@ -1,0 +1,84 @@
+#include "shellspace/tests/testing/test_support.h"
+
+#include <Eigen/Geometry>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <random>
+#include <sstream>
+
+#include "shellspace/cost_functions/shell/energy_derivatives.h"
+#include "shellspace/io/mesh_io.h"
+#include "shellspace/geometry/validation.h"
+
+namespace shellspace::testing {
+
+std::string DataPath(const std::string& relative) {
+  return std::string(SHELLSPACE_DATA_DIR) + "/" + relative;
+}
+
+Mesh LoadData(const std::string& relative) {
+  Mesh mesh = ReadMesh(DataPath(relative));
+  ValidateShell(mesh, relative);
+  return mesh;
+}
+
+ShellSpace MakeSpace(const Mesh& mesh, const ShellMaterial& material) {
+  return ShellSpace(mesh, Topology::Build(mesh), material);
+}
+
+Eigen::VectorXd InteriorPathGradient(const ShellSpace& space,
+                                     const std::vector<Positions>& path,
+                                     int k) {
+  return EnergyGradient(space, path[k - 1], path[k], ShellSide::kDeformed) +
+         EnergyGradient(space, path[k], path[k + 1], ShellSide::kReference);
+}
+
+SolverSettings TightSettings(double gradient_tolerance) {
+  SolverSettings settings;
+  settings.gradient_tolerance = gradient_tolerance;
+  settings.function_tolerance = 1e-16;
+  settings.parameter_tolerance = 1e-16;
+  settings.max_iterations = 500;
+  return settings;
+}
+
+std::string TempDir() {
+  char pattern[] = "/tmp/shellspace_test_XXXXXX";
+  const char* dir = mkdtemp(pattern);
+  return dir ? dir : "/tmp";
+}
+
+namespace {
+std::string Slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+}  // namespace
+
+int RunCli(const std::string& args, std::string* out, std::string* err) {
+  const std::string dir = TempDir();
+  const std::string command = std::string(SHELLSPACE_CLI) + " " + args + " > " +
+                              dir + "/out 2> " + dir + "/err";
+  const int status = std::system(command.c_str());
+  if (out) *out = Slurp(dir + "/out");
+  if (err) *err = Slurp(dir + "/err");
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+Positions RandomRigidMotion(const Positions& p, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  Eigen::Quaterniond q(normal(rng), normal(rng), normal(rng), normal(rng));
+  q.normalize();
+  const Eigen::Matrix3d r = q.toRotationMatrix();
+  const Eigen::RowVector3d t(uniform(rng), uniform(rng), uniform(rng));
+  Positions out = p * r.transpose();
+  out.rowwise() += t;
+  return out;
+}
+
+}  // namespace shellspace::testing

@@ -1,0 +1,49 @@
+// Shared helpers of the test suite: data paths, loading shells, running the
+// CLI.
+#ifndef SHELLSPACE_TESTS_TESTING_TEST_SUPPORT_H_
+#define SHELLSPACE_TESTS_TESTING_TEST_SUPPORT_H_
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "shellspace/cost_functions/deformation_energy.h"
+#include "shellspace/geometry/mesh.h"
+#include "shellspace/solvers/solver_settings.h"
+
+namespace shellspace::testing {
+
+// Absolute path of a file under ../shared/data.
+std::string DataPath(const std::string& relative);
+
+// Reads and validates a mesh of ../shared/data.
+Mesh LoadData(const std::string& relative);
+
+// ShellSpace of a mesh with the given material.
+ShellSpace MakeSpace(const Mesh& mesh, const ShellMaterial& material = {});
+
+// The Euler-Lagrange residual of E_K / K at the inner shape k of `path`:
+// D_2 W[s_{k-1}, s_k] + D_1 W[s_k, s_{k+1}] (3n, vertex-major).
+Eigen::VectorXd InteriorPathGradient(const ShellSpace& space,
+                                     const std::vector<Positions>& path,
+                                     int k);
+
+// Settings of solves meant to converge to round-off: the given relative
+// gradient tolerance, function and parameter tolerances 1e-16, 500 LM
+// iterations.
+SolverSettings TightSettings(double gradient_tolerance);
+
+// A fresh empty temporary directory.
+std::string TempDir();
+
+// Runs `shellspace ARGS` with stdout and stderr captured; returns exit code.
+int RunCli(const std::string& args, std::string* out = nullptr,
+           std::string* err = nullptr);
+
+// A random rigid motion (rotation by a random unit quaternion, translation
+// with entries in [-1, 1]) applied to `p`, with a fixed seed.
+Positions RandomRigidMotion(const Positions& p, unsigned seed);
+
+}  // namespace shellspace::testing
+
+#endif  // SHELLSPACE_TESTS_TESTING_TEST_SUPPORT_H_

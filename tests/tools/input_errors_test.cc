@@ -1,0 +1,128 @@
+// Every input defect gets its one-line error (library and CLI), and the CLI
+// writes no output file when it fails.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "shellspace/io/mesh_io.h"
+#include "shellspace/geometry/validation.h"
+#include "shellspace/tests/testing/test_support.h"
+
+namespace shellspace {
+namespace {
+
+std::string Write(const std::string& dir, const std::string& name,
+                  const std::string& text) {
+  const std::string path = dir + "/" + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+const char* kHeader =
+    "ply\nformat ascii 1.0\nelement vertex %d\nproperty float x\n"
+    "property float y\nproperty float z\nelement face %d\n"
+    "property list uchar int vertex_indices\nend_header\n";
+
+std::string Ply(int nv, int nf, const std::string& body) {
+  char header[512];
+  std::snprintf(header, sizeof(header), kHeader, nv, nf);
+  return header + body;
+}
+
+// Loads and validates; returns the error message ("" if none).
+std::string ErrorOf(const std::string& path) {
+  try {
+    ValidateShell(ReadMesh(path), path);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(InputErrorsTest, LibraryErrors) {
+  const std::string dir = testing::TempDir();
+  EXPECT_NE(ErrorOf(dir + "/missing.ply").find("cannot open"),
+            std::string::npos);
+  EXPECT_NE(
+      ErrorOf(Write(dir, "garbage.off", "not a mesh\n")).find("cannot read"),
+      std::string::npos);
+  EXPECT_NE(ErrorOf(Write(dir, "quad.ply",
+                          Ply(4, 1, "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n")))
+                .find("only triangle"),
+            std::string::npos);
+  // Three triangles on the edge (0, 1).
+  EXPECT_NE(ErrorOf(Write(dir, "nonmanifold.ply",
+                          Ply(5, 3,
+                              "0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n"
+                              "3 0 1 2\n3 1 0 3\n3 0 1 4\n")))
+                .find("non-manifold"),
+            std::string::npos);
+  EXPECT_NE(
+      ErrorOf(
+          Write(dir, "degenerate.ply",
+                Ply(4, 2, "0 0 0\n1 0 0\n2 0 0\n0 1 0\n3 0 1 2\n3 0 3 1\n")))
+          .find("degenerate"),
+      std::string::npos);
+  EXPECT_NE(ErrorOf(Write(dir, "nan.ply",
+                          Ply(3, 1, "0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n")))
+                .find("non-finite"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf(Write(dir, "range.ply",
+                          Ply(3, 1, "0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n")))
+                .find("references vertex 7"),
+            std::string::npos);
+  EXPECT_NE(ErrorOf(Write(dir, "short.ply", Ply(3, 1, "0 0 0\n1 0 0\n")))
+                .find("ends early"),
+            std::string::npos);
+}
+
+TEST(InputErrorsTest, Compatibility) {
+  const Mesh a = testing::LoadData("simple/double_square.ply");
+  const Mesh rotated = testing::LoadData("simple/double_square_bent.ply");
+  EXPECT_NO_THROW(CheckCompatible(a, "a", rotated, "b"));
+  Mesh flipped = rotated;
+  std::swap(flipped.faces(0, 1), flipped.faces(0, 2));
+  EXPECT_THROW(CheckCompatible(a, "a", flipped, "b"), InputError);
+  const Mesh other = testing::LoadData("simple/square4.ply");
+  try {
+    CheckCompatible(a, "a", other, "b");
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("incompatible connectivity"),
+              std::string::npos);
+  }
+}
+
+TEST(InputErrorsTest, CliReportsOneLineAndWritesNothing) {
+  const std::string dir = testing::TempDir();
+  const std::string out = dir + "/out.ply";
+  const std::string square = testing::DataPath("simple/square4.ply");
+  const std::string cases[] = {
+      "energy --reference " + dir + "/missing.ply --deformed " + square,
+      "energy --reference " + square + " --deformed " +
+          testing::DataPath("simple/double_square.ply"),
+      "energy --reference " + square + " --deformed " + square + " --mu -1",
+      "energy --deformed " + square,
+      "deform --reference " + square + " --mask " + dir + "/nomask.txt" +
+          " --targets " + square + " --output " + out,
+      "deform --reference " + square + " --mask " +
+          Write(dir, "bad_mask.txt", "0\n99\n") + " --targets " + square +
+          " --output " + out,
+      "energy --reference " + square + " --deformed " + square +
+          " --no_such_flag=1",
+      "no_such_verb",
+  };
+  for (const std::string& args : cases) {
+    std::string err;
+    const int code = testing::RunCli(args, nullptr, &err);
+    EXPECT_NE(code, 0) << args;
+    EXPECT_FALSE(err.empty()) << args;
+    EXPECT_LE(std::count(err.begin(), err.end(), '\n'), 1) << args << "\n"
+                                                           << err;
+    EXPECT_FALSE(std::filesystem::exists(out)) << args;
+  }
+}
+
+}  // namespace
+}  // namespace shellspace
