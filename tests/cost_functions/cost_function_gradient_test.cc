@@ -8,6 +8,7 @@
 
 #include "shellspace/cost_functions/bending_cost_function.h"
 #include "shellspace/cost_functions/membrane_cost_function.h"
+#include "shellspace/tests/testing/derivative_check.h"
 #include "shellspace/tests/testing/test_support.h"
 
 namespace shellspace {
@@ -35,33 +36,12 @@ std::unique_ptr<ceres::CostFunction> MakeCost(const Element& element,
   return std::make_unique<Cost>(element, fixed_ref, fixed_def, 1.7);
 }
 
-// Runs ceres::GradientChecker on the element and returns the largest
-// normwise relative error max_ij |J_ij - N_ij| / max_ij |N_ij| over the
-// Jacobian blocks (J analytic, N Ridders' finite differences); EXPECTs it to
-// be below `tolerance`. Entry-wise relative errors are meaningless for the
-// entries that vanish analytically (1e-16 vs 1e-14 round-off).
+// The normwise relative Jacobian error of the element
+// (testing::CostFunctionJacobianError), EXPECTed below `tolerance`.
 double Check(const ceres::CostFunction& cost,
              const std::vector<double*>& params, double tolerance) {
-  // Ridders' extrapolation from an initial step of 1e-6 |x|: the default
-  // (1e-2 |x|) reaches across thin triangles of real meshes.
-  ceres::NumericDiffOptions options;
-  options.ridders_relative_initial_step_size = 1e-6;
-  ceres::GradientChecker checker(
-      &cost, static_cast<const std::vector<const ceres::Manifold*>*>(nullptr),
-      options);
-  ceres::GradientChecker::ProbeResults results;
-  checker.Probe(params.data(), tolerance, &results);
-  EXPECT_EQ(results.jacobians.size(), params.size());
-  double max_error = 0, scale = 0;
-  for (size_t b = 0; b < results.jacobians.size(); ++b) {
-    max_error = std::max(max_error,
-                         (results.jacobians[b] - results.numeric_jacobians[b])
-                             .cwiseAbs()
-                             .maxCoeff());
-    scale = std::max(scale, results.numeric_jacobians[b].cwiseAbs().maxCoeff());
-  }
-  const double relative = max_error / std::max(scale, 1e-300);
-  EXPECT_LT(relative, tolerance) << results.error_log;
+  const double relative = testing::CostFunctionJacobianError(cost, params);
+  EXPECT_LT(relative, tolerance);
   return relative;
 }
 
@@ -169,42 +149,29 @@ TEST(CostFunctionGradientTest, RealMeshes) {
             << "\n";
 }
 
-// A cost function whose Jacobian is wrong in one entry: the checker must fail.
-class WrongJacobian : public ceres::CostFunction {
- public:
-  explicit WrongJacobian(std::unique_ptr<ceres::CostFunction> inner)
-      : inner_(std::move(inner)) {
-    set_num_residuals(inner_->num_residuals());
-    *mutable_parameter_block_sizes() = inner_->parameter_block_sizes();
-  }
-  bool Evaluate(double const* const* p, double* r, double** j) const override {
-    if (!inner_->Evaluate(p, r, j)) return false;
-    if (j && j[1]) j[1][2] += 1e-3;
-    return true;
-  }
-
- private:
-  std::unique_ptr<ceres::CostFunction> inner_;
-};
-
+// The negative twin of the checks above: a Jacobian wrong in one entry,
+// through the same helper and tolerance, must fail -- for both elements and
+// every argument mode.
 TEST(CostFunctionGradientTest, CheckerDetectsWrongJacobian) {
   std::vector<double> ref = {0, 0, 0, 1, 0, 0, 0.5, 1, 0, 0.5, -1, 0};
   std::vector<double> def = {0, 0, 0.1, 1.1, 0, 0, 0.5, 1, 0.3, 0.4, -1, 0};
   for (int which = 0; which < 2; ++which) {
-    std::vector<double*> params;
-    std::unique_ptr<ceres::CostFunction> inner =
-        which == 0
-            ? MakeCost<MembraneCostFunction, 3>(MembraneElement(), ref, def,
-                                                Mode::kBothVariable, &params)
-            : MakeCost<BendingCostFunction, 4>(BendingElement(), ref, def,
-                                               Mode::kBothVariable, &params);
-    WrongJacobian wrong(std::move(inner));
-    ceres::GradientChecker checker(
-        &wrong,
-        static_cast<const std::vector<const ceres::Manifold*>*>(nullptr),
-        ceres::NumericDiffOptions());
-    ceres::GradientChecker::ProbeResults results;
-    EXPECT_FALSE(checker.Probe(params.data(), 1e-6, &results));
+    for (Mode mode :
+         {Mode::kBothVariable, Mode::kReferenceFixed, Mode::kDeformedFixed}) {
+      std::vector<double*> params;
+      std::unique_ptr<ceres::CostFunction> inner =
+          which == 0 ? MakeCost<MembraneCostFunction, 3>(MembraneElement(), ref,
+                                                         def, mode, &params)
+                     : MakeCost<BendingCostFunction, 4>(BendingElement(), ref,
+                                                        def, mode, &params);
+      // The correct one passes the helper ...
+      EXPECT_LT(testing::CostFunctionJacobianError(*inner, params), 1e-8);
+      // ... and one entry off by 1e-4 of the Jacobian's scale does not.
+      testing::CostFunctionWithWrongJacobian wrong(std::move(inner), 1, 2,
+                                                   1e-4);
+      EXPECT_GT(testing::CostFunctionJacobianError(wrong, params), 1e-8)
+          << which << int(mode);
+    }
   }
 }
 

@@ -7,16 +7,12 @@
 #include <random>
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
+#include "shellspace/tests/testing/derivative_check.h"
 #include "shellspace/tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {
 
-Positions Perturb(const Positions& p, int index, double h) {
-  Positions q = p;
-  q(index / 3, index % 3) += h;
-  return q;
-}
 
 struct Pair {
   const char* reference;
@@ -25,29 +21,72 @@ struct Pair {
 
 class EnergyHessianTest : public ::testing::TestWithParam<Pair> {};
 
+// W[reference, deformed] and its derivatives as functions of the flattened
+// coordinates (vertex-major) of one side, the other side held.
+struct SideFunctions {
+  const ShellSpace& space;
+  const Positions& reference;
+  const Positions& deformed;
+
+  Positions With(ShellSide side, const Eigen::VectorXd& x) const {
+    Positions p = side == ShellSide::kReference ? reference : deformed;
+    Eigen::Map<Eigen::VectorXd>(p.data(), p.size()) = x;
+    return p;
+  }
+  Eigen::VectorXd Flat(ShellSide side) const {
+    const Positions& p = side == ShellSide::kReference ? reference : deformed;
+    return Eigen::Map<const Eigen::VectorXd>(p.data(), p.size());
+  }
+  // W as a 1-vector of the coordinates of `moved`.
+  testing::VectorFunction Energy(ShellSide moved) const {
+    return [this, moved](const Eigen::VectorXd& x) {
+      const bool r = moved == ShellSide::kReference;
+      return Eigen::VectorXd::Constant(
+          1, EvaluateDeformationEnergy(space, r ? With(moved, x) : reference,
+                                       r ? deformed : With(moved, x))
+                 .total);
+    };
+  }
+  // The gradient on side `rows` as a function of the coordinates of `moved`.
+  testing::VectorFunction Gradient(ShellSide rows, ShellSide moved) const {
+    return [this, rows, moved](const Eigen::VectorXd& x) {
+      const bool r = moved == ShellSide::kReference;
+      return EnergyGradient(space, r ? With(moved, x) : reference,
+                            r ? deformed : With(moved, x), rows);
+    };
+  }
+};
+
+// Gradient columns g_j as 1-vectors.
+testing::DerivativeColumn GradientColumns(const Eigen::VectorXd& g) {
+  return [g](int j) { return Eigen::VectorXd::Constant(1, g(j)); };
+}
+
 TEST_P(EnergyHessianTest, GradientsMatchEnergyDifferences) {
   const Mesh ref = testing::LoadData(GetParam().reference);
   const Mesh def = testing::LoadData(GetParam().deformed);
   const ShellSpace space = testing::MakeSpace(ref);
-  std::mt19937 rng(3);
-  std::uniform_int_distribution<int> pick(0, 3 * ref.num_vertices() - 1);
+  const SideFunctions w{space, ref.positions, def.positions};
+  const std::vector<int> probes =
+      testing::ProbeCoordinates(3 * ref.num_vertices(), 20, 3);
   for (ShellSide side : {ShellSide::kReference, ShellSide::kDeformed}) {
     const Eigen::VectorXd g =
         EnergyGradient(space, ref.positions, def.positions, side);
+    // Relative to the largest gradient entry: |g_i - N_i| <= 1e-6 max |g|.
     const double scale = g.cwiseAbs().maxCoeff();
-    for (int trial = 0; trial < 20; ++trial) {
-      const int i = pick(rng);
-      const double h = 1e-6;
-      auto energy = [&](double step) {
-        const bool r = side == ShellSide::kReference;
-        return EvaluateDeformationEnergy(
-                   space, r ? Perturb(ref.positions, i, step) : ref.positions,
-                   r ? def.positions : Perturb(def.positions, i, step))
-            .total;
-      };
-      const double numeric = (energy(h) - energy(-h)) / (2 * h);
-      EXPECT_NEAR(g(i), numeric, 1e-6 * scale) << i;
-    }
+    EXPECT_LT(testing::CentralDifferenceError(w.Energy(side), w.Flat(side),
+                                              GradientColumns(g), probes, 1e-6,
+                                              scale),
+              1e-6)
+        << int(side);
+    // Negative twin: one probed entry off by 1e-4 of the gradient's scale.
+    EXPECT_GT(testing::CentralDifferenceError(
+                  w.Energy(side), w.Flat(side),
+                  testing::WrongInOneEntry(GradientColumns(g), 0, probes[0],
+                                           1e-4 * scale),
+                  probes, 1e-6, scale),
+              1e-6)
+        << int(side);
   }
 }
 
@@ -55,29 +94,36 @@ TEST_P(EnergyHessianTest, HessiansMatchGradientDifferences) {
   const Mesh ref = testing::LoadData(GetParam().reference);
   const Mesh def = testing::LoadData(GetParam().deformed);
   const ShellSpace space = testing::MakeSpace(ref);
-  std::mt19937 rng(5);
-  std::uniform_int_distribution<int> pick(0, 3 * ref.num_vertices() - 1);
+  const SideFunctions w{space, ref.positions, def.positions};
+  const std::vector<int> probes =
+      testing::ProbeCoordinates(3 * ref.num_vertices(), 8, 5);
   const ShellSide sides[] = {ShellSide::kReference, ShellSide::kDeformed};
   for (ShellSide rows : sides) {
     for (ShellSide cols : sides) {
-      const Eigen::MatrixXd hessian = Eigen::MatrixXd(
-          EnergyHessian(space, ref.positions, def.positions, rows, cols));
-      const double scale = hessian.cwiseAbs().maxCoeff();
-      double worst = 0;
-      for (int trial = 0; trial < 8; ++trial) {
-        const int j = pick(rng);
-        const double h = 1e-6;
-        auto gradient = [&](double step) {
-          const bool r = cols == ShellSide::kReference;
-          return EnergyGradient(
-              space, r ? Perturb(ref.positions, j, step) : ref.positions,
-              r ? def.positions : Perturb(def.positions, j, step), rows);
-        };
-        const Eigen::VectorXd numeric = (gradient(h) - gradient(-h)) / (2 * h);
-        worst = std::max(
-            worst, (hessian.col(j) - numeric).cwiseAbs().maxCoeff() / scale);
-      }
-      EXPECT_LT(worst, 1e-6) << int(rows) << int(cols);
+      const SparseMatrix hessian =
+          EnergyHessian(space, ref.positions, def.positions, rows, cols);
+      const testing::DerivativeColumn columns = [&hessian](int j) {
+        return Eigen::VectorXd(hessian.col(j));
+      };
+      // Relative to the largest entry of the block, as before the helper.
+      const double scale = Eigen::MatrixXd(hessian).cwiseAbs().maxCoeff();
+      EXPECT_LT(testing::CentralDifferenceError(w.Gradient(rows, cols),
+                                                w.Flat(cols), columns, probes,
+                                                1e-6, scale),
+                1e-6)
+          << int(rows) << int(cols);
+      // Negative twin: the block with one entry of a probed column off by
+      // 1e-4 of its scale.
+      const double offset = 1e-4 * scale;
+      const int row = hessian.col(probes[0]).nonZeros() > 0
+                          ? SparseMatrix::InnerIterator(hessian, probes[0]).row()
+                          : 0;
+      EXPECT_GT(testing::CentralDifferenceError(
+                    w.Gradient(rows, cols), w.Flat(cols),
+                    testing::WrongInOneEntry(columns, row, probes[0], offset),
+                    probes, 1e-6, scale),
+                1e-6)
+          << int(rows) << int(cols);
     }
   }
   // Symmetry of the pure blocks and transpose relation of the mixed ones.

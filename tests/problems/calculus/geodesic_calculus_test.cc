@@ -171,11 +171,17 @@ TEST_F(GeodesicCalculusTest, TransportOfZeroAndAlongConstantPath) {
       ParallelTransport(space_, g.path, zero, 1.0, {}, Tight());
   const double scale =
       (end_.positions - start_.positions).cwiseAbs().maxCoeff();
-  for (const Positions& xi : none.variations) {
-    // Zero up to a rigid motion of s_k: compare aligned shapes.
-    EXPECT_LT(
-        RelativeDistanceUpToRigidMotion(none.shapes.back(), g.path.back()),
-        1e-6);
+  // Every rung: the transported shape p_k = s_k + xi_k is s_k up to a rigid
+  // motion (zero variation up to the gauge of each EXP step).
+  ASSERT_EQ(none.shapes.size(), g.path.size());
+  for (size_t k = 0; k < none.shapes.size(); ++k) {
+    EXPECT_LT(RelativeDistanceUpToRigidMotion(none.shapes[k], g.path[k]), 1e-6)
+        << k;
+    EXPECT_LT((none.shapes[k] - (g.path[k] + none.variations[k]))
+                  .cwiseAbs()
+                  .maxCoeff(),
+              1e-12 * scale)
+        << k;
   }
   EXPECT_LT((AlignRigidly(none.shapes.back(), g.path.back()) - g.path.back())
                 .cwiseAbs()

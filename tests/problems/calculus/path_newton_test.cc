@@ -18,6 +18,7 @@
 #include "shellspace/problems/calculus/path_hessian.h"
 #include "shellspace/solvers/reusable_cholesky.h"
 #include "shellspace/solvers/space_time_ordering.h"
+#include "shellspace/tests/testing/derivative_check.h"
 #include "shellspace/tests/testing/test_support.h"
 
 namespace shellspace {
@@ -110,6 +111,65 @@ TEST(PathHessianAssemblerTest, MatchesEnergyHessianBlocksWithMask) {
       }
     }
   }
+}
+
+// The assembled path Hessian against central differences of the path
+// gradient G_k = K (D_2 W[s_{k-1}, s_k] + D_1 W[s_k, s_{k+1}]) in the free
+// coordinates of a mask (independent of EnergyHessian), and its negative
+// twin through the same helper.
+TEST(PathHessianAssemblerTest, MatchesCentralDifferencesOfThePathGradient) {
+  const Mesh a = testing::LoadData("plate/plate121.ply");
+  const Mesh b = testing::LoadData("plate/plate121_rolledA.ply");
+  const ShellSpace space = testing::MakeSpace(a);
+  const int n = a.num_vertices();
+  const std::vector<int> mask = {0, 1, 2, 3, 4};
+  const int K = 4;
+  const ShellPath path =
+      PerturbedLinearPath(a.positions, b.positions, K, 1e-2, 4);
+  const SparseMatrix basis = FreeVertexBasis(n, mask);
+  const std::vector<SparseMatrix> bases(K - 1, basis);
+  const int m = static_cast<int>(basis.cols());
+  // x: the free coordinates of s_1 .. s_{K-1}, slice after slice.
+  Eigen::VectorXd x(m * (K - 1));
+  for (int k = 1; k < K; ++k) {
+    x.segment((k - 1) * m, m) =
+        basis.transpose() *
+        Eigen::Map<const Eigen::VectorXd>(path[k].data(), path[k].size());
+  }
+  const testing::VectorFunction gradient = [&](const Eigen::VectorXd& q) {
+    ShellPath moved = path;
+    for (int k = 1; k < K; ++k) {
+      Eigen::Map<Eigen::VectorXd> flat(moved[k].data(), moved[k].size());
+      flat += basis * (q.segment((k - 1) * m, m) - x.segment((k - 1) * m, m));
+    }
+    Eigen::VectorXd g(q.size());
+    for (int k = 1; k < K; ++k) {
+      g.segment((k - 1) * m, m) =
+          double(K) * basis.transpose() *
+          testing::InteriorPathGradient(space, moved, k);
+    }
+    return g;
+  };
+  const SparseMatrix lower = PathHessianAssembler(space).Assemble(path, bases, 2);
+  const SparseMatrix h = lower.selfadjointView<Eigen::Lower>();
+  const testing::DerivativeColumn columns = [&h](int j) {
+    return Eigen::VectorXd(h.col(j));
+  };
+  // Probes in every slice.
+  std::vector<int> probes;
+  for (int k = 0; k < K - 1; ++k) {
+    for (int j : testing::ProbeCoordinates(m, 3, 10 + k)) probes.push_back(k * m + j);
+  }
+  EXPECT_LT(testing::CentralDifferenceError(gradient, x, columns, probes, 1e-6),
+            1e-6);
+  // A wrong coupling block between slices is caught: entry of slice 2's rows
+  // in a probed column of slice 1.
+  const int col = probes[0];
+  const double offset = 1e-4 * Eigen::VectorXd(h.col(col)).cwiseAbs().maxCoeff();
+  EXPECT_GT(testing::CentralDifferenceError(
+                gradient, x, testing::WrongInOneEntry(columns, m + col, col, offset),
+                probes, 1e-6),
+            1e-6);
 }
 
 TEST(PathHessianAssemblerTest, MatchesEnergyHessianBlocksWithRigidGauge) {

@@ -9,6 +9,7 @@
 #include <random>
 
 #include "shellspace/geometry/rigid_alignment.h"
+#include "shellspace/tests/testing/derivative_check.h"
 #include "shellspace/tests/testing/test_support.h"
 
 namespace shellspace {
@@ -35,6 +36,10 @@ class SplineTest : public ::testing::Test {
   ShellSpace space_;
 };
 
+// The adjoint gradient of `objective` near its initial parameters against
+// central differences of its value (testing::CentralDifferenceError, eight
+// probed coordinates), and the negative twin: the same gradient with one
+// probed entry off by 1e-4 of its scale must fail the same check.
 void CheckGradient(const SplineObjective& objective, unsigned seed) {
   std::vector<double> x = objective.InitialParameters();
   // Move off the initial guess a little (deterministically).
@@ -44,20 +49,33 @@ void CheckGradient(const SplineObjective& objective, unsigned seed) {
   double cost = 0;
   std::vector<double> gradient(x.size());
   ASSERT_TRUE(objective.Evaluate(x.data(), &cost, gradient.data()));
-  double scale = 0;
-  for (double g : gradient) scale = std::max(scale, std::abs(g));
-  std::uniform_int_distribution<int> pick(0, static_cast<int>(x.size()) - 1);
-  for (int trial = 0; trial < 8; ++trial) {
-    const int i = pick(rng);
-    const double h = 1e-5;
-    std::vector<double> xp = x, xm = x;
-    xp[i] += h;
-    xm[i] -= h;
-    double fp = 0, fm = 0;
-    ASSERT_TRUE(objective.Evaluate(xp.data(), &fp, nullptr));
-    ASSERT_TRUE(objective.Evaluate(xm.data(), &fm, nullptr));
-    EXPECT_NEAR(gradient[i], (fp - fm) / (2 * h), 1e-5 * scale) << i;
-  }
+  const Eigen::VectorXd g = Eigen::Map<const Eigen::VectorXd>(
+      gradient.data(), static_cast<int>(gradient.size()));
+  bool evaluated = true;
+  const testing::VectorFunction value = [&](const Eigen::VectorXd& y) {
+    double f = 0;
+    evaluated = objective.Evaluate(y.data(), &f, nullptr) && evaluated;
+    return Eigen::VectorXd::Constant(1, f);
+  };
+  const testing::DerivativeColumn columns = [&g](int j) {
+    return Eigen::VectorXd::Constant(1, g(j));
+  };
+  const std::vector<int> probes =
+      testing::ProbeCoordinates(static_cast<int>(x.size()), 8, seed);
+  const Eigen::VectorXd x0 =
+      Eigen::Map<const Eigen::VectorXd>(x.data(), static_cast<int>(x.size()));
+  // Relative to the largest gradient entry, as |g_i - N_i| <= 1e-5 max |g|.
+  const double scale = g.cwiseAbs().maxCoeff();
+  EXPECT_LT(
+      testing::CentralDifferenceError(value, x0, columns, probes, 1e-5, scale),
+      1e-5);
+  EXPECT_GT(testing::CentralDifferenceError(
+                value, x0,
+                testing::WrongInOneEntry(columns, 0, probes[0],
+                                         1e-4 * scale),
+                probes, 1e-5, scale),
+            1e-5);
+  EXPECT_TRUE(evaluated);
 }
 
 TEST_F(SplineTest, AdjointGradientMatchesCentralDifferences) {

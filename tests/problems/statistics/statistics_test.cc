@@ -189,7 +189,9 @@ void ExpectOrthonormalModes(const ShellPcaModel& model, int expected_modes) {
   ASSERT_GT(largest, 0);
   for (int j = 0; j < n; ++j) {
     EXPECT_GE(model.eigenvalues(j), -1e-12 * largest) << j;
-    if (j > 0) EXPECT_LE(model.eigenvalues(j), model.eigenvalues(j - 1));
+    if (j > 0) {
+      EXPECT_LE(model.eigenvalues(j), model.eigenvalues(j - 1));
+    }
   }
   for (int i = 0; i < n; ++i) {
     for (int k = 0; k < n; ++k) {
