@@ -74,4 +74,13 @@ if [[ "${found}" != "${package_dir}" ]]; then
   exit 1
 fi
 quietly cmake --build "${work}/build"
+# Linking one room pulls in only the rooms below it and their dependencies
+# (CHOLMOD comes with Ceres itself).
+link_line="${work}/build/CMakeFiles/shellspace_consumer.dir/link.txt"
+if [[ -f "${link_line}" ]] &&
+   grep -qiE 'OpenMesh|libpng|umfpack|shellspace_(io|solvers|calculus|render)' "${link_line}"; then
+  echo "$0: FAILED: the consumer of shellspace::cost_functions links more:" >&2
+  cat "${link_line}" >&2
+  exit 1
+fi
 "${work}/build/shellspace_consumer"
