@@ -39,7 +39,35 @@ void FixVerticesOrGauge(Positions* shape, const std::vector<int>& fixed,
   if (fixed.empty() && pin_gauge) PinRigidMotions(shape, problem);
 }
 
+// The LM problem of E_K over the inner shapes of `path` (K >= 2): each
+// W[s_{k-1}, s_k] with weight K, masked vertices constant, or the gauge
+// pinned.
+void BuildPathProblem(const ShellSpace& space, const GeodesicInput& input,
+                      ShellPath* path, ceres::Problem* problem) {
+  const int K = input.steps;
+  for (int k = 1; k <= K; ++k) {
+    const ShellArgument ref = k == 1
+                                  ? ShellArgument::Fixed((*path)[0])
+                                  : ShellArgument::Variable(&(*path)[k - 1]);
+    const ShellArgument def = k == K ? ShellArgument::Fixed((*path)[K])
+                                     : ShellArgument::Variable(&(*path)[k]);
+    AddDeformationEnergy(space, ref, def, K, problem);
+  }
+  for (int k = 1; k < K; ++k) {
+    FixVerticesOrGauge(&(*path)[k], input.fixed_vertices, problem,
+                       input.pin_gauge);
+  }
+}
+
 }  // namespace
+
+double LinearPathGradient(const ShellSpace& space, const GeodesicInput& input) {
+  if (input.steps < 2) return 0;
+  ShellPath path = LinearPath(input.start, input.end, input.steps);
+  ceres::Problem problem;
+  BuildPathProblem(space, input, &path, &problem);
+  return GradientMaxNorm(&problem);
+}
 
 GeodesicResult SolveGeodesic(const ShellSpace& space,
                              const GeodesicInput& input,
@@ -57,22 +85,11 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
   const int K = input.steps;
   if (K >= 2) {
     ceres::Problem problem;
-    for (int k = 1; k <= K; ++k) {
-      const ShellArgument ref =
-          k == 1 ? ShellArgument::Fixed(result.path[0])
-                 : ShellArgument::Variable(&result.path[k - 1]);
-      const ShellArgument def = k == K
-                                    ? ShellArgument::Fixed(result.path[K])
-                                    : ShellArgument::Variable(&result.path[k]);
-      AddDeformationEnergy(space, ref, def, K, &problem);
-    }
-    for (int k = 1; k < K; ++k) {
-      FixVerticesOrGauge(&result.path[k], input.fixed_vertices, &problem,
-                         input.pin_gauge);
-    }
-    const double g0 = GradientMaxNorm(&problem);
+    BuildPathProblem(space, input, &result.path, &problem);
+    result.final_gradient = GradientMaxNorm(&problem);
+    const double g0 = input.reference_gradient >= 0 ? input.reference_gradient
+                                                    : result.final_gradient;
     const double tolerance = settings.gradient_tolerance * std::max(1.0, g0);
-    result.final_gradient = g0;
     // LM down to `relative` (or the tolerance), continuing from where it is.
     const auto run_lm = [&](double relative) {
       SolverSettings lm = settings;

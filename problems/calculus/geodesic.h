@@ -41,7 +41,18 @@ struct GeodesicInput {
   // most kMaxNewtonAttempts times; then LM alone. 0 disables Newton.
   double newton_from = 1e-3;
   static constexpr int kMaxNewtonAttempts = 3;
+  // The gradient max norm g_0 that the relative tolerance refers to
+  // (stop at |grad| <= tolerance * max(1, g_0)); negative: the initial
+  // path's. A solve started from a prolongated coarse solution passes the
+  // linear path's (LinearPathGradient), so that it stops where a solve from
+  // the linear path would.
+  double reference_gradient = -1;
 };
+
+// max |grad E_K| over the free coordinates at the linear path from
+// input.start to input.end (with input's mask or gauge): the g_0 of a solve
+// from the linear path.
+double LinearPathGradient(const ShellSpace& space, const GeodesicInput& input);
 
 struct GeodesicResult {
   ShellPath path;                     // s_0 = start ... s_K = end

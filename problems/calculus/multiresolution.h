@@ -1,0 +1,60 @@
+// Multiresolution geodesic interpolation (calculus.md, "Multiresolution";
+// thesis §6.3.3): decimate the end shapes with one shared connectivity,
+// solve the geodesic on the coarse level, prolongate its inner shapes by
+// deformation transfer, finish on the fine level.
+#ifndef SHELLSPACE_PROBLEMS_CALCULUS_MULTIRESOLUTION_H_
+#define SHELLSPACE_PROBLEMS_CALCULUS_MULTIRESOLUTION_H_
+
+#include <vector>
+
+#include "shellspace/problems/calculus/geodesic.h"
+
+namespace shellspace {
+
+struct MultiresolutionSettings {
+  // Coarse levels below the input mesh; 0 solves on the input mesh alone.
+  int levels = 1;
+  // Each level keeps this fraction of the vertices of the one above it.
+  double reduction = 0.25;
+  // No level is coarser than this many vertices (fewer levels are used).
+  int min_vertices = 200;
+  // The coarse levels stop at this relative gradient (the fine finish
+  // reaches the caller's tolerance): their solutions only seed the next
+  // level.
+  double coarse_gradient_tolerance = 1e-6;
+};
+
+// What each level did, coarsest first; the last entry is the input mesh.
+struct MultiresolutionLevel {
+  int vertices = 0;
+  int faces = 0;
+  int iterations = 0;         // LM iterations + Newton steps on this level
+  double path_energy = 0;     // E_K of the level's solution
+  double final_gradient = 0;  // max |grad E_K| at the end
+  bool converged = false;
+  double seconds = 0;         // prolongation onto this level + its solve
+};
+
+struct MultiresolutionResult {
+  GeodesicResult geodesic;  // the fine solution (as SolveGeodesic's)
+  std::vector<MultiresolutionLevel> levels;
+};
+
+// The geodesic of `input` on `space` through `settings.levels` coarse levels
+// (fewer if a level would fall below min_vertices). Each level decimates the
+// one above with DecimateShared over {start, end} (masked vertices locked,
+// so the coarse mask is the mask itself), solves its geodesic (recursively),
+// and prolongates each inner shape s_k by deformation transfer from the
+// coarse end shape nearer in time (s_0 for k <= K/2, else s_K); masked
+// vertices are then put back at their linear positions and the fine level
+// is solved from that path, to the caller's tolerance relative to the
+// linear path's gradient (GeodesicInput::reference_gradient), so the result
+// is a solution of the same problem as SolveGeodesic's. Throws InputError
+// as SolveGeodesic does.
+MultiresolutionResult SolveGeodesicMultiresolution(
+    const ShellSpace& space, const GeodesicInput& input,
+    const SolverSettings& settings, const MultiresolutionSettings& multires);
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_PROBLEMS_CALCULUS_MULTIRESOLUTION_H_
