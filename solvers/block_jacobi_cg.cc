@@ -1,0 +1,113 @@
+#include "shellspace/solvers/block_jacobi_cg.h"
+
+#include <Eigen/CholmodSupport>
+
+namespace shellspace {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+struct BlockJacobiCg::Factors {
+  std::vector<std::unique_ptr<
+      Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>>>
+      blocks;
+};
+
+BlockJacobiCg::BlockJacobiCg() : factors_(std::make_unique<Factors>()) {}
+BlockJacobiCg::~BlockJacobiCg() = default;
+
+namespace {
+
+// The lower triangle of the diagonal block [begin, end) of `lower`.
+SparseMatrix DiagonalBlock(const SparseMatrix& lower, int begin, int end) {
+  const int m = end - begin;
+  std::vector<Eigen::Triplet<double>> triplets;
+  for (int c = begin; c < end; ++c) {
+    for (SparseMatrix::InnerIterator it(lower, c); it; ++it) {
+      if (it.row() >= c && it.row() < end) {
+        triplets.emplace_back(it.row() - begin, c - begin, it.value());
+      }
+    }
+  }
+  SparseMatrix block(m, m);
+  block.setFromTriplets(triplets.begin(), triplets.end());
+  return block;
+}
+
+}  // namespace
+
+bool BlockJacobiCg::Factorize(const SparseMatrix& lower,
+                              const std::vector<int>& offsets) {
+  offsets_ = offsets;
+  factors_->blocks.clear();
+  for (size_t i = 0; i + 1 < offsets.size(); ++i) {
+    auto llt = std::make_unique<
+        Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>>();
+    llt->cholmod().print = 0;  // an indefinite block is an answer
+    llt->compute(DiagonalBlock(lower, offsets[i], offsets[i + 1]));
+    ++stats_.factorizations;
+    if (llt->info() != Eigen::Success) {
+      factors_->blocks.clear();
+      return false;
+    }
+    factors_->blocks.push_back(std::move(llt));
+  }
+  return true;
+}
+
+Eigen::VectorXd BlockJacobiCg::ApplyPreconditioner(
+    const Eigen::VectorXd& r) const {
+  Eigen::VectorXd z(r.size());
+  for (size_t i = 0; i < factors_->blocks.size(); ++i) {
+    const int begin = offsets_[i], m = offsets_[i + 1] - offsets_[i];
+    z.segment(begin, m) = factors_->blocks[i]->solve(r.segment(begin, m));
+  }
+  return z;
+}
+
+BlockJacobiCg::Status BlockJacobiCg::Solve(const SparseMatrix& lower,
+                                           const Eigen::VectorXd& b,
+                                           double tolerance,
+                                           int max_iterations,
+                                           Eigen::VectorXd* x,
+                                           int* iterations) {
+  ++stats_.solves;
+  int count = 0;
+  if (iterations) *iterations = 0;
+  if (factors_->blocks.empty() || offsets_.empty() ||
+      offsets_.back() != lower.rows()) {
+    return Status::kNotPositive;
+  }
+  const auto h = lower.selfadjointView<Eigen::Lower>();
+  const double target = tolerance * b.norm();
+  *x = ApplyPreconditioner(b);
+  Eigen::VectorXd r = b - h * *x;
+  Eigen::VectorXd z = ApplyPreconditioner(r);
+  Eigen::VectorXd d = z;
+  double rz = r.dot(z);
+  Status status = r.norm() <= target ? Status::kSolved : Status::kNotConverged;
+  while (status != Status::kSolved && count < max_iterations) {
+    ++count;
+    const Eigen::VectorXd hd = h * d;
+    const double curvature = d.dot(hd);
+    if (!(curvature > 0)) {
+      status = Status::kNotPositive;
+      break;
+    }
+    const double alpha = rz / curvature;
+    *x += alpha * d;
+    r -= alpha * hd;
+    if (r.norm() <= target) {
+      status = Status::kSolved;
+      break;
+    }
+    z = ApplyPreconditioner(r);
+    const double rz_next = r.dot(z);
+    d = z + (rz_next / rz) * d;
+    rz = rz_next;
+  }
+  stats_.cg_iterations += count;
+  if (iterations) *iterations = count;
+  return status;
+}
+
+}  // namespace shellspace
