@@ -1,6 +1,8 @@
 #include "shellspace/cost_functions/deformation_energy.h"
 
 #include <cmath>
+#include <sstream>
+#include <string>
 
 #include "shellspace/cost_functions/bending_cost_function.h"
 #include "shellspace/cost_functions/membrane_cost_function.h"
@@ -9,14 +11,19 @@
 namespace shellspace {
 
 void ShellMaterial::Validate() const {
+  const auto fail = [](const std::string& what, double value) {
+    std::ostringstream message;
+    message << "shell material: " << what << ", got " << value;
+    throw InputError(message.str());
+  };
   if (!(mu > 0) || !std::isfinite(mu)) {
-    throw InputError("--mu must be a positive number");
+    fail("the membrane weight mu must be a positive number", mu);
   }
   if (!(lambda > 0) || !std::isfinite(lambda)) {
-    throw InputError("--lambda must be a positive number");
+    fail("the membrane weight lambda must be a positive number", lambda);
   }
   if (!(eta >= 0) || !std::isfinite(eta)) {
-    throw InputError("--eta must be a non-negative number");
+    fail("the bending weight eta must be a non-negative number", eta);
   }
 }
 

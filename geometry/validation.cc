@@ -1,10 +1,13 @@
 #include "shellspace/geometry/validation.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace shellspace {
 
-Topology ValidateShell(const Mesh& mesh, const std::string& name) {
+namespace {
+
+void CheckFinite(const Mesh& mesh, const std::string& name) {
   for (int i = 0; i < mesh.num_vertices(); ++i) {
     for (int c = 0; c < 3; ++c) {
       if (!std::isfinite(mesh.positions(i, c))) {
@@ -13,12 +16,10 @@ Topology ValidateShell(const Mesh& mesh, const std::string& name) {
       }
     }
   }
-  Topology topology;
-  try {
-    topology = Topology::Build(mesh);
-  } catch (const InputError& error) {
-    throw InputError(name + ": " + error.what());
-  }
+}
+
+void CheckTriangles(const Mesh& mesh, const Topology& topology,
+                    const std::string& name) {
   double mean_sq = 0;
   for (const auto& e : topology.edges) {
     mean_sq += (mesh.vertex(e[0]) - mesh.vertex(e[1])).squaredNorm();
@@ -34,7 +35,26 @@ Topology ValidateShell(const Mesh& mesh, const std::string& name) {
                        " is degenerate (area " + std::to_string(area) + ")");
     }
   }
+}
+
+}  // namespace
+
+Topology ValidateShell(const Mesh& mesh, const std::string& name) {
+  CheckFinite(mesh, name);
+  Topology topology;
+  try {
+    topology = Topology::Build(mesh);
+  } catch (const InputError& error) {
+    throw InputError(name + ": " + error.what());
+  }
+  CheckTriangles(mesh, topology, name);
   return topology;
+}
+
+void ValidateShellPositions(const Mesh& mesh, const Topology& topology,
+                            const std::string& name) {
+  CheckFinite(mesh, name);
+  CheckTriangles(mesh, topology, name);
 }
 
 void CheckCompatible(const Mesh& mesh, const std::string& name,

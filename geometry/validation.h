@@ -16,6 +16,13 @@ namespace shellspace {
 // (usually the file path) prefixes the error. Returns the topology.
 Topology ValidateShell(const Mesh& mesh, const std::string& name);
 
+// The checks of ValidateShell that depend on the positions (finite
+// coordinates, no degenerate triangle) for a mesh whose connectivity is
+// known to be that of `topology` (a pose of an already validated shell, see
+// CheckCompatible): does not build the topology again.
+void ValidateShellPositions(const Mesh& mesh, const Topology& topology,
+                            const std::string& name);
+
 // Checks that `other` has the connectivity of `mesh`: the same vertex count
 // and the same oriented triangles, face by face, up to a cyclic rotation of
 // each face's vertices (a rotation that flips orientation, or another

@@ -1,5 +1,7 @@
 #include "shellspace/io/mesh_io.h"
 
+#include "shellspace/io/atomic_file.h"
+
 #include <OpenMesh/Core/IO/MeshIO.hh>
 #include <OpenMesh/Core/Mesh/PolyMesh_ArrayKernelT.hh>
 #include <algorithm>
@@ -193,16 +195,13 @@ Mesh ReadMesh(const std::string& path) {
   return mesh;
 }
 
-void WriteMesh(const Mesh& mesh, const std::string& path) {
+StreamWriter MeshWriter(const Mesh& mesh, const std::string& path) {
   const std::string ext = Extension(path);
   if (ext != "ply" && ext != "obj" && ext != "off") {
     throw InputError("unsupported output format '" + ext + "' of " + path +
                      " (use .ply, .obj or .off)");
   }
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream out(tmp);
-    if (!out) throw InputError("cannot open " + path + " for writing");
+  return [&mesh, ext](std::ostream& out) {
     out << std::setprecision(17);
     const int n = mesh.num_vertices(), m = mesh.num_faces();
     if (ext == "ply") {
@@ -224,17 +223,11 @@ void WriteMesh(const Mesh& mesh, const std::string& path) {
       out << (ext == "obj" ? "f " : "3 ") << mesh.faces(f, 0) + base << " "
           << mesh.faces(f, 1) + base << " " << mesh.faces(f, 2) + base << "\n";
     }
-    out.flush();
-    if (!out) {
-      out.close();
-      std::remove(tmp.c_str());
-      throw InputError("failed writing " + path);
-    }
-  }
-  if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-    std::remove(tmp.c_str());
-    throw InputError("cannot write " + path);
-  }
+  };
+}
+
+void WriteMesh(const Mesh& mesh, const std::string& path) {
+  WriteFileAtomically(path, MeshWriter(mesh, path));
 }
 
 std::vector<int> ReadMask(const std::string& path, int num_vertices) {

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "shellspace/geometry/mesh.h"
+#include "shellspace/io/atomic_file.h"
 
 namespace shellspace {
 
@@ -19,9 +20,14 @@ namespace shellspace {
 Mesh ReadMesh(const std::string& path);
 
 // Writes a mesh; the format follows the extension (.ply ASCII with double
-// coordinates, .obj, .off). Writes to a temporary file and renames it, so a
-// failure leaves no partial file. Throws InputError on failure.
+// coordinates, .obj, .off), atomically (io/atomic_file.h), so a failure
+// leaves no partial file. Throws InputError on failure.
 void WriteMesh(const Mesh& mesh, const std::string& path);
+
+// The writer of `mesh` in the format of `path`'s extension, for
+// AtomicFileSet::Add (several files committed together). Throws InputError
+// for an unsupported extension. `mesh` must outlive the writer.
+StreamWriter MeshWriter(const Mesh& mesh, const std::string& path);
 
 // Reads a vertex mask: one 0-based vertex index per line, '#' starts a
 // comment. Throws InputError for unreadable files, bad tokens, or indices

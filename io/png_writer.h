@@ -26,9 +26,13 @@ struct RgbImage {
   }
 };
 
-// Writes `image` to `path` as PNG. Writes to a temporary file first and
-// renames, so a failure leaves no partial file. Throws InputError
-// (geometry/mesh.h) if the file cannot be written.
+// The PNG file bytes of `image` (8-bit RGB). Throws InputError
+// (geometry/mesh.h) for an empty image.
+std::string EncodePng(const RgbImage& image);
+
+// Writes `image` to `path` as PNG, atomically (io/atomic_file.h), so a
+// failure leaves no partial file. Throws InputError if the file cannot be
+// written.
 void WritePng(const RgbImage& image, const std::string& path);
 
 }  // namespace shellspace

@@ -1,5 +1,8 @@
-// Flags shared by several verbs of the `shellspace` command (one binary, so a
-// flag name has one definition).
+// The gflags variables that several verbs read (one binary, so a flag name
+// has one definition). What a flag means in a verb, its default there and
+// its valid range are in that verb's FlagTable (tools/verb_flags.h), which
+// is also what `shellspace VERB --help` prints; a verb accepts no flag
+// outside its table.
 #ifndef SHELLSPACE_TOOLS_COMMON_FLAGS_H_
 #define SHELLSPACE_TOOLS_COMMON_FLAGS_H_
 
@@ -17,9 +20,6 @@ DECLARE_double(eta);
 DECLARE_string(png);
 DECLARE_string(reference);
 DECLARE_string(mask);
-
-#endif  // SHELLSPACE_TOOLS_COMMON_FLAGS_H_
-
 DECLARE_int32(steps);
 DECLARE_double(tolerance);
 DECLARE_int32(max_iterations);
@@ -29,3 +29,5 @@ DECLARE_string(start);
 DECLARE_string(end);
 DECLARE_string(inputs);
 DECLARE_string(at);
+
+#endif  // SHELLSPACE_TOOLS_COMMON_FLAGS_H_

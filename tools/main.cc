@@ -1,11 +1,19 @@
-// `shellspace VERB [--flags]`: dispatches to the verbs registered in
-// tools/verb_*.cc. Input errors are printed as one line and exit with 1.
+// `shellspace VERB [SUBCOMMAND] [--flags]`: dispatches to the verbs
+// registered in tools/verb_*.cc. Before a verb runs, main checks its flags
+// against the verb's table (tools/verb_flags.h): a flag the verb does not
+// take is rejected (exit 2), the verb's own defaults are applied, and
+// required flags and numeric ranges are checked (exit 1). Input errors are
+// printed as one line and exit with 1.
 #include <gflags/gflags.h>
 #include <glog/logging.h>
 
+#include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <exception>
 #include <iostream>
+#include <set>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -19,17 +27,15 @@ std::map<std::string, Verb>& VerbRegistry() {
   return registry;
 }
 
-std::set<std::string>& VerbsWithSubcommand() {
-  static std::set<std::string> verbs;
-  return verbs;
-}
-
-std::vector<std::string>& VerbPositionalArgs() {
-  static std::vector<std::string> args;
-  return args;
-}
-
 namespace {
+
+// Flags of the logging library every verb accepts.
+const std::set<std::string> kGlobalFlags = {"minloglevel", "v"};
+
+bool IsHelp(const char* arg) {
+  return !std::strcmp(arg, "--help") || !std::strcmp(arg, "-help") ||
+         !std::strcmp(arg, "-h") || !std::strcmp(arg, "help");
+}
 
 void PrintUsage() {
   std::cout << "usage: shellspace VERB [--flag=value ...]\n\nverbs:\n";
@@ -39,17 +45,109 @@ void PrintUsage() {
   std::cout << "\n`shellspace VERB --help` lists the flags of a verb.\n";
 }
 
+// The sub-commands registered under `group` ("branching" -> "simulate", ...).
+std::vector<std::string> Subcommands(const std::string& group) {
+  std::vector<std::string> names;
+  for (const auto& [name, verb] : VerbRegistry()) {
+    if (name.rfind(group + " ", 0) == 0) names.push_back(name.substr(group.size() + 1));
+  }
+  return names;
+}
+
+std::string Join(const std::vector<std::string>& items, const char* sep) {
+  std::string out;
+  for (size_t i = 0; i < items.size(); ++i) out += (i ? sep : "") + items[i];
+  return out;
+}
+
+bool GetFlag(const std::string& name, gflags::CommandLineFlagInfo* info) {
+  return gflags::GetCommandLineFlagInfo(name.c_str(), info);
+}
+
+std::string DefaultOf(const FlagSpec& spec,
+                      const gflags::CommandLineFlagInfo& info) {
+  return spec.verb_default.empty() ? info.default_value : spec.verb_default;
+}
+
+// `shellspace VERB --help`: the verb's flags only.
 void PrintVerbHelp(const Verb& verb) {
-  std::cout << "usage: shellspace " << verb.usage << "\n\nflags:\n";
-  std::vector<gflags::CommandLineFlagInfo> flags;
-  gflags::GetAllFlags(&flags);
-  for (const auto& flag : flags) {
-    const bool own = flag.filename == verb.source;
-    const bool common =
-        flag.filename.find("tools/common_flags") != std::string::npos;
-    if (!own && !common) continue;
-    std::cout << "  --" << flag.name << " (" << flag.description
-              << ") default: \"" << flag.default_value << "\"\n";
+  std::cout << "usage: shellspace " << verb.usage << "\n\nflags of "
+            << verb.name << ":\n";
+  for (const FlagSpec& spec : verb.flags) {
+    gflags::CommandLineFlagInfo info;
+    if (!GetFlag(spec.name, &info)) continue;  // caught by CheckTable
+    std::cout << "  --" << spec.name << " (" << info.type << ")  "
+              << spec.meaning << "\n      ";
+    if (spec.required) {
+      std::cout << "required";
+    } else {
+      const std::string value = DefaultOf(spec, info);
+      std::cout << "default: " << (value.empty() ? "\"\"" : value);
+    }
+    if (!spec.range.empty()) std::cout << "; valid: " << spec.range;
+    std::cout << "\n";
+  }
+  std::cout << "  --minloglevel (int32)  0 also shows the solvers' warnings\n"
+            << "      default: 2 (errors only)\n";
+}
+
+// A programming error in a verb's table: a name gflags does not know, or a
+// numeric range on a non-numeric flag.
+void CheckTable(const Verb& verb) {
+  for (const FlagSpec& spec : verb.flags) {
+    gflags::CommandLineFlagInfo info;
+    if (!GetFlag(spec.name, &info)) {
+      throw std::logic_error("verb " + verb.name + " lists undefined flag --" +
+                             spec.name);
+    }
+    const bool numeric = info.type == "int32" || info.type == "double" ||
+                         info.type == "int64" || info.type == "uint64" ||
+                         info.type == "uint32";
+    if (numeric != static_cast<bool>(spec.valid)) {
+      throw std::logic_error("verb " + verb.name + ": --" + spec.name +
+                             (numeric ? " needs" : " cannot have") +
+                             " a valid range");
+    }
+  }
+}
+
+// The first flag set on the command line that `verb` does not take, or "".
+std::string ForeignFlag(const Verb& verb) {
+  std::vector<gflags::CommandLineFlagInfo> all;
+  gflags::GetAllFlags(&all);
+  for (const auto& info : all) {
+    if (info.is_default) continue;
+    if (FindFlag(verb.flags, info.name) || kGlobalFlags.count(info.name)) {
+      continue;
+    }
+    return info.name;
+  }
+  return "";
+}
+
+// Applies the verb's defaults to the flags not given; throws InputError for
+// a missing required flag or a value out of range.
+void ApplyDefaultsAndValidate(const Verb& verb) {
+  for (const FlagSpec& spec : verb.flags) {
+    gflags::CommandLineFlagInfo info;
+    GetFlag(spec.name, &info);
+    if (!spec.verb_default.empty() && info.is_default) {
+      gflags::SetCommandLineOptionWithMode(spec.name.c_str(),
+                                           spec.verb_default.c_str(),
+                                           gflags::SET_FLAGS_DEFAULT);
+      GetFlag(spec.name, &info);
+    }
+    if (spec.required && info.current_value.empty()) {
+      throw InputError("--" + spec.name + " is required");
+    }
+    if (spec.valid) {
+      char* end = nullptr;
+      const double value = std::strtod(info.current_value.c_str(), &end);
+      if (*end != '\0' || !std::isfinite(value) || !spec.valid(value)) {
+        throw InputError("--" + spec.name + " must be " + spec.range +
+                         ", got " + info.current_value);
+      }
+    }
   }
 }
 
@@ -58,31 +156,49 @@ void PrintVerbHelp(const Verb& verb) {
 
 int main(int argc, char** argv) {
   using shellspace::VerbRegistry;
-  if (argc < 2 || !std::strcmp(argv[1], "--help") ||
-      !std::strcmp(argv[1], "help") || !std::strcmp(argv[1], "-h")) {
+  if (argc < 2 || shellspace::IsHelp(argv[1])) {
     shellspace::PrintUsage();
     return argc < 2 ? 1 : 0;
   }
-  const std::string name = argv[1];
+  // The verb: one word, or "VERB SUBCOMMAND" for a verb with sub-commands.
+  std::string name = argv[1];
+  int first_flag = 2;
+  const std::vector<std::string> subcommands = shellspace::Subcommands(name);
+  if (!subcommands.empty()) {
+    if (argc < 3 || argv[2][0] == '-' || shellspace::IsHelp(argv[2])) {
+      if (argc >= 3 && shellspace::IsHelp(argv[2])) {
+        std::cout << "usage: shellspace " << name << " "
+                  << shellspace::Join(subcommands, "|")
+                  << " [--flags]\n\n`shellspace " << name
+                  << " SUBCOMMAND --help` lists the flags of a sub-command.\n";
+        return 0;
+      }
+      std::cerr << "shellspace " << name << ": expected a sub-command: "
+                << shellspace::Join(subcommands, ", ") << "\n";
+      return 2;
+    }
+    name += std::string(" ") + argv[2];
+    first_flag = 3;
+  }
   auto it = VerbRegistry().find(name);
   if (it == VerbRegistry().end()) {
     std::cerr << "shellspace: unknown verb '" << name
               << "' (run `shellspace --help`)\n";
     return 2;
   }
-  for (int i = 2; i < argc; ++i) {
-    if (!std::strcmp(argv[i], "--help") || !std::strcmp(argv[i], "-help") ||
-        !std::strcmp(argv[i], "-h")) {
-      shellspace::PrintVerbHelp(it->second);
+  const shellspace::Verb& verb = it->second;
+  try {
+    shellspace::CheckTable(verb);
+  } catch (const std::exception& error) {
+    std::cerr << "shellspace " << name << ": internal error: " << error.what()
+              << "\n";
+    return 3;
+  }
+  for (int i = first_flag; i < argc; ++i) {
+    if (shellspace::IsHelp(argv[i])) {
+      shellspace::PrintVerbHelp(verb);
       return 0;
     }
-  }
-  // A verb with a sub-command keeps its first non-flag word.
-  int first_flag = 2;
-  if (shellspace::VerbsWithSubcommand().count(name) && argc > 2 &&
-      argv[2][0] != '-') {
-    shellspace::VerbPositionalArgs().push_back(argv[2]);
-    first_flag = 3;
   }
   // Let gflags parse everything after the verb.
   std::vector<char*> args;
@@ -91,22 +207,34 @@ int main(int argc, char** argv) {
   for (int i = first_flag; i < argc; ++i) args.push_back(argv[i]);
   int new_argc = static_cast<int>(args.size());
   char** new_argv = args.data();
-  // Ceres' warnings (an LM step retried after a failed factorisation of a
-  // nearly singular Gauss-Newton matrix, in EXP steps) are routine here and
-  // our own progress lines say how a solve goes: hidden unless the user
-  // passes --minloglevel=0.
-  FLAGS_minloglevel = google::GLOG_ERROR;
-  gflags::SetUsageMessage("shellspace " + it->second.usage);
+  gflags::SetUsageMessage("shellspace " + verb.usage);
   gflags::ParseCommandLineNonHelpFlags(&new_argc, &new_argv, true);
   if (new_argc > 1) {
     std::cerr << "shellspace " << name << ": unexpected argument '"
               << new_argv[1] << "'\n";
     return 2;
   }
+  const std::string foreign = shellspace::ForeignFlag(verb);
+  if (!foreign.empty()) {
+    std::cerr << "shellspace " << name << ": --" << foreign
+              << " is not a flag of " << name << " (`shellspace " << name
+              << " --help` lists them)\n";
+    return 2;
+  }
+  // Ceres' warnings (an LM step retried after a failed factorisation of a
+  // nearly singular Gauss-Newton matrix, in EXP steps) are routine here and
+  // our own progress lines say how a solve goes: hidden unless the user
+  // passes --minloglevel=0.
+  gflags::CommandLineFlagInfo loglevel;
+  if (gflags::GetCommandLineFlagInfo("minloglevel", &loglevel) &&
+      loglevel.is_default) {
+    FLAGS_minloglevel = google::GLOG_ERROR;
+  }
   FLAGS_logtostderr = true;
   google::InitGoogleLogging(argv[0]);
   try {
-    return it->second.run();
+    shellspace::ApplyDefaultsAndValidate(verb);
+    return verb.run();
   } catch (const shellspace::InputError& error) {
     std::cerr << "shellspace " << name << ": error: " << error.what() << "\n";
     return 1;

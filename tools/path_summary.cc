@@ -1,49 +1,109 @@
 #include "shellspace/tools/path_summary.h"
 
+#include <algorithm>
+
 #include "shellspace/render/film_strip.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/shell_inputs.h"
 
 namespace shellspace {
+namespace {
 
-JsonObject PathSummary(const ShellSpace& space, const ShellPath& path,
-                       const std::vector<ceres::Solver::Summary>& summaries,
-                       double seconds, const PathNewtonReport* newton) {
-  std::vector<double> steps;
-  const double energy = PathEnergy(space, path, &steps);
-  int iterations = 0;
-  double gradient = 0;
-  std::string termination = "none";
-  bool usable = true;
-  for (const auto& s : summaries) {
-    iterations += static_cast<int>(s.iterations.size());
-    if (!s.iterations.empty()) {
-      gradient = std::max(gradient, s.iterations.back().gradient_max_norm);
-    }
-    termination = ceres::TerminationTypeToString(s.termination_type);
-    usable &= s.IsSolutionUsable() || s.iterations.empty();
+bool ExpStepConverged(const ExpStepResult& step) {
+  return step.summary.termination_type == ceres::CONVERGENCE;
+}
+
+}  // namespace
+
+int LmIterations(const ceres::Solver::Summary& summary) {
+  return std::max(0, static_cast<int>(summary.iterations.size()) - 1);
+}
+
+std::string JsonArray(const std::vector<std::string>& objects) {
+  std::string out = "[";
+  for (size_t i = 0; i < objects.size(); ++i) {
+    out += (i ? ", " : "") + objects[i];
   }
-  if (newton != nullptr) {
-    iterations += newton->steps;
-    if (newton->converged && newton->steps > 0) {
-      gradient = newton->final_gradient;
-    }
+  return out + "]";
+}
+
+std::vector<std::string> GeodesicStages(const GeodesicResult& result) {
+  std::vector<std::string> stages;
+  for (const GeodesicStage& stage : result.stages) {
+    const bool newton = stage.method == GeodesicStage::Method::kNewton;
+    stages.push_back(JsonObject()
+                         .Add("method", newton ? "newton"
+                                               : "levenberg-marquardt")
+                         .Add("iterations", stage.iterations)
+                         .Add("final_gradient_norm", stage.final_gradient)
+                         .Add("termination", stage.termination)
+                         .str());
   }
+  return stages;
+}
+
+std::vector<std::string> ExpStepStages(const ShootResult& result) {
+  std::vector<std::string> stages;
+  for (const ExpStepResult& step : result.exp_steps) {
+    const int lm = LmIterations(step.summary);
+    stages.push_back(
+        JsonObject()
+            .Add("method", "exp step")
+            .Add("newton_steps", step.newton_steps)
+            .Add("lm_iterations", lm)
+            .Add("iterations", step.newton_steps + lm)
+            .Add("residual", step.residual_norm)
+            .Add("termination", ceres::TerminationTypeToString(
+                                    step.summary.termination_type))
+            .str());
+  }
+  return stages;
+}
+
+JsonObject GeodesicJson(const GeodesicResult& result) {
+  const double relative = result.initial_gradient > 0
+                              ? result.final_gradient / result.initial_gradient
+                              : 0.0;
   JsonObject json;
-  json.Add("path_energy", energy)
-      .Add("step_energies", steps)
-      .Add("iterations", iterations)
-      .Add("final_gradient_norm", gradient)
-      .Add("termination", termination)
-      .Add("converged", usable)
-      .Add("seconds", seconds)
-      .Add("frames", static_cast<int>(path.size()));
-  if (newton != nullptr) {
-    json.Add("newton_steps", newton->steps)
-        .Add("newton_seconds", newton->seconds)
-        .Add("factorizations", newton->factorizations)
-        .Add("cg_iterations", newton->cg_iterations);
+  json.Add("path_energy", result.path_energy)
+      .Add("step_energies", result.step_energies)
+      .Add("iterations", result.iterations)
+      .Add("initial_gradient_norm", result.initial_gradient)
+      .Add("final_gradient_norm", result.final_gradient)
+      .Add("relative_gradient_norm", relative)
+      .Add("converged", result.converged)
+      .Add("termination", result.stages.empty()
+                              ? std::string("no unknowns")
+                              : result.stages.back().termination)
+      .Raw("stages", JsonArray(GeodesicStages(result)))
+      .Add("newton_steps", result.newton.steps)
+      .Add("newton_seconds", result.newton.seconds)
+      .Add("factorizations", result.newton.factorizations)
+      .Add("cg_iterations", result.newton.cg_iterations)
+      .Add("frames", static_cast<int>(result.path.size()));
+  return json;
+}
+
+ShootTotals TotalsOf(const ShootResult& result) {
+  ShootTotals totals;
+  for (const ExpStepResult& step : result.exp_steps) {
+    totals.iterations += step.newton_steps + LmIterations(step.summary);
+    totals.max_residual = std::max(totals.max_residual, step.residual_norm);
+    totals.converged &= ExpStepConverged(step);
   }
+  return totals;
+}
+
+JsonObject ShootJson(const ShootResult& result) {
+  const ShootTotals totals = TotalsOf(result);
+  JsonObject json;
+  json.Add("path_energy", result.path_energy)
+      .Add("step_energies", result.step_energies)
+      .Add("iterations", totals.iterations)
+      .Add("max_exp_residual", totals.max_residual)
+      .Add("converged", totals.converged)
+      .Raw("stages", JsonArray(ExpStepStages(result)))
+      .Add("frames", static_cast<int>(result.path.size()));
   return json;
 }
 

@@ -4,45 +4,44 @@
 #include <filesystem>
 #include <sstream>
 
-#include "shellspace/io/mesh_io.h"
 #include "shellspace/geometry/validation.h"
+#include "shellspace/io/atomic_file.h"
+#include "shellspace/io/mesh_io.h"
 #include "shellspace/tools/common_flags.h"
 
 namespace shellspace {
 
-void RequireFlag(const std::string& name, const std::string& value) {
-  if (value.empty()) throw InputError("--" + name + " is required");
+Shell LoadShell(const std::string& path) {
+  Shell shell;
+  shell.path = path;
+  shell.mesh = ReadMesh(path);
+  shell.topology = ValidateShell(shell.mesh, path);
+  return shell;
 }
 
-Mesh LoadShell(const std::string& path) {
+Mesh LoadCompatibleShell(const std::string& path, const Shell& like) {
   Mesh mesh = ReadMesh(path);
-  ValidateShell(mesh, path);
+  CheckCompatible(like.mesh, like.path, mesh, path);
+  mesh.faces = like.mesh.faces;
+  ValidateShellPositions(mesh, like.topology, path);
   return mesh;
 }
 
-Mesh LoadCompatibleShell(const std::string& path, const Mesh& like,
-                         const std::string& like_path) {
-  Mesh mesh = ReadMesh(path);
-  for (int i = 0; i < mesh.num_vertices(); ++i) {
-    if (!mesh.positions.row(i).allFinite()) {
-      throw InputError(path + ": vertex " + std::to_string(i) +
-                       " has a non-finite coordinate");
-    }
+ShellSet LoadShellList(const std::string& list, const std::string& flag) {
+  ShellSet set;
+  set.paths = SplitList(list, flag);
+  set.first = LoadShell(set.paths[0]);
+  set.shapes.push_back(set.first.mesh.positions);
+  for (size_t i = 1; i < set.paths.size(); ++i) {
+    set.shapes.push_back(LoadCompatibleShell(set.paths[i], set.first).positions);
   }
-  CheckCompatible(like, like_path, mesh, path);
-  mesh.faces = like.faces;
-  ValidateShell(mesh, path);
-  return mesh;
+  return set;
 }
 
 ShellPair LoadStartEndFromFlags() {
-  RequireFlag("start", FLAGS_start);
-  RequireFlag("end", FLAGS_end);
-  RequireFlag("output", FLAGS_output);
-  if (FLAGS_steps < 1) throw InputError("--steps must be at least 1");
   ShellPair pair;
   pair.start = LoadShell(FLAGS_start);
-  pair.end = LoadCompatibleShell(FLAGS_end, pair.start, FLAGS_start);
+  pair.end = LoadCompatibleShell(FLAGS_end, pair.start);
   return pair;
 }
 
@@ -55,23 +54,21 @@ ShellMaterial MaterialFromFlags() {
   return material;
 }
 
-ShellSpace SpaceFromFlags(const Mesh& mesh) {
-  return ShellSpace(mesh, Topology::Build(mesh), MaterialFromFlags());
+ShellSpace SpaceFromFlags(const Shell& shell) {
+  return ShellSpace(shell.mesh, shell.topology, MaterialFromFlags());
+}
+
+std::vector<int> MaskFromFlags(int num_vertices) {
+  return FLAGS_mask.empty() ? std::vector<int>{}
+                            : ReadMask(FLAGS_mask, num_vertices);
 }
 
 SolverSettings SettingsFromFlags(const std::string& label) {
   SolverSettings settings;
   settings.progress = !FLAGS_quiet;
   settings.progress_label = label;
-  if (!(FLAGS_tolerance > 0 && FLAGS_tolerance < 1)) {
-    throw InputError("--tolerance must lie in (0, 1)");
-  }
-  if (FLAGS_max_iterations < 1) {
-    throw InputError("--max_iterations must be at least 1");
-  }
   settings.gradient_tolerance = FLAGS_tolerance;
   settings.max_iterations = FLAGS_max_iterations;
-  if (FLAGS_threads < 1) throw InputError("--threads must be at least 1");
   settings.num_threads = FLAGS_threads;
   return settings;
 }
@@ -100,21 +97,14 @@ void MakeDirectory(const std::string& dir) {
 void WriteFrames(const std::string& dir, const Faces& faces,
                  const std::vector<Positions>& frames) {
   MakeDirectory(dir);
-  std::vector<std::string> names;
+  AtomicFileSet files;
   for (size_t k = 0; k < frames.size(); ++k) {
     char name[64];
-    std::snprintf(name, sizeof(name), "shape_%03zu.ply", k);
-    names.push_back(dir + "/" + name);
+    std::snprintf(name, sizeof(name), "/shape_%03zu.ply", k);
+    const std::string path = dir + name;
+    files.Add(path, MeshWriter(Mesh{frames[k], faces}, path));
   }
-  for (size_t k = 0; k < frames.size(); ++k) {
-    Mesh mesh{frames[k], faces};
-    WriteMesh(mesh, names[k] + ".part.ply");
-  }
-  for (const std::string& name : names) {
-    if (std::rename((name + ".part.ply").c_str(), name.c_str()) != 0) {
-      throw InputError("cannot write " + name);
-    }
-  }
+  files.Commit();
 }
 
 }  // namespace shellspace

@@ -1,4 +1,6 @@
-// Loading and checking the shells and options the verbs take as input.
+// Loading the shells and options the verbs take as input. The flags these
+// functions read are in each verb's table (tools/verb_flags.h); main has
+// checked their ranges and required values before the verb runs.
 #ifndef SHELLSPACE_TOOLS_SHELL_INPUTS_H_
 #define SHELLSPACE_TOOLS_SHELL_INPUTS_H_
 
@@ -7,47 +9,66 @@
 
 #include "shellspace/cost_functions/deformation_energy.h"
 #include "shellspace/geometry/mesh.h"
+#include "shellspace/geometry/topology.h"
 #include "shellspace/solvers/solver_settings.h"
 
 namespace shellspace {
 
-// Throws InputError "--NAME is required" if `value` is empty.
-void RequireFlag(const std::string& name, const std::string& value);
+// A validated shell and its topology (built once, by the validation).
+struct Shell {
+  std::string path;
+  Mesh mesh;
+  Topology topology;
+};
 
 // Reads and validates a shell (geometry/validation.h).
-Mesh LoadShell(const std::string& path);
+Shell LoadShell(const std::string& path);
 
-// Reads a shell and checks it has the connectivity of `like` (read from
-// `like_path`).
-Mesh LoadCompatibleShell(const std::string& path, const Mesh& like,
-                         const std::string& like_path);
+// Reads a shell and checks it has the connectivity of `like` (then only its
+// positions are validated: the topology is `like`'s). Its faces are
+// `like`'s.
+Mesh LoadCompatibleShell(const std::string& path, const Shell& like);
 
-// Loads the shell pair of --start and --end (after checking --start, --end,
-// --output are given and --steps >= 1): the first validated, the second
-// checked compatible with it.
+// A comma list of compatible shells: the first one, and the positions of
+// all of them in order. `flag` names the list in errors.
+struct ShellSet {
+  Shell first;
+  std::vector<std::string> paths;
+  std::vector<Positions> shapes;
+};
+ShellSet LoadShellList(const std::string& list, const std::string& flag);
+
+// The shells of --start and --end, the second checked compatible with the
+// first.
 struct ShellPair {
-  Mesh start, end;
+  Shell start;
+  Mesh end;
 };
 ShellPair LoadStartEndFromFlags();
 
-// The material from --mu, --lambda, --eta (validated).
+// The material of --mu, --lambda, --eta.
 ShellMaterial MaterialFromFlags();
 
-// ShellSpace of a validated mesh with the flags' material.
-ShellSpace SpaceFromFlags(const Mesh& mesh);
+// ShellSpace of a validated shell with the flags' material (its topology
+// reused).
+ShellSpace SpaceFromFlags(const Shell& shell);
 
-// Solver settings with progress on unless --quiet.
+// The --mask vertices, or none if --mask is empty.
+std::vector<int> MaskFromFlags(int num_vertices);
+
+// Solver settings of --tolerance, --max_iterations, --threads, with
+// progress on unless --quiet.
 SolverSettings SettingsFromFlags(const std::string& label);
 
-// Splits "a,b,c" at commas (empty items are an error).
+// Splits "a,b,c" at commas (empty items are an error naming `flag`).
 std::vector<std::string> SplitList(const std::string& list,
                                    const std::string& flag);
 
 // Creates directory `dir` (and parents) if missing; InputError on failure.
 void MakeDirectory(const std::string& dir);
 
-// Writes shapes as DIR/shape_000.ply ... (all written to temporary names
-// first, then renamed, so a failure leaves no partial set).
+// Writes shapes as DIR/shape_000.ply ... all together or none
+// (io/atomic_file.h AtomicFileSet).
 void WriteFrames(const std::string& dir, const Faces& faces,
                  const std::vector<Positions>& frames);
 

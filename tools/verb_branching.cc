@@ -1,5 +1,6 @@
 // `shellspace branching simulate|construct [flags]`: the Kohn–Müller branching
-// problem (spec branching.md).
+// problem (spec branching.md). Each sub-command is a verb of its own
+// ("branching simulate", "branching construct") with its own flags.
 //
 //   simulate  — relaxed diffuse-interface simulation on a graded grid (sparse
 //               LM, continuation in delta); writes DIR/u.csv, DIR/uy.png,
@@ -8,9 +9,8 @@
 //               self-similar construction, optionally optimised; writes
 //               DIR/pattern.png and DIR/summary.json.
 //
-// Shared flags (tools/common_flags.h): --epsilon (branching default 1e-3 when
-// not given: the shared default 1.0 belongs to `transport`), --height (the
-// domain height H, a double; 0 = 0.5), --output, --json, --quiet.
+// --epsilon here is the twin-boundary energy (default 1e-3), not the step of
+// `transport`; --height is the domain height H.
 #include <gflags/gflags.h>
 
 #include <cmath>
@@ -24,48 +24,84 @@
 #include "shellspace/problems/branching/field_output.h"
 #include "shellspace/problems/branching/km_family.h"
 #include "shellspace/problems/branching/simulation.h"
+#include "shellspace/io/atomic_file.h"
 #include "shellspace/io/png_writer.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/io/json_writer.h"
 #include "shellspace/tools/verb.h"
 
-DEFINE_double(length, 1.0, "branching: domain length L (distance from the austenite)");
+DEFINE_double(length, 1.0, "branching: domain length L");
 DEFINE_int32(nx, 64, "branching simulate: number of x-cells");
-DEFINE_int32(ny, 128, "branching simulate: number of y-nodes (periodic)");
-DEFINE_string(init, "km",
-              "branching simulate: initial guess laminate|random|km|lens");
-DEFINE_double(delta, 0.0,
-              "branching simulate: interface width (0: 3 H/ny, the rule "
-              "dy = delta/3)");
-DEFINE_double(grading, 2.0,
-              "branching simulate: x-grading exponent, x_i = L (i/nx)^g");
-DEFINE_int32(continuation, 3,
-             "branching simulate: continuation stages in delta (factor 2)");
-DEFINE_int32(periods, 0,
-             "branching simulate: periods of the initial pattern in H (0: "
-             "nearest to the optimal KM period)");
+DEFINE_int32(ny, 128, "branching simulate: number of y-nodes");
+DEFINE_string(init, "km", "branching simulate: initial guess");
+DEFINE_double(delta, 0.0, "branching simulate: interface width");
+DEFINE_double(grading, 2.0, "branching simulate: x-grading exponent");
+DEFINE_int32(continuation, 3, "branching simulate: continuation stages");
+DEFINE_int32(periods, 0, "branching simulate: periods of the initial pattern");
 DEFINE_int32(init_seed, 1, "branching simulate: seed of --init random");
-DEFINE_int32(lm_iterations, 200,
-             "branching simulate: LM iterations per continuation stage");
+DEFINE_int32(lm_iterations, 200, "branching simulate: LM iterations per stage");
 DEFINE_string(family, "km", "branching construct: km|lens");
-DEFINE_bool(optimize, false,
-            "branching construct: optimise h0, theta (and the lens shape) by LM");
+DEFINE_bool(optimize, false, "branching construct: optimise the parameters");
 
 namespace shellspace {
 namespace {
 
 using namespace branching;
 
-double BranchingEpsilon() {
-  gflags::CommandLineFlagInfo info;
-  gflags::GetCommandLineFlagInfo("epsilon", &info);
-  return info.is_default ? 1e-3 : FLAGS_epsilon;
+FlagTable CommonFlags() {
+  return {
+      RealFlag("epsilon", "twin-boundary (interfacial) energy per length",
+               0, End::kOpen)
+          .Default("0.001"),
+      RealFlag("length", "domain length L (distance from the austenite)", 0,
+               End::kOpen),
+      TextFlag("output", "output directory").Required(),
+      TextFlag("json", "print the summary JSON on stdout"),
+      TextFlag("quiet", "suppress progress output"),
+  };
+}
+
+FlagTable SimulateFlags() {
+  return Flags(
+      {CommonFlags(),
+       {
+           RealFlag("height", "domain height H (0: 0.5)", 0, End::kClosed),
+           IntegerFlag("nx", "number of x-cells", 2, 4096),
+           IntegerFlag("ny", "number of y-nodes (periodic)", 8, 8192),
+           TextFlag("init", "initial guess laminate|random|km|lens"),
+           RealFlag("delta",
+                    "interface width (0: 3 H/ny, the rule dy = delta/3); "
+                    "a positive one needs H/ny <= delta/2",
+                    0, End::kClosed),
+           RealFlag("grading", "x-grading exponent, x_i = L (i/nx)^g", 1,
+                    End::kClosed, 4, End::kClosed),
+           IntegerFlag("continuation", "continuation stages in delta (factor 2)",
+                       1, 8),
+           IntegerFlag("periods",
+                       "periods of the initial pattern in H (0: nearest to "
+                       "the optimal KM period)",
+                       0),
+           IntegerFlag("init_seed", "seed of --init random", 0),
+           IntegerFlag("lm_iterations", "LM iterations per continuation stage",
+                       0),
+       }});
+}
+
+FlagTable ConstructFlags() {
+  return Flags(
+      {CommonFlags(),
+       {
+           TextFlag("family", "km|lens"),
+           TextFlag("optimize",
+                    "optimise h0, theta (and the lens shape) by LM"),
+           RealFlag("height", "height of the picture (0: 2 h0)", 0,
+                    End::kClosed),
+       }});
 }
 
 double BranchingHeight() { return FLAGS_height > 0 ? FLAGS_height : 0.5; }
 
 std::string PrepareOutput() {
-  if (FLAGS_output.empty()) throw InputError("--output DIR is required");
   std::error_code error;
   if (std::filesystem::exists(FLAGS_output, error) &&
       !std::filesystem::is_directory(FLAGS_output, error)) {
@@ -88,9 +124,17 @@ JsonObject EnergyJson(double elastic, double interfacial) {
 }
 
 int RunSimulate() {
-  if (FLAGS_height < 0) throw InputError("--height must be positive");
+  if (FLAGS_init != "laminate" && FLAGS_init != "random" &&
+      FLAGS_init != "km" && FLAGS_init != "lens") {
+    throw InputError("--init must be laminate, random, km or lens, got '" +
+                     FLAGS_init + "'");
+  }
+  if (FLAGS_delta > 0 && BranchingHeight() / FLAGS_ny > FLAGS_delta / 2.0) {
+    throw InputError("--delta is not resolved: need --height / --ny <= "
+                     "--delta / 2");
+  }
   SimulationSettings s;
-  s.epsilon = BranchingEpsilon();
+  s.epsilon = FLAGS_epsilon;
   s.length = FLAGS_length;
   s.height = BranchingHeight();
   s.nx = FLAGS_nx;
@@ -100,7 +144,6 @@ int RunSimulate() {
   s.continuation = FLAGS_continuation;
   s.init = FLAGS_init;
   s.periods = FLAGS_periods;
-  if (FLAGS_init_seed < 0) throw InputError("--init_seed must be >= 0");
   s.seed = static_cast<unsigned>(FLAGS_init_seed);
   s.max_iterations = FLAGS_lm_iterations;
   CheckSimulationSettings(s);
@@ -151,11 +194,14 @@ int RunSimulate() {
   const int width_px = 800;
   const int height_px = std::clamp(
       static_cast<int>(std::lround(width_px * s.height / s.length)), 200, 1600);
-  WritePng(RenderSlope(result.field, width_px, height_px), dir + "/uy.png");
-  WriteTextFile(dir + "/u.csv", FieldCsv(result.field));
-  WriteTextFile(dir + "/interfaces.csv",
-                InterfaceCsv(result.field, result.interfaces));
-  WriteTextFile(dir + "/summary.json", summary.str() + "\n");
+  AtomicFileSet files;
+  files.Add(dir + "/uy.png",
+            EncodePng(RenderSlope(result.field, width_px, height_px)));
+  files.Add(dir + "/u.csv", FieldCsv(result.field));
+  files.Add(dir + "/interfaces.csv",
+            InterfaceCsv(result.field, result.interfaces));
+  files.Add(dir + "/summary.json", summary.str() + "\n");
+  files.Commit();
   if (FLAGS_json) std::cout << summary.str() << "\n";
   if (!FLAGS_quiet) {
     std::cerr << "energy " << result.energy.total() << " (elastic "
@@ -170,12 +216,10 @@ int RunSimulate() {
 
 int RunConstruct() {
   if (FLAGS_family != "km" && FLAGS_family != "lens") {
-    throw InputError("--family must be km or lens");
+    throw InputError("--family must be km or lens, got '" + FLAGS_family +
+                     "'");
   }
-  const double epsilon = BranchingEpsilon();
-  if (!(epsilon > 0) || !(FLAGS_length > 0)) {
-    throw InputError("--epsilon and --length must be positive");
-  }
+  const double epsilon = FLAGS_epsilon;
   const std::string dir = PrepareOutput();
   ConstructionResult result;
   if (FLAGS_family == "km") {
@@ -217,8 +261,10 @@ int RunConstruct() {
   const RgbImage image = RenderConstruction(
       result.ToConstruction(FLAGS_length), height, width_px, height_px);
   MakeOutputDirectory(dir);
-  WritePng(image, dir + "/pattern.png");
-  WriteTextFile(dir + "/summary.json", summary.str() + "\n");
+  AtomicFileSet files;
+  files.Add(dir + "/pattern.png", EncodePng(image));
+  files.Add(dir + "/summary.json", summary.str() + "\n");
+  files.Commit();
   if (FLAGS_json) {
     std::cout << summary.str() << "\n";
   } else if (!FLAGS_quiet) {
@@ -230,25 +276,18 @@ int RunConstruct() {
   return 0;
 }
 
-int RunBranching() {
-  const std::vector<std::string>& positional = VerbPositionalArgs();
-  if (positional.size() != 1) {
-    throw InputError("expected a sub-command: branching simulate|construct");
-  }
-  if (positional[0] == "simulate") return RunSimulate();
-  if (positional[0] == "construct") return RunConstruct();
-  throw InputError("unknown sub-command '" + positional[0] +
-                   "' (expected simulate or construct)");
-}
-
 }  // namespace
 
-SHELLSPACE_VERB_TAKES_SUBCOMMAND("branching");
 SHELLSPACE_REGISTER_VERB(
-    "branching",
-    "branching simulate|construct [--epsilon E --length L --height H --nx N "
-    "--ny M --init laminate|random|km|lens | --family km|lens --optimize] "
-    "--output DIR [--json]",
-    RunBranching);
+    "branching simulate",
+    "branching simulate [--epsilon E --length L --height H --nx N --ny M "
+    "--init laminate|random|km|lens] --output DIR [--json]: relaxed "
+    "diffuse-interface simulation",
+    SimulateFlags(), RunSimulate);
+SHELLSPACE_REGISTER_VERB(
+    "branching construct",
+    "branching construct [--epsilon E --length L --family km|lens "
+    "--optimize] --output DIR [--json]: the sharp-interface constructions",
+    ConstructFlags(), RunConstruct);
 
 }  // namespace shellspace

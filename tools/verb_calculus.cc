@@ -5,24 +5,20 @@
 #include <chrono>
 #include <iostream>
 
+#include "shellspace/io/frame_sequence.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/exponential_map.h"
 #include "shellspace/problems/calculus/parallel_transport.h"
-#include "shellspace/io/frame_sequence.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/path_summary.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
 
 DEFINE_string(first, "", "shoot: the shell s_0");
-DEFINE_string(second, "",
-              "shoot: the shell s_1 (s_1 - s_0 is the initial velocity / K)");
-DEFINE_bool(backward, false, "shoot: extrapolate backward in time, before s_0");
-DEFINE_string(path, "",
-              "transport: directory of the path's frames shape_000.ply ...");
-DEFINE_string(
-    variation, "",
-    "transport: shell s_0 + xi_0 (the variation xi_0 at the first frame)");
+DEFINE_string(second, "", "shoot: the shell s_1");
+DEFINE_bool(backward, false, "shoot: extrapolate backward in time");
+DEFINE_string(path, "", "transport: directory of the path's frames");
+DEFINE_string(variation, "", "transport: shell s_0 + xi_0");
 
 namespace shellspace {
 namespace {
@@ -32,34 +28,86 @@ double Seconds(std::chrono::steady_clock::time_point since) {
       .count();
 }
 
-std::vector<int> MaskOrEmpty(int num_vertices) {
-  return FLAGS_mask.empty() ? std::vector<int>{}
-                            : ReadMask(FLAGS_mask, num_vertices);
+FlagSpec MaskFlag() {
+  return TextFlag("mask",
+                  "vertex mask file (one 0-based index per line, '#' "
+                  "comments): vertices held fixed");
+}
+
+FlagSpec PngFlag() {
+  return TextFlag("png", "also write a PNG film strip of the frames here");
+}
+
+FlagTable ShootFlags() {
+  return Flags(
+      {{
+           TextFlag("first", "the shell s_0").Required(),
+           TextFlag("second",
+                    "the shell s_1 (s_1 - s_0 is the initial velocity / K)")
+               .Required(),
+           IntegerFlag("steps", "number of time steps K (K + 1 shapes)", 1),
+           TextFlag("output", "directory of the frames shape_000.ply ...")
+               .Required(),
+           TextFlag("backward", "extrapolate backward in time, before s_0"),
+           MaskFlag(),
+           PngFlag(),
+       },
+       MaterialFlags(), SolverFlags(), JsonFlag()});
+}
+
+FlagTable LogFlags() {
+  return Flags(
+      {{
+           TextFlag("start", "the shell A at which LOG_K is taken").Required(),
+           TextFlag("end", "the shell B").Required(),
+           IntegerFlag("steps", "K of LOG_K (the geodesic's time steps)", 1),
+           TextFlag("output", "the shell A + LOG_K(A -> B): PLY, OBJ or OFF")
+               .Required(),
+           MaskFlag(),
+       },
+       MaterialFlags(), SolverFlags(), JsonFlag()});
+}
+
+FlagTable TransportFlags() {
+  return Flags(
+      {{
+           TextFlag("path",
+                    "directory of the path's frames shape_000.ply ...")
+               .Required(),
+           TextFlag("variation",
+                    "shell s_0 + xi_0 (the variation xi_0 at the first frame)")
+               .Required(),
+           TextFlag("output",
+                    "directory of the transported shapes s_k + eps xi_k")
+               .Required(),
+           RealFlag("epsilon",
+                    "transport step epsilon: 1 transports a finite shape "
+                    "difference, small values the tangent vector",
+                    0, End::kOpen),
+           MaskFlag(),
+           PngFlag(),
+       },
+       MaterialFlags(), SolverFlags(), JsonFlag()});
 }
 
 int RunShoot() {
-  RequireFlag("first", FLAGS_first);
-  RequireFlag("second", FLAGS_second);
-  RequireFlag("output", FLAGS_output);
-  if (FLAGS_steps < 1) throw InputError("--steps must be at least 1");
   const auto clock = std::chrono::steady_clock::now();
-  const Mesh first = LoadShell(FLAGS_first);
-  const Mesh second = LoadCompatibleShell(FLAGS_second, first, FLAGS_first);
+  const Shell first = LoadShell(FLAGS_first);
+  const Mesh second = LoadCompatibleShell(FLAGS_second, first);
   const ShellSpace space = SpaceFromFlags(first);
-  std::vector<ceres::Solver::Summary> summaries;
-  const ShellPath path =
-      Shoot(space, first.positions, second.positions, FLAGS_steps,
-            FLAGS_backward ? StepDirection::kBackward : StepDirection::kForward,
-            MaskOrEmpty(first.num_vertices()), SettingsFromFlags("shoot"),
-            &summaries);
-  for (const auto& s : summaries) {
-    if (s.termination_type == ceres::FAILURE) {
-      throw InputError("EXP step failed: " + s.message);
+  const ShootResult result = ShootWithReport(
+      space, first.mesh.positions, second.positions, FLAGS_steps,
+      FLAGS_backward ? StepDirection::kBackward : StepDirection::kForward,
+      MaskFromFlags(first.mesh.num_vertices()), SettingsFromFlags("shoot"));
+  for (const ExpStepResult& step : result.exp_steps) {
+    if (step.summary.termination_type == ceres::FAILURE) {
+      throw InputError("EXP step failed: " + step.summary.message);
     }
   }
-  WritePathOutputs(FLAGS_output, first.faces, path);
+  WritePathOutputs(FLAGS_output, first.mesh.faces, result.path);
   if (FLAGS_json) {
-    std::cout << PathSummary(space, path, summaries, Seconds(clock))
+    std::cout << ShootJson(result)
+                     .Add("seconds", Seconds(clock))
                      .Add("output", FLAGS_output)
                      .str()
               << "\n";
@@ -72,14 +120,15 @@ int RunLog() {
   const auto [start, end] = LoadStartEndFromFlags();
   const ShellSpace space = SpaceFromFlags(start);
   GeodesicResult geodesic;
-  const Positions log = LogK(space, start.positions, end.positions, FLAGS_steps,
-                             MaskOrEmpty(start.num_vertices()),
-                             SettingsFromFlags("log"), &geodesic);
-  WriteMesh(Mesh{start.positions + log, start.faces}, FLAGS_output);
+  const Positions log =
+      LogK(space, start.mesh.positions, end.positions, FLAGS_steps,
+           MaskFromFlags(start.mesh.num_vertices()), SettingsFromFlags("log"),
+           &geodesic);
+  WriteMesh(Mesh{start.mesh.positions + log, start.mesh.faces}, FLAGS_output);
   if (FLAGS_json) {
-    std::cout << PathSummary(space, geodesic.path, {geodesic.summary},
-                             Seconds(clock))
+    std::cout << GeodesicJson(geodesic)
                      .Add("log_max_norm", log.cwiseAbs().maxCoeff())
+                     .Add("seconds", Seconds(clock))
                      .Add("output", FLAGS_output)
                      .str()
               << "\n";
@@ -88,25 +137,23 @@ int RunLog() {
 }
 
 int RunTransport() {
-  RequireFlag("path", FLAGS_path);
-  RequireFlag("variation", FLAGS_variation);
-  RequireFlag("output", FLAGS_output);
-  if (!(FLAGS_epsilon > 0)) throw InputError("--epsilon must be positive");
   const auto clock = std::chrono::steady_clock::now();
   const std::vector<std::string> files = ListFrameFiles(FLAGS_path);
-  if (files.size() < 2)
+  if (files.size() < 2) {
     throw InputError(FLAGS_path + ": need at least 2 frames");
-  const Mesh first = LoadShell(files[0]);
-  ShellPath path = {first.positions};
-  for (size_t k = 1; k < files.size(); ++k) {
-    path.push_back(LoadCompatibleShell(files[k], first, files[0]).positions);
   }
-  const Mesh varied = LoadCompatibleShell(FLAGS_variation, first, files[0]);
+  const Shell first = LoadShell(files[0]);
+  ShellPath path = {first.mesh.positions};
+  for (size_t k = 1; k < files.size(); ++k) {
+    path.push_back(LoadCompatibleShell(files[k], first).positions);
+  }
+  const Mesh varied = LoadCompatibleShell(FLAGS_variation, first);
   const ShellSpace space = SpaceFromFlags(first);
   const TransportResult result = ParallelTransport(
-      space, path, varied.positions - first.positions, FLAGS_epsilon,
-      MaskOrEmpty(first.num_vertices()), SettingsFromFlags("transport"));
-  WritePathOutputs(FLAGS_output, first.faces, result.shapes);
+      space, path, varied.positions - first.mesh.positions, FLAGS_epsilon,
+      MaskFromFlags(first.mesh.num_vertices()),
+      SettingsFromFlags("transport"));
+  WritePathOutputs(FLAGS_output, first.mesh.faces, result.shapes);
   if (FLAGS_json) {
     std::vector<double> norms;
     for (const Positions& xi : result.variations) {
@@ -132,13 +179,13 @@ SHELLSPACE_REGISTER_VERB(
     "shoot",
     "shoot --first S0.ply --second S1.ply --steps K --output DIR [--backward] "
     "[--mask M.txt] [--json] [--png strip.png]",
-    shellspace::RunShoot);
+    shellspace::ShootFlags(), shellspace::RunShoot);
 SHELLSPACE_REGISTER_VERB(
     "log",
     "log --start A.ply --end B.ply --steps K --output V.ply (writes A + LOG_K)",
-    shellspace::RunLog);
+    shellspace::LogFlags(), shellspace::RunLog);
 SHELLSPACE_REGISTER_VERB(
     "transport",
     "transport --path DIR --variation P0.ply --output DIR [--epsilon 1] "
     "[--json] [--png strip.png]",
-    shellspace::RunTransport);
+    shellspace::TransportFlags(), shellspace::RunTransport);

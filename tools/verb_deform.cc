@@ -5,41 +5,53 @@
 #include <cstdio>
 #include <iostream>
 
+#include "shellspace/io/json_writer.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/elastic_deformation.h"
 #include "shellspace/tools/common_flags.h"
-#include "shellspace/io/json_writer.h"
+#include "shellspace/tools/path_summary.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
 
-DEFINE_string(targets, "",
-              "mesh giving the prescribed positions of the masked vertices "
-              "(also the initial guess)");
+DEFINE_string(targets, "", "deform: prescribed positions");
 
 namespace shellspace {
 namespace {
 
+FlagTable DeformFlags() {
+  return Flags(
+      {{
+           TextFlag("reference", "reference (undeformed) shell").Required(),
+           TextFlag("mask",
+                    "vertex mask file: one 0-based index per line, '#' "
+                    "comments; the listed vertices are prescribed")
+               .Required(),
+           TextFlag("targets",
+                    "mesh giving the prescribed positions of the masked "
+                    "vertices (also the initial guess)")
+               .Required(),
+           TextFlag("output", "the deformed shell: PLY, OBJ or OFF")
+               .Required(),
+       },
+       MaterialFlags(), SolverFlags(), JsonFlag()});
+}
+
 int RunDeform() {
-  RequireFlag("reference", FLAGS_reference);
-  RequireFlag("mask", FLAGS_mask);
-  RequireFlag("targets", FLAGS_targets);
-  RequireFlag("output", FLAGS_output);
   const auto start = std::chrono::steady_clock::now();
-  const Mesh reference = LoadShell(FLAGS_reference);
-  const Mesh targets =
-      LoadCompatibleShell(FLAGS_targets, reference, FLAGS_reference);
+  const Shell reference = LoadShell(FLAGS_reference);
+  const Mesh targets = LoadCompatibleShell(FLAGS_targets, reference);
   const ShellSpace space = SpaceFromFlags(reference);
   ElasticDeformationInput input;
-  input.reference = reference.positions;
+  input.reference = reference.mesh.positions;
   input.targets = targets.positions;
   input.initial = targets.positions;
-  input.fixed_vertices = ReadMask(FLAGS_mask, reference.num_vertices());
+  input.fixed_vertices = ReadMask(FLAGS_mask, reference.mesh.num_vertices());
   const ElasticDeformationResult result =
       SolveElasticDeformation(space, input, SettingsFromFlags("deform"));
   if (result.summary.termination_type == ceres::FAILURE) {
     throw InputError("solver failed: " + result.summary.message);
   }
-  WriteMesh(Mesh{result.deformed, reference.faces}, FLAGS_output);
+  WriteMesh(Mesh{result.deformed, reference.mesh.faces}, FLAGS_output);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
           .count();
@@ -48,9 +60,11 @@ int RunDeform() {
                      .Add("membrane", result.energy.membrane)
                      .Add("bending", result.energy.bending)
                      .Add("total", result.energy.total)
-                     .Add("iterations",
-                          static_cast<int>(result.summary.iterations.size()))
-                     .Add("converged", result.summary.IsSolutionUsable())
+                     .Add("iterations", LmIterations(result.summary))
+                     .Add("converged", result.summary.termination_type ==
+                                           ceres::CONVERGENCE)
+                     .Add("termination", ceres::TerminationTypeToString(
+                                             result.summary.termination_type))
                      .Add("seconds", seconds)
                      .Add("output", FLAGS_output)
                      .str()
@@ -71,4 +85,4 @@ SHELLSPACE_REGISTER_VERB(
     "deform",
     "deform --reference R.ply --mask M.txt --targets T.ply --output OUT.ply "
     "[--mu --lambda --eta] [--json]",
-    shellspace::RunDeform);
+    shellspace::DeformFlags(), shellspace::RunDeform);

@@ -6,9 +6,10 @@
 
 #include <chrono>
 #include <cmath>
-#include <fstream>
 #include <iostream>
 
+#include "shellspace/geometry/validation.h"
+#include "shellspace/io/atomic_file.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/geometry/procedural_shapes.h"
 #include "shellspace/problems/calculus/exponential_map.h"
@@ -23,15 +24,29 @@ DEFINE_int32(extrapolate, 4, "demo: EXP steps beyond the end shape");
 namespace shellspace {
 namespace {
 
+FlagTable DemoFlags() {
+  return Flags({{
+                    TextFlag("output",
+                             "directory of frames/, film_strip.png and "
+                             "summary.json")
+                        .Default("demo-output"),
+                    IntegerFlag("steps",
+                                "time steps K of the geodesic (K + 1 shapes)",
+                                2),
+                    IntegerFlag("extrapolate", "EXP steps beyond the end shape",
+                                0),
+                },
+                MaterialFlags(), SolverFlags()});
+}
+
 int RunDemo() {
-  const std::string dir = FLAGS_output.empty() ? "demo-output" : FLAGS_output;
-  if (FLAGS_steps < 2) throw InputError("--steps must be at least 2");
-  if (FLAGS_extrapolate < 0) throw InputError("--extrapolate must be >= 0");
+  const std::string dir = FLAGS_output;
   const auto clock = std::chrono::steady_clock::now();
   const Mesh finger = MakeFinger();
   const double pi = std::acos(-1.0);
   const Positions bent = BendAlongY(finger.positions, 4.0, 0.5 * pi);
-  const ShellSpace space(finger, Topology::Build(finger), MaterialFromFlags());
+  const ShellSpace space(finger, ValidateShell(finger, "procedural finger"),
+                         MaterialFromFlags());
   const std::vector<int> base = FingerBaseVertices();
   SolverSettings settings = SettingsFromFlags("demo geodesic");
 
@@ -41,17 +56,29 @@ int RunDemo() {
   input.steps = FLAGS_steps;
   input.fixed_vertices = base;
   const GeodesicResult geodesic = SolveGeodesic(space, input, settings);
-  std::vector<ceres::Solver::Summary> summaries = {geodesic.summary};
 
   ShellPath frames = geodesic.path;
+  ShootResult shot;
   if (FLAGS_extrapolate > 0) {
     settings.progress_label = "demo exp";
     const int K = FLAGS_steps;
-    const ShellPath shot =
-        Shoot(space, frames[K - 1], frames[K], FLAGS_extrapolate + 1,
-              StepDirection::kForward, base, settings, &summaries);
-    frames.insert(frames.end(), shot.begin() + 2, shot.end());
+    shot = ShootWithReport(space, frames[K - 1], frames[K],
+                           FLAGS_extrapolate + 1, StepDirection::kForward,
+                           base, settings);
+    frames.insert(frames.end(), shot.path.begin() + 2, shot.path.end());
   }
+  // The geodesic's report, with the EXP steps of the extrapolation added to
+  // iterations and stages; the extrapolated steps' energies (the shot's,
+  // after its first step, which is the geodesic's last) beside it.
+  const ShootTotals totals = TotalsOf(shot);
+  const int shot_iterations = totals.iterations;
+  const bool shot_converged = totals.converged;
+  std::vector<std::string> stages = GeodesicStages(geodesic);
+  for (const std::string& stage : ExpStepStages(shot)) stages.push_back(stage);
+  const std::vector<double> extrapolated(
+      shot.step_energies.empty() ? shot.step_energies.end()
+                                 : shot.step_energies.begin() + 1,
+      shot.step_energies.end());
   MakeDirectory(dir);
   WriteFrames(dir + "/frames", finger.faces, frames);
   RenderOptions options;
@@ -62,18 +89,35 @@ int RunDemo() {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock)
           .count();
   const std::string json =
-      PathSummary(space, frames, summaries, seconds)
-          .Add("geodesic_path_energy", geodesic.path_energy)
+      JsonObject()
+          .Add("path_energy", geodesic.path_energy)
+          .Add("step_energies", geodesic.step_energies)
+          .Add("extrapolated_step_energies", extrapolated)
+          .Add("iterations", geodesic.iterations + shot_iterations)
+          .Add("geodesic_iterations", geodesic.iterations)
+          .Add("extrapolation_iterations", shot_iterations)
+          .Add("initial_gradient_norm", geodesic.initial_gradient)
+          .Add("final_gradient_norm", geodesic.final_gradient)
+          .Add("relative_gradient_norm",
+               geodesic.initial_gradient > 0
+                   ? geodesic.final_gradient / geodesic.initial_gradient
+                   : 0.0)
+          .Add("converged", geodesic.converged && shot_converged)
+          .Add("geodesic_converged", geodesic.converged)
+          .Add("extrapolation_converged", shot_converged)
+          .Raw("stages", JsonArray(stages))
+          .Add("newton_steps", geodesic.newton.steps)
+          .Add("factorizations", geodesic.newton.factorizations)
+          .Add("cg_iterations", geodesic.newton.cg_iterations)
+          .Add("seconds", seconds)
+          .Add("frames", static_cast<int>(frames.size()))
           .Add("geodesic_steps", FLAGS_steps)
           .Add("extrapolated_steps", FLAGS_extrapolate)
           .Add("vertices", finger.num_vertices())
           .Add("frames_dir", dir + "/frames")
           .Add("film_strip", dir + "/film_strip.png")
           .str();
-  {
-    std::ofstream out(dir + "/summary.json");
-    out << json << "\n";
-  }
+  WriteFileAtomically(dir + "/summary.json", json + "\n");
   std::cout << json << "\n";
   return 0;
 }
@@ -85,4 +129,4 @@ SHELLSPACE_REGISTER_VERB(
     "demo",
     "demo [--output demo-output] [--steps 8] [--extrapolate 4]: procedural "
     "finger -> bent finger geodesic, extrapolated, with a PNG film strip",
-    shellspace::RunDemo);
+    shellspace::DemoFlags(), shellspace::RunDemo);

@@ -4,25 +4,35 @@
 #include <cstdio>
 #include <iostream>
 
-#include "shellspace/tools/common_flags.h"
 #include "shellspace/io/json_writer.h"
+#include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
 
-DEFINE_string(deformed, "", "deformed shell with the reference's connectivity");
+DEFINE_string(deformed, "", "energy: deformed shell");
 
 namespace shellspace {
 namespace {
 
+FlagTable EnergyFlags() {
+  return Flags({{
+                    TextFlag("reference",
+                             "reference (undeformed) shell: PLY, OBJ or OFF")
+                        .Required(),
+                    TextFlag("deformed",
+                             "deformed shell with the reference's "
+                             "connectivity")
+                        .Required(),
+                },
+                MaterialFlags(), JsonFlag()});
+}
+
 int RunEnergy() {
-  RequireFlag("reference", FLAGS_reference);
-  RequireFlag("deformed", FLAGS_deformed);
-  const Mesh reference = LoadShell(FLAGS_reference);
-  const Mesh deformed =
-      LoadCompatibleShell(FLAGS_deformed, reference, FLAGS_reference);
+  const Shell reference = LoadShell(FLAGS_reference);
+  const Mesh deformed = LoadCompatibleShell(FLAGS_deformed, reference);
   const ShellSpace space = SpaceFromFlags(reference);
-  const DeformationEnergy e =
-      EvaluateDeformationEnergy(space, reference.positions, deformed.positions);
+  const DeformationEnergy e = EvaluateDeformationEnergy(
+      space, reference.mesh.positions, deformed.positions);
   if (FLAGS_json) {
     std::cout << JsonObject()
                      .Add("membrane", e.membrane)
@@ -47,4 +57,4 @@ SHELLSPACE_REGISTER_VERB(
     "energy",
     "energy --reference R.ply --deformed D.ply [--mu 1 --lambda 1 --eta 0.01] "
     "[--json]",
-    shellspace::RunEnergy);
+    shellspace::EnergyFlags(), shellspace::RunEnergy);

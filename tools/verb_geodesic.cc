@@ -14,37 +14,55 @@
 namespace shellspace {
 namespace {
 
+FlagTable GeodesicFlags() {
+  return Flags(
+      {{
+           TextFlag("start", "first shell s_0 of the path").Required(),
+           TextFlag("end", "last shell s_K of the path").Required(),
+           IntegerFlag("steps", "number of time steps K (K + 1 shapes)", 1),
+           TextFlag("output", "directory of the frames shape_000.ply ...")
+               .Required(),
+           TextFlag("mask",
+                    "vertex mask file (one 0-based index per line, '#' "
+                    "comments): vertices held at their linearly "
+                    "interpolated positions"),
+           TextFlag("png", "also write a PNG film strip of the frames here"),
+           TextFlag("report", "print Ceres' full report on stderr"),
+       },
+       MaterialFlags(), SolverFlags(), JsonFlag()});
+}
+
 int RunGeodesic() {
   const auto clock = std::chrono::steady_clock::now();
   const auto [start, end] = LoadStartEndFromFlags();
   const ShellSpace space = SpaceFromFlags(start);
   GeodesicInput input;
-  input.start = start.positions;
+  input.start = start.mesh.positions;
   input.end = end.positions;
   input.steps = FLAGS_steps;
-  if (!FLAGS_mask.empty()) {
-    input.fixed_vertices = ReadMask(FLAGS_mask, start.num_vertices());
-  }
+  input.fixed_vertices = MaskFromFlags(start.mesh.num_vertices());
   const GeodesicResult result =
       SolveGeodesic(space, input, SettingsFromFlags("geodesic"));
   if (result.summary.termination_type == ceres::FAILURE) {
     throw InputError("solver failed: " + result.summary.message);
   }
   if (FLAGS_report) std::cerr << result.summary.FullReport() << "\n";
-  WritePathOutputs(FLAGS_output, start.faces, result.path);
+  WritePathOutputs(FLAGS_output, start.mesh.faces, result.path);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock)
           .count();
   if (FLAGS_json) {
-    std::cout << PathSummary(space, result.path, {result.summary}, seconds,
-                             &result.newton)
+    std::cout << GeodesicJson(result)
+                     .Add("seconds", seconds)
                      .Add("output", FLAGS_output)
                      .str()
               << "\n";
   } else if (!FLAGS_quiet) {
     std::cerr << result.summary.BriefReport() << "\n";
     std::cout << "E_K = " << result.path_energy << " over " << FLAGS_steps
-              << " steps; wrote " << FLAGS_output << "/shape_*.ply\n";
+              << " steps (" << result.iterations << " iterations, |grad| "
+              << result.final_gradient << "); wrote " << FLAGS_output
+              << "/shape_*.ply\n";
   }
   return 0;
 }
@@ -56,4 +74,4 @@ SHELLSPACE_REGISTER_VERB(
     "geodesic",
     "geodesic --start A.ply --end B.ply --steps K --output DIR [--mask M.txt] "
     "[--eta E] [--json] [--png strip.png]",
-    shellspace::RunGeodesic);
+    shellspace::GeodesicFlags(), shellspace::RunGeodesic);

@@ -4,7 +4,6 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
-#include <sstream>
 #include <string>
 
 #include "shellspace/geometry/mesh.h"
@@ -14,30 +13,39 @@
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/verb.h"
 
-DEFINE_string(input, "",
-              "render: a directory (all *.ply, *.obj, *.off in natural name "
-              "order) or a comma-separated list of mesh files");
-DEFINE_string(view, "front",
-              "render: front (along -z, +y up), back, side (along -x), left, "
-              "top (along -y), bottom, iso, or AZIMUTH,ELEVATION in degrees "
-              "(e.g. --view=30,20; azimuth about +y from the front view, "
-              "elevation towards +y)");
+DEFINE_string(input, "", "render: the meshes");
+DEFINE_string(view, "front", "render: the view direction");
 DEFINE_string(shading, "gouraud", "render: flat or gouraud");
 
 namespace shellspace {
 namespace {
 
-// A frame side from a --width/--height flag: 0 means `fallback`, otherwise a
-// positive whole number of pixels.
-int FrameSide(const char* name, double value, int fallback) {
-  if (value == 0) return fallback;
-  if (!(value > 0) || value != std::floor(value) || value > 8192) {
-    std::ostringstream message;
-    message << "--" << name << " must be a positive whole number of pixels "
-            << "(at most 8192), got " << value;
-    throw InputError(message.str());
-  }
-  return static_cast<int>(value);
+bool IsFrameSide(double value) {
+  return value == 0 || (value >= 1 && value <= 8192 && value == std::floor(value));
+}
+
+FlagTable RenderFlags() {
+  const std::string side = "0 (the default) or a whole number in [1, 8192]";
+  return Flags(
+      {{
+           TextFlag("input",
+                    "a directory (all *.ply, *.obj, *.off in natural name "
+                    "order) or a comma-separated list of mesh files")
+               .Required(),
+           TextFlag("output", "the PNG film strip").Required(),
+           CheckedFlag("width", "frame width in pixels (0: 320)", side,
+                       IsFrameSide),
+           CheckedFlag("height", "frame height in pixels (0: 320)", side,
+                       IsFrameSide),
+           TextFlag("view",
+                    "front (along -z, +y up), back, side (along -x), left, "
+                    "top (along -y), bottom, iso, or AZIMUTH,ELEVATION in "
+                    "degrees (e.g. --view=30,20; azimuth about +y from the "
+                    "front view, elevation towards +y)"),
+           TextFlag("shading", "flat or gouraud"),
+           TextFlag("quiet", "no line on stdout"),
+       },
+       JsonFlag()});
 }
 
 std::string JsonString(const std::string& text) {
@@ -58,11 +66,9 @@ std::string JsonString(const std::string& text) {
 }
 
 int RunRender() {
-  if (FLAGS_input.empty()) throw InputError("--input is required");
-  if (FLAGS_output.empty()) throw InputError("--output is required");
   RenderOptions options;
-  options.width = FrameSide("width", FLAGS_width, options.width);
-  options.height = FrameSide("height", FLAGS_height, options.height);
+  if (FLAGS_width > 0) options.width = static_cast<int>(FLAGS_width);
+  if (FLAGS_height > 0) options.height = static_cast<int>(FLAGS_height);
   try {
     options.view = ParseView(FLAGS_view);
     options.shading = ParseShading(FLAGS_shading);
@@ -103,6 +109,6 @@ SHELLSPACE_REGISTER_VERB(
     "render",
     "render --input DIR|a.ply,b.ply --output strip.png [--width W --height H "
     "--view V]",
-    RunRender);
+    RenderFlags(), RunRender);
 
 }  // namespace shellspace

@@ -2,6 +2,7 @@
 // keyframes (nonlinear or LΘA) and shape regression.
 #include <gflags/gflags.h>
 
+#include <algorithm>
 #include <chrono>
 #include <iostream>
 
@@ -12,15 +13,51 @@
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
 
-DEFINE_string(keyframes, "", "spline: comma-separated keyframe shells");
-DEFINE_string(method, "nonlinear",
-              "spline: nonlinear (L-BFGS on F_K from the LTheta spline) or "
-              "ltheta (the fast approximation alone)");
-DEFINE_bool(periodic, false, "spline: closed path (indices mod K)");
-DEFINE_double(sigma, 1.0, "regress: weight of the spline energy F_K (>= 0)");
+DEFINE_string(keyframes, "", "spline: keyframe shells");
+DEFINE_string(method, "nonlinear", "spline: nonlinear or ltheta");
+DEFINE_bool(periodic, false, "spline: closed path");
+DEFINE_double(sigma, 1.0, "regress: weight of F_K");
 
 namespace shellspace {
 namespace {
+
+FlagTable PathFlags() {
+  return {
+      IntegerFlag("steps", "number of time steps K (K + 1 shapes)", 2),
+      TextFlag("output", "directory of the frames shape_000.ply ...")
+          .Required(),
+      TextFlag("png", "also write a PNG film strip of the frames here"),
+  };
+}
+
+FlagTable SplineFlags() {
+  return Flags({{
+                    TextFlag("keyframes", "comma-separated keyframe shells")
+                        .Required(),
+                    TextFlag("at",
+                             "comma-separated time indices of the keyframes "
+                             "(0 and K among them unless --periodic)")
+                        .Required(),
+                    TextFlag("method",
+                             "nonlinear (L-BFGS on F_K from the LTheta "
+                             "spline) or ltheta (the fast approximation "
+                             "alone)"),
+                    TextFlag("periodic", "closed path (indices mod K)"),
+                },
+                PathFlags(), MaterialFlags(), SolverFlags(), JsonFlag()});
+}
+
+FlagTable RegressFlags() {
+  return Flags(
+      {{
+           TextFlag("inputs", "comma-separated input shells").Required(),
+           TextFlag("at", "comma-separated time indices of the inputs")
+               .Required(),
+           RealFlag("sigma", "weight of the spline energy F_K", 0,
+                    End::kClosed),
+       },
+       PathFlags(), MaterialFlags(), SolverFlags(), JsonFlag()});
+}
 
 double Seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since)
@@ -33,21 +70,21 @@ std::vector<int> ParseIndices(const std::string& list) {
     char* end = nullptr;
     const long value = std::strtol(item.c_str(), &end, 10);
     if (*end != '\0') throw InputError("--at: not an integer: '" + item + "'");
+    if (!at.empty() && value <= at.back()) {
+      throw InputError("--at must be strictly increasing, got " + list);
+    }
     at.push_back(static_cast<int>(value));
   }
   return at;
 }
 
-// Loads a comma list of compatible shells; returns them and the first mesh.
-std::vector<Positions> LoadShells(const std::string& list,
-                                  const std::string& flag, Mesh* first) {
-  const std::vector<std::string> paths = SplitList(list, flag);
-  *first = LoadShell(paths[0]);
-  std::vector<Positions> shapes = {first->positions};
-  for (size_t i = 1; i < paths.size(); ++i) {
-    shapes.push_back(LoadCompatibleShell(paths[i], *first, paths[0]).positions);
+// --at gives one index per shape of the list `flag`.
+void CheckIndexCount(const std::vector<int>& at, size_t shapes,
+                     const std::string& flag) {
+  if (at.size() != shapes) {
+    throw InputError("--at gives " + std::to_string(at.size()) +
+                     " indices for " + std::to_string(shapes) + " --" + flag);
   }
-  return shapes;
 }
 
 SplineSettings SplineSettingsFromFlags(const std::string& label) {
@@ -69,8 +106,11 @@ void Report(const Faces& faces,
     std::cout << extra.Add("spline_energy", result.spline_energy)
                      .Add("data_energy", result.data_energy)
                      .Add("objective", result.objective)
-                     .Add("iterations",
-                          static_cast<int>(result.summary.iterations.size()))
+                     .Add("iterations", std::max(0, static_cast<int>(
+                                                 result.summary.iterations
+                                                     .size()) - 1))
+                     .Add("converged", result.summary.termination_type ==
+                                           ceres::CONVERGENCE)
                      .Add("termination",
                           result.summary.iterations.size() > 1
                               ? ceres::TerminationTypeToString(
@@ -88,19 +128,15 @@ void Report(const Faces& faces,
 }
 
 int RunSpline() {
-  RequireFlag("keyframes", FLAGS_keyframes);
-  RequireFlag("at", FLAGS_at);
-  RequireFlag("output", FLAGS_output);
   if (FLAGS_method != "nonlinear" && FLAGS_method != "ltheta") {
     throw InputError("--method must be nonlinear or ltheta");
   }
-  if (FLAGS_steps < 2) throw InputError("--steps must be at least 2");
   const auto clock = std::chrono::steady_clock::now();
-  Mesh first;
-  const std::vector<Positions> keyframes =
-      LoadShells(FLAGS_keyframes, "keyframes", &first);
+  const ShellSet set = LoadShellList(FLAGS_keyframes, "keyframes");
+  const std::vector<Positions>& keyframes = set.shapes;
   const std::vector<int> at = ParseIndices(FLAGS_at);
-  const ShellSpace space = SpaceFromFlags(first);
+  CheckIndexCount(at, keyframes.size(), "keyframes");
+  const ShellSpace space = SpaceFromFlags(set.first);
   SolverSettings ltheta_settings = SettingsFromFlags("ltheta");
   ltheta_settings.progress = false;
   const ShellPath ltheta = LThetaSpline(space, keyframes, at, FLAGS_steps,
@@ -110,7 +146,7 @@ int RunSpline() {
   if (FLAGS_method == "ltheta") settings.max_iterations = 0;
   SplineResult result = SolveSpline(space, keyframes, at, FLAGS_steps,
                                     FLAGS_periodic, ltheta, settings);
-  Report(first.faces, result, Seconds(clock),
+  Report(set.first.mesh.faces, result, Seconds(clock),
          JsonObject()
              .Add("method", FLAGS_method)
              .Add("ltheta_seconds", ltheta_seconds));
@@ -118,20 +154,15 @@ int RunSpline() {
 }
 
 int RunRegress() {
-  RequireFlag("inputs", FLAGS_inputs);
-  RequireFlag("at", FLAGS_at);
-  RequireFlag("output", FLAGS_output);
-  if (FLAGS_steps < 2) throw InputError("--steps must be at least 2");
   const auto clock = std::chrono::steady_clock::now();
-  Mesh first;
-  const std::vector<Positions> inputs =
-      LoadShells(FLAGS_inputs, "inputs", &first);
+  const ShellSet set = LoadShellList(FLAGS_inputs, "inputs");
   const std::vector<int> at = ParseIndices(FLAGS_at);
-  const ShellSpace space = SpaceFromFlags(first);
+  CheckIndexCount(at, set.shapes.size(), "inputs");
+  const ShellSpace space = SpaceFromFlags(set.first);
   const SplineResult result =
-      SolveRegression(space, inputs, at, FLAGS_steps, FLAGS_sigma, {},
+      SolveRegression(space, set.shapes, at, FLAGS_steps, FLAGS_sigma, {},
                       SplineSettingsFromFlags("regress"));
-  Report(first.faces, result, Seconds(clock),
+  Report(set.first.mesh.faces, result, Seconds(clock),
          JsonObject().Add("sigma", FLAGS_sigma));
   return 0;
 }
@@ -143,9 +174,9 @@ SHELLSPACE_REGISTER_VERB(
     "spline",
     "spline --keyframes a.ply,b.ply,c.ply --at 0,4,8 --steps 8 --output DIR "
     "[--method nonlinear|ltheta] [--periodic] [--json] [--png strip.png]",
-    shellspace::RunSpline);
+    shellspace::SplineFlags(), shellspace::RunSpline);
 SHELLSPACE_REGISTER_VERB(
     "regress",
     "regress --inputs a.ply,b.ply,... --at 0,3,... --steps K --sigma S "
     "--output DIR [--json] [--png strip.png]",
-    shellspace::RunRegress);
+    shellspace::RegressFlags(), shellspace::RunRegress);

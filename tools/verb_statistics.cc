@@ -8,10 +8,10 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <fstream>
 #include <iostream>
 #include <sstream>
 
+#include "shellspace/io/atomic_file.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/statistics/elastic_mean.h"
 #include "shellspace/problems/statistics/leave_one_out.h"
@@ -23,25 +23,14 @@
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
 
-DEFINE_int32(modes, 3,
-             "pca: number of modes written (and m = 1..modes of --loo)");
-DEFINE_string(baseline, "",
-              "pca: 'procrustes' also writes the Procrustes PCA model "
-              "(procrustes_mean.ply, procrustes_mode_J_{minus,plus}.ply)");
-DEFINE_bool(loo, false,
-            "pca: leave-one-out evaluation of shell vs Procrustes PCA "
-            "(m = 0..modes), table printed and in the JSON");
-DEFINE_double(amplitude, 1.0,
-              "pca: mode shapes at +- amplitude sqrt(lambda_j) w_j");
-DEFINE_int32(log_steps, 2, "pca: K of LOG_K (displacements)");
-DEFINE_int32(exp_steps, 4,
-             "pca: K of EXP_K (mode shapes, reconstructions); doubled up to "
-             "--max_exp_steps while a shot fails or its step energies drift "
-             "by more than 50%");
+DEFINE_int32(modes, 3, "pca: number of modes");
+DEFINE_string(baseline, "", "pca: '' or 'procrustes'");
+DEFINE_bool(loo, false, "pca: leave-one-out evaluation");
+DEFINE_double(amplitude, 1.0, "pca: mode amplitude");
+DEFINE_int32(log_steps, 2, "pca: K of LOG_K");
+DEFINE_int32(exp_steps, 4, "pca: K of EXP_K");
 DEFINE_int32(max_exp_steps, 16, "pca: largest K of the EXP safeguard");
-DEFINE_string(displacement, "log",
-              "pca: 'log' (v_i = LOG_K(mean -> S_i)) or 'difference' "
-              "(v_i = S_i - mean after rigid alignment)");
+DEFINE_string(displacement, "log", "pca: log or difference");
 
 namespace shellspace {
 namespace {
@@ -51,28 +40,63 @@ double Seconds(std::chrono::steady_clock::time_point since) {
       .count();
 }
 
-struct InputSet {
-  std::vector<std::string> paths;
-  Mesh first;
-  std::vector<Positions> shapes;
-};
+FlagTable MeanFlags() {
+  return Flags({{
+                    TextFlag("inputs", "comma-separated input shells")
+                        .Required(),
+                    TextFlag("output", "the elastic mean: PLY, OBJ or OFF")
+                        .Required(),
+                    TextFlag("report", "print Ceres' full report on stderr"),
+                },
+                MaterialFlags(), SolverFlags(), JsonFlag()});
+}
+
+FlagTable PcaFlags() {
+  return Flags(
+      {{
+           TextFlag("inputs", "comma-separated input shells").Required(),
+           TextFlag("output",
+                    "directory of mean.ply, mode_J_{minus,plus}.ply, pca.json")
+               .Required(),
+           IntegerFlag("modes",
+                       "number of modes written (and m = 1..modes of --loo); "
+                       "at most the number of inputs - 1",
+                       1),
+           TextFlag("baseline",
+                    "'procrustes' also writes the Procrustes PCA model "
+                    "(procrustes_mean.ply, "
+                    "procrustes_mode_J_{minus,plus}.ply); '' none"),
+           TextFlag("loo",
+                    "leave-one-out evaluation of shell vs Procrustes PCA "
+                    "(m = 0..modes), table printed and in the JSON"),
+           RealFlag("amplitude",
+                    "mode shapes at +- amplitude sqrt(lambda_j) w_j", 0,
+                    End::kClosed),
+           IntegerFlag("log_steps", "K of LOG_K (displacements)", 1),
+           IntegerFlag("exp_steps",
+                       "K of EXP_K (mode shapes, reconstructions); doubled up "
+                       "to --max_exp_steps while a shot fails or its step "
+                       "energies drift by more than 50%",
+                       1),
+           IntegerFlag("max_exp_steps",
+                       "largest K of the EXP safeguard (>= --exp_steps)", 1),
+           TextFlag("displacement",
+                    "'log' (v_i = LOG_K(mean -> S_i)) or 'difference' "
+                    "(v_i = S_i - mean after rigid alignment)"),
+           TextFlag("png",
+                    "also write a PNG film strip of the mean and the modes"),
+       },
+       MaterialFlags(), SolverFlags(), JsonFlag()});
+}
 
 // Loads --inputs (at least `minimum` shells with one connectivity).
-InputSet LoadInputs(size_t minimum) {
-  RequireFlag("inputs", FLAGS_inputs);
-  InputSet set;
-  set.paths = SplitList(FLAGS_inputs, "inputs");
-  if (set.paths.size() < minimum) {
+ShellSet LoadInputs(size_t minimum) {
+  const size_t count = SplitList(FLAGS_inputs, "inputs").size();
+  if (count < minimum) {
     throw InputError("--inputs needs at least " + std::to_string(minimum) +
-                     " shells, got " + std::to_string(set.paths.size()));
+                     " shells, got " + std::to_string(count));
   }
-  set.first = LoadShell(set.paths[0]);
-  set.shapes.push_back(set.first.positions);
-  for (size_t i = 1; i < set.paths.size(); ++i) {
-    set.shapes.push_back(
-        LoadCompatibleShell(set.paths[i], set.first, set.paths[0]).positions);
-  }
-  return set;
+  return LoadShellList(FLAGS_inputs, "inputs");
 }
 
 void CheckSolve(const ceres::Solver::Summary& summary, const char* what) {
@@ -85,27 +109,10 @@ std::vector<double> ToVector(const Eigen::VectorXd& v) {
   return std::vector<double>(v.data(), v.data() + v.size());
 }
 
-// Writes all (name, mesh) pairs under `dir` via temporary names, then renames
-// them, so that a failure leaves no partial set.
-void WriteAll(const std::string& dir,
-              const std::vector<std::pair<std::string, Positions>>& shapes,
-              const Faces& faces) {
-  MakeDirectory(dir);
-  for (const auto& [name, positions] : shapes) {
-    WriteMesh(Mesh{positions, faces}, dir + "/" + name + ".part.ply");
-  }
-  for (const auto& [name, positions] : shapes) {
-    const std::string path = dir + "/" + name;
-    if (std::rename((path + ".part.ply").c_str(), path.c_str()) != 0) {
-      throw InputError("cannot write " + path);
-    }
-  }
-}
-
 // The inputs far from the others (FarInputs), by path, each with a warning
 // on stderr unless --quiet: such an input dominates the mean and the leading
 // shell PCA mode, and EXP shots along that mode may have no solution.
-std::vector<std::string> WarnAboutFarInputs(const InputSet& inputs,
+std::vector<std::string> WarnAboutFarInputs(const ShellSet& inputs,
                                             const ElasticMeanResult& mean,
                                             const char* verb) {
   std::vector<std::string> far;
@@ -124,9 +131,8 @@ std::vector<std::string> WarnAboutFarInputs(const InputSet& inputs,
 }
 
 int RunMean() {
-  RequireFlag("output", FLAGS_output);
   const auto clock = std::chrono::steady_clock::now();
-  const InputSet inputs = LoadInputs(1);
+  const ShellSet inputs = LoadInputs(1);
   const ShellSpace space = SpaceFromFlags(inputs.first);
   const ElasticMeanResult result =
       ComputeElasticMean(space, inputs.shapes, SettingsFromFlags("mean"));
@@ -134,21 +140,30 @@ int RunMean() {
   const std::vector<std::string> far =
       WarnAboutFarInputs(inputs, result, "mean");
   if (FLAGS_report) std::cerr << result.summary.FullReport() << "\n";
-  WriteMesh(Mesh{result.mean, inputs.first.faces}, FLAGS_output);
+  WriteMesh(Mesh{result.mean, inputs.first.mesh.faces}, FLAGS_output);
   if (FLAGS_json) {
-    const auto& s = result.summary;
+    const double relative =
+        result.initial_gradient_norm > 0
+            ? result.gradient_norm / result.initial_gradient_norm
+            : 0.0;
     std::cout << JsonObject()
                      .Add("energy", result.energy)
                      .Add("energies", result.energies)
                      .Add("far_inputs", far)
                      .Add("inputs", static_cast<int>(inputs.shapes.size()))
-                     .Add("iterations", result.lm_iterations)
+                     .Add("iterations",
+                          result.lm_iterations + result.newton_iterations)
+                     .Add("lm_iterations", result.lm_iterations)
                      .Add("newton_iterations", result.newton_iterations)
+                     .Raw("stages",
+                          JsonObject()
+                              .Add("lm_iterations", result.lm_iterations)
+                              .Add("newton_steps", result.newton_iterations)
+                              .str())
                      .Add("newton_fell_back", result.newton_fell_back)
                      .Add("initial_gradient_norm", result.initial_gradient_norm)
                      .Add("final_gradient_norm", result.gradient_norm)
-                     .Add("termination",
-                          ceres::TerminationTypeToString(s.termination_type))
+                     .Add("relative_gradient_norm", relative)
                      .Add("converged", result.converged)
                      .Add("seconds", Seconds(clock))
                      .Add("output", FLAGS_output)
@@ -245,17 +260,10 @@ std::string TableJson(const LeaveOneOutTable& table) {
 }
 
 int RunPca() {
-  RequireFlag("output", FLAGS_output);
-  if (FLAGS_modes < 1) throw InputError("--modes must be at least 1");
   if (FLAGS_baseline != "" && FLAGS_baseline != "procrustes") {
     throw InputError("--baseline must be 'procrustes' (or empty), got '" +
                      FLAGS_baseline + "'");
   }
-  if (!std::isfinite(FLAGS_amplitude) || FLAGS_amplitude < 0) {
-    throw InputError("--amplitude must be a finite non-negative number");
-  }
-  if (FLAGS_log_steps < 1) throw InputError("--log_steps must be at least 1");
-  if (FLAGS_exp_steps < 1) throw InputError("--exp_steps must be at least 1");
   if (FLAGS_max_exp_steps < FLAGS_exp_steps) {
     throw InputError("--max_exp_steps must be at least --exp_steps");
   }
@@ -272,7 +280,7 @@ int RunPca() {
                      FLAGS_displacement + "'");
   }
   const auto clock = std::chrono::steady_clock::now();
-  const InputSet inputs = LoadInputs(FLAGS_loo ? 3 : 2);
+  const ShellSet inputs = LoadInputs(FLAGS_loo ? 3 : 2);
   const int n = static_cast<int>(inputs.shapes.size());
   if (FLAGS_modes > n - 1) {
     throw InputError("--modes " + std::to_string(FLAGS_modes) + " exceeds " +
@@ -299,7 +307,7 @@ int RunPca() {
   const int shell_modes =
       std::min<int>(FLAGS_modes, static_cast<int>(shell.modes.size()));
   std::vector<std::pair<std::string, Positions>> files = {
-      {"mean.ply", mean.mean}};
+      {"mean.ply", mean.mean}};  // written at the end, with pca.json
   std::vector<Positions> strip = {mean.mean};
   // A mode shape whose EXP shot has no solution (ShootFromMean throws) is
   // not written; it is listed in the JSON and warned about.
@@ -373,17 +381,24 @@ int RunPca() {
   }
   json.Add("seconds", Seconds(clock)).Add("output", FLAGS_output);
 
-  // All results computed: write the files (PLY set, then the JSON summary).
-  WriteAll(FLAGS_output, files, inputs.first.faces);
+  // All results computed: write the files (the PLY set and the JSON
+  // summary, together or none).
+  MakeDirectory(FLAGS_output);
   {
-    const std::string path = FLAGS_output + "/pca.json";
-    std::ofstream out(path);
-    out << json.str() << "\n";
-    if (!out) throw InputError("cannot write " + path);
+    AtomicFileSet set;
+    std::vector<Mesh> meshes;
+    meshes.reserve(files.size());
+    for (const auto& [name, positions] : files) {
+      meshes.push_back(Mesh{positions, inputs.first.mesh.faces});
+      const std::string path = FLAGS_output + "/" + name;
+      set.Add(path, MeshWriter(meshes.back(), path));
+    }
+    set.Add(FLAGS_output + "/pca.json", json.str() + "\n");
+    set.Commit();
   }
   if (!FLAGS_png.empty()) {
     RenderOptions render;
-    WriteFilmStrip(strip, inputs.first.faces, render, FLAGS_png);
+    WriteFilmStrip(strip, inputs.first.mesh.faces, render, FLAGS_png);
   }
   if (FLAGS_json) {
     std::cout << json.str() << "\n";
@@ -409,11 +424,11 @@ SHELLSPACE_REGISTER_VERB(
     "mean",
     "mean --inputs a.ply,b.ply,... --output M.ply [--json] (elastic mean "
     "argmin_s sum_i W[S_i, s])",
-    shellspace::RunMean);
+    shellspace::MeanFlags(), shellspace::RunMean);
 SHELLSPACE_REGISTER_VERB(
     "pca",
     "pca --inputs a.ply,b.ply,... --modes m --output DIR [--baseline "
     "procrustes] [--loo] [--amplitude t] [--log_steps K] [--exp_steps K] "
     "[--max_exp_steps K] [--displacement log|difference] [--threads N] "
     "[--json] [--png strip.png]",
-    shellspace::RunPca);
+    shellspace::PcaFlags(), shellspace::RunPca);

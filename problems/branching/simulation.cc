@@ -17,34 +17,34 @@ double SimulationSettings::Delta() const {
 
 void CheckSimulationSettings(const SimulationSettings& s) {
   if (!(s.epsilon > 0) || !std::isfinite(s.epsilon)) {
-    throw InputError("--epsilon must be a positive number");
+    throw InputError("branching simulation: the twin-boundary energy epsilon must be a positive number");
   }
   if (!(s.length > 0) || !std::isfinite(s.length)) {
-    throw InputError("--length must be a positive number");
+    throw InputError("branching simulation: the domain length L must be a positive number");
   }
   if (!(s.height > 0) || !std::isfinite(s.height)) {
-    throw InputError("--height must be a positive number");
+    throw InputError("branching simulation: the domain height H must be a positive number");
   }
-  if (s.nx < 2 || s.nx > 4096) throw InputError("--nx must lie in [2, 4096]");
-  if (s.ny < 8 || s.ny > 8192) throw InputError("--ny must lie in [8, 8192]");
+  if (s.nx < 2 || s.nx > 4096) throw InputError("branching simulation: the number of x-cells nx must lie in [2, 4096]");
+  if (s.ny < 8 || s.ny > 8192) throw InputError("branching simulation: the number of y-nodes ny must lie in [8, 8192]");
   if (!(s.grading >= 1.0 && s.grading <= 4.0)) {
-    throw InputError("--grading must lie in [1, 4]");
+    throw InputError("branching simulation: the x-grading exponent must lie in [1, 4]");
   }
   if (s.delta < 0 || !std::isfinite(s.delta)) {
-    throw InputError("--delta must be >= 0 (0: 3 dy)");
+    throw InputError("branching simulation: the interface width delta must be >= 0 (0: 3 dy)");
   }
   if (s.delta > 0 && s.height / s.ny > s.delta / 2.0) {
-    throw InputError("--delta is not resolved: need H/ny <= delta/2");
+    throw InputError("branching simulation: the interface width delta is not resolved: need H/ny <= delta/2");
   }
   if (s.continuation < 1 || s.continuation > 8) {
-    throw InputError("--continuation must lie in [1, 8]");
+    throw InputError("branching simulation: the number of continuation stages must lie in [1, 8]");
   }
   if (s.init != "laminate" && s.init != "random" && s.init != "km" &&
       s.init != "lens") {
-    throw InputError("--init must be laminate, random, km or lens");
+    throw InputError("branching simulation: the initial guess must be laminate, random, km or lens");
   }
-  if (s.periods < 0) throw InputError("--periods must be >= 0");
-  if (s.max_iterations < 0) throw InputError("--lm_iterations must be >= 0");
+  if (s.periods < 0) throw InputError("branching simulation: the number of periods must be >= 0");
+  if (s.max_iterations < 0) throw InputError("branching simulation: the LM iterations per stage must be >= 0");
 }
 
 SimulationResult InitialSimulation(const SimulationSettings& s) {

@@ -117,32 +117,60 @@ ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
   return result;
 }
 
+namespace {
+
+// ShootWithReport without the path energy.
+ShootResult ShootSteps(const ShellSpace& space, const Positions& s0,
+                       const Positions& s1, int steps, StepDirection direction,
+                       const std::vector<int>& fixed_vertices,
+                       const SolverSettings& settings) {
+  if (steps < 1) {
+    throw InputError("shooting: the number of steps must be at least 1, got " +
+                     std::to_string(steps));
+  }
+  ShootResult result;
+  // Forward: s_2, s_3, ... after (s0, s1); backward: s_{-1}, s_{-2}, ...
+  // before (s0, s1), built in reverse order.
+  const bool forward = direction == StepDirection::kForward;
+  ShellPath& path = result.path;
+  path = forward ? ShellPath{s0, s1} : ShellPath{s1, s0};
+  for (int k = 2; k <= steps; ++k) {
+    ExpStepResult step = ExpStep(space, path[k - 2], path[k - 1], direction,
+                                 fixed_vertices, settings);
+    path.push_back(std::move(step.shape));
+    step.shape = Positions();
+    result.exp_steps.push_back(std::move(step));
+  }
+  if (!forward) std::reverse(path.begin(), path.end());
+  return result;
+}
+
+}  // namespace
+
+ShootResult ShootWithReport(const ShellSpace& space, const Positions& s0,
+                            const Positions& s1, int steps,
+                            StepDirection direction,
+                            const std::vector<int>& fixed_vertices,
+                            const SolverSettings& settings) {
+  ShootResult result = ShootSteps(space, s0, s1, steps, direction,
+                                  fixed_vertices, settings);
+  result.path_energy = PathEnergy(space, result.path, &result.step_energies);
+  return result;
+}
+
 ShellPath Shoot(const ShellSpace& space, const Positions& s0,
                 const Positions& s1, int steps, StepDirection direction,
                 const std::vector<int>& fixed_vertices,
                 const SolverSettings& settings,
                 std::vector<ceres::Solver::Summary>* summaries) {
-  if (steps < 1) throw InputError("--steps must be at least 1");
-  ShellPath path = {s0, s1};
-  if (direction == StepDirection::kForward) {
-    for (int k = 2; k <= steps; ++k) {
-      ExpStepResult step = ExpStep(space, path[k - 2], path[k - 1], direction,
-                                   fixed_vertices, settings);
-      if (summaries) summaries->push_back(step.summary);
-      path.push_back(step.shape);
+  ShootResult result =
+      ShootSteps(space, s0, s1, steps, direction, fixed_vertices, settings);
+  if (summaries) {
+    for (const ExpStepResult& step : result.exp_steps) {
+      summaries->push_back(step.summary);
     }
-    return path;
   }
-  // Backward: build s_{-1}, s_{-2}, ... in front of (s0, s1).
-  ShellPath reversed = {s1, s0};
-  for (int k = 2; k <= steps; ++k) {
-    ExpStepResult step = ExpStep(space, reversed[k - 2], reversed[k - 1],
-                                 direction, fixed_vertices, settings);
-    if (summaries) summaries->push_back(step.summary);
-    reversed.push_back(step.shape);
-  }
-  std::reverse(reversed.begin(), reversed.end());
-  return reversed;
+  return std::move(result.path);
 }
 
 Positions ExpK(const ShellSpace& space, const Positions& s0,

@@ -53,6 +53,21 @@ ShellPath Shoot(const ShellSpace& space, const Positions& s0,
                 const SolverSettings& settings,
                 std::vector<ceres::Solver::Summary>* summaries = nullptr);
 
+// Geodesic shooting with its report: the path of Shoot, every EXP step's
+// result (in the order computed; `shape` is left empty, the shapes are in
+// `path`) and the path energy of the result.
+struct ShootResult {
+  ShellPath path;                      // time order, steps + 1 shapes
+  std::vector<ExpStepResult> exp_steps;
+  double path_energy = 0;              // E_K of `path`, K = steps
+  std::vector<double> step_energies;   // W[s_{k-1}, s_k], time order
+};
+ShootResult ShootWithReport(const ShellSpace& space, const Positions& s0,
+                            const Positions& s1, int steps,
+                            StepDirection direction,
+                            const std::vector<int>& fixed_vertices,
+                            const SolverSettings& settings);
+
 // EXP_K(v) at s_0: s_1 = s_0 + v/K, then K - 1 forward steps; returns s_K.
 Positions ExpK(const ShellSpace& space, const Positions& s0,
                const Positions& variation, int steps,

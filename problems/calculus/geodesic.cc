@@ -72,13 +72,19 @@ double LinearPathGradient(const ShellSpace& space, const GeodesicInput& input) {
 GeodesicResult SolveGeodesic(const ShellSpace& space,
                              const GeodesicInput& input,
                              const SolverSettings& settings) {
-  if (input.steps < 1) throw InputError("--steps must be at least 1");
+  if (input.steps < 1) {
+    throw InputError(
+        "geodesic: the number of steps K must be at least 1, got " +
+        std::to_string(input.steps));
+  }
   GeodesicResult result;
   result.path = input.initial.empty()
                     ? LinearPath(input.start, input.end, input.steps)
                     : input.initial;
   if (static_cast<int>(result.path.size()) != input.steps + 1) {
-    throw InputError("initial path must have K + 1 shapes");
+    throw InputError("geodesic: the initial path must have K + 1 = " +
+                     std::to_string(input.steps + 1) + " shapes, got " +
+                     std::to_string(result.path.size()));
   }
   result.path.front() = input.start;
   result.path.back() = input.end;
@@ -95,12 +101,18 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
       SolverSettings lm = settings;
       lm.gradient_tolerance = std::max(settings.gradient_tolerance, relative);
       result.summary = SolveWithSettings(&problem, lm, g0);
+      GeodesicStage stage;
+      stage.termination =
+          ceres::TerminationTypeToString(result.summary.termination_type);
       if (!result.summary.iterations.empty()) {
-        result.iterations +=
+        stage.iterations =
             static_cast<int>(result.summary.iterations.size()) - 1;
         result.final_gradient =
             result.summary.iterations.back().gradient_max_norm;
       }
+      stage.final_gradient = result.final_gradient;
+      result.iterations += stage.iterations;
+      result.stages.push_back(stage);
     };
     double threshold = input.newton_from;
     for (int attempt = 0;; ++attempt) {
@@ -121,9 +133,23 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
       result.newton.Append(report);
       result.iterations += report.steps;
       result.final_gradient = report.final_gradient;
+      GeodesicStage stage;
+      stage.method = GeodesicStage::Method::kNewton;
+      stage.iterations = report.steps;
+      stage.final_gradient = report.final_gradient;
+      stage.termination = report.stop_reason;
+      result.stages.push_back(stage);
       if (report.converged) break;
       threshold *= 0.1;  // not yet in Newton's basin: more LM first
     }
+    result.initial_gradient = g0;
+    const GeodesicStage& last = result.stages.back();
+    result.converged =
+        result.final_gradient <= tolerance ||
+        (last.method == GeodesicStage::Method::kLevenbergMarquardt &&
+         result.summary.termination_type == ceres::CONVERGENCE);
+  } else {
+    result.converged = true;  // K = 1: no unknowns
   }
   result.path_energy = PathEnergy(space, result.path, &result.step_energies);
   return result;

@@ -6,6 +6,7 @@
 
 #include <ceres/solver.h>
 
+#include <string>
 #include <vector>
 
 #include "shellspace/cost_functions/deformation_energy.h"
@@ -54,14 +55,32 @@ struct GeodesicInput {
 // from the linear path.
 double LinearPathGradient(const ShellSpace& space, const GeodesicInput& input);
 
+// One stage of a geodesic solve: an LM run or a Newton polish, in the order
+// they ran.
+struct GeodesicStage {
+  enum class Method { kLevenbergMarquardt, kNewton };
+  Method method = Method::kLevenbergMarquardt;
+  int iterations = 0;         // LM iterations (not Ceres' iteration 0) or
+                              // accepted Newton steps
+  double final_gradient = 0;  // max |grad E_K| at its end
+  std::string termination;    // Ceres' termination type or Newton's reason
+};
+
 struct GeodesicResult {
   ShellPath path;                     // s_0 = start ... s_K = end
   double path_energy = 0;             // E_K
   std::vector<double> step_energies;  // W[s_{k-1}, s_k]
-  ceres::Solver::Summary summary;          // the LM stage(s)
+  ceres::Solver::Summary summary;          // the last LM stage
   PathNewtonReport newton;                 // the Newton stage(s), summed
-  int iterations = 0;                      // LM iterations + Newton steps
-  double final_gradient = 0;               // max |grad E_K| (free coords)
+  std::vector<GeodesicStage> stages;       // every stage, in order
+  int iterations = 0;  // sum of stages[i].iterations (LM + Newton)
+  double initial_gradient = 0;  // max |grad E_K| (free coords), initial path
+  double final_gradient = 0;    // max |grad E_K| (free coords), result
+  // The stopping criterion was met: final_gradient <= gradient_tolerance *
+  // max(1, initial_gradient), or the last stage is LM and Ceres stopped on
+  // its convergence test (relative cost decrease). True for K = 1 (no
+  // unknowns).
+  bool converged = false;
 };
 
 // Geodesic interpolation: minimises E_K over s_1..s_{K-1} by sparse LM

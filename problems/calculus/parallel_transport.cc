@@ -11,7 +11,9 @@ TransportResult ParallelTransport(const ShellSpace& space,
                                   const Positions& variation, double epsilon,
                                   const std::vector<int>& fixed_vertices,
                                   const SolverSettings& settings) {
-  if (!(epsilon > 0)) throw InputError("--epsilon must be positive");
+  if (!(epsilon > 0)) throw InputError(
+        "parallel transport: the step epsilon must be positive, got " +
+        std::to_string(epsilon));
   if (path.size() < 2)
     throw InputError("transport needs a path of >= 2 shapes");
   TransportResult result;

@@ -14,8 +14,9 @@ namespace {
 void CheckIndices(const std::vector<int>& at, size_t count, int steps,
                   bool periodic, bool need_ends) {
   if (at.size() != count) {
-    throw InputError("--at must give one index per shape (" +
-                     std::to_string(count) + ")");
+    throw InputError("spline: need one time index per shape: " +
+                     std::to_string(at.size()) + " indices for " +
+                     std::to_string(count) + " shapes");
   }
   if (count < 2) throw InputError("need at least two keyframes / inputs");
   for (size_t i = 0; i < at.size(); ++i) {
@@ -25,7 +26,7 @@ void CheckIndices(const std::vector<int>& at, size_t count, int steps,
                        std::to_string(limit) + "]");
     }
     if (i > 0 && at[i] <= at[i - 1]) {
-      throw InputError("--at must be strictly increasing");
+      throw InputError("spline: the time indices must be strictly increasing");
     }
   }
   if (need_ends && !periodic && (at.front() != 0 || at.back() != steps)) {
@@ -187,7 +188,10 @@ SplineResult SolveSpline(const ShellSpace& space,
                          const std::vector<int>& at, int steps, bool periodic,
                          const ShellPath& initial,
                          const SplineSettings& settings) {
-  if (steps < 2) throw InputError("--steps must be at least 2");
+  if (steps < 2) {
+    throw InputError("spline: the number of steps K must be at least 2, got " +
+                     std::to_string(steps));
+  }
   CheckIndices(at, keyframes.size(), steps, periodic, true);
   SplineSpec spec;
   spec.steps = steps;
@@ -211,9 +215,14 @@ SplineResult SolveRegression(const ShellSpace& space,
                              const std::vector<int>& at, int steps,
                              double sigma, const ShellPath& initial,
                              const SplineSettings& settings) {
-  if (steps < 2) throw InputError("--steps must be at least 2");
+  if (steps < 2) {
+    throw InputError("spline: the number of steps K must be at least 2, got " +
+                     std::to_string(steps));
+  }
   if (!(sigma >= 0) || !std::isfinite(sigma)) {
-    throw InputError("--sigma must be a non-negative number");
+    throw InputError(
+        "regression: the weight sigma of the spline energy must be a "
+        "non-negative number");
   }
   CheckIndices(at, inputs.size(), steps, false, false);
   SplineSpec spec;

@@ -109,7 +109,11 @@ SplineObjective::SplineObjective(const ShellSpace& space, SplineSpec spec,
       assembler_(std::make_unique<PathHessianAssembler>(space)) {
   const int K = spec_.steps;
   const int shapes = spec_.periodic ? K : K + 1;
-  if (K < 2) throw InputError("--steps must be at least 2 for a spline");
+  if (K < 2) {
+    throw InputError(
+        "spline energy: the number of steps K must be at least 2, got " +
+        std::to_string(K));
+  }
   if (static_cast<int>(spec_.initial.size()) != shapes) {
     throw InputError("spline: the initial path must have " +
                      std::to_string(shapes) + " shapes");

@@ -3,7 +3,9 @@
 // steps; and the procedural shapes are valid shells.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -68,6 +70,31 @@ TEST(DemoTest, WritesFramesSummaryAndFilmStrip) {
   const auto [lo, hi] = std::minmax_element(steps.begin(), steps.end());
   EXPECT_GT(*lo, 0);
   EXPECT_LT(*hi / *lo - 1, 0.05);
+  // The report is the solver's: the final gradient is the Newton finish's
+  // (below the relative tolerance 1e-8), and iterations are the sum over
+  // the stages (LM, Newton, the 4 EXP steps).
+  const auto number = [&](const std::string& key, size_t from = 0) {
+    const auto at = text.str().find("\"" + key + "\": ", from);
+    return at == std::string::npos
+               ? -1.0
+               : std::strtod(text.str().c_str() + at + key.size() + 4, nullptr);
+  };
+  EXPECT_LE(number("final_gradient_norm"),
+            1e-8 * std::max(1.0, number("initial_gradient_norm")))
+      << text.str();
+  const auto stages = text.str().find("\"stages\": [");
+  ASSERT_NE(stages, std::string::npos);
+  const auto stages_end = text.str().find(']', stages);
+  double sum = 0;
+  int count = 0;
+  for (auto at = text.str().find("\"iterations\": ", stages);
+       at != std::string::npos && at < stages_end;
+       at = text.str().find("\"iterations\": ", at + 1)) {
+    sum += std::strtod(text.str().c_str() + at + 14, nullptr);
+    ++count;
+  }
+  EXPECT_GE(count, 2 + 4);  // at least one LM and one Newton stage, 4 EXP
+  EXPECT_EQ(number("iterations"), sum) << text.str();
   // The extrapolated end differs from the last geodesic frame.
   const Mesh end = ReadMesh(dir + "/frames/shape_008.ply");
   const Mesh beyond = ReadMesh(dir + "/frames/shape_012.ply");

@@ -3,9 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <functional>
 #include <fstream>
 
 #include "shellspace/io/mesh_io.h"
+#include "shellspace/problems/calculus/exponential_map.h"
+#include "shellspace/problems/calculus/geodesic.h"
+#include "shellspace/problems/calculus/parallel_transport.h"
+#include "shellspace/problems/splines/spline.h"
 #include "shellspace/geometry/validation.h"
 #include "shellspace/tests/testing/test_support.h"
 
@@ -91,6 +96,60 @@ TEST(InputErrorsTest, Compatibility) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("incompatible connectivity"),
               std::string::npos);
+  }
+}
+
+// The library's messages say what is wrong in its own terms and never name
+// a CLI flag (tools/ owns those).
+TEST(InputErrorsTest, LibraryMessagesNameTheInputNotAFlag) {
+  const Mesh square = testing::LoadData("simple/square4.ply");
+  const ShellSpace space = testing::MakeSpace(square);
+  const auto message = [](const std::function<void()>& f) {
+    try {
+      f();
+    } catch (const InputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  };
+  struct Case {
+    std::string message, expected;
+  };
+  GeodesicInput geodesic;
+  geodesic.start = geodesic.end = square.positions;
+  geodesic.steps = 0;
+  const Case cases[] = {
+      {message([] { ShellMaterial{-1, 1, 0}.Validate(); }),
+       "membrane weight mu must be a positive number, got -1"},
+      {message([] { ShellMaterial{1, 0, 0}.Validate(); }), "lambda"},
+      {message([] { ShellMaterial{1, 1, -2}.Validate(); }),
+       "bending weight eta"},
+      {message([&] { SolveGeodesic(space, geodesic, SolverSettings{}); }),
+       "geodesic: the number of steps K must be at least 1, got 0"},
+      {message([&] {
+         Shoot(space, square.positions, square.positions, 0,
+               StepDirection::kForward, {}, SolverSettings{});
+       }),
+       "number of steps must be at least 1, got 0"},
+      {message([&] {
+         ParallelTransport(space, {square.positions, square.positions},
+                           square.positions * 0, 0.0, {}, SolverSettings{});
+       }),
+       "step epsilon must be positive"},
+      {message([&] {
+         SolveRegression(space, {square.positions, square.positions}, {0, 2},
+                         2, -1.0, {}, SplineSettings{});
+       }),
+       "weight sigma"},
+      {message([&] {
+         SolveRegression(space, {square.positions, square.positions}, {0}, 2,
+                         1.0, {}, SplineSettings{});
+       }),
+       "one time index per shape"},
+  };
+  for (const Case& c : cases) {
+    EXPECT_NE(c.message.find(c.expected), std::string::npos) << c.message;
+    EXPECT_EQ(c.message.find("--"), std::string::npos) << c.message;
   }
 }
 

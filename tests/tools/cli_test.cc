@@ -1,0 +1,470 @@
+// Successful runs of every verb of the `shellspace` binary on the small
+// meshes of ../shared/data/simple, each checking the numbers of its --json
+// report against independent expectations (closed forms, the library, the
+// files written); and the per-verb flags: a verb rejects another verb's
+// flag, `--help` lists only the verb's flags, and no temporary file is left
+// behind.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+
+#include "shellspace/io/mesh_io.h"
+#include "shellspace/problems/calculus/geodesic.h"
+#include "shellspace/tests/testing/test_support.h"
+
+namespace shellspace {
+namespace {
+
+using testing::DataPath;
+using testing::RunCli;
+using testing::TempDir;
+
+const std::string kSquare = DataPath("simple/square4.ply");
+const std::string kBent = DataPath("simple/square4_bent.ply");
+
+// The number after "KEY": in `json` (the first occurrence); NaN if absent.
+double Number(const std::string& json, const std::string& key) {
+  const std::string needle = "\"" + key + "\": ";
+  const auto at = json.find(needle);
+  if (at == std::string::npos) return std::nan("");
+  return std::strtod(json.c_str() + at + needle.size(), nullptr);
+}
+
+bool Bool(const std::string& json, const std::string& key) {
+  return json.find("\"" + key + "\": true") != std::string::npos;
+}
+
+// The numbers of the array "KEY": [...].
+std::vector<double> Numbers(const std::string& json, const std::string& key) {
+  const std::string needle = "\"" + key + "\": [";
+  const auto at = json.find(needle);
+  std::vector<double> values;
+  if (at == std::string::npos) return values;
+  const auto end = json.find(']', at);
+  std::string body = json.substr(at + needle.size(), end - at - needle.size());
+  std::replace(body.begin(), body.end(), ',', ' ');
+  std::istringstream in(body);
+  double v;
+  while (in >> v) values.push_back(v);
+  return values;
+}
+
+// Sum of every "iterations" inside the "stages" array.
+int StageIterations(const std::string& json) {
+  const auto begin = json.find("\"stages\": [");
+  if (begin == std::string::npos) return -1;
+  const auto end = json.find(']', begin);
+  const std::string stages = json.substr(begin, end - begin);
+  int sum = 0;
+  for (auto at = stages.find("\"iterations\": "); at != std::string::npos;
+       at = stages.find("\"iterations\": ", at + 1)) {
+    sum += std::atoi(stages.c_str() + at + 14);
+  }
+  return sum;
+}
+
+std::vector<std::string> Listing(const std::string& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    names.push_back(entry.path().filename().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
+}
+
+std::vector<std::string> Frames(int count) {
+  std::vector<std::string> names;
+  for (int k = 0; k < count; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "shape_%03d.ply", k);
+    names.push_back(name);
+  }
+  return names;
+}
+
+std::string Slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs a verb that must succeed; returns its stdout.
+std::string RunOk(const std::string& args) {
+  std::string out, err;
+  EXPECT_EQ(RunCli(args, &out, &err), 0) << args << "\n" << err;
+  return out;
+}
+
+// W_m(s^2 I) of shells.md with mu = lambda = 1: the membrane energy density
+// of a flat triangle scaled by s.
+double ScaledDensity(double s) {
+  const double mu = 1, lambda = 1;
+  const double tr = 2 * s * s, det = s * s * s * s;
+  return mu / 2 * tr + lambda / 4 * det - (mu / 2 + lambda / 4) * std::log(det) -
+         mu - lambda / 4;
+}
+
+// square4 scaled by 2 about its centre vertex (the origin).
+std::string ScaledSquare(const std::string& dir) {
+  Mesh mesh = ReadMesh(kSquare);
+  mesh.positions *= 2.0;
+  const std::string path = dir + "/square_x2.ply";
+  WriteMesh(mesh, path);
+  return path;
+}
+
+TEST(CliTest, EnergyOfAShellWithItselfIsZero) {
+  const std::string json =
+      RunOk("energy --json --reference " + kSquare + " --deformed " + kSquare);
+  EXPECT_EQ(Number(json, "membrane"), 0.0) << json;
+  EXPECT_EQ(Number(json, "bending"), 0.0) << json;
+  EXPECT_EQ(Number(json, "total"), 0.0) << json;
+}
+
+TEST(CliTest, EnergyOfAScaledFlatSquareIsTheClosedForm) {
+  const std::string dir = TempDir();
+  const std::string json = RunOk("energy --json --reference " + kSquare +
+                               " --deformed " + ScaledSquare(dir) +
+                               " --eta 0.5");
+  // Reference area 1 (the unit square); flat stays flat: no bending.
+  EXPECT_NEAR(Number(json, "membrane"), ScaledDensity(2.0), 1e-12) << json;
+  EXPECT_NEAR(Number(json, "bending"), 0.0, 1e-20) << json;
+  EXPECT_NEAR(Number(json, "total"), ScaledDensity(2.0), 1e-12) << json;
+  EXPECT_EQ(Number(json, "eta"), 0.5);
+}
+
+TEST(CliTest, DeformWithTheBoundaryScaledKeepsTheSymmetricCentre) {
+  const std::string dir = TempDir();
+  const std::string mask = dir + "/boundary.txt";
+  std::ofstream(mask) << "# the four corners\n1\n2\n3\n4\n";
+  const std::string out = dir + "/deformed.off";
+  const std::string json =
+      RunOk("deform --quiet --json --reference " + kSquare + " --mask " + mask +
+          " --targets " + ScaledSquare(dir) + " --output " + out);
+  // The centre stays at the origin by symmetry: every triangle is scaled by
+  // 2, the closed form.
+  EXPECT_NEAR(Number(json, "total"), ScaledDensity(2.0), 1e-9) << json;
+  EXPECT_TRUE(Bool(json, "converged")) << json;
+  const Mesh deformed = ReadMesh(out);
+  EXPECT_LT(deformed.positions.row(0).norm(), 1e-9);
+  const Mesh square = ReadMesh(kSquare);
+  for (int v = 1; v <= 4; ++v) {
+    EXPECT_NEAR((deformed.positions.row(v) - 2 * square.positions.row(v)).norm(),
+                0, 1e-12);
+  }
+  EXPECT_EQ(Listing(dir),
+            (std::vector<std::string>{"boundary.txt", "deformed.off",
+                                      "square_x2.ply"}));
+}
+
+TEST(CliTest, GeodesicReportsTheLibraryNumbers) {
+  const std::string dir = TempDir() + "/geodesic";
+  const std::string json = RunOk("geodesic --quiet --json --steps 8 --start " +
+                               kSquare + " --end " + kBent + " --output " +
+                               dir);
+  const double energy = Number(json, "path_energy");
+  const std::vector<double> steps = Numbers(json, "step_energies");
+  ASSERT_EQ(steps.size(), 8u) << json;
+  // E_K = K sum_k W[s_{k-1}, s_k] >= 0, with nearly equal steps.
+  double sum = 0;
+  for (double w : steps) sum += w;
+  EXPECT_GT(energy, 0);
+  EXPECT_NEAR(energy, 8 * sum, 1e-12 * energy);
+  const auto [lo, hi] = std::minmax_element(steps.begin(), steps.end());
+  EXPECT_LT(*hi / *lo - 1, 0.05) << json;
+  // Below the energy of the linear path (the initial guess).
+  const Mesh a = ReadMesh(kSquare), b = ReadMesh(kBent);
+  const double linear =
+      PathEnergy(testing::MakeSpace(a), LinearPath(a.positions, b.positions, 8));
+  EXPECT_LE(energy, linear);
+  // iterations counts every stage; converged means the gradient criterion.
+  EXPECT_EQ(Number(json, "iterations"), StageIterations(json)) << json;
+  EXPECT_GT(Number(json, "iterations"), 0);
+  EXPECT_TRUE(Bool(json, "converged")) << json;
+  const double g0 = Number(json, "initial_gradient_norm");
+  const double g = Number(json, "final_gradient_norm");
+  EXPECT_LE(g, 1e-8 * std::max(1.0, g0)) << json;
+  EXPECT_NEAR(Number(json, "relative_gradient_norm"), g / g0, 1e-15);
+  EXPECT_EQ(Number(json, "frames"), 9);
+  // The frames, nothing else; the ends are the inputs.
+  EXPECT_EQ(Listing(dir), Frames(9));
+  EXPECT_EQ(ReadMesh(dir + "/shape_000.ply").positions, a.positions);
+  EXPECT_EQ(ReadMesh(dir + "/shape_008.ply").positions, b.positions);
+  // The frames' energy, evaluated by the library from the files, is the
+  // reported one.
+  ShellPath path;
+  for (const std::string& name : Frames(9)) {
+    path.push_back(ReadMesh(dir + "/" + name).positions);
+  }
+  EXPECT_NEAR(PathEnergy(testing::MakeSpace(a), path), energy, 1e-9 * energy);
+}
+
+TEST(CliTest, ShootLogAndTransportAlongAGeodesic) {
+  const std::string base = TempDir();
+  const std::string geodesic = base + "/geodesic";
+  RunOk("geodesic --quiet --steps 4 --start " + kSquare + " --end " + kBent +
+      " --output " + geodesic);
+  // Shooting from the geodesic's first step continues it to its end.
+  const std::string shot = base + "/shot";
+  const std::string json =
+      RunOk("shoot --quiet --json --steps 4 --first " + geodesic +
+          "/shape_000.ply --second " + geodesic + "/shape_001.ply --output " +
+          shot);
+  EXPECT_EQ(Listing(shot), Frames(5));
+  // The shot ends at the geodesic's end up to a rigid motion (the gauges of
+  // the two solves differ): W[end, shot end] = 0.
+  const std::string w = RunOk("energy --json --reference " + kBent +
+                              " --deformed " + shot + "/shape_004.ply");
+  EXPECT_LT(std::abs(Number(w, "total")), 1e-7) << w;
+  EXPECT_EQ(Number(json, "iterations"), StageIterations(json)) << json;
+  EXPECT_TRUE(Bool(json, "converged")) << json;
+  const std::vector<double> steps = Numbers(json, "step_energies");
+  ASSERT_EQ(steps.size(), 4u);
+  double sum = 0;
+  for (double w : steps) sum += w;
+  EXPECT_NEAR(Number(json, "path_energy"), 4 * sum, 1e-12 * sum);
+
+  // LOG_4(A -> B) = 4 (s_1 - A) of the same geodesic.
+  const std::string log = base + "/log.ply";
+  const std::string log_json = RunOk("log --quiet --json --steps 4 --start " +
+                                   kSquare + " --end " + kBent +
+                                   " --output " + log);
+  const Mesh a = ReadMesh(kSquare);
+  const Mesh s1 = ReadMesh(geodesic + "/shape_001.ply");
+  const Positions expected = a.positions + 4 * (s1.positions - a.positions);
+  const Positions written = ReadMesh(log).positions;
+  EXPECT_LT((written - expected).cwiseAbs().maxCoeff(), 1e-6);
+  EXPECT_NEAR(Number(log_json, "log_max_norm"),
+              (written - a.positions).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_EQ(Number(log_json, "iterations"), StageIterations(log_json));
+
+  // Transporting the zero variation keeps it zero and the shapes on the path.
+  const std::string moved = base + "/transport";
+  const std::string t_json =
+      RunOk("transport --quiet --json --path " + geodesic + " --variation " +
+          geodesic + "/shape_000.ply --output " + moved);
+  const std::vector<double> norms = Numbers(t_json, "variation_max_norms");
+  ASSERT_EQ(norms.size(), 5u) << t_json;
+  for (double n : norms) EXPECT_LT(n, 1e-6) << t_json;
+  EXPECT_EQ(Number(t_json, "epsilon"), 1.0);
+  EXPECT_EQ(Listing(moved), Frames(5));
+}
+
+TEST(CliTest, SplineThroughKeyframesAndRegression) {
+  const std::string dir = TempDir();
+  // Keyframes on a discrete geodesic: the geodesic is the spline, F_K = 0.
+  const std::string geodesic = dir + "/geodesic";
+  RunOk("geodesic --quiet --steps 4 --start " + kSquare + " --end " + kBent +
+        " --output " + geodesic);
+  const std::string keys = geodesic + "/shape_000.ply," + geodesic +
+                           "/shape_002.ply," + geodesic + "/shape_004.ply";
+  const std::string json =
+      RunOk("spline --quiet --json --keyframes " + keys +
+            " --at 0,2,4 --steps 4 --output " + dir + "/spline");
+  EXPECT_EQ(Listing(dir + "/spline"), Frames(5));
+  EXPECT_LT(std::abs(Number(json, "spline_energy")), 1e-8) << json;
+  // The keyframes are data: the frame at 2 is the input.
+  EXPECT_EQ(ReadMesh(dir + "/spline/shape_002.ply").positions,
+            ReadMesh(geodesic + "/shape_002.ply").positions);
+  EXPECT_EQ(Number(json, "objective"), Number(json, "spline_energy"));
+  EXPECT_GE(Number(json, "iterations"), 1);
+  EXPECT_TRUE(Bool(json, "converged")) << json;
+
+  const std::string r_json =
+      RunOk("regress --quiet --json --inputs " + kSquare + "," + kBent +
+          " --at 0,2 --steps 2 --sigma 0.5 --output " + dir + "/regress");
+  EXPECT_EQ(Listing(dir + "/regress"), Frames(3));
+  const double data = Number(r_json, "data_energy");
+  const double spline = Number(r_json, "spline_energy");
+  EXPECT_GE(data, 0);
+  EXPECT_GE(spline, 0);
+  EXPECT_NEAR(Number(r_json, "objective"), data + 0.5 * spline,
+              1e-12 * (data + spline));
+  EXPECT_EQ(Number(r_json, "sigma"), 0.5);
+}
+
+TEST(CliTest, MeanAndPca) {
+  const std::string dir = TempDir();
+  // The mean of two copies of one shell is that shell: energy 0.
+  const std::string same = RunOk("mean --quiet --json --inputs " + kSquare +
+                               "," + kSquare + " --output " + dir + "/m.ply");
+  EXPECT_LT(Number(same, "energy"), 1e-20) << same;
+  EXPECT_TRUE(Bool(same, "converged")) << same;
+
+  const std::string json = RunOk("mean --quiet --json --inputs " + kSquare +
+                               "," + kBent + " --output " + dir + "/mean.ply");
+  const std::vector<double> energies = Numbers(json, "energies");
+  ASSERT_EQ(energies.size(), 2u);
+  EXPECT_NEAR(Number(json, "energy"), energies[0] + energies[1],
+              1e-12 * Number(json, "energy"));
+  EXPECT_GT(energies[0], 0);
+  EXPECT_GT(energies[1], 0);
+  EXPECT_EQ(Number(json, "iterations"),
+            Number(json, "lm_iterations") + Number(json, "newton_iterations"));
+  EXPECT_TRUE(Bool(json, "converged")) << json;
+  EXPECT_LE(Number(json, "final_gradient_norm"),
+            1e-8 * std::max(1.0, Number(json, "initial_gradient_norm")));
+
+  const std::string pca = dir + "/pca";
+  const std::string p_json =
+      RunOk("pca --quiet --json --modes 1 --inputs " + kSquare + "," + kBent +
+          "," + DataPath("simple/square4.ply") + " --output " + pca);
+  EXPECT_EQ(Listing(pca),
+            (std::vector<std::string>{"mean.ply", "mode_1_minus.ply",
+                                      "mode_1_plus.ply", "pca.json"}));
+  // pca.json is the printed summary.
+  EXPECT_EQ(Slurp(pca + "/pca.json"), p_json);
+  // The Gram matrix of 3 displacements, two of them equal (the first and
+  // the third input are one shell): rank <= 2, the third eigenvalue is 0.
+  const std::vector<double> eigenvalues = Numbers(p_json, "eigenvalues");
+  ASSERT_EQ(eigenvalues.size(), 3u) << p_json;
+  EXPECT_GT(eigenvalues[0], 0);
+  EXPECT_GE(eigenvalues[0], eigenvalues[1]);
+  EXPECT_LT(std::abs(eigenvalues[2]), 1e-12 * eigenvalues[0]) << p_json;
+}
+
+TEST(CliTest, RenderWritesTheStripItReports) {
+  const std::string dir = TempDir();
+  const std::string out = dir + "/strip.png";
+  const std::string json = RunOk("render --json --input " + kSquare + "," +
+                               kBent + " --output " + out + " --width 40");
+  EXPECT_EQ(Number(json, "frames"), 2);
+  EXPECT_EQ(Number(json, "frame_width"), 40);
+  EXPECT_EQ(Number(json, "frame_height"), 320);
+  EXPECT_EQ(Number(json, "width"), 80);
+  const std::string png = Slurp(out);
+  ASSERT_GT(png.size(), 24u);
+  EXPECT_EQ(png.substr(1, 3), "PNG");
+  EXPECT_EQ(Listing(dir), std::vector<std::string>{"strip.png"});
+}
+
+TEST(CliTest, BranchingConstructKmIsTheClosedForm) {
+  const std::string dir = TempDir() + "/km";
+  const std::string json =
+      RunOk("branching construct --json --family km --output " + dir);
+  const double constant = Number(json, "constant");
+  EXPECT_NEAR(constant / Number(json, "km_constant_closed_form"), 1, 1e-3)
+      << json;
+  // constant = (elastic + interfacial) / (eps^(2/3) L^(1/3)), eps = 1e-3
+  // (the verb's default), L = 1.
+  EXPECT_EQ(Number(json, "epsilon"), 1e-3);
+  const double total = Number(json, "elastic") + Number(json, "interfacial");
+  EXPECT_NEAR(constant, total / std::pow(1e-3, 2.0 / 3.0), 1e-9 * constant);
+  EXPECT_EQ(Listing(dir),
+            (std::vector<std::string>{"pattern.png", "summary.json"}));
+  EXPECT_EQ(Slurp(dir + "/summary.json"), json);
+}
+
+TEST(CliTest, AVerbRejectsAnotherVerbsFlag) {
+  const std::string dir = TempDir();
+  struct Case {
+    std::string args, flag;
+  };
+  const std::vector<Case> cases = {
+      {"geodesic --start " + kSquare + " --end " + kBent + " --output " + dir +
+           "/g --inputs " + kSquare,
+       "--inputs"},
+      {"geodesic --start " + kSquare + " --end " + kBent + " --output " + dir +
+           "/g --width 10",
+       "--width"},
+      {"energy --reference " + kSquare + " --deformed " + kSquare +
+           " --steps 3",
+       "--steps"},
+      {"branching construct --output " + dir + "/b --nx 16", "--nx"},
+      // Set to the default value: still not a flag of the verb.
+      {"render --input " + kSquare + " --output " + dir + "/r.png --epsilon 1",
+       "--epsilon"},
+  };
+  for (const Case& c : cases) {
+    std::string out, err;
+    EXPECT_EQ(RunCli(c.args, &out, &err), 2) << c.args;
+    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+    EXPECT_NE(err.find(c.flag + " is not a flag of"), std::string::npos)
+        << err;
+  }
+  EXPECT_TRUE(Listing(dir).empty());
+}
+
+// The flags listed by `shellspace ARGS --help`.
+std::set<std::string> HelpFlags(const std::string& args, std::string* text) {
+  EXPECT_EQ(RunCli(args + " --help", text), 0) << args;
+  std::set<std::string> flags;
+  std::istringstream lines(*text);
+  std::string line;
+  while (std::getline(lines, line)) {
+    if (line.rfind("  --", 0) != 0) continue;
+    flags.insert(line.substr(4, line.find(' ', 4) - 4));
+  }
+  return flags;
+}
+
+TEST(CliTest, HelpListsOnlyTheVerbsFlags) {
+  std::string text;
+  const std::set<std::string> geodesic = HelpFlags("geodesic", &text);
+  const std::set<std::string> expected = {
+      "start", "end",  "steps",  "output",    "mask",      "png",
+      "report", "mu",  "lambda", "eta",       "tolerance", "max_iterations",
+      "threads", "quiet", "json", "minloglevel"};
+  EXPECT_EQ(geodesic, expected) << text;
+  // Default and valid range of a numeric flag.
+  EXPECT_NE(text.find("default: 8; valid: an integer >= 1"), std::string::npos)
+      << text;
+  // --epsilon means one thing in transport, another in branching.
+  std::string transport, branching;
+  EXPECT_TRUE(HelpFlags("transport", &transport).count("epsilon"));
+  EXPECT_TRUE(HelpFlags("branching simulate", &branching).count("epsilon"));
+  EXPECT_NE(transport.find("transport step epsilon"), std::string::npos);
+  EXPECT_NE(branching.find("twin-boundary"), std::string::npos);
+  EXPECT_EQ(transport.find("twin-boundary"), std::string::npos);
+  EXPECT_NE(branching.find("default: 0.001"), std::string::npos) << branching;
+  EXPECT_FALSE(HelpFlags("branching simulate", &branching).count("family"));
+  EXPECT_TRUE(HelpFlags("branching construct", &branching).count("family"));
+  // Every verb's help works and lists --json or --output.
+  for (const char* verb :
+       {"energy", "deform", "shoot", "log", "spline", "regress", "mean", "pca",
+        "render", "demo"}) {
+    const std::set<std::string> flags = HelpFlags(verb, &text);
+    EXPECT_TRUE(flags.count("json") || flags.count("output")) << verb;
+    EXPECT_FALSE(flags.count("inputs") && flags.count("start")) << verb;
+  }
+}
+
+TEST(CliTest, OutOfRangeFlagsAreRejectedByName) {
+  const std::string dir = TempDir();
+  struct Case {
+    std::string args, message;
+  };
+  const std::vector<Case> cases = {
+      {"geodesic --start " + kSquare + " --end " + kBent + " --output " + dir +
+           "/g --steps 0",
+       "--steps must be an integer >= 1, got 0"},
+      {"geodesic --start " + kSquare + " --end " + kBent + " --output " + dir +
+           "/g --tolerance 2",
+       "--tolerance must be a number (0, 1), got 2"},
+      {"energy --reference " + kSquare + " --deformed " + kSquare +
+           " --eta nan",
+       "--eta must be a number >= 0, got nan"},
+      {"transport --path " + dir + " --variation " + kSquare + " --output " +
+           dir + "/t --epsilon 0",
+       "--epsilon must be a number > 0, got 0"},
+      {"geodesic --end " + kBent + " --output " + dir + "/g",
+       "--start is required"},
+  };
+  for (const Case& c : cases) {
+    std::string err;
+    EXPECT_EQ(RunCli(c.args, nullptr, &err), 1) << c.args;
+    EXPECT_NE(err.find(c.message), std::string::npos) << err;
+    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+  }
+  EXPECT_TRUE(Listing(dir).empty());
+}
+
+}  // namespace
+}  // namespace shellspace

@@ -1,0 +1,104 @@
+#include "shellspace/tools/verb_flags.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace shellspace {
+namespace {
+
+std::string Number(double value) {
+  std::ostringstream text;
+  text << value;
+  return text.str();
+}
+
+}  // namespace
+
+FlagSpec TextFlag(const std::string& name, const std::string& meaning) {
+  FlagSpec spec;
+  spec.name = name;
+  spec.meaning = meaning;
+  return spec;
+}
+
+FlagSpec IntegerFlag(const std::string& name, const std::string& meaning,
+                     long min, long max) {
+  std::string range = max == std::numeric_limits<int>::max()
+                          ? "an integer >= " + std::to_string(min)
+                          : "an integer in [" + std::to_string(min) + ", " +
+                                std::to_string(max) + "]";
+  return CheckedFlag(name, meaning, range, [min, max](double value) {
+    return value == std::floor(value) && value >= min && value <= max;
+  });
+}
+
+FlagSpec RealFlag(const std::string& name, const std::string& meaning,
+                  double min, End min_end, double max, End max_end) {
+  const bool lower_open = min_end == End::kOpen || std::isinf(min);
+  const bool upper_open = max_end == End::kOpen || std::isinf(max);
+  std::string range;
+  if (std::isinf(max)) {
+    range = std::string(lower_open ? "> " : ">= ") + Number(min);
+  } else {
+    range = std::string(lower_open ? "(" : "[") + Number(min) + ", " +
+            Number(max) + (upper_open ? ")" : "]");
+  }
+  return CheckedFlag(name, meaning, "a number " + range,
+                     [=](double value) {
+                       const bool above = lower_open ? value > min : value >= min;
+                       const bool below = upper_open ? value < max : value <= max;
+                       return above && below;
+                     });
+}
+
+FlagSpec CheckedFlag(const std::string& name, const std::string& meaning,
+                     const std::string& range,
+                     std::function<bool(double)> valid) {
+  FlagSpec spec = TextFlag(name, meaning);
+  spec.range = range;
+  spec.valid = std::move(valid);
+  return spec;
+}
+
+FlagTable Flags(std::initializer_list<FlagTable> parts) {
+  FlagTable table;
+  for (const FlagTable& part : parts) {
+    table.insert(table.end(), part.begin(), part.end());
+  }
+  return table;
+}
+
+FlagTable MaterialFlags() {
+  return {
+      RealFlag("mu", "membrane Lame weight mu", 0, End::kOpen),
+      RealFlag("lambda", "membrane Lame weight lambda", 0, End::kOpen),
+      RealFlag("eta", "bending weight eta (squared thickness)", 0,
+               End::kClosed),
+  };
+}
+
+FlagTable SolverFlags() {
+  return {
+      RealFlag("tolerance",
+               "stop when the gradient max-norm falls below this fraction of "
+               "its initial value",
+               0, End::kOpen, 1, End::kOpen),
+      IntegerFlag("max_iterations", "maximum Levenberg-Marquardt iterations",
+                  1),
+      IntegerFlag("threads", "threads of the solves", 1, 1024),
+      TextFlag("quiet", "suppress progress output"),
+  };
+}
+
+FlagTable JsonFlag() {
+  return {TextFlag("json", "print a JSON summary on stdout")};
+}
+
+const FlagSpec* FindFlag(const FlagTable& table, const std::string& name) {
+  for (const FlagSpec& spec : table) {
+    if (spec.name == name) return &spec;
+  }
+  return nullptr;
+}
+
+}  // namespace shellspace
