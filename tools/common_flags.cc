@@ -25,3 +25,4 @@ DEFINE_string(start, "", SHELLSPACE_PER_VERB);
 DEFINE_string(end, "", SHELLSPACE_PER_VERB);
 DEFINE_string(inputs, "", SHELLSPACE_PER_VERB);
 DEFINE_string(at, "", SHELLSPACE_PER_VERB);
+DEFINE_string(multires, "auto", SHELLSPACE_PER_VERB);

@@ -29,5 +29,6 @@ DECLARE_string(start);
 DECLARE_string(end);
 DECLARE_string(inputs);
 DECLARE_string(at);
+DECLARE_string(multires);
 
 #endif  // SHELLSPACE_TOOLS_COMMON_FLAGS_H_

@@ -10,6 +10,7 @@
 #include "shellspace/problems/calculus/exponential_map.h"
 #include "shellspace/problems/calculus/parallel_transport.h"
 #include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/geodesic_solve.h"
 #include "shellspace/tools/path_summary.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
@@ -119,14 +120,19 @@ int RunLog() {
   const auto clock = std::chrono::steady_clock::now();
   const auto [start, end] = LoadStartEndFromFlags();
   const ShellSpace space = SpaceFromFlags(start);
-  GeodesicResult geodesic;
-  const Positions log =
-      LogK(space, start.mesh.positions, end.positions, FLAGS_steps,
-           MaskFromFlags(start.mesh.num_vertices()), SettingsFromFlags("log"),
-           &geodesic);
+  GeodesicInput input;
+  input.start = start.mesh.positions;
+  input.end = end.positions;
+  input.steps = FLAGS_steps;
+  input.fixed_vertices = MaskFromFlags(start.mesh.num_vertices());
+  const MultiresolutionResult multires =
+      SolveGeodesicFromFlags(space, input, SettingsFromFlags("log"));
+  const GeodesicResult& geodesic = multires.geodesic;
+  const Positions log = LogOfGeodesic(geodesic.path);
   WriteMesh(Mesh{start.mesh.positions + log, start.mesh.faces}, FLAGS_output);
   if (FLAGS_json) {
     std::cout << GeodesicJson(geodesic)
+                     .Raw("multires_levels", MultiresolutionJson(multires))
                      .Add("log_max_norm", log.cwiseAbs().maxCoeff())
                      .Add("seconds", Seconds(clock))
                      .Add("output", FLAGS_output)

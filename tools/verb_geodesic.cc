@@ -7,6 +7,7 @@
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/geodesic_solve.h"
 #include "shellspace/tools/path_summary.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
@@ -28,6 +29,7 @@ FlagTable GeodesicFlags() {
                     "interpolated positions"),
            TextFlag("png", "also write a PNG film strip of the frames here"),
            TextFlag("report", "print Ceres' full report on stderr"),
+           MultiresFlag(),
        },
        MaterialFlags(), SolverFlags(), JsonFlag()});
 }
@@ -41,8 +43,9 @@ int RunGeodesic() {
   input.end = end.positions;
   input.steps = FLAGS_steps;
   input.fixed_vertices = MaskFromFlags(start.mesh.num_vertices());
-  const GeodesicResult result =
-      SolveGeodesic(space, input, SettingsFromFlags("geodesic"));
+  const MultiresolutionResult multires =
+      SolveGeodesicFromFlags(space, input, SettingsFromFlags("geodesic"));
+  const GeodesicResult& result = multires.geodesic;
   if (result.summary.termination_type == ceres::FAILURE) {
     throw InputError("solver failed: " + result.summary.message);
   }
@@ -53,6 +56,7 @@ int RunGeodesic() {
           .count();
   if (FLAGS_json) {
     std::cout << GeodesicJson(result)
+                     .Raw("multires_levels", MultiresolutionJson(multires))
                      .Add("seconds", seconds)
                      .Add("output", FLAGS_output)
                      .str()
@@ -73,5 +77,5 @@ int RunGeodesic() {
 SHELLSPACE_REGISTER_VERB(
     "geodesic",
     "geodesic --start A.ply --end B.ply --steps K --output DIR [--mask M.txt] "
-    "[--eta E] [--json] [--png strip.png]",
+    "[--eta E] [--multires auto|off|LEVELS] [--json] [--png strip.png]",
     shellspace::GeodesicFlags(), shellspace::RunGeodesic);

@@ -183,6 +183,14 @@ Positions ExpK(const ShellSpace& space, const Positions& s0,
       .back();
 }
 
+Positions LogOfGeodesic(const ShellPath& geodesic) {
+  if (geodesic.size() < 2) {
+    throw InputError("logarithm: a geodesic needs at least 2 shapes");
+  }
+  const int steps = static_cast<int>(geodesic.size()) - 1;
+  return steps * (geodesic[1] - geodesic[0]);
+}
+
 Positions LogK(const ShellSpace& space, const Positions& a, const Positions& b,
                int steps, const std::vector<int>& fixed_vertices,
                const SolverSettings& settings, GeodesicResult* geodesic,
@@ -194,7 +202,7 @@ Positions LogK(const ShellSpace& space, const Positions& a, const Positions& b,
   input.fixed_vertices = fixed_vertices;
   if (initial != nullptr) input.initial = *initial;  // ends replaced
   GeodesicResult result = SolveGeodesic(space, input, settings);
-  const Positions log = steps * (result.path[1] - a);
+  const Positions log = LogOfGeodesic(result.path);
   if (geodesic) *geodesic = std::move(result);
   return log;
 }

@@ -74,6 +74,10 @@ Positions ExpK(const ShellSpace& space, const Positions& s0,
                const std::vector<int>& fixed_vertices,
                const SolverSettings& settings);
 
+// LOG_K of a discrete geodesic (s_0, ..., s_K): K (s_1 - s_0) (calculus.md,
+// "Logarithm").
+Positions LogOfGeodesic(const ShellPath& geodesic);
+
 // LOG_K(a -> b) = K (s_1 - a) for the discrete geodesic (a, s_1, ..., b),
 // solved from `initial` (K + 1 shapes, its ends replaced by a and b) if
 // given, else from the linear path.

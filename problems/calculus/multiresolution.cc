@@ -39,13 +39,12 @@ MultiresolutionResult SolveGeodesicMultiresolution(
   double prolongation_seconds = 0;
   const int n = space.num_vertices;
   const int target = static_cast<int>(std::lround(multires.reduction * n));
-  const double g0 = LinearPathGradient(space, input);
-  const double tolerance = settings.gradient_tolerance * std::max(1.0, g0);
   const bool coarsen = multires.levels > 0 && input.steps >= 2 &&
                        target >= multires.min_vertices && target < n;
   GeodesicInput fine = input;
-  fine.reference_gradient = g0;
   if (coarsen) {
+    // The fine finish stops where a solve from the linear path would.
+    fine.reference_gradient = LinearPathGradient(space, input);
     const SharedDecimation level = DecimateShared(
         space.faces, {input.start, input.end}, target, input.fixed_vertices);
     Mesh coarse_mesh;
@@ -94,6 +93,10 @@ MultiresolutionResult SolveGeodesicMultiresolution(
   }
   const auto fine_clock = std::chrono::steady_clock::now();
   result.geodesic = SolveGeodesic(space, fine, settings);
+  const double tolerance =
+      settings.gradient_tolerance *
+      std::max(1.0, coarsen ? fine.reference_gradient
+                            : result.geodesic.initial_gradient);
   result.levels.push_back(LevelReport(
       space, result.geodesic,
       prolongation_seconds + SecondsSince(fine_clock), tolerance));

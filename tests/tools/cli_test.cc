@@ -411,7 +411,7 @@ TEST(CliTest, HelpListsOnlyTheVerbsFlags) {
   const std::set<std::string> expected = {
       "start", "end",  "steps",  "output",    "mask",      "png",
       "report", "mu",  "lambda", "eta",       "tolerance", "max_iterations",
-      "threads", "quiet", "json", "minloglevel"};
+      "threads", "quiet", "json", "multires", "minloglevel"};
   EXPECT_EQ(geodesic, expected) << text;
   // Default and valid range of a numeric flag.
   EXPECT_NE(text.find("default: 8; valid: an integer >= 1"), std::string::npos)
@@ -464,6 +464,35 @@ TEST(CliTest, OutOfRangeFlagsAreRejectedByName) {
     EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
   }
   EXPECT_TRUE(Listing(dir).empty());
+}
+
+// --multires on a small mesh: two levels (the coarse one decimated), the
+// same E_K as without, and a clear error for a bad value.
+TEST(CliTest, GeodesicMultiresolutionLevels) {
+  const std::string dir = testing::TempDir();
+  const std::string common =
+      "geodesic --start " + testing::DataPath("plate/plate121.ply") +
+      " --end " + testing::DataPath("plate/plate121_rolledA.ply") +
+      " --steps 4 --quiet --json --tolerance 1e-10 --output " + dir;
+  std::string out_multi, out_single, err;
+  ASSERT_EQ(testing::RunCli(common + "/multi --multires 1", &out_multi, &err), 0)
+      << err;
+  ASSERT_EQ(testing::RunCli(common + "/single --multires off", &out_single, &err),
+            0)
+      << err;
+  const double multi = Number(out_multi, "path_energy");
+  const double single = Number(out_single, "path_energy");
+  EXPECT_NEAR(multi, single, 1e-8 * single);
+  // Two levels listed, the coarse one with fewer vertices, the fine one 121.
+  const size_t levels = out_multi.find("\"multires_levels\"");
+  ASSERT_NE(levels, std::string::npos) << out_multi;
+  const size_t first = out_multi.find("\"vertices\":", levels);
+  const size_t second = out_multi.find("\"vertices\":", first + 1);
+  ASSERT_NE(second, std::string::npos) << out_multi;
+  EXPECT_LT(std::stoi(out_multi.substr(first + 11)), 121);
+  EXPECT_EQ(std::stoi(out_multi.substr(second + 11)), 121);
+  EXPECT_NE(testing::RunCli(common + "/bad --multires two", nullptr, &err), 0);
+  EXPECT_NE(err.find("--multires"), std::string::npos) << err;
 }
 
 }  // namespace

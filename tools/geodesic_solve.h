@@ -1,0 +1,34 @@
+// The geodesic solve of the `geodesic` and `log` verbs: single level or
+// multiresolution by --multires.
+#ifndef SHELLSPACE_TOOLS_GEODESIC_SOLVE_H_
+#define SHELLSPACE_TOOLS_GEODESIC_SOLVE_H_
+
+#include "shellspace/io/json_writer.h"
+#include "shellspace/problems/calculus/multiresolution.h"
+#include "shellspace/tools/verb_flags.h"
+
+namespace shellspace {
+
+// The --multires flag of the verbs that solve geodesics.
+FlagSpec MultiresFlag();
+
+// The multiresolution settings of --multires for a mesh of `num_vertices`:
+// "off" (or 0) none; a number, that many coarse levels; "auto" as many
+// levels as keep the coarsest at kAutoMinVertices or more (none for meshes
+// below 4 kAutoMinVertices). Throws InputError naming --multires for
+// anything else.
+MultiresolutionSettings MultiresFromFlags(int num_vertices);
+constexpr int kAutoMinVertices = 2500;
+
+// SolveGeodesicMultiresolution with those settings (with 0 levels the
+// plain single-level solve).
+MultiresolutionResult SolveGeodesicFromFlags(const ShellSpace& space,
+                                             const GeodesicInput& input,
+                                             const SolverSettings& settings);
+
+// The levels as a JSON array (coarsest first; the last is the input mesh).
+std::string MultiresolutionJson(const MultiresolutionResult& result);
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_TOOLS_GEODESIC_SOLVE_H_
