@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <iostream>
 
+#include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/io/json_writer.h"
 #include "shellspace/tools/shell_inputs.h"
