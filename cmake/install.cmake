@@ -6,7 +6,7 @@
 #   find_package(shellspace REQUIRED)
 #   target_link_libraries(app PRIVATE shellspace::shellspace)
 #
-# and write #include <shellspace/cost_functions/deformation_energy.h>.
+# and write #include <shellspace/cost_functions/deformation_energy_residuals.h>.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 

@@ -2,28 +2,54 @@
 
 #include <algorithm>
 #include <cstring>
-#include <thread>
 #include <type_traits>
 
+#include "shellspace/geometry/parallel_for.h"
+
 namespace shellspace {
+
+namespace {
+
+// Elements per task of the parallel evaluation.
+constexpr int kChunk = 256;
+
+}  // namespace
 
 GradientFieldCache::GradientFieldCache(const ShellSpace& space,
                                        const Positions& fixed,
                                        ShellSide unknown_side,
-                                       const Positions* unknown)
+                                       const Positions* unknown, int threads)
     : space_(space),
       fixed_(fixed),
       unknown_side_(unknown_side),
-      unknown_(unknown) {
-  // Element list in ForEachElement order.
-  ForEachElement(
-      space, fixed, fixed,
-      [&](const int* vs, int count, const double*, const double*, const auto&) {
-        Element e;
-        e.count = count;
-        std::copy(vs, vs + count, e.vertices);
-        elements_.push_back(e);
-      });
+      unknown_(unknown),
+      threads_(std::max(1, threads)) {
+  // One Element per element of the set, in its enumeration order, with
+  // storage for its gradient (3 count) and Jacobian ((3 count)^2).
+  const ElementSet& set = space.elements();
+  size_t gradient_size = 0, jacobian_size = 0;
+  set.ForEachGroup([&](const auto& group) {
+    constexpr int m = 3 * std::decay_t<decltype(group)>::kVertices;
+    gradient_size += static_cast<size_t>(m) * group.size();
+    jacobian_size += static_cast<size_t>(m) * m * group.size();
+  });
+  gradients_.assign(gradient_size, 0.0);
+  jacobians_.assign(jacobian_size, 0.0);
+  elements_.reserve(set.num_elements());
+  size_t g = 0, j = 0;
+  set.ForEachGroup([&](const auto& group) {
+    constexpr int kV = std::decay_t<decltype(group)>::kVertices;
+    for (const auto& stencil : group.stencils) {
+      Element e;
+      e.count = kV;
+      e.vertices = stencil.data();
+      e.gradient = gradients_.data() + g;
+      e.jacobian = jacobians_.data() + j;
+      g += 3 * kV;
+      j += 9 * kV * kV;
+      elements_.push_back(e);
+    }
+  });
 }
 
 void GradientFieldCache::PrepareForEvaluation(bool evaluate_jacobians,
@@ -31,77 +57,61 @@ void GradientFieldCache::PrepareForEvaluation(bool evaluate_jacobians,
   const bool unknown_is_reference = unknown_side_ == ShellSide::kReference;
   const Positions& reference = unknown_is_reference ? *unknown_ : fixed_;
   const Positions& deformed = unknown_is_reference ? fixed_ : *unknown_;
-  const MembraneElement membrane = space_.material.membrane();
-  const BendingElement bending = space_.material.bending();
-  const int n = static_cast<int>(elements_.size());
-  std::vector<char> ok(n, 1);
-  auto work = [&](int begin, int end) {
-    ElementSecondDerivatives<3> d3;
-    ElementSecondDerivatives<4> d4;
-    double ref[12], def[12];
-    for (int i = begin; i < end; ++i) {
-      Element& e = elements_[i];
-      for (int a = 0; a < e.count; ++a) {
-        for (int c = 0; c < 3; ++c) {
-          ref[3 * a + c] = reference(e.vertices[a], c);
-          def[3 * a + c] = deformed(e.vertices[a], c);
+  std::vector<char> ok(elements_.size(), 1);
+  space_.elements().ForEachGroup([&](const auto& group) {
+    using Group = std::decay_t<decltype(group)>;
+    using E = typename Group::Element;
+    constexpr int kV = Group::kVertices;
+    constexpr int m = 3 * kV;
+    const int first = group.first_element;
+    const int chunks = (group.size() + kChunk - 1) / kChunk;
+    ParallelFor(chunks, threads_, [&](int chunk) {
+      ElementSecondDerivatives<kV> d;
+      double ref[m], def[m];
+      Vec3<double> x_ref[kV], x_def[kV];
+      typename E::template Jacobian<double> jac;
+      double r[E::kNumResiduals];
+      const int end = std::min(group.size(), (chunk + 1) * kChunk);
+      for (int i = chunk * kChunk; i < end; ++i) {
+        Element& e = elements_[first + i];
+        const auto& stencil = group.stencils[i];
+        bool good;
+        if (!evaluate_jacobians) {
+          // Residual-only evaluations need just the gradient of the fixed
+          // side: J^T r in doubles, no dual numbers.
+          GatherVertices(reference, stencil, x_ref);
+          GatherVertices(deformed, stencil, x_def);
+          good = group.element.Evaluate(
+              x_ref, x_def, r, unknown_is_reference ? nullptr : &jac,
+              unknown_is_reference ? &jac : nullptr);
+          if (good) {
+            for (int col = 0; col < m; ++col) {
+              double sum = 0;
+              for (int k = 0; k < E::kNumResiduals; ++k)
+                sum += jac(k, col) * r[k];
+              e.gradient[col] = sum;
+            }
+          }
+        } else {
+          GatherCoordinates(reference, stencil, ref);
+          GatherCoordinates(deformed, stencil, def);
+          good = d.Compute(group.element, ref, def, unknown_side_, 1.0);
+          if (good) {
+            const auto& grad =
+                unknown_is_reference ? d.grad_deformed : d.grad_reference;
+            const auto& jacobian =
+                unknown_is_reference ? d.d_grad_deformed : d.d_grad_reference;
+            for (int row = 0; row < m; ++row) {
+              e.gradient[row] = grad(row);
+              for (int col = 0; col < m; ++col)
+                e.jacobian[m * row + col] = jacobian(row, col);
+            }
+          }
         }
+        ok[first + i] = good;
       }
-      auto store = [&](const auto& d) {
-        const auto& grad =
-            unknown_is_reference ? d.grad_deformed : d.grad_reference;
-        const auto& jac =
-            unknown_is_reference ? d.d_grad_deformed : d.d_grad_reference;
-        const int m = 3 * e.count;
-        for (int r = 0; r < m; ++r) {
-          e.gradient[r] = grad(r);
-          for (int c = 0; c < m; ++c) e.jacobian[r][c] = jac(r, c);
-        }
-      };
-      // Residual-only evaluations need just the gradient of the fixed side:
-      // J^T r in doubles, no dual numbers.
-      auto gradient_only = [&](const auto& element, auto vertices_tag) {
-        using E = std::decay_t<decltype(element)>;
-        constexpr int kV = decltype(vertices_tag)::value;
-        Vec3<double> x_ref[kV], x_def[kV];
-        for (int a = 0; a < kV; ++a) {
-          x_ref[a] = Vec3<double>(ref + 3 * a);
-          x_def[a] = Vec3<double>(def + 3 * a);
-        }
-        typename E::template Jacobian<double> jac;
-        double r[E::kNumResiduals];
-        if (!element.Evaluate(x_ref, x_def, r,
-                              unknown_is_reference ? nullptr : &jac,
-                              unknown_is_reference ? &jac : nullptr)) {
-          return false;
-        }
-        for (int col = 0; col < 3 * kV; ++col) {
-          double g = 0;
-          for (int m = 0; m < E::kNumResiduals; ++m) g += jac(m, col) * r[m];
-          e.gradient[col] = g;
-        }
-        return true;
-      };
-      const ShellSide active = unknown_side_;
-      bool good;
-      if (!evaluate_jacobians) {
-        good = e.count == 3
-                   ? gradient_only(membrane, std::integral_constant<int, 3>())
-                   : gradient_only(bending, std::integral_constant<int, 4>());
-      } else if (e.count == 3) {
-        good = d3.Compute(membrane, ref, def, active, 1.0);
-        if (good) store(d3);
-      } else {
-        good = d4.Compute(bending, ref, def, active, 1.0);
-        if (good) store(d4);
-      }
-      ok[i] = good;
-    }
-  };
-  const int half = n / 2;
-  std::thread second(work, half, n);
-  work(0, half);
-  second.join();
+    });
+  });
   ok_ = std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; });
 }
 
@@ -125,11 +135,12 @@ VertexGradientResidual* VertexGradientResidual::Create(
     Term term;
     term.element = index;
     term.local_v = -1;
+    term.first_block = static_cast<int>(residual->local_to_block_.size());
     for (int a = 0; a < e.count; ++a) {
       if (e.vertices[a] == v) term.local_v = a;
-      term.local_to_block[a] = static_cast<int>(
+      residual->local_to_block_.push_back(static_cast<int>(
           std::lower_bound(stencil.begin(), stencil.end(), e.vertices[a]) -
-          stencil.begin());
+          stencil.begin()));
     }
     residual->terms_.push_back(term);
   }
@@ -154,12 +165,13 @@ bool VertexGradientResidual::Evaluate(double const* const* /*parameters*/,
     const int row0 = 3 * term.local_v;
     for (int c = 0; c < 3; ++c) residuals[c] += e.gradient[row0 + c];
     if (!jacobians) continue;
+    const int m = 3 * e.count;
     for (int a = 0; a < e.count; ++a) {
-      double* block = jacobians[term.local_to_block[a]];
+      double* block = jacobians[local_to_block_[term.first_block + a]];
       if (!block) continue;
       for (int r = 0; r < 3; ++r) {
         for (int c = 0; c < 3; ++c) {
-          block[3 * r + c] += e.jacobian[row0 + r][3 * a + c];
+          block[3 * r + c] += e.jacobian[m * (row0 + r) + 3 * a + c];
         }
       }
     }

@@ -27,17 +27,25 @@ namespace shellspace {
 class GradientFieldCache : public ceres::EvaluationCallback {
  public:
   // `unknown_side`: the argument of W that the unknown shell occupies.
+  // Elements are evaluated on `threads` threads (geometry/parallel_for.h);
+  // the results do not depend on it.
   GradientFieldCache(const ShellSpace& space, const Positions& fixed,
-                     ShellSide unknown_side, const Positions* unknown);
+                     ShellSide unknown_side, const Positions* unknown,
+                     int threads = 2);
+  GradientFieldCache(const GradientFieldCache&) = delete;
+  GradientFieldCache& operator=(const GradientFieldCache&) = delete;
 
   void PrepareForEvaluation(bool evaluate_jacobians,
                             bool new_evaluation_point) override;
 
+  // One element of space.elements(), in its enumeration order.
   struct Element {
-    int count;  // 3 (membrane) or 4 (bending)
-    int vertices[4];
-    double gradient[12];      // d e / d fixed, per local coordinate
-    double jacobian[12][12];  // d gradient / d unknown (row: fixed coord)
+    int count = 0;                  // vertices in its stencil
+    const int* vertices = nullptr;  // the stencil (count vertices)
+    double* gradient = nullptr;     // 3 count: d e / d fixed, local coords
+    // 3 count x 3 count, row-major: d gradient / d unknown (row: fixed
+    // coordinate); valid after an evaluation with Jacobians.
+    double* jacobian = nullptr;
   };
   const std::vector<Element>& elements() const { return elements_; }
   // False if some element was degenerate at the current point.
@@ -48,7 +56,9 @@ class GradientFieldCache : public ceres::EvaluationCallback {
   const Positions& fixed_;
   ShellSide unknown_side_;
   const Positions* unknown_;
+  int threads_;
   std::vector<Element> elements_;
+  std::vector<double> gradients_, jacobians_;  // storage of elements_
   bool ok_ = true;
 };
 
@@ -75,9 +85,11 @@ class VertexGradientResidual : public ceres::CostFunction {
   struct Term {
     int element;
     int local_v;            // v's local index in the element
-    int local_to_block[4];  // element local vertex -> stencil block
+    int first_block;        // local_to_block_[first_block + a]: the stencil
+                            // block of the element's local vertex a
   };
   std::vector<Term> terms_;
+  std::vector<int> local_to_block_;
   std::vector<int> stencil_;
 };
 

@@ -8,9 +8,10 @@
 #include <string>
 #include <vector>
 
+#include "shellspace/cost_functions/shell/shell_space.h"
+#include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/io/json_writer.h"
 #include "shellspace/problems/calculus/exponential_map.h"
-#include "shellspace/problems/calculus/geodesic.h"
 
 namespace shellspace {
 

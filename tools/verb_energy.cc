@@ -4,8 +4,9 @@
 #include <cstdio>
 #include <iostream>
 
-#include "shellspace/io/json_writer.h"
+#include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/tools/common_flags.h"
+#include "shellspace/io/json_writer.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
 

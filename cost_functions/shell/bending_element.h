@@ -14,8 +14,10 @@ namespace shellspace {
 //   abar_1),
 // so 1/2 r^2 = eta (theta - thetabar)^2 |Ebar|^2 / dbar_E (shells.md). theta
 // is the signed dihedral angle (geometry/element_geometry.h). Jacobians are
-// 1 x 12, columns (i, j, k, l) x (x, y, z).
+// 1 x 12, columns (i, j, k, l) x (x, y, z). An element type of the element
+// set (element_set.h): stencil (i, j, k, l), weight eta (= this eta).
 struct BendingElement {
+  static constexpr int kNumVertices = 4;
   static constexpr int kNumResiduals = 1;
   template <typename T>
   using Jacobian = Eigen::Matrix<T, 1, 12>;
@@ -66,6 +68,23 @@ struct BendingElement {
             (d_scale * delta - scale * angle_bar.grad[v]).transpose();
       }
     }
+    return true;
+  }
+
+  // The unweighted term (theta - thetabar)^2 |Ebar|^2 / dbar_E, dbar_E =
+  // (abar_0 + abar_1) / 3, in closed form (without eta). False if it is not
+  // finite.
+  bool Energy(const Vec3<double>* ref, const Vec3<double>* def,
+              double* energy) const {
+    const DihedralAngle<double> theta(def[0], def[1], def[2], def[3]);
+    const DihedralAngle<double> theta_bar(ref[0], ref[1], ref[2], ref[3]);
+    const TriangleArea<double> a0(ref[0], ref[1], ref[2]);
+    const TriangleArea<double> a1(ref[1], ref[0], ref[3]);
+    const double edge_sq = (ref[1] - ref[0]).squaredNorm();
+    const double delta = theta.theta - theta_bar.theta;
+    const double e = delta * delta * edge_sq / ((a0.area + a1.area) / 3);
+    if (!std::isfinite(e)) return false;
+    *energy = e;
     return true;
   }
 };

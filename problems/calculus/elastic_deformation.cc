@@ -1,3 +1,5 @@
+#include "shellspace/cost_functions/shell/deformation_energy.h"
+#include "shellspace/cost_functions/deformation_energy_residuals.h"
 #include "shellspace/problems/calculus/elastic_deformation.h"
 
 #include "shellspace/solvers/rigid_gauge.h"

@@ -7,7 +7,7 @@
 
 #include <vector>
 
-#include "shellspace/cost_functions/deformation_energy.h"
+#include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/solvers/solver_settings.h"
 
 namespace shellspace {

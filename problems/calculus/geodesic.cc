@@ -1,3 +1,5 @@
+#include "shellspace/cost_functions/shell/deformation_energy.h"
+#include "shellspace/cost_functions/deformation_energy_residuals.h"
 #include "shellspace/problems/calculus/geodesic.h"
 
 #include <algorithm>
@@ -7,18 +9,39 @@
 
 namespace shellspace {
 
-double PathEnergy(const ShellSpace& space, const ShellPath& path,
-                  std::vector<double>* step_energies) {
+std::optional<double> TryPathEnergy(const ShellSpace& space,
+                                    const ShellPath& path,
+                                    std::vector<double>* step_energies,
+                                    ElementFailure* failure) {
   const int steps = static_cast<int>(path.size()) - 1;
   double sum = 0;
   if (step_energies) step_energies->clear();
   for (int k = 1; k <= steps; ++k) {
-    const double w =
-        EvaluateDeformationEnergy(space, path[k - 1], path[k]).total;
-    if (step_energies) step_energies->push_back(w);
-    sum += w;
+    DeformationEnergy w;
+    if (!TryEvaluateDeformationEnergy(space, path[k - 1], path[k], &w,
+                                      failure)) {
+      if (failure) {
+        failure->description = "W[s_" + std::to_string(k - 1) + ", s_" +
+                               std::to_string(k) + "]: " +
+                               failure->description;
+      }
+      return std::nullopt;
+    }
+    if (step_energies) step_energies->push_back(w.total);
+    sum += w.total;
   }
   return steps * sum;
+}
+
+double PathEnergy(const ShellSpace& space, const ShellPath& path,
+                  std::vector<double>* step_energies) {
+  ElementFailure failure;
+  const std::optional<double> energy =
+      TryPathEnergy(space, path, step_energies, &failure);
+  if (!energy) {
+    throw InputError("path energy: " + failure.description + " is degenerate");
+  }
+  return *energy;
 }
 
 ShellPath LinearPath(const Positions& a, const Positions& b, int steps) {

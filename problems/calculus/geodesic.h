@@ -6,10 +6,12 @@
 
 #include <ceres/solver.h>
 
+#include <optional>
 #include <string>
 #include <vector>
 
-#include "shellspace/cost_functions/deformation_energy.h"
+#include "shellspace/cost_functions/shell/deformation_energy.h"
+#include "shellspace/cost_functions/shell/shell_space.h"
 #include "shellspace/problems/calculus/path_newton.h"
 #include "shellspace/solvers/solver_settings.h"
 
@@ -19,8 +21,17 @@ using ShellPath = std::vector<Positions>;
 
 // Path energy E_K = K sum_{k=1..K} W[s_{k-1}, s_k] of a path with K + 1
 // shapes; fills the per-step energies W[s_{k-1}, s_k] if given.
+// Throws InputError naming the element if one W has a degenerate element.
 double PathEnergy(const ShellSpace& space, const ShellPath& path,
                   std::vector<double>* step_energies = nullptr);
+
+// The same without exceptions: nullopt if some W[s_{k-1}, s_k] has a
+// degenerate element (*failure, if given, names the first, prefixed by the
+// step) -- the status for line searches. *step_energies is unspecified then.
+std::optional<double> TryPathEnergy(
+    const ShellSpace& space, const ShellPath& path,
+    std::vector<double>* step_energies = nullptr,
+    ElementFailure* failure = nullptr);
 
 // Linear interpolation of vertex positions: K + 1 shapes from a to b.
 ShellPath LinearPath(const Positions& a, const Positions& b, int steps);

@@ -4,7 +4,7 @@
 #include <array>
 #include <stdexcept>
 
-#include "shellspace/cost_functions/shell/energy_derivatives.h"
+#include "shellspace/cost_functions/shell/element_set.h"
 #include "shellspace/geometry/parallel_for.h"
 
 namespace shellspace {
@@ -49,33 +49,27 @@ double ReducedEntry(const VertexColumns& v, int i, const double* b,
   return sum;
 }
 
+[[noreturn]] void ThrowDegenerate(const ElementFailure& failure) {
+  throw InputError("degenerate element while assembling a Hessian of W: " +
+                   failure.description);
+}
+
 }  // namespace
 
 PathHessianAssembler::PathHessianAssembler(const ShellSpace& space)
     : space_(space) {
-  // The elements in ForEachElement's order: faces, then (if eta > 0) the
-  // interior edge flaps.
-  std::vector<std::array<int, 4>> elements;
-  std::vector<int> counts;
-  for (int f = 0; f < space.faces.rows(); ++f) {
-    elements.push_back({space.faces(f, 0), space.faces(f, 1), space.faces(f, 2), -1});
-    counts.push_back(3);
-  }
-  if (space.material.eta > 0) {
-    for (const EdgeFlap& flap : space.topology.interior_edges) {
-      elements.push_back({flap.i, flap.j, flap.k, flap.l});
-      counts.push_back(4);
-    }
-  }
+  // The vertex pairs of the elements of space.elements(), in its
+  // enumeration order.
+  const ElementSet& set = space.elements();
   const int n = space.num_vertices;
   std::vector<std::vector<int>> rows(n);
-  for (size_t e = 0; e < elements.size(); ++e) {
-    for (int a = 0; a < counts[e]; ++a) {
-      for (int b = 0; b < counts[e]; ++b) {
-        rows[elements[e][b]].push_back(elements[e][a]);
+  set.ForEachGroup([&](const auto& group) {
+    for (const auto& stencil : group.stencils) {
+      for (int a : stencil) {
+        for (int b : stencil) rows[b].push_back(a);
       }
     }
-  }
+  });
   pair_start_.assign(n + 1, 0);
   for (int w = 0; w < n; ++w) {
     std::sort(rows[w].begin(), rows[w].end());
@@ -89,55 +83,64 @@ PathHessianAssembler::PathHessianAssembler(const ShellSpace& space)
     return static_cast<int>(std::lower_bound(first, last, v) -
                             pair_row_.begin());
   };
-  for (size_t e = 0; e < elements.size(); ++e) {
-    for (int a = 0; a < counts[e]; ++a) {
-      for (int b = 0; b < counts[e]; ++b) {
-        slots_.push_back(slot(elements[e][a], elements[e][b]));
+  set.ForEachGroup([&](const auto& group) {
+    for (const auto& stencil : group.stencils) {
+      for (int a : stencil) {
+        for (int b : stencil) slots_.push_back(slot(a, b));
       }
     }
-  }
+  });
 }
 
-void PathHessianAssembler::AddElementBlocks(const Positions& reference,
-                                            const Positions& deformed,
-                                            double weight, BlockArray* d22,
-                                            BlockArray* d11,
-                                            BlockArray* mixed_transposed,
-                                            BlockArray* mixed) const {
-  ElementSecondDerivatives<3> d3;
-  ElementSecondDerivatives<4> d4;
+bool PathHessianAssembler::AddElementBlocks(
+    const Positions& reference, const Positions& deformed, double weight,
+    BlockArray* d22, BlockArray* d11, BlockArray* mixed_transposed,
+    BlockArray* mixed, ElementFailure* failure) const {
+  const ElementSet& set = space_.elements();
+  bool ok = true;
   size_t next_slot = 0;
-  auto visit = [&](const int*, int count, const double* ref, const double* def,
-                   const auto& element) {
-    const int* slot = &slots_[next_slot];
-    next_slot += count * count;
-    // out[slot(a, b)](i, j) += m(3a + i, 3b + j)
-    auto scatter = [&](const auto& m, BlockArray* out) {
-      for (int a = 0; a < count; ++a) {
-        for (int b = 0; b < count; ++b) {
-          double* block = out->data() + 9 * slot[a * count + b];
-          for (int i = 0; i < 3; ++i) {
-            for (int j = 0; j < 3; ++j) block[3 * i + j] += m(3 * a + i, 3 * b + j);
+  set.ForEachGroup([&](const auto& group) {
+    if (!ok) return;
+    constexpr int count = std::decay_t<decltype(group)>::kVertices;
+    ElementSecondDerivatives<count> d;
+    using Rows = typename ElementSecondDerivatives<count>::Rows;
+    double ref[3 * count], def[3 * count];
+    for (int e = 0; e < group.size(); ++e) {
+      GatherCoordinates(reference, group.stencils[e], ref);
+      GatherCoordinates(deformed, group.stencils[e], def);
+      const int* slot = &slots_[next_slot];
+      next_slot += count * count;
+      // out[slot(a, b)](i, j) += m(3a + i, 3b + j)
+      auto scatter = [&](const auto& m, BlockArray* out) {
+        for (int a = 0; a < count; ++a) {
+          for (int b = 0; b < count; ++b) {
+            double* block = out->data() + 9 * slot[a * count + b];
+            for (int i = 0; i < 3; ++i) {
+              for (int j = 0; j < 3; ++j)
+                block[3 * i + j] += m(3 * a + i, 3 * b + j);
+            }
           }
         }
-      }
-    };
-    // out[slot(b, a)](j, i) += m(3a + i, 3b + j): rows deformed, columns
-    // reference.
-    auto scatter_transposed = [&](const auto& m, BlockArray* out) {
-      for (int a = 0; a < count; ++a) {
-        for (int b = 0; b < count; ++b) {
-          double* block = out->data() + 9 * slot[b * count + a];
-          for (int i = 0; i < 3; ++i) {
-            for (int j = 0; j < 3; ++j) block[3 * j + i] += m(3 * a + i, 3 * b + j);
+      };
+      // out[slot(b, a)](j, i) += m(3a + i, 3b + j): rows deformed, columns
+      // reference.
+      auto scatter_transposed = [&](const auto& m, BlockArray* out) {
+        for (int a = 0; a < count; ++a) {
+          for (int b = 0; b < count; ++b) {
+            double* block = out->data() + 9 * slot[b * count + a];
+            for (int i = 0; i < 3; ++i) {
+              for (int j = 0; j < 3; ++j)
+                block[3 * j + i] += m(3 * a + i, 3 * b + j);
+            }
           }
         }
-      }
-    };
-    auto derive = [&](auto& d) {
+      };
       if (d22 != nullptr || mixed_transposed != nullptr || mixed != nullptr) {
-        if (!d.Compute(element, ref, def, ShellSide::kDeformed, weight)) {
-          throw InputError("degenerate triangle while differentiating W");
+        if (!d.Compute(group.element, ref, def, ShellSide::kDeformed,
+                       weight)) {
+          set.Fail(group.first_element + e, failure);
+          ok = false;
+          return;
         }
         if (d22 != nullptr) scatter(d.d_grad_deformed, d22);
         if (mixed_transposed != nullptr) {
@@ -146,26 +149,23 @@ void PathHessianAssembler::AddElementBlocks(const Positions& reference,
         if (mixed != nullptr) scatter(d.d_grad_reference, mixed);
       }
       if (d11 != nullptr) {
-        using Rows = typename std::decay_t<decltype(d)>::Rows;
-        if (!d.Compute(element, ref, def, ShellSide::kReference, weight,
+        if (!d.Compute(group.element, ref, def, ShellSide::kReference, weight,
                        Rows::kReference)) {
-          throw InputError("degenerate triangle while differentiating W");
+          set.Fail(group.first_element + e, failure);
+          ok = false;
+          return;
         }
         scatter(d.d_grad_reference, d11);
       }
-    };
-    if (count == 3) {
-      derive(d3);
-    } else {
-      derive(d4);
     }
-  };
-  ForEachElement(space_, reference, deformed, visit);
+  });
+  return ok;
 }
 
-Eigen::SparseMatrix<double> PathHessianAssembler::Assemble(
+bool PathHessianAssembler::TryAssemble(
     const std::vector<Positions>& path,
-    const std::vector<Eigen::SparseMatrix<double>>& bases, int threads) const {
+    const std::vector<Eigen::SparseMatrix<double>>& bases, int threads,
+    Eigen::SparseMatrix<double>* hessian, ElementFailure* failure) const {
   const int K = static_cast<int>(path.size()) - 1;
   const int inner = K - 1;
   if (inner < 1 || static_cast<int>(bases.size()) != inner) {
@@ -173,6 +173,8 @@ Eigen::SparseMatrix<double> PathHessianAssembler::Assemble(
   }
   const size_t block_values = 9 * pair_row_.size();
   std::vector<BlockArray> d22(inner), d11(inner), lower(inner);
+  std::vector<ElementFailure> failures(K);
+  std::vector<char> ok(K, 1);
   ParallelFor(K, threads, [&](int task) {
     const int k = task + 1;  // W[s_{k-1}, s_k]
     BlockArray* a = nullptr;
@@ -181,8 +183,20 @@ Eigen::SparseMatrix<double> PathHessianAssembler::Assemble(
     if (k <= K - 1) (a = &d22[k - 1])->assign(block_values, 0.0);
     if (k >= 2) (b = &d11[k - 2])->assign(block_values, 0.0);
     if (k >= 2 && k <= K - 1) (c = &lower[k - 2])->assign(block_values, 0.0);
-    AddElementBlocks(path[k - 1], path[k], K, a, b, c);
+    ok[task] = AddElementBlocks(path[k - 1], path[k], K, a, b, c, nullptr,
+                                &failures[task]);
   });
+  for (int task = 0; task < K; ++task) {
+    if (!ok[task]) {
+      if (failure) {
+        *failure = failures[task];
+        failure->description = "W[s_" + std::to_string(task) + ", s_" +
+                               std::to_string(task + 1) + "]: " +
+                               failure->description;
+      }
+      return false;
+    }
+  }
 
   std::vector<std::vector<const BlockArray*>> diagonal(inner);
   std::vector<const BlockArray*> below(inner, nullptr);
@@ -190,39 +204,93 @@ Eigen::SparseMatrix<double> PathHessianAssembler::Assemble(
     diagonal[i] = {&d22[i], &d11[i]};
     if (i + 1 < inner) below[i] = &lower[i];
   }
-  return Compress(diagonal, below, bases);
+  *hessian = Compress(diagonal, below, bases);
+  return true;
+}
+
+Eigen::SparseMatrix<double> PathHessianAssembler::Assemble(
+    const std::vector<Positions>& path,
+    const std::vector<Eigen::SparseMatrix<double>>& bases, int threads) const {
+  Eigen::SparseMatrix<double> hessian;
+  ElementFailure failure;
+  if (!TryAssemble(path, bases, threads, &hessian, &failure)) {
+    ThrowDegenerate(failure);
+  }
+  return hessian;
+}
+
+bool PathHessianAssembler::TryAssembleDeformedSum(
+    const std::vector<Positions>& references, const Positions& deformed,
+    const Eigen::SparseMatrix<double>& basis, int threads,
+    Eigen::SparseMatrix<double>* hessian, ElementFailure* failure) const {
+  const int parts = std::max(1, std::min<int>(threads, references.size()));
+  const size_t block_values = 9 * pair_row_.size();
+  std::vector<BlockArray> sums(parts);
+  std::vector<ElementFailure> failures(references.size());
+  std::vector<char> ok(references.size(), 1);
+  ParallelFor(parts, parts, [&](int part) {
+    sums[part].assign(block_values, 0.0);
+    for (size_t i = part; i < references.size(); i += parts) {
+      ok[i] = AddElementBlocks(references[i], deformed, 1.0, &sums[part],
+                               nullptr, nullptr, nullptr, &failures[i]);
+      if (!ok[i]) return;
+    }
+  });
+  for (size_t i = 0; i < references.size(); ++i) {
+    if (!ok[i]) {
+      if (failure) {
+        *failure = failures[i];
+        failure->description = "W[reference " + std::to_string(i) +
+                               ", deformed]: " + failure->description;
+      }
+      return false;
+    }
+  }
+  std::vector<std::vector<const BlockArray*>> diagonal(1);
+  for (const BlockArray& sum : sums) diagonal[0].push_back(&sum);
+  *hessian = Compress(diagonal, {nullptr}, {basis});
+  return true;
 }
 
 Eigen::SparseMatrix<double> PathHessianAssembler::AssembleDeformedSum(
     const std::vector<Positions>& references, const Positions& deformed,
     const Eigen::SparseMatrix<double>& basis, int threads) const {
-  const int parts = std::max(1, std::min<int>(threads, references.size()));
-  const size_t block_values = 9 * pair_row_.size();
-  std::vector<BlockArray> sums(parts);
-  ParallelFor(parts, parts, [&](int part) {
-    sums[part].assign(block_values, 0.0);
-    for (size_t i = part; i < references.size(); i += parts) {
-      AddElementBlocks(references[i], deformed, 1.0, &sums[part], nullptr,
-                       nullptr);
-    }
-  });
-  std::vector<std::vector<const BlockArray*>> diagonal(1);
-  for (const BlockArray& sum : sums) diagonal[0].push_back(&sum);
-  return Compress(diagonal, {nullptr}, {basis});
+  Eigen::SparseMatrix<double> hessian;
+  ElementFailure failure;
+  if (!TryAssembleDeformedSum(references, deformed, basis, threads, &hessian,
+                              &failure)) {
+    ThrowDegenerate(failure);
+  }
+  return hessian;
 }
 
 Eigen::SparseMatrix<double> PathHessianAssembler::AssembleMixed(
     const Positions& reference, const Positions& deformed, ShellSide rows,
     const Eigen::SparseMatrix<double>& row_basis,
     const Eigen::SparseMatrix<double>& col_basis) const {
+  Eigen::SparseMatrix<double> mixed;
+  ElementFailure failure;
+  if (!TryAssembleMixed(reference, deformed, rows, row_basis, col_basis,
+                        &mixed, &failure)) {
+    ThrowDegenerate(failure);
+  }
+  return mixed;
+}
+
+bool PathHessianAssembler::TryAssembleMixed(
+    const Positions& reference, const Positions& deformed, ShellSide rows,
+    const Eigen::SparseMatrix<double>& row_basis,
+    const Eigen::SparseMatrix<double>& col_basis,
+    Eigen::SparseMatrix<double>* out, ElementFailure* failure) const {
   const int n = space_.num_vertices;
   BlockArray blocks(9 * pair_row_.size(), 0.0);
-  if (rows == ShellSide::kReference) {
-    AddElementBlocks(reference, deformed, 1.0, nullptr, nullptr, nullptr,
-                     &blocks);
-  } else {
-    AddElementBlocks(reference, deformed, 1.0, nullptr, nullptr, &blocks);
-  }
+  const bool ok =
+      rows == ShellSide::kReference
+          ? AddElementBlocks(reference, deformed, 1.0, nullptr, nullptr,
+                             nullptr, &blocks, failure)
+          : AddElementBlocks(reference, deformed, 1.0, nullptr, nullptr,
+                             &blocks, nullptr, failure);
+  if (!ok) return false;
   const std::vector<VertexColumns> row_layout = VertexLayout(row_basis, n, 0);
   const std::vector<VertexColumns> col_layout = VertexLayout(col_basis, n, 0);
   std::vector<int> outer, inner_index;
@@ -250,10 +318,11 @@ Eigen::SparseMatrix<double> PathHessianAssembler::AssembleMixed(
     }
   }
   outer.push_back(static_cast<int>(values.size()));
-  return Eigen::Map<const Eigen::SparseMatrix<double>>(
+  *out = Eigen::Map<const Eigen::SparseMatrix<double>>(
       static_cast<int>(row_basis.cols()), static_cast<int>(col_basis.cols()),
       static_cast<int>(values.size()), outer.data(), inner_index.data(),
       values.data());
+  return true;
 }
 
 Eigen::SparseMatrix<double> PathHessianAssembler::Compress(

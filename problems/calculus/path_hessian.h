@@ -6,8 +6,9 @@
 #include <Eigen/SparseCore>
 #include <vector>
 
-#include "shellspace/cost_functions/deformation_energy.h"
 #include "shellspace/cost_functions/shell/element_hessian.h"
+#include "shellspace/cost_functions/shell/element_set.h"
+#include "shellspace/cost_functions/shell/shell_space.h"
 
 namespace shellspace {
 
@@ -21,8 +22,9 @@ namespace shellspace {
 // triangle of T^T H T (sum_k m_k square, unknowns of slice k after those of
 // slice k - 1), with sorted row indices.
 //
-// Layout: every element (face: membrane, interior edge flap: bending) adds,
-// for each ordered pair (a, b) of its vertices, a 3 x 3 block to the vertex
+// Layout: every element of space.elements() (element_set.h: today faces,
+// membrane, and interior edge flaps, bending) adds, for each ordered pair
+// (a, b) of its stencil's vertices, a 3 x 3 block to the vertex
 // pair (v_a, v_b). The pairs of the mesh are enumerated once (CSR over the
 // column vertex) and every element knows the slot of each of its pairs, so
 // one assembly is: per element, the second derivatives of its energy
@@ -41,6 +43,13 @@ class PathHessianAssembler {
       const std::vector<Positions>& path,
       const std::vector<Eigen::SparseMatrix<double>>& bases,
       int threads) const;
+  // The same without exceptions for degenerate elements: false (and
+  // *failure, if given, names the element of the lowest step k) instead --
+  // the status for line searches. Invalid arguments (bases) still throw.
+  bool TryAssemble(const std::vector<Positions>& path,
+                   const std::vector<Eigen::SparseMatrix<double>>& bases,
+                   int threads, Eigen::SparseMatrix<double>* hessian,
+                   ElementFailure* failure = nullptr) const;
 
   // The lower triangle of T^T (sum_i D_2^2 W[references_i, deformed]) T for
   // one shape (the Hessian of the elastic-mean energy), T = `basis` (as
@@ -48,6 +57,12 @@ class PathHessianAssembler {
   Eigen::SparseMatrix<double> AssembleDeformedSum(
       const std::vector<Positions>& references, const Positions& deformed,
       const Eigen::SparseMatrix<double>& basis, int threads) const;
+  // Its status twin (as TryAssemble; *failure names the lowest reference i).
+  bool TryAssembleDeformedSum(const std::vector<Positions>& references,
+                              const Positions& deformed,
+                              const Eigen::SparseMatrix<double>& basis,
+                              int threads, Eigen::SparseMatrix<double>* hessian,
+                              ElementFailure* failure = nullptr) const;
 
   // R^T M C for the mixed second derivative of W[reference, deformed], R =
   // `row_basis`, C = `col_basis` (each as T above, possibly different):
@@ -61,6 +76,13 @@ class PathHessianAssembler {
       const Positions& reference, const Positions& deformed, ShellSide rows,
       const Eigen::SparseMatrix<double>& row_basis,
       const Eigen::SparseMatrix<double>& col_basis) const;
+  // Its status twin (as TryAssemble).
+  bool TryAssembleMixed(const Positions& reference, const Positions& deformed,
+                        ShellSide rows,
+                        const Eigen::SparseMatrix<double>& row_basis,
+                        const Eigen::SparseMatrix<double>& col_basis,
+                        Eigen::SparseMatrix<double>* mixed,
+                        ElementFailure* failure = nullptr) const;
 
   int num_vertex_pairs() const { return static_cast<int>(pair_row_.size()); }
 
@@ -69,11 +91,14 @@ class PathHessianAssembler {
   using BlockArray = std::vector<double>;
   // Adds weight times the blocks of W[reference, deformed] to the non-null
   // arrays: D_2^2 W, D_1^2 W, the mixed block with rows deformed
-  // (mixed_transposed) and with rows reference (mixed).
-  void AddElementBlocks(const Positions& reference, const Positions& deformed,
+  // (mixed_transposed) and with rows reference (mixed), element by element
+  // in the set's order. False (arrays partly filled) at the first degenerate
+  // element, named in *failure if given.
+  bool AddElementBlocks(const Positions& reference, const Positions& deformed,
                         double weight, BlockArray* d22, BlockArray* d11,
                         BlockArray* mixed_transposed,
-                        BlockArray* mixed = nullptr) const;
+                        BlockArray* mixed = nullptr,
+                        ElementFailure* failure = nullptr) const;
 
   // T^T H T (lower triangle) from the diagonal blocks of each slice (the sum
   // of the arrays diagonal[i]) and the blocks below the diagonal (lower[i]:
@@ -86,7 +111,8 @@ class PathHessianAssembler {
   const ShellSpace& space_;
   std::vector<int> pair_start_;  // pairs with column vertex w: [start_w, start_w+1)
   std::vector<int> pair_row_;    // their row vertices, ascending
-  std::vector<int> slots_;       // per element, count^2 slots (a, b) -> pair
+  std::vector<int> slots_;       // per element (set order), count^2 slots
+                                 // (a, b) -> pair
 };
 
 }  // namespace shellspace

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "shellspace/cost_functions/deformation_energy.h"
+#include "shellspace/cost_functions/shell/shell_space.h"
 
 namespace shellspace {
 

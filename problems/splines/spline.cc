@@ -1,3 +1,4 @@
+#include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/problems/splines/spline.h"
 
 #include <ceres/gradient_problem.h>

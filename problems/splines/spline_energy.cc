@@ -1,3 +1,4 @@
+#include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/problems/splines/spline_energy.h"
 
 #include <algorithm>

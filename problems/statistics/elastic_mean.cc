@@ -1,3 +1,5 @@
+#include "shellspace/cost_functions/shell/deformation_energy.h"
+#include "shellspace/cost_functions/deformation_energy_residuals.h"
 #include "shellspace/problems/statistics/elastic_mean.h"
 
 #include <algorithm>

@@ -8,7 +8,7 @@
 #include <Eigen/Core>
 #include <vector>
 
-#include "shellspace/cost_functions/deformation_energy.h"
+#include "shellspace/cost_functions/shell/shell_space.h"
 #include "shellspace/solvers/solver_settings.h"
 
 namespace shellspace {

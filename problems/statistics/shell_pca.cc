@@ -1,3 +1,4 @@
+#include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/problems/statistics/shell_pca.h"
 
 #include <Eigen/Eigenvalues>

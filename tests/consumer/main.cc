@@ -10,7 +10,9 @@
 // the grid has to stretch and bend, not just tilt). No data files: the mesh is
 // built here. Exits non-zero unless the solution is sane.
 #include <ceres/ceres.h>
-#include <shellspace/cost_functions/deformation_energy.h>
+#include <shellspace/cost_functions/deformation_energy_residuals.h>
+#include <shellspace/cost_functions/shell/deformation_energy.h>
+#include <shellspace/cost_functions/shell/shell_space.h>
 #include <shellspace/geometry/mesh.h>
 #include <shellspace/geometry/topology.h>
 

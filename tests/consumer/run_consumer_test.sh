@@ -53,7 +53,10 @@ for installed in "${libdir}/libshellspace_cost_functions.a" "${bindir}/shellspac
     "${libdir}/cmake/shellspace/shellspaceConfig.cmake" \
     "${libdir}/cmake/shellspace/shellspaceConfigVersion.cmake" \
     "${libdir}/cmake/shellspace/shellspaceTargets.cmake" \
-    "${includedir}/shellspace/cost_functions/deformation_energy.h" \
+    "${includedir}/shellspace/cost_functions/deformation_energy_residuals.h" \
+    "${includedir}/shellspace/cost_functions/shell/deformation_energy.h" \
+    "${includedir}/shellspace/cost_functions/shell/element_set.h" \
+    "${includedir}/shellspace/cost_functions/shell/shell_space.h" \
     "${includedir}/shellspace/cost_functions/membrane_cost_function.h"; do
   if [[ ! -f "${prefix}/${installed}" ]]; then
     echo "$0: FAILED: ${installed} was not installed" >&2

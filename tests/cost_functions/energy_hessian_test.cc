@@ -6,6 +6,7 @@
 #include <Eigen/Eigenvalues>
 #include <random>
 
+#include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
 #include "shellspace/tests/testing/derivative_check.h"
 #include "shellspace/tests/testing/test_support.h"

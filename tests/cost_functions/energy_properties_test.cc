@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "shellspace/cost_functions/deformation_energy.h"
+#include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/cost_functions/shell/membrane_law.h"
 #include "shellspace/tests/testing/test_support.h"
 

@@ -3,7 +3,8 @@
 #include <ceres/problem.h>
 #include <gtest/gtest.h>
 
-#include "shellspace/cost_functions/deformation_energy.h"
+#include "shellspace/cost_functions/deformation_energy_residuals.h"
+#include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/tests/testing/test_support.h"
 
 namespace shellspace {

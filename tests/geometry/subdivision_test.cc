@@ -6,7 +6,7 @@
 
 #include <set>
 
-#include "shellspace/cost_functions/deformation_energy.h"
+#include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/geometry/topology.h"
 #include "shellspace/tests/testing/test_support.h"
 

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "shellspace/cost_functions/deformation_energy.h"
+#include "shellspace/cost_functions/shell/shell_space.h"
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/solvers/solver_settings.h"
 

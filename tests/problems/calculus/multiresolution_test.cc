@@ -8,7 +8,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 
-#include "shellspace/cost_functions/deformation_energy.h"
+#include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/geometry/topology.h"
 #include "shellspace/problems/calculus/deformation_transfer.h"

@@ -278,6 +278,35 @@ TEST(PathHessianAssemblerTest, DegenerateTriangleThrowsInputError) {
                InputError);
 }
 
+// The non-throwing twin: a status naming the element of the first step that
+// contains the collapsed triangle (s_1 is the deformed shell of W[s_0, s_1]),
+// and no exception.
+TEST(PathHessianAssemblerTest, DegenerateTriangleIsAStatusOfTryAssemble) {
+  const Mesh a = testing::LoadData("plate/plate121.ply");
+  const ShellSpace space = testing::MakeSpace(a);
+  ShellPath path = LinearPath(a.positions, a.positions, 3);
+  const int v0 = a.faces(0, 0), v1 = a.faces(0, 1), v2 = a.faces(0, 2);
+  path[1].row(v1) = path[1].row(v0);
+  path[1].row(v2) = path[1].row(v0);
+  const std::vector<SparseMatrix> bases(2, RigidGaugeBasis(a.positions));
+  const PathHessianAssembler assembler(space);
+  SparseMatrix h;
+  ElementFailure failure;
+  bool ok = true;
+  EXPECT_NO_THROW(ok = assembler.TryAssemble(path, bases, 2, &h, &failure));
+  EXPECT_FALSE(ok);
+  EXPECT_EQ(failure.element, 0);
+  EXPECT_EQ(failure.description.rfind("W[s_0, s_1]: membrane element of "
+                                      "triangle 0 ",
+                                      0),
+            0u)
+      << failure.description;
+  // The valid path assembles to the same matrix as Assemble.
+  const ShellPath good = LinearPath(a.positions, a.positions, 3);
+  ASSERT_TRUE(assembler.TryAssemble(good, bases, 2, &h));
+  EXPECT_EQ(RelativeDifference(h, assembler.Assemble(good, bases, 2)), 0.0);
+}
+
 // A 1D Laplacian in time (3 slices) of 2D grid Laplacians, shifted to be SPD:
 // the structure of a path Hessian.
 SparseMatrix SpaceTimeLaplacian(int side, int slices, double shift,

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/geometry/rigid_alignment.h"

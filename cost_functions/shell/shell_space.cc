@@ -1,0 +1,60 @@
+#include "shellspace/cost_functions/shell/shell_space.h"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+
+#include "shellspace/cost_functions/shell/element_set.h"
+
+namespace shellspace {
+
+void ShellMaterial::Validate() const {
+  const auto fail = [](const std::string& what, double value) {
+    std::ostringstream message;
+    message << "shell material: " << what << ", got " << value;
+    throw InputError(message.str());
+  };
+  if (!(mu > 0) || !std::isfinite(mu)) {
+    fail("the membrane weight mu must be a positive number", mu);
+  }
+  if (!(lambda > 0) || !std::isfinite(lambda)) {
+    fail("the membrane weight lambda must be a positive number", lambda);
+  }
+  if (!(eta >= 0) || !std::isfinite(eta)) {
+    fail("the bending weight eta must be a non-negative number", eta);
+  }
+  switch (bending_model) {
+    case BendingModel::kDiscreteShells:
+      break;
+    default:
+      throw InputError("material: unknown bending model");
+  }
+}
+
+ShellSpace::ShellSpace(const Mesh& mesh, const Topology& topo,
+                       const ShellMaterial& mat)
+    : faces(mesh.faces),
+      topology(topo),
+      material(mat),
+      num_vertices(mesh.num_vertices()),
+      elements_(std::make_shared<const ElementSet>(faces, topology, material)) {}
+
+const ElementSet& ShellSpace::elements() const {
+  if (!elements_) {
+    throw std::logic_error("ShellSpace: default-constructed space has no elements");
+  }
+  const ShellMaterial& m = elements_->material();
+  if (m.mu != material.mu || m.lambda != material.lambda ||
+      m.eta != material.eta || m.bending_model != material.bending_model ||
+      elements_->num_faces() != faces.rows() ||
+      elements_->num_interior_edges() !=
+          static_cast<int>(topology.interior_edges.size())) {
+    throw std::logic_error(
+        "ShellSpace: material or mesh changed after construction; build a new "
+        "ShellSpace");
+  }
+  return *elements_;
+}
+
+}  // namespace shellspace
