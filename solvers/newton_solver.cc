@@ -45,6 +45,7 @@ void NewtonReport::Append(const NewtonReport& later) {
   if (attempts == 0) initial_gradient = later.initial_gradient;
   ++attempts;
   steps += later.steps;
+  iterations += later.iterations;
   seconds += later.seconds;
   assembly_seconds += later.assembly_seconds;
   factorizations += later.factorizations;
@@ -112,7 +113,7 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
   const double initial_two_norm = std::max(current.reduced.norm(), 1e-300);
   LinearSystem system;
   while (true) {
-    if (report.final_gradient <= settings.tolerance) {
+    if (report.final_gradient <= settings.tolerance * current.scale) {
       finish(NewtonStop::kConverged);
       break;
     }
@@ -121,6 +122,7 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
       break;
     }
     const double assembly_start = timer.Seconds();
+    ++report.iterations;
     const EvaluationStatus assembled = problem->Assemble(&system);
     report.assembly_seconds += timer.Seconds() - assembly_start;
     if (assembled != EvaluationStatus::kOk) {
@@ -128,11 +130,15 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
       break;
     }
     double forcing = settings.forcing;
-    if (settings.adaptive_forcing) {
+    if (settings.forcing_rule == NewtonSettings::Forcing::kInexactNewton) {
       const double g = std::max(current.reduced.norm(), 1e-300);
       forcing = std::min(0.1, std::max(std::min(settings.forcing,
                                                 g / initial_two_norm),
                                        0.25 * settings.tolerance / g));
+    } else if (settings.forcing_rule ==
+               NewtonSettings::Forcing::kRelativeResidual) {
+      forcing = std::clamp(current.max_norm / current.scale,
+                           settings.forcing_min, settings.forcing);
     }
     Eigen::VectorXd p;
     if (!linear_solver->Solve(system, -current.reduced, forcing, &p) ||
@@ -166,7 +172,8 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
         round_off = std::abs(trial_merit - merit) <=
                     settings.merit_round_off * std::abs(merit);
         if (!decrease && !(settings.accept_smaller_max_norm && round_off) &&
-            !settings.accept_smaller_two_norm) {
+            !settings.accept_smaller_two_norm &&
+            !(settings.accept_max_norm_reduction > 0)) {
           continue;
         }
       }
@@ -179,7 +186,11 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
                                trial.max_norm < current.max_norm;
       const bool smaller_two = settings.accept_smaller_two_norm &&
                                trial.two_norm < current.two_norm;
-      if (!decrease && !smaller_max && !smaller_two) continue;
+      const bool reduced_max =
+          settings.accept_max_norm_reduction > 0 &&
+          trial.max_norm <= settings.accept_max_norm_reduction *
+                                current.max_norm;
+      if (!decrease && !smaller_max && !smaller_two && !reduced_max) continue;
       problem->AcceptTrial();
       current = std::move(trial);
       merit = trial_merit;
@@ -199,7 +210,7 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
     const double norm = report.final_gradient;
     if (norm <= settings.round_off_floor &&
         !(norm <= settings.round_off_factor * previous_norm) &&
-        !(norm <= settings.tolerance)) {
+        !(norm <= settings.tolerance * current.scale)) {
       finish(NewtonStop::kRoundOffFloor);
       break;
     }

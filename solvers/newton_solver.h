@@ -28,10 +28,13 @@ enum class NewtonPoint { kCurrent, kTrial };
 //  - max_norm, two_norm: the norms the tolerance and the acceptance rules
 //    measure, in the coordinates the problem reports (e.g. the full 3 #V
 //    gradient, or F on the unmasked vertices).
+//  - scale: the tolerance is relative to it (1: absolute), e.g. the size of
+//    one of the gradient's terms at this point.
 struct NewtonResidual {
   Eigen::VectorXd reduced;
   double max_norm = 0;
   double two_norm = 0;
+  double scale = 1;
   // max_norm and two_norm of `reduced` itself.
   static NewtonResidual OfReduced(Eigen::VectorXd reduced);
 };
@@ -71,20 +74,27 @@ struct NewtonReport;
 struct NewtonSettings {
   NewtonMode mode = NewtonMode::kMinimize;
   int max_steps = 10;  // accepted steps
-  // Converged at residual max_norm <= tolerance (absolute).
+  // Converged at residual max_norm <= tolerance * scale (NewtonResidual).
   double tolerance = 0;
 
-  // Relative residual of the linear solve (LinearSolver tolerance). Fixed:
-  // `forcing`. Adaptive (inexact Newton): with g = |reduced|_2 and g_0 its
-  // value at the start, min(0.1, max(min(forcing, g / g_0),
-  // 0.25 tolerance / g)): tighter as the gradient falls, but no tighter than
-  // needed to land below the tolerance.
-  bool adaptive_forcing = false;
+  // Relative residual of the linear solve (LinearSolver tolerance):
+  //  - kFixed: `forcing`;
+  //  - kInexactNewton: with g = |reduced|_2 and g_0 its value at the start,
+  //    min(0.1, max(min(forcing, g / g_0), 0.25 tolerance / g)): tighter as
+  //    the gradient falls, but no tighter than needed to land below the
+  //    tolerance;
+  //  - kRelativeResidual: max_norm / scale clamped to [forcing_min, forcing].
+  enum class Forcing { kFixed, kInexactNewton, kRelativeResidual };
+  Forcing forcing_rule = Forcing::kFixed;
   double forcing = 1e-10;
+  double forcing_min = 0;
 
   // Line search: step lengths 1, 1/2, ..., 2^-max_halvings.
   int max_halvings = 2;
   double armijo = 1e-4;  // minimisation: merit <= merit_0 + armijo t slope
+  // Accept a trial whose residual max_norm is at most this factor times the
+  // current one (0: off; root finding without merit, e.g. 0.5).
+  double accept_max_norm_reduction = 0;
   // Also accept a trial whose residual max_norm is smaller than the current
   // one (strictly), in minimisation only when the merit changes by at most
   // merit_round_off |merit| (the merit decrease is below round-off and the
@@ -130,6 +140,7 @@ std::string NewtonStopText(NewtonStop stop, NewtonMode mode);
 // clock, information only.
 struct NewtonReport {
   int steps = 0;                // accepted Newton steps
+  int iterations = 0;           // Hessian / Jacobian assemblies
   double initial_gradient = 0;  // residual max_norm before / after
   double final_gradient = 0;
   double final_merit = 0;       // minimisation: the merit at the end

@@ -163,7 +163,7 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
   newton.mode = NewtonMode::kMinimize;
   newton.max_steps = settings.max_steps;
   newton.tolerance = settings.gradient_tolerance;
-  newton.adaptive_forcing = true;
+  newton.forcing_rule = NewtonSettings::Forcing::kInexactNewton;
   newton.forcing = 1e-2;
   newton.max_halvings = 2;
   newton.accept_smaller_max_norm = true;

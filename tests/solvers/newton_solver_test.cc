@@ -116,6 +116,29 @@ struct ConvexExample {
   }
 };
 
+// Whether e_{k+1} <= bound e_k^2 (e_k = |x_k - x*|_2) for every step whose
+// e_k is above round-off (1e-6), with at least three such steps (the rate is
+// observed, not implied by one step).
+::testing::AssertionResult QuadraticRate(
+    const std::vector<Eigen::VectorXd>& iterates, const Eigen::VectorXd& x_star,
+    double bound) {
+  int observed = 0;
+  for (size_t k = 0; k + 1 < iterates.size(); ++k) {
+    const double e = (iterates[k] - x_star).norm();
+    const double e_next = (iterates[k + 1] - x_star).norm();
+    if (e < 1e-6) break;
+    if (!(e_next <= bound * e * e)) {
+      return ::testing::AssertionFailure()
+             << "step " << k << ": e = " << e << ", next " << e_next;
+    }
+    ++observed;
+  }
+  if (observed < 3) {
+    return ::testing::AssertionFailure() << "only " << observed << " steps";
+  }
+  return ::testing::AssertionSuccess();
+}
+
 NewtonSettings Minimize(double tolerance, int max_steps) {
   NewtonSettings s;
   s.mode = NewtonMode::kMinimize;
@@ -139,19 +162,27 @@ TEST(NewtonSolverTest, ConvergesQuadraticallyOnAStrictlyConvexFunction) {
   EXPECT_GT(report.initial_gradient, 0.1);
   const Eigen::VectorXd x_star = example.Minimiser();
   EXPECT_LT((problem.x() - x_star).cwiseAbs().maxCoeff(), 1e-12);
-  // e_{k+1} / e_k^2 bounded while e_k is above round-off, and at least three
-  // such steps (the rate is observed, not implied by one step).
-  int observed = 0;
-  for (size_t k = 0; k + 1 < problem.iterates.size(); ++k) {
-    const double e = (problem.iterates[k] - x_star).norm();
-    const double e_next = (problem.iterates[k + 1] - x_star).norm();
-    if (e < 1e-6) break;
-    EXPECT_LT(e_next, 5.0 * e * e) << "step " << k;
-    ++observed;
-  }
-  EXPECT_GE(observed, 3);
+  EXPECT_TRUE(QuadraticRate(problem.iterates, x_star, 5.0));
   EXPECT_EQ(report.steps, static_cast<int>(problem.iterates.size()) - 1);
   EXPECT_GE(report.factorizations, 1);
+}
+
+// Negative twin: with a wrong Hessian (2 H) Newton still converges, but
+// linearly (e_{k+1} ~ e_k / 2), and the same rate check fails.
+TEST(NewtonSolverTest, WrongHessianFailsTheQuadraticRateCheck) {
+  const ConvexExample example(6);
+  Callbacks wrong = example.MakeCallbacks();
+  const auto exact = wrong.jacobian;
+  wrong.jacobian = [exact](const Eigen::VectorXd& x) {
+    return Eigen::MatrixXd(2.0 * exact(x));
+  };
+  FunctionProblem problem(wrong, Eigen::VectorXd::Zero(6), true);
+  ReusableCholesky cholesky;
+  const NewtonReport report =
+      SolveNewton(&problem, &cholesky, Minimize(1e-13, 100));
+  EXPECT_TRUE(report.converged) << report.stop_reason;
+  EXPECT_GT(report.steps, 20);  // linear: about one bit per step
+  EXPECT_FALSE(QuadraticRate(problem.iterates, example.Minimiser(), 5.0));
 }
 
 TEST(NewtonSolverTest, MaxStepsIsNotConvergence) {
