@@ -29,7 +29,8 @@ namespace shellspace {
 // a factorisation costs CHOLMOD's flop count of its analysis
 // (cholmod_common::fl), one CG iteration 4 nnz(L) (a forward and a backward
 // triangular solve) + 2 (2 nnz(lower) - n) (the product with H); the start
-// (x = M^-1 b, r = b - H x, z = M^-1 r) counts as one iteration more.
+// (x = M^-1 b, r = b - H x, z = M^-1 r) is counted as one such iteration
+// (it has one triangular-solve pair more: an estimate, not an exact count).
 // Implements LinearSolver (linear_solver.h) for the Newton engine.
 class ReusableCholesky : public LinearSolver {
  public:

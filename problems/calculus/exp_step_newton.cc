@@ -177,14 +177,7 @@ ExpNewtonReport SolveExpStepNewton(const ShellSpace& space,
   newton.progress_steps = kProgressSteps;
   newton.progress_factor = 0.5;
   SparseLu lu;
-  const NewtonReport report = SolveNewton(&problem, &lu, newton);
-  ExpNewtonReport result;
-  result.steps = report.steps;
-  result.initial_residual = report.initial_gradient;
-  result.final_residual = report.final_gradient;
-  result.converged = report.converged;
-  result.stop_reason = report.stop_reason;
-  return result;
+  return SolveNewton(&problem, &lu, newton);
 }
 
 }  // namespace shellspace

@@ -8,16 +8,13 @@
 
 #include "shellspace/cost_functions/deformation_energy.h"
 #include "shellspace/cost_functions/shell/element_hessian.h"
+#include "shellspace/solvers/newton_solver.h"
 
 namespace shellspace {
 
-struct ExpNewtonReport {
-  int steps = 0;
-  double initial_residual = 0;  // max |F| over the unknown vertices
-  double final_residual = 0;
-  bool converged = false;       // final_residual <= tolerance
-  std::string stop_reason;
-};
+// The report of SolveExpStepNewton: a NewtonReport whose initial_gradient /
+// final_gradient are max |F| over the unknown vertices.
+using ExpNewtonReport = NewtonReport;
 
 // max |F(s)| over the vertices not in `fixed_vertices` (F as below); +inf
 // if s has a degenerate triangle.
