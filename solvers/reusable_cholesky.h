@@ -8,6 +8,8 @@
 #include <memory>
 #include <vector>
 
+#include "shellspace/solvers/linear_solver.h"
+
 namespace shellspace {
 
 // Solves H x = b, H symmetric (lower triangle given). If a factorisation
@@ -21,20 +23,26 @@ namespace shellspace {
 // iterations (each one triangular solve pair and one product with H) cost
 // far less than a factorisation of a path Hessian (finger, K = 8: 28 ms
 // against 0.7 s). CG also gives up once its iterations have cost as much
-// as the last factorisation (measured): for one shape (a midpoint) a
-// factorisation is cheap and reuse rarely pays.
-class ReusableCholesky {
+// as the last factorisation: for one shape (a midpoint) a factorisation is
+// cheap and reuse rarely pays. The costs are deterministic work estimates in
+// flops, not timings (the iteration count must not depend on machine load):
+// a factorisation costs CHOLMOD's flop count of its analysis
+// (cholmod_common::fl), one CG iteration 4 nnz(L) (a forward and a backward
+// triangular solve) + 2 (2 nnz(lower) - n) (the product with H); the start
+// (x = M^-1 b, r = b - H x, z = M^-1 r) is counted as one such iteration
+// (it has one triangular-solve pair more: an estimate, not an exact count).
+// Implements LinearSolver (linear_solver.h) for the Newton engine.
+class ReusableCholesky : public LinearSolver {
  public:
-  struct Stats {
-    int factorizations = 0;
-    int cg_solves = 0;       // solves finished by CG
-    int cg_iterations = 0;   // in all
-    double factorization_seconds = 0;
-    double cg_seconds = 0;
-  };
+  using Stats = LinearSolverStats;
 
   ReusableCholesky();
-  ~ReusableCholesky();
+  ~ReusableCholesky() override;
+
+  // LinearSolver: Solve(system.matrix (lower triangle), system.vertex_of,
+  // system.num_vertices, b, tolerance, x).
+  bool Solve(const LinearSystem& system, const Eigen::VectorXd& b,
+             double tolerance, Eigen::VectorXd* x) override;
 
   // vertex_of[i]: the mesh vertex of unknown i (for the ordering). Returns
   // false if H had to be factorised and is not positive definite.
@@ -43,7 +51,7 @@ class ReusableCholesky {
              const Eigen::VectorXd& b, double tolerance, Eigen::VectorXd* x);
 
   int max_cg_iterations = 25;
-  const Stats& stats() const { return stats_; }
+  const Stats& stats() const override { return stats_; }
 
  private:
   struct Factor;  // CHOLMOD stays out of the public headers
@@ -54,7 +62,8 @@ class ReusableCholesky {
   std::unique_ptr<Factor> factor_;
   bool factorized_ = false;
   Stats stats_;
-  double last_factorization_seconds_ = 0;
+  double last_factorization_flops_ = 0;  // work estimate, see above
+  double factor_nonzeros_ = 0;           // nnz(L) of the held factor
 };
 
 }  // namespace shellspace

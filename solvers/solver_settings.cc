@@ -14,7 +14,10 @@ ceres::Solver::Options MakeSolverOptions(const SolverSettings& settings,
   ceres::Solver::Options options;
   options.minimizer_type = ceres::TRUST_REGION;
   options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
+  options.linear_solver_type =
+      settings.linear_solver == SolverSettings::LinearSolver::kDenseQr
+          ? ceres::DENSE_QR
+          : ceres::SPARSE_NORMAL_CHOLESKY;
   options.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
   options.max_num_iterations = settings.max_iterations;
   options.function_tolerance = settings.function_tolerance;

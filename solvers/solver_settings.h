@@ -17,6 +17,11 @@ namespace shellspace {
 // gradient_tolerance (a Ceres gradient_tolerance on the projected gradient
 // scaled by the initial one) or on the relative cost decrease.
 struct SolverSettings {
+  // The linear solver of the LM steps: sparse normal equations (CHOLMOD via
+  // Ceres, the shell problems) or dense QR (small problems, the branching
+  // constructions).
+  enum class LinearSolver { kSparseNormalCholesky, kDenseQr };
+  LinearSolver linear_solver = LinearSolver::kSparseNormalCholesky;
   int max_iterations = 200;
   double function_tolerance = 1e-12;
   double gradient_tolerance = 1e-8;  // relative to the initial gradient
@@ -30,10 +35,12 @@ struct SolverSettings {
   std::string progress_label = "solve";
 };
 
-// Ceres options for a sparse LM solve (SPARSE_NORMAL_CHOLESKY over
-// SuiteSparse) with these settings. `initial_gradient_norm` (max norm of the
-// gradient at the initial guess) turns the relative gradient tolerance into
-// Ceres' absolute one.
+// Ceres options for an LM solve (SPARSE_NORMAL_CHOLESKY over SuiteSparse,
+// or DENSE_QR) with these settings: the one builder of LM options of the
+// library. `initial_gradient_norm` (max norm of the gradient at the initial
+// guess) turns the relative gradient tolerance into Ceres' absolute one
+// gradient_tolerance * max(1, initial_gradient_norm); pass 0 for an
+// absolute gradient_tolerance.
 ceres::Solver::Options MakeSolverOptions(const SolverSettings& settings,
                                          double initial_gradient_norm);
 

@@ -10,6 +10,7 @@
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/problems/branching/km_family.h"
 #include "shellspace/problems/branching/self_similar_series.h"
+#include "shellspace/solvers/solver_settings.h"
 
 namespace shellspace::branching {
 
@@ -35,16 +36,16 @@ ConstructionResult Finish(ConstructionResult result, const CellPattern& cell,
   return result;
 }
 
+// Dense LM on the few cell parameters; absolute gradient tolerance.
 ceres::Solver::Options LmOptions() {
-  ceres::Solver::Options options;
-  options.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-  options.linear_solver_type = ceres::DENSE_QR;
-  options.max_num_iterations = 500;
-  options.function_tolerance = 1e-15;
-  options.gradient_tolerance = 1e-14;
-  options.parameter_tolerance = 1e-14;
-  options.logging_type = ceres::SILENT;
-  return options;
+  SolverSettings settings;
+  settings.linear_solver = SolverSettings::LinearSolver::kDenseQr;
+  settings.max_iterations = 500;
+  settings.function_tolerance = 1e-15;
+  settings.gradient_tolerance = 1e-14;
+  settings.parameter_tolerance = 1e-14;
+  settings.num_threads = 1;
+  return MakeSolverOptions(settings, /*initial_gradient_norm=*/0);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include "shellspace/cost_functions/branching/elastic_cost_function.h"
 #include "shellspace/cost_functions/branching/gradient_cost_function.h"
 #include "shellspace/geometry/mesh.h"
+#include "shellspace/solvers/solver_settings.h"
 
 namespace shellspace::branching {
 
@@ -89,17 +90,14 @@ std::vector<RelaxedStage> SolveRelaxed(RelaxedField* field, double epsilon,
     const auto start = std::chrono::steady_clock::now();
     ceres::Problem problem;
     AddRelaxedResiduals(field, epsilon, delta, &problem);
-    ceres::Solver::Options solver;
-    solver.minimizer_type = ceres::TRUST_REGION;
-    solver.trust_region_strategy_type = ceres::LEVENBERG_MARQUARDT;
-    solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-    solver.sparse_linear_algebra_library_type = ceres::SUITE_SPARSE;
-    solver.max_num_iterations = options.max_iterations;
-    solver.function_tolerance = options.function_tolerance;
-    solver.gradient_tolerance = 1e-14;
-    solver.parameter_tolerance = 1e-12;
-    solver.num_threads = options.num_threads;
-    solver.logging_type = ceres::SILENT;
+    SolverSettings settings;
+    settings.max_iterations = options.max_iterations;
+    settings.function_tolerance = options.function_tolerance;
+    settings.gradient_tolerance = 1e-14;  // absolute (reference 0 below)
+    settings.parameter_tolerance = 1e-12;
+    settings.num_threads = options.num_threads;
+    ceres::Solver::Options solver =
+        MakeSolverOptions(settings, /*initial_gradient_norm=*/0);
     std::unique_ptr<ProgressCallback> callback;
     if (options.progress) {
       callback = std::make_unique<ProgressCallback>(delta, options.progress);

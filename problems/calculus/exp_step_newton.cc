@@ -1,18 +1,19 @@
 #include "shellspace/problems/calculus/exp_step_newton.h"
 
-#include <Eigen/UmfPackSupport>
 #include <cmath>
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
 #include "shellspace/solvers/gauge_reduced_solve.h"
 #include "shellspace/problems/calculus/path_hessian.h"
+#include "shellspace/solvers/newton_solver.h"
+#include "shellspace/solvers/sparse_lu.h"
 
 namespace shellspace {
 
 namespace {
 
-// Near a singular J the Newton step can be huge: halve down to this.
-constexpr double kMinStepLength = 1.0 / (1 << 20);
+// Near a singular J the Newton step can be huge: halve down to 2^-20.
+constexpr int kMaxHalvings = 20;
 // Newton that has not halved max |F| after this many accepted steps is not
 // converging (damped steps crawling along a valley of |F| with no root
 // nearby): give up, the caller has a fallback.
@@ -45,6 +46,20 @@ double TwoNorm(const Eigen::VectorXd& f, const std::vector<char>& is_fixed) {
   return std::sqrt(sum);
 }
 
+// The one place where an InputError (a degenerate triangle of s) becomes a
+// status; to be replaced by the non-throwing evaluation API.
+EvaluationStatus TryResidual(const ShellSpace& space, const Positions& fixed,
+                             ShellSide unknown_side,
+                             const Eigen::VectorXd& constant,
+                             const Positions& s, Eigen::VectorXd* f) {
+  try {
+    *f = Residual(space, fixed, unknown_side, constant, s);
+  } catch (const InputError&) {
+    return EvaluationStatus::kInfeasible;
+  }
+  return EvaluationStatus::kOk;
+}
+
 std::vector<char> FixedFlags(int num_vertices,
                              const std::vector<int>& fixed_vertices) {
   std::vector<char> is_fixed(num_vertices, 0);
@@ -59,13 +74,86 @@ double ExpResidualMaxNorm(const ShellSpace& space, const Positions& fixed,
                           const Eigen::VectorXd& constant,
                           const std::vector<int>& fixed_vertices,
                           const Positions& s) {
-  try {
-    return MaxNorm(Residual(space, fixed, unknown_side, constant, s),
-                   FixedFlags(space.num_vertices, fixed_vertices));
-  } catch (const InputError&) {
+  Eigen::VectorXd f;
+  if (TryResidual(space, fixed, unknown_side, constant, s, &f) !=
+      EvaluationStatus::kOk) {
     return HUGE_VAL;
   }
+  return MaxNorm(f, FixedFlags(space.num_vertices, fixed_vertices));
 }
+
+namespace {
+
+// F(s) = 0 for SolveNewton in root-finding mode: residual R^T F (rows: the
+// rigid gauge of the fixed shell, or the free vertices), norms of F on the
+// unmasked vertices, J = R^T (dF/ds) C (columns C: the rigid gauge of the
+// current s, or the free vertices), retraction s += C q.
+class ExpStepProblem : public NewtonProblem {
+ public:
+  ExpStepProblem(const ShellSpace& space, const Positions& fixed,
+                 ShellSide unknown_side, const Eigen::VectorXd& constant,
+                 const std::vector<int>& fixed_vertices, Positions* s)
+      : space_(space),
+        fixed_(fixed),
+        unknown_side_(unknown_side),
+        constant_(constant),
+        is_fixed_(FixedFlags(space.num_vertices, fixed_vertices)),
+        gauge_(fixed_vertices.empty()),
+        rows_(gauge_ ? RigidGaugeBasis(fixed)
+                     : FreeVertexBasis(space.num_vertices, fixed_vertices)),
+        assembler_(space),
+        s_(s) {}
+
+  EvaluationStatus Merit(NewtonPoint, double*) override {
+    return EvaluationStatus::kInfeasible;  // root finding has no merit
+  }
+  EvaluationStatus Residual(NewtonPoint point,
+                            NewtonResidual* residual) override {
+    const Positions& s = point == NewtonPoint::kCurrent ? *s_ : trial_;
+    Eigen::VectorXd f;
+    if (TryResidual(space_, fixed_, unknown_side_, constant_, s, &f) !=
+        EvaluationStatus::kOk) {
+      return EvaluationStatus::kInfeasible;
+    }
+    residual->max_norm = MaxNorm(f, is_fixed_);
+    residual->two_norm = TwoNorm(f, is_fixed_);
+    residual->reduced = rows_.transpose() * f;
+    return EvaluationStatus::kOk;
+  }
+  EvaluationStatus Assemble(LinearSystem* system) override {
+    columns_ = gauge_ ? RigidGaugeBasis(*s_) : rows_;
+    // J = dF/ds: rows on the fixed shell's gradient, columns on s, reduced
+    // to R^T J C straight from the element blocks.
+    system->matrix =
+        unknown_side_ == ShellSide::kDeformed
+            ? assembler_.AssembleMixed(fixed_, *s_, ShellSide::kReference,
+                                       rows_, columns_)
+            : assembler_.AssembleMixed(*s_, fixed_, ShellSide::kDeformed,
+                                       rows_, columns_);
+    return EvaluationStatus::kOk;
+  }
+  void SetTrial(const Eigen::VectorXd& step) override {
+    trial_ = *s_;
+    Eigen::Map<Eigen::VectorXd>(trial_.data(), trial_.size()) +=
+        columns_ * step;
+  }
+  void AcceptTrial() override { *s_ = trial_; }
+
+ private:
+  const ShellSpace& space_;
+  const Positions& fixed_;
+  const ShellSide unknown_side_;
+  const Eigen::VectorXd& constant_;
+  const std::vector<char> is_fixed_;
+  const bool gauge_;
+  const SparseMatrix rows_;
+  const PathHessianAssembler assembler_;
+  Positions* s_;
+  SparseMatrix columns_;
+  Positions trial_;
+};
+
+}  // namespace
 
 ExpNewtonReport SolveExpStepNewton(const ShellSpace& space,
                                    const Positions& fixed,
@@ -75,92 +163,21 @@ ExpNewtonReport SolveExpStepNewton(const ShellSpace& space,
                                    double tolerance,
                                    double stall_tolerance, int max_steps,
                                    Positions* s) {
-  ExpNewtonReport report;
-  const std::vector<char> is_fixed =
-      FixedFlags(space.num_vertices, fixed_vertices);
-  const bool gauge = fixed_vertices.empty();
-  const SparseMatrix rows = gauge
-                                ? RigidGaugeBasis(fixed)
-                                : FreeVertexBasis(space.num_vertices,
-                                                  fixed_vertices);
-  Eigen::VectorXd f;
-  try {
-    f = Residual(space, fixed, unknown_side, constant, *s);
-  } catch (const InputError&) {
-    report.stop_reason = "degenerate initial guess";
-    return report;
-  }
-  report.initial_residual = report.final_residual = MaxNorm(f, is_fixed);
-  report.stop_reason = "max steps";
-  const PathHessianAssembler assembler(space);
-  while (true) {
-    if (report.final_residual <= tolerance) {
-      report.converged = true;
-      report.stop_reason = "converged";
-      break;
-    }
-    if (report.steps >= max_steps) break;
-    const SparseMatrix columns = gauge ? RigidGaugeBasis(*s) : rows;
-    // J = dF/ds: rows on the fixed shell's gradient, columns on s, reduced
-    // to R^T J C straight from the element blocks.
-    const SparseMatrix reduced =
-        unknown_side == ShellSide::kDeformed
-            ? assembler.AssembleMixed(fixed, *s, ShellSide::kReference, rows,
-                                      columns)
-            : assembler.AssembleMixed(*s, fixed, ShellSide::kDeformed, rows,
-                                      columns);
-    Eigen::UmfPackLU<SparseMatrix> lu(reduced);
-    if (lu.info() != Eigen::Success) {
-      report.stop_reason = "singular Jacobian";
-      break;
-    }
-    const Eigen::VectorXd rhs = -(rows.transpose() * f);
-    const Eigen::VectorXd q = lu.solve(rhs);
-    if (lu.info() != Eigen::Success || !q.allFinite()) {
-      report.stop_reason = "singular Jacobian";
-      break;
-    }
-    const Eigen::VectorXd step = columns * q;
-    bool accepted = false, stalled = false;
-    const double two_norm = TwoNorm(f, is_fixed);
-    for (double length = 1; length >= kMinStepLength && !accepted;
-         length *= 0.5) {
-      Positions candidate = *s;
-      Eigen::Map<Eigen::VectorXd>(candidate.data(), candidate.size()) +=
-          length * step;
-      Eigen::VectorXd f_new;
-      try {
-        f_new = Residual(space, fixed, unknown_side, constant, candidate);
-      } catch (const InputError&) {
-        continue;  // a degenerate triangle: shorter step
-      }
-      const double norm = MaxNorm(f_new, is_fixed);
-      if (!(norm < report.final_residual) &&
-          !(TwoNorm(f_new, is_fixed) < two_norm)) {
-        continue;
-      }
-      stalled = norm <= stall_tolerance && !(norm <= 0.5 * report.final_residual);
-      *s = candidate;
-      f = std::move(f_new);
-      report.final_residual = norm;
-      ++report.steps;
-      accepted = true;
-    }
-    if (!accepted) {
-      report.stop_reason = "no decrease of |F| along the Newton step";
-      break;
-    }
-    if (stalled && !(report.final_residual <= tolerance)) {
-      report.stop_reason = "round-off floor";
-      break;
-    }
-    if (report.steps >= kProgressSteps &&
-        !(report.final_residual <= 0.5 * report.initial_residual)) {
-      report.stop_reason = "no progress";
-      break;
-    }
-  }
-  return report;
+  ExpStepProblem problem(space, fixed, unknown_side, constant, fixed_vertices,
+                         s);
+  NewtonSettings newton;
+  newton.mode = NewtonMode::kRootFind;
+  newton.max_steps = max_steps;
+  newton.tolerance = tolerance;
+  newton.max_halvings = kMaxHalvings;
+  newton.accept_smaller_max_norm = true;
+  newton.accept_smaller_two_norm = true;
+  newton.round_off_floor = stall_tolerance;
+  newton.round_off_factor = 0.5;
+  newton.progress_steps = kProgressSteps;
+  newton.progress_factor = 0.5;
+  SparseLu lu;
+  return SolveNewton(&problem, &lu, newton);
 }
 
 }  // namespace shellspace

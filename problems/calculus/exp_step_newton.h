@@ -8,16 +8,13 @@
 
 #include "shellspace/cost_functions/shell/shell_space.h"
 #include "shellspace/cost_functions/shell/element_hessian.h"
+#include "shellspace/solvers/newton_solver.h"
 
 namespace shellspace {
 
-struct ExpNewtonReport {
-  int steps = 0;
-  double initial_residual = 0;  // max |F| over the unknown vertices
-  double final_residual = 0;
-  bool converged = false;       // final_residual <= tolerance
-  std::string stop_reason;
-};
+// The report of SolveExpStepNewton: a NewtonReport whose initial_gradient /
+// final_gradient are max |F| over the unknown vertices.
+using ExpNewtonReport = NewtonReport;
 
 // max |F(s)| over the vertices not in `fixed_vertices` (F as below); +inf
 // if s has a degenerate triangle.
@@ -37,8 +34,10 @@ double ExpResidualMaxNorm(const ShellSpace& space, const Positions& fixed,
 // shell (rows: F is orthogonal to its rigid motions) and of s (columns: F
 // ignores rigid motions of s). Least squares on |F|^2 (Gauss-Newton on
 // J^T J, as Ceres' LM) squares the condition number of J, which for thin
-// shells is already large; Newton works with J itself. A step is accepted
-// if it lowers max |F| or |F|_2, halving it at most 20 times; stops at
+// shells is already large; Newton works with J itself. The iteration is
+// SolveNewton (solvers/newton_solver.h) in root-finding mode with SparseLu
+// (UMFPACK); the rules below are its settings. A step is accepted if it
+// lowers max |F| or |F|_2, halving it at most 20 times; stops at
 // max |F| <= tolerance, after max_steps, when no step is accepted (*s is
 // left at the best point reached), or at the round-off floor: an accepted
 // step that leaves max |F| <= stall_tolerance but does not halve it (the

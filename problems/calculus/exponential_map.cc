@@ -66,9 +66,9 @@ ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
                            kExpNewtonAccept * scale, kMaxExpNewtonSteps,
                            &trial);
     result.newton_steps = newton.steps;
-    if (newton.final_residual <= kExpNewtonAccept * scale) {
+    if (newton.final_gradient <= kExpNewtonAccept * scale) {
       result.shape = std::move(trial);
-      result.residual_norm = newton.final_residual;
+      result.residual_norm = newton.final_gradient;
       result.summary.termination_type = ceres::CONVERGENCE;
       result.summary.message = "Newton on F: " + newton.stop_reason;
       return result;

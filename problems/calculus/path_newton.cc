@@ -1,20 +1,32 @@
 #include "shellspace/problems/calculus/path_newton.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
-#include "shellspace/solvers/gauge_reduced_solve.h"
-#include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/geometry/parallel_for.h"
+#include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/problems/calculus/path_hessian.h"
+#include "shellspace/solvers/gauge_reduced_solve.h"
 #include "shellspace/solvers/reusable_cholesky.h"
 
 namespace shellspace {
 
 namespace {
+
+// The one place where an InputError of the energy evaluation (a degenerate
+// triangle) becomes a status; to be replaced by the non-throwing evaluation
+// API (TryPathEnergy, ...).
+template <class Evaluation>
+EvaluationStatus Guarded(Evaluation&& evaluation) {
+  try {
+    evaluation();
+  } catch (const InputError&) {
+    return EvaluationStatus::kInfeasible;
+  }
+  return EvaluationStatus::kOk;
+}
 
 // The free-coordinate bases of the inner shapes and their offsets in the
 // reduced unknown vector.
@@ -71,112 +83,105 @@ ShellPath StepPath(const ShellPath& path, const ReducedCoordinates& r,
   return moved;
 }
 
+// E_K over the inner shapes of *path (ends fixed) for SolveNewton: merit
+// E_K, residual the reduced gradient T^T G, H by PathHessianAssembler on the
+// bases of the current shapes, retraction s_k += T_k p_k.
+class PathEnergyProblem : public NewtonProblem {
+ public:
+  PathEnergyProblem(const ShellSpace& space, const std::vector<int>& fixed,
+                    int threads, ShellPath* path)
+      : space_(space),
+        fixed_(fixed),
+        threads_(threads),
+        assembler_(space),
+        path_(path),
+        reduced_(MakeReducedCoordinates(space, fixed, *path)) {}
+
+  EvaluationStatus Merit(NewtonPoint point, double* merit) override {
+    const ShellPath& path = point == NewtonPoint::kCurrent ? *path_ : trial_;
+    return Guarded([&] { *merit = PathEnergy(space_, path); });
+  }
+  EvaluationStatus Residual(NewtonPoint point,
+                            NewtonResidual* residual) override {
+    if (point == NewtonPoint::kTrial) {
+      trial_reduced_ = MakeReducedCoordinates(space_, fixed_, trial_);
+    }
+    const ShellPath& path = point == NewtonPoint::kCurrent ? *path_ : trial_;
+    const ReducedCoordinates& r =
+        point == NewtonPoint::kCurrent ? reduced_ : trial_reduced_;
+    return Guarded([&] {
+      *residual =
+          NewtonResidual::OfReduced(ReducedGradient(space_, path, r, threads_));
+    });
+  }
+  EvaluationStatus Assemble(LinearSystem* system) override {
+    return Guarded([&] {
+      system->matrix = assembler_.Assemble(*path_, reduced_.basis, threads_);
+      system->vertex_of = reduced_.vertex_of;
+      system->num_vertices = space_.num_vertices;
+    });
+  }
+  void SetTrial(const Eigen::VectorXd& step) override {
+    trial_ = StepPath(*path_, reduced_, step);
+  }
+  void AcceptTrial() override {
+    // Copy into the existing shapes: a ceres::Problem may hold pointers to
+    // their coordinates.
+    const int K = static_cast<int>(path_->size()) - 1;
+    for (int k = 1; k < K; ++k) (*path_)[k] = trial_[k];
+    reduced_ = std::move(trial_reduced_);
+  }
+
+ private:
+  const ShellSpace& space_;
+  const std::vector<int>& fixed_;
+  const int threads_;
+  const PathHessianAssembler assembler_;
+  ShellPath* path_;
+  ReducedCoordinates reduced_;
+  ShellPath trial_;
+  ReducedCoordinates trial_reduced_;
+};
+
 }  // namespace
 
 PathNewtonReport PolishPathNewton(const ShellSpace& space,
                                   const std::vector<int>& fixed_vertices,
                                   const PathNewtonSettings& settings,
                                   ShellPath* path) {
-  const auto start = std::chrono::steady_clock::now();
-  auto seconds = [&]() {
-    return std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                         start)
-        .count();
-  };
-  PathNewtonReport report;
   const int K = static_cast<int>(path->size()) - 1;
   if (K < 2) {
+    PathNewtonReport report;
     report.converged = true;
+    report.stop = NewtonStop::kConverged;
     report.stop_reason = "no inner shapes";
     return report;
   }
-  const int threads = std::max(1, settings.num_threads);
-  const PathHessianAssembler assembler(space);
-  ReducedCoordinates r = MakeReducedCoordinates(space, fixed_vertices, *path);
-  Eigen::VectorXd g = ReducedGradient(space, *path, r, threads);
-  double energy = PathEnergy(space, *path);
-  report.initial_gradient = report.final_gradient = g.cwiseAbs().maxCoeff();
-  report.stop_reason = "max steps";
-  ReusableCholesky linear_solver;
-  const double initial_norm = std::max(g.norm(), 1e-300);
-  while (true) {
-    if (report.final_gradient <= settings.gradient_tolerance) {
-      report.converged = true;
-      report.stop_reason = "converged";
-      break;
-    }
-    if (report.steps >= settings.max_steps) break;
-    double t0 = seconds();
-    const SparseMatrix h = assembler.Assemble(*path, r.basis, threads);
-    report.assembly_seconds += seconds() - t0;
-    Eigen::VectorXd p;
-    // Inexact Newton: relative residual of the linear solve (2-norm), tighter
-    // as the gradient falls, but no tighter than needed to land below the
-    // tolerance (the new gradient is the linear residual to first order).
-    const double g_two_norm = std::max(g.norm(), 1e-300);
-    const double forcing = std::min(
-        0.1, std::max(std::min(1e-2, g_two_norm / initial_norm),
-                      0.25 * settings.gradient_tolerance / g_two_norm));
-    if (!linear_solver.Solve(h, r.vertex_of, space.num_vertices, -g, forcing,
-                             &p)) {
-      report.stop_reason = "Hessian not positive definite";
-      break;
-    }
-    bool accepted = false;
-    for (double length = 1; length >= 0.25 && !accepted; length *= 0.5) {
-      ShellPath candidate = StepPath(*path, r, length * p);
-      double candidate_energy = 0;
-      try {
-        candidate_energy = PathEnergy(space, candidate);
-      } catch (const InputError&) {
-        continue;  // a degenerate triangle: shorter step
-      }
-      // Sufficient decrease (Armijo), or, once E_K changes only at round-off
-      // level, a smaller gradient.
-      const double slope = g.dot(p);  // < 0: H is positive definite
-      const bool decrease = candidate_energy <= energy + 1e-4 * length * slope;
-      const bool round_off =
-          std::abs(candidate_energy - energy) <= 1e-10 * std::abs(energy);
-      if (!decrease && !round_off) continue;
-      ReducedCoordinates r_new =
-          MakeReducedCoordinates(space, fixed_vertices, candidate);
-      Eigen::VectorXd g_new = ReducedGradient(space, candidate, r_new, threads);
-      const double g_norm = g_new.cwiseAbs().maxCoeff();
-      if (!decrease && !(g_norm < report.final_gradient)) continue;
-      // Copy into the existing shapes: a ceres::Problem may hold pointers
-      // to their coordinates.
-      for (int k = 1; k < K; ++k) (*path)[k] = candidate[k];
-      r = std::move(r_new);
-      g = std::move(g_new);
-      energy = candidate_energy;
-      report.final_gradient = g_norm;
-      ++report.steps;
-      accepted = true;
-    }
-    if (settings.progress) {
+  PathEnergyProblem problem(space, fixed_vertices,
+                            std::max(1, settings.num_threads), path);
+  NewtonSettings newton;
+  newton.mode = NewtonMode::kMinimize;
+  newton.max_steps = settings.max_steps;
+  newton.tolerance = settings.gradient_tolerance;
+  newton.forcing_rule = NewtonSettings::Forcing::kInexactNewton;
+  newton.forcing = 1e-2;
+  newton.max_halvings = 2;
+  newton.accept_smaller_max_norm = true;
+  newton.merit_round_off = 1e-10;
+  if (settings.progress) {
+    newton.progress = [&](const NewtonReport& r, double energy,
+                          bool accepted) {
       std::fprintf(stderr,
                    "%s step %2d  E_K %.12e  |grad| %.3e  %s  %.2f s"
                    " (Hessian %.2f s, %d Cholesky %.2f s, %d CG %.2f s)\n",
-                   settings.progress_label.c_str(), report.steps, energy,
-                   report.final_gradient, accepted ? "ok " : "rej", seconds(),
-                   report.assembly_seconds,
-                   linear_solver.stats().factorizations,
-                   linear_solver.stats().factorization_seconds,
-                   linear_solver.stats().cg_iterations,
-                   linear_solver.stats().cg_seconds);
-    }
-    if (!accepted) {
-      report.stop_reason = "no decrease along the Newton direction";
-      break;
-    }
+                   settings.progress_label.c_str(), r.steps, energy,
+                   r.final_gradient, accepted ? "ok " : "rej", r.seconds,
+                   r.assembly_seconds, r.factorizations,
+                   r.factorization_seconds, r.cg_iterations, r.cg_seconds);
+    };
   }
-  report.seconds = seconds();
-  report.factorizations = linear_solver.stats().factorizations;
-  report.cg_iterations = linear_solver.stats().cg_iterations;
-  report.factorization_seconds = linear_solver.stats().factorization_seconds;
-  report.cg_seconds = linear_solver.stats().cg_seconds;
-  return report;
+  ReusableCholesky linear_solver;
+  return SolveNewton(&problem, &linear_solver, newton);
 }
 
 }  // namespace shellspace
-

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "shellspace/cost_functions/shell/shell_space.h"
+#include "shellspace/solvers/newton_solver.h"
 
 namespace shellspace {
 
@@ -22,37 +23,9 @@ struct PathNewtonSettings {
   std::string progress_label = "newton";
 };
 
-struct PathNewtonReport {
-  int steps = 0;                 // accepted Newton steps
-  double initial_gradient = 0;   // max |G| before / after
-  double final_gradient = 0;
-  double seconds = 0;
-  double assembly_seconds = 0;       // of which: Hessian assembly
-  int factorizations = 0;            // sparse Cholesky factorisations
-  double factorization_seconds = 0;  // of which: factorisations
-  int cg_iterations = 0;             // CG iterations on a reused factor
-  double cg_seconds = 0;             // of which: CG
-  bool converged = false;        // final_gradient <= tolerance
-  std::string stop_reason;       // why it stopped (converged, not SPD, ...)
-
-  // Adds a later attempt: counts and times summed, the rest from `later`
-  // (initial_gradient stays the first attempt's).
-  void Append(const PathNewtonReport& later) {
-    if (attempts == 0) initial_gradient = later.initial_gradient;
-    ++attempts;
-    steps += later.steps;
-    seconds += later.seconds;
-    assembly_seconds += later.assembly_seconds;
-    factorizations += later.factorizations;
-    factorization_seconds += later.factorization_seconds;
-    cg_iterations += later.cg_iterations;
-    cg_seconds += later.cg_seconds;
-    final_gradient = later.final_gradient;
-    converged = later.converged;
-    stop_reason = later.stop_reason;
-  }
-  int attempts = 0;  // PolishPathNewton calls summed by Append
-};
+// The report of PolishPathNewton (solvers/newton_solver.h): steps, max |G|
+// before / after, converged, stop reason, linear-solver work and times.
+using PathNewtonReport = NewtonReport;
 
 // Newton polish of the inner shapes s_1..s_{K-1} of `path` (K + 1 shapes,
 // ends fixed) for E_K = K sum_k W[s_{k-1}, s_k]. The gradient
@@ -63,7 +36,8 @@ struct PathNewtonReport {
 // are restricted to the free coordinates of each inner shape: the vertices
 // not in `fixed_vertices`, or, without a mask, the 3n - 6 directions of
 // RigidGaugeBasis (gauge_reduced_solve.h). H is assembled by
-// PathHessianAssembler; each step solves H p = -G inexactly (relative
+// PathHessianAssembler; the iteration is SolveNewton (newton_solver.h) in
+// minimisation mode: each step solves H p = -G inexactly (relative
 // residual min(1e-2, |G|/|G_0|), never tighter than a quarter of the
 // tolerance needs) by ReusableCholesky: CG preconditioned by the last
 // Cholesky factor, a new factorisation only when CG stalls. A step is

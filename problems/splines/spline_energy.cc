@@ -8,6 +8,7 @@
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
 #include "shellspace/solvers/gauge_reduced_solve.h"
 #include "shellspace/problems/calculus/path_hessian.h"
+#include "shellspace/solvers/newton_solver.h"
 #include "shellspace/solvers/reusable_cholesky.h"
 
 namespace shellspace {
@@ -51,8 +52,9 @@ class MidpointHessian {
   void Assemble(const PathHessianAssembler& assembler, const Positions& a,
                 const Positions& m, const Positions& b, int threads) {
     basis_ = RigidGaugeBasis(m);
-    lower_ = 0.5 * assembler.Assemble({a, m, b}, {basis_}, threads);
-    vertex_of_ = BasisColumnVertices(basis_);
+    system_.matrix = 0.5 * assembler.Assemble({a, m, b}, {basis_}, threads);
+    system_.vertex_of = BasisColumnVertices(basis_);
+    system_.num_vertices = static_cast<int>(basis_.rows() / 3);
   }
   // H p = rhs to relative residual `tolerance`; false if H is not positive
   // definite (modulo rigid motions).
@@ -60,27 +62,125 @@ class MidpointHessian {
              Eigen::VectorXd* p) {
     Eigen::VectorXd q;
     const Eigen::VectorXd reduced = basis_.transpose() * rhs;
-    if (!solver_.Solve(lower_, vertex_of_, basis_.rows() / 3, reduced,
-                       tolerance, &q)) {
-      return false;
-    }
+    if (!solver_.Solve(system_, reduced, tolerance, &q)) return false;
     *p = basis_ * q;
     return true;
   }
+  const SparseMatrix& basis() const { return basis_; }
+  const LinearSystem& system() const { return system_; }
+  ReusableCholesky* solver() { return &solver_; }
   const ReusableCholesky::Stats& stats() const { return solver_.stats(); }
 
  private:
-  SparseMatrix basis_, lower_;
-  std::vector<int> vertex_of_;
+  SparseMatrix basis_;
+  LinearSystem system_;  // T^T H_k T (lower triangle)
   ReusableCholesky solver_;
 };
 
-// Relative residual of the linear solves: Newton steps (tighter as |G|
-// falls) and the adjoint.
-double NewtonForcing(double norm, double scale) {
-  return std::clamp(norm / scale, 1e-12, 1e-3);
-}
+// Relative residual of the linear solves: Newton steps (|G| / scale clamped
+// to [1e-12, 1e-3]: tighter as |G| falls) and the adjoint.
+constexpr double kForcingMin = 1e-12;
+constexpr double kForcingMax = 1e-3;
 constexpr double kAdjointTolerance = 1e-10;
+
+// The one place where an InputError of the gradient evaluation (a
+// degenerate triangle) becomes a status; to be replaced by the non-throwing
+// evaluation API.
+template <class Evaluation>
+EvaluationStatus Guarded(Evaluation&& evaluation) {
+  try {
+    evaluation();
+  } catch (const InputError&) {
+    return EvaluationStatus::kInfeasible;
+  }
+  return EvaluationStatus::kOk;
+}
+
+// G(m) = D_2 W[a, m] + D_1 W[m, b] = 0 for SolveNewton (root finding; the
+// "Jacobian" is H_k, SPD modulo rigid motions): residual T^T G with T =
+// RigidGaugeBasis(m), max norm of G over all coordinates, tolerance scale
+// |D_2 W[a, m]|_inf; H_k assembled into `hessian` (kept for the adjoint,
+// *has_adjoint set); retraction m += T q. An accepted step larger than
+// kReuseHessianBelow times the bounding-box diagonal clears *has_adjoint
+// (H_k is from before the step).
+class MidpointProblem : public NewtonProblem {
+ public:
+  MidpointProblem(const ShellSpace& space,
+                  const PathHessianAssembler& assembler, const Positions& a,
+                  const Positions& b, int threads, Positions* m,
+                  MidpointHessian* hessian, bool* has_adjoint,
+                  int* assemblies)
+      : space_(space), assembler_(assembler), a_(a), b_(b),
+        threads_(threads), m_(m), hessian_(hessian),
+        has_adjoint_(has_adjoint), assemblies_(assemblies) {}
+
+  EvaluationStatus Merit(NewtonPoint, double*) override {
+    return EvaluationStatus::kInfeasible;  // root finding
+  }
+  EvaluationStatus Residual(NewtonPoint point,
+                            NewtonResidual* residual) override {
+    const bool current = point == NewtonPoint::kCurrent;
+    const Positions& m = current ? *m_ : trial_;
+    Eigen::VectorXd g_a, g;
+    if (Guarded([&] {
+          g_a = EnergyGradient(space_, a_, m, ShellSide::kDeformed);
+          g = g_a + EnergyGradient(space_, m, b_, ShellSide::kReference);
+        }) != EvaluationStatus::kOk) {
+      if (!current) {  // no usable trial: never "smaller"
+        trial_residual_ = NewtonResidual();
+        trial_residual_.max_norm = HUGE_VAL;
+      }
+      return EvaluationStatus::kInfeasible;
+    }
+    residual->scale = std::max(MaxNorm(g_a), 1e-300);
+    residual->max_norm = MaxNorm(g);
+    residual->two_norm = g.norm();
+    residual->reduced = RigidGaugeBasis(m).transpose() * g;
+    (current ? current_ : trial_residual_) = *residual;
+    return EvaluationStatus::kOk;
+  }
+  EvaluationStatus Assemble(LinearSystem* system) override {
+    hessian_->Assemble(assembler_, a_, *m_, b_, threads_);
+    ++*assemblies_;
+    *has_adjoint_ = true;
+    *system = hessian_->system();
+    return EvaluationStatus::kOk;
+  }
+  void SetTrial(const Eigen::VectorXd& step) override {
+    step_ = hessian_->basis() * step;
+    trial_ = *m_;
+    Eigen::Map<Eigen::VectorXd>(trial_.data(), trial_.size()) += step_;
+  }
+  void AcceptTrial() override {
+    *m_ = trial_;
+    current_ = trial_residual_;
+    // H_k from before the step serves the adjoint only after a small step.
+    const double diagonal =
+        (m_->colwise().maxCoeff() - m_->colwise().minCoeff()).norm();
+    if (MaxNorm(step_) > kReuseHessianBelow * diagonal) {
+      *has_adjoint_ = false;
+    }
+  }
+  // G at *m (the last Residual(kCurrent) or accepted trial), and the last
+  // trial's: valid after a line search.
+  const NewtonResidual& current() const { return current_; }
+  const NewtonResidual& trial() const { return trial_residual_; }
+  const Eigen::VectorXd& last_step() const { return step_; }  // T q
+
+ private:
+  const ShellSpace& space_;
+  const PathHessianAssembler& assembler_;
+  const Positions& a_;
+  const Positions& b_;
+  const int threads_;
+  Positions* m_;
+  MidpointHessian* hessian_;
+  bool* has_adjoint_;
+  int* assemblies_;
+  Positions trial_;
+  Eigen::VectorXd step_;
+  NewtonResidual current_, trial_residual_;
+};
 
 }  // namespace
 
@@ -194,66 +294,73 @@ bool SplineObjective::SolveMidpoint(const Positions& a, const Positions& b,
     mid->has_adjoint = false;
     return summary.IsSolutionUsable();
   };
-  const auto residual = [&](const Positions& m, double* scale) {
-    const Eigen::VectorXd g_a =
-        EnergyGradient(space_, a, m, ShellSide::kDeformed);
-    *scale = std::max(MaxNorm(g_a), 1e-300);
-    return Eigen::VectorXd(g_a +
-                           EnergyGradient(space_, m, b, ShellSide::kReference));
-  };
   mid->has_adjoint = false;
   if (mid->m.size() == 0 && !run_lm()) return false;
-  double scale = 0;
-  Eigen::VectorXd g = residual(mid->m, &scale);
   const auto clock = std::chrono::steady_clock::now();
   const double lm_seconds_before = timings_.lm_seconds;
+  MidpointProblem problem(space_, *assembler_, a, b,
+                          inner_settings_.num_threads, &mid->m, &mid->hessian,
+                          &mid->has_adjoint, &timings_.newton_steps);
+  NewtonResidual g;  // at mid->m
   bool converged = false;
-  for (int step = 0; step < kMaxNewtonSteps && !converged; ++step) {
-    const double norm = MaxNorm(g);
-    if (norm <= kNewtonTolerance * scale && (mid->has_adjoint || !adjoint)) {
-      converged = true;
+  // Newton (SolveNewton) within kMaxNewtonSteps iterations (Hessian
+  // assemblies) in all; a step is taken if it halves max |G|. When it does
+  // not: converged at the round-off floor; else LM from the current point;
+  // after the full LM, the step if it lowers max |G| at all, else damped
+  // Newton on the midpoint energy.
+  int budget = kMaxNewtonSteps;
+  bool ok = problem.Residual(NewtonPoint::kCurrent, &g) ==
+            EvaluationStatus::kOk;
+  while (ok && budget > 0 && !converged) {
+    NewtonSettings settings;
+    settings.mode = NewtonMode::kRootFind;
+    settings.max_steps = budget;
+    settings.tolerance = kNewtonTolerance;  // times |D_2 W[a, m]|
+    settings.forcing_rule = NewtonSettings::Forcing::kRelativeResidual;
+    settings.forcing = kForcingMax;
+    settings.forcing_min = kForcingMin;
+    settings.max_halvings = 0;
+    settings.accept_max_norm_reduction = 0.5;
+    const NewtonReport report =
+        SolveNewton(&problem, mid->hessian.solver(), settings);
+    budget -= report.iterations;
+    g = problem.current();
+    if (report.stop == NewtonStop::kConverged) {
+      if (mid->has_adjoint || !adjoint) {
+        converged = true;
+      } else if (budget > 0) {  // H_k is needed for the adjoint only
+        LinearSystem unused;
+        problem.Assemble(&unused);
+        --budget;
+        converged = true;
+      }
       break;
     }
-    // H_k at the current iterate.
-    mid->hessian.Assemble(*assembler_, a, mid->m, b,
-                          inner_settings_.num_threads);
-    ++timings_.newton_steps;
-    mid->has_adjoint = true;
-    if (norm <= kNewtonTolerance * scale) {
-      converged = true;  // H_k was needed for the adjoint only
-      break;
-    }
-    Eigen::VectorXd dm;
-    if (!mid->hessian.Solve(-g, NewtonForcing(norm, scale), &dm)) {
+    if (report.stop == NewtonStop::kLinearSolveFailed) {
       mid->has_adjoint = false;
       if (lm_done || !run_lm()) break;  // H_k indefinite even after LM
-      g = residual(mid->m, &scale);
-      continue;
-    }
-    Positions candidate = mid->m;
-    Eigen::Map<Eigen::VectorXd>(candidate.data(), candidate.size()) += dm;
-    double candidate_scale = 0;
-    const Eigen::VectorXd g_new = residual(candidate, &candidate_scale);
-    const double new_norm = MaxNorm(g_new);
-    if (!(new_norm <= 0.5 * norm)) {
-      if (norm <= kRoundOffFloor * scale) {
+    } else if (report.stop == NewtonStop::kLineSearchFailed) {
+      if (g.max_norm <= kRoundOffFloor * g.scale) {
         converged = true;  // at round-off; H_k is at mid->m
-        continue;
+        break;
       }
       if (!lm_done) {  // far from the midpoint: LM from here
         if (!run_lm()) break;
-        g = residual(mid->m, &scale);
+      } else if (problem.trial().max_norm < g.max_norm) {
+        problem.AcceptTrial();  // a decrease after the full LM solve: take it
+        g = problem.current();
         continue;
-      }
-      if (!(new_norm < norm)) {
+      } else {
         // Damped Newton: H_k is positive definite, so dm descends the
         // midpoint energy E(m) = W[a, m] + W[m, b]; halve it until E drops.
+        const Eigen::VectorXd dm = problem.last_step();
         const auto energy = [&](const Positions& m) {
           return EvaluateDeformationEnergy(space_, a, m).total +
                  EvaluateDeformationEnergy(space_, m, b).total;
         };
         const double e0 = energy(mid->m);
         bool decreased = false;
+        Positions candidate;
         for (int halving = 1; halving <= 20 && !decreased; ++halving) {
           candidate = mid->m;
           Eigen::Map<Eigen::VectorXd>(candidate.data(), candidate.size()) +=
@@ -262,21 +369,15 @@ bool SplineObjective::SolveMidpoint(const Positions& a, const Positions& b,
         }
         if (!decreased) break;  // not a usable midpoint
         mid->m = candidate;
-        g = residual(mid->m, &scale);
         mid->has_adjoint = false;
-        continue;
       }
-      // A decrease after the full LM solve: take it.
+    } else {
+      break;  // max steps (budget spent) or an infeasible start
     }
-    mid->m = candidate;
-    g = g_new;
-    scale = candidate_scale;
-    // H_k from before the step serves the adjoint only after a small step.
-    const double diagonal =
-        (mid->m.colwise().maxCoeff() - mid->m.colwise().minCoeff()).norm();
-    if (MaxNorm(dm) > kReuseHessianBelow * diagonal) mid->has_adjoint = false;
+    // mid->m moved outside the engine (LM, damped step): G there.
+    ok = problem.Residual(NewtonPoint::kCurrent, &g) == EvaluationStatus::kOk;
   }
-  if (!converged && MaxNorm(g) <= kRoundOffFloor * scale &&
+  if (ok && !converged && g.max_norm <= kRoundOffFloor * g.scale &&
       (mid->has_adjoint || !adjoint)) {
     converged = true;
   }

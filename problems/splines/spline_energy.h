@@ -51,8 +51,9 @@ struct SplineTimings {
 
 // R[s] = sum_j W[S_j, s_{k_j}] + sigma F_K[s], F_K = 4 K^3 sum_k W[s_k,
 // m_k], m_k = argmin_m W[s_{k-1}, m] + W[m, s_{k+1}] (geodesic midpoint).
-// Midpoints: Newton's method on G(m) = D_2 W[s_{k-1}, m] + D_1 W[m, s_{k+1}]
-// = 0 with the exact Hessian H_k (gauge-reduced; assembled by
+// Midpoints: Newton's method (SolveNewton, solvers/newton_solver.h, root
+// finding) on G(m) = D_2 W[s_{k-1}, m] + D_1 W[m, s_{k+1}] = 0 with the
+// exact Hessian H_k (gauge-reduced; assembled by
 // PathHessianAssembler, solved by ReusableCholesky: CG on the last factor of
 // this term, refactorised when CG stalls), started from the
 // previous evaluation's midpoint; sparse LM first when there is none (from

@@ -3,7 +3,6 @@
 #include "shellspace/problems/statistics/elastic_mean.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -13,6 +12,7 @@
 #include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/solvers/gauge_reduced_solve.h"
 #include "shellspace/problems/calculus/path_hessian.h"
+#include "shellspace/solvers/newton_solver.h"
 #include "shellspace/solvers/reusable_cholesky.h"
 #include "shellspace/solvers/rigid_gauge.h"
 
@@ -58,33 +58,97 @@ Eigen::VectorXd ElasticMeanGradient(const ShellSpace& space,
 
 namespace {
 
-// E(s) = sum_i W[S_i, s], G(s), |G(s)|_2 and |G(s)|_inf; all +inf if s has
-// a degenerate triangle.
-struct GradientNorms {
-  Eigen::VectorXd g;
-  double energy = std::numeric_limits<double>::infinity();
-  double two = std::numeric_limits<double>::infinity();
-  double inf = std::numeric_limits<double>::infinity();
-};
-GradientNorms NormsAt(const ShellSpace& space,
-                      const std::vector<Positions>& shapes,
-                      const Positions& s) {
-  GradientNorms n;
-  double energy = 0;
+// The one place where an InputError of the energy evaluation (a degenerate
+// triangle) becomes a status; to be replaced by the non-throwing evaluation
+// API (TryEvaluateDeformationEnergy, ...).
+template <class Evaluation>
+EvaluationStatus Guarded(Evaluation&& evaluation) {
   try {
-    n.g = ElasticMeanGradient(space, shapes, s);
-    for (const Positions& shape : shapes) {
-      energy += EvaluateDeformationEnergy(space, shape, s).total;
-    }
+    evaluation();
   } catch (const InputError&) {
-    return n;
+    return EvaluationStatus::kInfeasible;
   }
-  if (!n.g.allFinite() || !std::isfinite(energy)) return n;
-  n.energy = energy;
-  n.two = n.g.norm();
-  n.inf = n.g.cwiseAbs().maxCoeff();
-  return n;
+  return EvaluationStatus::kOk;
 }
+
+// E(s) = sum_i W[S_i, s]; +inf if s has a degenerate triangle.
+double MeanEnergy(const ShellSpace& space,
+                  const std::vector<Positions>& shapes, const Positions& s) {
+  double energy = 0;
+  if (Guarded([&] {
+        for (const Positions& shape : shapes) {
+          energy += EvaluateDeformationEnergy(space, shape, s).total;
+        }
+      }) != EvaluationStatus::kOk) {
+    return std::numeric_limits<double>::infinity();
+  }
+  return energy;
+}
+
+// E(s) = sum_i W[S_i, s] over s for SolveNewton: merit E, residual G(s)
+// (norms on all 3n coordinates, reduced T^T G with T = RigidGaugeBasis(s)),
+// H = T^T (sum_i D_2^2 W[S_i, s]) T by AssembleDeformedSum, retraction
+// s += T q (in place: the Ceres problem points into *s).
+class ElasticMeanProblem : public NewtonProblem {
+ public:
+  ElasticMeanProblem(const ShellSpace& space,
+                     const std::vector<Positions>& shapes, int threads,
+                     Positions* s)
+      : space_(space), shapes_(shapes), threads_(threads), assembler_(space),
+        s_(s) {}
+
+  EvaluationStatus Merit(NewtonPoint point, double* merit) override {
+    *merit = MeanEnergy(space_, shapes_, At(point));
+    return std::isfinite(*merit) ? EvaluationStatus::kOk
+                                 : EvaluationStatus::kInfeasible;
+  }
+  EvaluationStatus Residual(NewtonPoint point,
+                            NewtonResidual* residual) override {
+    const Positions& s = At(point);
+    Eigen::VectorXd g;
+    if (Guarded([&] { g = ElasticMeanGradient(space_, shapes_, s); }) !=
+            EvaluationStatus::kOk ||
+        !g.allFinite()) {
+      return EvaluationStatus::kInfeasible;
+    }
+    SparseMatrix& basis =
+        point == NewtonPoint::kCurrent ? basis_ : trial_basis_;
+    basis = RigidGaugeBasis(s);
+    residual->reduced = basis.transpose() * g;
+    residual->max_norm = g.cwiseAbs().maxCoeff();
+    residual->two_norm = g.norm();
+    return EvaluationStatus::kOk;
+  }
+  EvaluationStatus Assemble(LinearSystem* system) override {
+    return Guarded([&] {
+      system->matrix =
+          assembler_.AssembleDeformedSum(shapes_, *s_, basis_, threads_);
+      system->vertex_of = BasisColumnVertices(basis_);
+      system->num_vertices = space_.num_vertices;
+    });
+  }
+  void SetTrial(const Eigen::VectorXd& step) override {
+    trial_ = *s_;
+    Eigen::Map<Eigen::VectorXd>(trial_.data(), trial_.size()) += basis_ * step;
+  }
+  void AcceptTrial() override {
+    *s_ = trial_;
+    basis_ = std::move(trial_basis_);
+  }
+
+ private:
+  const Positions& At(NewtonPoint point) const {
+    return point == NewtonPoint::kCurrent ? *s_ : trial_;
+  }
+  const ShellSpace& space_;
+  const std::vector<Positions>& shapes_;
+  const int threads_;
+  const PathHessianAssembler assembler_;
+  Positions* s_;
+  SparseMatrix basis_;  // RigidGaugeBasis(*s_)
+  Positions trial_;
+  SparseMatrix trial_basis_;
+};
 
 // The safeguarded Newton iteration of ElasticMeanOptions on *s, until
 // |G|_inf <= target. Returns false if the safeguard stopped it.
@@ -92,55 +156,27 @@ bool NewtonFinish(const ShellSpace& space, const std::vector<Positions>& shapes,
                   double target, const ElasticMeanOptions& options,
                   const SolverSettings& settings, Positions* s,
                   int* iterations) {
-  const auto clock = std::chrono::steady_clock::now();
-  const PathHessianAssembler assembler(space);
-  ReusableCholesky solver;
-  GradientNorms current = NormsAt(space, shapes, *s);
-  for (int it = 0; it < options.max_newton_iterations; ++it) {
-    if (current.inf <= target) return true;
-    if (!std::isfinite(current.two)) return false;
-    // H = sum_i D_2^2 W[S_i, s] modulo rigid motions (p = T q).
-    Eigen::VectorXd p;
-    try {
-      const SparseMatrix basis = RigidGaugeBasis(*s);
-      const SparseMatrix h = assembler.AssembleDeformedSum(
-          shapes, *s, basis, settings.num_threads);
-      const std::vector<int> vertex_of = BasisColumnVertices(basis);
-      Eigen::VectorXd q;
-      const Eigen::VectorXd rhs = -(basis.transpose() * current.g);
-      if (!solver.Solve(h, vertex_of, space.num_vertices, rhs, 1e-10, &q)) {
-        return false;  // H not positive definite
-      }
-      p = basis * q;
-    } catch (const InputError&) {
-      return false;
-    }
-    const double slope = current.g.dot(p);
-    if (!p.allFinite() || !(slope < 0)) return false;
-    bool accepted = false;
-    for (double t = 1.0; t >= 1.0 / 16; t *= 0.5) {
-      Positions candidate = *s;
-      Eigen::Map<Eigen::VectorXd>(candidate.data(), candidate.size()) += t * p;
-      GradientNorms next = NormsAt(space, shapes, candidate);
-      if (next.energy <= current.energy + 1e-4 * t * slope ||
-          next.two < current.two) {
-        *s = candidate;  // in place: the Ceres problem points into *s
-        current = std::move(next);
-        accepted = true;
-        break;
-      }
-    }
-    if (!accepted) return false;
-    ++*iterations;
-    if (settings.progress) {
+  ElasticMeanProblem problem(space, shapes, settings.num_threads, s);
+  NewtonSettings newton;
+  newton.mode = NewtonMode::kMinimize;
+  newton.max_steps = options.max_newton_iterations;
+  newton.tolerance = target;
+  newton.forcing = 1e-10;
+  newton.max_halvings = 4;  // t = 1, ..., 1/16
+  newton.accept_smaller_two_norm = true;
+  const int before = *iterations;
+  if (settings.progress) {
+    newton.progress = [&](const NewtonReport& r, double, bool accepted) {
+      if (!accepted) return;
       std::fprintf(stderr, "%s newton %d  |grad| %.3e  %.2f s\n",
-                   settings.progress_label.c_str(), *iterations, current.inf,
-                   std::chrono::duration<double>(
-                       std::chrono::steady_clock::now() - clock)
-                       .count());
-    }
+                   settings.progress_label.c_str(), before + r.steps,
+                   r.final_gradient, r.seconds);
+    };
   }
-  return current.inf <= target;
+  ReusableCholesky solver;
+  const NewtonReport report = SolveNewton(&problem, &solver, newton);
+  *iterations += report.steps;
+  return report.converged;
 }
 
 }  // namespace
@@ -214,7 +250,15 @@ ElasticMeanResult ComputeElasticMean(const ShellSpace& space,
     }
     result.newton_fell_back = true;
   }
-  result.gradient_norm = NormsAt(space, shapes, result.mean).inf;
+  {
+    NewtonResidual g;
+    ElasticMeanProblem at_mean(space, shapes, settings.num_threads,
+                               &result.mean);
+    result.gradient_norm =
+        at_mean.Residual(NewtonPoint::kCurrent, &g) == EvaluationStatus::kOk
+            ? g.max_norm
+            : std::numeric_limits<double>::infinity();
+  }
   result.converged = usable && result.gradient_norm <= target;
   result.mean = AlignRigidly(result.mean, shapes[0]);
   for (const Positions& shape : shapes) {

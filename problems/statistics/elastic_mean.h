@@ -36,8 +36,8 @@ Positions AlignedVertexAverage(const std::vector<Positions>& shapes);
 //   G(s) = sum_i D_2 W[S_i, s] = 0,  H(s) = sum_i D_2^2 W[S_i, s]
 // takes over: H p = -G solved modulo rigid motions (H assembled by
 // PathHessianAssembler::AssembleDeformedSum on RigidGaugeBasis, factorised by
-// ReusableCholesky),
-// s <- s + t p with t the first of 1, 1/2, ..., 1/16 that either satisfies
+// ReusableCholesky; the iteration is SolveNewton, solvers/newton_solver.h,
+// in minimisation mode), s <- s + t p with t the first of 1, 1/2, ..., 1/16 that either satisfies
 // Armijo's condition E(s + t p) <= E(s) + 1e-4 t G . p on E = sum_i W[S_i, .]
 // or lowers |G|_2 (near the mean the energy decrease is below round-off and
 // |G| decides; farther out, on the faces, the full step lowers E but first

@@ -1,0 +1,48 @@
+// The linear solver of a Newton step: A x = b for the (reduced) Hessian or
+// Jacobian A of one Newton iteration, behind one interface so that the
+// Newton engine (newton_solver.h) does not know which factorisation runs.
+#ifndef SHELLSPACE_SOLVERS_LINEAR_SOLVER_H_
+#define SHELLSPACE_SOLVERS_LINEAR_SOLVER_H_
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <vector>
+
+namespace shellspace {
+
+// One linear system A (n x n, sparse). For a symmetric solver only the lower
+// triangle of `matrix` is read. vertex_of[i] (optional, size n) is the mesh
+// vertex of unknown i out of num_vertices: a fill-reducing ordering hint
+// (space_time_ordering.h); solvers that do not use it ignore it.
+struct LinearSystem {
+  Eigen::SparseMatrix<double> matrix;
+  std::vector<int> vertex_of;
+  int num_vertices = 0;
+};
+
+// Work counters of a linear solver, summed over its solves. The seconds are
+// wall clock, for reports only: no decision of any solver depends on them.
+struct LinearSolverStats {
+  int factorizations = 0;
+  int cg_solves = 0;      // solves finished by CG on a reused factor
+  int cg_iterations = 0;  // in all
+  double factorization_seconds = 0;
+  double cg_seconds = 0;
+};
+
+// Solves A x = b. `tolerance` is the relative residual |A x - b|_2 <=
+// tolerance |b|_2 an iterative solver may stop at; a direct solver solves to
+// round-off and ignores it. Returns false (x unspecified) if A is singular
+// or, for an SPD solver, not positive definite; then x is not finite-checked
+// by the caller.
+class LinearSolver {
+ public:
+  virtual ~LinearSolver() = default;
+  virtual bool Solve(const LinearSystem& system, const Eigen::VectorXd& b,
+                     double tolerance, Eigen::VectorXd* x) = 0;
+  virtual const LinearSolverStats& stats() const = 0;
+};
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_SOLVERS_LINEAR_SOLVER_H_

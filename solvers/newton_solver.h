@@ -1,0 +1,173 @@
+// One Newton engine for the Newton iterations of the library: minimisation
+// of a merit function (geodesic finish, elastic mean) and root finding
+// (EXP step), on reduced coordinates chosen by the problem.
+#ifndef SHELLSPACE_SOLVERS_NEWTON_SOLVER_H_
+#define SHELLSPACE_SOLVERS_NEWTON_SOLVER_H_
+
+#include <Eigen/Core>
+#include <functional>
+#include <string>
+
+#include "shellspace/solvers/linear_solver.h"
+
+namespace shellspace {
+
+// An evaluation at a point the problem cannot evaluate (a degenerate
+// triangle of a trial shape) is a status, not an exception.
+enum class EvaluationStatus { kOk, kInfeasible };
+
+// The current point x (accepted) and the trial point x ⊕ T(x) p of the line
+// search.
+enum class NewtonPoint { kCurrent, kTrial };
+
+// The residual of Newton's equation at a point: the gradient G (minimisation)
+// or F (root finding).
+//  - reduced: T(x)^T G, resp. R^T F, in the n reduced coordinates of the
+//    linear system (its right-hand side is -reduced; for minimisation the
+//    slope of the merit along x ⊕ T(x) t p is reduced . p);
+//  - max_norm, two_norm: the norms the tolerance and the acceptance rules
+//    measure, in the coordinates the problem reports (e.g. the full 3 #V
+//    gradient, or F on the unmasked vertices).
+//  - scale: the tolerance is relative to it (1: absolute), e.g. the size of
+//    one of the gradient's terms at this point.
+struct NewtonResidual {
+  Eigen::VectorXd reduced;
+  double max_norm = 0;
+  double two_norm = 0;
+  double scale = 1;
+  // max_norm and two_norm of `reduced` itself.
+  static NewtonResidual OfReduced(Eigen::VectorXd reduced);
+};
+
+// The problem side of the engine. The problem holds the current point x and
+// one trial point; p lives in the reduced coordinates at x (T(x) may depend
+// on x, e.g. a rigid-gauge basis of the current shape).
+class NewtonProblem {
+ public:
+  virtual ~NewtonProblem() = default;
+  // The merit (minimisation only; root finding never asks): the function
+  // being minimised at `point`.
+  virtual EvaluationStatus Merit(NewtonPoint point, double* merit) = 0;
+  virtual EvaluationStatus Residual(NewtonPoint point,
+                                    NewtonResidual* residual) = 0;
+  // The reduced Hessian (minimisation: symmetric, lower triangle suffices)
+  // or Jacobian (root finding) at the current point, n x n.
+  virtual EvaluationStatus Assemble(LinearSystem* system) = 0;
+  // trial = x ⊕ T(x) step (the retraction; step in reduced coordinates).
+  virtual void SetTrial(const Eigen::VectorXd& step) = 0;
+  // x = trial (the last SetTrial).
+  virtual void AcceptTrial() = 0;
+};
+
+enum class NewtonMode {
+  // Minimise the merit: H p = -G with H SPD, accepted on sufficient decrease
+  // of the merit (Armijo) or the alternative rules below.
+  kMinimize,
+  // Solve F = 0: J p = -F, accepted on the rules below only (no merit).
+  kRootFind,
+};
+
+struct NewtonReport;
+
+// Settings of one Newton solve; the stall and acceptance rules of the former
+// hand-written loops are named settings here.
+struct NewtonSettings {
+  NewtonMode mode = NewtonMode::kMinimize;
+  int max_steps = 10;  // accepted steps
+  // Converged at residual max_norm <= tolerance * scale (NewtonResidual).
+  double tolerance = 0;
+
+  // Relative residual of the linear solve (LinearSolver tolerance):
+  //  - kFixed: `forcing`;
+  //  - kInexactNewton: with g = |reduced|_2 and g_0 its value at the start,
+  //    min(0.1, max(min(forcing, g / g_0), 0.25 tolerance / g)): tighter as
+  //    the gradient falls, but no tighter than needed to land below the
+  //    tolerance;
+  //  - kRelativeResidual: max_norm / scale clamped to [forcing_min, forcing].
+  enum class Forcing { kFixed, kInexactNewton, kRelativeResidual };
+  Forcing forcing_rule = Forcing::kFixed;
+  double forcing = 1e-10;
+  double forcing_min = 0;
+
+  // Line search: step lengths 1, 1/2, ..., 2^-max_halvings.
+  int max_halvings = 2;
+  double armijo = 1e-4;  // minimisation: merit <= merit_0 + armijo t slope
+  // Accept a trial whose residual max_norm is at most this factor times the
+  // current one (0: off; root finding without merit, e.g. 0.5).
+  double accept_max_norm_reduction = 0;
+  // Also accept a trial whose residual max_norm is smaller than the current
+  // one (strictly), in minimisation only when the merit changes by at most
+  // merit_round_off |merit| (the merit decrease is below round-off and the
+  // gradient decides).
+  bool accept_smaller_max_norm = false;
+  double merit_round_off = 1e-10;
+  // Also accept a trial whose residual two_norm is smaller (strictly).
+  bool accept_smaller_two_norm = false;
+
+  // Stall rules (0: off).
+  // Round-off floor: stop after an accepted step that leaves max_norm <=
+  // round_off_floor but has not reduced it by round_off_factor.
+  double round_off_floor = 0;
+  double round_off_factor = 0.5;
+  // No progress: stop when progress_steps accepted steps have not brought
+  // max_norm to progress_factor times its initial value.
+  int progress_steps = 0;
+  double progress_factor = 0.5;
+
+  // Called after every line search (accepted or not), for progress lines.
+  std::function<void(const NewtonReport& report, double merit,
+                     bool accepted)>
+      progress;
+};
+
+enum class NewtonStop {
+  kConverged,          // max_norm <= tolerance
+  kMaxSteps,           // max_steps accepted steps, tolerance not met
+  kInfeasibleStart,    // the start point cannot be evaluated
+  kAssemblyFailed,     // the Hessian / Jacobian cannot be assembled
+  kLinearSolveFailed,  // H not positive definite / J singular
+  kNotDescent,         // minimisation: slope reduced . p >= 0 (or p not finite)
+  kLineSearchFailed,   // no step length accepted
+  kRoundOffFloor,      // the round-off floor rule
+  kNoProgress,         // the no-progress rule
+};
+
+// The text of a stop reason (the same for every problem), e.g. "converged",
+// "Hessian not positive definite" (minimisation) / "singular Jacobian".
+std::string NewtonStopText(NewtonStop stop, NewtonMode mode);
+
+// What a Newton solve did. Counts are deterministic; the seconds are wall
+// clock, information only.
+struct NewtonReport {
+  int steps = 0;                // accepted Newton steps
+  int iterations = 0;           // Hessian / Jacobian assemblies
+  double initial_gradient = 0;  // residual max_norm before / after
+  double final_gradient = 0;
+  double final_merit = 0;       // minimisation: the merit at the end
+  bool converged = false;       // final_gradient <= tolerance
+  NewtonStop stop = NewtonStop::kMaxSteps;
+  std::string stop_reason;      // NewtonStopText, or the caller's
+  double seconds = 0;
+  double assembly_seconds = 0;       // of which: Hessian / Jacobian assembly
+  int factorizations = 0;            // of the linear solver, this solve
+  double factorization_seconds = 0;  // of which: factorisations
+  int cg_iterations = 0;             // CG iterations on a reused factor
+  double cg_seconds = 0;             // of which: CG
+  int attempts = 0;                  // solves summed by Append
+
+  // Adds a later solve: counts and times summed, the rest from `later`
+  // (initial_gradient stays the first solve's).
+  void Append(const NewtonReport& later);
+};
+
+// Newton's method on `problem` from its current point: at most max_steps
+// times, residual G (or F) and H (or J) at x, p from linear_solver with the
+// forcing tolerance, then the line search of `settings`; the problem is left
+// at the last accepted point. linear_solver may be reused across solves
+// (its factor as a CG preconditioner); the report counts this solve's work.
+NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
+                         const NewtonSettings& settings);
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_SOLVERS_NEWTON_SOLVER_H_

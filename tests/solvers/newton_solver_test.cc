@@ -1,0 +1,465 @@
+// The Newton engine (solvers/newton_solver.h) on small closed-form problems:
+// quadratic convergence on a strictly convex function, root finding on a
+// nonlinear system, the line search (an increasing step rejected, an
+// infeasible trial point backtracked), the stall rules and the stop reasons.
+#include <gtest/gtest.h>
+
+#include <Eigen/Dense>
+#include <cmath>
+#include <functional>
+#include <vector>
+
+#include "shellspace/solvers/newton_solver.h"
+#include "shellspace/solvers/reusable_cholesky.h"
+#include "shellspace/solvers/sparse_lu.h"
+
+namespace shellspace {
+namespace {
+
+// A problem on R^n with x ⊕ p = x + p, given by closed-form callbacks; an
+// empty merit means root finding. Infeasible points: `feasible` false.
+struct Callbacks {
+  std::function<double(const Eigen::VectorXd&)> merit;
+  std::function<Eigen::VectorXd(const Eigen::VectorXd&)> residual;
+  std::function<Eigen::MatrixXd(const Eigen::VectorXd&)> jacobian;
+  std::function<bool(const Eigen::VectorXd&)> feasible = [](const auto&) {
+    return true;
+  };
+};
+
+class FunctionProblem : public NewtonProblem {
+ public:
+  FunctionProblem(Callbacks f, Eigen::VectorXd x0, bool lower_only)
+      : f_(std::move(f)), x_(std::move(x0)), lower_only_(lower_only) {
+    iterates.push_back(x_);
+  }
+  EvaluationStatus Merit(NewtonPoint point, double* merit) override {
+    const Eigen::VectorXd& x = At(point);
+    if (point == NewtonPoint::kTrial) trial_merits.push_back(NAN);
+    if (!f_.feasible(x)) {
+      ++infeasible_evaluations;
+      return EvaluationStatus::kInfeasible;
+    }
+    *merit = f_.merit(x);
+    if (point == NewtonPoint::kTrial) trial_merits.back() = *merit;
+    return EvaluationStatus::kOk;
+  }
+  EvaluationStatus Residual(NewtonPoint point, NewtonResidual* r) override {
+    const Eigen::VectorXd& x = At(point);
+    if (!f_.feasible(x)) {
+      ++infeasible_evaluations;
+      return EvaluationStatus::kInfeasible;
+    }
+    *r = NewtonResidual::OfReduced(f_.residual(x));
+    return EvaluationStatus::kOk;
+  }
+  EvaluationStatus Assemble(LinearSystem* system) override {
+    Eigen::MatrixXd j = f_.jacobian(x_);
+    if (lower_only_) j = j.triangularView<Eigen::Lower>();
+    system->matrix = j.sparseView();
+    system->vertex_of.resize(j.rows());
+    for (int i = 0; i < j.rows(); ++i) system->vertex_of[i] = i;
+    system->num_vertices = static_cast<int>(j.rows());
+    return EvaluationStatus::kOk;
+  }
+  void SetTrial(const Eigen::VectorXd& step) override {
+    trial_ = x_ + step;
+    trial_points.push_back(trial_);
+  }
+  void AcceptTrial() override {
+    x_ = trial_;
+    iterates.push_back(x_);
+  }
+  const Eigen::VectorXd& x() const { return x_; }
+
+  std::vector<Eigen::VectorXd> iterates;      // x_0, accepted points
+  std::vector<Eigen::VectorXd> trial_points;  // every SetTrial
+  std::vector<double> trial_merits;           // NaN: infeasible
+  int infeasible_evaluations = 0;
+
+ private:
+  const Eigen::VectorXd& At(NewtonPoint p) const {
+    return p == NewtonPoint::kCurrent ? x_ : trial_;
+  }
+  Callbacks f_;
+  Eigen::VectorXd x_, trial_;
+  bool lower_only_;
+};
+
+// f(x) = sum_i phi((M x - a)_i), phi(u) = e^u - u, M = I + 0.3 (upper
+// shift): strictly convex, minimiser x* = M^-1 a (phi'(0) = 0), G = M^T
+// phi'(u), H = M^T diag(e^u) M.
+struct ConvexExample {
+  Eigen::MatrixXd m;
+  Eigen::VectorXd a;
+  explicit ConvexExample(int n) : m(Eigen::MatrixXd::Identity(n, n)), a(n) {
+    for (int i = 0; i + 1 < n; ++i) m(i, i + 1) = 0.3;
+    for (int i = 0; i < n; ++i) a(i) = std::sin(1.0 + i);  // in [-1, 1]
+  }
+  Eigen::VectorXd Minimiser() const { return m.partialPivLu().solve(a); }
+  Callbacks MakeCallbacks() const {
+    Callbacks c;
+    c.merit = [this](const Eigen::VectorXd& x) {
+      const Eigen::VectorXd u = m * x - a;
+      return (u.array().exp() - u.array()).sum();
+    };
+    c.residual = [this](const Eigen::VectorXd& x) {
+      const Eigen::VectorXd u = m * x - a;
+      return Eigen::VectorXd(m.transpose() *
+                             (u.array().exp() - 1.0).matrix());
+    };
+    c.jacobian = [this](const Eigen::VectorXd& x) {
+      const Eigen::VectorXd u = m * x - a;
+      return Eigen::MatrixXd(m.transpose() * u.array().exp().matrix().asDiagonal() * m);
+    };
+    return c;
+  }
+};
+
+// Whether e_{k+1} <= bound e_k^2 (e_k = |x_k - x*|_2) for every step whose
+// e_k is above round-off (1e-6), with at least three such steps (the rate is
+// observed, not implied by one step).
+::testing::AssertionResult QuadraticRate(
+    const std::vector<Eigen::VectorXd>& iterates, const Eigen::VectorXd& x_star,
+    double bound) {
+  int observed = 0;
+  for (size_t k = 0; k + 1 < iterates.size(); ++k) {
+    const double e = (iterates[k] - x_star).norm();
+    const double e_next = (iterates[k + 1] - x_star).norm();
+    if (e < 1e-6) break;
+    if (!(e_next <= bound * e * e)) {
+      return ::testing::AssertionFailure()
+             << "step " << k << ": e = " << e << ", next " << e_next;
+    }
+    ++observed;
+  }
+  if (observed < 3) {
+    return ::testing::AssertionFailure() << "only " << observed << " steps";
+  }
+  return ::testing::AssertionSuccess();
+}
+
+NewtonSettings Minimize(double tolerance, int max_steps) {
+  NewtonSettings s;
+  s.mode = NewtonMode::kMinimize;
+  s.tolerance = tolerance;
+  s.max_steps = max_steps;
+  s.forcing = 1e-14;
+  return s;
+}
+
+TEST(NewtonSolverTest, ConvergesQuadraticallyOnAStrictlyConvexFunction) {
+  const ConvexExample example(6);
+  FunctionProblem problem(example.MakeCallbacks(), Eigen::VectorXd::Zero(6),
+                          /*lower_only=*/true);
+  ReusableCholesky cholesky;
+  const NewtonReport report =
+      SolveNewton(&problem, &cholesky, Minimize(1e-13, 20));
+  EXPECT_TRUE(report.converged) << report.stop_reason;
+  EXPECT_EQ(report.stop, NewtonStop::kConverged);
+  EXPECT_EQ(report.stop_reason, "converged");
+  EXPECT_LE(report.final_gradient, 1e-13);
+  EXPECT_GT(report.initial_gradient, 0.1);
+  const Eigen::VectorXd x_star = example.Minimiser();
+  EXPECT_LT((problem.x() - x_star).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_TRUE(QuadraticRate(problem.iterates, x_star, 5.0));
+  EXPECT_EQ(report.steps, static_cast<int>(problem.iterates.size()) - 1);
+  EXPECT_GE(report.factorizations, 1);
+}
+
+// Negative twin: with a wrong Hessian (2 H) Newton still converges, but
+// linearly (e_{k+1} ~ e_k / 2), and the same rate check fails.
+TEST(NewtonSolverTest, WrongHessianFailsTheQuadraticRateCheck) {
+  const ConvexExample example(6);
+  Callbacks wrong = example.MakeCallbacks();
+  const auto exact = wrong.jacobian;
+  wrong.jacobian = [exact](const Eigen::VectorXd& x) {
+    return Eigen::MatrixXd(2.0 * exact(x));
+  };
+  FunctionProblem problem(wrong, Eigen::VectorXd::Zero(6), true);
+  ReusableCholesky cholesky;
+  const NewtonReport report =
+      SolveNewton(&problem, &cholesky, Minimize(1e-13, 100));
+  EXPECT_TRUE(report.converged) << report.stop_reason;
+  EXPECT_GT(report.steps, 20);  // linear: about one bit per step
+  EXPECT_FALSE(QuadraticRate(problem.iterates, example.Minimiser(), 5.0));
+}
+
+TEST(NewtonSolverTest, MaxStepsIsNotConvergence) {
+  const ConvexExample example(6);
+  FunctionProblem problem(example.MakeCallbacks(), Eigen::VectorXd::Zero(6),
+                          true);
+  ReusableCholesky cholesky;
+  const NewtonReport report =
+      SolveNewton(&problem, &cholesky, Minimize(1e-13, 2));
+  EXPECT_FALSE(report.converged);
+  EXPECT_EQ(report.stop, NewtonStop::kMaxSteps);
+  EXPECT_EQ(report.stop_reason, "max steps");
+  EXPECT_EQ(report.steps, 2);
+  EXPECT_GT(report.final_gradient, 1e-13);
+  EXPECT_LT(report.final_gradient, report.initial_gradient);
+}
+
+// F(x) = (x0^3 - 8, x0 x1 - 6, x1 + x2^2 - 7): root (2, 3, 2) near (1, 1, 1);
+// J non-symmetric, solved by SparseLu.
+TEST(NewtonSolverTest, FindsTheRootOfASmallNonlinearSystem) {
+  Callbacks c;
+  c.residual = [](const Eigen::VectorXd& x) {
+    return Eigen::Vector3d(x(0) * x(0) * x(0) - 8, x(0) * x(1) - 6,
+                           x(1) + x(2) * x(2) - 7)
+        .eval();
+  };
+  c.jacobian = [](const Eigen::VectorXd& x) {
+    Eigen::MatrixXd j(3, 3);
+    j << 3 * x(0) * x(0), 0, 0,  //
+        x(1), x(0), 0,           //
+        0, 1, 2 * x(2);
+    return j;
+  };
+  FunctionProblem problem(c, Eigen::Vector3d(1, 1, 1), false);
+  NewtonSettings s;
+  s.mode = NewtonMode::kRootFind;
+  s.tolerance = 1e-12;
+  s.max_steps = 40;
+  s.max_halvings = 20;
+  s.accept_smaller_max_norm = true;
+  s.accept_smaller_two_norm = true;
+  SparseLu lu;
+  const NewtonReport report = SolveNewton(&problem, &lu, s);
+  EXPECT_TRUE(report.converged) << report.stop_reason;
+  EXPECT_LT((problem.x() - Eigen::Vector3d(2, 3, 2)).cwiseAbs().maxCoeff(),
+            1e-12);
+  EXPECT_EQ(report.factorizations, report.steps);
+  EXPECT_EQ(report.cg_iterations, 0);
+}
+
+// f(x) = sqrt(1 + x^2): Newton's step from x is -x (1 + x^2); from 2 the
+// full step (to -8) and the half step (to -3) raise f, the quarter step (to
+// -1/2) lowers it.
+Callbacks Hyperbola() {
+  Callbacks c;
+  c.merit = [](const Eigen::VectorXd& x) { return std::sqrt(1 + x(0) * x(0)); };
+  c.residual = [](const Eigen::VectorXd& x) {
+    return Eigen::VectorXd::Constant(1, x(0) / std::sqrt(1 + x(0) * x(0)))
+        .eval();
+  };
+  c.jacobian = [](const Eigen::VectorXd& x) {
+    return Eigen::MatrixXd::Constant(1, 1, std::pow(1 + x(0) * x(0), -1.5));
+  };
+  return c;
+}
+
+TEST(NewtonSolverTest, LineSearchRejectsAnIncreasingStep) {
+  FunctionProblem problem(Hyperbola(), Eigen::VectorXd::Constant(1, 2.0),
+                          true);
+  ReusableCholesky cholesky;
+  NewtonSettings s = Minimize(1e-12, 1);
+  s.max_halvings = 2;
+  const NewtonReport report = SolveNewton(&problem, &cholesky, s);
+  ASSERT_EQ(problem.trial_points.size(), 3u);
+  EXPECT_NEAR(problem.trial_points[0](0), -8.0, 1e-12);
+  EXPECT_NEAR(problem.trial_points[1](0), -3.0, 1e-12);
+  EXPECT_NEAR(problem.trial_points[2](0), -0.5, 1e-12);
+  EXPECT_GT(problem.trial_merits[0], std::sqrt(5.0));
+  EXPECT_GT(problem.trial_merits[1], std::sqrt(5.0));
+  EXPECT_EQ(report.steps, 1);
+  EXPECT_NEAR(problem.x()(0), -0.5, 1e-12);
+  EXPECT_NEAR(report.final_merit, std::sqrt(1.25), 1e-12);
+
+  // With one halving only, no step is accepted: the point stays.
+  FunctionProblem stuck(Hyperbola(), Eigen::VectorXd::Constant(1, 2.0), true);
+  s.max_halvings = 1;
+  const NewtonReport failed = SolveNewton(&stuck, &cholesky, s);
+  EXPECT_FALSE(failed.converged);
+  EXPECT_EQ(failed.stop, NewtonStop::kLineSearchFailed);
+  EXPECT_EQ(failed.stop_reason, "no decrease along the Newton direction");
+  EXPECT_EQ(failed.steps, 0);
+  EXPECT_EQ(stuck.x()(0), 2.0);
+}
+
+// f(x) = x - log x on x > 0 (minimiser 1): Newton's step x - x^2 from 3
+// lands at -3 and (halved) at 0, both infeasible; the quarter step (1.5) is
+// taken and Newton converges.
+Callbacks LogBarrier() {
+  Callbacks c;
+  c.merit = [](const Eigen::VectorXd& x) { return x(0) - std::log(x(0)); };
+  c.residual = [](const Eigen::VectorXd& x) {
+    return Eigen::VectorXd::Constant(1, 1 - 1 / x(0)).eval();
+  };
+  c.jacobian = [](const Eigen::VectorXd& x) {
+    return Eigen::MatrixXd::Constant(1, 1, 1 / (x(0) * x(0)));
+  };
+  c.feasible = [](const Eigen::VectorXd& x) { return x(0) > 0; };
+  return c;
+}
+
+TEST(NewtonSolverTest, InfeasibleTrialPointsAreBacktracked) {
+  FunctionProblem problem(LogBarrier(), Eigen::VectorXd::Constant(1, 3.0),
+                          true);
+  ReusableCholesky cholesky;
+  NewtonSettings s = Minimize(1e-14, 20);
+  s.max_halvings = 4;
+  const NewtonReport report = SolveNewton(&problem, &cholesky, s);
+  ASSERT_GE(problem.trial_points.size(), 3u);
+  EXPECT_NEAR(problem.trial_points[0](0), -3.0, 1e-12);
+  EXPECT_NEAR(problem.trial_points[1](0), 0.0, 1e-12);
+  EXPECT_NEAR(problem.iterates[1](0), 1.5, 1e-12);
+  EXPECT_EQ(problem.infeasible_evaluations, 2);
+  EXPECT_TRUE(report.converged) << report.stop_reason;
+  EXPECT_NEAR(problem.x()(0), 1.0, 1e-13);
+}
+
+TEST(NewtonSolverTest, StopReasons) {
+  ReusableCholesky cholesky;
+  {  // The start cannot be evaluated.
+    FunctionProblem problem(LogBarrier(), Eigen::VectorXd::Constant(1, -1.0),
+                            true);
+    const NewtonReport r = SolveNewton(&problem, &cholesky, Minimize(0, 5));
+    EXPECT_EQ(r.stop, NewtonStop::kInfeasibleStart);
+    EXPECT_EQ(r.stop_reason, "degenerate initial guess");
+    EXPECT_FALSE(r.converged);
+    EXPECT_EQ(r.steps, 0);
+  }
+  {  // A negative definite Hessian: f = -x^2 from 1.
+    Callbacks c;
+    c.merit = [](const Eigen::VectorXd& x) { return -x(0) * x(0); };
+    c.residual = [](const Eigen::VectorXd& x) { return (-2 * x).eval(); };
+    c.jacobian = [](const Eigen::VectorXd&) {
+      return Eigen::MatrixXd::Constant(1, 1, -2.0);
+    };
+    FunctionProblem problem(c, Eigen::VectorXd::Constant(1, 1.0), true);
+    ReusableCholesky fresh;
+    const NewtonReport r = SolveNewton(&problem, &fresh, Minimize(0, 5));
+    EXPECT_EQ(r.stop, NewtonStop::kLinearSolveFailed);
+    EXPECT_EQ(r.stop_reason, "Hessian not positive definite");
+    EXPECT_FALSE(r.converged);
+  }
+  {  // A singular Jacobian: F = (x0 + x1 - 1, 2 x0 + 2 x1 - 3).
+    Callbacks c;
+    c.residual = [](const Eigen::VectorXd& x) {
+      return Eigen::Vector2d(x(0) + x(1) - 1, 2 * x(0) + 2 * x(1) - 3).eval();
+    };
+    c.jacobian = [](const Eigen::VectorXd&) {
+      Eigen::MatrixXd j(2, 2);
+      j << 1, 1, 2, 2;
+      return j;
+    };
+    FunctionProblem problem(c, Eigen::Vector2d(0, 0), false);
+    NewtonSettings s;
+    s.mode = NewtonMode::kRootFind;
+    SparseLu lu;
+    const NewtonReport r = SolveNewton(&problem, &lu, s);
+    EXPECT_EQ(r.stop, NewtonStop::kLinearSolveFailed);
+    EXPECT_EQ(r.stop_reason, "singular Jacobian");
+  }
+  {  // Already converged: no step, no factorisation.
+    const ConvexExample example(3);
+    FunctionProblem problem(example.MakeCallbacks(), example.Minimiser(),
+                            true);
+    ReusableCholesky fresh;
+    const NewtonReport r = SolveNewton(&problem, &fresh, Minimize(1e-12, 5));
+    EXPECT_TRUE(r.converged);
+    EXPECT_EQ(r.steps, 0);
+    EXPECT_EQ(r.factorizations, 0);
+  }
+}
+
+// A scripted problem for the stall rules: the residual max norm after the
+// k-th accepted step is norms[k]; every full step is accepted (smaller max
+// norm or not, the two-norm is scripted below the current one).
+class ScriptedProblem : public NewtonProblem {
+ public:
+  explicit ScriptedProblem(std::vector<double> norms)
+      : norms_(std::move(norms)) {}
+  EvaluationStatus Merit(NewtonPoint, double*) override {
+    return EvaluationStatus::kInfeasible;
+  }
+  EvaluationStatus Residual(NewtonPoint point, NewtonResidual* r) override {
+    const int k = point == NewtonPoint::kCurrent ? step_ : step_ + 1;
+    r->reduced = Eigen::VectorXd::Constant(1, norms_.at(k));
+    r->max_norm = norms_.at(k);
+    r->two_norm = 1.0 / (k + 1);  // always smaller
+    return EvaluationStatus::kOk;
+  }
+  EvaluationStatus Assemble(LinearSystem* system) override {
+    system->matrix = Eigen::MatrixXd::Identity(1, 1).sparseView();
+    return EvaluationStatus::kOk;
+  }
+  void SetTrial(const Eigen::VectorXd&) override {}
+  void AcceptTrial() override { ++step_; }
+
+ private:
+  std::vector<double> norms_;
+  int step_ = 0;
+};
+
+NewtonSettings RootFinding() {
+  NewtonSettings s;
+  s.mode = NewtonMode::kRootFind;
+  s.tolerance = 1e-12;
+  s.max_steps = 20;
+  s.accept_smaller_two_norm = true;
+  return s;
+}
+
+TEST(NewtonSolverTest, RoundOffFloorStopsAStalledIteration) {
+  ScriptedProblem problem({1, 1e-3, 1e-6, 0.8e-6, 1e-7, 1e-13});
+  NewtonSettings s = RootFinding();
+  s.round_off_floor = 1e-5;
+  SparseLu lu;
+  const NewtonReport r = SolveNewton(&problem, &lu, s);
+  EXPECT_EQ(r.stop, NewtonStop::kRoundOffFloor);
+  EXPECT_EQ(r.stop_reason, "round-off floor");
+  EXPECT_EQ(r.steps, 3);  // 1e-6 -> 0.8e-6 did not halve below the floor
+  EXPECT_FALSE(r.converged);
+  EXPECT_EQ(r.final_gradient, 0.8e-6);
+  // Without the rule the same script converges.
+  ScriptedProblem again({1, 1e-3, 1e-6, 0.8e-6, 1e-7, 1e-13});
+  const NewtonReport full = SolveNewton(&again, &lu, RootFinding());
+  EXPECT_TRUE(full.converged);
+  EXPECT_EQ(full.steps, 5);
+}
+
+TEST(NewtonSolverTest, NoProgressRuleStopsACrawl) {
+  ScriptedProblem problem({1, 0.9, 0.8, 0.7, 0.6, 0.4, 0.1});
+  NewtonSettings s = RootFinding();
+  s.progress_steps = 3;
+  s.progress_factor = 0.5;
+  SparseLu lu;
+  const NewtonReport r = SolveNewton(&problem, &lu, s);
+  EXPECT_EQ(r.stop, NewtonStop::kNoProgress);
+  EXPECT_EQ(r.stop_reason, "no progress");
+  EXPECT_EQ(r.steps, 3);
+  EXPECT_FALSE(r.converged);
+}
+
+TEST(NewtonSolverTest, AppendSumsCountsAndKeepsTheFirstInitialGradient) {
+  NewtonReport total, a, b;
+  a.steps = 2;
+  a.initial_gradient = 5;
+  a.final_gradient = 1;
+  a.factorizations = 1;
+  a.cg_iterations = 3;
+  a.stop_reason = "Hessian not positive definite";
+  b.steps = 4;
+  b.initial_gradient = 1;
+  b.final_gradient = 1e-9;
+  b.factorizations = 2;
+  b.cg_iterations = 7;
+  b.converged = true;
+  b.stop = NewtonStop::kConverged;
+  b.stop_reason = "converged";
+  total.Append(a);
+  total.Append(b);
+  EXPECT_EQ(total.attempts, 2);
+  EXPECT_EQ(total.steps, 6);
+  EXPECT_EQ(total.initial_gradient, 5);
+  EXPECT_EQ(total.final_gradient, 1e-9);
+  EXPECT_EQ(total.factorizations, 3);
+  EXPECT_EQ(total.cg_iterations, 10);
+  EXPECT_TRUE(total.converged);
+  EXPECT_EQ(total.stop_reason, "converged");
+}
+
+}  // namespace
+}  // namespace shellspace
