@@ -13,7 +13,11 @@
 // domain height H, a double; 0 = 0.5), --output, --json, --quiet.
 #include <gflags/gflags.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
+#include <sstream>
 #include <filesystem>
 #include <iostream>
 #include <string>
@@ -21,10 +25,10 @@
 
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/problems/branching/construction_optimizer.h"
-#include "shellspace/problems/branching/field_output.h"
 #include "shellspace/problems/branching/km_family.h"
 #include "shellspace/problems/branching/simulation.h"
 #include "shellspace/io/png_writer.h"
+#include "shellspace/render/branching_image.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/io/json_writer.h"
 #include "shellspace/tools/verb.h"
@@ -60,6 +64,48 @@ double BranchingEpsilon() {
   gflags::CommandLineFlagInfo info;
   gflags::GetCommandLineFlagInfo("epsilon", &info);
   return info.is_default ? 1e-3 : FLAGS_epsilon;
+}
+
+// Writes `text` to `path` atomically (temporary file + rename).
+void WriteTextFile(const std::string& path, const std::string& text) {
+  const std::string temporary = path + ".tmp";
+  {
+    std::ofstream out(temporary);
+    out << text;
+    if (!out) throw InputError("cannot write " + path);
+  }
+  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
+    std::remove(temporary.c_str());
+    throw InputError("cannot write " + path);
+  }
+}
+
+// "i,j,x,y,u,u_y" per node (u_y: the staggered slope to node j + 1).
+std::string FieldCsv(const RelaxedField& field) {
+  const RelaxedGrid& g = field.grid;
+  std::ostringstream out;
+  out.precision(12);
+  out << "i,j,x,y,u,u_y\n";
+  for (int i = 0; i <= g.nx; ++i) {
+    for (int j = 0; j < g.ny; ++j) {
+      out << i << ',' << j << ',' << g.x(i) << ',' << g.y(j) << ','
+          << field.at(i, j) << ',' << field.uy(i, j) << '\n';
+    }
+  }
+  return out.str();
+}
+
+// "i,x,interfaces" per node row i >= 1.
+std::string InterfaceCsv(const RelaxedField& field,
+                         const std::vector<int>& counts) {
+  std::ostringstream out;
+  out.precision(12);
+  out << "i,x,interfaces\n";
+  for (size_t k = 0; k < counts.size(); ++k) {
+    out << k + 1 << ',' << field.grid.x(static_cast<int>(k) + 1) << ','
+        << counts[k] << '\n';
+  }
+  return out.str();
 }
 
 double BranchingHeight() { return FLAGS_height > 0 ? FLAGS_height : 0.5; }

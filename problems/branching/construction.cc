@@ -43,29 +43,4 @@ int Construction::VariantAt(double x, double y, double* distance) const {
   return variant;
 }
 
-RgbImage RenderConstruction(const Construction& construction, double height,
-                            int width_px, int height_px) {
-  RgbImage image(width_px, height_px);
-  const double dx = construction.length / width_px;
-  const double dy = height / height_px;
-  for (int px = 0; px < width_px; ++px) {
-    const double x = (px + 0.5) * dx;
-    for (int py = 0; py < height_px; ++py) {
-      const double y = height - (py + 0.5) * dy;
-      double d = 0.0;
-      const int v = construction.VariantAt(x, y, &d);
-      std::uint8_t* rgb = image.at(px, py);
-      const bool edge = d < 0.6 * dy;
-      if (edge) {
-        rgb[0] = 30, rgb[1] = 30, rgb[2] = 30;
-      } else if (v > 0) {
-        rgb[0] = 235, rgb[1] = 140, rgb[2] = 40;
-      } else {
-        rgb[0] = 45, rgb[1] = 95, rgb[2] = 200;
-      }
-    }
-  }
-  return image;
-}
-
 }  // namespace shellspace::branching

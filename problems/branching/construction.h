@@ -11,7 +11,6 @@
 #include <vector>
 
 #include "shellspace/cost_functions/branching/cell_pattern.h"
-#include "shellspace/io/png_writer.h"
 
 namespace shellspace::branching {
 
@@ -30,11 +29,6 @@ struct Construction {
   double PeriodOf(int k) const;
   double OffsetOf(int k) const;
 };
-
-// Draws u_y of the construction over (0, L) x [0, H) (austenite at the left,
-// +1 orange, -1 blue, interfaces dark).
-RgbImage RenderConstruction(const Construction& construction, double height,
-                            int width_px, int height_px);
 
 }  // namespace shellspace::branching
 
