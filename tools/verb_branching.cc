@@ -4,9 +4,11 @@
 //   simulate  — relaxed diffuse-interface simulation on a graded grid (sparse
 //               LM, continuation in delta); writes DIR/u.csv, DIR/uy.png,
 //               DIR/interfaces.csv, DIR/summary.json.
-//   construct — the reduced sharp-interface model: the KM or lens
-//               self-similar construction, optionally optimised; writes
-//               DIR/pattern.png and DIR/summary.json.
+//   construct — the reduced sharp-interface model: the KM (psi-junction),
+//               needle (T2) or lens self-similar construction, optionally
+//               optimised, or the general optimiser (--family general
+//               [--search]); writes DIR/pattern.png and DIR/summary.json
+//               (general: also DIR/pattern.txt, the knots).
 //
 // Shared flags (tools/common_flags.h): --epsilon (branching default 1e-3 when
 // not given: the shared default 1.0 belongs to `transport`), --height (the
@@ -14,6 +16,7 @@
 #include <gflags/gflags.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -25,6 +28,8 @@
 
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/problems/branching/construction_optimizer.h"
+#include "shellspace/problems/branching/general_search.h"
+#include "shellspace/problems/branching/self_similar_series.h"
 #include "shellspace/problems/branching/km_family.h"
 #include "shellspace/problems/branching/simulation.h"
 #include "shellspace/io/png_writer.h"
@@ -36,8 +41,9 @@
 DEFINE_double(length, 1.0, "branching: domain length L (distance from the austenite)");
 DEFINE_int32(nx, 64, "branching simulate: number of x-cells");
 DEFINE_int32(ny, 128, "branching simulate: number of y-nodes (periodic)");
-DEFINE_string(init, "km",
-              "branching simulate: initial guess laminate|random|km|lens");
+DEFINE_string(init, "needle",
+              "branching simulate: initial guess laminate|random|km|needle|lens "
+              "(km: the psi-junction cell; needle: the T2 cell)");
 DEFINE_double(delta, 0.0,
               "branching simulate: interface width (0: 3 H/ny, the rule "
               "dy = delta/3)");
@@ -51,7 +57,22 @@ DEFINE_int32(periods, 0,
 DEFINE_int32(init_seed, 1, "branching simulate: seed of --init random");
 DEFINE_int32(lm_iterations, 200,
              "branching simulate: LM iterations per continuation stage");
-DEFINE_string(family, "km", "branching construct: km|lens");
+DEFINE_string(family, "km",
+              "branching construct: km (psi-junction) | needle (T2) | lens | "
+              "general (reduced sharp-interface optimiser)");
+DEFINE_bool(search, false,
+            "branching construct --family general: multi-start search over "
+            "topologies (else one solve of the lens topology)");
+DEFINE_string(search_ratios, "2,3,4",
+              "branching construct --search: refinement ratios r");
+DEFINE_int32(search_pairs, 2,
+             "branching construct --search: largest super-cell (lamella pairs)");
+DEFINE_int32(subintervals, 3,
+             "branching construct --family general: linear pieces per segment");
+DEFINE_int32(search_starts, 2,
+             "branching construct --search: noisy restarts per start");
+DEFINE_int32(search_threads, 1,
+             "branching construct --search: threads (result independent)");
 DEFINE_bool(optimize, false,
             "branching construct: optimise h0, theta (and the lens shape) by LM");
 
@@ -214,20 +235,153 @@ int RunSimulate() {
   return 0;
 }
 
+std::vector<int> ParseRatios(const std::string& text) {
+  std::vector<int> out;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    if (item != "2" && item != "3" && item != "4") {
+      throw InputError("--search_ratios must be a list of 2, 3, 4");
+    }
+    out.push_back(std::stoi(item));
+  }
+  if (out.empty()) throw InputError("--search_ratios is empty");
+  return out;
+}
+
+// The lens topology in the general model: one group, needles in the
+// middle of both lamellae, all interfaces free.
+GeneralTopology LensTopology(int subintervals) {
+  GeneralTopology t;
+  t.pairs = 1;
+  t.r = 3;
+  t.subintervals = subintervals;
+  t.name = "lens";
+  NucleationGroup g;
+  g.tau = 0.5;
+  g.needles = {{0, 0.5}, {1, 0.5}};
+  t.groups = {g};
+  return t;
+}
+
+int RunGeneral(double epsilon, const std::string& dir) {
+  if (FLAGS_subintervals < 1 || FLAGS_subintervals > 16) {
+    throw InputError("--subintervals must lie in [1, 16]");
+  }
+  if (FLAGS_search_pairs < 1 || FLAGS_search_pairs > 2) {
+    throw InputError("--search_pairs must be 1 or 2");
+  }
+  if (FLAGS_search_starts < 0 || FLAGS_search_threads < 1) {
+    throw InputError("--search_starts must be >= 0, --search_threads >= 1");
+  }
+  GeneralResult best;
+  int solves = 1;
+  const auto start = std::chrono::steady_clock::now();
+  if (FLAGS_search) {
+    GeneralSearchOptions o;
+    o.ratios = ParseRatios(FLAGS_search_ratios);
+    o.max_pairs = FLAGS_search_pairs;
+    o.subintervals = FLAGS_subintervals;
+    o.starts_per_topology = FLAGS_search_starts;
+    o.num_threads = FLAGS_search_threads;
+    const GeneralSearchResult r = SearchGeneral(o, [](const GeneralResult& g) {
+      if (!FLAGS_quiet && g.ok) {
+        std::cerr << "  " << g.topology.name << ": C_free " << g.constant_free
+                  << "\n";
+      }
+    });
+    best = r.best;
+    solves = r.solves;
+  } else {
+    best = SolveGeneral(LensTopology(FLAGS_subintervals), 0.0, 0.0, 1);
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+          .count();
+  if (!best.ok) throw InputError("general construct: no valid pattern found");
+  const FreeLengthSeries series =
+      OptimalFreeLengths(best.A, best.B, best.topology.r, epsilon, FLAGS_length);
+  JsonObject params;
+  params.Add("topology", best.topology.name).Add("r", best.topology.r)
+      .Add("pairs", best.topology.pairs)
+      .Add("label_offset", best.topology.label_offset)
+      .Add("subintervals", best.topology.subintervals)
+      .Add("delta", best.delta).Add("h0", series.h0)
+      .Add("x", best.x);
+  std::vector<double> taus, pieces, ps;
+  for (const NucleationGroup& g : best.topology.groups) {
+    for (const NeedleEvent& e : g.needles) {
+      taus.push_back(g.tau);
+      pieces.push_back(e.piece);
+      ps.push_back(e.p);
+    }
+  }
+  params.Add("needle_tau", taus).Add("needle_piece", pieces).Add("needle_p", ps);
+  std::vector<double> lengths(series.lengths.begin(),
+                              series.lengths.begin() + 12);
+  params.Add("lengths_first12", lengths);
+  JsonObject summary;
+  summary.Add("command", "branching construct").Add("family", "general")
+      .Add("search", FLAGS_search).Add("epsilon", epsilon)
+      .Add("length", FLAGS_length).Add("constant", best.constant_free)
+      .Add("constant_geometric_lengths", best.constant_geometric)
+      .Add("parameters", params).Add("A", best.A).Add("B", best.B)
+      .Add("AB2", best.AB2)
+      .Add("energy", EnergyJson(series.elastic, series.interfacial))
+      .Add("km_constant_closed_form", KmClosedFormConstant())
+      .Add("km_shifted_constant_closed_form", KmShiftedClosedFormConstant())
+      .Add("ratio_to_km", best.constant_free / KmClosedFormConstant())
+      .Add("ratio_to_km_shifted",
+           best.constant_free / KmShiftedClosedFormConstant())
+      .Add("solves", solves).Add("seconds", seconds);
+  Construction c;
+  c.pattern = GeneralCellPattern(best);
+  c.length = FLAGS_length;
+  c.h0 = series.h0;
+  c.lengths = series.lengths;
+  const double height = FLAGS_height > 0 ? FLAGS_height : 2.0 * series.h0;
+  const int width_px = 900;
+  const int height_px = std::clamp(
+      static_cast<int>(std::lround(width_px * height / FLAGS_length)), 100,
+      1800);
+  MakeOutputDirectory(dir);
+  WritePng(RenderConstruction(c, height, width_px, height_px),
+           dir + "/pattern.png");
+  WriteTextFile(dir + "/summary.json", summary.str() + "\n");
+  WriteTextFile(dir + "/pattern.txt", DescribeGeneral(best));
+  if (FLAGS_json) {
+    std::cout << summary.str() << "\n";
+  } else if (!FLAGS_quiet) {
+    std::cout << DescribeGeneral(best) << "general: constant " << best.constant_free
+              << " (free lengths; geometric " << best.constant_geometric
+              << "), ratio to C_KM " << best.constant_free / KmClosedFormConstant()
+              << ", to C_KM shifted "
+              << best.constant_free / KmShiftedClosedFormConstant() << "; "
+              << solves << " solves, " << seconds << " s\n";
+  }
+  return 0;
+}
+
 int RunConstruct() {
-  if (FLAGS_family != "km" && FLAGS_family != "lens") {
-    throw InputError("--family must be km or lens");
+  if (FLAGS_family != "km" && FLAGS_family != "needle" &&
+      FLAGS_family != "lens" && FLAGS_family != "general") {
+    throw InputError("--family must be km, needle, lens or general");
   }
   const double epsilon = BranchingEpsilon();
   if (!(epsilon > 0) || !(FLAGS_length > 0)) {
     throw InputError("--epsilon and --length must be positive");
   }
   const std::string dir = PrepareOutput();
+  if (FLAGS_family == "general") return RunGeneral(epsilon, dir);
+  if (FLAGS_search) throw InputError("--search needs --family general");
   ConstructionResult result;
-  if (FLAGS_family == "km") {
-    result = DefaultKm(epsilon, FLAGS_length);
+  if (FLAGS_family == "km" || FLAGS_family == "needle") {
+    const bool km = FLAGS_family == "km";
+    result = km ? DefaultKm(epsilon, FLAGS_length)
+                : DefaultNeedle(epsilon, FLAGS_length);
     if (FLAGS_optimize) {
-      result = OptimizeKm(epsilon, FLAGS_length, 0.5 * result.h0, 0.3);
+      result = km ? OptimizeKm(epsilon, FLAGS_length, 0.5 * result.h0, 0.3)
+                  : OptimizeNeedle(epsilon, FLAGS_length, 0.5 * result.h0, 0.3);
     }
   } else {
     result = DefaultLens(epsilon, FLAGS_length);
@@ -242,14 +396,30 @@ int RunConstruct() {
     params.Add("tau", result.shape.tau).Add("a1", result.shape.a1)
         .Add("a2", result.shape.a2);
   }
+  // Every generation length free (same cell): C_free = K_r^free / K_r C at
+  // the optimal theta.
+  const double free_factor =
+      FreeLengthSeriesConstant(result.r) /
+      SeriesConstant(1.0, 1.0, result.r, OptimalTheta(result.r));
+  const double best_geometric =
+      SeriesConstant(result.A, result.B, result.r, OptimalTheta(result.r));
   JsonObject summary;
   summary.Add("command", "branching construct").Add("family", result.family)
       .Add("optimized", FLAGS_optimize).Add("epsilon", epsilon)
       .Add("length", FLAGS_length).Add("constant", result.constant)
+      .Add("constant_free_lengths", best_geometric * free_factor)
       .Add("parameters", params).Add("A", result.A).Add("B", result.B)
-      .Add("energy", EnergyJson(result.elastic, result.interfacial))
-      .Add("km_constant_closed_form", KmClosedFormConstant())
-      .Add("ratio_to_km", result.constant / KmClosedFormConstant());
+      .Add("energy", EnergyJson(result.elastic, result.interfacial));
+  if (result.family == "km") {
+    summary.Add("A_zero_edge", result.A_zero_edge)
+        .Add("constant_zero_edge", result.constant_zero_edge);
+  }
+  summary.Add("km_constant_closed_form", KmClosedFormConstant())
+      .Add("km_shifted_constant_closed_form", KmShiftedClosedFormConstant())
+      .Add("needle_constant_closed_form", NeedleClosedFormConstant())
+      .Add("ratio_to_km", result.constant / KmClosedFormConstant())
+      .Add("ratio_to_km_shifted",
+           result.constant / KmShiftedClosedFormConstant());
   if (FLAGS_optimize) {
     summary.Add("iterations", result.iterations)
         .Add("seconds", result.seconds)
@@ -293,7 +463,8 @@ SHELLSPACE_VERB_TAKES_SUBCOMMAND("branching");
 SHELLSPACE_REGISTER_VERB(
     "branching",
     "branching simulate|construct [--epsilon E --length L --height H --nx N "
-    "--ny M --init laminate|random|km|lens | --family km|lens --optimize] "
+    "--ny M --init laminate|random|km|needle|lens | --family "
+    "km|needle|lens|general --optimize --search] "
     "--output DIR [--json]",
     RunBranching);
 

@@ -16,6 +16,18 @@ double Construction::OffsetOf(int k) const {
 }
 
 int Construction::GenerationAt(double x, double* s) const {
+  if (!lengths.empty()) {
+    double right = length;
+    const int n = static_cast<int>(lengths.size());
+    for (int k = 0; k < n; ++k) {
+      const double left = right - lengths[k];
+      if (x >= left || k + 1 == n) {
+        *s = std::clamp((right - x) / lengths[k], 0.0, 1.0);
+        return k;
+      }
+      right = left;
+    }
+  }
   double right = length;
   double l = length * (1.0 - theta);
   for (int k = 0; k < max_generations; ++k) {
@@ -40,7 +52,7 @@ int Construction::VariantAt(double x, double y, double* distance) const {
   double d = 0.0;
   const int variant = branching::VariantAt(column, eta, &d);
   if (distance != nullptr) *distance = d * h;
-  return variant;
+  return pattern.swap_variants && k % 2 == 1 ? -variant : variant;
 }
 
 }  // namespace shellspace::branching

@@ -20,6 +20,9 @@ struct Construction {
   double h0 = 0.25;     // first (coarsest) period
   double theta = 0.3;   // length ratio l_{k+1} / l_k
   int max_generations = 60;
+  // Free generation lengths l_0, l_1, ... (self_similar_series.h,
+  // OptimalFreeLengths); when non-empty they replace theta.
+  std::vector<double> lengths;
 
   // u_y (+-1) at (x, y), and optionally the y-distance to the nearest
   // interface of that column (for smoothing to a diffuse profile).

@@ -40,8 +40,8 @@ void CheckSimulationSettings(const SimulationSettings& s) {
     throw InputError("--continuation must lie in [1, 8]");
   }
   if (s.init != "laminate" && s.init != "random" && s.init != "km" &&
-      s.init != "lens") {
-    throw InputError("--init must be laminate, random, km or lens");
+      s.init != "needle" && s.init != "lens") {
+    throw InputError("--init must be laminate, random, km, needle or lens");
   }
   if (s.periods < 0) throw InputError("--periods must be >= 0");
   if (s.max_iterations < 0) throw InputError("--lm_iterations must be >= 0");
@@ -60,10 +60,12 @@ SimulationResult InitialSimulation(const SimulationSettings& s) {
     InitLaminate(&result.field, periods, result.delta);
   } else if (s.init == "random") {
     InitRandom(&result.field, s.seed, result.delta);
-  } else if (s.init == "km") {
-    ConstructionResult km = EvaluateKm(s.epsilon, s.length, h0,
-                                       KmOptimalTheta());
-    InitConstruction(&result.field, km.ToConstruction(s.length), result.delta);
+  } else if (s.init == "km" || s.init == "needle") {
+    ConstructionResult c =
+        s.init == "km" ? EvaluateKm(s.epsilon, s.length, h0, KmOptimalTheta())
+                       : EvaluateNeedle(s.epsilon, s.length, h0,
+                                        KmOptimalTheta());
+    InitConstruction(&result.field, c.ToConstruction(s.length), result.delta);
   } else {
     ConstructionResult lens = DefaultLens(s.epsilon, s.length);
     lens.shape = LensShape{0.5, 0.0, 0.0};

@@ -23,8 +23,8 @@ struct SimulationSettings {
   // (dy = delta / 3 <= delta / 2.5, spec: surface-energy error ~0.5 %).
   double delta = 0.0;
   int continuation = 3;          // widths 4 delta, 2 delta, delta
-  std::string init = "km";       // laminate | random | km | lens
-  int periods = 0;               // laminate / km periods in H (0: KM optimum)
+  std::string init = "needle";   // laminate | random | km | needle | lens
+  int periods = 0;               // periods in H (0: needle optimum)
   unsigned seed = 1;             // random init
   int max_iterations = 200;      // per continuation stage
   int num_threads = 1;

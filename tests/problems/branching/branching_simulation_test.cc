@@ -69,7 +69,7 @@ TEST(BranchingRelaxed, ExactScalingInvariance) {
   a.height = 0.4;
   a.nx = 16;
   a.ny = 64;
-  a.init = "km";
+  a.init = "needle";
   a.periods = 1;
   a.continuation = 2;
   SimulationSettings b = a;
@@ -103,7 +103,7 @@ TEST(BranchingRelaxed, SolveRefinesTowardAustenite) {
   SimulationSettings s;  // eps 1e-3, L 1, H 0.5
   s.nx = 32;
   s.ny = 128;
-  s.init = "km";
+  s.init = "needle";
   s.periods = 1;
   const SimulationResult init = InitialSimulation(s);
   const double e0 = EvaluateRelaxedEnergy(init.field, s.epsilon, init.delta).total();
@@ -122,8 +122,8 @@ TEST(BranchingRelaxed, SolveRefinesTowardAustenite) {
     std::printf(" %d", r.interfaces[k]);
   }
   std::printf("\n");
-  // Energy per unit height below the sharp KM upper bound (the relaxed model
-  // underestimates, spec) but of the same order.
+  // Energy per unit height below the sharp needle (T2) upper bound 6.856
+  // (the relaxed model underestimates, spec) but of the same order.
   const double constant = r.energy.total() / std::pow(s.epsilon, 2.0 / 3.0);
   EXPECT_GT(constant, 1.0);
   EXPECT_LT(constant, 6.9);
@@ -158,6 +158,8 @@ TEST(BranchingCli, BadFlagsFailWithoutOutput) {
       "branching simulate --nx 1 --output ",
       "branching simulate --epsilon -1 --output ",
       "branching construct --family zigzag --output ",
+      "branching construct --family lens --search --output ",
+      "branching construct --family general --search_ratios 5 --output ",
       "branching explode --output ",
       "branching simulate --no_such_flag --output ",
   };
