@@ -71,6 +71,9 @@ DEFINE_int32(subintervals, 3,
              "branching construct --family general: linear pieces per segment");
 DEFINE_int32(search_starts, 2,
              "branching construct --search: noisy restarts per start");
+DEFINE_string(search_filter, "",
+              "branching construct --search: only topologies whose name "
+              "contains this text (e.g. r3-n2)");
 DEFINE_int32(search_threads, 1,
              "branching construct --search: threads (result independent)");
 DEFINE_bool(optimize, false,
@@ -284,6 +287,7 @@ int RunGeneral(double epsilon, const std::string& dir) {
     o.subintervals = FLAGS_subintervals;
     o.starts_per_topology = FLAGS_search_starts;
     o.num_threads = FLAGS_search_threads;
+    o.filter = FLAGS_search_filter;
     const GeneralSearchResult r = SearchGeneral(o, [](const GeneralResult& g) {
       if (!FLAGS_quiet && g.ok) {
         std::cerr << "  " << g.topology.name << ": C_free " << g.constant_free

@@ -198,6 +198,40 @@ GeneralResult SolveGeneral(const GeneralTopology& topology, double delta,
   return OptimizeGeneral(topology, x, max_iterations);
 }
 
+GeneralResult RefineGeneral(const GeneralResult& coarse, int factor,
+                            int max_iterations) {
+  if (factor < 1) throw InputError("general refine: factor must be >= 1");
+  const GeneralCellLayout old_layout(coarse.topology);
+  GeneralCellGeometry geo;
+  if (!EvaluateGeneralGeometry(old_layout, coarse.x.data(), &geo)) {
+    throw InputError("general refine: parameters outside the valid domain");
+  }
+  GeneralTopology t = coarse.topology;
+  t.subintervals *= factor;
+  const GeneralCellLayout layout(t);
+  std::vector<double> x(layout.size(), 0.0);
+  // Shared leading block: q, Delta, taus, p.
+  for (int k = 0; k < layout.p_offset(0) + layout.num_needles(); ++k) {
+    x[k] = coarse.x[k];
+  }
+  const int K = coarse.topology.subintervals;
+  for (int m = 1; m + 1 < layout.num_knots(); ++m) {
+    const GeneralCellLayout::Knot& knot = layout.knot(m);
+    // Old knot index of (segment, step / factor) and the fraction between.
+    const int seg = knot.segment;
+    const int step = knot.step / factor, rest = knot.step % factor;
+    const int old = seg * K + step;
+    const double f = static_cast<double>(rest) / factor;
+    for (int id : knot.order) {
+      if (knot.param[id] < 0) continue;
+      const double a = geo.position[old][id];
+      const double b = rest == 0 ? a : geo.position[old + 1][id];
+      x[knot.param[id]] = a + f * (b - a);
+    }
+  }
+  return OptimizeGeneral(t, x, max_iterations);
+}
+
 CellPattern GeneralCellPattern(const GeneralResult& result) {
   const GeneralCellLayout layout(result.topology);
   GeneralCellGeometry geo;
@@ -262,7 +296,8 @@ std::string DescribeGeneral(const GeneralResult& result) {
   out << "  A = " << result.A << ", B = " << result.B << ", A B^2 = "
       << result.AB2 << ", C (geometric lengths) = " << result.constant_geometric
       << ", C (free lengths) = " << result.constant_free << ", Delta = "
-      << result.delta << "\n";
+      << result.delta << "; LM " << result.iterations << " iterations, "
+      << result.termination << "\n";
   const GeneralCellLayout layout(t);
   GeneralCellGeometry geo;
   if (EvaluateGeneralGeometry(layout, result.x.data(), &geo)) {
@@ -294,64 +329,76 @@ void AddCombinations(int n, int k, int first, std::vector<int>* current,
   }
 }
 
-// Sequences of single-needle groups: piece choices in the growing order.
-void AddSequences(int alive, int remaining, std::vector<int>* current,
-                  std::vector<std::vector<int>>* out) {
+// Ordered sequences of groups: each group a nonempty set of distinct
+// pieces of the order before it (pieces ascending), until `remaining`
+// needles are placed.
+void AddGroupings(int alive, int remaining, std::vector<std::vector<int>>* current,
+                  std::vector<std::vector<std::vector<int>>>* out) {
   if (remaining == 0) {
     out->push_back(*current);
     return;
   }
-  for (int piece = 0; piece < alive; ++piece) {
-    current->push_back(piece);
-    AddSequences(alive + 2, remaining - 1, current, out);
-    current->pop_back();
+  for (int k = 1; k <= std::min(remaining, alive); ++k) {
+    std::vector<std::vector<int>> subsets;
+    std::vector<int> cur;
+    AddCombinations(alive, k, 0, &cur, &subsets);
+    for (const std::vector<int>& s : subsets) {
+      current->push_back(s);
+      AddGroupings(alive + 2 * k, remaining - k, current, out);
+      current->pop_back();
+    }
   }
 }
 
 }  // namespace
 
-// For each r and n_c: (a) one group with all needles in distinct coarse
-// pieces (every combination), (b) for at most 3 needles, one needle per
-// group in every sequence of pieces; each with the needles' start p all 1/2,
-// all 0 or all 1, and with the first group free or at s = 0; every label
-// offset. Start taus: one group 1/2; staggered groups evenly in (0.2, 0.8).
+// For each r and n_c (n_c > 1 only for r <= 3): every ordered grouping of
+// the n_c (r - 1) needles (AddGroupings; for n_c = 2 only one group, or for
+// r = 3 two groups of one needle per coarse lamella). Start values: the
+// needles' p = 1/2 (and for r = 2 also all 0 / all 1, the psi-junction),
+// taus evenly in [0.3, 0.7] (one group: 1/2), for one group also the variant
+// nucleating at s = 0; every label offset.
 std::vector<GeneralTopology> SearchTopologies(
     const GeneralSearchOptions& options) {
   std::vector<GeneralTopology> out;
   for (int r : options.ratios) {
     for (int nc = 1; nc <= options.max_pairs; ++nc) {
+      if (nc > 1 && r > 3) continue;
       const int needles = nc * (r - 1);
-      std::vector<std::vector<NucleationGroup>> shapes;
-      if (needles <= 2 * nc) {
-        std::vector<std::vector<int>> combos;
-        std::vector<int> cur;
-        AddCombinations(2 * nc, needles, 0, &cur, &combos);
-        for (const auto& c : combos) {
-          NucleationGroup g;
-          g.tau = 0.5;
-          for (int piece : c) g.needles.push_back({piece, 0.5});
-          shapes.push_back({g});
+      std::vector<std::vector<std::vector<int>>> groupings;
+      if (nc == 1) {
+        std::vector<std::vector<int>> cur;
+        AddGroupings(2 * nc, needles, &cur, &groupings);
+      } else {
+        if (needles <= 2 * nc) {
+          std::vector<std::vector<int>> combos;
+          std::vector<int> cur;
+          AddCombinations(2 * nc, needles, 0, &cur, &combos);
+          for (const auto& combo : combos) groupings.push_back({combo});
         }
-      }
-      if (needles <= 3 && needles >= 2) {
-        std::vector<std::vector<int>> seqs;
-        std::vector<int> cur;
-        AddSequences(2 * nc, needles, &cur, &seqs);
-        for (const auto& seq : seqs) {
-          std::vector<NucleationGroup> groups;
-          for (size_t k = 0; k < seq.size(); ++k) {
-            NucleationGroup g;
-            g.tau = 0.2 + 0.6 * k / (seq.size() - 1.0);
-            g.needles.push_back({seq[k], 0.5});
-            groups.push_back(g);
+        if (needles == 4 && 2 * nc == 4) {
+          for (int mask = 1; mask < 15; ++mask) {
+            std::vector<int> a, b;
+            for (int piece = 0, shift = 0; piece < 4; ++piece) {
+              if (mask & (1 << piece)) {
+                a.push_back(piece);
+                shift += 2;
+              } else {
+                b.push_back(piece + shift);
+              }
+            }
+            groupings.push_back({a, b});
           }
-          shapes.push_back(groups);
         }
       }
       int index = 0;
-      for (const auto& shape : shapes) {
-        for (double p : {0.5, 0.0, 1.0}) {
+      for (const auto& grouping : groupings) {
+        const int G = static_cast<int>(grouping.size());
+        std::vector<double> ps = {0.5};
+        if (r == 2) ps = {0.5, 0.0, 1.0};
+        for (double p : ps) {
           for (bool at_zero : {false, true}) {
+            if (at_zero && G > 1) continue;
             for (int o = 0; o < 2 * nc; ++o) {
               GeneralTopology t;
               t.pairs = nc;
@@ -359,19 +406,21 @@ std::vector<GeneralTopology> SearchTopologies(
               t.label_offset = o;
               t.subintervals = options.subintervals;
               t.first_at_zero = at_zero;
-              t.groups = shape;
-              for (NucleationGroup& g : t.groups) {
-                for (NeedleEvent& e : g.needles) e.p = p;
-              }
-              if (at_zero && t.groups.size() > 1) {
-                // Shift the later groups' start taus up.
-                for (size_t k = 1; k < t.groups.size(); ++k) {
-                  t.groups[k].tau = 0.6 * k / (t.groups.size() - 1.0) + 0.2;
-                }
+              for (int g = 0; g < G; ++g) {
+                NucleationGroup group;
+                group.tau = G == 1 ? 0.5 : 0.3 + 0.4 * g / (G - 1.0);
+                for (int piece : grouping[g]) group.needles.push_back({piece, p});
+                t.groups.push_back(group);
               }
               std::ostringstream name;
-              name << "r" << r << "-n" << nc << "-s" << index << "-p" << p
-                   << (at_zero ? "-z" : "") << "-o" << o;
+              name << "r" << r << "-n" << nc << "-g" << index << "-p" << p
+                   << (at_zero ? "-z" : "") << "-o" << o << "-";
+              for (int g = 0; g < G; ++g) {
+                name << (g ? "|" : "");
+                for (size_t k = 0; k < grouping[g].size(); ++k) {
+                  name << (k ? "," : "") << grouping[g][k];
+                }
+              }
               t.name = name.str();
               out.push_back(t);
             }
@@ -387,7 +436,12 @@ std::vector<GeneralTopology> SearchTopologies(
 GeneralSearchResult SearchGeneral(
     const GeneralSearchOptions& options,
     const std::function<void(const GeneralResult&)>& progress) {
-  const std::vector<GeneralTopology> topologies = SearchTopologies(options);
+  std::vector<GeneralTopology> topologies;
+  for (const GeneralTopology& t : SearchTopologies(options)) {
+    if (options.filter.empty() || t.name.find(options.filter) != std::string::npos) {
+      topologies.push_back(t);
+    }
+  }
   GeneralSearchResult out;
   out.per_topology.resize(topologies.size());
   std::vector<int> solves(topologies.size(), 0);
@@ -433,11 +487,41 @@ GeneralSearchResult SearchGeneral(
   }
   // Deterministic: the best by (A B^2, topology index), independent of the
   // order the threads finished in.
+  std::vector<size_t> ranked;
   for (size_t i = 0; i < topologies.size(); ++i) {
     out.solves += solves[i];
-    const GeneralResult& r = out.per_topology[i];
+    if (out.per_topology[i].ok) ranked.push_back(i);
+  }
+  std::stable_sort(ranked.begin(), ranked.end(), [&](size_t a, size_t b) {
+    return out.per_topology[a].AB2 < out.per_topology[b].AB2;
+  });
+  // The best few refined (knots doubled, same geometry as the start, then
+  // LM): the refined optimum is never worse than the coarse one.
+  const size_t refine = std::min<size_t>(ranked.size(), options.refine_best);
+  std::vector<GeneralResult> refined(refine);
+  auto refine_one = [&](size_t k) {
+    refined[k] = out.per_topology[ranked[k]];
+    if (options.refine_factor > 1) {
+      GeneralResult r = RefineGeneral(refined[k], options.refine_factor,
+                                      options.refine_iterations);
+      if (r.ok && r.AB2 <= refined[k].AB2) refined[k] = r;
+    }
+  };
+  {
+    std::atomic<size_t> next{0};
+    std::vector<std::thread> pool;
+    for (int k = 0; k < threads; ++k) {
+      pool.emplace_back([&]() {
+        for (size_t i = next++; i < refine; i = next++) refine_one(i);
+      });
+    }
+    for (std::thread& th : pool) th.join();
+  }
+  out.solves += static_cast<int>(refine);
+  for (const GeneralResult& r : refined) {
     if (r.ok && (!out.best.ok || r.AB2 < out.best.AB2)) out.best = r;
   }
+  if (!out.best.ok && !ranked.empty()) out.best = out.per_topology[ranked[0]];
   return out;
 }
 

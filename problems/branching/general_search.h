@@ -53,6 +53,11 @@ GeneralResult SolveGeneral(const GeneralTopology& topology, double delta,
                            double noise, unsigned seed,
                            int max_iterations = 400);
 
+// The optimum re-solved with `factor` times more knots per segment, started
+// from the same (piecewise-linear) geometry, so the energy does not rise.
+GeneralResult RefineGeneral(const GeneralResult& coarse, int factor,
+                            int max_iterations = 400);
+
 struct GeneralSearchOptions {
   std::vector<int> ratios = {2, 3, 4};
   int max_pairs = 2;
@@ -61,6 +66,10 @@ struct GeneralSearchOptions {
   unsigned seed = 1;
   int max_iterations = 300;
   int num_threads = 1;          // topologies solved in parallel (order-free)
+  std::string filter;           // only topologies whose name contains it
+  int refine_best = 4;          // the best topologies refined at the end
+  int refine_factor = 2;        // knots per segment multiplied by this
+  int refine_iterations = 2000; // LM iterations of each refinement
 };
 
 struct GeneralSearchResult {
