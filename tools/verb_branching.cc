@@ -57,6 +57,9 @@ DEFINE_int32(periods, 0,
 DEFINE_int32(init_seed, 1, "branching simulate: seed of --init random");
 DEFINE_int32(lm_iterations, 200,
              "branching simulate: LM iterations per continuation stage");
+DEFINE_int32(delta_extrapolation, 0,
+             "branching simulate: >= 2: also run widths delta, delta/r, .. "
+             "(this many, r = 2^(1/2)) and fit the constant as delta -> 0");
 DEFINE_string(family, "km",
               "branching construct: km (psi-junction) | needle (T2) | lens | "
               "general (reduced sharp-interface optimiser)");
@@ -69,7 +72,7 @@ DEFINE_int32(search_pairs, 2,
              "branching construct --search: largest super-cell (lamella pairs)");
 DEFINE_int32(subintervals, 3,
              "branching construct --family general: linear pieces per segment");
-DEFINE_int32(search_starts, 2,
+DEFINE_int32(search_starts, 1,
              "branching construct --search: noisy restarts per start");
 DEFINE_string(search_filter, "",
               "branching construct --search: only topologies whose name "
@@ -187,6 +190,13 @@ int RunSimulate() {
     };
   }
   const SimulationResult result = RunSimulation(s);
+  if (result.stages.back().termination == "COLLAPSED") {
+    throw InputError(
+        "branching simulate: the pattern collapsed to u = 0 at delta " +
+        std::to_string(result.stages.back().delta) +
+        " (max |u_y| < 0.5): the grid cannot hold it; use more y-nodes "
+        "(--ny) or a smaller --delta");
+  }
   const double scale = std::pow(s.epsilon, 2.0 / 3.0) * std::cbrt(s.length);
 
   JsonObject summary;
@@ -206,6 +216,7 @@ int RunSimulate() {
     JsonObject o;
     o.Add("delta", st.delta).Add("iterations", st.iterations)
         .Add("energy", st.energy.total()).Add("seconds", st.seconds)
+        .Add("max_slope", st.max_slope).Add("retried", st.retried)
         .Add("termination", st.termination);
     stages += (k ? ", " : "") + o.str();
   }
@@ -216,6 +227,32 @@ int RunSimulate() {
     counts.push_back(result.interfaces[k]);
   }
   summary.Add("x", x).Add("interfaces", counts);
+  if (FLAGS_delta_extrapolation == 1 || FLAGS_delta_extrapolation < 0) {
+    throw InputError("--delta_extrapolation must be 0 or >= 2");
+  }
+  if (FLAGS_delta_extrapolation >= 2) {
+    std::vector<double> deltas;
+    for (int k = 0; k < FLAGS_delta_extrapolation; ++k) {
+      deltas.push_back(result.delta * std::pow(std::sqrt(0.5), k));
+    }
+    SimulationSettings base = s;
+    const DeltaExtrapolation ex =
+        ExtrapolateDelta(base, deltas, [](double delta, double c) {
+          if (!FLAGS_quiet) {
+            std::cerr << "  extrapolation: delta " << delta << "  C " << c << "\n";
+          }
+        });
+    JsonObject e;
+    std::vector<double> nys(ex.ny.begin(), ex.ny.end());
+    e.Add("delta", ex.deltas).Add("ny", nys).Add("constant", ex.constants)
+        .Add("linear_c0", ex.c0).Add("linear_c1", ex.c1)
+        .Add("linear_rms", ex.linear_rms);
+    if (ex.has_quadratic) {
+      e.Add("quadratic_q0", ex.q0).Add("quadratic_q1", ex.q1)
+          .Add("quadratic_q2", ex.q2).Add("quadratic_rms", ex.quadratic_rms);
+    }
+    summary.Add("extrapolation", e);
+  }
 
   MakeOutputDirectory(dir);
   const int width_px = 800;

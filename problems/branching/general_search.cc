@@ -492,8 +492,9 @@ GeneralSearchResult SearchGeneral(
     out.solves += solves[i];
     if (out.per_topology[i].ok) ranked.push_back(i);
   }
+  // By C (free lengths): A B^2 alone does not compare different r.
   std::stable_sort(ranked.begin(), ranked.end(), [&](size_t a, size_t b) {
-    return out.per_topology[a].AB2 < out.per_topology[b].AB2;
+    return out.per_topology[a].constant_free < out.per_topology[b].constant_free;
   });
   // The best few refined (knots doubled, same geometry as the start, then
   // LM): the refined optimum is never worse than the coarse one.
@@ -519,7 +520,9 @@ GeneralSearchResult SearchGeneral(
   }
   out.solves += static_cast<int>(refine);
   for (const GeneralResult& r : refined) {
-    if (r.ok && (!out.best.ok || r.AB2 < out.best.AB2)) out.best = r;
+    if (r.ok && (!out.best.ok || r.constant_free < out.best.constant_free)) {
+      out.best = r;
+    }
   }
   if (!out.best.ok && !ranked.empty()) out.best = out.per_topology[ranked[0]];
   return out;

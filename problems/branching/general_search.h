@@ -62,7 +62,7 @@ struct GeneralSearchOptions {
   std::vector<int> ratios = {2, 3, 4};
   int max_pairs = 2;
   int subintervals = 3;
-  int starts_per_topology = 3;  // noisy restarts besides the clean start
+  int starts_per_topology = 1;  // noisy restarts besides the clean start
   unsigned seed = 1;
   int max_iterations = 300;
   int num_threads = 1;          // topologies solved in parallel (order-free)
