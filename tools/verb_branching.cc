@@ -314,12 +314,13 @@ int RunGeneral(double epsilon, const std::string& dir) {
   if (FLAGS_search_starts < 0 || FLAGS_search_threads < 1) {
     throw InputError("--search_starts must be >= 0, --search_threads >= 1");
   }
+  const std::vector<int> ratios = ParseRatios(FLAGS_search_ratios);
   GeneralResult best;
   int solves = 1;
   const auto start = std::chrono::steady_clock::now();
   if (FLAGS_search) {
     GeneralSearchOptions o;
-    o.ratios = ParseRatios(FLAGS_search_ratios);
+    o.ratios = ratios;
     o.max_pairs = FLAGS_search_pairs;
     o.subintervals = FLAGS_subintervals;
     o.starts_per_topology = FLAGS_search_starts;
