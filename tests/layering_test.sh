@@ -17,9 +17,9 @@ declare -A allowed=(
   [problems/calculus]="geometry cost_functions solvers"
   [problems/splines]="geometry cost_functions solvers problems/calculus"
   [problems/statistics]="geometry cost_functions solvers problems/calculus"
-  # io: RgbImage of the construction pictures, until they move to render/.
-  [problems/branching]="geometry cost_functions solvers io"
-  [render]="geometry io"
+  [problems/branching]="geometry cost_functions solvers"
+  # problems/branching: the pictures of constructions and relaxed fields.
+  [render]="geometry io problems/branching"
 )
 
 # The room of an include path "shellspace/<room>/...".

@@ -5,15 +5,21 @@
 //   simulate  — relaxed diffuse-interface simulation on a graded grid (sparse
 //               LM, continuation in delta); writes DIR/u.csv, DIR/uy.png,
 //               DIR/interfaces.csv, DIR/summary.json.
-//   construct — the reduced sharp-interface model: the KM or lens
-//               self-similar construction, optionally optimised; writes
-//               DIR/pattern.png and DIR/summary.json.
+//   construct — the reduced sharp-interface model: the KM (psi-junction),
+//               needle (T2) or lens self-similar construction, optionally
+//               optimised, or the general optimiser (--family general
+//               [--search]); writes DIR/pattern.png and DIR/summary.json
+//               (general: also DIR/pattern.txt, the knots).
 //
 // --epsilon here is the twin-boundary energy (default 1e-3), not the step of
 // `transport`; --height is the domain height H.
 #include <gflags/gflags.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <sstream>
 #include <filesystem>
 #include <iostream>
 #include <string>
@@ -21,27 +27,60 @@
 
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/problems/branching/construction_optimizer.h"
-#include "shellspace/problems/branching/field_output.h"
+#include "shellspace/problems/branching/general_search.h"
+#include "shellspace/problems/branching/self_similar_series.h"
 #include "shellspace/problems/branching/km_family.h"
 #include "shellspace/problems/branching/simulation.h"
 #include "shellspace/io/atomic_file.h"
 #include "shellspace/io/png_writer.h"
+#include "shellspace/render/branching_image.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/io/json_writer.h"
 #include "shellspace/tools/verb.h"
 
 DEFINE_double(length, 1.0, "branching: domain length L");
 DEFINE_int32(nx, 64, "branching simulate: number of x-cells");
-DEFINE_int32(ny, 128, "branching simulate: number of y-nodes");
-DEFINE_string(init, "km", "branching simulate: initial guess");
-DEFINE_double(delta, 0.0, "branching simulate: interface width");
-DEFINE_double(grading, 2.0, "branching simulate: x-grading exponent");
-DEFINE_int32(continuation, 3, "branching simulate: continuation stages");
-DEFINE_int32(periods, 0, "branching simulate: periods of the initial pattern");
+DEFINE_int32(ny, 128, "branching simulate: number of y-nodes (periodic)");
+DEFINE_string(init, "needle",
+              "branching simulate: initial guess laminate|random|km|needle|lens "
+              "(km: the psi-junction cell; needle: the T2 cell)");
+DEFINE_double(delta, 0.0,
+              "branching simulate: interface width (0: 3 H/ny, the rule "
+              "dy = delta/3)");
+DEFINE_double(grading, 2.0,
+              "branching simulate: x-grading exponent, x_i = L (i/nx)^g");
+DEFINE_int32(continuation, 3,
+             "branching simulate: continuation stages in delta (factor 2)");
+DEFINE_int32(periods, 0,
+             "branching simulate: periods of the initial pattern in H (0: "
+             "nearest to the optimal KM period)");
 DEFINE_int32(init_seed, 1, "branching simulate: seed of --init random");
-DEFINE_int32(lm_iterations, 200, "branching simulate: LM iterations per stage");
-DEFINE_string(family, "km", "branching construct: km|lens");
-DEFINE_bool(optimize, false, "branching construct: optimise the parameters");
+DEFINE_int32(lm_iterations, 200,
+             "branching simulate: LM iterations per continuation stage");
+DEFINE_int32(delta_extrapolation, 0,
+             "branching simulate: >= 2: also run widths delta, delta/r, .. "
+             "(this many, r = 2^(1/2)) and fit the constant as delta -> 0");
+DEFINE_string(family, "km",
+              "branching construct: km (psi-junction) | needle (T2) | lens | "
+              "general (reduced sharp-interface optimiser)");
+DEFINE_bool(search, false,
+            "branching construct --family general: multi-start search over "
+            "topologies (else one solve of the lens topology)");
+DEFINE_string(search_ratios, "2,3,4",
+              "branching construct --search: refinement ratios r");
+DEFINE_int32(search_pairs, 2,
+             "branching construct --search: largest super-cell (lamella pairs)");
+DEFINE_int32(subintervals, 3,
+             "branching construct --family general: linear pieces per segment");
+DEFINE_int32(search_starts, 1,
+             "branching construct --search: noisy restarts per start");
+DEFINE_string(search_filter, "",
+              "branching construct --search: only topologies whose name "
+              "contains this text (e.g. r3-n2)");
+DEFINE_int32(search_threads, 1,
+             "branching construct --search: threads (result independent)");
+DEFINE_bool(optimize, false,
+            "branching construct: optimise h0, theta (and the lens shape) by LM");
 
 namespace shellspace {
 namespace {
@@ -68,7 +107,10 @@ FlagTable SimulateFlags() {
            RealFlag("height", "domain height H (0: 0.5)", 0, End::kClosed),
            IntegerFlag("nx", "number of x-cells", 2, 4096),
            IntegerFlag("ny", "number of y-nodes (periodic)", 8, 8192),
-           TextFlag("init", "initial guess laminate|random|km|lens"),
+           TextFlag("init",
+                    "initial guess laminate|random|km|needle|lens (km: the "
+                    "psi-junction cell; needle: the T2 cell)")
+               .Default("needle"),
            RealFlag("delta",
                     "interface width (0: 3 H/ny, the rule dy = delta/3); "
                     "a positive one needs H/ny <= delta/2",
@@ -84,6 +126,11 @@ FlagTable SimulateFlags() {
            IntegerFlag("init_seed", "seed of --init random", 0),
            IntegerFlag("lm_iterations", "LM iterations per continuation stage",
                        0),
+           IntegerFlag("delta_extrapolation",
+                       "0, or >= 2: also run the widths delta, delta/r, ... "
+                       "(this many, r = 2^(1/2)) and fit the constant as "
+                       "delta -> 0",
+                       0, 16),
        }});
 }
 
@@ -91,12 +138,58 @@ FlagTable ConstructFlags() {
   return Flags(
       {CommonFlags(),
        {
-           TextFlag("family", "km|lens"),
+           TextFlag("family",
+                    "km (psi-junction) | needle (T2) | lens | general (the "
+                    "reduced sharp-interface optimiser)"),
+           TextFlag("search",
+                    "--family general: multi-start search over topologies "
+                    "(else one solve of the lens topology)"),
+           TextFlag("search_ratios", "--search: refinement ratios r, e.g. 2,3,4"),
+           IntegerFlag("search_pairs",
+                       "--search: largest super-cell (lamella pairs)", 1, 4),
+           IntegerFlag("subintervals",
+                       "--family general: linear pieces per segment", 1, 16),
+           IntegerFlag("search_starts", "--search: noisy restarts per start",
+                       0, 64),
+           TextFlag("search_filter",
+                    "--search: only topologies whose name contains this text "
+                    "(e.g. r3-n2)"),
+           IntegerFlag("search_threads",
+                       "--search: threads (the result does not depend on them)",
+                       1, 64),
            TextFlag("optimize",
                     "optimise h0, theta (and the lens shape) by LM"),
            RealFlag("height", "height of the picture (0: 2 h0)", 0,
                     End::kClosed),
        }});
+}
+
+// "i,j,x,y,u,u_y" per node (u_y: the staggered slope to node j + 1).
+std::string FieldCsv(const RelaxedField& field) {
+  const RelaxedGrid& g = field.grid;
+  std::ostringstream out;
+  out.precision(12);
+  out << "i,j,x,y,u,u_y\n";
+  for (int i = 0; i <= g.nx; ++i) {
+    for (int j = 0; j < g.ny; ++j) {
+      out << i << ',' << j << ',' << g.x(i) << ',' << g.y(j) << ','
+          << field.at(i, j) << ',' << field.uy(i, j) << '\n';
+    }
+  }
+  return out.str();
+}
+
+// "i,x,interfaces" per node row i >= 1.
+std::string InterfaceCsv(const RelaxedField& field,
+                         const std::vector<int>& counts) {
+  std::ostringstream out;
+  out.precision(12);
+  out << "i,x,interfaces\n";
+  for (size_t k = 0; k < counts.size(); ++k) {
+    out << k + 1 << ',' << field.grid.x(static_cast<int>(k) + 1) << ','
+        << counts[k] << '\n';
+  }
+  return out.str();
 }
 
 double BranchingHeight() { return FLAGS_height > 0 ? FLAGS_height : 0.5; }
@@ -125,9 +218,12 @@ JsonObject EnergyJson(double elastic, double interfacial) {
 
 int RunSimulate() {
   if (FLAGS_init != "laminate" && FLAGS_init != "random" &&
-      FLAGS_init != "km" && FLAGS_init != "lens") {
-    throw InputError("--init must be laminate, random, km or lens, got '" +
-                     FLAGS_init + "'");
+      FLAGS_init != "km" && FLAGS_init != "needle" && FLAGS_init != "lens") {
+    throw InputError("--init must be laminate, random, km, needle or lens, "
+                     "got '" + FLAGS_init + "'");
+  }
+  if (FLAGS_delta_extrapolation == 1) {
+    throw InputError("--delta_extrapolation must be 0 or >= 2");
   }
   if (FLAGS_delta > 0 && BranchingHeight() / FLAGS_ny > FLAGS_delta / 2.0) {
     throw InputError("--delta is not resolved: need --height / --ny <= "
@@ -160,6 +256,13 @@ int RunSimulate() {
     };
   }
   const SimulationResult result = RunSimulation(s);
+  if (result.stages.back().termination == "COLLAPSED") {
+    throw InputError(
+        "branching simulate: the pattern collapsed to u = 0 at delta " +
+        std::to_string(result.stages.back().delta) +
+        " (max |u_y| < 0.5): the grid cannot hold it; use more y-nodes "
+        "(--ny) or a smaller --delta");
+  }
   const double scale = std::pow(s.epsilon, 2.0 / 3.0) * std::cbrt(s.length);
 
   JsonObject summary;
@@ -179,6 +282,7 @@ int RunSimulate() {
     JsonObject o;
     o.Add("delta", st.delta).Add("iterations", st.iterations)
         .Add("energy", st.energy.total()).Add("seconds", st.seconds)
+        .Add("max_slope", st.max_slope).Add("retried", st.retried)
         .Add("termination", st.termination);
     stages += (k ? ", " : "") + o.str();
   }
@@ -189,6 +293,29 @@ int RunSimulate() {
     counts.push_back(result.interfaces[k]);
   }
   summary.Add("x", x).Add("interfaces", counts);
+  if (FLAGS_delta_extrapolation >= 2) {
+    std::vector<double> deltas;
+    for (int k = 0; k < FLAGS_delta_extrapolation; ++k) {
+      deltas.push_back(result.delta * std::pow(std::sqrt(0.5), k));
+    }
+    SimulationSettings base = s;
+    const DeltaExtrapolation ex =
+        ExtrapolateDelta(base, deltas, [](double delta, double c) {
+          if (!FLAGS_quiet) {
+            std::cerr << "  extrapolation: delta " << delta << "  C " << c << "\n";
+          }
+        });
+    JsonObject e;
+    std::vector<double> nys(ex.ny.begin(), ex.ny.end());
+    e.Add("delta", ex.deltas).Add("ny", nys).Add("constant", ex.constants)
+        .Add("linear_c0", ex.c0).Add("linear_c1", ex.c1)
+        .Add("linear_rms", ex.linear_rms);
+    if (ex.has_quadratic) {
+      e.Add("quadratic_q0", ex.q0).Add("quadratic_q1", ex.q1)
+          .Add("quadratic_q2", ex.q2).Add("quadratic_rms", ex.quadratic_rms);
+    }
+    summary.Add("extrapolation", e);
+  }
 
   MakeOutputDirectory(dir);
   const int width_px = 800;
@@ -214,18 +341,155 @@ int RunSimulate() {
   return 0;
 }
 
+std::vector<int> ParseRatios(const std::string& text) {
+  std::vector<int> out;
+  std::stringstream in(text);
+  std::string item;
+  while (std::getline(in, item, ',')) {
+    if (item != "2" && item != "3" && item != "4") {
+      throw InputError("--search_ratios must be a list of 2, 3, 4");
+    }
+    out.push_back(std::stoi(item));
+  }
+  if (out.empty()) throw InputError("--search_ratios is empty");
+  return out;
+}
+
+// The lens topology in the general model: one group, needles in the
+// middle of both lamellae, all interfaces free.
+GeneralTopology LensTopology(int subintervals) {
+  GeneralTopology t;
+  t.pairs = 1;
+  t.r = 3;
+  t.subintervals = subintervals;
+  t.name = "lens";
+  NucleationGroup g;
+  g.tau = 0.5;
+  g.needles = {{0, 0.5}, {1, 0.5}};
+  t.groups = {g};
+  return t;
+}
+
+int RunGeneral(double epsilon, const std::string& dir) {
+  if (FLAGS_subintervals < 1 || FLAGS_subintervals > 16) {
+    throw InputError("--subintervals must lie in [1, 16]");
+  }
+  if (FLAGS_search_pairs < 1 || FLAGS_search_pairs > 2) {
+    throw InputError("--search_pairs must be 1 or 2");
+  }
+  if (FLAGS_search_starts < 0 || FLAGS_search_threads < 1) {
+    throw InputError("--search_starts must be >= 0, --search_threads >= 1");
+  }
+  const std::vector<int> ratios = ParseRatios(FLAGS_search_ratios);
+  GeneralResult best;
+  int solves = 1;
+  const auto start = std::chrono::steady_clock::now();
+  if (FLAGS_search) {
+    GeneralSearchOptions o;
+    o.ratios = ratios;
+    o.max_pairs = FLAGS_search_pairs;
+    o.subintervals = FLAGS_subintervals;
+    o.starts_per_topology = FLAGS_search_starts;
+    o.num_threads = FLAGS_search_threads;
+    o.filter = FLAGS_search_filter;
+    const GeneralSearchResult r = SearchGeneral(o, [](const GeneralResult& g) {
+      if (!FLAGS_quiet && g.ok) {
+        std::cerr << "  " << g.topology.name << ": C_free " << g.constant_free
+                  << "\n";
+      }
+    });
+    best = r.best;
+    solves = r.solves;
+  } else {
+    best = SolveGeneral(LensTopology(FLAGS_subintervals), 0.0, 0.0, 1);
+  }
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+          .count();
+  if (!best.ok) throw InputError("general construct: no valid pattern found");
+  const FreeLengthSeries series =
+      OptimalFreeLengths(best.A, best.B, best.topology.r, epsilon, FLAGS_length);
+  JsonObject params;
+  params.Add("topology", best.topology.name).Add("r", best.topology.r)
+      .Add("pairs", best.topology.pairs)
+      .Add("label_offset", best.topology.label_offset)
+      .Add("subintervals", best.topology.subintervals)
+      .Add("delta", best.delta).Add("h0", series.h0)
+      .Add("x", best.x);
+  std::vector<double> taus, pieces, ps;
+  for (const NucleationGroup& g : best.topology.groups) {
+    for (const NeedleEvent& e : g.needles) {
+      taus.push_back(g.tau);
+      pieces.push_back(e.piece);
+      ps.push_back(e.p);
+    }
+  }
+  params.Add("needle_tau", taus).Add("needle_piece", pieces).Add("needle_p", ps);
+  std::vector<double> lengths(series.lengths.begin(),
+                              series.lengths.begin() + 12);
+  params.Add("lengths_first12", lengths);
+  JsonObject summary;
+  summary.Add("command", "branching construct").Add("family", "general")
+      .Add("search", FLAGS_search).Add("epsilon", epsilon)
+      .Add("length", FLAGS_length).Add("constant", best.constant_free)
+      .Add("constant_geometric_lengths", best.constant_geometric)
+      .Add("parameters", params).Add("A", best.A).Add("B", best.B)
+      .Add("AB2", best.AB2)
+      .Add("energy", EnergyJson(series.elastic, series.interfacial))
+      .Add("km_constant_closed_form", KmClosedFormConstant())
+      .Add("km_shifted_constant_closed_form", KmShiftedClosedFormConstant())
+      .Add("ratio_to_km", best.constant_free / KmClosedFormConstant())
+      .Add("ratio_to_km_shifted",
+           best.constant_free / KmShiftedClosedFormConstant())
+      .Add("solves", solves).Add("seconds", seconds);
+  Construction c;
+  c.pattern = GeneralCellPattern(best);
+  c.length = FLAGS_length;
+  c.h0 = series.h0;
+  c.lengths = series.lengths;
+  const double height = FLAGS_height > 0 ? FLAGS_height : 2.0 * series.h0;
+  const int width_px = 900;
+  const int height_px = std::clamp(
+      static_cast<int>(std::lround(width_px * height / FLAGS_length)), 100,
+      1800);
+  MakeOutputDirectory(dir);
+  AtomicFileSet files;
+  files.Add(dir + "/pattern.png",
+            EncodePng(RenderConstruction(c, height, width_px, height_px)));
+  files.Add(dir + "/summary.json", summary.str() + "\n");
+  files.Add(dir + "/pattern.txt", DescribeGeneral(best));
+  files.Commit();
+  if (FLAGS_json) {
+    std::cout << summary.str() << "\n";
+  } else if (!FLAGS_quiet) {
+    std::cout << DescribeGeneral(best) << "general: constant " << best.constant_free
+              << " (free lengths; geometric " << best.constant_geometric
+              << "), ratio to C_KM " << best.constant_free / KmClosedFormConstant()
+              << ", to C_KM shifted "
+              << best.constant_free / KmShiftedClosedFormConstant() << "; "
+              << solves << " solves, " << seconds << " s\n";
+  }
+  return 0;
+}
+
 int RunConstruct() {
-  if (FLAGS_family != "km" && FLAGS_family != "lens") {
-    throw InputError("--family must be km or lens, got '" + FLAGS_family +
-                     "'");
+  if (FLAGS_family != "km" && FLAGS_family != "needle" &&
+      FLAGS_family != "lens" && FLAGS_family != "general") {
+    throw InputError("--family must be km, needle, lens or general, got '" +
+                     FLAGS_family + "'");
   }
   const double epsilon = FLAGS_epsilon;
   const std::string dir = PrepareOutput();
+  if (FLAGS_family == "general") return RunGeneral(epsilon, dir);
+  if (FLAGS_search) throw InputError("--search needs --family general");
   ConstructionResult result;
-  if (FLAGS_family == "km") {
-    result = DefaultKm(epsilon, FLAGS_length);
+  if (FLAGS_family == "km" || FLAGS_family == "needle") {
+    const bool km = FLAGS_family == "km";
+    result = km ? DefaultKm(epsilon, FLAGS_length)
+                : DefaultNeedle(epsilon, FLAGS_length);
     if (FLAGS_optimize) {
-      result = OptimizeKm(epsilon, FLAGS_length, 0.5 * result.h0, 0.3);
+      result = km ? OptimizeKm(epsilon, FLAGS_length, 0.5 * result.h0, 0.3)
+                  : OptimizeNeedle(epsilon, FLAGS_length, 0.5 * result.h0, 0.3);
     }
   } else {
     result = DefaultLens(epsilon, FLAGS_length);
@@ -240,14 +504,30 @@ int RunConstruct() {
     params.Add("tau", result.shape.tau).Add("a1", result.shape.a1)
         .Add("a2", result.shape.a2);
   }
+  // Every generation length free (same cell): C_free = K_r^free / K_r C at
+  // the optimal theta.
+  const double free_factor =
+      FreeLengthSeriesConstant(result.r) /
+      SeriesConstant(1.0, 1.0, result.r, OptimalTheta(result.r));
+  const double best_geometric =
+      SeriesConstant(result.A, result.B, result.r, OptimalTheta(result.r));
   JsonObject summary;
   summary.Add("command", "branching construct").Add("family", result.family)
       .Add("optimized", FLAGS_optimize).Add("epsilon", epsilon)
       .Add("length", FLAGS_length).Add("constant", result.constant)
+      .Add("constant_free_lengths", best_geometric * free_factor)
       .Add("parameters", params).Add("A", result.A).Add("B", result.B)
-      .Add("energy", EnergyJson(result.elastic, result.interfacial))
-      .Add("km_constant_closed_form", KmClosedFormConstant())
-      .Add("ratio_to_km", result.constant / KmClosedFormConstant());
+      .Add("energy", EnergyJson(result.elastic, result.interfacial));
+  if (result.family == "km") {
+    summary.Add("A_zero_edge", result.A_zero_edge)
+        .Add("constant_zero_edge", result.constant_zero_edge);
+  }
+  summary.Add("km_constant_closed_form", KmClosedFormConstant())
+      .Add("km_shifted_constant_closed_form", KmShiftedClosedFormConstant())
+      .Add("needle_constant_closed_form", NeedleClosedFormConstant())
+      .Add("ratio_to_km", result.constant / KmClosedFormConstant())
+      .Add("ratio_to_km_shifted",
+           result.constant / KmShiftedClosedFormConstant());
   if (FLAGS_optimize) {
     summary.Add("iterations", result.iterations)
         .Add("seconds", result.seconds)
@@ -281,13 +561,14 @@ int RunConstruct() {
 SHELLSPACE_REGISTER_VERB(
     "branching simulate",
     "branching simulate [--epsilon E --length L --height H --nx N --ny M "
-    "--init laminate|random|km|lens] --output DIR [--json]: relaxed "
-    "diffuse-interface simulation",
+    "--init laminate|random|km|needle|lens --delta_extrapolation N] "
+    "--output DIR [--json]: relaxed diffuse-interface simulation",
     SimulateFlags(), RunSimulate);
 SHELLSPACE_REGISTER_VERB(
     "branching construct",
-    "branching construct [--epsilon E --length L --family km|lens "
-    "--optimize] --output DIR [--json]: the sharp-interface constructions",
+    "branching construct [--epsilon E --length L --family "
+    "km|needle|lens|general --optimize --search] --output DIR [--json]: the "
+    "sharp-interface constructions and the general optimiser",
     ConstructFlags(), RunConstruct);
 
 }  // namespace shellspace

@@ -95,7 +95,28 @@ void GaussLegendre01(int points, std::vector<double>* nodes,
   }
 }
 
-CellCoefficients EvaluateCell(const CellPattern& pattern, int points) {
+double ColumnMeanSquare(const ColumnState& column, double anchor) {
+  const int m = static_cast<int>(column.position.size());
+  anchor -= std::floor(anchor);
+  // F on the pieces as in ColumnVariance; F0 = F(anchor).
+  double f = 0.0, f0 = 0.0;
+  for (int k = 0; k < m; ++k) {
+    if (column.position[k] < anchor) f0 -= column.jump[k] * column.velocity[k];
+  }
+  double second = column.position.empty() ? 0.0 : column.position[0] * f0 * f0;
+  for (int k = 0; k < m; ++k) {
+    f -= column.jump[k] * column.velocity[k];
+    const double next = k + 1 < m ? column.position[k + 1] : 1.0;
+    const double width = next - column.position[k];
+    second += width * (f - f0) * (f - f0);
+  }
+  return second;
+}
+
+namespace {
+template <typename Density>
+CellCoefficients Integrate(const CellPattern& pattern, int points,
+                           const Density& density) {
   std::vector<double> cuts = {0.0, 1.0};
   for (double b : pattern.breakpoints) {
     if (b > 0.0 && b < 1.0) cuts.push_back(b);
@@ -113,13 +134,26 @@ CellCoefficients EvaluateCell(const CellPattern& pattern, int points) {
     const double a = cuts[k], b = cuts[k + 1];
     for (int q = 0; q < points; ++q) {
       const double s = a + (b - a) * nodes[q];
-      result.A += (b - a) * weights[q] * ColumnVariance(StateAt(pattern, s));
+      result.A += (b - a) * weights[q] * density(StateAt(pattern, s));
     }
   }
   for (const InterfaceCurve& c : pattern.interfaces) {
     result.B += 2.0 * (c.s_end - c.s_begin);
   }
   return result;
+}
+}  // namespace
+
+CellCoefficients EvaluateCell(const CellPattern& pattern, int points) {
+  return Integrate(pattern, points,
+                   [](const ColumnState& c) { return ColumnVariance(c); });
+}
+
+CellCoefficients EvaluateCellZeroAt(const CellPattern& pattern, double anchor,
+                                    int points) {
+  return Integrate(pattern, points, [anchor](const ColumnState& c) {
+    return ColumnMeanSquare(c, anchor);
+  });
 }
 
 }  // namespace shellspace::branching

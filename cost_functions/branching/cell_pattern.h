@@ -1,3 +1,8 @@
+// Room note: this header (the cell evaluator and its quadrature) and
+// lens_family.h live in cost_functions/branching/ because the lens cost
+// function needs the lens profile and the Gauss–Legendre rule; the r = 2
+// families (km_family.h) and the general search stay in problems/branching/.
+//
 // One cell of a self-similar branching construction in the sharp-interface
 // Kohn–Müller model (spec branching.md, "Self-similar constructions"), and the
 // exact evaluation of its energy coefficients A (elastic) and B (interfacial).
@@ -33,6 +38,9 @@ struct CellPattern {
   std::string family;
   int r = 2;
   double next_offset = 0.0;
+  // The next generation is the variant-swapped copy (u -> -u, same energy):
+  // generation k draws (-1)^k u_y (general cells with an odd label offset).
+  bool swap_variants = false;
   std::vector<InterfaceCurve> interfaces;
   // Breakpoints of the s-integration besides 0 and 1 (tips of interfaces).
   std::vector<double> breakpoints;
@@ -69,6 +77,14 @@ struct CellCoefficients {
   double B = 0.0;
 };
 CellCoefficients EvaluateCell(const CellPattern& pattern, int points = 16);
+
+// The same with u = 0 on the line eta = anchor in every column instead of
+// the optimal per-column shift (cells glued with u = 0 on their edges, as in
+// Kohn–Müller's construction): A = \int_0^1 mean_eta (F - F(anchor))^2 ds.
+// `anchor` must not lie on a moving interface.
+double ColumnMeanSquare(const ColumnState& column, double anchor);
+CellCoefficients EvaluateCellZeroAt(const CellPattern& pattern, double anchor,
+                                    int points = 16);
 
 // Gauss–Legendre nodes and weights on [0, 1].
 void GaussLegendre01(int points, std::vector<double>* nodes,

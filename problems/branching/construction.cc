@@ -16,6 +16,18 @@ double Construction::OffsetOf(int k) const {
 }
 
 int Construction::GenerationAt(double x, double* s) const {
+  if (!lengths.empty()) {
+    double right = length;
+    const int n = static_cast<int>(lengths.size());
+    for (int k = 0; k < n; ++k) {
+      const double left = right - lengths[k];
+      if (x >= left || k + 1 == n) {
+        *s = std::clamp((right - x) / lengths[k], 0.0, 1.0);
+        return k;
+      }
+      right = left;
+    }
+  }
   double right = length;
   double l = length * (1.0 - theta);
   for (int k = 0; k < max_generations; ++k) {
@@ -40,32 +52,7 @@ int Construction::VariantAt(double x, double y, double* distance) const {
   double d = 0.0;
   const int variant = branching::VariantAt(column, eta, &d);
   if (distance != nullptr) *distance = d * h;
-  return variant;
-}
-
-RgbImage RenderConstruction(const Construction& construction, double height,
-                            int width_px, int height_px) {
-  RgbImage image(width_px, height_px);
-  const double dx = construction.length / width_px;
-  const double dy = height / height_px;
-  for (int px = 0; px < width_px; ++px) {
-    const double x = (px + 0.5) * dx;
-    for (int py = 0; py < height_px; ++py) {
-      const double y = height - (py + 0.5) * dy;
-      double d = 0.0;
-      const int v = construction.VariantAt(x, y, &d);
-      std::uint8_t* rgb = image.at(px, py);
-      const bool edge = d < 0.6 * dy;
-      if (edge) {
-        rgb[0] = 30, rgb[1] = 30, rgb[2] = 30;
-      } else if (v > 0) {
-        rgb[0] = 235, rgb[1] = 140, rgb[2] = 40;
-      } else {
-        rgb[0] = 45, rgb[1] = 95, rgb[2] = 200;
-      }
-    }
-  }
-  return image;
+  return pattern.swap_variants && k % 2 == 1 ? -variant : variant;
 }
 
 }  // namespace shellspace::branching

@@ -11,7 +11,6 @@
 #include <vector>
 
 #include "shellspace/cost_functions/branching/cell_pattern.h"
-#include "shellspace/io/png_writer.h"
 
 namespace shellspace::branching {
 
@@ -21,6 +20,9 @@ struct Construction {
   double h0 = 0.25;     // first (coarsest) period
   double theta = 0.3;   // length ratio l_{k+1} / l_k
   int max_generations = 60;
+  // Free generation lengths l_0, l_1, ... (self_similar_series.h,
+  // OptimalFreeLengths); when non-empty they replace theta.
+  std::vector<double> lengths;
 
   // u_y (+-1) at (x, y), and optionally the y-distance to the nearest
   // interface of that column (for smoothing to a diffuse profile).
@@ -30,11 +32,6 @@ struct Construction {
   double PeriodOf(int k) const;
   double OffsetOf(int k) const;
 };
-
-// Draws u_y of the construction over (0, L) x [0, H) (austenite at the left,
-// +1 orange, -1 blue, interfaces dark).
-RgbImage RenderConstruction(const Construction& construction, double height,
-                            int width_px, int height_px);
 
 }  // namespace shellspace::branching
 

@@ -52,7 +52,9 @@ ceres::Solver::Options LmOptions() {
 
 Construction ConstructionResult::ToConstruction(double length) const {
   Construction c;
-  c.pattern = family == "km" ? KmCellPattern() : LensCellPattern(shape);
+  c.pattern = family == "km"       ? KmCellPattern()
+              : family == "needle" ? NeedleCellPattern()
+                                   : LensCellPattern(shape);
   c.length = length;
   c.h0 = h0;
   c.theta = theta;
@@ -67,7 +69,23 @@ ConstructionResult EvaluateKm(double epsilon, double length, double h0,
   result.r = 2;
   result.h0 = h0;
   result.theta = theta;
-  return Finish(result, KmCellPattern(), epsilon, length);
+  result = Finish(result, KmCellPattern(), epsilon, length);
+  result.A_zero_edge = EvaluateCellZeroAt(KmCellPattern(), kKmAnchor).A;
+  // Its own optimal h0 at the same theta.
+  result.constant_zero_edge =
+      SeriesConstant(result.A_zero_edge, result.B, 2, theta);
+  return result;
+}
+
+ConstructionResult EvaluateNeedle(double epsilon, double length, double h0,
+                                  double theta) {
+  CheckScales(epsilon, length);
+  ConstructionResult result;
+  result.family = "needle";
+  result.r = 2;
+  result.h0 = h0;
+  result.theta = theta;
+  return Finish(result, NeedleCellPattern(), epsilon, length);
 }
 
 ConstructionResult EvaluateLens(double epsilon, double length, double h0,
@@ -89,6 +107,13 @@ ConstructionResult DefaultKm(double epsilon, double length) {
                     theta);
 }
 
+ConstructionResult DefaultNeedle(double epsilon, double length) {
+  const double theta = KmOptimalTheta();
+  return EvaluateNeedle(
+      epsilon, length,
+      OptimalFirstPeriod(kNeedleA, kNeedleB, 2, epsilon, length, theta), theta);
+}
+
 ConstructionResult DefaultLens(double epsilon, double length) {
   const LensShape shape;
   const double theta = OptimalTheta(kLensRatio);
@@ -99,11 +124,13 @@ ConstructionResult DefaultLens(double epsilon, double length) {
       shape);
 }
 
-ConstructionResult OptimizeKm(double epsilon, double length, double h0,
+namespace {
+ConstructionResult OptimizeR2(bool km, double epsilon, double length, double h0,
                               double theta) {
   CheckScales(epsilon, length);
   const auto start = std::chrono::steady_clock::now();
-  const CellCoefficients c = EvaluateCell(KmCellPattern());
+  const CellCoefficients c =
+      EvaluateCell(km ? KmCellPattern() : NeedleCellPattern());
   double p[2] = {h0, theta};
   ceres::Problem problem;
   problem.AddResidualBlock(
@@ -114,13 +141,26 @@ ConstructionResult OptimizeKm(double epsilon, double length, double h0,
   problem.SetParameterUpperBound(p, 1, 0.5 - margin);
   ceres::Solver::Summary summary;
   ceres::Solve(LmOptions(), &problem, &summary);
-  ConstructionResult result = EvaluateKm(epsilon, length, p[0], p[1]);
+  ConstructionResult result = km ? EvaluateKm(epsilon, length, p[0], p[1])
+                                 : EvaluateNeedle(epsilon, length, p[0], p[1]);
   result.iterations = static_cast<int>(summary.iterations.size()) - 1;
   result.termination = ceres::TerminationTypeToString(summary.termination_type);
   result.seconds = std::chrono::duration<double>(
                        std::chrono::steady_clock::now() - start)
                        .count();
   return result;
+}
+
+}  // namespace
+
+ConstructionResult OptimizeKm(double epsilon, double length, double h0,
+                              double theta) {
+  return OptimizeR2(true, epsilon, length, h0, theta);
+}
+
+ConstructionResult OptimizeNeedle(double epsilon, double length, double h0,
+                                  double theta) {
+  return OptimizeR2(false, epsilon, length, h0, theta);
 }
 
 ConstructionResult OptimizeLens(double epsilon, double length, double h0,

@@ -1,4 +1,4 @@
-// Evaluating and optimising the KM and lens constructions (spec
+// Evaluating and optimising the KM (psi-junction), needle (T2) and lens constructions (spec
 // branching.md): energies from the generic cell evaluator (cell_pattern.h)
 // plus the generation series (self_similar_series.h); optimisation of
 // (h0, theta[, tau, a1, a2]) by Levenberg–Marquardt on the analytic cost
@@ -19,6 +19,10 @@ struct ConstructionResult {
   double h0 = 0.0, theta = 0.0;
   LensShape shape;  // lens only
   double A = 0.0, B = 0.0;
+  // km only: u = 0 on the cell edges instead of the optimal shift
+  // (EvaluateCellZeroAt at kKmAnchor) and its constant at the same theta
+  // (with its own optimal h0).
+  double A_zero_edge = 0.0, constant_zero_edge = 0.0;
   double elastic = 0.0, interfacial = 0.0;  // energy per unit height
   // (elastic + interfacial) / (eps^(2/3) L^(1/3)).
   double constant = 0.0;
@@ -32,12 +36,15 @@ struct ConstructionResult {
 // Energy at given parameters via EvaluateCell (generic quadrature).
 ConstructionResult EvaluateKm(double epsilon, double length, double h0,
                               double theta);
+ConstructionResult EvaluateNeedle(double epsilon, double length, double h0,
+                                  double theta);
 ConstructionResult EvaluateLens(double epsilon, double length, double h0,
                                 double theta, const LensShape& shape);
 
 // Defaults (no optimisation): KM at the closed-form optimum; lens with a
 // straight wedge (tau = a1 = a2 = 0) at the series-optimal theta and h0.
 ConstructionResult DefaultKm(double epsilon, double length);
+ConstructionResult DefaultNeedle(double epsilon, double length);
 ConstructionResult DefaultLens(double epsilon, double length);
 
 // LM from the given start (bounds: theta strictly inside (1/r^2, 1/r), lens
@@ -45,6 +52,8 @@ ConstructionResult DefaultLens(double epsilon, double length);
 // optimum.
 ConstructionResult OptimizeKm(double epsilon, double length, double h0,
                               double theta);
+ConstructionResult OptimizeNeedle(double epsilon, double length, double h0,
+                                  double theta);
 ConstructionResult OptimizeLens(double epsilon, double length, double h0,
                                 double theta, const LensShape& start);
 

@@ -95,7 +95,7 @@ void InitConstruction(RelaxedField* field, const Construction& construction,
 
 int KmPeriodsFor(double epsilon, double length, double height) {
   const double theta = KmOptimalTheta();
-  const double h0 = OptimalFirstPeriod(kKmA, kKmB, 2, epsilon, length, theta);
+  const double h0 = OptimalFirstPeriod(kNeedleA, kNeedleB, 2, epsilon, length, theta);
   return std::max(1, static_cast<int>(std::lround(height / h0)));
 }
 

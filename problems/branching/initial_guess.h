@@ -36,12 +36,13 @@ void InitLaminate(RelaxedField* field, int periods, double delta);
 // x-dependent phases (fixed `seed`), projected to zero column mean.
 void InitRandom(RelaxedField* field, unsigned seed, double delta);
 
-// A sampled sharp construction (KM or lens, construction.h).
+// A sampled sharp construction (km, needle or lens, construction.h).
 void InitConstruction(RelaxedField* field, const Construction& construction,
                       double delta);
 
-// Number of first-generation periods fitting H for the KM construction with
-// the optimal h0 of (epsilon, L): max(1, round(H / h0*)).
+// Number of first-generation periods fitting H for the needle (T2)
+// construction with the optimal h0 of (epsilon, L): max(1, round(H / h0*))
+// (the default period count of every --init).
 int KmPeriodsFor(double epsilon, double length, double height);
 
 }  // namespace shellspace::branching

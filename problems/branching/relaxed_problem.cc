@@ -1,5 +1,6 @@
 #include "shellspace/problems/branching/relaxed_problem.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 
@@ -79,14 +80,20 @@ class ProgressCallback : public ceres::IterationCallback {
 
 }  // namespace
 
-std::vector<RelaxedStage> SolveRelaxed(RelaxedField* field, double epsilon,
-                                       const RelaxedSolveOptions& options) {
-  if (options.deltas.empty()) {
-    throw InputError("branching solve: empty continuation schedule");
+double MaxSlope(const RelaxedField& field) {
+  double m = 0.0;
+  for (int i = 1; i <= field.grid.nx; ++i) {
+    for (int j = 0; j < field.grid.ny; ++j) {
+      m = std::max(m, std::fabs(field.uy(i, j)));
+    }
   }
-  std::vector<RelaxedStage> stages;
-  for (double delta : options.deltas) {
-    if (!(delta > 0)) throw InputError("branching solve: delta must be > 0");
+  return m;
+}
+
+namespace {
+
+RelaxedStage SolveStage(RelaxedField* field, double epsilon, double delta,
+                        const RelaxedSolveOptions& options) {
     const auto start = std::chrono::steady_clock::now();
     ceres::Problem problem;
     AddRelaxedResiduals(field, epsilon, delta, &problem);
@@ -113,7 +120,38 @@ std::vector<RelaxedStage> SolveRelaxed(RelaxedField* field, double epsilon,
                         .count();
     stage.energy = EvaluateRelaxedEnergy(*field, epsilon, delta);
     stage.termination = ceres::TerminationTypeToString(summary.termination_type);
-    stages.push_back(stage);
+    stage.max_slope = MaxSlope(*field);
+    return stage;
+}
+
+}  // namespace
+
+std::vector<RelaxedStage> SolveRelaxed(RelaxedField* field, double epsilon,
+                                       const RelaxedSolveOptions& options) {
+  if (options.deltas.empty()) {
+    throw InputError("branching solve: empty continuation schedule");
+  }
+  std::vector<RelaxedStage> stages;
+  const double final_delta = options.deltas.back();
+  for (double delta : options.deltas) {
+    if (!(delta > 0)) throw InputError("branching solve: delta must be > 0");
+    const std::vector<double> stage_start = field->u;
+    bool retried = false;
+    for (;;) {
+      RelaxedStage stage = SolveStage(field, epsilon, delta, options);
+      stage.retried = retried;
+      const bool collapsed = stage.max_slope < kCollapsedSlope;
+      if (collapsed && delta / 2.0 >= final_delta * (1.0 - 1e-12)) {
+        field->u = stage_start;
+        delta /= 2.0;
+        retried = true;
+        continue;
+      }
+      if (collapsed) stage.termination = "COLLAPSED";
+      stages.push_back(stage);
+      break;
+    }
+    if (stages.back().termination == "COLLAPSED") break;
   }
   return stages;
 }

@@ -58,11 +58,26 @@ struct RelaxedStage {
   int iterations = 0;
   double seconds = 0.0;
   RelaxedEnergy energy;
-  std::string termination;
+  std::string termination;  // Ceres' termination, or "COLLAPSED"
+  double max_slope = 0.0;   // max |u_y| over the field after the stage
+  bool retried = false;     // re-solved from the stage's start at delta / 2
 };
+
+// max |u_y| (staggered slopes, rows i >= 1).
+double MaxSlope(const RelaxedField& field);
+
+// A stage collapsed when max |u_y| < kCollapsedSlope: the pattern has
+// decayed to u ~ 0 (energy ~ 3 eps L / (4 delta), the saddle of the double
+// well, from which the next stage cannot leave).
+constexpr double kCollapsedSlope = 0.5;
 
 // Levenberg–Marquardt, SPARSE_NORMAL_CHOLESKY (SuiteSparse), one stage per
 // delta. Returns one record per stage; `field` holds the final minimiser.
+// A stage that collapses (see above) is re-solved from its own start field
+// with half its width (recorded with retried = true and the smaller delta)
+// while that stays >= the final width; a collapse at the final width ends
+// the continuation with termination "COLLAPSED" (the grid / width cannot
+// hold the pattern; the caller reports it).
 std::vector<RelaxedStage> SolveRelaxed(RelaxedField* field, double epsilon,
                                        const RelaxedSolveOptions& options);
 

@@ -39,7 +39,7 @@ LadderResult RunLadder(const LadderSettings& settings,
     const double delta = settings.delta_over_lambda * lambda;
     int ny = static_cast<int>(std::ceil(3.0 * settings.height / delta));
     ny += ny % 2;
-    const double h0 = OptimalFirstPeriod(kKmA, kKmB, 2, epsilon,
+    const double h0 = OptimalFirstPeriod(kNeedleA, kNeedleB, 2, epsilon,
                                          settings.length, KmOptimalTheta());
     const int lower = std::max(1, static_cast<int>(settings.height / h0));
     std::set<int> counts = {lower, lower + 1};
@@ -57,7 +57,7 @@ LadderResult RunLadder(const LadderSettings& settings,
       s.grading = settings.grading;
       s.delta = delta;
       s.continuation = settings.continuation;
-      s.init = "km";
+      s.init = "needle";
       s.periods = periods;
       s.max_iterations = settings.max_iterations;
       const SimulationResult run = RunSimulation(s);

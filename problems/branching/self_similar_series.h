@@ -14,6 +14,8 @@
 #ifndef SHELLSPACE_PROBLEMS_BRANCHING_SELF_SIMILAR_SERIES_H_
 #define SHELLSPACE_PROBLEMS_BRANCHING_SELF_SIMILAR_SERIES_H_
 
+#include <vector>
+
 namespace shellspace::branching {
 
 struct SeriesEnergy {
@@ -39,6 +41,25 @@ double SeriesConstant(double A, double B, int r, double theta);
 // theta minimising C(theta) on (1/r^2, 1/r) (golden section on the
 // unimodal log C; accurate to ~1e-12 in theta). A and B do not matter.
 double OptimalTheta(int r);
+
+// Free generation lengths (every l_k free, sum l_k = L; h_k = h0 r^-k).
+// Stationarity in l_k with a multiplier lambda for the constraint gives
+//   l_k = sqrt(A h_k^3 / (B eps + lambda h_k))     (B eps + lambda h0 > 0),
+// geometric (ratio r^(-3/2)) only asymptotically. By the exact scaling
+// (x -> a x, y -> a^(2/3) y) the constant is C = K_r^free (A B^2)^(1/3) with
+//   K_r^free = min_lambda E(lambda) / L(lambda)^(1/3)   (A = B = eps = h0 = 1),
+// E, L the series summed over the generations with h_k > 1e-60 (at most
+// 200; the terms of E decay like h_k^(1/2)); golden section in
+// log(1 + lambda).
+struct FreeLengthSeries {
+  double constant = 0.0;       // C = K_r^free (A B^2)^(1/3)
+  double h0 = 0.0;             // optimal first period for (eps, L)
+  std::vector<double> lengths; // l_k, k = 0.. (sum = L up to 1e-15 L)
+  double elastic = 0.0, interfacial = 0.0;  // energy per unit height
+};
+double FreeLengthSeriesConstant(int r);  // K_r^free
+FreeLengthSeries OptimalFreeLengths(double A, double B, int r, double epsilon,
+                                    double length);
 
 }  // namespace shellspace::branching
 

@@ -1,7 +1,9 @@
 #include "shellspace/problems/branching/simulation.h"
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/problems/branching/construction_optimizer.h"
@@ -40,8 +42,10 @@ void CheckSimulationSettings(const SimulationSettings& s) {
     throw InputError("branching simulation: the number of continuation stages must lie in [1, 8]");
   }
   if (s.init != "laminate" && s.init != "random" && s.init != "km" &&
-      s.init != "lens") {
-    throw InputError("branching simulation: the initial guess must be laminate, random, km or lens");
+      s.init != "needle" && s.init != "lens") {
+    throw InputError(
+        "branching simulation: the initial guess must be laminate, random, "
+        "km, needle or lens");
   }
   if (s.periods < 0) throw InputError("branching simulation: the number of periods must be >= 0");
   if (s.max_iterations < 0) throw InputError("branching simulation: the LM iterations per stage must be >= 0");
@@ -60,10 +64,12 @@ SimulationResult InitialSimulation(const SimulationSettings& s) {
     InitLaminate(&result.field, periods, result.delta);
   } else if (s.init == "random") {
     InitRandom(&result.field, s.seed, result.delta);
-  } else if (s.init == "km") {
-    ConstructionResult km = EvaluateKm(s.epsilon, s.length, h0,
-                                       KmOptimalTheta());
-    InitConstruction(&result.field, km.ToConstruction(s.length), result.delta);
+  } else if (s.init == "km" || s.init == "needle") {
+    ConstructionResult c =
+        s.init == "km" ? EvaluateKm(s.epsilon, s.length, h0, KmOptimalTheta())
+                       : EvaluateNeedle(s.epsilon, s.length, h0,
+                                        KmOptimalTheta());
+    InitConstruction(&result.field, c.ToConstruction(s.length), result.delta);
   } else {
     ConstructionResult lens = DefaultLens(s.epsilon, s.length);
     lens.shape = LensShape{0.5, 0.0, 0.0};
@@ -98,6 +104,88 @@ SimulationResult RunSimulation(const SimulationSettings& s) {
                        std::chrono::steady_clock::now() - start)
                        .count();
   return result;
+}
+
+std::vector<double> PolynomialFit(const std::vector<double>& x,
+                                  const std::vector<double>& y, int degree,
+                                  double* rms) {
+  const int n = static_cast<int>(x.size());
+  const int m = degree + 1;
+  if (n < m || static_cast<int>(y.size()) != n) {
+    throw InputError("polynomial fit: need at least degree + 1 points");
+  }
+  // Normal equations M c = b, solved by Gaussian elimination with pivoting.
+  std::vector<std::vector<double>> M(m, std::vector<double>(m + 1, 0.0));
+  for (int k = 0; k < n; ++k) {
+    std::vector<double> pw(2 * m, 1.0);
+    for (int e = 1; e < 2 * m; ++e) pw[e] = pw[e - 1] * x[k];
+    for (int i = 0; i < m; ++i) {
+      for (int j = 0; j < m; ++j) M[i][j] += pw[i + j];
+      M[i][m] += pw[i] * y[k];
+    }
+  }
+  for (int col = 0; col < m; ++col) {
+    int piv = col;
+    for (int r = col + 1; r < m; ++r) {
+      if (std::fabs(M[r][col]) > std::fabs(M[piv][col])) piv = r;
+    }
+    std::swap(M[col], M[piv]);
+    if (M[col][col] == 0.0) throw InputError("polynomial fit: singular data");
+    for (int r = 0; r < m; ++r) {
+      if (r == col) continue;
+      const double f = M[r][col] / M[col][col];
+      for (int j = col; j <= m; ++j) M[r][j] -= f * M[col][j];
+    }
+  }
+  std::vector<double> c(m);
+  for (int i = 0; i < m; ++i) c[i] = M[i][m] / M[i][i];
+  if (rms != nullptr) {
+    double s = 0.0;
+    for (int k = 0; k < n; ++k) {
+      double v = 0.0, pw = 1.0;
+      for (int i = 0; i < m; ++i, pw *= x[k]) v += c[i] * pw;
+      s += (v - y[k]) * (v - y[k]);
+    }
+    *rms = std::sqrt(s / n);
+  }
+  return c;
+}
+
+DeltaExtrapolation ExtrapolateDelta(
+    const SimulationSettings& base, const std::vector<double>& deltas,
+    const std::function<void(double, double)>& progress) {
+  if (deltas.size() < 2) throw InputError("delta extrapolation needs at least 2 widths");
+  DeltaExtrapolation out;
+  const double lambda = std::cbrt(base.epsilon) * std::pow(base.length, 2.0 / 3.0);
+  const double scale = std::pow(base.epsilon, 2.0 / 3.0) * std::cbrt(base.length);
+  std::vector<double> d;
+  for (double delta : deltas) {
+    SimulationSettings s = base;
+    s.delta = delta;
+    int ny = static_cast<int>(std::ceil(3.0 * s.height / delta));
+    ny += ny % 2;
+    s.ny = ny;
+    s.progress = nullptr;
+    const SimulationResult r = RunSimulation(s);
+    const double c = r.energy.total() / scale;
+    out.deltas.push_back(delta);
+    out.ny.push_back(ny);
+    out.constants.push_back(c);
+    d.push_back(delta / lambda);
+    if (progress) progress(delta, c);
+  }
+  const std::vector<double> lin = PolynomialFit(d, out.constants, 1, &out.linear_rms);
+  out.c0 = lin[0];
+  out.c1 = lin[1];
+  if (d.size() >= 4) {
+    const std::vector<double> q =
+        PolynomialFit(d, out.constants, 2, &out.quadratic_rms);
+    out.q0 = q[0];
+    out.q1 = q[1];
+    out.q2 = q[2];
+    out.has_quadratic = true;
+  }
+  return out;
 }
 
 std::vector<int> CountInterfaces(const RelaxedField& field) {

@@ -23,8 +23,8 @@ struct SimulationSettings {
   // (dy = delta / 3 <= delta / 2.5, spec: surface-energy error ~0.5 %).
   double delta = 0.0;
   int continuation = 3;          // widths 4 delta, 2 delta, delta
-  std::string init = "km";       // laminate | random | km | lens
-  int periods = 0;               // laminate / km periods in H (0: KM optimum)
+  std::string init = "needle";   // laminate | random | km | needle | lens
+  int periods = 0;               // periods in H (0: needle optimum)
   unsigned seed = 1;             // random init
   int max_iterations = 200;      // per continuation stage
   int num_threads = 1;
@@ -52,6 +52,28 @@ void CheckSimulationSettings(const SimulationSettings& settings);
 SimulationResult InitialSimulation(const SimulationSettings& settings);
 
 SimulationResult RunSimulation(const SimulationSettings& settings);
+
+// The delta -> 0 extrapolation of the relaxed constant: one simulation per
+// width delta_k (ny = the even integer >= 3 H / delta_k, so dy <= delta/3;
+// the other settings from `base`), C_k = E_k / (eps^(2/3) L^(1/3)), and
+// least-squares fits in d = delta / lambda, lambda = eps^(1/3) L^(2/3):
+//   linear     C = c0 + c1 d            (>= 2 widths),
+//   quadratic  C = q0 + q1 d + q2 d^2   (>= 4 widths; 3 would interpolate).
+struct DeltaExtrapolation {
+  std::vector<double> deltas, constants;
+  std::vector<int> ny;
+  double c0 = 0.0, c1 = 0.0, linear_rms = 0.0;
+  double q0 = 0.0, q1 = 0.0, q2 = 0.0, quadratic_rms = 0.0;
+  bool has_quadratic = false;
+};
+// Polynomial least squares of degree `degree` (normal equations, small n);
+// `rms` (if not null) receives the root-mean-square residual.
+std::vector<double> PolynomialFit(const std::vector<double>& x,
+                                  const std::vector<double>& y, int degree,
+                                  double* rms = nullptr);
+DeltaExtrapolation ExtrapolateDelta(
+    const SimulationSettings& base, const std::vector<double>& deltas,
+    const std::function<void(double delta, double constant)>& progress = nullptr);
 
 // Twin interfaces crossing each node row i = 1..nx: sign changes of the
 // staggered slope u_y around the periodic column.

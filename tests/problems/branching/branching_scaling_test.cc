@@ -34,7 +34,8 @@ TEST(BranchingScaling, FittedExponentNearTwoThirds) {
   });
   std::printf("exponent %.4f constant %.4f\n", r.exponent, r.constant);
   EXPECT_NEAR(r.exponent, 2.0 / 3.0, 0.1);
-  // The relaxed constant lies below the sharp KM upper bound.
+  // The relaxed constant lies below the sharp needle (T2) upper bound 6.856
+  // (and so below C_KM = 7.546 / 8.638).
   EXPECT_GT(r.constant, 1.0);
   EXPECT_LT(r.constant, 6.86);
 }

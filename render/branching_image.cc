@@ -1,14 +1,36 @@
-#include "shellspace/problems/branching/field_output.h"
+#include "shellspace/render/branching_image.h"
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
-#include <fstream>
-#include <sstream>
-
-#include "shellspace/geometry/mesh.h"
+#include <cstdint>
+#include <vector>
 
 namespace shellspace::branching {
+
+RgbImage RenderConstruction(const Construction& construction, double height,
+                            int width_px, int height_px) {
+  RgbImage image(width_px, height_px);
+  const double dx = construction.length / width_px;
+  const double dy = height / height_px;
+  for (int px = 0; px < width_px; ++px) {
+    const double x = (px + 0.5) * dx;
+    for (int py = 0; py < height_px; ++py) {
+      const double y = height - (py + 0.5) * dy;
+      double d = 0.0;
+      const int v = construction.VariantAt(x, y, &d);
+      std::uint8_t* rgb = image.at(px, py);
+      const bool edge = d < 0.6 * dy;
+      if (edge) {
+        rgb[0] = 30, rgb[1] = 30, rgb[2] = 30;
+      } else if (v > 0) {
+        rgb[0] = 235, rgb[1] = 140, rgb[2] = 40;
+      } else {
+        rgb[0] = 45, rgb[1] = 95, rgb[2] = 200;
+      }
+    }
+  }
+  return image;
+}
 
 RgbImage RenderSlope(const RelaxedField& field, int width_px, int height_px) {
   const RelaxedGrid& g = field.grid;
@@ -38,45 +60,6 @@ RgbImage RenderSlope(const RelaxedField& field, int width_px, int height_px) {
     }
   }
   return image;
-}
-
-void WriteTextFile(const std::string& path, const std::string& text) {
-  const std::string temporary = path + ".tmp";
-  {
-    std::ofstream out(temporary);
-    out << text;
-    if (!out) throw InputError("cannot write " + path);
-  }
-  if (std::rename(temporary.c_str(), path.c_str()) != 0) {
-    std::remove(temporary.c_str());
-    throw InputError("cannot write " + path);
-  }
-}
-
-std::string FieldCsv(const RelaxedField& field) {
-  const RelaxedGrid& g = field.grid;
-  std::ostringstream out;
-  out.precision(12);
-  out << "i,j,x,y,u,u_y\n";
-  for (int i = 0; i <= g.nx; ++i) {
-    for (int j = 0; j < g.ny; ++j) {
-      out << i << ',' << j << ',' << g.x(i) << ',' << g.y(j) << ','
-          << field.at(i, j) << ',' << field.uy(i, j) << '\n';
-    }
-  }
-  return out.str();
-}
-
-std::string InterfaceCsv(const RelaxedField& field,
-                         const std::vector<int>& counts) {
-  std::ostringstream out;
-  out.precision(12);
-  out << "i,x,interfaces\n";
-  for (size_t k = 0; k < counts.size(); ++k) {
-    out << k + 1 << ',' << field.grid.x(static_cast<int>(k) + 1) << ','
-        << counts[k] << '\n';
-  }
-  return out.str();
 }
 
 }  // namespace shellspace::branching
