@@ -39,7 +39,7 @@ MultiresolutionSettings MultiresFromFlags(int num_vertices) {
                        "from 0 to 8, got '" + value + "'");
     }
     settings.levels = static_cast<int>(levels);
-    settings.min_vertices = 50;
+    settings.min_vertices = 20;
   }
   return settings;
 }

@@ -349,8 +349,16 @@ TEST(CliTest, BranchingConstructKmIsTheClosedForm) {
   const std::string dir = TempDir() + "/km";
   const std::string json =
       RunOk("branching construct --json --family km --output " + dir);
+  // km is the psi-junction cell: with the optimal per-column shift its
+  // constant is 7.546124, with u = 0 on the
+  // cell edges 3(1 + 2 cos(pi/9)) = 8.638156.
   const double constant = Number(json, "constant");
-  EXPECT_NEAR(constant / Number(json, "km_constant_closed_form"), 1, 1e-3)
+  EXPECT_NEAR(constant, 7.546124092461, 1e-9) << json;
+  EXPECT_NEAR(constant / Number(json, "km_shifted_constant_closed_form"), 1,
+              1e-12)
+      << json;
+  EXPECT_NEAR(Number(json, "constant_zero_edge"),
+              3 * (1 + 2 * std::cos(M_PI / 9)), 1e-9)
       << json;
   // constant = (elastic + interfacial) / (eps^(2/3) L^(1/3)), eps = 1e-3
   // (the verb's default), L = 1.
