@@ -19,17 +19,6 @@ constexpr int kMaxHalvings = 20;
 // nearby): give up, the caller has a fallback.
 constexpr int kProgressSteps = 8;
 
-// F(s) over all coordinates (the masked rows are ignored by the norms).
-Eigen::VectorXd Residual(const ShellSpace& space, const Positions& fixed,
-                         ShellSide unknown_side,
-                         const Eigen::VectorXd& constant, const Positions& s) {
-  return constant + (unknown_side == ShellSide::kDeformed
-                         ? EnergyGradient(space, fixed, s,
-                                          ShellSide::kReference)
-                         : EnergyGradient(space, s, fixed,
-                                          ShellSide::kDeformed));
-}
-
 double MaxNorm(const Eigen::VectorXd& f, const std::vector<char>& is_fixed) {
   double norm = 0;
   for (int v = 0; v < static_cast<int>(is_fixed.size()); ++v) {
@@ -46,17 +35,18 @@ double TwoNorm(const Eigen::VectorXd& f, const std::vector<char>& is_fixed) {
   return std::sqrt(sum);
 }
 
-// The one place where an InputError (a degenerate triangle of s) becomes a
-// status; to be replaced by the non-throwing evaluation API.
+// F(s) as a status: infeasible if s has a degenerate element.
 EvaluationStatus TryResidual(const ShellSpace& space, const Positions& fixed,
                              ShellSide unknown_side,
                              const Eigen::VectorXd& constant,
                              const Positions& s, Eigen::VectorXd* f) {
-  try {
-    *f = Residual(space, fixed, unknown_side, constant, s);
-  } catch (const InputError&) {
-    return EvaluationStatus::kInfeasible;
-  }
+  const bool ok = unknown_side == ShellSide::kDeformed
+                      ? TryEnergyGradient(space, fixed, s,
+                                          ShellSide::kReference, f)
+                      : TryEnergyGradient(space, s, fixed,
+                                          ShellSide::kDeformed, f);
+  if (!ok) return EvaluationStatus::kInfeasible;
+  *f += constant;
   return EvaluationStatus::kOk;
 }
 
@@ -124,13 +114,13 @@ class ExpStepProblem : public NewtonProblem {
     columns_ = gauge_ ? RigidGaugeBasis(*s_) : rows_;
     // J = dF/ds: rows on the fixed shell's gradient, columns on s, reduced
     // to R^T J C straight from the element blocks.
-    system->matrix =
+    const bool ok =
         unknown_side_ == ShellSide::kDeformed
-            ? assembler_.AssembleMixed(fixed_, *s_, ShellSide::kReference,
-                                       rows_, columns_)
-            : assembler_.AssembleMixed(*s_, fixed_, ShellSide::kDeformed,
-                                       rows_, columns_);
-    return EvaluationStatus::kOk;
+            ? assembler_.TryAssembleMixed(fixed_, *s_, ShellSide::kReference,
+                                          rows_, columns_, &system->matrix)
+            : assembler_.TryAssembleMixed(*s_, fixed_, ShellSide::kDeformed,
+                                          rows_, columns_, &system->matrix);
+    return ok ? EvaluationStatus::kOk : EvaluationStatus::kInfeasible;
   }
   void SetTrial(const Eigen::VectorXd& step) override {
     trial_ = *s_;

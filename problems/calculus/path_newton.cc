@@ -15,19 +15,6 @@ namespace shellspace {
 
 namespace {
 
-// The one place where an InputError of the energy evaluation (a degenerate
-// triangle) becomes a status; to be replaced by the non-throwing evaluation
-// API (TryPathEnergy, ...).
-template <class Evaluation>
-EvaluationStatus Guarded(Evaluation&& evaluation) {
-  try {
-    evaluation();
-  } catch (const InputError&) {
-    return EvaluationStatus::kInfeasible;
-  }
-  return EvaluationStatus::kOk;
-}
-
 // The free-coordinate bases of the inner shapes and their offsets in the
 // reduced unknown vector.
 struct ReducedCoordinates {
@@ -54,21 +41,27 @@ ReducedCoordinates MakeReducedCoordinates(const ShellSpace& space,
   return r;
 }
 
-// Reduced gradient T^T G of E_K.
-Eigen::VectorXd ReducedGradient(const ShellSpace& space, const ShellPath& path,
-                                const ReducedCoordinates& r, int threads) {
+// Reduced gradient T^T G of E_K; false if an element is degenerate.
+bool TryReducedGradient(const ShellSpace& space, const ShellPath& path,
+                        const ReducedCoordinates& r, int threads,
+                        Eigen::VectorXd* g) {
   const int K = static_cast<int>(path.size()) - 1;
-  Eigen::VectorXd g(r.size);
+  g->resize(r.size);
+  std::vector<char> ok(K - 1, 1);
   ParallelFor(K - 1, threads, [&](int i) {
     const int k = i + 1;
-    const Eigen::VectorXd full =
-        double(K) * (EnergyGradient(space, path[k - 1], path[k],
-                            ShellSide::kDeformed) +
-             EnergyGradient(space, path[k], path[k + 1],
-                            ShellSide::kReference));
-    g.segment(r.offset[i], r.basis[i].cols()) = r.basis[i].transpose() * full;
+    Eigen::VectorXd incoming, outgoing;
+    if (!TryEnergyGradient(space, path[k - 1], path[k], ShellSide::kDeformed,
+                           &incoming) ||
+        !TryEnergyGradient(space, path[k], path[k + 1], ShellSide::kReference,
+                           &outgoing)) {
+      ok[i] = 0;
+      return;
+    }
+    g->segment(r.offset[i], r.basis[i].cols()) =
+        r.basis[i].transpose() * (double(K) * (incoming + outgoing));
   });
-  return g;
+  return std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; });
 }
 
 // Applies s_k += T_k p_k to the inner shapes.
@@ -99,7 +92,10 @@ class PathEnergyProblem : public NewtonProblem {
 
   EvaluationStatus Merit(NewtonPoint point, double* merit) override {
     const ShellPath& path = point == NewtonPoint::kCurrent ? *path_ : trial_;
-    return Guarded([&] { *merit = PathEnergy(space_, path); });
+    const std::optional<double> energy = TryPathEnergy(space_, path);
+    if (!energy) return EvaluationStatus::kInfeasible;
+    *merit = *energy;
+    return EvaluationStatus::kOk;
   }
   EvaluationStatus Residual(NewtonPoint point,
                             NewtonResidual* residual) override {
@@ -109,17 +105,21 @@ class PathEnergyProblem : public NewtonProblem {
     const ShellPath& path = point == NewtonPoint::kCurrent ? *path_ : trial_;
     const ReducedCoordinates& r =
         point == NewtonPoint::kCurrent ? reduced_ : trial_reduced_;
-    return Guarded([&] {
-      *residual =
-          NewtonResidual::OfReduced(ReducedGradient(space_, path, r, threads_));
-    });
+    Eigen::VectorXd g;
+    if (!TryReducedGradient(space_, path, r, threads_, &g)) {
+      return EvaluationStatus::kInfeasible;
+    }
+    *residual = NewtonResidual::OfReduced(g);
+    return EvaluationStatus::kOk;
   }
   EvaluationStatus Assemble(LinearSystem* system) override {
-    return Guarded([&] {
-      system->matrix = assembler_.Assemble(*path_, reduced_.basis, threads_);
-      system->vertex_of = reduced_.vertex_of;
-      system->num_vertices = space_.num_vertices;
-    });
+    if (!assembler_.TryAssemble(*path_, reduced_.basis, threads_,
+                                &system->matrix)) {
+      return EvaluationStatus::kInfeasible;
+    }
+    system->vertex_of = reduced_.vertex_of;
+    system->num_vertices = space_.num_vertices;
+    return EvaluationStatus::kOk;
   }
   void SetTrial(const Eigen::VectorXd& step) override {
     trial_ = StepPath(*path_, reduced_, step);

@@ -83,19 +83,6 @@ constexpr double kForcingMin = 1e-12;
 constexpr double kForcingMax = 1e-3;
 constexpr double kAdjointTolerance = 1e-10;
 
-// The one place where an InputError of the gradient evaluation (a
-// degenerate triangle) becomes a status; to be replaced by the non-throwing
-// evaluation API.
-template <class Evaluation>
-EvaluationStatus Guarded(Evaluation&& evaluation) {
-  try {
-    evaluation();
-  } catch (const InputError&) {
-    return EvaluationStatus::kInfeasible;
-  }
-  return EvaluationStatus::kOk;
-}
-
 // G(m) = D_2 W[a, m] + D_1 W[m, b] = 0 for SolveNewton (root finding; the
 // "Jacobian" is H_k, SPD modulo rigid motions): residual T^T G with T =
 // RigidGaugeBasis(m), max norm of G over all coordinates, tolerance scale
@@ -122,10 +109,12 @@ class MidpointProblem : public NewtonProblem {
     const bool current = point == NewtonPoint::kCurrent;
     const Positions& m = current ? *m_ : trial_;
     Eigen::VectorXd g_a, g;
-    if (Guarded([&] {
-          g_a = EnergyGradient(space_, a_, m, ShellSide::kDeformed);
-          g = g_a + EnergyGradient(space_, m, b_, ShellSide::kReference);
-        }) != EvaluationStatus::kOk) {
+    Eigen::VectorXd g_b;
+    const bool ok =
+        TryEnergyGradient(space_, a_, m, ShellSide::kDeformed, &g_a) &&
+        TryEnergyGradient(space_, m, b_, ShellSide::kReference, &g_b);
+    if (ok) g = g_a + g_b;
+    if (!ok) {
       if (!current) {  // no usable trial: never "smaller"
         trial_residual_ = NewtonResidual();
         trial_residual_.max_norm = HUGE_VAL;

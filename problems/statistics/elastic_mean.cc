@@ -58,29 +58,31 @@ Eigen::VectorXd ElasticMeanGradient(const ShellSpace& space,
 
 namespace {
 
-// The one place where an InputError of the energy evaluation (a degenerate
-// triangle) becomes a status; to be replaced by the non-throwing evaluation
-// API (TryEvaluateDeformationEnergy, ...).
-template <class Evaluation>
-EvaluationStatus Guarded(Evaluation&& evaluation) {
-  try {
-    evaluation();
-  } catch (const InputError&) {
-    return EvaluationStatus::kInfeasible;
+// G(s) = sum_i D_2 W[S_i, s]; false if s has a degenerate element.
+bool TryElasticMeanGradient(const ShellSpace& space,
+                            const std::vector<Positions>& shapes,
+                            const Positions& s, Eigen::VectorXd* g) {
+  *g = Eigen::VectorXd::Zero(s.size());
+  Eigen::VectorXd term;
+  for (const Positions& shape : shapes) {
+    if (!TryEnergyGradient(space, shape, s, ShellSide::kDeformed, &term)) {
+      return false;
+    }
+    *g += term;
   }
-  return EvaluationStatus::kOk;
+  return true;
 }
 
 // E(s) = sum_i W[S_i, s]; +inf if s has a degenerate triangle.
 double MeanEnergy(const ShellSpace& space,
                   const std::vector<Positions>& shapes, const Positions& s) {
   double energy = 0;
-  if (Guarded([&] {
-        for (const Positions& shape : shapes) {
-          energy += EvaluateDeformationEnergy(space, shape, s).total;
-        }
-      }) != EvaluationStatus::kOk) {
-    return std::numeric_limits<double>::infinity();
+  DeformationEnergy w;
+  for (const Positions& shape : shapes) {
+    if (!TryEvaluateDeformationEnergy(space, shape, s, &w)) {
+      return std::numeric_limits<double>::infinity();
+    }
+    energy += w.total;
   }
   return energy;
 }
@@ -106,9 +108,7 @@ class ElasticMeanProblem : public NewtonProblem {
                             NewtonResidual* residual) override {
     const Positions& s = At(point);
     Eigen::VectorXd g;
-    if (Guarded([&] { g = ElasticMeanGradient(space_, shapes_, s); }) !=
-            EvaluationStatus::kOk ||
-        !g.allFinite()) {
+    if (!TryElasticMeanGradient(space_, shapes_, s, &g) || !g.allFinite()) {
       return EvaluationStatus::kInfeasible;
     }
     SparseMatrix& basis =
@@ -120,12 +120,13 @@ class ElasticMeanProblem : public NewtonProblem {
     return EvaluationStatus::kOk;
   }
   EvaluationStatus Assemble(LinearSystem* system) override {
-    return Guarded([&] {
-      system->matrix =
-          assembler_.AssembleDeformedSum(shapes_, *s_, basis_, threads_);
-      system->vertex_of = BasisColumnVertices(basis_);
-      system->num_vertices = space_.num_vertices;
-    });
+    if (!assembler_.TryAssembleDeformedSum(shapes_, *s_, basis_, threads_,
+                                           &system->matrix)) {
+      return EvaluationStatus::kInfeasible;
+    }
+    system->vertex_of = BasisColumnVertices(basis_);
+    system->num_vertices = space_.num_vertices;
+    return EvaluationStatus::kOk;
   }
   void SetTrial(const Eigen::VectorXd& step) override {
     trial_ = *s_;
