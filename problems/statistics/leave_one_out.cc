@@ -20,14 +20,13 @@ double SecondsSince(std::chrono::steady_clock::time_point since) {
 }
 
 // W[truth, reconstruction], or NaN if the reconstruction has a degenerate
-// triangle (EvaluateDeformationEnergy throws).
+// triangle.
 double EnergyToTruth(const ShellSpace& space, const Positions& truth,
                      const Positions& reconstruction) {
-  try {
-    return EvaluateDeformationEnergy(space, truth, reconstruction).total;
-  } catch (const InputError&) {
-    return std::numeric_limits<double>::quiet_NaN();
-  }
+  DeformationEnergy w;
+  return TryEvaluateDeformationEnergy(space, truth, reconstruction, &w)
+             ? w.total
+             : std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace
