@@ -1,5 +1,8 @@
 #include "shellspace/tests/testing/test_support.h"
 
+#include <algorithm>
+#include <filesystem>
+
 #include <Eigen/Geometry>
 #include <cstdio>
 #include <cstdlib>
@@ -79,6 +82,15 @@ Positions RandomRigidMotion(const Positions& p, unsigned seed) {
   Positions out = p * r.transpose();
   out.rowwise() += t;
   return out;
+}
+
+std::vector<std::string> DirectoryListing(const std::string& dir) {
+  std::vector<std::string> names;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    names.push_back(entry.path().filename().string());
+  }
+  std::sort(names.begin(), names.end());
+  return names;
 }
 
 }  // namespace shellspace::testing

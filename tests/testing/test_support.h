@@ -36,6 +36,9 @@ SolverSettings TightSettings(double gradient_tolerance);
 // A fresh empty temporary directory.
 std::string TempDir();
 
+// The names of the entries of `dir`, sorted.
+std::vector<std::string> DirectoryListing(const std::string& dir);
+
 // Runs `shellspace ARGS` with stdout and stderr captured; returns exit code.
 int RunCli(const std::string& args, std::string* out = nullptr,
            std::string* err = nullptr);

@@ -70,12 +70,7 @@ int StageIterations(const std::string& json) {
 }
 
 std::vector<std::string> Listing(const std::string& dir) {
-  std::vector<std::string> names;
-  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-    names.push_back(entry.path().filename().string());
-  }
-  std::sort(names.begin(), names.end());
-  return names;
+  return testing::DirectoryListing(dir);
 }
 
 std::vector<std::string> Frames(int count) {

@@ -266,13 +266,20 @@ TEST(PathHessianAssemblerTest, MixedBlocksMatchEnergyHessians) {
             1e-13);
 }
 
-TEST(PathHessianAssemblerTest, DegenerateTriangleThrowsInputError) {
-  const Mesh a = testing::LoadData("plate/plate121.ply");
-  const ShellSpace space = testing::MakeSpace(a);
+// A constant path (K = 3) on `a` whose s_1 has triangle 0 collapsed to a
+// point.
+ShellPath CollapsedFirstTrianglePath(const Mesh& a) {
   ShellPath path = LinearPath(a.positions, a.positions, 3);
   const int v0 = a.faces(0, 0), v1 = a.faces(0, 1), v2 = a.faces(0, 2);
   path[1].row(v1) = path[1].row(v0);
   path[1].row(v2) = path[1].row(v0);
+  return path;
+}
+
+TEST(PathHessianAssemblerTest, DegenerateTriangleThrowsInputError) {
+  const Mesh a = testing::LoadData("plate/plate121.ply");
+  const ShellSpace space = testing::MakeSpace(a);
+  const ShellPath path = CollapsedFirstTrianglePath(a);
   const std::vector<SparseMatrix> bases(2, RigidGaugeBasis(a.positions));
   EXPECT_THROW(PathHessianAssembler(space).Assemble(path, bases, 2),
                InputError);
@@ -284,10 +291,7 @@ TEST(PathHessianAssemblerTest, DegenerateTriangleThrowsInputError) {
 TEST(PathHessianAssemblerTest, DegenerateTriangleIsAStatusOfTryAssemble) {
   const Mesh a = testing::LoadData("plate/plate121.ply");
   const ShellSpace space = testing::MakeSpace(a);
-  ShellPath path = LinearPath(a.positions, a.positions, 3);
-  const int v0 = a.faces(0, 0), v1 = a.faces(0, 1), v2 = a.faces(0, 2);
-  path[1].row(v1) = path[1].row(v0);
-  path[1].row(v2) = path[1].row(v0);
+  const ShellPath path = CollapsedFirstTrianglePath(a);
   const std::vector<SparseMatrix> bases(2, RigidGaugeBasis(a.positions));
   const PathHessianAssembler assembler(space);
   SparseMatrix h;
