@@ -275,8 +275,8 @@ PlyHeader ParsePlyHeader(const std::string& bytes, const MeshBuilder& b) {
       element.name = t[1];
       for (const PlyElement& other : header.elements) {
         if (other.name == element.name) {
-          b.Fail("PLY element '" + Excerpt(element.name) +
-                 "' declared twice" + where);
+          b.Fail("PLY element " + Excerpt(element.name) +
+                 " declared twice" + where);
         }
       }
       header.elements.push_back(element);
@@ -383,16 +383,16 @@ void ReadAsciiPlyData(const std::string& bytes, const PlyHeader& header,
     for (long long r = 0; r < element.count; ++r) {
       while (next < lines.size() && Tokens(lines[next]).empty()) ++next;
       if (next >= lines.size()) {
-        b->Fail("PLY file ends early in element '" + Excerpt(element.name) +
-                "' (" + std::to_string(r) + " of " +
+        b->Fail("PLY file ends early in element " + Excerpt(element.name) +
+                " (" + std::to_string(r) + " of " +
                 std::to_string(element.count) + " read)");
       }
       const size_t line = header.data_line + next;
       const std::vector<std::string> t = Tokens(lines[next++]);
       const std::string what = element.name == "vertex" || element.name == "face"
                                    ? element.name + " " + std::to_string(r)
-                                   : "element '" + Excerpt(element.name) +
-                                         "' " + std::to_string(r);
+                                   : "element " + Excerpt(element.name) +
+                                         " " + std::to_string(r);
       size_t k = 0;
       std::array<double, 3> point{0, 0, 0};
       std::array<long long, 3> face{0, 0, 0};
@@ -416,7 +416,7 @@ void ReadAsciiPlyData(const std::string& bytes, const PlyHeader& header,
             long long value = 0;
             if (!ParseInteger(t[k], &value)) {
               b->Fail(what + " has a non-integer value " + Excerpt(t[k]) +
-                      " for '" + Excerpt(property.name) + "'" + LineTag(line));
+                      " for " + Excerpt(property.name) + LineTag(line));
             }
             if (is_face && static_cast<int>(p) == header.face_list) {
               face[i] = value;
@@ -517,7 +517,7 @@ void ReadBinaryPlyData(const std::string& bytes, const PlyHeader& header,
     const bool is_vertex = static_cast<int>(e) == header.vertex_element;
     const bool is_face = static_cast<int>(e) == header.face_element;
     for (long long r = 0; r < element.count; ++r) {
-      const std::string what = "element '" + Excerpt(element.name) + "' (" +
+      const std::string what = "element " + Excerpt(element.name) + " (" +
                                std::to_string(r) + " of " +
                                std::to_string(element.count) + " read)";
       std::array<double, 3> point{0, 0, 0};
