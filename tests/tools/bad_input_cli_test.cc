@@ -63,7 +63,7 @@ TEST(BadInputCliTest, EveryBadMeshIsRejectedWithOneLine) {
   }
   // The isolated vertex (which used to abort the solvers with a CHECK) in
   // every format through the verbs that solve.
-  const std::string square = testing::DataPath("simple/square4.ply");
+  std::ofstream(dir + "/mask.txt") << "0\n1\n";
   for (const testing::BadMeshCase& c : testing::BadMeshCases()) {
     if (c.name != "isolated_vertex") continue;
     for (MeshFormat format : c.formats) {
@@ -74,12 +74,20 @@ TEST(BadInputCliTest, EveryBadMeshIsRejectedWithOneLine) {
       ExpectRejected("mean --quiet --inputs " + path + "," + path +
                          " --output " + dir + "/mean.ply",
                      path, dir);
-      runs += 2;
+      ExpectRejected("shoot --quiet --steps 2 --first " + path + " --second " +
+                         path + " --output " + dir + "/out",
+                     path, dir);
+      ExpectRejected("deform --quiet --reference " + path + " --mask " +
+                         dir + "/mask.txt --targets " + path + " --output " +
+                         dir + "/deformed.ply",
+                     path, dir);
+      runs += 4;
     }
   }
   EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
-  // 62 energy runs on the table's files, 8 solver runs.
-  EXPECT_EQ(runs, 70);
+  // 62 energy runs on the table's files, 16 solver runs (geodesic, mean,
+  // shoot, deform on the isolated vertex in 4 formats).
+  EXPECT_EQ(runs, 78);
 }
 
 TEST(BadInputCliTest, EveryBadMaskIsRejectedWithOneLine) {
