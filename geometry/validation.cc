@@ -1,7 +1,9 @@
 #include "shellspace/geometry/validation.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <map>
 
 namespace shellspace {
 
@@ -37,16 +39,67 @@ void CheckTriangles(const Mesh& mesh, const Topology& topology,
   }
 }
 
+// Faces with the same three vertices (in either orientation).
+void CheckDuplicateFaces(const Mesh& mesh, const std::string& name) {
+  std::map<std::array<int, 3>, int> seen;
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    std::array<int, 3> key{mesh.faces(f, 0), mesh.faces(f, 1),
+                           mesh.faces(f, 2)};
+    std::sort(key.begin(), key.end());
+    const auto inserted = seen.emplace(key, f);
+    if (!inserted.second) {
+      throw InputError(name + ": face " + std::to_string(f) +
+                       " duplicates face " +
+                       std::to_string(inserted.first->second) + " (vertices " +
+                       std::to_string(key[0]) + ", " + std::to_string(key[1]) +
+                       ", " + std::to_string(key[2]) + ")");
+    }
+  }
+}
+
+void CheckNoIsolatedVertex(const Mesh& mesh, const Topology& topology,
+                           const std::string& name) {
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    if (topology.vertex_faces[v].empty()) {
+      throw InputError(name + ": vertex " + std::to_string(v) +
+                       " is isolated (in no face); remove it from the mesh");
+    }
+  }
+}
+
 }  // namespace
 
-Topology ValidateShell(const Mesh& mesh, const std::string& name) {
+Topology ValidateMeshStructure(const Mesh& mesh, const std::string& name) {
+  if (mesh.num_vertices() == 0 || mesh.num_faces() == 0) {
+    throw InputError(
+        name + ": mesh has no " +
+        std::string(mesh.num_vertices() == 0 ? "vertices" : "faces"));
+  }
   CheckFinite(mesh, name);
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    for (int c = 0; c < 3; ++c) {
+      const int v = mesh.faces(f, c);
+      if (v < 0 || v >= mesh.num_vertices()) {
+        throw InputError(name + ": face " + std::to_string(f) +
+                         " references vertex " + std::to_string(v) +
+                         ", the mesh has " +
+                         std::to_string(mesh.num_vertices()) + " vertices");
+      }
+    }
+  }
+  CheckDuplicateFaces(mesh, name);
   Topology topology;
   try {
     topology = Topology::Build(mesh);
   } catch (const InputError& error) {
     throw InputError(name + ": " + error.what());
   }
+  CheckNoIsolatedVertex(mesh, topology, name);
+  return topology;
+}
+
+Topology ValidateShell(const Mesh& mesh, const std::string& name) {
+  Topology topology = ValidateMeshStructure(mesh, name);
   CheckTriangles(mesh, topology, name);
   return topology;
 }

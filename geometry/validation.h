@@ -9,11 +9,20 @@
 
 namespace shellspace {
 
-// Checks that every coordinate is finite, every face is a triangle of three
-// distinct in-range vertices, every edge has at most two faces with opposite
-// orientations (manifold, consistently oriented), and no triangle is
-// degenerate (area <= 1e-12 times the mean squared edge length). `name`
-// (usually the file path) prefixes the error. Returns the topology.
+// The checks of a mesh that do not depend on the triangles' shapes: at least
+// one vertex and one face, every coordinate finite, every face a triangle of
+// three distinct in-range vertices, no two faces with the same three
+// vertices (in either orientation), every edge in at most two faces with
+// opposite orientations (manifold, consistently oriented), and no isolated
+// vertex (one in no face: it would be a free, unconstrained variable of every
+// energy; such a vertex is rejected, not kept). io/mesh_io.h's ReadMesh runs
+// these on every mesh it reads. `name` (usually the file path) prefixes the
+// one-line InputError, which names the element (vertex i, face f, edge (a,
+// b); 0-based). Returns the topology.
+Topology ValidateMeshStructure(const Mesh& mesh, const std::string& name);
+
+// ValidateMeshStructure and no degenerate triangle (area <= 1e-12 times the
+// mean squared edge length). Returns the topology.
 Topology ValidateShell(const Mesh& mesh, const std::string& name);
 
 // The checks of ValidateShell that depend on the positions (finite

@@ -10,13 +10,22 @@
 
 namespace shellspace {
 
-// Reads a triangle mesh with double-precision coordinates. The format follows
-// the extension (.ply, .obj, .off). ASCII PLY files are parsed directly so
-// that coordinates keep every printed digit (a single-precision intermediate
-// would change energies in the 6th digit, calculus.md); other files go through
-// OpenMesh with double-precision points. Throws InputError if the file is
-// missing or unreadable, has no faces, or has non-triangle faces. Does not
-// validate geometry: see geometry/validation.h.
+// Reads a triangle mesh with double-precision coordinates (every printed
+// digit kept: a single-precision intermediate would change energies in the
+// 6th digit, calculus.md). The format follows the extension: .ply (ascii,
+// binary_little_endian, binary_big_endian; a vertex element with x, y, z and
+// a face element with a vertex_indices list, other elements and properties
+// read and ignored), .obj (v and f lines; vt, vn, vp, g, o, s, usemtl, mtllib
+// ignored; f v/vt/vn and negative indices accepted), .off (optional r g b [a]
+// face colours). All formats go through the same checks, on the raw file
+// data: every face a triangle of integer indices in range, no missing,
+// extra or malformed values, nothing after the declared elements (PLY, OFF),
+// then ValidateMeshStructure (geometry/validation.h: finite coordinates,
+// manifold edges, no duplicate faces, no isolated vertex). Every failure is
+// one InputError line naming the file, the element (0-based vertex/face
+// number, and the line for text formats) and the problem; file content is
+// echoed only as a short escaped excerpt. Degenerate triangles are checked
+// by ValidateShell, not here.
 Mesh ReadMesh(const std::string& path);
 
 // Writes a mesh; the format follows the extension (.ply ASCII with double
@@ -29,9 +38,12 @@ void WriteMesh(const Mesh& mesh, const std::string& path);
 // for an unsupported extension. `mesh` must outlive the writer.
 StreamWriter MeshWriter(const Mesh& mesh, const std::string& path);
 
-// Reads a vertex mask: one 0-based vertex index per line, '#' starts a
-// comment. Throws InputError for unreadable files, bad tokens, or indices
-// outside [0, num_vertices). Returns sorted unique indices.
+// Reads a vertex mask: 0-based vertex indices separated by white space, '#'
+// starts a comment. Throws InputError (naming the file, and the line for a
+// bad entry, with at most a short escaped excerpt of it) for a missing or
+// unreadable file, a directory, a binary file (NUL bytes), a token that is
+// not a decimal integer, or an index outside [0, num_vertices). Returns
+// sorted unique indices.
 std::vector<int> ReadMask(const std::string& path, int num_vertices);
 
 }  // namespace shellspace

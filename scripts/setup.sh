@@ -6,7 +6,10 @@ cd "$(dirname "$0")/.."
 
 packages=(build-essential cmake libceres-dev libeigen3-dev libgoogle-glog-dev
           libgflags-dev libopenmesh-dev libgtest-dev libbenchmark-dev
-          libsuitesparse-dev libpng-dev libopenblas-dev)
+          libsuitesparse-dev libpng-dev libopenblas-dev
+          # The fuzz stage of scripts/test.sh: clang with libFuzzer and the
+          # sanitizer runtimes; python3 writes the seed corpus.
+          clang libclang-rt-dev python3)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" ||

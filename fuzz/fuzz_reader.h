@@ -1,0 +1,102 @@
+// The libFuzzer harness of the readers: the input bytes are written to a
+// file and given to the real reader (io/mesh_io.h), which must either return
+// a validated mesh or throw InputError. Anything else (another exception, a
+// crash, a sanitizer report, a leak, a returned mesh that breaks the
+// invariants ReadMesh promises) is a finding.
+#ifndef SHELLSPACE_FUZZ_FUZZ_READER_H_
+#define SHELLSPACE_FUZZ_FUZZ_READER_H_
+
+#include <unistd.h>
+
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <exception>
+#include <fstream>
+#include <string>
+
+#include "shellspace/geometry/mesh.h"
+#include "shellspace/geometry/validation.h"
+#include "shellspace/io/mesh_io.h"
+
+namespace shellspace::fuzz {
+
+// A per-process scratch file with extension `ext` (the reader dispatches on
+// it), in $TMPDIR or /tmp.
+inline const std::string& ScratchPath(const char* ext) {
+  static const std::string path = [ext] {
+    const char* dir = std::getenv("TMPDIR");
+    return std::string(dir && *dir ? dir : "/tmp") + "/shellspace_fuzz_" +
+           std::to_string(getpid()) + "." + ext;
+  }();
+  return path;
+}
+
+inline void WriteScratch(const std::string& path, const uint8_t* data,
+                         size_t size) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  out.write(reinterpret_cast<const char*>(data),
+            static_cast<std::streamsize>(size));
+  if (!out) {
+    std::fprintf(stderr, "fuzz: cannot write %s\n", path.c_str());
+    std::abort();
+  }
+}
+
+[[noreturn]] inline void Finding(const std::string& what) {
+  std::fprintf(stderr, "fuzz finding: %s\n", what.c_str());
+  std::abort();
+}
+
+// The invariants of a mesh ReadMesh returned (ValidateMeshStructure).
+inline void CheckReadMesh(const Mesh& mesh) {
+  if (mesh.num_vertices() <= 0 || mesh.num_faces() <= 0) {
+    Finding("empty mesh returned");
+  }
+  std::vector<int> uses(mesh.num_vertices(), 0);
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    for (int c = 0; c < 3; ++c) {
+      const int v = mesh.faces(f, c);
+      if (v < 0 || v >= mesh.num_vertices()) Finding("index out of range");
+      ++uses[v];
+    }
+  }
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    if (uses[v] == 0) Finding("isolated vertex returned");
+    for (int c = 0; c < 3; ++c) {
+      if (!std::isfinite(mesh.positions(v, c))) Finding("non-finite returned");
+    }
+  }
+}
+
+// Reads `data` as a mesh file with extension `ext`, then validates it as a
+// shell (ValidateShell: degenerate triangles).
+inline int FuzzMesh(const uint8_t* data, size_t size, const char* ext) {
+  const std::string& path = ScratchPath(ext);
+  WriteScratch(path, data, size);
+  try {
+    const Mesh mesh = ReadMesh(path);
+    CheckReadMesh(mesh);
+    ValidateShell(mesh, path);
+  } catch (const InputError& error) {
+    const std::string message = error.what();
+    if (message.find('\n') != std::string::npos) {
+      Finding("multi-line error: " + message);
+    }
+    for (char c : message) {
+      if (static_cast<unsigned char>(c) < 0x20 ||
+          static_cast<unsigned char>(c) >= 0x7f) {
+        Finding("raw byte in error: " + message);
+      }
+    }
+  } catch (const std::exception& error) {
+    Finding(std::string("exception other than InputError: ") + error.what());
+  } catch (...) {
+    Finding("non-standard exception");
+  }
+  return 0;
+}
+
+}  // namespace shellspace::fuzz
+
+#endif  // SHELLSPACE_FUZZ_FUZZ_READER_H_
