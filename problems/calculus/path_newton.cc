@@ -9,6 +9,7 @@
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/problems/calculus/path_hessian.h"
 #include "shellspace/solvers/gauge_reduced_solve.h"
+#include "shellspace/solvers/block_jacobi_solver.h"
 #include "shellspace/solvers/reusable_cholesky.h"
 
 namespace shellspace {
@@ -119,8 +120,11 @@ class PathEnergyProblem : public NewtonProblem {
       system->matrix = assembler_.Assemble(*path_, reduced_.basis, threads_);
       system->vertex_of = reduced_.vertex_of;
       system->num_vertices = space_.num_vertices;
+      system->block_offsets = reduced_.offset;
+      system->block_offsets.push_back(reduced_.size);
     });
   }
+  int unknowns() const { return reduced_.size; }
   void SetTrial(const Eigen::VectorXd& step) override {
     trial_ = StepPath(*path_, reduced_, step);
   }
@@ -144,6 +148,12 @@ class PathEnergyProblem : public NewtonProblem {
 };
 
 }  // namespace
+
+PathLinearSolver ChooseLinearSolver(PathLinearSolver choice, int unknowns) {
+  if (choice != PathLinearSolver::kAuto) return choice;
+  return unknowns >= kBlockJacobiFromUnknowns ? PathLinearSolver::kBlockJacobi
+                                              : PathLinearSolver::kDirect;
+}
 
 PathNewtonReport PolishPathNewton(const ShellSpace& space,
                                   const std::vector<int>& fixed_vertices,
@@ -179,6 +189,11 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
                    r.assembly_seconds, r.factorizations,
                    r.factorization_seconds, r.cg_iterations, r.cg_seconds);
     };
+  }
+  if (ChooseLinearSolver(settings.linear_solver, problem.unknowns()) ==
+      PathLinearSolver::kBlockJacobi) {
+    BlockJacobiSolver linear_solver;
+    return SolveNewton(&problem, &linear_solver, newton);
   }
   ReusableCholesky linear_solver;
   return SolveNewton(&problem, &linear_solver, newton);
