@@ -183,10 +183,12 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
                           bool accepted) {
       std::fprintf(stderr,
                    "%s step %2d  E_K %.12e  |grad| %.3e  %s  %.2f s"
-                   " (Hessian %.2f s, %d Cholesky %.2f s, %d CG %.2f s)\n",
+                   " (Hessian %.2f s, %d %s factorisations %.2f s, %d CG"
+                   " %.2f s)\n",
                    settings.progress_label.c_str(), r.steps, energy,
                    r.final_gradient, accepted ? "ok " : "rej", r.seconds,
                    r.assembly_seconds, r.factorizations,
+                   r.linear_solver.c_str(),
                    r.factorization_seconds, r.cg_iterations, r.cg_seconds);
     };
   }
