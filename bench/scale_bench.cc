@@ -16,9 +16,14 @@
 // Run one case at a time under /usr/bin/time -v for wall, CPU and peak RSS:
 //   OPENBLAS_NUM_THREADS=1 /usr/bin/time -v build/bench/scale_bench \
 //       --benchmark_filter='Scale/cactus_ring/levels:1'
+// The environment variable SHELLSPACE_LINEAR_SOLVER=auto|direct|block-jacobi
+// forces the linear solver of the Newton finish (default auto; see
+// PathLinearSolver); the counter block_jacobi is 1 if block-Jacobi CG ran.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <cstdlib>
+#include <stdexcept>
 #include <string>
 
 #include "shellspace/geometry/subdivision.h"
@@ -88,6 +93,17 @@ Case MakeCase(const std::string& name) {
   return c;
 }
 
+// SHELLSPACE_LINEAR_SOLVER, or kAuto if unset.
+PathLinearSolver LinearSolverFromEnvironment() {
+  const char* value = std::getenv("SHELLSPACE_LINEAR_SOLVER");
+  const std::string name = value ? value : "auto";
+  if (name == "auto") return PathLinearSolver::kAuto;
+  if (name == "direct") return PathLinearSolver::kDirect;
+  if (name == "block-jacobi") return PathLinearSolver::kBlockJacobi;
+  throw std::invalid_argument("SHELLSPACE_LINEAR_SOLVER must be auto, direct "
+                              "or block-jacobi, got '" + name + "'");
+}
+
 const char* kCases[] = {"finger_ring", "cactus_ring", "cactus_bottom",
                         "faces",       "cactus_x4",   "cactus_x16"};
 
@@ -102,6 +118,7 @@ void BM_Scale(benchmark::State& state) {
   input.end = c.b.positions;
   input.steps = 8;
   input.fixed_vertices = c.mask;
+  input.linear_solver = LinearSolverFromEnvironment();
   SolverSettings settings;
   settings.progress = true;
   settings.progress_label = name;
@@ -117,6 +134,9 @@ void BM_Scale(benchmark::State& state) {
     state.counters["iterations"] = g.iterations;
     state.counters["newton_steps"] = g.newton.steps;
     state.counters["factorizations"] = g.newton.factorizations;
+    state.counters["cg_iterations"] = g.newton.cg_iterations;
+    state.counters["block_jacobi"] = g.newton.linear_solver == "block-jacobi";
+    state.counters["newton_seconds"] = g.newton.seconds;
     state.counters["final_gradient"] = g.final_gradient;
     state.counters["converged"] = r.levels.back().converged;
     state.counters["coarse_iterations"] =

@@ -14,10 +14,14 @@ namespace shellspace {
 // triangle of `matrix` is read. vertex_of[i] (optional, size n) is the mesh
 // vertex of unknown i out of num_vertices: a fill-reducing ordering hint
 // (space_time_ordering.h); solvers that do not use it ignore it.
+// block_offsets (optional; empty or B + 1 increasing entries from 0 to n):
+// unknowns [block_offsets[i], block_offsets[i + 1]) form block i (the time
+// slices of a path Hessian), for block solvers (block_jacobi_solver.h).
 struct LinearSystem {
   Eigen::SparseMatrix<double> matrix;
   std::vector<int> vertex_of;
   int num_vertices = 0;
+  std::vector<int> block_offsets;
 };
 
 // Work counters of a linear solver, summed over its solves. The seconds are
@@ -26,6 +30,8 @@ struct LinearSolverStats {
   int factorizations = 0;
   int cg_solves = 0;      // solves finished by CG on a reused factor
   int cg_iterations = 0;  // in all
+  int cg_not_converged = 0;  // iterative solves that returned their last
+                             // iterate short of the tolerance
   double factorization_seconds = 0;
   double cg_seconds = 0;
 };
@@ -41,6 +47,9 @@ class LinearSolver {
   virtual bool Solve(const LinearSystem& system, const Eigen::VectorXd& b,
                      double tolerance, Eigen::VectorXd* x) = 0;
   virtual const LinearSolverStats& stats() const = 0;
+  // What runs, for reports: "direct" (space-time Cholesky), "block-jacobi",
+  // "lu".
+  virtual const char* name() const = 0;
 };
 
 }  // namespace shellspace

@@ -52,6 +52,8 @@ void NewtonReport::Append(const NewtonReport& later) {
   factorization_seconds += later.factorization_seconds;
   cg_iterations += later.cg_iterations;
   cg_seconds += later.cg_seconds;
+  cg_not_converged += later.cg_not_converged;
+  linear_solver = later.linear_solver;
   final_gradient = later.final_gradient;
   final_merit = later.final_merit;
   converged = later.converged;
@@ -83,6 +85,7 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
   const LinearSolverStats stats_before = linear_solver->stats();
   const bool minimize = settings.mode == NewtonMode::kMinimize;
   NewtonReport report;
+  report.linear_solver = linear_solver->name();
   const auto finish = [&](NewtonStop stop) {
     report.stop = stop;
     report.stop_reason = NewtonStopText(stop, settings.mode);
@@ -96,6 +99,7 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
         s.factorization_seconds - stats_before.factorization_seconds;
     report.cg_iterations = s.cg_iterations - stats_before.cg_iterations;
     report.cg_seconds = s.cg_seconds - stats_before.cg_seconds;
+    report.cg_not_converged = s.cg_not_converged - stats_before.cg_not_converged;
   };
 
   NewtonResidual current;

@@ -154,6 +154,8 @@ struct NewtonReport {
   int cg_iterations = 0;             // CG iterations on a reused factor
   double cg_seconds = 0;             // of which: CG
   int attempts = 0;                  // solves summed by Append
+  std::string linear_solver;         // LinearSolver::name() of the last solve
+  int cg_not_converged = 0;          // iterative solves short of tolerance
 
   // Adds a later solve: counts and times summed, the rest from `later`
   // (initial_gradient stays the first solve's).

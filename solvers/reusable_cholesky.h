@@ -52,6 +52,7 @@ class ReusableCholesky : public LinearSolver {
 
   int max_cg_iterations = 25;
   const Stats& stats() const override { return stats_; }
+  const char* name() const override { return "direct"; }
 
  private:
   struct Factor;  // CHOLMOD stays out of the public headers

@@ -16,6 +16,7 @@ class SparseLu : public LinearSolver {
   bool Solve(const LinearSystem& system, const Eigen::VectorXd& b,
              double tolerance, Eigen::VectorXd* x) override;
   const LinearSolverStats& stats() const override { return stats_; }
+  const char* name() const override { return "lu"; }
 
  private:
   LinearSolverStats stats_;

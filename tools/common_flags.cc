@@ -26,3 +26,4 @@ DEFINE_string(end, "", SHELLSPACE_PER_VERB);
 DEFINE_string(inputs, "", SHELLSPACE_PER_VERB);
 DEFINE_string(at, "", SHELLSPACE_PER_VERB);
 DEFINE_string(multires, "auto", SHELLSPACE_PER_VERB);
+DEFINE_string(linear_solver, "auto", SHELLSPACE_PER_VERB);

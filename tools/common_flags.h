@@ -30,5 +30,6 @@ DECLARE_string(end);
 DECLARE_string(inputs);
 DECLARE_string(at);
 DECLARE_string(multires);
+DECLARE_string(linear_solver);
 
 #endif  // SHELLSPACE_TOOLS_COMMON_FLAGS_H_

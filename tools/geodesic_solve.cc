@@ -44,10 +44,45 @@ MultiresolutionSettings MultiresFromFlags(int num_vertices) {
   return settings;
 }
 
+FlagSpec LinearSolverFlag() {
+  return TextFlag(
+             "linear_solver",
+             "auto|direct|block-jacobi: the linear solver of the Newton "
+             "finish; direct: Cholesky of the whole space-time Hessian; "
+             "block-jacobi: CG preconditioned by one-shape Cholesky factors "
+             "(memory O(K x one shape)); auto: block-jacobi from " +
+                 std::to_string(kBlockJacobiFromUnknowns) +
+                 " unknowns ((K - 1) x free coordinates per shape)")
+      .Default("auto");
+}
+
+PathLinearSolver LinearSolverFromFlags() {
+  const std::string& value = FLAGS_linear_solver;
+  if (value == "auto") return PathLinearSolver::kAuto;
+  if (value == "direct") return PathLinearSolver::kDirect;
+  if (value == "block-jacobi") return PathLinearSolver::kBlockJacobi;
+  throw InputError("--linear_solver must be auto, direct or block-jacobi, "
+                   "got '" + value + "'");
+}
+
+const char* LinearSolverName(PathLinearSolver solver) {
+  switch (solver) {
+    case PathLinearSolver::kAuto:
+      return "auto";
+    case PathLinearSolver::kDirect:
+      return "direct";
+    case PathLinearSolver::kBlockJacobi:
+      return "block-jacobi";
+  }
+  return "auto";
+}
+
 MultiresolutionResult SolveGeodesicFromFlags(const ShellSpace& space,
                                              const GeodesicInput& input,
                                              const SolverSettings& settings) {
-  return SolveGeodesicMultiresolution(space, input, settings,
+  GeodesicInput with_solver = input;
+  with_solver.linear_solver = LinearSolverFromFlags();
+  return SolveGeodesicMultiresolution(space, with_solver, settings,
                                       MultiresFromFlags(space.num_vertices));
 }
 

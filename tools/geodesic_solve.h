@@ -20,8 +20,18 @@ FlagSpec MultiresFlag();
 MultiresolutionSettings MultiresFromFlags(int num_vertices);
 constexpr int kAutoMinVertices = 2500;
 
+// The --linear_solver flag: the linear solver of the Newton finish.
+FlagSpec LinearSolverFlag();
+
+// PathLinearSolver of --linear_solver: auto, direct, block-jacobi. Throws
+// InputError naming --linear_solver for anything else.
+PathLinearSolver LinearSolverFromFlags();
+
+// The name of a PathLinearSolver in --linear_solver's spelling.
+const char* LinearSolverName(PathLinearSolver solver);
+
 // SolveGeodesicMultiresolution with those settings (with 0 levels the
-// plain single-level solve).
+// plain single-level solve) and input.linear_solver from --linear_solver.
 MultiresolutionResult SolveGeodesicFromFlags(const ShellSpace& space,
                                              const GeodesicInput& input,
                                              const SolverSettings& settings);

@@ -80,6 +80,10 @@ JsonObject GeodesicJson(const GeodesicResult& result) {
       .Add("newton_seconds", result.newton.seconds)
       .Add("factorizations", result.newton.factorizations)
       .Add("cg_iterations", result.newton.cg_iterations)
+      .Add("linear_solver", result.newton.linear_solver.empty()
+                                ? std::string("none")
+                                : result.newton.linear_solver)
+      .Add("cg_not_converged", result.newton.cg_not_converged)
       .Add("frames", static_cast<int>(result.path.size()));
   return json;
 }

@@ -65,6 +65,7 @@ FlagTable LogFlags() {
            TextFlag("output", "the shell A + LOG_K(A -> B): PLY, OBJ or OFF")
                .Required(),
            MaskFlag(),
+           LinearSolverFlag(),
        },
        MaterialFlags(), SolverFlags(), JsonFlag()});
 }
@@ -188,7 +189,8 @@ SHELLSPACE_REGISTER_VERB(
     shellspace::ShootFlags(), shellspace::RunShoot);
 SHELLSPACE_REGISTER_VERB(
     "log",
-    "log --start A.ply --end B.ply --steps K --output V.ply (writes A + LOG_K)",
+    "log --start A.ply --end B.ply --steps K --output V.ply "
+    "[--linear_solver auto|direct|block-jacobi] (writes A + LOG_K)",
     shellspace::LogFlags(), shellspace::RunLog);
 SHELLSPACE_REGISTER_VERB(
     "transport",

@@ -30,6 +30,7 @@ FlagTable GeodesicFlags() {
            TextFlag("png", "also write a PNG film strip of the frames here"),
            TextFlag("report", "print Ceres' full report on stderr"),
            MultiresFlag(),
+           LinearSolverFlag(),
        },
        MaterialFlags(), SolverFlags(), JsonFlag()});
 }
@@ -77,5 +78,6 @@ int RunGeodesic() {
 SHELLSPACE_REGISTER_VERB(
     "geodesic",
     "geodesic --start A.ply --end B.ply --steps K --output DIR [--mask M.txt] "
-    "[--eta E] [--multires auto|off|LEVELS] [--json] [--png strip.png]",
+    "[--eta E] [--multires auto|off|LEVELS] "
+    "[--linear_solver auto|direct|block-jacobi] [--json] [--png strip.png]",
     shellspace::GeodesicFlags(), shellspace::RunGeodesic);

@@ -147,6 +147,7 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
         break;
       }
       PathNewtonSettings polish;
+      polish.linear_solver = input.linear_solver;
       polish.gradient_tolerance = tolerance;
       polish.num_threads = settings.num_threads;
       polish.progress = settings.progress;

@@ -52,6 +52,8 @@ struct GeodesicInput {
   // continues to a ten times smaller gradient and Newton tries again, at
   // most kMaxNewtonAttempts times; then LM alone. 0 disables Newton.
   double newton_from = 1e-3;
+  // The linear solver of the Newton steps (path_newton.h; kAuto: by size).
+  PathLinearSolver linear_solver = PathLinearSolver::kAuto;
   static constexpr int kMaxNewtonAttempts = 3;
   // The gradient max norm g_0 that the relative tolerance refers to
   // (stop at |grad| <= tolerance * max(1, g_0)); negative: the initial

@@ -9,6 +9,7 @@
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/problems/calculus/path_hessian.h"
 #include "shellspace/solvers/gauge_reduced_solve.h"
+#include "shellspace/solvers/block_jacobi_solver.h"
 #include "shellspace/solvers/reusable_cholesky.h"
 
 namespace shellspace {
@@ -119,8 +120,11 @@ class PathEnergyProblem : public NewtonProblem {
     }
     system->vertex_of = reduced_.vertex_of;
     system->num_vertices = space_.num_vertices;
+    system->block_offsets = reduced_.offset;
+    system->block_offsets.push_back(reduced_.size);
     return EvaluationStatus::kOk;
   }
+  int unknowns() const { return reduced_.size; }
   void SetTrial(const Eigen::VectorXd& step) override {
     trial_ = StepPath(*path_, reduced_, step);
   }
@@ -144,6 +148,12 @@ class PathEnergyProblem : public NewtonProblem {
 };
 
 }  // namespace
+
+PathLinearSolver ChooseLinearSolver(PathLinearSolver choice, int unknowns) {
+  if (choice != PathLinearSolver::kAuto) return choice;
+  return unknowns >= kBlockJacobiFromUnknowns ? PathLinearSolver::kBlockJacobi
+                                              : PathLinearSolver::kDirect;
+}
 
 PathNewtonReport PolishPathNewton(const ShellSpace& space,
                                   const std::vector<int>& fixed_vertices,
@@ -173,12 +183,19 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
                           bool accepted) {
       std::fprintf(stderr,
                    "%s step %2d  E_K %.12e  |grad| %.3e  %s  %.2f s"
-                   " (Hessian %.2f s, %d Cholesky %.2f s, %d CG %.2f s)\n",
+                   " (Hessian %.2f s, %d %s factorisations %.2f s, %d CG"
+                   " %.2f s)\n",
                    settings.progress_label.c_str(), r.steps, energy,
                    r.final_gradient, accepted ? "ok " : "rej", r.seconds,
                    r.assembly_seconds, r.factorizations,
+                   r.linear_solver.c_str(),
                    r.factorization_seconds, r.cg_iterations, r.cg_seconds);
     };
+  }
+  if (ChooseLinearSolver(settings.linear_solver, problem.unknowns()) ==
+      PathLinearSolver::kBlockJacobi) {
+    BlockJacobiSolver linear_solver;
+    return SolveNewton(&problem, &linear_solver, newton);
   }
   ReusableCholesky linear_solver;
   return SolveNewton(&problem, &linear_solver, newton);

@@ -13,7 +13,38 @@ namespace shellspace {
 
 using ShellPath = std::vector<Positions>;
 
+// The linear solver of the Newton steps (H p = -G):
+//  - kDirect: ReusableCholesky, a supernodal Cholesky factorisation of the
+//    whole space-time H (space-time ordering), reused as a CG
+//    preconditioner across steps; fill grows superlinearly with the mesh
+//    (cactus x4, 21k vertices, K = 8: 8.9 GB);
+//  - kBlockJacobi: BlockJacobiSolver, CG preconditioned by the Cholesky
+//    factors of the K - 1 diagonal (one-shape) blocks: memory O(K x one
+//    shape's factor), more iterations;
+//  - kAuto: kBlockJacobi when the reduced unknowns of the whole path,
+//    (K - 1) x (free coordinates per shape), reach
+//    kBlockJacobiFromUnknowns, else kDirect (a size rule, no clock; see
+//    ChooseLinearSolver).
+enum class PathLinearSolver { kAuto, kDirect, kBlockJacobi };
+
+// The threshold of kAuto on the reduced unknowns of the whole path.
+// Measured (bench/scale_bench, cactus_ring levels:1, K = 8, 103,950
+// unknowns on the fine level): the Newton finish took 73.7 s direct (one
+// Cholesky 52.8 s, 1.9 s CG) against 39.0 s block-Jacobi (one block set
+// 4.3 s, 22 CG iterations 6.9 s), the same E_K to 12 digits; on its coarse
+// level (1,315 vertices) factorisation + CG 2.5 s against 0.6 s. The
+// threshold sits just below the cactus ring; the meshes of the tests
+// (plate, finger: at most 43k unknowns) stay direct, where the exact
+// solves often save a Newton step.
+inline constexpr int kBlockJacobiFromUnknowns = 100000;
+
+// kDirect or kBlockJacobi for a path Hessian with `unknowns` reduced
+// unknowns in all (the rule of kAuto; `choice` other than kAuto is
+// returned as it is).
+PathLinearSolver ChooseLinearSolver(PathLinearSolver choice, int unknowns);
+
 struct PathNewtonSettings {
+  PathLinearSolver linear_solver = PathLinearSolver::kAuto;
   int max_steps = 8;
   // Stop when max |G| <= gradient_tolerance (absolute, max norm over the
   // free coordinates; the same quantity as Ceres' gradient_max_norm).
@@ -39,8 +70,10 @@ using PathNewtonReport = NewtonReport;
 // PathHessianAssembler; the iteration is SolveNewton (newton_solver.h) in
 // minimisation mode: each step solves H p = -G inexactly (relative
 // residual min(1e-2, |G|/|G_0|), never tighter than a quarter of the
-// tolerance needs) by ReusableCholesky: CG preconditioned by the last
-// Cholesky factor, a new factorisation only when CG stalls. A step is
+// tolerance needs) by the linear solver of settings.linear_solver
+// (PathLinearSolver: ReusableCholesky -- CG preconditioned by the last
+// Cholesky factor, a new factorisation only when CG stalls -- or
+// BlockJacobiSolver, the slices as blocks). A step is
 // accepted on sufficient decrease of E_K (Armijo, c = 1e-4) or, once E_K
 // changes only at round-off level, on a smaller max |G|; halving the step
 // twice at most.

@@ -414,7 +414,8 @@ TEST(CliTest, HelpListsOnlyTheVerbsFlags) {
   const std::set<std::string> expected = {
       "start", "end",  "steps",  "output",    "mask",      "png",
       "report", "mu",  "lambda", "eta",       "tolerance", "max_iterations",
-      "threads", "quiet", "json", "multires", "minloglevel"};
+      "threads", "quiet", "json", "multires", "linear_solver",
+      "minloglevel"};
   EXPECT_EQ(geodesic, expected) << text;
   // Default and valid range of a numeric flag.
   EXPECT_NE(text.find("default: 8; valid: an integer >= 1"), std::string::npos)
@@ -496,6 +497,60 @@ TEST(CliTest, GeodesicMultiresolutionLevels) {
   EXPECT_EQ(std::stoi(out_multi.substr(second + 11)), 121);
   EXPECT_NE(testing::RunCli(common + "/bad --multires two", nullptr, &err), 0);
   EXPECT_NE(err.find("--multires"), std::string::npos) << err;
+}
+
+// The text after "KEY": "  in `json` up to the closing quote; "" if absent.
+std::string Text(const std::string& json, const std::string& key) {
+  const std::string needle = "\"" + key + "\": \"";
+  const auto at = json.find(needle);
+  if (at == std::string::npos) return "";
+  const auto begin = at + needle.size();
+  return json.substr(begin, json.find('"', begin) - begin);
+}
+
+// --linear_solver: direct and block-jacobi give the same E_K, --json names
+// the solver used and its counts, auto is direct on the plate, and a bad
+// value is rejected by name (geodesic and log).
+TEST(CliTest, GeodesicLinearSolverFlag) {
+  const std::string dir = testing::TempDir();
+  const std::string common =
+      "geodesic --start " + testing::DataPath("plate/plate121.ply") +
+      " --end " + testing::DataPath("plate/plate121_rolledA.ply") +
+      " --steps 4 --quiet --json --tolerance 1e-10 --multires off --output " +
+      dir;
+  std::string direct, jacobi, automatic, err;
+  ASSERT_EQ(RunCli(common + "/d --linear_solver direct", &direct, &err), 0)
+      << err;
+  ASSERT_EQ(RunCli(common + "/j --linear_solver block-jacobi", &jacobi, &err),
+            0)
+      << err;
+  ASSERT_EQ(RunCli(common + "/a", &automatic, &err), 0) << err;
+  EXPECT_EQ(Text(direct, "linear_solver"), "direct") << direct;
+  EXPECT_EQ(Text(jacobi, "linear_solver"), "block-jacobi") << jacobi;
+  EXPECT_EQ(Text(automatic, "linear_solver"), "direct") << automatic;
+  EXPECT_GE(Number(jacobi, "factorizations"), 1) << jacobi;
+  EXPECT_GT(Number(jacobi, "cg_iterations"), 0) << jacobi;
+  EXPECT_EQ(Number(jacobi, "cg_not_converged"), 0) << jacobi;
+  EXPECT_TRUE(Bool(jacobi, "converged")) << jacobi;
+  const double e_direct = Number(direct, "path_energy");
+  EXPECT_NEAR(Number(jacobi, "path_energy"), e_direct, 1e-8 * e_direct);
+  EXPECT_EQ(Number(automatic, "path_energy"), e_direct);
+  EXPECT_EQ(RunCli(common + "/bad --linear_solver cholesky", nullptr, &err),
+            1);
+  EXPECT_NE(err.find("--linear_solver must be auto, direct or block-jacobi"),
+            std::string::npos)
+      << err;
+  // log reads the flag too.
+  std::string log;
+  ASSERT_EQ(RunCli("log --start " + testing::DataPath("plate/plate121.ply") +
+                       " --end " +
+                       testing::DataPath("plate/plate121_rolledA.ply") +
+                       " --steps 4 --json --linear_solver block-jacobi "
+                       "--output " + dir + "/log.ply",
+                   &log, &err),
+            0)
+      << err;
+  EXPECT_EQ(Text(log, "linear_solver"), "block-jacobi") << log;
 }
 
 }  // namespace

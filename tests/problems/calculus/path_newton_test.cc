@@ -496,5 +496,147 @@ TEST(PathNewtonTest, PolishIsDeterministicAcrossRunsAndThreads) {
   }
 }
 
+
+// max_k |a_k - b_k| / max_k |b_k| (Frobenius norms of the shapes).
+double RelativePathDistance(const ShellPath& a, const ShellPath& b) {
+  double distance = 0, size = 0;
+  for (size_t k = 0; k < b.size(); ++k) {
+    distance = std::max(distance, (a[k] - b[k]).norm());
+    size = std::max(size, b[k].norm());
+  }
+  return distance / size;
+}
+
+// The geodesic with the Newton finish on block-Jacobi CG against the direct
+// space-time Cholesky: the same E_K to 1e-8 relative and the same shapes to
+// 1e-6, on the plate (rigid gauge) and the finger (a mask, 2046 vertices).
+TEST(PathNewtonTest, BlockJacobiFinishMatchesTheDirectSolver) {
+  struct Case {
+    std::string a, b, mask;
+    double eta;
+  };
+  for (const Case& c :
+       {Case{"plate/plate121.ply", "plate/plate121_rolledA.ply", "", 0.01},
+        Case{"finger/finger0.ply", "finger/finger1.ply",
+             "finger/finger_mask.txt", 0.001}}) {
+    const Mesh a = testing::LoadData(c.a);
+    const Mesh b = testing::LoadData(c.b);
+    ShellMaterial material;
+    material.eta = c.eta;
+    const ShellSpace space = testing::MakeSpace(a, material);
+    GeodesicInput input;
+    input.start = a.positions;
+    input.end = b.positions;
+    input.steps = 4;
+    if (!c.mask.empty()) {
+      input.fixed_vertices =
+          ReadMask(testing::DataPath(c.mask), a.num_vertices());
+    }
+    const SolverSettings settings = testing::TightSettings(1e-10);
+    input.linear_solver = PathLinearSolver::kDirect;
+    const GeodesicResult direct = SolveGeodesic(space, input, settings);
+    input.linear_solver = PathLinearSolver::kBlockJacobi;
+    const GeodesicResult jacobi = SolveGeodesic(space, input, settings);
+    std::cout << c.a << ": direct " << direct.newton.steps << " steps, "
+              << direct.newton.factorizations << " factorisations, "
+              << direct.newton.cg_iterations << " CG; block-jacobi "
+              << jacobi.newton.steps << " steps, "
+              << jacobi.newton.factorizations << " factorisations, "
+              << jacobi.newton.cg_iterations << " CG\n";
+    EXPECT_EQ(direct.newton.linear_solver, "direct") << c.a;
+    EXPECT_EQ(jacobi.newton.linear_solver, "block-jacobi") << c.a;
+    ASSERT_GT(jacobi.newton.steps, 0) << c.a;
+    EXPECT_TRUE(direct.converged) << c.a;
+    EXPECT_TRUE(jacobi.converged) << c.a << " " << jacobi.newton.stop_reason;
+    EXPECT_TRUE(jacobi.newton.converged) << c.a;
+    EXPECT_GT(jacobi.newton.cg_iterations, 0) << c.a;
+    EXPECT_GE(jacobi.newton.factorizations, 1) << c.a;
+    EXPECT_EQ(jacobi.newton.cg_not_converged, 0) << c.a;
+    EXPECT_NEAR(jacobi.path_energy, direct.path_energy,
+                1e-8 * direct.path_energy)
+        << c.a;
+    if (c.mask.empty()) {
+      // Without a mask each Newton step moves in the 3n - 6 directions
+      // orthogonal to the rigid motions of the current shape: a different
+      // number of steps leaves a different (arbitrary) gauge.
+      for (int k = 1; k < 4; ++k) {
+        EXPECT_LT(RelativeDistanceUpToRigidMotion(jacobi.path[k],
+                                                  direct.path[k]),
+                  1e-6)
+            << c.a << " " << k;
+      }
+    } else {
+      EXPECT_LT(RelativePathDistance(jacobi.path, direct.path), 1e-6) << c.a;
+    }
+  }
+}
+
+// The block-Jacobi Newton polish gives the same steps, factorisations, CG
+// iterations and bit-identical shapes in repeated runs and on 1 or 2
+// threads.
+TEST(PathNewtonTest, BlockJacobiPolishIsDeterministicAcrossRunsAndThreads) {
+  const Mesh a = testing::LoadData("plate/plate121.ply");
+  const Mesh b = testing::LoadData("plate/plate121_rolledA.ply");
+  const ShellSpace space = testing::MakeSpace(a);
+  GeodesicInput input;
+  input.start = a.positions;
+  input.end = b.positions;
+  input.steps = 4;
+  input.newton_from = 0;
+  const ShellPath start =
+      SolveGeodesic(space, input, testing::TightSettings(1e-4)).path;
+  std::vector<ShellPath> paths;
+  std::vector<PathNewtonReport> reports;
+  for (int threads : {1, 2, 1, 2}) {
+    ShellPath path = start;
+    PathNewtonSettings settings;
+    settings.linear_solver = PathLinearSolver::kBlockJacobi;
+    settings.gradient_tolerance = 1e-11;
+    settings.num_threads = threads;
+    reports.push_back(PolishPathNewton(space, {}, settings, &path));
+    paths.push_back(path);
+  }
+  ASSERT_TRUE(reports[0].converged) << reports[0].stop_reason;
+  EXPECT_EQ(reports[0].linear_solver, "block-jacobi");
+  EXPECT_GT(reports[0].steps, 1);
+  EXPECT_GT(reports[0].cg_iterations, reports[0].steps);
+  for (size_t i = 1; i < reports.size(); ++i) {
+    EXPECT_EQ(reports[i].steps, reports[0].steps) << i;
+    EXPECT_EQ(reports[i].factorizations, reports[0].factorizations) << i;
+    EXPECT_EQ(reports[i].cg_iterations, reports[0].cg_iterations) << i;
+    EXPECT_EQ(reports[i].final_gradient, reports[0].final_gradient) << i;
+    for (int k = 0; k <= 4; ++k) EXPECT_EQ(paths[i][k], paths[0][k]) << i;
+  }
+}
+
+// kAuto: the direct solver below kBlockJacobiFromUnknowns unknowns (the
+// plate and finger paths), block-Jacobi from it on; forced choices stay.
+TEST(PathNewtonTest, AutomaticChoicePicksDirectOnSmallMeshes) {
+  EXPECT_EQ(ChooseLinearSolver(PathLinearSolver::kAuto, 3 * 3 * 121 - 18),
+            PathLinearSolver::kDirect);
+  EXPECT_EQ(ChooseLinearSolver(PathLinearSolver::kAuto,
+                               kBlockJacobiFromUnknowns - 1),
+            PathLinearSolver::kDirect);
+  EXPECT_EQ(ChooseLinearSolver(PathLinearSolver::kAuto,
+                               kBlockJacobiFromUnknowns),
+            PathLinearSolver::kBlockJacobi);
+  EXPECT_EQ(ChooseLinearSolver(PathLinearSolver::kDirect, 1 << 30),
+            PathLinearSolver::kDirect);
+  EXPECT_EQ(ChooseLinearSolver(PathLinearSolver::kBlockJacobi, 10),
+            PathLinearSolver::kBlockJacobi);
+  const Mesh a = testing::LoadData("plate/plate121.ply");
+  const Mesh b = testing::LoadData("plate/plate121_rolledA.ply");
+  const ShellSpace space = testing::MakeSpace(a);
+  GeodesicInput input;
+  input.start = a.positions;
+  input.end = b.positions;
+  input.steps = 4;
+  ASSERT_EQ(input.linear_solver, PathLinearSolver::kAuto);
+  const GeodesicResult result =
+      SolveGeodesic(space, input, testing::TightSettings(1e-10));
+  ASSERT_GT(result.newton.steps, 0);
+  EXPECT_EQ(result.newton.linear_solver, "direct");
+}
+
 }  // namespace
 }  // namespace shellspace

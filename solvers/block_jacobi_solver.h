@@ -1,0 +1,50 @@
+// The LinearSolver of a block-structured SPD system (a path Hessian, block
+// tridiagonal in time) by block-Jacobi CG: memory O(B * one block's factor)
+// instead of the fill of a factorisation of the whole matrix.
+#ifndef SHELLSPACE_SOLVERS_BLOCK_JACOBI_SOLVER_H_
+#define SHELLSPACE_SOLVERS_BLOCK_JACOBI_SOLVER_H_
+
+#include <Eigen/Core>
+
+#include "shellspace/solvers/block_jacobi_cg.h"
+#include "shellspace/solvers/linear_solver.h"
+
+namespace shellspace {
+
+// Solves H x = b (H = system.matrix, lower triangle; blocks
+// system.block_offsets, required: B + 1 entries from 0 to n) by CG
+// preconditioned with the Cholesky factors of the diagonal blocks H_ii
+// (BlockJacobiCg), to |H x - b|_2 <= tolerance |b|_2.
+// Factor reuse across Newton steps (deterministic, iteration counts only):
+//  - with factors of an earlier H0 held (same block_offsets), CG runs on
+//    them for at most stale_iteration_budget iterations;
+//  - if that does not reach the tolerance (or nothing is held), the blocks
+//    of the current H are factorised and CG restarts from M^-1 b for at
+//    most max_iterations; if even that falls short, the last iterate is
+//    returned (true) and stats().cg_not_converged counts it -- a CG iterate
+//    of an SPD H still gives the Newton engine a direction to check.
+// Returns false -- "not positive definite", as ReusableCholesky -- if a
+// diagonal block of the current H is not positive definite or CG meets a
+// direction d with d^T H d <= 0 (negative curvature of H itself, whichever
+// factors precondition), or if block_offsets does not partition H.
+// stats(): factorizations counts block-set factorisations (all B blocks
+// once), cg_iterations all CG iterations, cg_solves the solves.
+class BlockJacobiSolver : public LinearSolver {
+ public:
+  bool Solve(const LinearSystem& system, const Eigen::VectorXd& b,
+             double tolerance, Eigen::VectorXd* x) override;
+  const LinearSolverStats& stats() const override { return stats_; }
+  const char* name() const override { return "block-jacobi"; }
+
+  int stale_iteration_budget = 60;
+  int max_iterations = 2000;
+
+ private:
+  BlockJacobiCg cg_;
+  std::vector<int> factored_offsets_;  // empty: nothing held
+  LinearSolverStats stats_;
+};
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_SOLVERS_BLOCK_JACOBI_SOLVER_H_

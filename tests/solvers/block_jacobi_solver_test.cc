@@ -1,0 +1,176 @@
+// BlockJacobiSolver through the LinearSolver interface: against a direct
+// solve on the Kronecker model T (x) G of a path Hessian, the deterministic
+// refactorisation rule (stale factors within the iteration budget, fresh
+// ones beyond it), and the "not positive definite" failures.
+#include "shellspace/solvers/block_jacobi_solver.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/SparseCholesky>
+
+#include "shellspace/geometry/topology.h"
+#include "shellspace/tests/testing/test_support.h"
+
+namespace shellspace {
+namespace {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+// G = graph Laplacian of the plate + shift I (SPD), 3 unknowns per vertex.
+SparseMatrix PlateMetric(double shift) {
+  const Mesh m = testing::LoadData("plate/plate121.ply");
+  const Topology topology = Topology::Build(m);
+  std::vector<Eigen::Triplet<double>> t;
+  const int n = m.num_vertices();
+  for (const auto& e : topology.edges) {
+    for (int c = 0; c < 3; ++c) {
+      t.emplace_back(3 * e[0] + c, 3 * e[0] + c, 1.0);
+      t.emplace_back(3 * e[1] + c, 3 * e[1] + c, 1.0);
+      t.emplace_back(3 * e[0] + c, 3 * e[1] + c, -1.0);
+      t.emplace_back(3 * e[1] + c, 3 * e[0] + c, -1.0);
+    }
+  }
+  for (int i = 0; i < 3 * n; ++i) t.emplace_back(i, i, shift);
+  SparseMatrix g(3 * n, 3 * n);
+  g.setFromTriplets(t.begin(), t.end());
+  return g;
+}
+
+// The lower triangle of K T (x) G, T = tridiag(-1, 2, -1) of size K - 1,
+// with the diagonal blocks scaled by diagonal_scale (> 1/2: still SPD).
+LinearSystem KroneckerSystem(const SparseMatrix& g, int K,
+                             double diagonal_scale = 1.0) {
+  const int m = static_cast<int>(g.rows());
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < K - 1; ++i) {
+    for (int c = 0; c < m; ++c) {
+      for (SparseMatrix::InnerIterator it(g, c); it; ++it) {
+        if (it.row() >= c) {
+          t.emplace_back(i * m + it.row(), i * m + c,
+                         2.0 * K * diagonal_scale * it.value());
+        }
+        if (i + 1 < K - 1) {
+          t.emplace_back((i + 1) * m + it.row(), i * m + c,
+                         -1.0 * K * it.value());
+        }
+      }
+    }
+  }
+  LinearSystem system;
+  system.matrix.resize((K - 1) * m, (K - 1) * m);
+  system.matrix.setFromTriplets(t.begin(), t.end());
+  for (int i = 0; i < K; ++i) system.block_offsets.push_back(i * m);
+  return system;
+}
+
+Eigen::VectorXd DirectSolve(const LinearSystem& system,
+                            const Eigen::VectorXd& b) {
+  Eigen::SimplicialLLT<SparseMatrix, Eigen::Lower> direct(system.matrix);
+  EXPECT_EQ(direct.info(), Eigen::Success);
+  return direct.solve(b);
+}
+
+double RelativeResidual(const LinearSystem& system, const Eigen::VectorXd& x,
+                        const Eigen::VectorXd& b) {
+  return (system.matrix.selfadjointView<Eigen::Lower>() * x - b).norm() /
+         b.norm();
+}
+
+TEST(BlockJacobiSolverTest, AgreesWithADirectSolveThroughTheInterface) {
+  const LinearSystem system = KroneckerSystem(PlateMetric(0.1), 8);
+  const Eigen::VectorXd b =
+      Eigen::VectorXd::LinSpaced(system.matrix.rows(), -1, 2);
+  const Eigen::VectorXd expected = DirectSolve(system, b);
+  BlockJacobiSolver solver;
+  LinearSolver& interface = solver;
+  Eigen::VectorXd x;
+  ASSERT_TRUE(interface.Solve(system, b, 1e-12, &x));
+  EXPECT_LT(RelativeResidual(system, x, b), 1e-12);
+  EXPECT_LT((x - expected).norm(), 1e-9 * expected.norm());
+  EXPECT_STREQ(interface.name(), "block-jacobi");
+  EXPECT_EQ(interface.stats().factorizations, 1);
+  EXPECT_EQ(interface.stats().cg_solves, 1);
+  // T preconditioned by 2I: K - 1 = 7 distinct eigenvalues.
+  EXPECT_GE(interface.stats().cg_iterations, 1);
+  EXPECT_LE(interface.stats().cg_iterations, 10);
+  EXPECT_EQ(interface.stats().cg_not_converged, 0);
+}
+
+// Stale factors are kept while CG on them meets the budget; a matrix whose
+// diagonal blocks changed so much that it does not gets fresh factors. The
+// counts are the same in a repeated run.
+TEST(BlockJacobiSolverTest, RefactorisesOnlyBeyondTheIterationBudget) {
+  const SparseMatrix g = PlateMetric(0.1);
+  const LinearSystem h0 = KroneckerSystem(g, 8);
+  const LinearSystem near = KroneckerSystem(g, 8, 1.01);
+  const LinearSystem far = KroneckerSystem(PlateMetric(100.0), 8);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(h0.matrix.rows(), 1, -1);
+  std::vector<LinearSolverStats> runs;
+  for (int run = 0; run < 2; ++run) {
+    BlockJacobiSolver solver;
+    solver.stale_iteration_budget = 12;
+    Eigen::VectorXd x;
+    ASSERT_TRUE(solver.Solve(h0, b, 1e-10, &x));
+    EXPECT_EQ(solver.stats().factorizations, 1);
+    ASSERT_TRUE(solver.Solve(near, b, 1e-10, &x));
+    EXPECT_LT(RelativeResidual(near, x, b), 1e-10);
+    EXPECT_EQ(solver.stats().factorizations, 1);  // the stale factors did
+    // Another metric G' = L + 100 I: the stale M^-1 H = T/2 (x) G^-1 G' has
+    // eigenvalues spread over (lambda + 100) / (lambda + 0.1) in [~1, 1000]
+    // (a scaling alone would not matter to CG); it exceeds 12 iterations.
+    ASSERT_TRUE(solver.Solve(far, b, 1e-10, &x));
+    EXPECT_LT(RelativeResidual(far, x, b), 1e-10);
+    EXPECT_EQ(solver.stats().factorizations, 2);
+    EXPECT_EQ(solver.stats().cg_solves, 3);
+    EXPECT_EQ(solver.stats().cg_not_converged, 0);
+    runs.push_back(solver.stats());
+  }
+  EXPECT_EQ(runs[0].cg_iterations, runs[1].cg_iterations);
+  // The negative twin of the budget: with a budget of 0 iterations every
+  // solve refactorises.
+  BlockJacobiSolver no_reuse;
+  no_reuse.stale_iteration_budget = 0;
+  Eigen::VectorXd x;
+  ASSERT_TRUE(no_reuse.Solve(h0, b, 1e-10, &x));
+  ASSERT_TRUE(no_reuse.Solve(near, b, 1e-10, &x));
+  EXPECT_EQ(no_reuse.stats().factorizations, 2);
+}
+
+TEST(BlockJacobiSolverTest, NotPositiveDefiniteAndBadBlocksAreFailures) {
+  const LinearSystem system = KroneckerSystem(PlateMetric(0.1), 8);
+  const Eigen::VectorXd b = Eigen::VectorXd::Ones(system.matrix.rows());
+  Eigen::VectorXd x;
+  // A negative definite matrix: its diagonal blocks are not SPD.
+  LinearSystem negative = system;
+  negative.matrix = -system.matrix;
+  BlockJacobiSolver solver;
+  EXPECT_FALSE(solver.Solve(negative, b, 1e-8, &x));
+  // SPD diagonal blocks (1 x 1, value 1) but an indefinite H = [1 2; 2 1]
+  // (eigenvalues 3, -1): CG meets d^T H d < 0 in its second iteration.
+  LinearSystem indefinite;
+  indefinite.matrix.resize(2, 2);
+  indefinite.matrix.insert(0, 0) = 1;
+  indefinite.matrix.insert(1, 0) = 2;
+  indefinite.matrix.insert(1, 1) = 1;
+  indefinite.block_offsets = {0, 1, 2};
+  BlockJacobiSolver curvature;
+  EXPECT_FALSE(curvature.Solve(indefinite, Eigen::Vector2d(1, 0), 1e-12, &x));
+  EXPECT_EQ(curvature.stats().factorizations, 1);
+  // Its SPD twin H = [2 1; 1 2] is solved.
+  LinearSystem spd = indefinite;
+  spd.matrix.coeffRef(0, 0) = 2;
+  spd.matrix.coeffRef(1, 0) = 1;
+  spd.matrix.coeffRef(1, 1) = 2;
+  ASSERT_TRUE(curvature.Solve(spd, Eigen::Vector2d(1, 0), 1e-12, &x));
+  EXPECT_NEAR(x(0), 2.0 / 3, 1e-12);
+  EXPECT_NEAR(x(1), -1.0 / 3, 1e-12);
+  // Offsets that do not partition H.
+  LinearSystem unpartitioned = system;
+  unpartitioned.block_offsets.pop_back();
+  EXPECT_FALSE(BlockJacobiSolver().Solve(unpartitioned, b, 1e-8, &x));
+  unpartitioned.block_offsets.clear();
+  EXPECT_FALSE(BlockJacobiSolver().Solve(unpartitioned, b, 1e-8, &x));
+}
+
+}  // namespace
+}  // namespace shellspace
