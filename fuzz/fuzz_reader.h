@@ -22,12 +22,16 @@
 namespace shellspace::fuzz {
 
 // A per-process scratch file with extension `ext` (the reader dispatches on
-// it), in $TMPDIR or /tmp.
+// it), in $TMPDIR or /tmp. The process id is padded to a fixed width: the
+// path's length (and so the coverage of the error messages built from it)
+// is the same in every run, which keeps -seed=1 runs reproducible.
 inline const std::string& ScratchPath(const char* ext) {
   static const std::string path = [ext] {
     const char* dir = std::getenv("TMPDIR");
-    return std::string(dir && *dir ? dir : "/tmp") + "/shellspace_fuzz_" +
-           std::to_string(getpid()) + "." + ext;
+    char name[64];
+    std::snprintf(name, sizeof(name), "/shellspace_fuzz_%010d.%s",
+                  static_cast<int>(getpid()), ext);
+    return std::string(dir && *dir ? dir : "/tmp") + name;
   }();
   return path;
 }
