@@ -11,6 +11,7 @@
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/problems/calculus/path_hessian.h"
 #include "shellspace/solvers/gauge_reduced_solve.h"
+#include "shellspace/tests/testing/kronecker_model.h"
 #include "shellspace/tests/testing/test_support.h"
 
 namespace shellspace {
@@ -18,49 +19,14 @@ namespace {
 
 using SparseMatrix = Eigen::SparseMatrix<double>;
 
-// G = graph Laplacian of the plate + 0.1 I (SPD), 3 unknowns per vertex.
-SparseMatrix PlateMetric() {
-  const Mesh m = testing::LoadData("plate/plate121.ply");
-  const Topology topology = Topology::Build(m);
-  std::vector<Eigen::Triplet<double>> t;
-  const int n = m.num_vertices();
-  for (const auto& e : topology.edges) {
-    for (int c = 0; c < 3; ++c) {
-      t.emplace_back(3 * e[0] + c, 3 * e[0] + c, 1.0);
-      t.emplace_back(3 * e[1] + c, 3 * e[1] + c, 1.0);
-      t.emplace_back(3 * e[0] + c, 3 * e[1] + c, -1.0);
-      t.emplace_back(3 * e[1] + c, 3 * e[0] + c, -1.0);
-    }
-  }
-  for (int i = 0; i < 3 * n; ++i) t.emplace_back(i, i, 0.1);
-  SparseMatrix g(3 * n, 3 * n);
-  g.setFromTriplets(t.begin(), t.end());
-  return g;
-}
+SparseMatrix PlateMetric() { return testing::PlateLaplacianMetric(0.1); }
 
-// K T (x) G with T = tridiag(-1, 2, -1) of size K - 1 (lower triangle).
 SparseMatrix KroneckerModel(const SparseMatrix& g, int K) {
-  const int m = static_cast<int>(g.rows());
-  std::vector<Eigen::Triplet<double>> t;
-  for (int i = 0; i < K - 1; ++i) {
-    for (int c = 0; c < m; ++c) {
-      for (SparseMatrix::InnerIterator it(g, c); it; ++it) {
-        t.emplace_back(i * m + it.row(), i * m + c, 2.0 * K * it.value());
-        if (i + 1 < K - 1) {
-          t.emplace_back((i + 1) * m + it.row(), i * m + c, -1.0 * K * it.value());
-        }
-      }
-    }
-  }
-  SparseMatrix h((K - 1) * m, (K - 1) * m);
-  h.setFromTriplets(t.begin(), t.end());
-  return SparseMatrix(h.triangularView<Eigen::Lower>());
+  return testing::KroneckerPathModel(g, K);
 }
 
 std::vector<int> Offsets(int blocks, int m) {
-  std::vector<int> offsets;
-  for (int i = 0; i <= blocks; ++i) offsets.push_back(i * m);
-  return offsets;
+  return testing::SliceOffsets(blocks, m);
 }
 
 TEST(BlockJacobiCgTest, SolvesTheKroneckerModelInOrderKIterations) {

@@ -9,6 +9,7 @@
 #include <Eigen/SparseCholesky>
 
 #include "shellspace/geometry/topology.h"
+#include "shellspace/tests/testing/kronecker_model.h"
 #include "shellspace/tests/testing/test_support.h"
 
 namespace shellspace {
@@ -16,50 +17,17 @@ namespace {
 
 using SparseMatrix = Eigen::SparseMatrix<double>;
 
-// G = graph Laplacian of the plate + shift I (SPD), 3 unknowns per vertex.
 SparseMatrix PlateMetric(double shift) {
-  const Mesh m = testing::LoadData("plate/plate121.ply");
-  const Topology topology = Topology::Build(m);
-  std::vector<Eigen::Triplet<double>> t;
-  const int n = m.num_vertices();
-  for (const auto& e : topology.edges) {
-    for (int c = 0; c < 3; ++c) {
-      t.emplace_back(3 * e[0] + c, 3 * e[0] + c, 1.0);
-      t.emplace_back(3 * e[1] + c, 3 * e[1] + c, 1.0);
-      t.emplace_back(3 * e[0] + c, 3 * e[1] + c, -1.0);
-      t.emplace_back(3 * e[1] + c, 3 * e[0] + c, -1.0);
-    }
-  }
-  for (int i = 0; i < 3 * n; ++i) t.emplace_back(i, i, shift);
-  SparseMatrix g(3 * n, 3 * n);
-  g.setFromTriplets(t.begin(), t.end());
-  return g;
+  return testing::PlateLaplacianMetric(shift);
 }
 
-// The lower triangle of K T (x) G, T = tridiag(-1, 2, -1) of size K - 1,
-// with the diagonal blocks scaled by diagonal_scale (> 1/2: still SPD).
+// The Kronecker model (tests/testing/kronecker_model.h) with its slices.
 LinearSystem KroneckerSystem(const SparseMatrix& g, int K,
                              double diagonal_scale = 1.0) {
-  const int m = static_cast<int>(g.rows());
-  std::vector<Eigen::Triplet<double>> t;
-  for (int i = 0; i < K - 1; ++i) {
-    for (int c = 0; c < m; ++c) {
-      for (SparseMatrix::InnerIterator it(g, c); it; ++it) {
-        if (it.row() >= c) {
-          t.emplace_back(i * m + it.row(), i * m + c,
-                         2.0 * K * diagonal_scale * it.value());
-        }
-        if (i + 1 < K - 1) {
-          t.emplace_back((i + 1) * m + it.row(), i * m + c,
-                         -1.0 * K * it.value());
-        }
-      }
-    }
-  }
   LinearSystem system;
-  system.matrix.resize((K - 1) * m, (K - 1) * m);
-  system.matrix.setFromTriplets(t.begin(), t.end());
-  for (int i = 0; i < K; ++i) system.block_offsets.push_back(i * m);
+  system.matrix = testing::KroneckerPathModel(g, K, diagonal_scale);
+  system.block_offsets =
+      testing::SliceOffsets(K - 1, static_cast<int>(g.rows()));
   return system;
 }
 
