@@ -463,7 +463,11 @@ TEST(PathNewtonTest, EarlyNewtonRetriesAfterMoreLm) {
 // budget by flop estimates) gives the same steps, factorisations, CG
 // iterations and bit-identical shapes in repeated runs and for 1 and 2
 // threads.
-TEST(PathNewtonTest, PolishIsDeterministicAcrossRunsAndThreads) {
+// Polishes the same rough plate geodesic (K = 4, LM to 1e-4) four times,
+// on 1, 2, 1, 2 threads, with `solver`; EXPECTs equal steps,
+// factorisations, CG iterations, final gradients and bit-identical shapes,
+// and returns the first report.
+PathNewtonReport ExpectDeterministicPolish(PathLinearSolver solver) {
   const Mesh a = testing::LoadData("plate/plate121.ply");
   const Mesh b = testing::LoadData("plate/plate121_rolledA.ply");
   const ShellSpace space = testing::MakeSpace(a);
@@ -472,21 +476,19 @@ TEST(PathNewtonTest, PolishIsDeterministicAcrossRunsAndThreads) {
   input.end = b.positions;
   input.steps = 4;
   input.newton_from = 0;
-  SolverSettings lm = testing::TightSettings(1e-4);
-  const ShellPath start = SolveGeodesic(space, input, lm).path;
+  const ShellPath start =
+      SolveGeodesic(space, input, testing::TightSettings(1e-4)).path;
   std::vector<ShellPath> paths;
   std::vector<PathNewtonReport> reports;
   for (int threads : {1, 2, 1, 2}) {
     ShellPath path = start;
     PathNewtonSettings settings;
+    settings.linear_solver = solver;
     settings.gradient_tolerance = 1e-11;
     settings.num_threads = threads;
     reports.push_back(PolishPathNewton(space, {}, settings, &path));
     paths.push_back(path);
   }
-  ASSERT_TRUE(reports[0].converged) << reports[0].stop_reason;
-  EXPECT_GT(reports[0].steps, 1);
-  EXPECT_GT(reports[0].cg_iterations, 0);  // the reuse path is exercised
   for (size_t i = 1; i < reports.size(); ++i) {
     EXPECT_EQ(reports[i].steps, reports[0].steps) << i;
     EXPECT_EQ(reports[i].factorizations, reports[0].factorizations) << i;
@@ -494,6 +496,15 @@ TEST(PathNewtonTest, PolishIsDeterministicAcrossRunsAndThreads) {
     EXPECT_EQ(reports[i].final_gradient, reports[0].final_gradient) << i;
     for (int k = 0; k <= 4; ++k) EXPECT_EQ(paths[i][k], paths[0][k]) << i;
   }
+  return reports[0];
+}
+
+TEST(PathNewtonTest, PolishIsDeterministicAcrossRunsAndThreads) {
+  const PathNewtonReport report =
+      ExpectDeterministicPolish(PathLinearSolver::kDirect);
+  ASSERT_TRUE(report.converged) << report.stop_reason;
+  EXPECT_GT(report.steps, 1);
+  EXPECT_GT(report.cg_iterations, 0);  // the reuse path is exercised
 }
 
 
@@ -575,38 +586,12 @@ TEST(PathNewtonTest, BlockJacobiFinishMatchesTheDirectSolver) {
 // iterations and bit-identical shapes in repeated runs and on 1 or 2
 // threads.
 TEST(PathNewtonTest, BlockJacobiPolishIsDeterministicAcrossRunsAndThreads) {
-  const Mesh a = testing::LoadData("plate/plate121.ply");
-  const Mesh b = testing::LoadData("plate/plate121_rolledA.ply");
-  const ShellSpace space = testing::MakeSpace(a);
-  GeodesicInput input;
-  input.start = a.positions;
-  input.end = b.positions;
-  input.steps = 4;
-  input.newton_from = 0;
-  const ShellPath start =
-      SolveGeodesic(space, input, testing::TightSettings(1e-4)).path;
-  std::vector<ShellPath> paths;
-  std::vector<PathNewtonReport> reports;
-  for (int threads : {1, 2, 1, 2}) {
-    ShellPath path = start;
-    PathNewtonSettings settings;
-    settings.linear_solver = PathLinearSolver::kBlockJacobi;
-    settings.gradient_tolerance = 1e-11;
-    settings.num_threads = threads;
-    reports.push_back(PolishPathNewton(space, {}, settings, &path));
-    paths.push_back(path);
-  }
-  ASSERT_TRUE(reports[0].converged) << reports[0].stop_reason;
-  EXPECT_EQ(reports[0].linear_solver, "block-jacobi");
-  EXPECT_GT(reports[0].steps, 1);
-  EXPECT_GT(reports[0].cg_iterations, reports[0].steps);
-  for (size_t i = 1; i < reports.size(); ++i) {
-    EXPECT_EQ(reports[i].steps, reports[0].steps) << i;
-    EXPECT_EQ(reports[i].factorizations, reports[0].factorizations) << i;
-    EXPECT_EQ(reports[i].cg_iterations, reports[0].cg_iterations) << i;
-    EXPECT_EQ(reports[i].final_gradient, reports[0].final_gradient) << i;
-    for (int k = 0; k <= 4; ++k) EXPECT_EQ(paths[i][k], paths[0][k]) << i;
-  }
+  const PathNewtonReport report =
+      ExpectDeterministicPolish(PathLinearSolver::kBlockJacobi);
+  ASSERT_TRUE(report.converged) << report.stop_reason;
+  EXPECT_EQ(report.linear_solver, "block-jacobi");
+  EXPECT_GT(report.steps, 1);
+  EXPECT_GT(report.cg_iterations, report.steps);
 }
 
 // kAuto: the direct solver below kBlockJacobiFromUnknowns unknowns (the
