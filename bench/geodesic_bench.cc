@@ -10,10 +10,10 @@
 
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/exponential_map.h"
-#include "shellspace/solvers/gauge_reduced_solve.h"
-#include "shellspace/problems/calculus/path_hessian.h"
-#include "shellspace/solvers/reusable_cholesky.h"
 #include "shellspace/problems/calculus/parallel_transport.h"
+#include "shellspace/problems/calculus/path_hessian.h"
+#include "shellspace/solvers/gauge_reduced_solve.h"
+#include "shellspace/solvers/reusable_cholesky.h"
 
 namespace shellspace {
 namespace {
@@ -55,10 +55,7 @@ struct Finger {
       ReadMask(Data("finger/finger_mask.txt"), a.num_vertices());
 
   GeodesicResult Geodesic() const {
-    GeodesicInput input;
-    input.start = a.positions;
-    input.end = b.positions;
-    input.steps = 8;
+    GeodesicInput input = GeodesicInput::Between(a.positions, b.positions, 8);
     input.fixed_vertices = mask;
     return SolveGeodesic(space, input, SolverSettings{});
   }
@@ -116,16 +113,15 @@ void BM_CactusMidpointHessian(benchmark::State& state) {
         std::max(1, solver.stats().cg_iterations);
   }
 }
-BENCHMARK(BM_CactusMidpointHessian)->Iterations(3)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_CactusMidpointHessian)
+    ->Iterations(3)
+    ->Unit(benchmark::kMillisecond);
 
 void BM_CactusGeodesic(benchmark::State& state) {
   const Mesh a = ReadMesh(Data("cactus/cactus0.ply"));
   const Mesh b = ReadMesh(Data("cactus/cactus1.ply"));
   const ShellSpace space(a, Topology::Build(a), ShellMaterial{});
-  GeodesicInput input;
-  input.start = a.positions;
-  input.end = b.positions;
-  input.steps = 8;
+  GeodesicInput input = GeodesicInput::Between(a.positions, b.positions, 8);
   input.fixed_vertices =
       ReadMask(Data("cactus/cactus_bottom_mask.txt"), a.num_vertices());
   for (auto _ : state) {

@@ -81,8 +81,9 @@ Case MakeCase(const std::string& name) {
                           CentralMaskVertex(c.a, bottom), 10);
       c.eta = 3.3e-4;
     }
-    const int subdivisions =
-        name == "cactus_x4" ? 1 : name == "cactus_x16" ? 2 : 0;
+    const int subdivisions = name == "cactus_x4"    ? 1
+                             : name == "cactus_x16" ? 2
+                                                    : 0;
     for (int s = 0; s < subdivisions; ++s) {
       const MidpointSubdivision sub(c.a.faces, c.a.num_vertices());
       c.a = Mesh{sub.Apply(c.a.positions), sub.faces};
@@ -100,8 +101,10 @@ PathLinearSolver LinearSolverFromEnvironment() {
   if (name == "auto") return PathLinearSolver::kAuto;
   if (name == "direct") return PathLinearSolver::kDirect;
   if (name == "block-jacobi") return PathLinearSolver::kBlockJacobi;
-  throw std::invalid_argument("SHELLSPACE_LINEAR_SOLVER must be auto, direct "
-                              "or block-jacobi, got '" + name + "'");
+  throw std::invalid_argument(
+      "SHELLSPACE_LINEAR_SOLVER must be auto, direct "
+      "or block-jacobi, got '" +
+      name + "'");
 }
 
 const char* kCases[] = {"finger_ring", "cactus_ring", "cactus_bottom",
@@ -113,10 +116,7 @@ void BM_Scale(benchmark::State& state) {
   const Case c = MakeCase(name);
   const ShellSpace space(c.a, Topology::Build(c.a),
                          ShellMaterial{1.0, 1.0, c.eta});
-  GeodesicInput input;
-  input.start = c.a.positions;
-  input.end = c.b.positions;
-  input.steps = 8;
+  GeodesicInput input = GeodesicInput::Between(c.a.positions, c.b.positions, 8);
   input.fixed_vertices = c.mask;
   input.linear_solver = LinearSolverFromEnvironment();
   SolverSettings settings;

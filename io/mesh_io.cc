@@ -1,7 +1,5 @@
 #include "shellspace/io/mesh_io.h"
 
-#include "shellspace/io/atomic_file.h"
-
 #include <algorithm>
 #include <array>
 #include <cctype>
@@ -16,6 +14,7 @@
 #include <sstream>
 
 #include "shellspace/geometry/validation.h"
+#include "shellspace/io/atomic_file.h"
 
 namespace shellspace {
 namespace {
@@ -172,18 +171,26 @@ constexpr long long kMaxCount = 2147483647;
 
 // ---------------------------------------------------------------- PLY ----
 
-enum class PlyType { kInt8, kUint8, kInt16, kUint16, kInt32, kUint32,
-                     kFloat32, kFloat64 };
+enum class PlyType {
+  kInt8,
+  kUint8,
+  kInt16,
+  kUint16,
+  kInt32,
+  kUint32,
+  kFloat32,
+  kFloat64
+};
 
 bool ParsePlyType(const std::string& name, PlyType* type) {
   static const std::map<std::string, PlyType> kTypes = {
-      {"char", PlyType::kInt8},     {"int8", PlyType::kInt8},
-      {"uchar", PlyType::kUint8},   {"uint8", PlyType::kUint8},
-      {"short", PlyType::kInt16},   {"int16", PlyType::kInt16},
-      {"ushort", PlyType::kUint16}, {"uint16", PlyType::kUint16},
-      {"int", PlyType::kInt32},     {"int32", PlyType::kInt32},
-      {"uint", PlyType::kUint32},   {"uint32", PlyType::kUint32},
-      {"float", PlyType::kFloat32}, {"float32", PlyType::kFloat32},
+      {"char", PlyType::kInt8},      {"int8", PlyType::kInt8},
+      {"uchar", PlyType::kUint8},    {"uint8", PlyType::kUint8},
+      {"short", PlyType::kInt16},    {"int16", PlyType::kInt16},
+      {"ushort", PlyType::kUint16},  {"uint16", PlyType::kUint16},
+      {"int", PlyType::kInt32},      {"int32", PlyType::kInt32},
+      {"uint", PlyType::kUint32},    {"uint32", PlyType::kUint32},
+      {"float", PlyType::kFloat32},  {"float32", PlyType::kFloat32},
       {"double", PlyType::kFloat64}, {"float64", PlyType::kFloat64}};
   const auto it = kTypes.find(name);
   if (it == kTypes.end()) return false;
@@ -197,11 +204,18 @@ bool IsIntegerType(PlyType t) {
 
 int TypeSize(PlyType t) {
   switch (t) {
-    case PlyType::kInt8: case PlyType::kUint8: return 1;
-    case PlyType::kInt16: case PlyType::kUint16: return 2;
-    case PlyType::kInt32: case PlyType::kUint32: case PlyType::kFloat32:
+    case PlyType::kInt8:
+    case PlyType::kUint8:
+      return 1;
+    case PlyType::kInt16:
+    case PlyType::kUint16:
+      return 2;
+    case PlyType::kInt32:
+    case PlyType::kUint32:
+    case PlyType::kFloat32:
       return 4;
-    case PlyType::kFloat64: return 8;
+    case PlyType::kFloat64:
+      return 8;
   }
   return 1;
 }
@@ -259,12 +273,14 @@ PlyHeader ParsePlyHeader(const std::string& bytes, const MeshBuilder& b) {
       if (t.size() != 3 || t[2] != "1.0") {
         b.Fail("malformed PLY format line " + Excerpt(line) + where);
       }
-      if (t[1] == "ascii") header.format = PlyFormat::kAscii;
+      if (t[1] == "ascii")
+        header.format = PlyFormat::kAscii;
       else if (t[1] == "binary_little_endian")
         header.format = PlyFormat::kLittleEndian;
       else if (t[1] == "binary_big_endian")
         header.format = PlyFormat::kBigEndian;
-      else b.Fail("unknown PLY format " + Excerpt(t[1]) + where);
+      else
+        b.Fail("unknown PLY format " + Excerpt(t[1]) + where);
       have_format = true;
     } else if (keyword == "element") {
       PlyElement element;
@@ -275,13 +291,14 @@ PlyHeader ParsePlyHeader(const std::string& bytes, const MeshBuilder& b) {
       element.name = t[1];
       for (const PlyElement& other : header.elements) {
         if (other.name == element.name) {
-          b.Fail("PLY element " + Excerpt(element.name) +
-                 " declared twice" + where);
+          b.Fail("PLY element " + Excerpt(element.name) + " declared twice" +
+                 where);
         }
       }
       header.elements.push_back(element);
     } else if (keyword == "property") {
-      if (header.elements.empty()) b.Fail("PLY property before element" + where);
+      if (header.elements.empty())
+        b.Fail("PLY property before element" + where);
       PlyProperty property;
       bool ok = false;
       if (t.size() == 5 && t[1] == "list") {
@@ -338,9 +355,10 @@ PlyHeader ParsePlyHeader(const std::string& bytes, const MeshBuilder& b) {
           header.face_list = static_cast<int>(p);
         }
       }
-      if (header.face_list == -1) b.Fail("PLY face element has no list property");
-      if (lists > 1 && element.properties[header.face_list].name !=
-                           "vertex_indices" &&
+      if (header.face_list == -1)
+        b.Fail("PLY face element has no list property");
+      if (lists > 1 &&
+          element.properties[header.face_list].name != "vertex_indices" &&
           element.properties[header.face_list].name != "vertex_index") {
         b.Fail("PLY face element has several lists and none is vertex_indices");
       }
@@ -353,7 +371,8 @@ PlyHeader ParsePlyHeader(const std::string& bytes, const MeshBuilder& b) {
   if (header.x == -1 || header.y == -1 || header.z == -1) {
     b.Fail("PLY vertex lacks x, y, z");
   }
-  if (header.face_element == -1) b.Fail("mesh has no faces (no PLY face element)");
+  if (header.face_element == -1)
+    b.Fail("mesh has no faces (no PLY face element)");
   return header;
 }
 
@@ -361,6 +380,49 @@ void AddFace(MeshBuilder* b, const std::array<long long, 3>& f, size_t line) {
   b->faces.push_back(f);
   b->face_lines.push_back(line);
 }
+
+// One row of a PLY element being read: where each value goes (a vertex
+// coordinate, a face's vertex index, or nowhere for other properties).
+class PlyRow {
+ public:
+  PlyRow(const PlyHeader& header, size_t element)
+      : header_(header),
+        is_vertex_(static_cast<int>(element) == header.vertex_element),
+        is_face_(static_cast<int>(element) == header.face_element) {}
+
+  bool IsFaceList(size_t property) const {
+    return is_face_ && static_cast<int>(property) == header_.face_list;
+  }
+  // Value i of property `property`: `integer` for a face index, `value`
+  // for a coordinate.
+  void Store(size_t property, long long i, long long integer, double value) {
+    if (IsFaceList(property)) {
+      face_[i] = integer;
+    } else {
+      StoreCoordinate(property, value);
+    }
+  }
+  void StoreCoordinate(size_t property, double value) {
+    if (!is_vertex_) return;
+    const int p = static_cast<int>(property);
+    if (p == header_.x) point_[0] = value;
+    if (p == header_.y) point_[1] = value;
+    if (p == header_.z) point_[2] = value;
+  }
+  // Adds the row's vertex or face to the mesh and resets the row.
+  void Finish(MeshBuilder* b, size_t line) {
+    if (is_vertex_) b->points.push_back(point_);
+    if (is_face_) AddFace(b, face_, line);
+    point_ = {0, 0, 0};
+    face_ = {0, 0, 0};
+  }
+
+ private:
+  const PlyHeader& header_;
+  const bool is_vertex_, is_face_;
+  std::array<double, 3> point_{0, 0, 0};
+  std::array<long long, 3> face_{0, 0, 0};
+};
 
 void CheckTriangleCount(const MeshBuilder& b, long long r, long long n,
                         size_t line) {
@@ -378,8 +440,7 @@ void ReadAsciiPlyData(const std::string& bytes, const PlyHeader& header,
   size_t next = 0;  // index into lines
   for (size_t e = 0; e < header.elements.size(); ++e) {
     const PlyElement& element = header.elements[e];
-    const bool is_vertex = static_cast<int>(e) == header.vertex_element;
-    const bool is_face = static_cast<int>(e) == header.face_element;
+    PlyRow row(header, e);
     for (long long r = 0; r < element.count; ++r) {
       while (next < lines.size() && Tokens(lines[next]).empty()) ++next;
       if (next >= lines.size()) {
@@ -389,53 +450,41 @@ void ReadAsciiPlyData(const std::string& bytes, const PlyHeader& header,
       }
       const size_t line = header.data_line + next;
       const std::vector<std::string> t = Tokens(lines[next++]);
-      const std::string what = element.name == "vertex" || element.name == "face"
-                                   ? element.name + " " + std::to_string(r)
-                                   : "element " + Excerpt(element.name) +
-                                         " " + std::to_string(r);
+      const std::string what =
+          element.name == "vertex" || element.name == "face"
+              ? element.name + " " + std::to_string(r)
+              : "element " + Excerpt(element.name) + " " + std::to_string(r);
       size_t k = 0;
-      std::array<double, 3> point{0, 0, 0};
-      std::array<long long, 3> face{0, 0, 0};
       for (size_t p = 0; p < element.properties.size(); ++p) {
         const PlyProperty& property = element.properties[p];
         long long n = 1;
         if (property.is_list) {
-          if (k >= t.size()) b->Fail(what + " has too few values" + LineTag(line));
+          if (k >= t.size())
+            b->Fail(what + " has too few values" + LineTag(line));
           if (!ParseInteger(t[k], &n) || n < 0) {
             b->Fail(what + " has a malformed list count " + Excerpt(t[k]) +
                     LineTag(line));
           }
           ++k;
-          if (is_face && static_cast<int>(p) == header.face_list) {
-            CheckTriangleCount(*b, r, n, line);
-          }
+          if (row.IsFaceList(p)) CheckTriangleCount(*b, r, n, line);
         }
         for (long long i = 0; i < n; ++i, ++k) {
-          if (k >= t.size()) b->Fail(what + " has too few values" + LineTag(line));
+          if (k >= t.size())
+            b->Fail(what + " has too few values" + LineTag(line));
           if (IsIntegerType(property.type)) {
             long long value = 0;
             if (!ParseInteger(t[k], &value)) {
               b->Fail(what + " has a non-integer value " + Excerpt(t[k]) +
                       " for " + Excerpt(property.name) + LineTag(line));
             }
-            if (is_face && static_cast<int>(p) == header.face_list) {
-              face[i] = value;
-            } else if (is_vertex) {
-              if (static_cast<int>(p) == header.x) point[0] = value;
-              if (static_cast<int>(p) == header.y) point[1] = value;
-              if (static_cast<int>(p) == header.z) point[2] = value;
-            }
+            row.Store(p, i, value, static_cast<double>(value));
           } else {
             double value = 0;
             if (!ParseDouble(t[k], &value)) {
               b->Fail(what + " has a malformed number " + Excerpt(t[k]) +
                       LineTag(line));
             }
-            if (is_vertex) {
-              if (static_cast<int>(p) == header.x) point[0] = value;
-              if (static_cast<int>(p) == header.y) point[1] = value;
-              if (static_cast<int>(p) == header.z) point[2] = value;
-            }
+            row.StoreCoordinate(p, value);
           }
         }
       }
@@ -443,8 +492,7 @@ void ReadAsciiPlyData(const std::string& bytes, const PlyHeader& header,
         b->Fail(what + " has " + std::to_string(t.size() - k) +
                 " extra values" + LineTag(line));
       }
-      if (is_vertex) b->points.push_back(point);
-      if (is_face) AddFace(b, face, line);
+      row.Finish(b, line);
     }
   }
   while (next < lines.size() && Tokens(lines[next]).empty()) ++next;
@@ -479,12 +527,24 @@ class BinaryCursor {
     for (int i = size - 1; i >= 0; --i) u = (u << 8) | raw[i];
     long long value = 0;
     switch (type) {
-      case PlyType::kInt8: value = static_cast<int8_t>(u); break;
-      case PlyType::kUint8: value = static_cast<uint8_t>(u); break;
-      case PlyType::kInt16: value = static_cast<int16_t>(u); break;
-      case PlyType::kUint16: value = static_cast<uint16_t>(u); break;
-      case PlyType::kInt32: value = static_cast<int32_t>(u); break;
-      case PlyType::kUint32: value = static_cast<uint32_t>(u); break;
+      case PlyType::kInt8:
+        value = static_cast<int8_t>(u);
+        break;
+      case PlyType::kUint8:
+        value = static_cast<uint8_t>(u);
+        break;
+      case PlyType::kInt16:
+        value = static_cast<int16_t>(u);
+        break;
+      case PlyType::kUint16:
+        value = static_cast<uint16_t>(u);
+        break;
+      case PlyType::kInt32:
+        value = static_cast<int32_t>(u);
+        break;
+      case PlyType::kUint32:
+        value = static_cast<uint32_t>(u);
+        break;
       case PlyType::kFloat32: {
         float f;
         const uint32_t u32 = static_cast<uint32_t>(u);
@@ -514,14 +574,11 @@ void ReadBinaryPlyData(const std::string& bytes, const PlyHeader& header,
                   header.format == PlyFormat::kBigEndian, *b);
   for (size_t e = 0; e < header.elements.size(); ++e) {
     const PlyElement& element = header.elements[e];
-    const bool is_vertex = static_cast<int>(e) == header.vertex_element;
-    const bool is_face = static_cast<int>(e) == header.face_element;
+    PlyRow row(header, e);
     for (long long r = 0; r < element.count; ++r) {
       const std::string what = "element " + Excerpt(element.name) + " (" +
                                std::to_string(r) + " of " +
                                std::to_string(element.count) + " read)";
-      std::array<double, 3> point{0, 0, 0};
-      std::array<long long, 3> face{0, 0, 0};
       for (size_t p = 0; p < element.properties.size(); ++p) {
         const PlyProperty& property = element.properties[p];
         long long n = 1;
@@ -531,9 +588,7 @@ void ReadBinaryPlyData(const std::string& bytes, const PlyHeader& header,
             b->Fail(element.name + " " + std::to_string(r) +
                     " has a negative list count");
           }
-          if (is_face && static_cast<int>(p) == header.face_list) {
-            CheckTriangleCount(*b, r, n, 0);
-          }
+          if (row.IsFaceList(p)) CheckTriangleCount(*b, r, n, 0);
           if (static_cast<size_t>(n) * TypeSize(property.type) >
               in.remaining()) {
             b->Fail("PLY file ends early in " + what);
@@ -542,17 +597,10 @@ void ReadBinaryPlyData(const std::string& bytes, const PlyHeader& header,
         for (long long i = 0; i < n; ++i) {
           long long integer = 0;
           const double value = in.Read(property.type, what, &integer);
-          if (is_face && static_cast<int>(p) == header.face_list) {
-            face[i] = integer;
-          } else if (is_vertex) {
-            if (static_cast<int>(p) == header.x) point[0] = value;
-            if (static_cast<int>(p) == header.y) point[1] = value;
-            if (static_cast<int>(p) == header.z) point[2] = value;
-          }
+          row.Store(p, i, integer, value);
         }
       }
-      if (is_vertex) b->points.push_back(point);
-      if (is_face) AddFace(b, face, 0);
+      row.Finish(b, 0);
     }
   }
   if (in.remaining() != 0) {
@@ -658,10 +706,10 @@ Mesh ReadOff(const std::string& bytes, MeshBuilder* b) {
   size_t next = 0;
   if (rows.empty() || rows[0].first[0] != "OFF") {
     b->Fail("cannot read: not an OFF file (no OFF header" +
-            std::string(rows.empty() ? ")"
-                                     : ", first line " +
-                                           Excerpt(lines[rows[0].second - 1]) +
-                                           ")"));
+            std::string(rows.empty()
+                            ? ")"
+                            : ", first line " +
+                                  Excerpt(lines[rows[0].second - 1]) + ")"));
   }
   std::vector<std::string> counts(rows[0].first.begin() + 1,
                                   rows[0].first.end());
@@ -688,8 +736,7 @@ Mesh ReadOff(const std::string& bytes, MeshBuilder* b) {
     const auto& [t, line] = rows[next];
     if (t.size() != 3) {
       b->Fail("vertex " + std::to_string(i) + " has " +
-              std::to_string(t.size()) + " values, expected 3" +
-              LineTag(line));
+              std::to_string(t.size()) + " values, expected 3" + LineTag(line));
     }
     std::array<double, 3> p{0, 0, 0};
     for (int c = 0; c < 3; ++c) {

@@ -1,9 +1,9 @@
 #include "shellspace/problems/branching/construction_optimizer.h"
 
+#include <ceres/ceres.h>
+
 #include <chrono>
 #include <cmath>
-
-#include <ceres/ceres.h>
 
 #include "shellspace/cost_functions/branching/km_energy_cost_function.h"
 #include "shellspace/cost_functions/branching/lens_energy_cost_function.h"
@@ -20,6 +20,18 @@ void CheckScales(double epsilon, double length) {
   if (!(epsilon > 0) || !(length > 0)) {
     throw InputError("branching construction: epsilon and length must be > 0");
   }
+}
+
+// The fields every family sets before its cell is evaluated.
+ConstructionResult Begin(const char* family, int r, double epsilon,
+                         double length, double h0, double theta) {
+  CheckScales(epsilon, length);
+  ConstructionResult result;
+  result.family = family;
+  result.r = r;
+  result.h0 = h0;
+  result.theta = theta;
+  return result;
 }
 
 ConstructionResult Finish(ConstructionResult result, const CellPattern& cell,
@@ -63,13 +75,8 @@ Construction ConstructionResult::ToConstruction(double length) const {
 
 ConstructionResult EvaluateKm(double epsilon, double length, double h0,
                               double theta) {
-  CheckScales(epsilon, length);
-  ConstructionResult result;
-  result.family = "km";
-  result.r = 2;
-  result.h0 = h0;
-  result.theta = theta;
-  result = Finish(result, KmCellPattern(), epsilon, length);
+  ConstructionResult result = Finish(Begin("km", 2, epsilon, length, h0, theta),
+                                     KmCellPattern(), epsilon, length);
   result.A_zero_edge = EvaluateCellZeroAt(KmCellPattern(), kKmAnchor).A;
   // Its own optimal h0 at the same theta.
   result.constant_zero_edge =
@@ -79,23 +86,14 @@ ConstructionResult EvaluateKm(double epsilon, double length, double h0,
 
 ConstructionResult EvaluateNeedle(double epsilon, double length, double h0,
                                   double theta) {
-  CheckScales(epsilon, length);
-  ConstructionResult result;
-  result.family = "needle";
-  result.r = 2;
-  result.h0 = h0;
-  result.theta = theta;
-  return Finish(result, NeedleCellPattern(), epsilon, length);
+  return Finish(Begin("needle", 2, epsilon, length, h0, theta),
+                NeedleCellPattern(), epsilon, length);
 }
 
 ConstructionResult EvaluateLens(double epsilon, double length, double h0,
                                 double theta, const LensShape& shape) {
-  CheckScales(epsilon, length);
-  ConstructionResult result;
-  result.family = "lens";
-  result.r = kLensRatio;
-  result.h0 = h0;
-  result.theta = theta;
+  ConstructionResult result =
+      Begin("lens", kLensRatio, epsilon, length, h0, theta);
   result.shape = shape;
   return Finish(result, LensCellPattern(shape), epsilon, length);
 }
@@ -145,9 +143,9 @@ ConstructionResult OptimizeR2(bool km, double epsilon, double length, double h0,
                                  : EvaluateNeedle(epsilon, length, p[0], p[1]);
   result.iterations = static_cast<int>(summary.iterations.size()) - 1;
   result.termination = ceres::TerminationTypeToString(summary.termination_type);
-  result.seconds = std::chrono::duration<double>(
-                       std::chrono::steady_clock::now() - start)
-                       .count();
+  result.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+          .count();
   return result;
 }
 
@@ -188,9 +186,9 @@ ConstructionResult OptimizeLens(double epsilon, double length, double h0,
       EvaluateLens(epsilon, length, p[0], p[1], LensShape{p[2], p[3], p[4]});
   result.iterations = static_cast<int>(summary.iterations.size()) - 1;
   result.termination = ceres::TerminationTypeToString(summary.termination_type);
-  result.seconds = std::chrono::duration<double>(
-                       std::chrono::steady_clock::now() - start)
-                       .count();
+  result.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+          .count();
   return result;
 }
 

@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "shellspace/cost_functions/shell/energy_derivatives.h"
 #include "shellspace/cost_functions/gradient_field_residual.h"
+#include "shellspace/cost_functions/shell/energy_derivatives.h"
 #include "shellspace/problems/calculus/exp_step_newton.h"
 #include "shellspace/solvers/rigid_gauge.h"
 
@@ -60,11 +60,10 @@ ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
   }
   {
     Positions trial = result.shape;
-    const ExpNewtonReport newton =
-        SolveExpStepNewton(space, b, unknown_side, constant, fixed_vertices,
-                           kExpNewtonTolerance * scale,
-                           kExpNewtonAccept * scale, kMaxExpNewtonSteps,
-                           &trial);
+    const ExpNewtonReport newton = SolveExpStepNewton(
+        space, b, unknown_side, constant, fixed_vertices,
+        kExpNewtonTolerance * scale, kExpNewtonAccept * scale,
+        kMaxExpNewtonSteps, &trial);
     result.newton_steps = newton.steps;
     if (newton.final_gradient <= kExpNewtonAccept * scale) {
       result.shape = std::move(trial);
@@ -152,8 +151,8 @@ ShootResult ShootWithReport(const ShellSpace& space, const Positions& s0,
                             StepDirection direction,
                             const std::vector<int>& fixed_vertices,
                             const SolverSettings& settings) {
-  ShootResult result = ShootSteps(space, s0, s1, steps, direction,
-                                  fixed_vertices, settings);
+  ShootResult result =
+      ShootSteps(space, s0, s1, steps, direction, fixed_vertices, settings);
   result.path_energy = PathEnergy(space, result.path, &result.step_energies);
   return result;
 }
@@ -195,10 +194,7 @@ Positions LogK(const ShellSpace& space, const Positions& a, const Positions& b,
                int steps, const std::vector<int>& fixed_vertices,
                const SolverSettings& settings, GeodesicResult* geodesic,
                const ShellPath* initial) {
-  GeodesicInput input;
-  input.start = a;
-  input.end = b;
-  input.steps = steps;
+  GeodesicInput input = GeodesicInput::Between(a, b, steps);
   input.fixed_vertices = fixed_vertices;
   if (initial != nullptr) input.initial = *initial;  // ends replaced
   GeodesicResult result = SolveGeodesic(space, input, settings);
@@ -208,4 +204,3 @@ Positions LogK(const ShellSpace& space, const Positions& a, const Positions& b,
 }
 
 }  // namespace shellspace
-

@@ -37,6 +37,17 @@ std::optional<double> TryPathEnergy(
 ShellPath LinearPath(const Positions& a, const Positions& b, int steps);
 
 struct GeodesicInput {
+  // The geodesic of `steps` steps from `start` to `end`, other fields at
+  // their defaults.
+  static GeodesicInput Between(const Positions& start, const Positions& end,
+                               int steps) {
+    GeodesicInput input;
+    input.start = start;
+    input.end = end;
+    input.steps = steps;
+    return input;
+  }
+
   Positions start, end;
   int steps = 8;                    // K >= 1
   std::vector<int> fixed_vertices;  // Dirichlet mask (may be empty)
@@ -83,10 +94,10 @@ struct GeodesicResult {
   ShellPath path;                     // s_0 = start ... s_K = end
   double path_energy = 0;             // E_K
   std::vector<double> step_energies;  // W[s_{k-1}, s_k]
-  ceres::Solver::Summary summary;          // the last LM stage
-  PathNewtonReport newton;                 // the Newton stage(s), summed
-  std::vector<GeodesicStage> stages;       // every stage, in order
-  int iterations = 0;  // sum of stages[i].iterations (LM + Newton)
+  ceres::Solver::Summary summary;     // the last LM stage
+  PathNewtonReport newton;            // the Newton stage(s), summed
+  std::vector<GeodesicStage> stages;  // every stage, in order
+  int iterations = 0;           // sum of stages[i].iterations (LM + Newton)
   double initial_gradient = 0;  // max |grad E_K| (free coords), initial path
   double final_gradient = 0;    // max |grad E_K| (free coords), result
   // The stopping criterion was met: final_gradient <= gradient_tolerance *

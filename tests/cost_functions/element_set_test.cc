@@ -2,9 +2,10 @@
 // enumerates on a real mesh and in which order; every evaluator that iterates
 // it against the values the code gave before the set existed; and the
 // non-throwing status of degenerate elements.
-#include <gtest/gtest.h>
+#include "shellspace/cost_functions/shell/element_set.h"
 
 #include <ceres/problem.h>
+#include <gtest/gtest.h>
 
 #include <cmath>
 #include <iostream>
@@ -15,7 +16,6 @@
 #include "shellspace/cost_functions/deformation_energy_residuals.h"
 #include "shellspace/cost_functions/gradient_field_residual.h"
 #include "shellspace/cost_functions/shell/deformation_energy.h"
-#include "shellspace/cost_functions/shell/element_set.h"
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/problems/calculus/path_hessian.h"
@@ -201,9 +201,8 @@ struct WrongJacobianElement : E {
 // (Element::Evaluate on a group's stencils), on the finger: the Jacobians
 // match central differences; the same check fails for a wrong Jacobian.
 TEST(ElementSetTest, EveryGroupsJacobiansMatchCentralDifferences) {
-  const Mesh ref = testing::LoadData("finger/finger0.ply");
-  const Mesh def = testing::LoadData("finger/finger1.ply");
-  const ShellSpace space = testing::MakeSpace(ref);
+  const auto [ref, def, space] =
+      testing::LoadPair("finger/finger0.ply", "finger/finger1.ply");
   int groups = 0;
   space.elements().ForEachGroup([&](const auto& group) {
     using Group = std::decay_t<decltype(group)>;
@@ -230,7 +229,8 @@ TEST(ElementSetTest, EveryGroupsJacobiansMatchCentralDifferences) {
 double AbsSum(const SparseMatrix& m) {
   double s = 0;
   for (int k = 0; k < m.outerSize(); ++k) {
-    for (SparseMatrix::InnerIterator it(m, k); it; ++it) s += std::abs(it.value());
+    for (SparseMatrix::InnerIterator it(m, k); it; ++it)
+      s += std::abs(it.value());
   }
   return s;
 }
@@ -248,7 +248,8 @@ constexpr double kTolerance = 1e-14;
 TEST(ElementSetRegressionTest, FingerMatchesThePreElementSetCode) {
   const Mesh ref = testing::LoadData("finger/finger0.ply");
   const Mesh def = testing::LoadData("finger/finger1.ply");
-  const ShellSpace space = testing::MakeSpace(ref);  // mu = lambda = 1, eta 0.01
+  const ShellSpace space =
+      testing::MakeSpace(ref);  // mu = lambda = 1, eta 0.01
   const Positions& R = ref.positions;
   const Positions& D = def.positions;
 
@@ -285,8 +286,8 @@ TEST(ElementSetRegressionTest, FingerMatchesThePreElementSetCode) {
     AddDeformationEnergy(space, ShellArgument::Variable(&r),
                          ShellArgument::Variable(&d), 1.7, &problem);
     double cost = 0;
-    problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr,
-                     nullptr, nullptr);
+    problem.Evaluate(ceres::Problem::EvaluateOptions(), &cost, nullptr, nullptr,
+                     nullptr);
     EXPECT_REL(cost, 2.5082628735098509);
     EXPECT_EQ(problem.NumResiduals(), 22484);
   }
@@ -347,10 +348,10 @@ TEST(ElementSetRegressionTest, PlateWithoutBendingMatchesThePreElementSetCode) {
   EXPECT_REL(e.membrane, 0.0004041208844484317);
   EXPECT_REL(e.bending, 106.59166386221459);  // reported, not in W
   EXPECT_EQ(e.total, e.membrane);
-  EXPECT_REL(EnergyGradient(space, ref.positions, def.positions,
-                            ShellSide::kDeformed)
-                 .norm(),
-             0.036283837963598631);
+  EXPECT_REL(
+      EnergyGradient(space, ref.positions, def.positions, ShellSide::kDeformed)
+          .norm(),
+      0.036283837963598631);
   EXPECT_REL(AbsSum(EnergyHessian(space, ref.positions, def.positions,
                                   ShellSide::kDeformed, ShellSide::kDeformed)),
              6158.3162548806158);
@@ -385,8 +386,8 @@ TEST(ElementSetStatusTest, DegenerateElementIsAStatusNotAnException) {
 
   DeformationEnergy energy;
   ElementFailure failure;
-  EXPECT_FALSE(TryEvaluateDeformationEnergy(space, mesh.positions, bad,
-                                            &energy, &failure));
+  EXPECT_FALSE(TryEvaluateDeformationEnergy(space, mesh.positions, bad, &energy,
+                                            &failure));
   EXPECT_EQ(failure.element, first);
   EXPECT_NE(failure.description.find(named), std::string::npos)
       << failure.description;
@@ -432,8 +433,8 @@ TEST(ElementSetStatusTest, DegenerateElementIsAStatusNotAnException) {
   EXPECT_EQ(energy.total, 0.0);
   ASSERT_TRUE(TryEnergyGradient(space, mesh.positions, path[1],
                                 ShellSide::kReference, &g));
-  EXPECT_EQ(g, EnergyGradient(space, mesh.positions, path[1],
-                              ShellSide::kReference));
+  EXPECT_EQ(
+      g, EnergyGradient(space, mesh.positions, path[1], ShellSide::kReference));
 }
 
 }  // namespace

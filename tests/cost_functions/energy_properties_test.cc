@@ -23,9 +23,8 @@ TEST(EnergyPropertiesTest, ZeroAtRest) {
 }
 
 TEST(EnergyPropertiesTest, IndependentRigidMotionsOfBothArguments) {
-  const Mesh ref = testing::LoadData("finger/finger0.ply");
-  const Mesh def = testing::LoadData("finger/finger1.ply");
-  const ShellSpace space = testing::MakeSpace(ref);
+  const auto [ref, def, space] =
+      testing::LoadPair("finger/finger0.ply", "finger/finger1.ply");
   const double w =
       EvaluateDeformationEnergy(space, ref.positions, def.positions).total;
   ASSERT_GT(w, 1e-3);

@@ -17,19 +17,27 @@ enum class MeshFormat { kPlyAscii, kPlyBinary, kObj, kOff };
 
 inline const char* FormatName(MeshFormat f) {
   switch (f) {
-    case MeshFormat::kPlyAscii: return "ply_ascii";
-    case MeshFormat::kPlyBinary: return "ply_binary";
-    case MeshFormat::kObj: return "obj";
-    case MeshFormat::kOff: return "off";
+    case MeshFormat::kPlyAscii:
+      return "ply_ascii";
+    case MeshFormat::kPlyBinary:
+      return "ply_binary";
+    case MeshFormat::kObj:
+      return "obj";
+    case MeshFormat::kOff:
+      return "off";
   }
   return "";
 }
 
 inline const char* FormatExtension(MeshFormat f) {
   switch (f) {
-    case MeshFormat::kPlyAscii: case MeshFormat::kPlyBinary: return "ply";
-    case MeshFormat::kObj: return "obj";
-    case MeshFormat::kOff: return "off";
+    case MeshFormat::kPlyAscii:
+    case MeshFormat::kPlyBinary:
+      return "ply";
+    case MeshFormat::kObj:
+      return "obj";
+    case MeshFormat::kOff:
+      return "off";
   }
   return "";
 }
@@ -39,19 +47,19 @@ inline const char* FormatExtension(MeshFormat f) {
 struct MeshSpec {
   std::vector<std::vector<std::string>> vertices;
   std::vector<std::vector<std::string>> faces;
-  int declared_faces = -1;          // header face count; -1: faces.size()
-  std::string extra_face_token;     // appended to the first face line
-  std::string extra_vertex_token;   // appended to the first vertex line
-  std::string extra_line;           // appended after the last face (text)
-  std::string extra_bytes;          // appended after the data (binary PLY)
+  int declared_faces = -1;         // header face count; -1: faces.size()
+  std::string extra_face_token;    // appended to the first face line
+  std::string extra_vertex_token;  // appended to the first vertex line
+  std::string extra_line;          // appended after the last face (text)
+  std::string extra_bytes;         // appended after the data (binary PLY)
 };
 
 // The unit square (0,0,0) (1,0,0) (1,1,0) (0,1,0) as faces (0,1,2),
 // (0,2,3); a valid mesh.
 inline MeshSpec Square() {
   MeshSpec s;
-  s.vertices = {{"0", "0", "0"}, {"1", "0", "0"}, {"1", "1", "0"},
-                {"0", "1", "0"}};
+  s.vertices = {
+      {"0", "0", "0"}, {"1", "0", "0"}, {"1", "1", "0"}, {"0", "1", "0"}};
   s.faces = {{"0", "1", "2"}, {"0", "2", "3"}};
   return s;
 }
@@ -74,10 +82,9 @@ inline std::string MeshFileContent(const MeshSpec& s, MeshFormat format) {
   const int nv = static_cast<int>(s.vertices.size());
   std::string out;
   const auto vertex_line = [&](size_t i) {
-    return Join(s.vertices[i]) +
-           (i == 0 && !s.extra_vertex_token.empty()
-                ? " " + s.extra_vertex_token
-                : "");
+    return Join(s.vertices[i]) + (i == 0 && !s.extra_vertex_token.empty()
+                                      ? " " + s.extra_vertex_token
+                                      : "");
   };
   const auto face_tokens = [&](size_t f, int base) {
     std::vector<std::string> t;
@@ -100,7 +107,8 @@ inline std::string MeshFileContent(const MeshSpec& s, MeshFormat format) {
             (binary ? "binary_little_endian" : "ascii") +
             " 1.0\nelement vertex " + std::to_string(nv) +
             "\nproperty double x\nproperty double y\nproperty double z\n"
-            "element face " + std::to_string(nf) + "\nproperty list uchar " +
+            "element face " +
+            std::to_string(nf) + "\nproperty list uchar " +
             (binary && float_indices ? "float" : "int") +
             " vertex_indices\nend_header\n";
       if (!binary) {
@@ -177,8 +185,12 @@ inline std::vector<BadMeshCase> BadMeshCases() {
   const std::vector<MeshFormat> all = {MeshFormat::kPlyAscii,
                                        MeshFormat::kPlyBinary, MeshFormat::kObj,
                                        MeshFormat::kOff};
-  const std::vector<MeshFormat> text = {MeshFormat::kPlyAscii,
-                                        MeshFormat::kObj, MeshFormat::kOff};
+  const std::vector<MeshFormat> text = {MeshFormat::kPlyAscii, MeshFormat::kObj,
+                                        MeshFormat::kOff};
+  // The formats with a header declaring the element counts and 0-based face
+  // indices (not OBJ).
+  const std::vector<MeshFormat> counted = {
+      MeshFormat::kPlyAscii, MeshFormat::kPlyBinary, MeshFormat::kOff};
   std::vector<BadMeshCase> cases;
   {
     MeshSpec s = Square();
@@ -193,41 +205,46 @@ inline std::vector<BadMeshCase> BadMeshCases() {
   {
     MeshSpec s = Square();
     s.faces[1] = {"0", "2", "99"};
-    cases.push_back({"index_range", s, all,
+    cases.push_back({"index_range",
+                     s,
+                     all,
                      {"face 1", "vertex", "the mesh has 4 vertices"}});
   }
   {
     MeshSpec s = Square();
     s.faces[1] = {"0", "-2", "3"};
     // OBJ reads -2 as a relative index (vertex 3 of 4): valid there.
-    cases.push_back({"negative_index", s,
-                     {MeshFormat::kPlyAscii, MeshFormat::kPlyBinary,
-                      MeshFormat::kOff},
+    cases.push_back({"negative_index",
+                     s,
+                     counted,
                      {"face 1", "references vertex -2", "4 vertices"}});
   }
   {
     MeshSpec s = Square();
     s.faces[1] = {"0", "2.7", "3"};
-    cases.push_back({"non_integer_index", s, all,
-                     {"face", "non-integer"}});
+    cases.push_back({"non_integer_index", s, all, {"face", "non-integer"}});
   }
   {
     MeshSpec s = Square();
     s.faces = {{"0", "1", "2", "3"}};
-    cases.push_back({"quad", s, all,
-                     {"face 0 has 4 vertices", "only triangle"}});
+    cases.push_back(
+        {"quad", s, all, {"face 0 has 4 vertices", "only triangle"}});
   }
   {
     MeshSpec s = Square();
     s.vertices.push_back({"0.5", "0.5", "1"});
     s.faces.push_back({"0", "2", "4"});
-    cases.push_back({"non_manifold_edge", s, all,
+    cases.push_back({"non_manifold_edge",
+                     s,
+                     all,
                      {"non-manifold", "edge (0, 2)", "faces 1 and 2"}});
   }
   {
     MeshSpec s = Square();
     s.faces.push_back({"0", "2", "1"});
-    cases.push_back({"duplicate_face", s, all,
+    cases.push_back({"duplicate_face",
+                     s,
+                     all,
                      {"face 2 duplicates face 0", "vertices 0, 1, 2"}});
   }
   {
@@ -243,10 +260,7 @@ inline std::vector<BadMeshCase> BadMeshCases() {
   {
     MeshSpec s = Square();
     s.declared_faces = 1;
-    cases.push_back({"extra_face", s,
-                     {MeshFormat::kPlyAscii, MeshFormat::kPlyBinary,
-                      MeshFormat::kOff},
-                     {"extra data"}});
+    cases.push_back({"extra_face", s, counted, {"extra data"}});
   }
   {
     MeshSpec s = Square();
@@ -256,13 +270,16 @@ inline std::vector<BadMeshCase> BadMeshCases() {
   {
     MeshSpec s = Square();
     s.extra_bytes = "junk";
-    cases.push_back({"trailing_bytes", s, {MeshFormat::kPlyBinary},
+    cases.push_back({"trailing_bytes",
+                     s,
+                     {MeshFormat::kPlyBinary},
                      {"4 bytes of extra data"}});
   }
   {
     MeshSpec s = Square();
     s.extra_face_token = "7";
-    cases.push_back({"extra_face_token", s,
+    cases.push_back({"extra_face_token",
+                     s,
                      {MeshFormat::kPlyAscii, MeshFormat::kOff},
                      {"face 0", "extra"}});
   }
@@ -274,10 +291,7 @@ inline std::vector<BadMeshCase> BadMeshCases() {
   {
     MeshSpec s = Square();
     s.declared_faces = 3;
-    cases.push_back({"truncated", s,
-                     {MeshFormat::kPlyAscii, MeshFormat::kPlyBinary,
-                      MeshFormat::kOff},
-                     {"ends early"}});
+    cases.push_back({"truncated", s, counted, {"ends early"}});
   }
   {
     MeshSpec s = Square();
@@ -298,8 +312,8 @@ inline std::vector<BadMeshCase> BadMeshCases() {
 
 inline std::string WriteBadMesh(const std::string& dir, const BadMeshCase& c,
                                 MeshFormat format) {
-  const std::string path = dir + "/" + c.name + "_" + FormatName(format) +
-                           "." + FormatExtension(format);
+  const std::string path = dir + "/" + c.name + "_" + FormatName(format) + "." +
+                           FormatExtension(format);
   std::ofstream(path, std::ios::binary) << MeshFileContent(c.spec, format);
   return path;
 }

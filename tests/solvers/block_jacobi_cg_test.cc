@@ -54,23 +54,20 @@ TEST(BlockJacobiCgTest, SolvesTheKroneckerModelInOrderKIterations) {
 }
 
 TEST(BlockJacobiCgTest, MatchesADirectSolveOfARealPathHessian) {
-  const Mesh a = testing::LoadData("plate/plate121.ply");
-  const Mesh b = testing::LoadData("plate/plate121_rolledA.ply");
-  const ShellSpace space = testing::MakeSpace(a);
+  const auto [a, b, space] =
+      testing::LoadPair("plate/plate121.ply", "plate/plate121_rolledA.ply");
   const int K = 6;
   // Two rows of the plate (one row alone leaves the rotation about it free).
   std::vector<int> mask;
   for (int v = 0; v < 15; ++v) mask.push_back(v);
   // The Hessian at the geodesic (at the linear path it is indefinite).
-  GeodesicInput input;
-  input.start = a.positions;
-  input.end = b.positions;
-  input.steps = K;
+  GeodesicInput input = GeodesicInput::Between(a.positions, b.positions, K);
   input.fixed_vertices = mask;
   const ShellPath path = SolveGeodesic(space, input, SolverSettings{}).path;
   const SparseMatrix basis = FreeVertexBasis(a.num_vertices(), mask);
   const std::vector<SparseMatrix> bases(K - 1, basis);
-  const SparseMatrix lower = PathHessianAssembler(space).Assemble(path, bases, 2);
+  const SparseMatrix lower =
+      PathHessianAssembler(space).Assemble(path, bases, 2);
   const int m = static_cast<int>(basis.cols());
   const Eigen::VectorXd rhs = Eigen::VectorXd::LinSpaced(lower.rows(), 1, -1);
   Eigen::SimplicialLLT<SparseMatrix, Eigen::Lower> direct(lower);
@@ -101,7 +98,8 @@ TEST(BlockJacobiCgTest, ReportsIndefiniteBlocksAndIterationLimits) {
   ASSERT_TRUE(cg.Factorize(lower, Offsets(7, m)));
   Eigen::VectorXd x;
   const Eigen::VectorXd b = Eigen::VectorXd::Ones(lower.rows());
-  EXPECT_EQ(cg.Solve(lower, b, 1e-14, 1, &x), BlockJacobiCg::Status::kNotConverged);
+  EXPECT_EQ(cg.Solve(lower, b, 1e-14, 1, &x),
+            BlockJacobiCg::Status::kNotConverged);
   // A negative diagonal block.
   const SparseMatrix negative = -lower;
   BlockJacobiCg bad;

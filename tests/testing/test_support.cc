@@ -1,18 +1,17 @@
 #include "shellspace/tests/testing/test_support.h"
 
-#include <algorithm>
-#include <filesystem>
-
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <random>
 #include <sstream>
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
-#include "shellspace/io/mesh_io.h"
 #include "shellspace/geometry/validation.h"
+#include "shellspace/io/mesh_io.h"
 
 namespace shellspace::testing {
 
@@ -28,6 +27,15 @@ Mesh LoadData(const std::string& relative) {
 
 ShellSpace MakeSpace(const Mesh& mesh, const ShellMaterial& material) {
   return ShellSpace(mesh, Topology::Build(mesh), material);
+}
+
+ShellPair LoadPair(const std::string& start, const std::string& end,
+                   const ShellMaterial& material) {
+  ShellPair pair;
+  pair.start = LoadData(start);
+  pair.end = LoadData(end);
+  pair.space = MakeSpace(pair.start, material);
+  return pair;
 }
 
 Eigen::VectorXd InteriorPathGradient(const ShellSpace& space,

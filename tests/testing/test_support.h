@@ -22,11 +22,19 @@ Mesh LoadData(const std::string& relative);
 // ShellSpace of a mesh with the given material.
 ShellSpace MakeSpace(const Mesh& mesh, const ShellMaterial& material = {});
 
+// Two meshes of ../shared/data with one connectivity and the ShellSpace of
+// the first: the fixture of most calculus tests.
+struct ShellPair {
+  Mesh start, end;
+  ShellSpace space;
+};
+ShellPair LoadPair(const std::string& start, const std::string& end,
+                   const ShellMaterial& material = {});
+
 // The Euler-Lagrange residual of E_K / K at the inner shape k of `path`:
 // D_2 W[s_{k-1}, s_k] + D_1 W[s_k, s_{k+1}] (3n, vertex-major).
 Eigen::VectorXd InteriorPathGradient(const ShellSpace& space,
-                                     const std::vector<Positions>& path,
-                                     int k);
+                                     const std::vector<Positions>& path, int k);
 
 // Settings of solves meant to converge to round-off: the given relative
 // gradient tolerance, function and parameter tolerances 1e-16, 500 LM

@@ -23,10 +23,8 @@ class GeodesicCalculusTest : public ::testing::Test {
     space_ = testing::MakeSpace(start_);
   }
   GeodesicResult Geodesic(int steps) const {
-    GeodesicInput input;
-    input.start = start_.positions;
-    input.end = end_.positions;
-    input.steps = steps;
+    GeodesicInput input =
+        GeodesicInput::Between(start_.positions, end_.positions, steps);
     return SolveGeodesic(space_, input, Tight());
   }
   Mesh start_, end_;
@@ -84,10 +82,8 @@ TEST_F(GeodesicCalculusTest, ShootingReproducesAMaskedGeodesic) {
     if (start_.positions(v, 0) < x0 + 0.15 * width) mask.push_back(v);
   }
   ASSERT_GT(mask.size(), 5u);
-  GeodesicInput input;
-  input.start = start_.positions;
-  input.end = end_.positions;
-  input.steps = 4;
+  GeodesicInput input =
+      GeodesicInput::Between(start_.positions, end_.positions, 4);
   input.fixed_vertices = mask;
   const GeodesicResult g = SolveGeodesic(space_, input, Tight());
   const double size = (start_.positions.colwise().maxCoeff() -
@@ -96,8 +92,7 @@ TEST_F(GeodesicCalculusTest, ShootingReproducesAMaskedGeodesic) {
   const ShellPath forward = Shoot(space_, g.path[0], g.path[1], 4,
                                   StepDirection::kForward, mask, Tight());
   for (int k = 2; k <= 4; ++k) {
-    EXPECT_LT((forward[k] - g.path[k]).cwiseAbs().maxCoeff(), 1e-5 * size)
-        << k;
+    EXPECT_LT((forward[k] - g.path[k]).cwiseAbs().maxCoeff(), 1e-5 * size) << k;
   }
   const ShellPath backward = Shoot(space_, g.path[3], g.path[4], 4,
                                    StepDirection::kBackward, mask, Tight());
@@ -114,13 +109,12 @@ TEST_F(GeodesicCalculusTest, ExpStepConvergesByNewton) {
     const ExpStepResult step =
         forward ? ExpStep(space_, g.path[1], g.path[2], direction, {}, Tight())
                 : ExpStep(space_, g.path[3], g.path[2], direction, {}, Tight());
-    const double scale =
-        (forward ? EnergyGradient(space_, g.path[1], g.path[2],
-                                  ShellSide::kDeformed)
-                 : EnergyGradient(space_, g.path[2], g.path[3],
-                                  ShellSide::kReference))
-            .cwiseAbs()
-            .maxCoeff();
+    const double scale = (forward ? EnergyGradient(space_, g.path[1], g.path[2],
+                                                   ShellSide::kDeformed)
+                                  : EnergyGradient(space_, g.path[2], g.path[3],
+                                                   ShellSide::kReference))
+                             .cwiseAbs()
+                             .maxCoeff();
     // Quadratic convergence from 2 b - a, then a stop at the round-off
     // floor (not 20 steps shuffling round-off).
     EXPECT_GE(step.newton_steps, 1);
@@ -149,10 +143,8 @@ TEST_F(GeodesicCalculusTest, HalfTimeCombinationIsMidpoint) {
 
 TEST_F(GeodesicCalculusTest, PathEnergyDoesNotDependOnGauge) {
   const GeodesicResult pinned = Geodesic(3);
-  GeodesicInput input;
-  input.start = start_.positions;
-  input.end = end_.positions;
-  input.steps = 3;
+  GeodesicInput input =
+      GeodesicInput::Between(start_.positions, end_.positions, 3);
   input.pin_gauge = false;
   const GeodesicResult free_gauge = SolveGeodesic(space_, input, Tight());
   EXPECT_NEAR(free_gauge.path_energy / pinned.path_energy, 1.0, 1e-8);
@@ -206,15 +198,11 @@ TEST_F(GeodesicCalculusTest, TransportOfZeroAndAlongConstantPath) {
 
 // E_K on the sphere pair for K = 2, 4, 8, 16: successive changes decrease.
 TEST(GeodesicConvergenceTest, PathEnergyConvergesInK) {
-  const Mesh a = testing::LoadData("sphere/unitSphere1.ply");
-  const Mesh b = testing::LoadData("sphere/unitSphere1_defX.ply");
-  const ShellSpace space = testing::MakeSpace(a);
+  const auto [a, b, space] = testing::LoadPair("sphere/unitSphere1.ply",
+                                               "sphere/unitSphere1_defX.ply");
   std::vector<double> energies;
   for (int K : {2, 4, 8, 16}) {
-    GeodesicInput input;
-    input.start = a.positions;
-    input.end = b.positions;
-    input.steps = K;
+    GeodesicInput input = GeodesicInput::Between(a.positions, b.positions, K);
     SolverSettings settings;
     settings.gradient_tolerance = 1e-10;
     energies.push_back(SolveGeodesic(space, input, settings).path_energy);

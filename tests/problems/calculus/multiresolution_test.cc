@@ -21,8 +21,10 @@ namespace {
 double MinFaceArea(const Faces& faces, const Positions& x) {
   double smallest = HUGE_VAL;
   for (int f = 0; f < faces.rows(); ++f) {
-    const Eigen::Vector3d e1 = (x.row(faces(f, 1)) - x.row(faces(f, 0))).transpose();
-    const Eigen::Vector3d e2 = (x.row(faces(f, 2)) - x.row(faces(f, 0))).transpose();
+    const Eigen::Vector3d e1 =
+        (x.row(faces(f, 1)) - x.row(faces(f, 0))).transpose();
+    const Eigen::Vector3d e2 =
+        (x.row(faces(f, 2)) - x.row(faces(f, 0))).transpose();
     smallest = std::min(smallest, 0.5 * e1.cross(e2).norm());
   }
   return smallest;
@@ -61,14 +63,16 @@ TEST(SharedDecimationTest, SurvivorsKeepTheirPositionsInEveryShape) {
   const Eigen::Vector3d fine_normal =
       (a.positions.row(a.faces(0, 1)) - a.positions.row(a.faces(0, 0)))
           .transpose()
-          .cross((a.positions.row(a.faces(0, 2)) - a.positions.row(a.faces(0, 0)))
-                     .transpose());
+          .cross(
+              (a.positions.row(a.faces(0, 2)) - a.positions.row(a.faces(0, 0)))
+                  .transpose());
   for (int f = 0; f < level.faces.rows(); ++f) {
     const Positions& x = level.shapes[0];
     const Eigen::Vector3d n =
         (x.row(level.faces(f, 1)) - x.row(level.faces(f, 0)))
             .transpose()
-            .cross((x.row(level.faces(f, 2)) - x.row(level.faces(f, 0))).transpose());
+            .cross((x.row(level.faces(f, 2)) - x.row(level.faces(f, 0)))
+                       .transpose());
     EXPECT_GT(n.dot(fine_normal), 0) << f;
   }
 }
@@ -79,8 +83,9 @@ TEST(ProlongationTest, IdentityAndRigidMotionsAreReproducedExactly) {
       DecimateShared(a.faces, {a.positions}, a.num_vertices() / 4);
   const Prolongation prolong(a.faces, a.positions, level, level.shapes[0]);
   const double scale = a.positions.cwiseAbs().maxCoeff();
-  EXPECT_LT((prolong.Apply(level.shapes[0]) - a.positions).cwiseAbs().maxCoeff(),
-            1e-12 * scale);
+  EXPECT_LT(
+      (prolong.Apply(level.shapes[0]) - a.positions).cwiseAbs().maxCoeff(),
+      1e-12 * scale);
   const Eigen::Matrix3d r =
       Eigen::AngleAxisd(0.7, Eigen::Vector3d(1, 2, -1).normalized())
           .toRotationMatrix();
@@ -105,10 +110,7 @@ TEST(MultiresolutionGeodesicTest, EqualsTheSingleLevelOptimum) {
   material.eta = 0.01;
   const ShellSpace space = testing::MakeSpace(a, material);
   for (bool masked : {false, true}) {
-    GeodesicInput input;
-    input.start = a.positions;
-    input.end = b.positions;
-    input.steps = 4;
+    GeodesicInput input = GeodesicInput::Between(a.positions, b.positions, 4);
     if (masked) {
       const double x0 = a.positions.col(0).minCoeff();
       for (int v = 0; v < a.num_vertices(); ++v) {

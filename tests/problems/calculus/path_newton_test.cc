@@ -10,12 +10,12 @@
 #include <stdexcept>
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
-#include "shellspace/io/mesh_io.h"
-#include "shellspace/geometry/rigid_alignment.h"
-#include "shellspace/solvers/gauge_reduced_solve.h"
-#include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/geometry/parallel_for.h"
+#include "shellspace/geometry/rigid_alignment.h"
+#include "shellspace/io/mesh_io.h"
+#include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/problems/calculus/path_hessian.h"
+#include "shellspace/solvers/gauge_reduced_solve.h"
 #include "shellspace/solvers/reusable_cholesky.h"
 #include "shellspace/solvers/space_time_ordering.h"
 #include "shellspace/tests/testing/derivative_check.h"
@@ -57,18 +57,18 @@ SparseMatrix ReferenceReducedHessian(const ShellSpace& space,
   };
   for (int k = 1; k < K; ++k) {  // inner shape s_k, slice k - 1
     const SparseMatrix& tk = bases[k - 1];
-    const SparseMatrix d22 = EnergyHessian(space, path[k - 1], path[k],
-                                           ShellSide::kDeformed,
-                                           ShellSide::kDeformed);
-    const SparseMatrix d11 = EnergyHessian(space, path[k], path[k + 1],
-                                           ShellSide::kReference,
-                                           ShellSide::kReference);
+    const SparseMatrix d22 =
+        EnergyHessian(space, path[k - 1], path[k], ShellSide::kDeformed,
+                      ShellSide::kDeformed);
+    const SparseMatrix d11 =
+        EnergyHessian(space, path[k], path[k + 1], ShellSide::kReference,
+                      ShellSide::kReference);
     add(SparseMatrix(double(K) * tk.transpose() * (d22 + d11) * tk),
         offset[k - 1], offset[k - 1]);
     if (k + 1 < K) {  // rows s_{k+1}, columns s_k
-      const SparseMatrix mixed = EnergyHessian(space, path[k], path[k + 1],
-                                               ShellSide::kDeformed,
-                                               ShellSide::kReference);
+      const SparseMatrix mixed =
+          EnergyHessian(space, path[k], path[k + 1], ShellSide::kDeformed,
+                        ShellSide::kReference);
       add(SparseMatrix(double(K) * bases[k].transpose() * mixed * tk),
           offset[k], offset[k - 1]);
     }
@@ -88,8 +88,8 @@ TEST(PathHessianAssemblerTest, MatchesEnergyHessianBlocksWithMask) {
   ShellMaterial material;
   material.eta = 0.001;
   const ShellSpace space = testing::MakeSpace(a, material);
-  const auto mask = ReadMask(testing::DataPath("finger/finger_mask.txt"),
-                             a.num_vertices());
+  const auto mask =
+      ReadMask(testing::DataPath("finger/finger_mask.txt"), a.num_vertices());
   const int K = 4;
   const ShellPath path =
       PerturbedLinearPath(a.positions, b.positions, K, 1e-3, 1);
@@ -118,9 +118,8 @@ TEST(PathHessianAssemblerTest, MatchesEnergyHessianBlocksWithMask) {
 // coordinates of a mask (independent of EnergyHessian), and its negative
 // twin through the same helper.
 TEST(PathHessianAssemblerTest, MatchesCentralDifferencesOfThePathGradient) {
-  const Mesh a = testing::LoadData("plate/plate121.ply");
-  const Mesh b = testing::LoadData("plate/plate121_rolledA.ply");
-  const ShellSpace space = testing::MakeSpace(a);
+  const auto [a, b, space] =
+      testing::LoadPair("plate/plate121.ply", "plate/plate121_rolledA.ply");
   const int n = a.num_vertices();
   const std::vector<int> mask = {0, 1, 2, 3, 4};
   const int K = 4;
@@ -150,7 +149,8 @@ TEST(PathHessianAssemblerTest, MatchesCentralDifferencesOfThePathGradient) {
     }
     return g;
   };
-  const SparseMatrix lower = PathHessianAssembler(space).Assemble(path, bases, 2);
+  const SparseMatrix lower =
+      PathHessianAssembler(space).Assemble(path, bases, 2);
   const SparseMatrix h = lower.selfadjointView<Eigen::Lower>();
   const testing::DerivativeColumn columns = [&h](int j) {
     return Eigen::VectorXd(h.col(j));
@@ -158,24 +158,26 @@ TEST(PathHessianAssemblerTest, MatchesCentralDifferencesOfThePathGradient) {
   // Probes in every slice.
   std::vector<int> probes;
   for (int k = 0; k < K - 1; ++k) {
-    for (int j : testing::ProbeCoordinates(m, 3, 10 + k)) probes.push_back(k * m + j);
+    for (int j : testing::ProbeCoordinates(m, 3, 10 + k))
+      probes.push_back(k * m + j);
   }
   EXPECT_LT(testing::CentralDifferenceError(gradient, x, columns, probes, 1e-6),
             1e-6);
   // A wrong coupling block between slices is caught: entry of slice 2's rows
   // in a probed column of slice 1.
   const int col = probes[0];
-  const double offset = 1e-4 * Eigen::VectorXd(h.col(col)).cwiseAbs().maxCoeff();
-  EXPECT_GT(testing::CentralDifferenceError(
-                gradient, x, testing::WrongInOneEntry(columns, m + col, col, offset),
-                probes, 1e-6),
-            1e-6);
+  const double offset =
+      1e-4 * Eigen::VectorXd(h.col(col)).cwiseAbs().maxCoeff();
+  EXPECT_GT(
+      testing::CentralDifferenceError(
+          gradient, x, testing::WrongInOneEntry(columns, m + col, col, offset),
+          probes, 1e-6),
+      1e-6);
 }
 
 TEST(PathHessianAssemblerTest, MatchesEnergyHessianBlocksWithRigidGauge) {
-  const Mesh a = testing::LoadData("plate/plate121.ply");
-  const Mesh b = testing::LoadData("plate/plate121_rolledA.ply");
-  const ShellSpace space = testing::MakeSpace(a);
+  const auto [a, b, space] =
+      testing::LoadPair("plate/plate121.ply", "plate/plate121_rolledA.ply");
   const int K = 5;
   const ShellPath path =
       PerturbedLinearPath(a.positions, b.positions, K, 1e-2, 2);
@@ -186,8 +188,8 @@ TEST(PathHessianAssemblerTest, MatchesEnergyHessianBlocksWithRigidGauge) {
             1e-13);
   // Translating one inner shape changes no W: in full coordinates that is
   // a null vector of H, at any path.
-  const std::vector<SparseMatrix> full(
-      K - 1, FreeVertexBasis(a.num_vertices(), {}));
+  const std::vector<SparseMatrix> full(K - 1,
+                                       FreeVertexBasis(a.num_vertices(), {}));
   const SparseMatrix h_full =
       PathHessianAssembler(space).Assemble(path, full, 2);
   const int n3 = 3 * a.num_vertices();
@@ -195,10 +197,10 @@ TEST(PathHessianAssemblerTest, MatchesEnergyHessianBlocksWithRigidGauge) {
   for (int v = 0; v < a.num_vertices(); ++v) {
     translation.segment<3>(n3 + 3 * v) = Eigen::Vector3d(0.3, -0.5, 0.8);
   }
-  const Eigen::VectorXd image = h_full.selfadjointView<Eigen::Lower>() *
-                                translation;
-  EXPECT_LT(image.norm(), 1e-10 * SparseMatrix(h_full).norm() *
-                              translation.norm());
+  const Eigen::VectorXd image =
+      h_full.selfadjointView<Eigen::Lower>() * translation;
+  EXPECT_LT(image.norm(),
+            1e-10 * SparseMatrix(h_full).norm() * translation.norm());
   // At rest (a constant path) the gauge-reduced Hessian is positive
   // definite: the gauge removes exactly the rigid null space.
   const ShellPath rest = LinearPath(a.positions, a.positions, K);
@@ -212,9 +214,9 @@ TEST(PathHessianAssemblerTest, MatchesEnergyHessianBlocksWithRigidGauge) {
 
 TEST(PathHessianAssemblerTest, DeformedSumMatchesEnergyHessians) {
   std::vector<Positions> references;
-  for (const char* name : {"sphere/unitSphere1_defX.ply",
-                           "sphere/unitSphere1_defY.ply",
-                           "sphere/unitSphere1_defZ.ply"}) {
+  for (const char* name :
+       {"sphere/unitSphere1_defX.ply", "sphere/unitSphere1_defY.ply",
+        "sphere/unitSphere1_defZ.ply"}) {
     references.push_back(testing::LoadData(name).positions);
   }
   const Mesh s = testing::LoadData("sphere/unitSphere1.ply");
@@ -239,7 +241,8 @@ TEST(PathHessianAssemblerTest, MixedBlocksMatchEnergyHessians) {
   // different row and column bases (rigid gauges of the two shells, a
   // Dirichlet mask), against EnergyHessian's mixed blocks.
   const Mesh a = testing::LoadData("sphere/unitSphere1.ply");
-  const Positions b = testing::LoadData("sphere/unitSphere1_defX.ply").positions;
+  const Positions b =
+      testing::LoadData("sphere/unitSphere1_defX.ply").positions;
   const ShellSpace space = testing::MakeSpace(a);
   const PathHessianAssembler assembler(space);
   const SparseMatrix mixed = EnergyHessian(
@@ -249,21 +252,21 @@ TEST(PathHessianAssemblerTest, MixedBlocksMatchEnergyHessians) {
   const SparseMatrix ra = RigidGaugeBasis(a.positions);
   const SparseMatrix rb = RigidGaugeBasis(b);
   const SparseMatrix mask = FreeVertexBasis(a.num_vertices(), {0, 5, 9});
-  EXPECT_LT(RelativeDifference(
-                assembler.AssembleMixed(a.positions, b, ShellSide::kReference,
-                                        ra, rb),
-                SparseMatrix(ra.transpose() * mixed * rb)),
-            1e-13);
-  EXPECT_LT(RelativeDifference(
-                assembler.AssembleMixed(a.positions, b, ShellSide::kDeformed,
-                                        rb, ra),
-                SparseMatrix(rb.transpose() * mixed_t * ra)),
-            1e-13);
-  EXPECT_LT(RelativeDifference(
-                assembler.AssembleMixed(a.positions, b, ShellSide::kReference,
-                                        mask, mask),
-                SparseMatrix(mask.transpose() * mixed * mask)),
-            1e-13);
+  EXPECT_LT(
+      RelativeDifference(assembler.AssembleMixed(a.positions, b,
+                                                 ShellSide::kReference, ra, rb),
+                         SparseMatrix(ra.transpose() * mixed * rb)),
+      1e-13);
+  EXPECT_LT(
+      RelativeDifference(
+          assembler.AssembleMixed(a.positions, b, ShellSide::kDeformed, rb, ra),
+          SparseMatrix(rb.transpose() * mixed_t * ra)),
+      1e-13);
+  EXPECT_LT(
+      RelativeDifference(assembler.AssembleMixed(
+                             a.positions, b, ShellSide::kReference, mask, mask),
+                         SparseMatrix(mask.transpose() * mixed * mask)),
+      1e-13);
 }
 
 // A constant path (K = 3) on `a` whose s_1 has triangle 0 collapsed to a
@@ -400,14 +403,10 @@ TEST(ParallelForTest, RunsEveryIndexOnceAndRethrows) {
 
 // Newton-polished and pure-LM geodesics are the same critical point.
 TEST(PathNewtonTest, NewtonPolishAgreesWithPureLevenbergMarquardt) {
-  const Mesh a = testing::LoadData("plate/plate121.ply");
-  const Mesh b = testing::LoadData("plate/plate121_rolledA.ply");
-  const ShellSpace space = testing::MakeSpace(a);
+  const auto [a, b, space] =
+      testing::LoadPair("plate/plate121.ply", "plate/plate121_rolledA.ply");
   const SolverSettings settings = testing::TightSettings(1e-11);
-  GeodesicInput input;
-  input.start = a.positions;
-  input.end = b.positions;
-  input.steps = 4;
+  GeodesicInput input = GeodesicInput::Between(a.positions, b.positions, 4);
   input.newton_from = 1e-3;
   const GeodesicResult newton = SolveGeodesic(space, input, settings);
   input.newton_from = 0;
@@ -419,8 +418,7 @@ TEST(PathNewtonTest, NewtonPolishAgreesWithPureLevenbergMarquardt) {
   EXPECT_NEAR(newton.path_energy, lm.path_energy, 1e-10 * lm.path_energy);
   // The two stages pin the rigid motions at different vertices.
   for (int k = 1; k < 4; ++k) {
-    EXPECT_LT(RelativeDistanceUpToRigidMotion(newton.path[k], lm.path[k]),
-              1e-6)
+    EXPECT_LT(RelativeDistanceUpToRigidMotion(newton.path[k], lm.path[k]), 1e-6)
         << k;
   }
   // The reported final gradient is the true one.
@@ -439,15 +437,11 @@ TEST(PathNewtonTest, NewtonPolishAgreesWithPureLevenbergMarquardt) {
 // indefinite Hessian, LM goes on, and a later attempt converges to the same
 // geodesic.
 TEST(PathNewtonTest, EarlyNewtonRetriesAfterMoreLm) {
-  const Mesh a = testing::LoadData("plate/plate121.ply");
-  const Mesh b = testing::LoadData("plate/plate121_rolledA.ply");
-  const ShellSpace space = testing::MakeSpace(a);
+  const auto [a, b, space] =
+      testing::LoadPair("plate/plate121.ply", "plate/plate121_rolledA.ply");
   SolverSettings settings;
   settings.gradient_tolerance = 1e-10;
-  GeodesicInput input;
-  input.start = a.positions;
-  input.end = b.positions;
-  input.steps = 4;
+  GeodesicInput input = GeodesicInput::Between(a.positions, b.positions, 4);
   input.newton_from = 0.5;
   const GeodesicResult early = SolveGeodesic(space, input, settings);
   input.newton_from = 0;
@@ -468,13 +462,9 @@ TEST(PathNewtonTest, EarlyNewtonRetriesAfterMoreLm) {
 // factorisations, CG iterations, final gradients and bit-identical shapes,
 // and returns the first report.
 PathNewtonReport ExpectDeterministicPolish(PathLinearSolver solver) {
-  const Mesh a = testing::LoadData("plate/plate121.ply");
-  const Mesh b = testing::LoadData("plate/plate121_rolledA.ply");
-  const ShellSpace space = testing::MakeSpace(a);
-  GeodesicInput input;
-  input.start = a.positions;
-  input.end = b.positions;
-  input.steps = 4;
+  const auto [a, b, space] =
+      testing::LoadPair("plate/plate121.ply", "plate/plate121_rolledA.ply");
+  GeodesicInput input = GeodesicInput::Between(a.positions, b.positions, 4);
   input.newton_from = 0;
   const ShellPath start =
       SolveGeodesic(space, input, testing::TightSettings(1e-4)).path;
@@ -507,7 +497,6 @@ TEST(PathNewtonTest, PolishIsDeterministicAcrossRunsAndThreads) {
   EXPECT_GT(report.cg_iterations, 0);  // the reuse path is exercised
 }
 
-
 // max_k |a_k - b_k| / max_k |b_k| (Frobenius norms of the shapes).
 double RelativePathDistance(const ShellPath& a, const ShellPath& b) {
   double distance = 0, size = 0;
@@ -535,10 +524,7 @@ TEST(PathNewtonTest, BlockJacobiFinishMatchesTheDirectSolver) {
     ShellMaterial material;
     material.eta = c.eta;
     const ShellSpace space = testing::MakeSpace(a, material);
-    GeodesicInput input;
-    input.start = a.positions;
-    input.end = b.positions;
-    input.steps = 4;
+    GeodesicInput input = GeodesicInput::Between(a.positions, b.positions, 4);
     if (!c.mask.empty()) {
       input.fixed_vertices =
           ReadMask(testing::DataPath(c.mask), a.num_vertices());
@@ -571,9 +557,9 @@ TEST(PathNewtonTest, BlockJacobiFinishMatchesTheDirectSolver) {
       // orthogonal to the rigid motions of the current shape: a different
       // number of steps leaves a different (arbitrary) gauge.
       for (int k = 1; k < 4; ++k) {
-        EXPECT_LT(RelativeDistanceUpToRigidMotion(jacobi.path[k],
-                                                  direct.path[k]),
-                  1e-6)
+        EXPECT_LT(
+            RelativeDistanceUpToRigidMotion(jacobi.path[k], direct.path[k]),
+            1e-6)
             << c.a << " " << k;
       }
     } else {
@@ -599,23 +585,19 @@ TEST(PathNewtonTest, BlockJacobiPolishIsDeterministicAcrossRunsAndThreads) {
 TEST(PathNewtonTest, AutomaticChoicePicksDirectOnSmallMeshes) {
   EXPECT_EQ(ChooseLinearSolver(PathLinearSolver::kAuto, 3 * 3 * 121 - 18),
             PathLinearSolver::kDirect);
-  EXPECT_EQ(ChooseLinearSolver(PathLinearSolver::kAuto,
-                               kBlockJacobiFromUnknowns - 1),
-            PathLinearSolver::kDirect);
-  EXPECT_EQ(ChooseLinearSolver(PathLinearSolver::kAuto,
-                               kBlockJacobiFromUnknowns),
-            PathLinearSolver::kBlockJacobi);
+  EXPECT_EQ(
+      ChooseLinearSolver(PathLinearSolver::kAuto, kBlockJacobiFromUnknowns - 1),
+      PathLinearSolver::kDirect);
+  EXPECT_EQ(
+      ChooseLinearSolver(PathLinearSolver::kAuto, kBlockJacobiFromUnknowns),
+      PathLinearSolver::kBlockJacobi);
   EXPECT_EQ(ChooseLinearSolver(PathLinearSolver::kDirect, 1 << 30),
             PathLinearSolver::kDirect);
   EXPECT_EQ(ChooseLinearSolver(PathLinearSolver::kBlockJacobi, 10),
             PathLinearSolver::kBlockJacobi);
-  const Mesh a = testing::LoadData("plate/plate121.ply");
-  const Mesh b = testing::LoadData("plate/plate121_rolledA.ply");
-  const ShellSpace space = testing::MakeSpace(a);
-  GeodesicInput input;
-  input.start = a.positions;
-  input.end = b.positions;
-  input.steps = 4;
+  const auto [a, b, space] =
+      testing::LoadPair("plate/plate121.ply", "plate/plate121_rolledA.ply");
+  GeodesicInput input = GeodesicInput::Between(a.positions, b.positions, 4);
   ASSERT_EQ(input.linear_solver, PathLinearSolver::kAuto);
   const GeodesicResult result =
       SolveGeodesic(space, input, testing::TightSettings(1e-10));

@@ -31,9 +31,8 @@ SplineSpec RegressionSpec(const Positions& shape, int steps) {
 }
 
 TEST(SplinePreconditionerTest, TransposeIsTheAdjoint) {
-  const Mesh a = testing::LoadData("plate/plate121.ply");
-  const Mesh b = testing::LoadData("plate/plate121_rolledA.ply");
-  const ShellSpace space = testing::MakeSpace(a);
+  const auto [a, b, space] =
+      testing::LoadPair("plate/plate121.ply", "plate/plate121_rolledA.ply");
   SplineSpec spec;  // a spline with different free shapes
   spec.steps = 4;
   spec.initial = {a.positions, a.positions, 0.5 * (a.positions + b.positions),

@@ -71,8 +71,7 @@ void CheckGradient(const SplineObjective& objective, unsigned seed) {
       1e-5);
   EXPECT_GT(testing::CentralDifferenceError(
                 value, x0,
-                testing::WrongInOneEntry(columns, 0, probes[0],
-                                         1e-4 * scale),
+                testing::WrongInOneEntry(columns, 0, probes[0], 1e-4 * scale),
                 probes, 1e-5, scale),
             1e-5);
   EXPECT_TRUE(evaluated);
@@ -131,10 +130,7 @@ TEST_F(SplineTest, WarmStartedEvaluationMatchesColdEvaluation) {
 }
 
 TEST_F(SplineTest, KeyframesOnAGeodesicGiveTheGeodesic) {
-  GeodesicInput input;
-  input.start = a_.positions;
-  input.end = b_.positions;
-  input.steps = 4;
+  GeodesicInput input = GeodesicInput::Between(a_.positions, b_.positions, 4);
   SolverSettings tight = TightInner();
   const GeodesicResult g = SolveGeodesic(space_, input, tight);
   // The geodesic itself: F_K = 0 (each s_k is the midpoint of its
@@ -199,8 +195,8 @@ TEST_F(SplineTest, CubicSplineIsCriticalInTheEuclideanLimit) {
   for (int v = 0; v < rest.rows(); ++v) {
     const double x = (rest(v, 0) - lo(0)) / (hi(0) - lo(0));
     const double y = (rest(v, 1) - lo(1)) / (hi(1) - lo(1));
-    bump.row(v) = Eigen::Vector3d(0.3 * x * y, 0, std::sin(M_PI * x) *
-                                                      std::sin(M_PI * y));
+    bump.row(v) = Eigen::Vector3d(0.3 * x * y, 0,
+                                  std::sin(M_PI * x) * std::sin(M_PI * y));
     shear.row(v) = Eigen::Vector3d(0, 0.2 * x * x, std::cos(M_PI * x) * y * y);
   }
   auto ratio = [&](double delta) {
