@@ -15,31 +15,22 @@ namespace shellspace::testing {
 
 enum class MeshFormat { kPlyAscii, kPlyBinary, kObj, kOff };
 
-inline const char* FormatName(MeshFormat f) {
-  switch (f) {
-    case MeshFormat::kPlyAscii:
-      return "ply_ascii";
-    case MeshFormat::kPlyBinary:
-      return "ply_binary";
-    case MeshFormat::kObj:
-      return "obj";
-    case MeshFormat::kOff:
-      return "off";
-  }
-  return "";
+// The name of a format in test names, and its file extension (indexed by
+// MeshFormat).
+struct MeshFormatInfo {
+  const char* name;
+  const char* extension;
+};
+inline MeshFormatInfo FormatInfo(MeshFormat f) {
+  static constexpr MeshFormatInfo kInfo[] = {{"ply_ascii", "ply"},
+                                             {"ply_binary", "ply"},
+                                             {"obj", "obj"},
+                                             {"off", "off"}};
+  return kInfo[static_cast<int>(f)];
 }
-
+inline const char* FormatName(MeshFormat f) { return FormatInfo(f).name; }
 inline const char* FormatExtension(MeshFormat f) {
-  switch (f) {
-    case MeshFormat::kPlyAscii:
-    case MeshFormat::kPlyBinary:
-      return "ply";
-    case MeshFormat::kObj:
-      return "obj";
-    case MeshFormat::kOff:
-      return "off";
-  }
-  return "";
+  return FormatInfo(f).extension;
 }
 
 // A mesh as text tokens: vertex coordinates and 0-based face indices (a
