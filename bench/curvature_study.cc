@@ -392,6 +392,7 @@ void Geodesics() {
         "%s: mean vertex distance between the two paths (inner shapes) "
         "%.6g (bounding-box diagonal %.4g)\n\n",
         c.name, sum / count, diameter);
+    std::fflush(stdout);
   }
 }
 
