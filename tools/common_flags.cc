@@ -13,6 +13,7 @@ DEFINE_double(height, 0, SHELLSPACE_PER_VERB);
 DEFINE_double(mu, 1.0, SHELLSPACE_PER_VERB);
 DEFINE_double(lambda, 1.0, SHELLSPACE_PER_VERB);
 DEFINE_double(eta, 0.01, SHELLSPACE_PER_VERB);
+DEFINE_string(bending, "discrete-shells", SHELLSPACE_PER_VERB);
 DEFINE_string(png, "", SHELLSPACE_PER_VERB);
 DEFINE_string(reference, "", SHELLSPACE_PER_VERB);
 DEFINE_string(mask, "", SHELLSPACE_PER_VERB);

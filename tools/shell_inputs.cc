@@ -45,8 +45,18 @@ ShellPair LoadStartEndFromFlags() {
   return pair;
 }
 
+BendingModel BendingModelFromFlags() {
+  BendingModel model;
+  if (!ParseBendingModel(FLAGS_bending, &model)) {
+    throw InputError("--bending: unknown bending model '" + FLAGS_bending +
+                     "' (discrete-shells or shape-operator)");
+  }
+  return model;
+}
+
 ShellMaterial MaterialFromFlags() {
   ShellMaterial material;
+  material.bending_model = BendingModelFromFlags();
   material.mu = FLAGS_mu;
   material.lambda = FLAGS_lambda;
   material.eta = FLAGS_eta;

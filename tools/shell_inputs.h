@@ -46,7 +46,10 @@ struct ShellPair {
 };
 ShellPair LoadStartEndFromFlags();
 
-// The material of --mu, --lambda, --eta.
+// The bending model of --bending (InputError for an unknown name).
+BendingModel BendingModelFromFlags();
+
+// The material of --mu, --lambda, --eta and --bending.
 ShellMaterial MaterialFromFlags();
 
 // ShellSpace of a validated shell with the flags' material (its topology

@@ -109,6 +109,7 @@ int RunShoot() {
   WritePathOutputs(FLAGS_output, first.mesh.faces, result.path);
   if (FLAGS_json) {
     std::cout << ShootJson(result)
+                     .Add("bending_model", FLAGS_bending)
                      .Add("seconds", Seconds(clock))
                      .Add("output", FLAGS_output)
                      .str()
@@ -133,6 +134,7 @@ int RunLog() {
   WriteMesh(Mesh{start.mesh.positions + log, start.mesh.faces}, FLAGS_output);
   if (FLAGS_json) {
     std::cout << GeodesicJson(geodesic)
+                     .Add("bending_model", FLAGS_bending)
                      .Raw("multires_levels", MultiresolutionJson(multires))
                      .Add("log_max_norm", log.cwiseAbs().maxCoeff())
                      .Add("seconds", Seconds(clock))
@@ -167,6 +169,7 @@ int RunTransport() {
       norms.push_back(xi.cwiseAbs().maxCoeff());
     }
     std::cout << JsonObject()
+                     .Add("bending_model", FLAGS_bending)
                      .Add("variation_max_norms", norms)
                      .Add("exp_residuals", result.exp_residuals)
                      .Add("epsilon", FLAGS_epsilon)

@@ -57,6 +57,7 @@ int RunDeform() {
           .count();
   if (FLAGS_json) {
     std::cout << JsonObject()
+                     .Add("bending_model", FLAGS_bending)
                      .Add("membrane", result.energy.membrane)
                      .Add("bending", result.energy.bending)
                      .Add("total", result.energy.total)

@@ -15,6 +15,20 @@ DEFINE_string(deformed, "", "energy: deformed shell");
 namespace shellspace {
 namespace {
 
+// The material flags, --bending also accepting "both".
+FlagTable EnergyMaterialFlags() {
+  FlagTable table = MaterialFlags();
+  for (FlagSpec& spec : table) {
+    if (spec.name == "bending") {
+      spec.meaning =
+          "bending model: discrete-shells (default), shape-operator, or both "
+          "(W_bend of each model reported; total and membrane from "
+          "discrete-shells)";
+    }
+  }
+  return table;
+}
+
 FlagTable EnergyFlags() {
   return Flags({{
                     TextFlag("reference",
@@ -25,28 +39,51 @@ FlagTable EnergyFlags() {
                              "connectivity")
                         .Required(),
                 },
-                MaterialFlags(), JsonFlag()});
+                EnergyMaterialFlags(), JsonFlag()});
 }
 
 int RunEnergy() {
   const Shell reference = LoadShell(FLAGS_reference);
   const Mesh deformed = LoadCompatibleShell(FLAGS_deformed, reference);
+  const bool both = FLAGS_bending == "both";
+  if (both) FLAGS_bending = BendingModelName(BendingModel::kDiscreteShells);
   const ShellSpace space = SpaceFromFlags(reference);
   const DeformationEnergy e = EvaluateDeformationEnergy(
       space, reference.mesh.positions, deformed.positions);
+  DeformationEnergy so;
+  if (both) {
+    ShellMaterial material = space.material;
+    material.bending_model = BendingModel::kShapeOperator;
+    so = EvaluateDeformationEnergy(
+        ShellSpace(reference.mesh, reference.topology, material),
+        reference.mesh.positions, deformed.positions);
+  }
   if (FLAGS_json) {
-    std::cout << JsonObject()
-                     .Add("membrane", e.membrane)
-                     .Add("bending", e.bending)
-                     .Add("total", e.total)
-                     .Add("mu", space.material.mu)
-                     .Add("lambda", space.material.lambda)
-                     .Add("eta", space.material.eta)
-                     .str()
-              << "\n";
+    JsonObject json;
+    json.Add("membrane", e.membrane)
+        .Add("bending", e.bending)
+        .Add("total", e.total)
+        .Add("mu", space.material.mu)
+        .Add("lambda", space.material.lambda)
+        .Add("eta", space.material.eta)
+        .Add("bending_model", both ? "both" : FLAGS_bending);
+    if (both) {
+      json.Raw("bending_models",
+               JsonObject()
+                   .Add("discrete-shells", e.bending)
+                   .Add("shape-operator", so.bending)
+                   .str());
+    }
+    std::cout << json.str() << "\n";
+  } else if (both) {
+    std::printf(
+        "W_mem  %.12g\nW_bend %.12g (discrete-shells)\nW_bend %.12g "
+        "(shape-operator)\nW      %.12g  (eta = %g, discrete-shells)\n",
+        e.membrane, e.bending, so.bending, e.total, space.material.eta);
   } else {
-    std::printf("W_mem  %.12g\nW_bend %.12g\nW      %.12g  (eta = %g)\n",
-                e.membrane, e.bending, e.total, space.material.eta);
+    std::printf("W_mem  %.12g\nW_bend %.12g\nW      %.12g  (eta = %g, %s)\n",
+                e.membrane, e.bending, e.total, space.material.eta,
+                FLAGS_bending.c_str());
   }
   return 0;
 }
@@ -57,5 +94,5 @@ int RunEnergy() {
 SHELLSPACE_REGISTER_VERB(
     "energy",
     "energy --reference R.ply --deformed D.ply [--mu 1 --lambda 1 --eta 0.01] "
-    "[--json]",
+    "[--bending discrete-shells|shape-operator|both] [--json]",
     shellspace::EnergyFlags(), shellspace::RunEnergy);

@@ -74,6 +74,8 @@ FlagTable MaterialFlags() {
       RealFlag("lambda", "membrane Lame weight lambda", 0, End::kOpen),
       RealFlag("eta", "bending weight eta (squared thickness)", 0,
                End::kClosed),
+      TextFlag("bending",
+               "bending model: discrete-shells (default) or shape-operator"),
   };
 }
 

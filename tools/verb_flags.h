@@ -62,7 +62,7 @@ FlagSpec CheckedFlag(const std::string& name, const std::string& meaning,
 FlagTable Flags(std::initializer_list<FlagTable> parts);
 
 // Shared groups, each flag with the same meaning in every verb using it.
-FlagTable MaterialFlags();  // --mu, --lambda, --eta
+FlagTable MaterialFlags();  // --mu, --lambda, --eta, --bending
 FlagTable SolverFlags();    // --tolerance, --max_iterations, --threads, --quiet
 FlagTable JsonFlag();       // --json
 

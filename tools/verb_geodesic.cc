@@ -57,6 +57,7 @@ int RunGeodesic() {
           .count();
   if (FLAGS_json) {
     std::cout << GeodesicJson(result)
+                     .Add("bending_model", FLAGS_bending)
                      .Raw("multires_levels", MultiresolutionJson(multires))
                      .Add("seconds", seconds)
                      .Add("output", FLAGS_output)

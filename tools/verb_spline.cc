@@ -103,7 +103,8 @@ void Report(const Faces& faces,
             const SplineResult& result, double seconds, JsonObject extra) {
   WritePathOutputs(FLAGS_output, faces, result.path);
   if (FLAGS_json) {
-    std::cout << extra.Add("spline_energy", result.spline_energy)
+    std::cout << extra.Add("bending_model", FLAGS_bending)
+                     .Add("spline_energy", result.spline_energy)
                      .Add("data_energy", result.data_energy)
                      .Add("objective", result.objective)
                      .Add("iterations", std::max(0, static_cast<int>(

@@ -147,6 +147,7 @@ int RunMean() {
             ? result.gradient_norm / result.initial_gradient_norm
             : 0.0;
     std::cout << JsonObject()
+                     .Add("bending_model", FLAGS_bending)
                      .Add("energy", result.energy)
                      .Add("energies", result.energies)
                      .Add("far_inputs", far)
@@ -333,7 +334,7 @@ int RunPca() {
   if (!FLAGS_quiet) std::cerr << "pca: shell modes done\n";
 
   JsonObject json;
-  json.Add("inputs", n)
+  json.Add("bending_model", FLAGS_bending).Add("inputs", n)
       .Add("mean_energy", mean.energy)
       .Add("mean_iterations", mean.lm_iterations)
       .Add("mean_newton_iterations", mean.newton_iterations)

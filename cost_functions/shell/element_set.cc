@@ -1,6 +1,7 @@
 #include "shellspace/cost_functions/shell/element_set.h"
 
 #include <stdexcept>
+#include <unordered_map>
 
 namespace shellspace {
 
@@ -38,10 +39,91 @@ ElementSet::ElementSet(const Faces& faces, const Topology& topology,
       Add(std::move(bending));
       break;
     }
+    case BendingModel::kShapeOperator:
+      AddShapeOperatorGroups(faces, topology, material);
+      break;
     default:
       throw InputError("material: unknown bending model " +
                        std::to_string(static_cast<int>(material.bending_model)));
   }
+}
+
+namespace {
+
+template <int kInterior>
+ElementGroup<ShapeOperatorElement<kInterior>> ShapeOperatorGroup(
+    const ShellMaterial& material) {
+  ElementGroup<ShapeOperatorElement<kInterior>> group;
+  static const std::string kinds[4] = {
+      "face with 0 interior edges", "face with 1 interior edge",
+      "face with 2 interior edges", "face with 3 interior edges"};
+  group.term = "bending (shape operator)";
+  group.stencil_kind = kinds[kInterior].c_str();
+  group.part = EnergyPart::kBending;
+  group.weight = material.eta;
+  group.element =
+      material.shape_operator<ShapeOperatorElement<kInterior>>();
+  return group;
+}
+
+}  // namespace
+
+void ElementSet::AddShapeOperatorGroups(const Faces& faces,
+                                        const Topology& topology,
+                                        const ShellMaterial& material) {
+  // Directed edge (u, w) of a face -> the vertex across it.
+  std::unordered_map<long long, int> across;
+  const long long n = static_cast<long long>(topology.vertex_faces.size()) + 1;
+  for (const EdgeFlap& flap : topology.interior_edges) {
+    across[flap.i * n + flap.j] = flap.l;  // face_0 holds i -> j
+    across[flap.j * n + flap.i] = flap.k;  // face_1 holds j -> i
+  }
+  auto g3 = ShapeOperatorGroup<3>(material);
+  auto g2 = ShapeOperatorGroup<2>(material);
+  auto g1 = ShapeOperatorGroup<1>(material);
+  auto g0 = ShapeOperatorGroup<0>(material);
+  for (int f = 0; f < faces.rows(); ++f) {
+    const int x[3] = {faces(f, 0), faces(f, 1), faces(f, 2)};
+    int opposite[3];  // vertex across the edge opposite x[i], or -1
+    int count = 0;
+    for (int i = 0; i < 3; ++i) {
+      const auto it = across.find(x[(i + 1) % 3] * n + x[(i + 2) % 3]);
+      opposite[i] = it == across.end() ? -1 : it->second;
+      count += opposite[i] >= 0;
+    }
+    // Rotation start r: corners r, r+1, r+2 with the interior edges first.
+    int r = 0;
+    if (count == 1) {
+      while (opposite[r] < 0) ++r;
+    } else if (count == 2) {
+      int z = 0;
+      while (opposite[z] >= 0) ++z;
+      r = (z + 1) % 3;
+    }
+    const int a = x[r], b = x[(r + 1) % 3], c = x[(r + 2) % 3];
+    const int pa = opposite[r], pb = opposite[(r + 1) % 3];
+    switch (count) {
+      case 3:
+        g3.stencils.push_back({a, b, c, pa, pb, opposite[(r + 2) % 3]});
+        g3.labels.push_back(f);
+        break;
+      case 2:
+        g2.stencils.push_back({a, b, c, pa, pb});
+        g2.labels.push_back(f);
+        break;
+      case 1:
+        g1.stencils.push_back({a, b, c, pa});
+        g1.labels.push_back(f);
+        break;
+      default:
+        g0.stencils.push_back({a, b, c});
+        g0.labels.push_back(f);
+    }
+  }
+  Add(std::move(g3));
+  Add(std::move(g2));
+  Add(std::move(g1));
+  Add(std::move(g0));
 }
 
 template <class E>

@@ -11,9 +11,15 @@
 // Today's terms, in this order:
 //   1. membrane, one element per face f (stencil (i, j, k) = faces(f, .)),
 //      MembraneElement, weight 1;
-//   2. bending (BendingModel::kDiscreteShells), one element per interior edge
-//      e (stencil (i, j, k, l) = topology.interior_edges[e]), BendingElement,
-//      weight eta; not a term of W when eta = 0 (ForEachGroup skips it).
+//   2. bending, weight eta, not a term of W when eta = 0 (ForEachGroup skips
+//      it), by the material's BendingModel:
+//      kDiscreteShells: one element per interior edge e (stencil (i, j, k,
+//        l) = topology.interior_edges[e]), BendingElement;
+//      kShapeOperator: one element per face, ShapeOperatorElement<m>, in four
+//        groups by the face's number m = 3, 2, 1, 0 of interior edges (in
+//        this order, faces in increasing index within a group); stencil the
+//        face rotated cyclically so its interior edges are edges 0 .. m-1,
+//        then the vertices across them (shape_operator_element.h).
 // Element e of the enumeration is element e - group.first_element of the
 // group that holds it; groups come in the order above.
 //
@@ -57,6 +63,7 @@
 
 #include "shellspace/cost_functions/shell/bending_element.h"
 #include "shellspace/cost_functions/shell/membrane_element.h"
+#include "shellspace/cost_functions/shell/shape_operator_element.h"
 #include "shellspace/cost_functions/shell/shell_space.h"
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/geometry/scalar_traits.h"
@@ -80,6 +87,9 @@ struct ElementGroup {
   double weight = 1;  // the factor of the term in W (folded into `element`)
   E element;          // the element with the material's parameters
   std::vector<Stencil> stencils;  // vertex lists (#elements x kVertices)
+  // The id of element i that Describe names (e.g. its face), if not empty;
+  // else i.
+  std::vector<int> labels;
   // Index of stencils[0] in the set's enumeration; -1 if the term has weight
   // 0 (not a term of W; only EvaluateDeformationEnergy reports its value).
   int first_element = -1;
@@ -89,7 +99,8 @@ struct ElementGroup {
   // "membrane element of triangle 17 (vertices 3, 5, 9)".
   std::string Describe(int i) const {
     std::string out = std::string(term) + " element of " + stencil_kind + " " +
-                      std::to_string(i) + " (vertices";
+                      std::to_string(labels.empty() ? i : labels[i]) +
+                      " (vertices";
     for (int a = 0; a < kVertices; ++a) {
       out += (a ? ", " : " ") + std::to_string(stencils[i][a]);
     }
@@ -99,7 +110,11 @@ struct ElementGroup {
 
 // The element types a set can hold, one alternative per type.
 using AnyElementGroup =
-    std::variant<ElementGroup<MembraneElement>, ElementGroup<BendingElement>>;
+    std::variant<ElementGroup<MembraneElement>, ElementGroup<BendingElement>,
+                 ElementGroup<ShapeOperatorElement<3>>,
+                 ElementGroup<ShapeOperatorElement<2>>,
+                 ElementGroup<ShapeOperatorElement<1>>,
+                 ElementGroup<ShapeOperatorElement<0>>>;
 
 // The first element at which an evaluation over the set stopped (the lowest
 // enumeration index among the failing ones, whatever the threading).
@@ -135,7 +150,8 @@ class ElementSet {
     }
   }
 
-  // Elements of the terms of W (#F + #interior edges if eta > 0, else #F).
+  // Elements of the terms of W (#F + #interior edges (Discrete Shells) or
+  // #F + #F (shape operator) if eta > 0, else #F).
   int num_elements() const { return num_elements_; }
   // Describe(i) of the group holding enumeration index `element`.
   std::string Describe(int element) const;
@@ -150,6 +166,8 @@ class ElementSet {
  private:
   template <class E>
   void Add(ElementGroup<E> group);
+  void AddShapeOperatorGroups(const Faces& faces, const Topology& topology,
+                              const ShellMaterial& material);
 
   std::vector<AnyElementGroup> groups_;
   int num_elements_ = 0;

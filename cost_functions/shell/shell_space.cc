@@ -26,10 +26,42 @@ void ShellMaterial::Validate() const {
   }
   switch (bending_model) {
     case BendingModel::kDiscreteShells:
+    case BendingModel::kShapeOperator:
       break;
     default:
       throw InputError("material: unknown bending model");
   }
+  if (!(shape_operator_beta >= 0) || !std::isfinite(shape_operator_beta)) {
+    fail("the shape-operator weight beta must be a non-negative number",
+         shape_operator_beta);
+  }
+  if (!(shape_operator_alpha + shape_operator_beta / 2 >= 0) ||
+      !std::isfinite(shape_operator_alpha)) {
+    fail("the shape-operator weight alpha must be a number with alpha + "
+         "beta / 2 >= 0",
+         shape_operator_alpha);
+  }
+}
+
+const char* BendingModelName(BendingModel model) {
+  switch (model) {
+    case BendingModel::kDiscreteShells:
+      return "discrete-shells";
+    case BendingModel::kShapeOperator:
+      return "shape-operator";
+  }
+  return "unknown";
+}
+
+bool ParseBendingModel(const std::string& name, BendingModel* model) {
+  for (BendingModel m :
+       {BendingModel::kDiscreteShells, BendingModel::kShapeOperator}) {
+    if (name == BendingModelName(m)) {
+      *model = m;
+      return true;
+    }
+  }
+  return false;
 }
 
 ShellSpace::ShellSpace(const Mesh& mesh, const Topology& topo,
@@ -47,6 +79,8 @@ const ElementSet& ShellSpace::elements() const {
   const ShellMaterial& m = elements_->material();
   if (m.mu != material.mu || m.lambda != material.lambda ||
       m.eta != material.eta || m.bending_model != material.bending_model ||
+      m.shape_operator_alpha != material.shape_operator_alpha ||
+      m.shape_operator_beta != material.shape_operator_beta ||
       elements_->num_faces() != faces.rows() ||
       elements_->num_interior_edges() !=
           static_cast<int>(topology.interior_edges.size())) {

@@ -6,6 +6,7 @@
 #define SHELLSPACE_COST_FUNCTIONS_SHELL_SHELL_SPACE_H_
 
 #include <memory>
+#include <string>
 
 #include "shellspace/cost_functions/shell/bending_element.h"
 #include "shellspace/cost_functions/shell/membrane_element.h"
@@ -17,17 +18,27 @@ namespace shellspace {
 // The discretisation of W_bend, an axis independent of the membrane law:
 //   kDiscreteShells: sum over interior edges of (theta - thetabar)^2 |Ebar|^2
 //     / dbar_E (BendingElement; shells.md).
-// (The discrete shape operator of shape_operator.md is the next value; see
-// the recipe in element_set.h.)
-enum class BendingModel { kDiscreteShells };
+//   kShapeOperator: sum over faces of abar (alpha (tr M)^2 + beta tr(M^2)),
+//     M = Gbar^-1 (H - Hbar) from mid-edge normals (ShapeOperatorElement;
+//     shape_operator.md).
+enum class BendingModel { kDiscreteShells, kShapeOperator };
+
+// "discrete-shells" / "shape-operator".
+const char* BendingModelName(BendingModel model);
+// The model called `name` (BendingModelName); false if there is none.
+bool ParseBendingModel(const std::string& name, BendingModel* model);
 
 // Material parameters: membrane Lame-type weights mu, lambda > 0, bending
-// weight eta >= 0 (the squared thickness) and the bending model.
+// weight eta >= 0 (the squared thickness), the bending model and, for
+// kShapeOperator, its weights alpha (of (tr M)^2) and beta (of tr(M^2)),
+// beta >= 0 and alpha + beta / 2 >= 0 (so the energy is >= 0).
 struct ShellMaterial {
   double mu = 1.0;
   double lambda = 1.0;
   double eta = 0.01;
   BendingModel bending_model = BendingModel::kDiscreteShells;
+  double shape_operator_alpha = 0.0;
+  double shape_operator_beta = 1.0;
 
   // The membrane element of this law (MembraneElement: mu, lambda).
   MembraneElement membrane() const {
@@ -42,8 +53,19 @@ struct ShellMaterial {
     element.eta = eta;
     return element;
   }
-  // Throws InputError unless mu > 0, lambda > 0, eta >= 0 (all finite) and
-  // bending_model is a BendingModel value.
+  // The shape-operator bending element (any number of interior edges) with
+  // weight eta and this material's alpha, beta.
+  template <class Element>
+  Element shape_operator() const {
+    Element element;
+    element.eta = eta;
+    element.alpha = shape_operator_alpha;
+    element.beta = shape_operator_beta;
+    return element;
+  }
+  // Throws InputError unless mu > 0, lambda > 0, eta >= 0 (all finite),
+  // bending_model is a BendingModel value and the shape-operator weights
+  // are finite with beta >= 0, alpha + beta / 2 >= 0.
   void Validate() const;
 };
 

@@ -413,7 +413,8 @@ TEST(CliTest, HelpListsOnlyTheVerbsFlags) {
   const std::set<std::string> geodesic = HelpFlags("geodesic", &text);
   const std::set<std::string> expected = {
       "start", "end",  "steps",  "output",    "mask",      "png",
-      "report", "mu",  "lambda", "eta",       "tolerance", "max_iterations",
+      "report", "mu",  "lambda", "eta",       "bending",   "tolerance",
+      "max_iterations",
       "threads", "quiet", "json", "multires", "linear_solver",
       "minloglevel"};
   EXPECT_EQ(geodesic, expected) << text;

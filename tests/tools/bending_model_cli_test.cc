@@ -1,0 +1,127 @@
+// The --bending flag of the CLI (issue 18): every verb with material flags
+// accepts it and reports `bending_model` in --json; `energy --bending both`
+// reports both models' W_bend, each equal to the library's value; a geodesic
+// with the shape-operator model reports the energy the library evaluates on
+// its frames with that model.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <string>
+
+#include "shellspace/cost_functions/shell/deformation_energy.h"
+#include "shellspace/io/mesh_io.h"
+#include "shellspace/problems/calculus/geodesic.h"
+#include "shellspace/tests/testing/test_support.h"
+
+namespace shellspace {
+namespace {
+
+using testing::DataPath;
+using testing::RunCli;
+
+const std::string kSquare = DataPath("simple/square4.ply");
+const std::string kBent = DataPath("simple/square4_bent.ply");
+
+double Number(const std::string& json, const std::string& key) {
+  const std::string needle = "\"" + key + "\": ";
+  const auto at = json.find(needle);
+  if (at == std::string::npos) return std::nan("");
+  return std::strtod(json.c_str() + at + needle.size(), nullptr);
+}
+
+std::string RunOk(const std::string& args) {
+  std::string out, err;
+  EXPECT_EQ(RunCli(args, &out, &err), 0) << args << "\n" << err;
+  return out;
+}
+
+ShellMaterial Material(BendingModel model, double eta) {
+  ShellMaterial material;
+  material.eta = eta;
+  material.bending_model = model;
+  return material;
+}
+
+TEST(BendingModelCliTest, EnergyReportsTheChosenModelAndBoth) {
+  const Mesh a = ReadMesh(kSquare), b = ReadMesh(kBent);
+  const double ds =
+      EvaluateDeformationEnergy(
+          testing::MakeSpace(a, Material(BendingModel::kDiscreteShells, 0.5)),
+          a.positions, b.positions)
+          .bending;
+  const DeformationEnergy so = EvaluateDeformationEnergy(
+      testing::MakeSpace(a, Material(BendingModel::kShapeOperator, 0.5)),
+      a.positions, b.positions);
+  ASSERT_GT(ds, 1e-6);
+  ASSERT_GT(so.bending, 1e-6);
+  const std::string common =
+      "energy --json --eta 0.5 --reference " + kSquare + " --deformed " + kBent;
+  const std::string plain = RunOk(common);
+  EXPECT_NE(plain.find("\"bending_model\": \"discrete-shells\""),
+            std::string::npos)
+      << plain;
+  EXPECT_NEAR(Number(plain, "bending"), ds, 1e-12 * ds);
+  const std::string shape = RunOk(common + " --bending shape-operator");
+  EXPECT_NE(shape.find("\"bending_model\": \"shape-operator\""),
+            std::string::npos)
+      << shape;
+  EXPECT_NEAR(Number(shape, "bending"), so.bending, 1e-12 * so.bending);
+  EXPECT_NEAR(Number(shape, "total"), so.total, 1e-12 * so.total);
+  const std::string both = RunOk(common + " --bending both");
+  EXPECT_NE(both.find("\"bending_model\": \"both\""), std::string::npos) << both;
+  EXPECT_NEAR(Number(both, "discrete-shells"), ds, 1e-12 * ds) << both;
+  EXPECT_NEAR(Number(both, "shape-operator"), so.bending, 1e-12 * so.bending)
+      << both;
+  EXPECT_NEAR(Number(both, "bending"), ds, 1e-12 * ds);
+}
+
+TEST(BendingModelCliTest, GeodesicWithTheShapeOperatorModel) {
+  const std::string dir = testing::TempDir() + "/so";
+  const std::string json =
+      RunOk("geodesic --quiet --json --steps 4 --bending shape-operator "
+            "--start " + kSquare + " --end " + kBent + " --output " + dir);
+  EXPECT_NE(json.find("\"bending_model\": \"shape-operator\""),
+            std::string::npos)
+      << json;
+  const double energy = Number(json, "path_energy");
+  const Mesh a = ReadMesh(kSquare);
+  ShellPath path;
+  for (int k = 0; k <= 4; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof name, "/shape_%03d.ply", k);
+    path.push_back(ReadMesh(dir + name).positions);
+  }
+  const double so = PathEnergy(
+      testing::MakeSpace(a, Material(BendingModel::kShapeOperator, 0.01)), path);
+  const double ds = PathEnergy(
+      testing::MakeSpace(a, Material(BendingModel::kDiscreteShells, 0.01)),
+      path);
+  EXPECT_NEAR(energy, so, 1e-9 * so);
+  EXPECT_GT(std::abs(so - ds), 1e-6 * so);  // the model made a difference
+  const std::string ds_json =
+      RunOk("geodesic --quiet --json --steps 4 --start " + kSquare + " --end " +
+            kBent + " --output " + dir + "_ds");
+  EXPECT_NE(ds_json.find("\"bending_model\": \"discrete-shells\""),
+            std::string::npos);
+}
+
+TEST(BendingModelCliTest, EveryVerbWithMaterialFlagsTakesBending) {
+  for (const char* verb : {"energy", "deform", "geodesic", "shoot", "log",
+                           "transport", "spline", "regress", "mean", "pca",
+                           "demo"}) {
+    std::string help, err;
+    EXPECT_EQ(RunCli(std::string(verb) + " --help", &help, &err), 0) << verb;
+    EXPECT_NE(help.find("--bending (string)"), std::string::npos) << verb;
+  }
+  std::string err;
+  EXPECT_EQ(RunCli("geodesic --quiet --steps 2 --bending both --start " +
+                       kSquare + " --end " + kBent + " --output " +
+                       testing::TempDir() + "/x",
+                   nullptr, &err),
+            1);
+  EXPECT_NE(err.find("--bending"), std::string::npos) << err;
+}
+
+}  // namespace
+}  // namespace shellspace
