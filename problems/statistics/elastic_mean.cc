@@ -165,6 +165,7 @@ bool NewtonFinish(const ShellSpace& space, const std::vector<Positions>& shapes,
   newton.forcing = 1e-10;
   newton.max_halvings = 4;  // t = 1, ..., 1/16
   newton.accept_smaller_two_norm = true;
+  newton.max_shifts = 6;  // H + lambda I where the Newton step fails
   const int before = *iterations;
   if (settings.progress) {
     newton.progress = [&](const NewtonReport& r, double, bool accepted) {

@@ -41,9 +41,12 @@ Positions AlignedVertexAverage(const std::vector<Positions>& shapes);
 // Armijo's condition E(s + t p) <= E(s) + 1e-4 t G . p on E = sum_i W[S_i, .]
 // or lowers |G|_2 (near the mean the energy decrease is below round-off and
 // |G| decides; farther out, on the faces, the full step lowers E but first
-// raises |G|). Safeguard: if the reduced H is singular, p is not a descent
-// direction (G . p >= 0: H is not positive definite along G), or no t is
-// accepted, Newton stops and another LM chunk (now aiming at the final
+// raises |G|), never one that raises E beyond round-off (1e-10 |E|).
+// Globalisation: if the reduced H is singular, p is not a descent direction
+// (G . p >= 0: H is not positive definite along G), or no t is accepted, the
+// step of H + lambda I is tried, lambda = 1e-3, 1e-2, ... times mean
+// |diag H|, up to 6 times (NewtonSettings::max_shifts). Safeguard: if even
+// that gives no accepted step, Newton stops and another LM chunk (now aiming at the final
 // target) runs from the current s, then Newton again (at most
 // `max_newton_attempts` times, then LM alone), until Newton reaches
 // settings.gradient_tolerance * max(1, |G(s_0)|_inf) (the target of the LM-only
