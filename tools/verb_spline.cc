@@ -10,6 +10,7 @@
 #include "shellspace/problems/splines/spline.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/path_summary.h"
+#include "shellspace/tools/run_status.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
 
@@ -99,18 +100,35 @@ SplineSettings SplineSettingsFromFlags(const std::string& label) {
   return settings;
 }
 
-void Report(const Faces& faces,
-            const SplineResult& result, double seconds, JsonObject extra) {
+// Writes the frames and the report; returns the exit code. `optimised`:
+// the outer solver ran (not --method ltheta).
+int Report(const std::string& verb, const Faces& faces,
+           const SplineResult& result, double seconds, JsonObject extra,
+           bool optimised = true) {
+  RunStatus status(verb);
+  if (optimised) {
+    status.Require(result.converged,
+                   verb + ": relative gradient " +
+                       Short(result.relative_gradient_norm) +
+                       " above the tolerance " + Short(FLAGS_tolerance) +
+                       " after " + std::to_string(result.iterations) +
+                       " L-BFGS iterations (" +
+                       ceres::TerminationTypeToString(
+                           result.summary.termination_type) +
+                       ")");
+  }
   WritePathOutputs(FLAGS_output, faces, result.path);
   if (FLAGS_json) {
     std::cout << extra.Add("spline_energy", result.spline_energy)
                      .Add("data_energy", result.data_energy)
                      .Add("objective", result.objective)
-                     .Add("iterations", std::max(0, static_cast<int>(
-                                                 result.summary.iterations
-                                                     .size()) - 1))
-                     .Add("converged", result.summary.termination_type ==
-                                           ceres::CONVERGENCE)
+                     .Add("iterations", result.iterations)
+                     .Add("initial_gradient_norm",
+                          result.initial_gradient_norm)
+                     .Add("final_gradient_norm", result.final_gradient_norm)
+                     .Add("relative_gradient_norm",
+                          result.relative_gradient_norm)
+                     .Add("converged", optimised ? result.converged : true)
                      .Add("termination",
                           result.summary.iterations.size() > 1
                               ? ceres::TerminationTypeToString(
@@ -125,6 +143,7 @@ void Report(const Faces& faces,
     std::cout << "F_K = " << result.spline_energy << "; wrote " << FLAGS_output
               << "/shape_*.ply\n";
   }
+  return status.Finish();
 }
 
 int RunSpline() {
@@ -146,11 +165,11 @@ int RunSpline() {
   if (FLAGS_method == "ltheta") settings.max_iterations = 0;
   SplineResult result = SolveSpline(space, keyframes, at, FLAGS_steps,
                                     FLAGS_periodic, ltheta, settings);
-  Report(set.first.mesh.faces, result, Seconds(clock),
-         JsonObject()
-             .Add("method", FLAGS_method)
-             .Add("ltheta_seconds", ltheta_seconds));
-  return 0;
+  return Report("spline", set.first.mesh.faces, result, Seconds(clock),
+                JsonObject()
+                    .Add("method", FLAGS_method)
+                    .Add("ltheta_seconds", ltheta_seconds),
+                FLAGS_method != "ltheta");
 }
 
 int RunRegress() {
@@ -162,9 +181,8 @@ int RunRegress() {
   const SplineResult result =
       SolveRegression(space, set.shapes, at, FLAGS_steps, FLAGS_sigma, {},
                       SplineSettingsFromFlags("regress"));
-  Report(set.first.mesh.faces, result, Seconds(clock),
-         JsonObject().Add("sigma", FLAGS_sigma));
-  return 0;
+  return Report("regress", set.first.mesh.faces, result, Seconds(clock),
+                JsonObject().Add("sigma", FLAGS_sigma));
 }
 
 }  // namespace

@@ -20,6 +20,7 @@
 #include "shellspace/render/film_strip.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/io/json_writer.h"
+#include "shellspace/tools/run_status.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
 
@@ -130,6 +131,18 @@ std::vector<std::string> WarnAboutFarInputs(const ShellSet& inputs,
   return far;
 }
 
+// Records whether the elastic mean met its stopping criterion.
+void CheckMean(const ElasticMeanResult& mean, const std::string& what,
+               RunStatus* status) {
+  status->Require(mean.converged,
+                  what + ": |grad| " + Short(mean.gradient_norm) +
+                      " above the target " + Short(mean.gradient_target) +
+                      " after " +
+                      std::to_string(mean.lm_iterations) + " LM + " +
+                      std::to_string(mean.newton_iterations) +
+                      " Newton iterations (" + mean.termination + ")");
+}
+
 int RunMean() {
   const auto clock = std::chrono::steady_clock::now();
   const ShellSet inputs = LoadInputs(1);
@@ -140,6 +153,8 @@ int RunMean() {
   const std::vector<std::string> far =
       WarnAboutFarInputs(inputs, result, "mean");
   if (FLAGS_report) std::cerr << result.summary.FullReport() << "\n";
+  RunStatus status("mean");
+  CheckMean(result, "elastic mean", &status);
   WriteMesh(Mesh{result.mean, inputs.first.mesh.faces}, FLAGS_output);
   if (FLAGS_json) {
     const double relative =
@@ -164,7 +179,9 @@ int RunMean() {
                      .Add("initial_gradient_norm", result.initial_gradient_norm)
                      .Add("final_gradient_norm", result.gradient_norm)
                      .Add("relative_gradient_norm", relative)
+                     .Add("gradient_target", result.gradient_target)
                      .Add("converged", result.converged)
+                     .Add("termination", result.termination)
                      .Add("seconds", Seconds(clock))
                      .Add("output", FLAGS_output)
                      .str()
@@ -177,7 +194,7 @@ int RunMean() {
               << " Newton iterations, |grad| " << result.gradient_norm
               << "); wrote " << FLAGS_output << "\n";
   }
-  return 0;
+  return status.Finish();
 }
 
 std::string TableText(const LeaveOneOutTable& table) {
@@ -300,6 +317,8 @@ int RunPca() {
   const ElasticMeanResult mean =
       ComputeElasticMean(space, inputs.shapes, settings);
   CheckSolve(mean.summary, "elastic mean");
+  RunStatus status("pca");
+  CheckMean(mean, "the elastic mean", &status);
   const std::vector<std::string> far = WarnAboutFarInputs(inputs, mean, "pca");
   if (!FLAGS_quiet) std::cerr << "pca: elastic mean done\n";
   const ShellPcaModel shell =
@@ -331,6 +350,9 @@ int RunPca() {
     }
   }
   if (!FLAGS_quiet) std::cerr << "pca: shell modes done\n";
+  for (const std::string& name : failed_shapes) {
+    status.Require(false, name + ": its EXP shot has no solution");
+  }
 
   JsonObject json;
   json.Add("inputs", n)
@@ -338,6 +360,12 @@ int RunPca() {
       .Add("mean_iterations", mean.lm_iterations)
       .Add("mean_newton_iterations", mean.newton_iterations)
       .Add("mean_gradient_norm", mean.gradient_norm)
+      .Add("mean_relative_gradient_norm",
+           mean.initial_gradient_norm > 0
+               ? mean.gradient_norm / mean.initial_gradient_norm
+               : 0.0)
+      .Add("mean_converged", mean.converged)
+      .Add("mean_termination", mean.termination)
       .Add("displacement", FLAGS_displacement)
       .Add("log_steps", FLAGS_log_steps)
       .Add("exp_steps", FLAGS_exp_steps)
@@ -345,7 +373,8 @@ int RunPca() {
       .Add("modes", shell_modes)
       .Add("failed_mode_shapes", failed_shapes)
       .Add("far_inputs", far)
-      .Add("amplitude", FLAGS_amplitude);
+      .Add("amplitude", FLAGS_amplitude)
+      .Add("converged", status.ok());
 
   if (FLAGS_baseline == "procrustes") {
     const ProcrustesPcaModel procrustes = ComputeProcrustesPca(inputs.shapes);
@@ -414,7 +443,7 @@ int RunPca() {
                 << " mode pairs\n";
     }
   }
-  return 0;
+  return status.Finish();
 }
 
 }  // namespace

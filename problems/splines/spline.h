@@ -19,11 +19,20 @@ struct SplineResult {
   double objective = 0;      // data + sigma F_K
   ceres::GradientProblemSolver::Summary summary;
   SplineTimings timings;  // where the evaluations spent their time
+  // Max norm of the L-BFGS gradient (in its preconditioned, scaled
+  // variables) at the start and at the end; their ratio; and whether it met
+  // the stopping criterion relative <= settings.gradient_tolerance (true
+  // with no free shapes). Ceres' function-tolerance stop does not count.
+  int iterations = 0;  // L-BFGS iterations (without Ceres' iteration 0)
+  double initial_gradient_norm = 0;
+  double final_gradient_norm = 0;
+  double relative_gradient_norm = 0;
+  bool converged = false;
 };
 
 // Settings of the outer L-BFGS loop.
 struct SplineSettings {
-  int max_iterations = 100;
+  int max_iterations = 100;  // L-BFGS iterations (the outer solver only)
   double gradient_tolerance = 1e-8;  // relative to the initial gradient
   double function_tolerance = 1e-10;
   bool progress = false;

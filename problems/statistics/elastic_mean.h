@@ -6,6 +6,7 @@
 #include <ceres/solver.h>
 
 #include <Eigen/Core>
+#include <string>
 #include <vector>
 
 #include "shellspace/cost_functions/shell/shell_space.h"
@@ -50,7 +51,8 @@ Positions AlignedVertexAverage(const std::vector<Positions>& shapes);
 // target) runs from the current s, then Newton again (at most
 // `max_newton_attempts` times, then LM alone), until Newton reaches
 // settings.gradient_tolerance * max(1, |G(s_0)|_inf) (the target of the LM-only
-// solve) or settings.max_iterations LM iterations are spent.
+// solve) or settings.max_iterations iterations (LM iterations plus Newton
+// steps) are spent.
 struct ElasticMeanOptions {
   bool newton = true;              // false: LM only (the previous behaviour)
   double switch_tolerance = 1e-4;  // relative gradient at the hand-over
@@ -64,7 +66,8 @@ struct ElasticMeanResult {
   double energy = 0;               // sum_i W[S_i, s_bar]
   std::vector<double> energies;    // W[S_i, s_bar]
   ceres::Solver::Summary summary;  // the first LM solve (chunk)
-  int lm_iterations = 0;           // LM iterations, all solves
+  int lm_iterations = 0;           // LM iterations, all solves (without
+                                   // Ceres' iteration 0, the evaluation)
   int newton_iterations = 0;       // accepted Newton steps
   bool newton_fell_back = false;   // a Newton attempt was stopped
   double initial_gradient_norm = 0;  // |G(s_0)|_inf
@@ -72,6 +75,11 @@ struct ElasticMeanResult {
   // |G(s_bar)|_inf <= settings.gradient_tolerance * max(1, |G(s_0)|_inf)
   // (the target of the LM solves) and the solves usable.
   bool converged = false;
+  double gradient_target = 0;  // settings.gradient_tolerance * max(1, |G(s_0)|)
+  // Why it stopped: "converged", "max iterations" (settings.max_iterations
+  // LM iterations + Newton steps spent), "LM failed", "Newton: <stop reason>" (the last
+  // Newton attempt's, when LM had stopped on its own test).
+  std::string termination;
 };
 
 // s_bar = argmin_s sum_i W[S_i, s] by sparse LM: every W[S_i, s] adds its
