@@ -111,7 +111,8 @@ int Report(const std::string& verb, const Faces& faces,
                    verb + ": relative gradient " +
                        Short(result.relative_gradient_norm) +
                        " above the tolerance " + Short(FLAGS_tolerance) +
-                       " after " + std::to_string(result.iterations) +
+                       ", no function-tolerance stop, after " +
+                       std::to_string(result.iterations) +
                        " L-BFGS iterations (" +
                        ceres::TerminationTypeToString(
                            result.summary.termination_type) +
@@ -128,6 +129,8 @@ int Report(const std::string& verb, const Faces& faces,
                      .Add("final_gradient_norm", result.final_gradient_norm)
                      .Add("relative_gradient_norm",
                           result.relative_gradient_norm)
+                     .Add("gradient_criterion_met",
+                          result.gradient_criterion_met)
                      .Add("converged", optimised ? result.converged : true)
                      .Add("termination",
                           result.summary.iterations.size() > 1

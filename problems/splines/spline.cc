@@ -152,10 +152,12 @@ SplineResult Run(const ShellSpace& space, SplineSpec spec,
         result.initial_gradient_norm > 0
             ? result.final_gradient_norm / result.initial_gradient_norm
             : 0.0;
-    result.converged =
+    result.gradient_criterion_met =
         result.final_gradient_norm <= options.gradient_tolerance;
+    result.converged = result.gradient_criterion_met ||
+                       result.summary.termination_type == ceres::CONVERGENCE;
   } else {
-    result.converged = true;  // no free shapes
+    result.gradient_criterion_met = result.converged = true;  // no free shapes
   }
   result.path = objective.PathFrom(x.data());
   result.spline_energy = objective.SplineEnergyOf(result.path);
