@@ -32,6 +32,7 @@ DEFINE_int32(log_steps, 2, "pca: K of LOG_K");
 DEFINE_int32(exp_steps, 4, "pca: K of EXP_K");
 DEFINE_int32(max_exp_steps, 16, "pca: largest K of the EXP safeguard");
 DEFINE_string(displacement, "log", "pca: log or difference");
+DEFINE_string(mean, "", "pca: a computed elastic mean to start from");
 
 namespace shellspace {
 namespace {
@@ -86,6 +87,11 @@ FlagTable PcaFlags() {
                     "(v_i = S_i - mean after rigid alignment)"),
            TextFlag("png",
                     "also write a PNG film strip of the mean and the modes"),
+           TextFlag("mean",
+                    "an elastic mean of the inputs computed before (e.g. by "
+                    "`shellspace mean`): the mean solve starts there and "
+                    "only checks it (no iterations if it meets the "
+                    "tolerance)"),
        },
        MaterialFlags(), SolverFlags(), JsonFlag()});
 }
@@ -314,17 +320,35 @@ int RunPca() {
   inner.progress = false;
 
   // Shell model.
-  const ElasticMeanResult mean =
-      ComputeElasticMean(space, inputs.shapes, settings);
+  Positions given_mean;
+  if (!FLAGS_mean.empty()) {
+    given_mean = LoadCompatibleShell(FLAGS_mean, inputs.first).positions;
+  }
+  if (!FLAGS_quiet) {
+    std::cerr << "pca: elastic mean of " << n << " shells"
+              << (FLAGS_mean.empty() ? "" : " from " + FLAGS_mean) << "\n";
+  }
+  const ElasticMeanResult mean = ComputeElasticMean(
+      space, inputs.shapes, settings,
+      FLAGS_mean.empty() ? nullptr : &given_mean);
   CheckSolve(mean.summary, "elastic mean");
   RunStatus status("pca");
   CheckMean(mean, "the elastic mean", &status);
   const std::vector<std::string> far = WarnAboutFarInputs(inputs, mean, "pca");
-  if (!FLAGS_quiet) std::cerr << "pca: elastic mean done\n";
+  if (!FLAGS_quiet) {
+    std::cerr << "pca: elastic mean done (" << mean.lm_iterations << " LM + "
+              << mean.newton_iterations << " Newton iterations, "
+              << Seconds(clock) << " s); displacements ("
+              << FLAGS_displacement << ") and the Gram matrix\n";
+  }
   const ShellPcaModel shell =
       ComputeShellPca(space, mean.mean, inputs.shapes, options, inner);
   const int shell_modes =
       std::min<int>(FLAGS_modes, static_cast<int>(shell.modes.size()));
+  if (!FLAGS_quiet) {
+    std::cerr << "pca: shell PCA done (" << Seconds(clock) << " s); "
+              << 2 * shell_modes << " mode shapes by EXP_K\n";
+  }
   std::vector<std::pair<std::string, Positions>> files = {
       {"mean.ply", mean.mean}};  // written at the end, with pca.json
   std::vector<Positions> strip = {mean.mean};
@@ -455,6 +479,7 @@ SHELLSPACE_REGISTER_VERB(
     "pca",
     "pca --inputs a.ply,b.ply,... --modes m --output DIR [--baseline "
     "procrustes] [--loo] [--amplitude t] [--log_steps K] [--exp_steps K] "
-    "[--max_exp_steps K] [--displacement log|difference] [--threads N] "
+    "[--max_exp_steps K] [--displacement log|difference] [--mean M.ply] "
+    "[--threads N] "
     "[--json] [--png strip.png]",
     shellspace::PcaFlags(), shellspace::RunPca);

@@ -134,5 +134,81 @@ TEST(RunStatusCliTest, RegressionCappedAtOneIterationExitsFour) {
   EXPECT_GT(Number(out, "relative_gradient_norm"), 1e-8) << out;
 }
 
+// The numbers of the array "KEY": [...].
+std::vector<double> Numbers(const std::string& json, const std::string& key) {
+  const std::string needle = "\"" + key + "\": [";
+  const auto at = json.find(needle);
+  std::vector<double> values;
+  if (at == std::string::npos) return values;
+  const auto end = json.find(']', at);
+  std::string body = json.substr(at + needle.size(), end - at - needle.size());
+  for (char& c : body) {
+    if (c == ',') c = ' ';
+  }
+  std::istringstream in(body);
+  for (double v; in >> v;) values.push_back(v);
+  return values;
+}
+
+// pca --mean reuses a computed mean: no mean iterations, the same model.
+TEST(RunStatusCliTest, PcaReusesAComputedMean) {
+  const std::string dir = TempDir();
+  const std::string inputs = kSquare + "," + kBent + "," +
+                             DataPath("simple/square4.ply");
+  std::string out, err;
+  ASSERT_EQ(RunCli("mean --quiet --json --inputs " + inputs + " --output " +
+                       dir + "/m.ply",
+                   &out, &err),
+            0)
+      << err;
+  std::string fresh, reused;
+  ASSERT_EQ(RunCli("pca --quiet --json --modes 1 --inputs " + inputs +
+                       " --output " + dir + "/fresh",
+                   &fresh, &err),
+            0)
+      << err;
+  ASSERT_EQ(RunCli("pca --quiet --json --modes 1 --inputs " + inputs +
+                       " --mean " + dir + "/m.ply --output " + dir + "/reused",
+                   &reused, &err),
+            0)
+      << err;
+  EXPECT_GT(Number(fresh, "mean_iterations"), 0) << fresh;
+  EXPECT_EQ(Number(reused, "mean_iterations"), 0) << reused;
+  EXPECT_EQ(Number(reused, "mean_newton_iterations"), 0) << reused;
+  EXPECT_TRUE(Has(reused, "\"mean_converged\": true")) << reused;
+  const std::vector<double> a = Numbers(fresh, "eigenvalues");
+  const std::vector<double> b = Numbers(reused, "eigenvalues");
+  ASSERT_EQ(a.size(), 3u);
+  ASSERT_EQ(b.size(), 3u);
+  for (int j = 0; j < 2; ++j) EXPECT_NEAR(b[j], a[j], 1e-6 * a[0]) << j;
+  EXPECT_NEAR(Number(reused, "mean_energy"), Number(fresh, "mean_energy"),
+              1e-9 * Number(fresh, "mean_energy"));
+}
+
+// spline --method ltheta --energy=false: the LTheta path without the F_K
+// evaluation (one midpoint solve per step).
+TEST(RunStatusCliTest, LThetaSplineWithoutTheEnergy) {
+  const std::string dir = TempDir();
+  std::string out, err;
+  ASSERT_EQ(RunCli("spline --quiet --json --method ltheta --energy=false "
+                   "--keyframes " + kSquare + "," + kBent + "," + kSquare +
+                       " --at 0,2,4 --steps 4 --output " + dir + "/s",
+                   &out, &err),
+            0)
+      << err;
+  EXPECT_FALSE(Has(out, "spline_energy")) << out;
+  EXPECT_EQ(Number(out, "frames"), 5) << out;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/s/shape_004.ply"));
+  // With the F_K evaluation the same run fails: a midpoint of this LTheta
+  // path is degenerate (the report, not the path, needs it).
+  std::string with;
+  EXPECT_EQ(RunCli("spline --quiet --json --method ltheta --keyframes " +
+                       kSquare + "," + kBent + "," + kSquare +
+                       " --at 0,2,4 --steps 4 --output " + dir + "/t",
+                   &with, &err),
+            1);
+  EXPECT_TRUE(Has(err, "degenerate")) << err;
+}
+
 }  // namespace
 }  // namespace shellspace
