@@ -53,6 +53,8 @@ void NewtonReport::Append(const NewtonReport& later) {
   cg_iterations += later.cg_iterations;
   cg_seconds += later.cg_seconds;
   cg_not_converged += later.cg_not_converged;
+  shifted_steps += later.shifted_steps;
+  max_shift = std::max(max_shift, later.max_shift);
   linear_solver = later.linear_solver;
   final_gradient = later.final_gradient;
   final_merit = later.final_merit;
@@ -116,6 +118,7 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
   report.final_merit = merit;
   const double initial_two_norm = std::max(current.reduced.norm(), 1e-300);
   LinearSystem system;
+  double shift = 0;  // lambda of the last accepted step's H + lambda I
   while (true) {
     if (report.final_gradient <= settings.tolerance * current.scale) {
       finish(NewtonStop::kConverged);
@@ -144,71 +147,111 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
       forcing = std::clamp(current.max_norm / current.scale,
                            settings.forcing_min, settings.forcing);
     }
-    Eigen::VectorXd p;
-    if (!linear_solver->Solve(system, -current.reduced, forcing, &p) ||
-        !p.allFinite()) {
-      finish(NewtonStop::kLinearSolveFailed);
-      break;
-    }
-    const double slope = current.reduced.dot(p);
-    if (minimize && !(slope < 0)) {
-      finish(NewtonStop::kNotDescent);
-      break;
-    }
-
-    // Line search: t = 1, 1/2, ..., 2^-max_halvings.
+    // The Newton step, then (minimisation with max_shifts > 0) steps of
+    // H + lambda I while the step cannot be used.
     bool accepted = false;
+    NewtonStop failure = NewtonStop::kLineSearchFailed;
     const double previous_norm = report.final_gradient;
-    for (int halving = 0; halving <= settings.max_halvings && !accepted;
-         ++halving) {
-      const double t = std::ldexp(1.0, -halving);
-      problem->SetTrial(t * p);
-      double trial_merit = 0;
-      bool decrease = false;
-      bool round_off = true;  // root finding: no merit gate
-      if (minimize) {
-        if (problem->Merit(NewtonPoint::kTrial, &trial_merit) !=
-                EvaluationStatus::kOk ||
-            !std::isfinite(trial_merit)) {
-          continue;  // infeasible trial point: shorter step
-        }
-        decrease = trial_merit <= merit + settings.armijo * t * slope;
-        round_off = std::abs(trial_merit - merit) <=
-                    settings.merit_round_off * std::abs(merit);
-        if (!decrease && !(settings.accept_smaller_max_norm && round_off) &&
-            !settings.accept_smaller_two_norm &&
-            !(settings.accept_max_norm_reduction > 0)) {
-          continue;
-        }
+    const bool can_shift = minimize && settings.max_shifts > 0;
+    double mean_diagonal = 0;
+    if (can_shift && system.matrix.rows() > 0) {
+      mean_diagonal =
+          system.matrix.diagonal().cwiseAbs().sum() / system.matrix.rows();
+    }
+    const double min_shift =
+        settings.shift_initial * std::max(mean_diagonal, 1e-300);
+    if (shift < min_shift) shift = 0;
+    for (int tries = 0; !accepted; ++tries) {
+      if (tries > 0) {
+        if (!can_shift || tries > settings.max_shifts) break;
+        shift = shift > 0 ? shift * settings.shift_factor : min_shift;
       }
-      NewtonResidual trial;
-      if (problem->Residual(NewtonPoint::kTrial, &trial) !=
-          EvaluationStatus::kOk) {
+      LinearSystem shifted_system;
+      const LinearSystem* to_solve = &system;
+      if (shift > 0) {
+        shifted_system = system;
+        Eigen::SparseMatrix<double> identity(system.matrix.rows(),
+                                             system.matrix.cols());
+        identity.setIdentity();
+        shifted_system.matrix = system.matrix + shift * identity;
+        to_solve = &shifted_system;
+        report.max_shift = std::max(report.max_shift, shift);
+      }
+      Eigen::VectorXd p;
+      if (!linear_solver->Solve(*to_solve, -current.reduced, forcing, &p) ||
+          !p.allFinite()) {
+        failure = NewtonStop::kLinearSolveFailed;
         continue;
       }
-      const bool smaller_max = settings.accept_smaller_max_norm && round_off &&
-                               trial.max_norm < current.max_norm;
-      const bool smaller_two = settings.accept_smaller_two_norm &&
-                               trial.two_norm < current.two_norm;
-      const bool reduced_max =
-          settings.accept_max_norm_reduction > 0 &&
-          trial.max_norm <= settings.accept_max_norm_reduction *
-                                current.max_norm;
-      if (!decrease && !smaller_max && !smaller_two && !reduced_max) continue;
-      problem->AcceptTrial();
-      current = std::move(trial);
-      merit = trial_merit;
-      report.final_gradient = current.max_norm;
-      report.final_merit = merit;
-      ++report.steps;
-      accepted = true;
+      const double slope = current.reduced.dot(p);
+      if (minimize && !(slope < 0)) {
+        failure = NewtonStop::kNotDescent;
+        continue;
+      }
+      failure = NewtonStop::kLineSearchFailed;
+
+      // Line search: t = 1, 1/2, ..., 2^-max_halvings.
+      for (int halving = 0; halving <= settings.max_halvings && !accepted;
+           ++halving) {
+        const double t = std::ldexp(1.0, -halving);
+        problem->SetTrial(t * p);
+        double trial_merit = 0;
+        bool decrease = false;
+        bool round_off = true;  // root finding: no merit gate
+        if (minimize) {
+          if (problem->Merit(NewtonPoint::kTrial, &trial_merit) !=
+                  EvaluationStatus::kOk ||
+              !std::isfinite(trial_merit)) {
+            continue;  // infeasible trial point: shorter step
+          }
+          decrease = trial_merit <= merit + settings.armijo * t * slope;
+          round_off = std::abs(trial_merit - merit) <=
+                      settings.merit_round_off * std::abs(merit);
+          // The merit never rises beyond round-off.
+          const bool not_worse =
+              trial_merit <= merit + settings.merit_round_off * std::abs(merit);
+          if (!decrease &&
+              (!not_worse ||
+               (!(settings.accept_smaller_max_norm && round_off) &&
+                !settings.accept_smaller_two_norm &&
+                !(settings.accept_max_norm_reduction > 0)))) {
+            continue;
+          }
+        }
+        NewtonResidual trial;
+        if (problem->Residual(NewtonPoint::kTrial, &trial) !=
+            EvaluationStatus::kOk) {
+          continue;
+        }
+        const bool smaller_max = settings.accept_smaller_max_norm &&
+                                 round_off &&
+                                 trial.max_norm < current.max_norm;
+        const bool smaller_two = settings.accept_smaller_two_norm &&
+                                 trial.two_norm < current.two_norm;
+        const bool reduced_max =
+            settings.accept_max_norm_reduction > 0 &&
+            trial.max_norm <= settings.accept_max_norm_reduction *
+                                  current.max_norm;
+        if (!decrease && !smaller_max && !smaller_two && !reduced_max) {
+          continue;
+        }
+        problem->AcceptTrial();
+        current = std::move(trial);
+        merit = trial_merit;
+        report.final_gradient = current.max_norm;
+        report.final_merit = merit;
+        ++report.steps;
+        if (shift > 0) ++report.shifted_steps;
+        accepted = true;
+      }
     }
+    if (accepted && shift > 0) shift /= settings.shift_factor;
     if (settings.progress) {
       update_counters();
       settings.progress(report, merit, accepted);
     }
     if (!accepted) {
-      finish(NewtonStop::kLineSearchFailed);
+      finish(failure);
       break;
     }
     const double norm = report.final_gradient;

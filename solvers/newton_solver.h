@@ -104,6 +104,23 @@ struct NewtonSettings {
   // Also accept a trial whose residual two_norm is smaller (strictly).
   bool accept_smaller_two_norm = false;
 
+  // Globalisation of minimisation (0: off): when the Newton step cannot be
+  // used -- H not positive definite, slope reduced . p >= 0, or no step
+  // length of the line search accepted -- the step is recomputed from the
+  // shifted Hessian H + lambda I (a Levenberg-Marquardt shift on the exact
+  // Hessian: for growing lambda the step turns towards -reduced and
+  // shortens, a trust region on H), with lambda = shift_initial * mean
+  // |diag H| and then shift_factor times the previous one, at most
+  // max_shifts times per iteration. After an accepted shifted step the next
+  // iteration starts from lambda / shift_factor (back to 0 once it drops
+  // below shift_initial * mean |diag H|). Every accepted step of
+  // minimisation (shifted or not, by any rule above) has a merit no larger
+  // than merit + merit_round_off |merit|: the merit never rises beyond
+  // round-off.
+  int max_shifts = 0;
+  double shift_initial = 1e-3;
+  double shift_factor = 10;
+
   // Stall rules (0: off).
   // Round-off floor: stop after an accepted step that leaves max_norm <=
   // round_off_floor but has not reduced it by round_off_factor.
@@ -156,6 +173,8 @@ struct NewtonReport {
   int attempts = 0;                  // solves summed by Append
   std::string linear_solver;         // LinearSolver::name() of the last solve
   int cg_not_converged = 0;          // iterative solves short of tolerance
+  int shifted_steps = 0;             // accepted steps from H + lambda I
+  double max_shift = 0;              // largest lambda tried (0: none)
 
   // Adds a later solve: counts and times summed, the rest from `later`
   // (initial_gradient stays the first solve's).

@@ -87,8 +87,9 @@ void PrintVerbHelp(const Verb& verb) {
     if (!spec.range.empty()) std::cout << "; valid: " << spec.range;
     std::cout << "\n";
   }
-  std::cout << "  --minloglevel (int32)  0 also shows the solvers' warnings\n"
-            << "      default: 2 (errors only)\n";
+  std::cout << "  --minloglevel (int32)  0 also shows the solvers' warnings "
+               "and errors\n"
+            << "      default: 3 (fatal only)\n";
 }
 
 // A programming error in a verb's table: a name gflags does not know, or a
@@ -221,14 +222,14 @@ int main(int argc, char** argv) {
               << " --help` lists them)\n";
     return 2;
   }
-  // Ceres' warnings (an LM step retried after a failed factorisation of a
-  // nearly singular Gauss-Newton matrix, in EXP steps) are routine here and
-  // our own progress lines say how a solve goes: hidden unless the user
-  // passes --minloglevel=0.
+  // Ceres' warnings and errors (an LM step retried after a failed
+  // factorisation of a nearly singular Gauss-Newton matrix, an evaluation
+  // at a degenerate trial shape) are routine here and our own status lines
+  // say how a solve went: hidden unless the user passes --minloglevel=0.
   gflags::CommandLineFlagInfo loglevel;
   if (gflags::GetCommandLineFlagInfo("minloglevel", &loglevel) &&
       loglevel.is_default) {
-    FLAGS_minloglevel = google::GLOG_ERROR;
+    FLAGS_minloglevel = google::GLOG_FATAL;
   }
   FLAGS_logtostderr = true;
   google::InitGoogleLogging(argv[0]);

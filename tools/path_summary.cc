@@ -9,8 +9,9 @@
 namespace shellspace {
 namespace {
 
-bool ExpStepConverged(const ExpStepResult& step) {
-  return step.summary.termination_type == ceres::CONVERGENCE;
+const char* ExpMethodName(ExpStepResult::Method method) {
+  return method == ExpStepResult::Method::kNewton ? "newton"
+                                                  : "levenberg-marquardt";
 }
 
 }  // namespace
@@ -48,11 +49,13 @@ std::vector<std::string> ExpStepStages(const ShootResult& result) {
     const int lm = LmIterations(step.summary);
     stages.push_back(
         JsonObject()
-            .Add("method", "exp step")
+            .Add("method", ExpMethodName(step.method))
+            .Add("solved", step.solved)
             .Add("newton_steps", step.newton_steps)
             .Add("lm_iterations", lm)
             .Add("iterations", step.newton_steps + lm)
             .Add("residual", step.residual_norm)
+            .Add("relative_residual", step.relative_residual)
             .Add("termination", ceres::TerminationTypeToString(
                                     step.summary.termination_type))
             .str());
@@ -84,8 +87,33 @@ JsonObject GeodesicJson(const GeodesicResult& result) {
                                 ? std::string("none")
                                 : result.newton.linear_solver)
       .Add("cg_not_converged", result.newton.cg_not_converged)
+      .Add("newton_shifted_steps", result.newton.shifted_steps)
+      .Add("step_energy_ratio", result.step_energy_ratio)
+      .Add("uneven_steps", result.uneven_steps)
       .Add("frames", static_cast<int>(result.path.size()));
   return json;
+}
+
+void CheckGeodesic(const GeodesicResult& result, const std::string& what,
+                   RunStatus* status) {
+  status->Require(result.converged,
+                  what + ": |grad| " + Short(result.final_gradient) +
+                      " above the target " + Short(result.gradient_target) +
+                      " (tolerance x max(1, |grad_0|)) after " +
+                      std::to_string(result.iterations) + " iterations (" +
+                      (result.stages.empty() ? std::string("no stages")
+                                             : result.stages.back().termination) +
+                      ")");
+  if (result.uneven_steps) {
+    const auto [lo, hi] = std::minmax_element(result.step_energies.begin(),
+                                              result.step_energies.end());
+    status->Warn(what + ": step energies far from equal: max/min " +
+                 Short(result.step_energy_ratio) + " (W of step " +
+                 std::to_string(hi - result.step_energies.begin() + 1) +
+                 " = " + Short(*hi) + ", of step " +
+                 std::to_string(lo - result.step_energies.begin() + 1) +
+                 " = " + Short(*lo) + "; a geodesic has equal steps)");
+  }
 }
 
 ShootTotals TotalsOf(const ShootResult& result) {
@@ -93,8 +121,11 @@ ShootTotals TotalsOf(const ShootResult& result) {
   for (const ExpStepResult& step : result.exp_steps) {
     totals.iterations += step.newton_steps + LmIterations(step.summary);
     totals.max_residual = std::max(totals.max_residual, step.residual_norm);
-    totals.converged &= ExpStepConverged(step);
+    totals.max_relative_residual =
+        std::max(totals.max_relative_residual, step.relative_residual);
+    totals.converged &= step.solved;
   }
+
   return totals;
 }
 
@@ -105,10 +136,23 @@ JsonObject ShootJson(const ShootResult& result) {
       .Add("step_energies", result.step_energies)
       .Add("iterations", totals.iterations)
       .Add("max_exp_residual", totals.max_residual)
+      .Add("max_relative_residual", totals.max_relative_residual)
       .Add("converged", totals.converged)
       .Raw("stages", JsonArray(ExpStepStages(result)))
       .Add("frames", static_cast<int>(result.path.size()));
   return json;
+}
+
+void CheckShoot(const ShootResult& result, RunStatus* status) {
+  for (size_t i = 0; i < result.exp_steps.size(); ++i) {
+    const ExpStepResult& step = result.exp_steps[i];
+    status->Require(step.solved,
+                    "EXP step " + std::to_string(i + 1) +
+                        " not solved: relative residual " +
+                        Short(step.relative_residual) + " > " +
+                        Short(kExpStepAcceptance) + " (" +
+                        ExpMethodName(step.method) + ")");
+  }
 }
 
 void WritePathOutputs(const std::string& dir, const Faces& faces,

@@ -12,6 +12,7 @@
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/io/json_writer.h"
 #include "shellspace/problems/calculus/exponential_map.h"
+#include "shellspace/tools/run_status.h"
 
 namespace shellspace {
 
@@ -27,17 +28,20 @@ std::string JsonArray(const std::vector<std::string>& objects);
 // termination.
 std::vector<std::string> GeodesicStages(const GeodesicResult& result);
 
-// The EXP steps of a shot, one object each: method "exp step",
-// newton_steps, lm_iterations, iterations (their sum), residual (max |F|),
-// termination.
+// The EXP steps of a shot, one object each: method ("newton" or
+// "levenberg-marquardt": the solver that produced the shape), solved
+// (relative_residual <= kExpStepAcceptance), newton_steps, lm_iterations,
+// iterations (their sum), residual (max |F|), relative_residual (max |F| /
+// max |D_2 W|), termination.
 std::vector<std::string> ExpStepStages(const ShootResult& result);
 
 // Totals over the EXP steps of a shot: Newton steps plus LM iterations,
 // every step converged, the largest residual max |F|.
 struct ShootTotals {
   int iterations = 0;
-  bool converged = true;
+  bool converged = true;  // every EXP step solved
   double max_residual = 0;
+  double max_relative_residual = 0;
 };
 ShootTotals TotalsOf(const ShootResult& result);
 
@@ -46,13 +50,25 @@ ShootTotals TotalsOf(const ShootResult& result);
 // final_gradient_norm (after the last stage, max norm over the free
 // coordinates), relative_gradient_norm (final / initial), converged (the
 // stopping criterion was met), termination (of the last stage), stages,
-// newton_steps, newton_seconds, factorizations, cg_iterations, frames.
+// newton_steps, newton_seconds, factorizations, cg_iterations,
+// newton_shifted_steps (Newton steps from H + lambda I), step_energy_ratio
+// (max / min step energy), uneven_steps (ratio > kUnevenStepEnergyRatio),
+// frames.
 JsonObject GeodesicJson(const GeodesicResult& result);
+
+// Records in `status` whether the geodesic met its stopping criterion
+// (naming `what`, e.g. "geodesic") and warns about uneven step energies.
+void CheckGeodesic(const GeodesicResult& result, const std::string& what,
+                   RunStatus* status);
 
 // A shot (ShootWithReport): path_energy, step_energies, iterations (Newton
 // steps and LM iterations of every EXP step), max_exp_residual, converged
-// (every EXP step converged), stages (the EXP steps), frames.
+// (every EXP step solved), max_relative_residual, stages (the EXP steps),
+// frames.
 JsonObject ShootJson(const ShootResult& result);
+
+// Records each unsolved EXP step of the shot in `status`.
+void CheckShoot(const ShootResult& result, RunStatus* status);
 
 // Writes DIR/shape_000.ply ... and, if --png is set, a film strip.
 void WritePathOutputs(const std::string& dir, const Faces& faces,

@@ -12,6 +12,7 @@
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/geodesic_solve.h"
 #include "shellspace/tools/path_summary.h"
+#include "shellspace/tools/run_status.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
 
@@ -52,6 +53,7 @@ FlagTable ShootFlags() {
            TextFlag("backward", "extrapolate backward in time, before s_0"),
            MaskFlag(),
            PngFlag(),
+           AllowUnsolvedFlag(),
        },
        MaterialFlags(), SolverFlags(), JsonFlag()});
 }
@@ -88,6 +90,7 @@ FlagTable TransportFlags() {
                     0, End::kOpen),
            MaskFlag(),
            PngFlag(),
+           AllowUnsolvedFlag(),
        },
        MaterialFlags(), SolverFlags(), JsonFlag()});
 }
@@ -101,11 +104,8 @@ int RunShoot() {
       space, first.mesh.positions, second.positions, FLAGS_steps,
       FLAGS_backward ? StepDirection::kBackward : StepDirection::kForward,
       MaskFromFlags(first.mesh.num_vertices()), SettingsFromFlags("shoot"));
-  for (const ExpStepResult& step : result.exp_steps) {
-    if (step.summary.termination_type == ceres::FAILURE) {
-      throw InputError("EXP step failed: " + step.summary.message);
-    }
-  }
+  RunStatus status("shoot");
+  CheckShoot(result, &status);
   WritePathOutputs(FLAGS_output, first.mesh.faces, result.path);
   if (FLAGS_json) {
     std::cout << ShootJson(result)
@@ -115,7 +115,7 @@ int RunShoot() {
                      .str()
               << "\n";
   }
-  return 0;
+  return status.Finish();
 }
 
 int RunLog() {
@@ -131,6 +131,8 @@ int RunLog() {
       SolveGeodesicFromFlags(space, input, SettingsFromFlags("log"));
   const GeodesicResult& geodesic = multires.geodesic;
   const Positions log = LogOfGeodesic(geodesic.path);
+  RunStatus status("log");
+  CheckGeodesic(geodesic, "log: the geodesic", &status);
   WriteMesh(Mesh{start.mesh.positions + log, start.mesh.faces}, FLAGS_output);
   if (FLAGS_json) {
     std::cout << GeodesicJson(geodesic)
@@ -142,7 +144,7 @@ int RunLog() {
                      .str()
               << "\n";
   }
-  return 0;
+  return status.Finish();
 }
 
 int RunTransport() {
@@ -162,16 +164,51 @@ int RunTransport() {
       space, path, varied.positions - first.mesh.positions, FLAGS_epsilon,
       MaskFromFlags(first.mesh.num_vertices()),
       SettingsFromFlags("transport"));
+  RunStatus status("transport");
+  for (size_t k = 0; k < result.rungs.size(); ++k) {
+    const TransportResult::Rung& rung = result.rungs[k];
+    status.Require(rung.solved,
+                   "rung " + std::to_string(k + 1) +
+                       " not solved: EXP residual " +
+                       Short(rung.relative_residual) + " > " +
+                       Short(kExpStepAcceptance) + " (also at epsilon / " +
+                       std::to_string(rung.divisor) + ")");
+    if (rung.solved && rung.divisor > 1) {
+      status.Warn("rung " + std::to_string(k + 1) + " solved at epsilon / " +
+                  std::to_string(rung.divisor) + " and scaled back");
+    }
+  }
   WritePathOutputs(FLAGS_output, first.mesh.faces, result.shapes);
   if (FLAGS_json) {
     std::vector<double> norms;
     for (const Positions& xi : result.variations) {
       norms.push_back(xi.cwiseAbs().maxCoeff());
     }
+    std::vector<std::string> rungs;
+    int iterations = 0;
+    for (size_t k = 0; k < result.rungs.size(); ++k) {
+      const TransportResult::Rung& rung = result.rungs[k];
+      iterations += rung.newton_steps + rung.lm_iterations;
+      rungs.push_back(
+          JsonObject()
+              .Add("rung", static_cast<int>(k + 1))
+              .Add("solved", rung.solved)
+              .Add("relative_residual", rung.relative_residual)
+              .Add("method", rung.method == ExpStepResult::Method::kNewton
+                                 ? "newton"
+                                 : "levenberg-marquardt")
+              .Add("epsilon_divisor", rung.divisor)
+              .Add("newton_steps", rung.newton_steps)
+              .Add("lm_iterations", rung.lm_iterations)
+              .str());
+    }
     std::cout << JsonObject()
                      .Add("bending_model", FLAGS_bending)
                      .Add("variation_max_norms", norms)
                      .Add("exp_residuals", result.exp_residuals)
+                     .Add("converged", result.all_solved)
+                     .Add("iterations", iterations)
+                     .Raw("rungs", JsonArray(rungs))
                      .Add("epsilon", FLAGS_epsilon)
                      .Add("frames", static_cast<int>(result.shapes.size()))
                      .Add("seconds", Seconds(clock))
@@ -179,7 +216,7 @@ int RunTransport() {
                      .str()
               << "\n";
   }
-  return 0;
+  return status.Finish();
 }
 
 }  // namespace

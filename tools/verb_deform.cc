@@ -1,6 +1,7 @@
 // `shellspace deform`: elastic deformation with prescribed vertex positions.
 #include <gflags/gflags.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -10,6 +11,7 @@
 #include "shellspace/problems/calculus/elastic_deformation.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/path_summary.h"
+#include "shellspace/tools/run_status.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
 
@@ -51,6 +53,22 @@ int RunDeform() {
   if (result.summary.termination_type == ceres::FAILURE) {
     throw InputError("solver failed: " + result.summary.message);
   }
+  // The relative gradient criterion of the LM solve (Ceres' gradient
+  // tolerance is FLAGS_tolerance * max(1, |grad_0|), solver_settings.h).
+  const auto& iterations = result.summary.iterations;
+  const double g0 = iterations.empty() ? 0.0 : iterations.front().gradient_max_norm;
+  const double g = iterations.empty() ? 0.0 : iterations.back().gradient_max_norm;
+  const double target = FLAGS_tolerance * std::max(1.0, g0);
+  const bool converged = g <= target;
+  RunStatus status("deform");
+  status.Require(converged, "deform: |grad| " + Short(g) +
+                                " above the target " + Short(target) +
+                                " after " +
+                                std::to_string(LmIterations(result.summary)) +
+                                " LM iterations (" +
+                                ceres::TerminationTypeToString(
+                                    result.summary.termination_type) +
+                                ")");
   WriteMesh(Mesh{result.deformed, reference.mesh.faces}, FLAGS_output);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
@@ -62,8 +80,10 @@ int RunDeform() {
                      .Add("bending", result.energy.bending)
                      .Add("total", result.energy.total)
                      .Add("iterations", LmIterations(result.summary))
-                     .Add("converged", result.summary.termination_type ==
-                                           ceres::CONVERGENCE)
+                     .Add("initial_gradient_norm", g0)
+                     .Add("final_gradient_norm", g)
+                     .Add("relative_gradient_norm", g0 > 0 ? g / g0 : 0.0)
+                     .Add("converged", converged)
                      .Add("termination", ceres::TerminationTypeToString(
                                              result.summary.termination_type))
                      .Add("seconds", seconds)
@@ -76,7 +96,7 @@ int RunDeform() {
                 result.energy.total, result.energy.membrane,
                 result.energy.bending, FLAGS_output.c_str());
   }
-  return 0;
+  return status.Finish();
 }
 
 }  // namespace

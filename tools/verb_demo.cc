@@ -16,6 +16,7 @@
 #include "shellspace/render/film_strip.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/path_summary.h"
+#include "shellspace/tools/run_status.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
 
@@ -79,6 +80,9 @@ int RunDemo() {
       shot.step_energies.empty() ? shot.step_energies.end()
                                  : shot.step_energies.begin() + 1,
       shot.step_energies.end());
+  RunStatus status("demo");
+  CheckGeodesic(geodesic, "demo: the geodesic", &status);
+  CheckShoot(shot, &status);
   MakeDirectory(dir);
   WriteFrames(dir + "/frames", finger.faces, frames);
   RenderOptions options;
@@ -105,6 +109,8 @@ int RunDemo() {
           .Add("converged", geodesic.converged && shot_converged)
           .Add("geodesic_converged", geodesic.converged)
           .Add("extrapolation_converged", shot_converged)
+          .Add("step_energy_ratio", geodesic.step_energy_ratio)
+          .Add("uneven_steps", geodesic.uneven_steps)
           .Raw("stages", JsonArray(stages))
           .Add("newton_steps", geodesic.newton.steps)
           .Add("factorizations", geodesic.newton.factorizations)
@@ -119,7 +125,7 @@ int RunDemo() {
           .str();
   WriteFileAtomically(dir + "/summary.json", json + "\n");
   std::cout << json << "\n";
-  return 0;
+  return status.Finish();
 }
 
 }  // namespace

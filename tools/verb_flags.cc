@@ -1,5 +1,7 @@
 #include "shellspace/tools/verb_flags.h"
 
+#include "shellspace/tools/run_status.h"
+
 #include <cmath>
 #include <sstream>
 
@@ -85,10 +87,14 @@ FlagTable SolverFlags() {
                "stop when the gradient max-norm falls below this fraction of "
                "its initial value",
                0, End::kOpen, 1, End::kOpen),
-      IntegerFlag("max_iterations", "maximum Levenberg-Marquardt iterations",
+      IntegerFlag("max_iterations",
+                  "maximum iterations of the verb's outer solver (LM "
+                  "iterations summed over its stages; spline: L-BFGS); inner "
+                  "solves keep their own limits",
                   1),
       IntegerFlag("threads", "threads of the solves", 1, 1024),
       TextFlag("quiet", "suppress progress output"),
+      AllowUnconvergedFlag(),
   };
 }
 

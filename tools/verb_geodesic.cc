@@ -9,6 +9,7 @@
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/geodesic_solve.h"
 #include "shellspace/tools/path_summary.h"
+#include "shellspace/tools/run_status.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
 
@@ -51,6 +52,8 @@ int RunGeodesic() {
     throw InputError("solver failed: " + result.summary.message);
   }
   if (FLAGS_report) std::cerr << result.summary.FullReport() << "\n";
+  RunStatus status("geodesic");
+  CheckGeodesic(result, "geodesic", &status);
   WritePathOutputs(FLAGS_output, start.mesh.faces, result.path);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock)
@@ -70,7 +73,7 @@ int RunGeodesic() {
               << result.final_gradient << "); wrote " << FLAGS_output
               << "/shape_*.ply\n";
   }
-  return 0;
+  return status.Finish();
 }
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include "shellspace/problems/splines/spline.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/path_summary.h"
+#include "shellspace/tools/run_status.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
 
@@ -17,6 +18,14 @@ DEFINE_string(keyframes, "", "spline: keyframe shells");
 DEFINE_string(method, "nonlinear", "spline: nonlinear or ltheta");
 DEFINE_bool(periodic, false, "spline: closed path");
 DEFINE_double(sigma, 1.0, "regress: weight of F_K");
+DEFINE_bool(energy, true, "spline --method ltheta: evaluate F_K");
+
+namespace {
+// The inner solves of spline and regress (each midpoint of F_K, each LΘA
+// reconstruction) have their own iteration limit, not --max_iterations
+// (which caps the outer L-BFGS only).
+constexpr int kInnerMaxIterations = 200;
+}  // namespace
 
 namespace shellspace {
 namespace {
@@ -43,6 +52,10 @@ FlagTable SplineFlags() {
                              "spline) or ltheta (the fast approximation "
                              "alone)"),
                     TextFlag("periodic", "closed path (indices mod K)"),
+                    TextFlag("energy",
+                             "--method ltheta: also evaluate F_K of the "
+                             "result for the report (one midpoint solve per "
+                             "step; --energy=false skips it)"),
                 },
                 PathFlags(), MaterialFlags(), SolverFlags(), JsonFlag()});
 }
@@ -92,6 +105,7 @@ SplineSettings SplineSettingsFromFlags(const std::string& label) {
   settings.inner = SettingsFromFlags(label + " midpoint");
   settings.inner.progress = false;
   settings.inner.gradient_tolerance = 1e-10;
+  settings.inner.max_iterations = kInnerMaxIterations;
   settings.max_iterations = FLAGS_max_iterations;
   settings.gradient_tolerance = FLAGS_tolerance;
   settings.progress = !FLAGS_quiet;
@@ -99,19 +113,39 @@ SplineSettings SplineSettingsFromFlags(const std::string& label) {
   return settings;
 }
 
-void Report(const Faces& faces,
-            const SplineResult& result, double seconds, JsonObject extra) {
+// Writes the frames and the report; returns the exit code. `optimised`:
+// the outer solver ran (not --method ltheta).
+int Report(const std::string& verb, const Faces& faces,
+           const SplineResult& result, double seconds, JsonObject extra,
+           bool optimised = true) {
+  RunStatus status(verb);
+  if (optimised) {
+    status.Require(result.converged,
+                   verb + ": relative gradient " +
+                       Short(result.relative_gradient_norm) +
+                       " above the tolerance " + Short(FLAGS_tolerance) +
+                       ", no function-tolerance stop, after " +
+                       std::to_string(result.iterations) +
+                       " L-BFGS iterations (" +
+                       ceres::TerminationTypeToString(
+                           result.summary.termination_type) +
+                       ")");
+  }
   WritePathOutputs(FLAGS_output, faces, result.path);
   if (FLAGS_json) {
     std::cout << extra.Add("bending_model", FLAGS_bending)
                      .Add("spline_energy", result.spline_energy)
                      .Add("data_energy", result.data_energy)
                      .Add("objective", result.objective)
-                     .Add("iterations", std::max(0, static_cast<int>(
-                                                 result.summary.iterations
-                                                     .size()) - 1))
-                     .Add("converged", result.summary.termination_type ==
-                                           ceres::CONVERGENCE)
+                     .Add("iterations", result.iterations)
+                     .Add("initial_gradient_norm",
+                          result.initial_gradient_norm)
+                     .Add("final_gradient_norm", result.final_gradient_norm)
+                     .Add("relative_gradient_norm",
+                          result.relative_gradient_norm)
+                     .Add("gradient_criterion_met",
+                          result.gradient_criterion_met)
+                     .Add("converged", optimised ? result.converged : true)
                      .Add("termination",
                           result.summary.iterations.size() > 1
                               ? ceres::TerminationTypeToString(
@@ -126,6 +160,7 @@ void Report(const Faces& faces,
     std::cout << "F_K = " << result.spline_energy << "; wrote " << FLAGS_output
               << "/shape_*.ply\n";
   }
+  return status.Finish();
 }
 
 int RunSpline() {
@@ -140,18 +175,43 @@ int RunSpline() {
   const ShellSpace space = SpaceFromFlags(set.first);
   SolverSettings ltheta_settings = SettingsFromFlags("ltheta");
   ltheta_settings.progress = false;
+  ltheta_settings.max_iterations = kInnerMaxIterations;
+  if (!FLAGS_quiet) std::cerr << "spline: LTheta spline\n";
   const ShellPath ltheta = LThetaSpline(space, keyframes, at, FLAGS_steps,
                                         FLAGS_periodic, ltheta_settings);
   const double ltheta_seconds = Seconds(clock);
+  if (!FLAGS_quiet) {
+    std::cerr << "spline: LTheta spline done (" << ltheta_seconds << " s)\n";
+  }
+  if (FLAGS_method == "ltheta" && !FLAGS_energy) {
+    SplineResult plain;
+    plain.path = ltheta;
+    plain.converged = plain.gradient_criterion_met = true;
+    WritePathOutputs(FLAGS_output, set.first.mesh.faces, plain.path);
+    if (FLAGS_json) {
+      std::cout << JsonObject()
+                       .Add("method", FLAGS_method)
+                       .Add("ltheta_seconds", ltheta_seconds)
+                       .Add("iterations", 0)
+                       .Add("converged", true)
+                       .Add("termination", "not optimised")
+                       .Add("seconds", Seconds(clock))
+                       .Add("frames", static_cast<int>(plain.path.size()))
+                       .Add("output", FLAGS_output)
+                       .str()
+                << "\n";
+    }
+    return 0;
+  }
   SplineSettings settings = SplineSettingsFromFlags("spline");
   if (FLAGS_method == "ltheta") settings.max_iterations = 0;
   SplineResult result = SolveSpline(space, keyframes, at, FLAGS_steps,
                                     FLAGS_periodic, ltheta, settings);
-  Report(set.first.mesh.faces, result, Seconds(clock),
-         JsonObject()
-             .Add("method", FLAGS_method)
-             .Add("ltheta_seconds", ltheta_seconds));
-  return 0;
+  return Report("spline", set.first.mesh.faces, result, Seconds(clock),
+                JsonObject()
+                    .Add("method", FLAGS_method)
+                    .Add("ltheta_seconds", ltheta_seconds),
+                FLAGS_method != "ltheta");
 }
 
 int RunRegress() {
@@ -163,9 +223,8 @@ int RunRegress() {
   const SplineResult result =
       SolveRegression(space, set.shapes, at, FLAGS_steps, FLAGS_sigma, {},
                       SplineSettingsFromFlags("regress"));
-  Report(set.first.mesh.faces, result, Seconds(clock),
-         JsonObject().Add("sigma", FLAGS_sigma));
-  return 0;
+  return Report("regress", set.first.mesh.faces, result, Seconds(clock),
+                JsonObject().Add("sigma", FLAGS_sigma));
 }
 
 }  // namespace
@@ -174,7 +233,8 @@ int RunRegress() {
 SHELLSPACE_REGISTER_VERB(
     "spline",
     "spline --keyframes a.ply,b.ply,c.ply --at 0,4,8 --steps 8 --output DIR "
-    "[--method nonlinear|ltheta] [--periodic] [--json] [--png strip.png]",
+    "[--method nonlinear|ltheta] [--energy=false] [--periodic] [--json] "
+    "[--png strip.png]",
     shellspace::SplineFlags(), shellspace::RunSpline);
 SHELLSPACE_REGISTER_VERB(
     "regress",

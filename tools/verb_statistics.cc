@@ -20,6 +20,7 @@
 #include "shellspace/render/film_strip.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/io/json_writer.h"
+#include "shellspace/tools/run_status.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
 
@@ -31,6 +32,7 @@ DEFINE_int32(log_steps, 2, "pca: K of LOG_K");
 DEFINE_int32(exp_steps, 4, "pca: K of EXP_K");
 DEFINE_int32(max_exp_steps, 16, "pca: largest K of the EXP safeguard");
 DEFINE_string(displacement, "log", "pca: log or difference");
+DEFINE_string(mean, "", "pca: a computed elastic mean to start from");
 
 namespace shellspace {
 namespace {
@@ -85,6 +87,11 @@ FlagTable PcaFlags() {
                     "(v_i = S_i - mean after rigid alignment)"),
            TextFlag("png",
                     "also write a PNG film strip of the mean and the modes"),
+           TextFlag("mean",
+                    "an elastic mean of the inputs computed before (e.g. by "
+                    "`shellspace mean`): the mean solve starts there and "
+                    "only checks it (no iterations if it meets the "
+                    "tolerance)"),
        },
        MaterialFlags(), SolverFlags(), JsonFlag()});
 }
@@ -130,6 +137,18 @@ std::vector<std::string> WarnAboutFarInputs(const ShellSet& inputs,
   return far;
 }
 
+// Records whether the elastic mean met its stopping criterion.
+void CheckMean(const ElasticMeanResult& mean, const std::string& what,
+               RunStatus* status) {
+  status->Require(mean.converged,
+                  what + ": |grad| " + Short(mean.gradient_norm) +
+                      " above the target " + Short(mean.gradient_target) +
+                      " after " +
+                      std::to_string(mean.lm_iterations) + " LM + " +
+                      std::to_string(mean.newton_iterations) +
+                      " Newton iterations (" + mean.termination + ")");
+}
+
 int RunMean() {
   const auto clock = std::chrono::steady_clock::now();
   const ShellSet inputs = LoadInputs(1);
@@ -140,6 +159,8 @@ int RunMean() {
   const std::vector<std::string> far =
       WarnAboutFarInputs(inputs, result, "mean");
   if (FLAGS_report) std::cerr << result.summary.FullReport() << "\n";
+  RunStatus status("mean");
+  CheckMean(result, "elastic mean", &status);
   WriteMesh(Mesh{result.mean, inputs.first.mesh.faces}, FLAGS_output);
   if (FLAGS_json) {
     const double relative =
@@ -165,7 +186,9 @@ int RunMean() {
                      .Add("initial_gradient_norm", result.initial_gradient_norm)
                      .Add("final_gradient_norm", result.gradient_norm)
                      .Add("relative_gradient_norm", relative)
+                     .Add("gradient_target", result.gradient_target)
                      .Add("converged", result.converged)
+                     .Add("termination", result.termination)
                      .Add("seconds", Seconds(clock))
                      .Add("output", FLAGS_output)
                      .str()
@@ -178,7 +201,7 @@ int RunMean() {
               << " Newton iterations, |grad| " << result.gradient_norm
               << "); wrote " << FLAGS_output << "\n";
   }
-  return 0;
+  return status.Finish();
 }
 
 std::string TableText(const LeaveOneOutTable& table) {
@@ -298,15 +321,35 @@ int RunPca() {
   inner.progress = false;
 
   // Shell model.
-  const ElasticMeanResult mean =
-      ComputeElasticMean(space, inputs.shapes, settings);
+  Positions given_mean;
+  if (!FLAGS_mean.empty()) {
+    given_mean = LoadCompatibleShell(FLAGS_mean, inputs.first).positions;
+  }
+  if (!FLAGS_quiet) {
+    std::cerr << "pca: elastic mean of " << n << " shells"
+              << (FLAGS_mean.empty() ? "" : " from " + FLAGS_mean) << "\n";
+  }
+  const ElasticMeanResult mean = ComputeElasticMean(
+      space, inputs.shapes, settings,
+      FLAGS_mean.empty() ? nullptr : &given_mean);
   CheckSolve(mean.summary, "elastic mean");
+  RunStatus status("pca");
+  CheckMean(mean, "the elastic mean", &status);
   const std::vector<std::string> far = WarnAboutFarInputs(inputs, mean, "pca");
-  if (!FLAGS_quiet) std::cerr << "pca: elastic mean done\n";
+  if (!FLAGS_quiet) {
+    std::cerr << "pca: elastic mean done (" << mean.lm_iterations << " LM + "
+              << mean.newton_iterations << " Newton iterations, "
+              << Seconds(clock) << " s); displacements ("
+              << FLAGS_displacement << ") and the Gram matrix\n";
+  }
   const ShellPcaModel shell =
       ComputeShellPca(space, mean.mean, inputs.shapes, options, inner);
   const int shell_modes =
       std::min<int>(FLAGS_modes, static_cast<int>(shell.modes.size()));
+  if (!FLAGS_quiet) {
+    std::cerr << "pca: shell PCA done (" << Seconds(clock) << " s); "
+              << 2 * shell_modes << " mode shapes by EXP_K\n";
+  }
   std::vector<std::pair<std::string, Positions>> files = {
       {"mean.ply", mean.mean}};  // written at the end, with pca.json
   std::vector<Positions> strip = {mean.mean};
@@ -339,6 +382,12 @@ int RunPca() {
       .Add("mean_iterations", mean.lm_iterations)
       .Add("mean_newton_iterations", mean.newton_iterations)
       .Add("mean_gradient_norm", mean.gradient_norm)
+      .Add("mean_relative_gradient_norm",
+           mean.initial_gradient_norm > 0
+               ? mean.gradient_norm / mean.initial_gradient_norm
+               : 0.0)
+      .Add("mean_converged", mean.converged)
+      .Add("mean_termination", mean.termination)
       .Add("displacement", FLAGS_displacement)
       .Add("log_steps", FLAGS_log_steps)
       .Add("exp_steps", FLAGS_exp_steps)
@@ -346,7 +395,8 @@ int RunPca() {
       .Add("modes", shell_modes)
       .Add("failed_mode_shapes", failed_shapes)
       .Add("far_inputs", far)
-      .Add("amplitude", FLAGS_amplitude);
+      .Add("amplitude", FLAGS_amplitude)
+      .Add("converged", status.ok());  // the mean; mode shapes: warned
 
   if (FLAGS_baseline == "procrustes") {
     const ProcrustesPcaModel procrustes = ComputeProcrustesPca(inputs.shapes);
@@ -415,7 +465,7 @@ int RunPca() {
                 << " mode pairs\n";
     }
   }
-  return 0;
+  return status.Finish();
 }
 
 }  // namespace
@@ -430,6 +480,7 @@ SHELLSPACE_REGISTER_VERB(
     "pca",
     "pca --inputs a.ply,b.ply,... --modes m --output DIR [--baseline "
     "procrustes] [--loo] [--amplitude t] [--log_steps K] [--exp_steps K] "
-    "[--max_exp_steps K] [--displacement log|difference] [--threads N] "
+    "[--max_exp_steps K] [--displacement log|difference] [--mean M.ply] "
+    "[--threads N] "
     "[--json] [--png strip.png]",
     shellspace::PcaFlags(), shellspace::RunPca);

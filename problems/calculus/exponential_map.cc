@@ -15,7 +15,7 @@ namespace {
 // level below which a stalled Newton run (round-off) is still accepted, and
 // its step limit.
 constexpr double kExpNewtonTolerance = 1e-11;
-constexpr double kExpNewtonAccept = 1e-8;
+constexpr double kExpNewtonAccept = kExpStepAcceptance;
 constexpr int kMaxExpNewtonSteps = 20;
 }  // namespace
 
@@ -65,9 +65,13 @@ ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
         kExpNewtonTolerance * scale, kExpNewtonAccept * scale,
         kMaxExpNewtonSteps, &trial);
     result.newton_steps = newton.steps;
+    result.residual_scale = scale;
     if (newton.final_gradient <= kExpNewtonAccept * scale) {
       result.shape = std::move(trial);
       result.residual_norm = newton.final_gradient;
+      result.relative_residual = result.residual_norm / scale;
+      result.solved = true;
+      result.method = ExpStepResult::Method::kNewton;
       result.summary.termination_type = ceres::CONVERGENCE;
       result.summary.message = "Newton on F: " + newton.stop_reason;
       return result;
@@ -113,6 +117,11 @@ ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
       1e16;  // Gauss-Newton from the start
   result.summary = SolveWithSettings(&problem, step_settings);
   result.residual_norm = residual_norm(result.shape);  // F at the result
+  result.relative_residual = result.residual_norm / scale;
+  result.solved = result.relative_residual <= kExpNewtonAccept;
+  result.method = ExpStepResult::Method::kLevenbergMarquardt;
+  result.lm_iterations =
+      std::max(0, static_cast<int>(result.summary.iterations.size()) - 1);
   return result;
 }
 

@@ -13,10 +13,26 @@ namespace shellspace {
 
 enum class StepDirection { kForward, kBackward };
 
+// An EXP step is solved when max |F| <= kExpStepAcceptance times
+// max |D_2 W[s_{k-1}, s_k]| (over the unknown vertices): the level Newton's
+// round-off stall is accepted at.
+inline constexpr double kExpStepAcceptance = 1e-8;
+
 struct ExpStepResult {
   Positions shape;
   double residual_norm = 0;  // max-norm of F at the result
+  // max |D_2 W[s_{k-1}, s_k]| over the unknown vertices (forward; backward
+  // max |D_1 W[s_k, s_{k+1}]|): the scale of F.
+  double residual_scale = 0;
+  double relative_residual = 0;  // residual_norm / residual_scale
+  // relative_residual <= kExpStepAcceptance: F = 0 was solved. False: no
+  // root was found from the initial guesses (the result is the best point
+  // LM reached).
+  bool solved = false;
+  enum class Method { kNewton, kLevenbergMarquardt };
+  Method method = Method::kNewton;  // the solver that produced `shape`
   int newton_steps = 0;      // Newton steps on F (exp_step_newton.h)
+  int lm_iterations = 0;     // LM iterations of the fallback (0: none)
   // The LM solve, if Newton did not converge; else a summary with
   // termination CONVERGENCE, no iterations and message "Newton on F: ...".
   ceres::Solver::Summary summary;
@@ -29,9 +45,12 @@ struct ExpStepResult {
 //           D_2 W[s_{k-1}, s_k] + D_1 W[s_k, s_{k+1}] = 0.
 // Solved by Newton's method on F with the exact Jacobian and sparse LU
 // (exp_step_newton.h) to max |F| <= 1e-11 max |D_2 W[s_{k-1}, s_k]| (or
-// 1e-8 if round-off stalls it), else as least squares of the per-vertex
+// kExpStepAcceptance = 1e-8 if round-off stalls it; at most 20 Newton
+// steps), else as least squares of the per-vertex
 // residuals F_v (cost_functions/gradient_field_residual.h) by sparse LM,
-// from 2 b - a (or b if that has degenerate triangles). Vertices in `fixed_vertices` are not
+// from 2 b - a (or b if that has degenerate triangles), at most
+// settings.max_iterations LM iterations; `solved` says whether the result
+// reaches kExpStepAcceptance. Vertices in `fixed_vertices` are not
 // unknowns: they move on linearly, to 2 b - a (their positions in b if the
 // mask does not move), as geodesic interpolation moves them (linear
 // interpolation of the end shapes), so that shooting from (s_0, s_1) of a

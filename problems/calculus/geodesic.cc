@@ -44,6 +44,15 @@ double PathEnergy(const ShellSpace& space, const ShellPath& path,
   return *energy;
 }
 
+double StepEnergyRatio(const std::vector<double>& step_energies) {
+  if (step_energies.size() < 2) return 1;
+  const auto [lo, hi] =
+      std::minmax_element(step_energies.begin(), step_energies.end());
+  if (*hi <= 0) return 1;
+  if (*lo <= 0) return HUGE_VAL;
+  return *hi / *lo;
+}
+
 ShellPath LinearPath(const Positions& a, const Positions& b, int steps) {
   ShellPath path;
   for (int k = 0; k <= steps; ++k) {
@@ -119,10 +128,15 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
     const double g0 = input.reference_gradient >= 0 ? input.reference_gradient
                                                     : result.final_gradient;
     const double tolerance = settings.gradient_tolerance * std::max(1.0, g0);
+    result.gradient_target = tolerance;
+    // Iterations left of settings.max_iterations (LM iterations and Newton
+    // steps of all stages).
+    int lm_left = settings.max_iterations;
     // LM down to `relative` (or the tolerance), continuing from where it is.
     const auto run_lm = [&](double relative) {
       SolverSettings lm = settings;
       lm.gradient_tolerance = std::max(settings.gradient_tolerance, relative);
+      lm.max_iterations = std::max(0, lm_left);
       result.summary = SolveWithSettings(&problem, lm, g0);
       GeodesicStage stage;
       stage.termination =
@@ -135,6 +149,7 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
       }
       stage.final_gradient = result.final_gradient;
       result.iterations += stage.iterations;
+      lm_left -= stage.iterations;
       result.stages.push_back(stage);
     };
     double threshold = input.newton_from;
@@ -146,16 +161,19 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
           result.summary.termination_type == ceres::FAILURE) {
         break;
       }
+      if (lm_left <= 0) break;  // the budget is spent
       PathNewtonSettings polish;
       polish.linear_solver = input.linear_solver;
       polish.gradient_tolerance = tolerance;
       polish.num_threads = settings.num_threads;
       polish.progress = settings.progress;
       polish.progress_label = settings.progress_label + " newton";
+      polish.max_steps = std::min(polish.max_steps, lm_left);
       const PathNewtonReport report =
           PolishPathNewton(space, input.fixed_vertices, polish, &result.path);
       result.newton.Append(report);
       result.iterations += report.steps;
+      lm_left -= report.steps;
       result.final_gradient = report.final_gradient;
       GeodesicStage stage;
       stage.method = GeodesicStage::Method::kNewton;
@@ -163,19 +181,17 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
       stage.final_gradient = report.final_gradient;
       stage.termination = report.stop_reason;
       result.stages.push_back(stage);
-      if (report.converged) break;
+      if (report.converged || lm_left <= 0) break;
       threshold *= 0.1;  // not yet in Newton's basin: more LM first
     }
     result.initial_gradient = g0;
-    const GeodesicStage& last = result.stages.back();
-    result.converged =
-        result.final_gradient <= tolerance ||
-        (last.method == GeodesicStage::Method::kLevenbergMarquardt &&
-         result.summary.termination_type == ceres::CONVERGENCE);
+    result.converged = result.final_gradient <= tolerance;
   } else {
     result.converged = true;  // K = 1: no unknowns
   }
   result.path_energy = PathEnergy(space, result.path, &result.step_energies);
+  result.step_energy_ratio = StepEnergyRatio(result.step_energies);
+  result.uneven_steps = result.step_energy_ratio > kUnevenStepEnergyRatio;
   return result;
 }
 

@@ -90,6 +90,18 @@ struct GeodesicStage {
   std::string termination;    // Ceres' termination type or Newton's reason
 };
 
+// A discrete geodesic has (nearly) equal step energies W[s_{k-1}, s_k]
+// (calculus.md: E_K = K sum_k W is minimal among paths of equal length at
+// constant speed). A result whose largest step energy exceeds this factor
+// times the smallest is flagged (GeodesicResult::uneven_steps): a local
+// minimiser passing through a fold or a mirrored shape, or a path far from
+// converged.
+inline constexpr double kUnevenStepEnergyRatio = 2.0;
+
+// max_k W_k / min_k W_k of step energies (1 for fewer than two steps; +inf
+// if the smallest is 0 and the largest is not).
+double StepEnergyRatio(const std::vector<double>& step_energies);
+
 struct GeodesicResult {
   ShellPath path;                     // s_0 = start ... s_K = end
   double path_energy = 0;             // E_K
@@ -100,15 +112,26 @@ struct GeodesicResult {
   int iterations = 0;           // sum of stages[i].iterations (LM + Newton)
   double initial_gradient = 0;  // max |grad E_K| (free coords), initial path
   double final_gradient = 0;    // max |grad E_K| (free coords), result
-  // The stopping criterion was met: final_gradient <= gradient_tolerance *
-  // max(1, initial_gradient), or the last stage is LM and Ceres stopped on
-  // its convergence test (relative cost decrease). True for K = 1 (no
-  // unknowns).
+  // The absolute gradient target gradient_tolerance * max(1, g_0).
+  double gradient_target = 0;
+  // The stopping criterion was met: final_gradient <= gradient_target (the
+  // relative gradient criterion of calculus.md). Ceres' function- or
+  // parameter-tolerance convergence of an LM stage does not count: LM stops
+  // there on a cost that no longer decreases, not at a geodesic. True for
+  // K = 1 (no unknowns).
   bool converged = false;
+  // max / min of step_energies and whether it exceeds
+  // kUnevenStepEnergyRatio.
+  double step_energy_ratio = 1;
+  bool uneven_steps = false;
 };
 
 // Geodesic interpolation: minimises E_K over s_1..s_{K-1} by sparse LM
-// followed by Newton (see GeodesicInput::newton_from). Each
+// followed by Newton (see GeodesicInput::newton_from). settings.max_iterations
+// caps the iterations of this solve: LM iterations plus Newton steps, summed
+// over all stages (each Newton attempt also at most
+// PathNewtonSettings::max_steps, at most GeodesicInput::kMaxNewtonAttempts
+// attempts). Each
 // W[s_{k-1}, s_k] adds its membrane and bending residuals scaled by sqrt(K);
 // the end shapes are data. With a mask the listed vertices stay at their
 // initial (linearly interpolated) positions in every shape; without one the

@@ -1,6 +1,7 @@
 #include "shellspace/problems/calculus/parallel_transport.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
 
@@ -21,23 +22,51 @@ TransportResult ParallelTransport(const ShellSpace& space,
   Positions p = path[0] + epsilon * variation;
   result.shapes.push_back(p);
   for (size_t k = 1; k < path.size(); ++k) {
-    const Positions initial = 0.5 * (p + path[k]);
-    const Positions midpoint = SolveWeightedMidpoint(
-        space, p, path[k], 1.0, 1.0, initial, fixed_vertices, settings);
-    // Besides 2 m_k - s_{k-1}, start from s_k + (p_{k-1} - s_{k-1}): the
-    // previous rung's variation at the new base point (the same point in
-    // Euclidean space; the better one of the two on curved paths).
-    const Positions carried = path[k] + (p - path[k - 1]);
-    const ExpStepResult step =
-        ExpStep(space, path[k - 1], midpoint, StepDirection::kForward,
-                fixed_vertices, settings, &carried);
-    p = step.shape;
-    const double scale =
-        EnergyGradient(space, path[k - 1], midpoint, ShellSide::kDeformed)
-            .cwiseAbs()
-            .maxCoeff();
-    result.exp_residuals.push_back(step.residual_norm /
-                                   std::max(scale, 1e-300));
+    TransportResult::Rung rung;
+    Positions best;
+    double best_scale = 1;
+    double best_residual = HUGE_VAL;
+    for (int halvings = 0; halvings <= kMaxRungHalvings; ++halvings) {
+      const int divisor = 1 << halvings;
+      // The rung from p' = s_{k-1} + (p - s_{k-1}) / divisor.
+      const Positions start =
+          divisor == 1 ? p : Positions(path[k - 1] + (p - path[k - 1]) / divisor);
+      const Positions initial = 0.5 * (start + path[k]);
+      const Positions midpoint = SolveWeightedMidpoint(
+          space, start, path[k], 1.0, 1.0, initial, fixed_vertices, settings);
+      // Besides 2 m_k - s_{k-1}, start from s_k + (p_{k-1} - s_{k-1}): the
+      // previous rung's variation at the new base point (the same point in
+      // Euclidean space; the better one of the two on curved paths).
+      const Positions carried = path[k] + (start - path[k - 1]);
+      const ExpStepResult step =
+          ExpStep(space, path[k - 1], midpoint, StepDirection::kForward,
+                  fixed_vertices, settings, &carried);
+      rung.newton_steps += step.newton_steps;
+      rung.lm_iterations += step.lm_iterations;
+      const bool better = step.solved || step.relative_residual <
+                                             rung.relative_residual ||
+                          halvings == 0;
+      if (better) {
+        rung.solved = step.solved;
+        rung.relative_residual = step.relative_residual;
+        rung.method = step.method;
+        rung.divisor = divisor;
+        best = divisor == 1
+                   ? step.shape
+                   : Positions(path[k] + divisor * (step.shape - path[k]));
+        best_scale =
+            EnergyGradient(space, path[k - 1], midpoint, ShellSide::kDeformed)
+                .cwiseAbs()
+                .maxCoeff();
+        best_residual = step.residual_norm;
+      }
+      if (step.solved) break;
+    }
+    p = best;
+    result.exp_residuals.push_back(best_residual /
+                                   std::max(best_scale, 1e-300));
+    result.all_solved = result.all_solved && rung.solved;
+    result.rungs.push_back(rung);
     result.shapes.push_back(p);
     result.variations.push_back((p - path[k]) / epsilon);
   }

@@ -16,7 +16,24 @@ struct TransportResult {
   // shells make the EXP step badly conditioned; a large value says the rung
   // was not solved.
   std::vector<double> exp_residuals;
+  // Per rung k = 1..K ([k - 1]): how the rung was solved.
+  struct Rung {
+    bool solved = false;  // its EXP step reached kExpStepAcceptance
+    double relative_residual = 0;  // the EXP step's (ExpStepResult)
+    ExpStepResult::Method method = ExpStepResult::Method::kNewton;
+    // 1: the rung at epsilon; n > 1: at epsilon / n, scaled back
+    // (sub-stepping, see ParallelTransport).
+    int divisor = 1;
+    int newton_steps = 0;   // of the EXP solves of this rung, all tries
+    int lm_iterations = 0;
+  };
+  std::vector<Rung> rungs;
+  bool all_solved = true;  // every rung solved
 };
+
+// A rung whose EXP step has no root at epsilon is retried at epsilon / 2,
+// epsilon / 4, ..., at most this many halvings.
+inline constexpr int kMaxRungHalvings = 4;
 
 // Transports the variation xi_0 at s_0 along path (s_0 .. s_K):
 // p_0 = s_0 + eps xi_0; for k = 1..K: m_k = geodesic midpoint of (p_{k-1},
@@ -24,6 +41,15 @@ struct TransportResult {
 // (s_{k-1}, m_k); xi_k = (p_k - s_k) / eps. eps = 1 transports a finite
 // shape difference (detail transfer); small eps the tangent vector.
 // `fixed_vertices` are held in the midpoint and EXP problems.
+// Sub-stepping: if rung k's EXP step is not solved (no root near the
+// initial guesses: the reflection of a large variation), the rung is
+// retried with the variation divided by n = 2, 4, ... 2^kMaxRungHalvings:
+// p'_{k-1} = s_{k-1} + (p_{k-1} - s_{k-1}) / n, the midpoint and EXP step of
+// (p'_{k-1}, s_k) give p'_k, and p_k = s_k + n (p'_k - s_k) (the rung at
+// epsilon / n, the transported variation scaled back: for small epsilon the
+// same transport to first order). The first solved try is kept, else the
+// try with the smallest relative residual (rung unsolved, all_solved
+// false).
 TransportResult ParallelTransport(const ShellSpace& space,
                                   const ShellPath& path,
                                   const Positions& variation, double epsilon,

@@ -178,15 +178,17 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
   newton.max_halvings = 2;
   newton.accept_smaller_max_norm = true;
   newton.merit_round_off = 1e-10;
+  newton.max_shifts = kPathNewtonMaxShifts;
   if (settings.progress) {
     newton.progress = [&](const NewtonReport& r, double energy,
                           bool accepted) {
       std::fprintf(stderr,
-                   "%s step %2d  E_K %.12e  |grad| %.3e  %s  %.2f s"
+                   "%s step %2d  E_K %.12e  |grad| %.3e  %s%s  %.2f s"
                    " (Hessian %.2f s, %d %s factorisations %.2f s, %d CG"
                    " %.2f s)\n",
                    settings.progress_label.c_str(), r.steps, energy,
-                   r.final_gradient, accepted ? "ok " : "rej", r.seconds,
+                   r.final_gradient, accepted ? "ok " : "rej",
+                   r.max_shift > 0 ? " shifted" : "", r.seconds,
                    r.assembly_seconds, r.factorizations,
                    r.linear_solver.c_str(),
                    r.factorization_seconds, r.cg_iterations, r.cg_seconds);

@@ -43,6 +43,12 @@ inline constexpr int kBlockJacobiFromUnknowns = 100000;
 // returned as it is).
 PathLinearSolver ChooseLinearSolver(PathLinearSolver choice, int unknowns);
 
+// At most this many shifted Hessians H + lambda I per Newton iteration
+// (NewtonSettings::max_shifts): where H is not positive definite or the
+// Newton step raises E_K, the step of H + lambda I (lambda = 1e-3, 1e-2, ...
+// times mean |diag H|) is tried before the polish gives up.
+inline constexpr int kPathNewtonMaxShifts = 6;
+
 struct PathNewtonSettings {
   PathLinearSolver linear_solver = PathLinearSolver::kAuto;
   int max_steps = 8;
@@ -76,12 +82,15 @@ using PathNewtonReport = NewtonReport;
 // BlockJacobiSolver, the slices as blocks). A step is
 // accepted on sufficient decrease of E_K (Armijo, c = 1e-4) or, once E_K
 // changes only at round-off level, on a smaller max |G|; halving the step
-// twice at most.
+// twice at most. E_K never rises beyond round-off (1e-10 |E_K|): where H is
+// not positive definite, the step is not a descent direction or no step
+// length is accepted, the step of the shifted Hessian H + lambda I is tried
+// (kPathNewtonMaxShifts, NewtonSettings::max_shifts).
 // Gauss-Newton (Ceres' LM on the residuals) converges only linearly near a
 // geodesic, whose residuals are not zero; from its result Newton converges
-// quadratically. Stops (leaving the last accepted path) if H is not positive
-// definite on the free coordinates (far from a minimiser), a step fails, or
-// the tolerance or max_steps is reached.
+// quadratically. Stops (leaving the last accepted path) if even the most
+// shifted H gives no accepted step, or the tolerance or max_steps is
+// reached.
 PathNewtonReport PolishPathNewton(const ShellSpace& space,
                                   const std::vector<int>& fixed_vertices,
                                   const PathNewtonSettings& settings,

@@ -142,6 +142,22 @@ SplineResult Run(const ShellSpace& space, SplineSpec spec,
     if (settings.progress) options.callbacks.push_back(&printer);
     ceres::Solve(options, problem, y.data(), &result.summary);
     x = scaled.ToX(y.data());
+    const auto& iterations = result.summary.iterations;
+    result.iterations = std::max(0, static_cast<int>(iterations.size()) - 1);
+    result.initial_gradient_norm = norm / scale;
+    result.final_gradient_norm = iterations.empty()
+                                     ? result.initial_gradient_norm
+                                     : iterations.back().gradient_max_norm;
+    result.relative_gradient_norm =
+        result.initial_gradient_norm > 0
+            ? result.final_gradient_norm / result.initial_gradient_norm
+            : 0.0;
+    result.gradient_criterion_met =
+        result.final_gradient_norm <= options.gradient_tolerance;
+    result.converged = result.gradient_criterion_met ||
+                       result.summary.termination_type == ceres::CONVERGENCE;
+  } else {
+    result.gradient_criterion_met = result.converged = true;  // no free shapes
   }
   result.path = objective.PathFrom(x.data());
   result.spline_energy = objective.SplineEnergyOf(result.path);

@@ -19,11 +19,26 @@ struct SplineResult {
   double objective = 0;      // data + sigma F_K
   ceres::GradientProblemSolver::Summary summary;
   SplineTimings timings;  // where the evaluations spent their time
+  // Max norm of the L-BFGS gradient (in its preconditioned, scaled
+  // variables) at the start and at the end; their ratio; whether it met
+  // relative <= settings.gradient_tolerance; and converged: that, or Ceres'
+  // function-tolerance stop (relative change of the objective below
+  // settings.function_tolerance) -- unlike the Newton-finished geodesic and
+  // mean, the spline's gradient carries the error of the inner midpoint
+  // solves (a keyframe spline on a geodesic, F_K = 6.5e-15, stops at a
+  // relative gradient of 6.5e-6), so the relative gradient alone would call
+  // converged splines unconverged. True with no free shapes.
+  int iterations = 0;  // L-BFGS iterations (without Ceres' iteration 0)
+  double initial_gradient_norm = 0;
+  double final_gradient_norm = 0;
+  double relative_gradient_norm = 0;
+  bool gradient_criterion_met = false;
+  bool converged = false;
 };
 
 // Settings of the outer L-BFGS loop.
 struct SplineSettings {
-  int max_iterations = 100;
+  int max_iterations = 100;  // L-BFGS iterations (the outer solver only)
   double gradient_tolerance = 1e-8;  // relative to the initial gradient
   double function_tolerance = 1e-10;
   bool progress = false;

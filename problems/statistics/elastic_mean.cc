@@ -156,7 +156,7 @@ class ElasticMeanProblem : public NewtonProblem {
 bool NewtonFinish(const ShellSpace& space, const std::vector<Positions>& shapes,
                   double target, const ElasticMeanOptions& options,
                   const SolverSettings& settings, Positions* s,
-                  int* iterations) {
+                  int* iterations, std::string* stop_reason) {
   ElasticMeanProblem problem(space, shapes, settings.num_threads, s);
   NewtonSettings newton;
   newton.mode = NewtonMode::kMinimize;
@@ -165,6 +165,7 @@ bool NewtonFinish(const ShellSpace& space, const std::vector<Positions>& shapes,
   newton.forcing = 1e-10;
   newton.max_halvings = 4;  // t = 1, ..., 1/16
   newton.accept_smaller_two_norm = true;
+  newton.max_shifts = 6;  // H + lambda I where the Newton step fails
   const int before = *iterations;
   if (settings.progress) {
     newton.progress = [&](const NewtonReport& r, double, bool accepted) {
@@ -177,6 +178,7 @@ bool NewtonFinish(const ShellSpace& space, const std::vector<Positions>& shapes,
   ReusableCholesky solver;
   const NewtonReport report = SolveNewton(&problem, &solver, newton);
   *iterations += report.steps;
+  *stop_reason = report.stop_reason;
   return report.converged;
 }
 
@@ -213,15 +215,18 @@ ElasticMeanResult ComputeElasticMean(const ShellSpace& space,
 
   if (!options.newton) {
     result.summary = SolveWithSettings(&problem, settings);
-    result.lm_iterations = static_cast<int>(result.summary.iterations.size());
+    result.lm_iterations =
+        std::max(0, static_cast<int>(result.summary.iterations.size()) - 1);
   }
+  std::string newton_stop;
   bool usable = !options.newton || result.summary.IsSolutionUsable();
   // LM chunks, each followed by a Newton attempt, until Newton reaches the
   // target or the LM iterations are used up.
   bool first_chunk = true;
   int attempts = 0;
   while (options.newton) {
-    const int remaining = settings.max_iterations - result.lm_iterations;
+    const int remaining = settings.max_iterations - result.lm_iterations -
+                          result.newton_iterations;
     if (remaining <= 0) break;
     // The same absolute targets for every chunk: Ceres scales the relative
     // tolerance by max(1, |grad|) at the chunk's start.
@@ -241,12 +246,19 @@ ElasticMeanResult ComputeElasticMean(const ShellSpace& space,
     const ceres::Solver::Summary summary = SolveWithSettings(&problem, chunk);
     if (first_chunk) result.summary = summary;
     first_chunk = false;
-    result.lm_iterations += static_cast<int>(summary.iterations.size());
+    result.lm_iterations +=
+        std::max(0, static_cast<int>(summary.iterations.size()) - 1);
     usable = summary.IsSolutionUsable();
     if (!usable || last) break;
     ++attempts;
-    if (NewtonFinish(space, shapes, target, options, settings, &result.mean,
-                     &result.newton_iterations)) {
+    ElasticMeanOptions attempt = options;
+    attempt.max_newton_iterations = std::min(
+        options.max_newton_iterations,
+        settings.max_iterations - result.lm_iterations -
+            result.newton_iterations);
+    if (attempt.max_newton_iterations <= 0) break;
+    if (NewtonFinish(space, shapes, target, attempt, settings, &result.mean,
+                     &result.newton_iterations, &newton_stop)) {
       break;
     }
     result.newton_fell_back = true;
@@ -260,7 +272,21 @@ ElasticMeanResult ComputeElasticMean(const ShellSpace& space,
             ? g.max_norm
             : std::numeric_limits<double>::infinity();
   }
+  result.gradient_target = target;
   result.converged = usable && result.gradient_norm <= target;
+  if (result.converged) {
+    result.termination = "converged";
+  } else if (!usable) {
+    result.termination = "LM failed";
+  } else if (result.lm_iterations + result.newton_iterations >=
+             settings.max_iterations) {
+    result.termination = "max iterations";
+  } else if (!newton_stop.empty()) {
+    result.termination = "Newton: " + newton_stop;
+  } else {
+    result.termination = std::string("LM: ") + ceres::TerminationTypeToString(
+                                      result.summary.termination_type);
+  }
   result.mean = AlignRigidly(result.mean, shapes[0]);
   for (const Positions& shape : shapes) {
     result.energies.push_back(

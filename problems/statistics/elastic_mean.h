@@ -6,6 +6,7 @@
 #include <ceres/solver.h>
 
 #include <Eigen/Core>
+#include <string>
 #include <vector>
 
 #include "shellspace/cost_functions/shell/shell_space.h"
@@ -41,13 +42,17 @@ Positions AlignedVertexAverage(const std::vector<Positions>& shapes);
 // Armijo's condition E(s + t p) <= E(s) + 1e-4 t G . p on E = sum_i W[S_i, .]
 // or lowers |G|_2 (near the mean the energy decrease is below round-off and
 // |G| decides; farther out, on the faces, the full step lowers E but first
-// raises |G|). Safeguard: if the reduced H is singular, p is not a descent
-// direction (G . p >= 0: H is not positive definite along G), or no t is
-// accepted, Newton stops and another LM chunk (now aiming at the final
+// raises |G|), never one that raises E beyond round-off (1e-10 |E|).
+// Globalisation: if the reduced H is singular, p is not a descent direction
+// (G . p >= 0: H is not positive definite along G), or no t is accepted, the
+// step of H + lambda I is tried, lambda = 1e-3, 1e-2, ... times mean
+// |diag H|, up to 6 times (NewtonSettings::max_shifts). Safeguard: if even
+// that gives no accepted step, Newton stops and another LM chunk (now aiming at the final
 // target) runs from the current s, then Newton again (at most
 // `max_newton_attempts` times, then LM alone), until Newton reaches
 // settings.gradient_tolerance * max(1, |G(s_0)|_inf) (the target of the LM-only
-// solve) or settings.max_iterations LM iterations are spent.
+// solve) or settings.max_iterations iterations (LM iterations plus Newton
+// steps) are spent.
 struct ElasticMeanOptions {
   bool newton = true;              // false: LM only (the previous behaviour)
   double switch_tolerance = 1e-4;  // relative gradient at the hand-over
@@ -61,7 +66,8 @@ struct ElasticMeanResult {
   double energy = 0;               // sum_i W[S_i, s_bar]
   std::vector<double> energies;    // W[S_i, s_bar]
   ceres::Solver::Summary summary;  // the first LM solve (chunk)
-  int lm_iterations = 0;           // LM iterations, all solves
+  int lm_iterations = 0;           // LM iterations, all solves (without
+                                   // Ceres' iteration 0, the evaluation)
   int newton_iterations = 0;       // accepted Newton steps
   bool newton_fell_back = false;   // a Newton attempt was stopped
   double initial_gradient_norm = 0;  // |G(s_0)|_inf
@@ -69,6 +75,11 @@ struct ElasticMeanResult {
   // |G(s_bar)|_inf <= settings.gradient_tolerance * max(1, |G(s_0)|_inf)
   // (the target of the LM solves) and the solves usable.
   bool converged = false;
+  double gradient_target = 0;  // settings.gradient_tolerance * max(1, |G(s_0)|)
+  // Why it stopped: "converged", "max iterations" (settings.max_iterations
+  // LM iterations + Newton steps spent), "LM failed", "Newton: <stop reason>" (the last
+  // Newton attempt's, when LM had stopped on its own test).
+  std::string termination;
 };
 
 // s_bar = argmin_s sum_i W[S_i, s] by sparse LM: every W[S_i, s] adds its

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iostream>
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
 #include "shellspace/geometry/rigid_alignment.h"
@@ -194,6 +195,115 @@ TEST_F(GeodesicCalculusTest, TransportOfZeroAndAlongConstantPath) {
   const double coarse = error(1.0), fine = error(0.1);
   EXPECT_LT(fine, 1e-3);
   EXPECT_LT(fine, 0.3 * coarse);
+}
+
+TEST(StepEnergyRatioTest, MaxOverMin) {
+  EXPECT_EQ(StepEnergyRatio({}), 1.0);
+  EXPECT_EQ(StepEnergyRatio({3.0}), 1.0);
+  EXPECT_EQ(StepEnergyRatio({1.0, 4.0, 2.0}), 4.0);
+  EXPECT_EQ(StepEnergyRatio({0.0, 0.0}), 1.0);
+  EXPECT_EQ(StepEnergyRatio({0.0, 1.0}), HUGE_VAL);
+}
+
+// A path whose inner shape sits at 5 % of the way (max_iterations 0: not
+// solved) has far from equal steps and is flagged, and is not converged;
+// the solved geodesic is neither.
+TEST_F(GeodesicCalculusTest, UnevenStepsAreFlaggedAndNotConverged) {
+  GeodesicInput input;
+  input.start = start_.positions;
+  input.end = end_.positions;
+  input.steps = 2;
+  input.initial = {start_.positions,
+                   start_.positions + 0.05 * (end_.positions - start_.positions),
+                   end_.positions};
+  SolverSettings none = Tight();
+  none.max_iterations = 0;
+  const GeodesicResult raw = SolveGeodesic(space_, input, none);
+  EXPECT_EQ(raw.iterations, 0);
+  EXPECT_FALSE(raw.converged);
+  ASSERT_EQ(raw.step_energies.size(), 2u);
+  EXPECT_EQ(raw.step_energy_ratio,
+            std::max(raw.step_energies[0], raw.step_energies[1]) /
+                std::min(raw.step_energies[0], raw.step_energies[1]));
+  EXPECT_GT(raw.step_energy_ratio, kUnevenStepEnergyRatio);
+  EXPECT_TRUE(raw.uneven_steps);
+  EXPECT_GT(raw.final_gradient, raw.gradient_target);
+
+  const GeodesicResult solved = SolveGeodesic(space_, input, Tight());
+  EXPECT_TRUE(solved.converged);
+  EXPECT_LE(solved.final_gradient, solved.gradient_target);
+  EXPECT_LT(solved.step_energy_ratio, 1.2);  // K = 2: 1.145
+  EXPECT_FALSE(solved.uneven_steps);
+}
+
+// settings.max_iterations caps the LM iterations and Newton steps of all
+// stages together.
+TEST_F(GeodesicCalculusTest, MaxIterationsCapsAllStages) {
+  GeodesicInput input;
+  input.start = start_.positions;
+  input.end = end_.positions;
+  input.steps = 4;
+  for (int cap : {1, 3, 6}) {
+    SolverSettings capped = Tight();
+    capped.max_iterations = cap;
+    const GeodesicResult g = SolveGeodesic(space_, input, capped);
+    int sum = 0;
+    for (const GeodesicStage& stage : g.stages) sum += stage.iterations;
+    EXPECT_EQ(g.iterations, sum) << cap;
+    EXPECT_LE(g.iterations, cap) << cap;
+    EXPECT_EQ(g.converged, g.final_gradient <= g.gradient_target) << cap;
+  }
+}
+
+// The EXP step's own verdict: solved by Newton below kExpStepAcceptance.
+TEST_F(GeodesicCalculusTest, ExpStepSaysItSolved) {
+  const GeodesicResult g = Geodesic(4);
+  const ExpStepResult step = ExpStep(space_, g.path[1], g.path[2],
+                                     StepDirection::kForward, {}, Tight());
+  const double scale =
+      EnergyGradient(space_, g.path[1], g.path[2], ShellSide::kDeformed)
+          .cwiseAbs()
+          .maxCoeff();
+  EXPECT_TRUE(step.solved);
+  EXPECT_EQ(step.method, ExpStepResult::Method::kNewton);
+  EXPECT_EQ(step.lm_iterations, 0);
+  EXPECT_NEAR(step.residual_scale, scale, 1e-12 * scale);
+  EXPECT_NEAR(step.relative_residual, step.residual_norm / scale, 1e-20);
+  EXPECT_LE(step.relative_residual, kExpStepAcceptance);
+}
+
+// Sub-stepping of transport rungs: along the plate geodesic (rolledA, K =
+// 4) the variation rolledB - plate at epsilon = 1 has no EXP solution on the
+// last rung (the first try fails: divisor > 1); at epsilon / 4 it has, and
+// every rung reports solved, its residual and its method.
+TEST_F(GeodesicCalculusTest, TransportSubstepsARungWithoutSolution) {
+  const Mesh rolled_b = testing::LoadData("plate/plate121_rolledB.ply");
+  GeodesicInput input;
+  input.start = start_.positions;
+  input.end = end_.positions;
+  input.steps = 4;
+  const GeodesicResult g = SolveGeodesic(space_, input, SolverSettings{});
+  ASSERT_TRUE(g.converged);
+  const TransportResult t =
+      ParallelTransport(space_, g.path, rolled_b.positions - start_.positions,
+                        1.0, {}, SolverSettings{});
+  ASSERT_EQ(t.rungs.size(), 4u);
+  EXPECT_TRUE(t.all_solved);
+  for (size_t k = 0; k < t.rungs.size(); ++k) {
+    EXPECT_TRUE(t.rungs[k].solved) << k;
+    EXPECT_LE(t.rungs[k].relative_residual, kExpStepAcceptance) << k;
+    EXPECT_GE(t.rungs[k].newton_steps, 1) << k;
+  }
+  std::cout << "divisors:";
+  for (const auto& r : t.rungs) std::cout << " " << r.divisor;
+  std::cout << "\n";
+  EXPECT_GT(t.rungs.back().divisor, 1);
+  EXPECT_LE(t.rungs.back().divisor, 1 << kMaxRungHalvings);
+  for (size_t k = 0; k < t.shapes.size(); ++k) {
+    EXPECT_LT((t.shapes[k] - (g.path[k] + t.variations[k])).cwiseAbs().maxCoeff(),
+              1e-12)
+        << k;
+  }
 }
 
 // E_K on the sphere pair for K = 2, 4, 8, 16: successive changes decrease.

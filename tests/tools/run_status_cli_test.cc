@@ -1,0 +1,214 @@
+// The verdict of the solving verbs (tools/run_status.h): a run that misses
+// its stopping criterion writes its outputs and its --json summary with
+// "converged": false, prints one line naming what did not converge and
+// exits 4; --allow_unconverged turns that line into a warning and exits 0.
+// No raw log line of the solvers reaches stderr.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "shellspace/tests/testing/test_support.h"
+
+namespace shellspace {
+namespace {
+
+using testing::DataPath;
+using testing::RunCli;
+using testing::TempDir;
+
+const std::string kSquare = DataPath("simple/square4.ply");
+const std::string kBent = DataPath("simple/square4_bent.ply");
+
+double Number(const std::string& json, const std::string& key) {
+  const std::string needle = "\"" + key + "\": ";
+  const auto at = json.find(needle);
+  if (at == std::string::npos) return std::nan("");
+  return std::strtod(json.c_str() + at + needle.size(), nullptr);
+}
+
+bool Has(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+std::vector<std::string> Lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+// One line on stderr, "shellspace VERB: not converged: ..." naming `what`.
+void ExpectOneNotConvergedLine(const std::string& err, const std::string& verb,
+                               const std::string& what) {
+  const std::vector<std::string> lines = Lines(err);
+  ASSERT_EQ(lines.size(), 1u) << err;
+  EXPECT_EQ(lines[0].rfind("shellspace " + verb + ": not converged: ", 0), 0u)
+      << err;
+  EXPECT_TRUE(Has(lines[0], what)) << err;
+}
+
+TEST(RunStatusCliTest, GeodesicCappedAtOneIterationExitsFour) {
+  const std::string dir = TempDir();
+  const std::string args = "geodesic --quiet --json --steps 4 --start " +
+                           kSquare + " --end " + kBent +
+                           " --max_iterations 1 --output " + dir + "/g";
+  std::string out, err;
+  EXPECT_EQ(RunCli(args, &out, &err), 4) << err;
+  ExpectOneNotConvergedLine(err, "geodesic", "geodesic: |grad| ");
+  EXPECT_TRUE(Has(out, "\"converged\": false")) << out;
+  EXPECT_EQ(Number(out, "iterations"), 1) << out;  // one LM iteration in all
+  const double g0 = Number(out, "initial_gradient_norm");
+  const double g = Number(out, "final_gradient_norm");
+  EXPECT_GT(g, 1e-8 * std::max(1.0, g0)) << out;
+  EXPECT_NEAR(Number(out, "relative_gradient_norm"), g / g0, 1e-15);
+  // The outputs are written all the same.
+  EXPECT_TRUE(std::filesystem::exists(dir + "/g/shape_004.ply"));
+
+  // Accepted: exit 0, the same line as a warning.
+  EXPECT_EQ(RunCli(args + " --allow_unconverged", &out, &err), 0) << err;
+  const std::vector<std::string> lines = Lines(err);
+  ASSERT_EQ(lines.size(), 1u) << err;
+  EXPECT_EQ(lines[0].rfind("shellspace geodesic: warning: not converged: ", 0),
+            0u)
+      << err;
+}
+
+TEST(RunStatusCliTest, MeanCappedAtOneIterationSaysMaxIterations) {
+  const std::string dir = TempDir();
+  std::string out, err;
+  EXPECT_EQ(RunCli("mean --quiet --json --inputs " + kSquare + "," + kBent +
+                       " --max_iterations 1 --output " + dir + "/m.ply",
+                   &out, &err),
+            4)
+      << err;
+  ExpectOneNotConvergedLine(err, "mean", "(max iterations)");
+  EXPECT_TRUE(Has(out, "\"converged\": false")) << out;
+  EXPECT_TRUE(Has(out, "\"termination\": \"max iterations\"")) << out;
+  EXPECT_EQ(Number(out, "iterations"), 1) << out;
+  EXPECT_EQ(Number(out, "lm_iterations"), 1) << out;
+  EXPECT_EQ(Number(out, "newton_iterations"), 0) << out;
+  EXPECT_GT(Number(out, "final_gradient_norm"), Number(out, "gradient_target"))
+      << out;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/m.ply"));
+}
+
+TEST(RunStatusCliTest, ConvergedRunsExitZeroAndSayConverged) {
+  const std::string dir = TempDir();
+  std::string out, err;
+  EXPECT_EQ(RunCli("mean --quiet --json --inputs " + kSquare + "," + kBent +
+                       " --output " + dir + "/m.ply",
+                   &out, &err),
+            0)
+      << err;
+  EXPECT_TRUE(Has(out, "\"converged\": true")) << out;
+  EXPECT_TRUE(Has(out, "\"termination\": \"converged\"")) << out;
+  EXPECT_EQ(err, "");
+  EXPECT_EQ(RunCli("geodesic --quiet --json --steps 4 --start " + kSquare +
+                       " --end " + kBent + " --output " + dir + "/g",
+                   &out, &err),
+            0)
+      << err;
+  EXPECT_TRUE(Has(out, "\"converged\": true")) << out;
+  EXPECT_TRUE(Has(out, "\"uneven_steps\": false")) << out;
+  EXPECT_LT(Number(out, "step_energy_ratio"), 1.2) << out;  // K = 4: 1.11
+  EXPECT_EQ(err, "");
+}
+
+TEST(RunStatusCliTest, RegressionCappedAtOneIterationExitsFour) {
+  const std::string dir = TempDir();
+  std::string out, err;
+  EXPECT_EQ(RunCli("regress --quiet --json --inputs " + kSquare + "," + kBent +
+                       " --at 0,2 --steps 2 --sigma 0.5 --max_iterations 1 "
+                       "--output " + dir + "/r",
+                   &out, &err),
+            4)
+      << err;
+  ExpectOneNotConvergedLine(err, "regress", "after 1 L-BFGS iterations");
+  EXPECT_TRUE(Has(out, "\"converged\": false")) << out;
+  EXPECT_EQ(Number(out, "iterations"), 1) << out;
+  EXPECT_GT(Number(out, "relative_gradient_norm"), 1e-8) << out;
+}
+
+// The numbers of the array "KEY": [...].
+std::vector<double> Numbers(const std::string& json, const std::string& key) {
+  const std::string needle = "\"" + key + "\": [";
+  const auto at = json.find(needle);
+  std::vector<double> values;
+  if (at == std::string::npos) return values;
+  const auto end = json.find(']', at);
+  std::string body = json.substr(at + needle.size(), end - at - needle.size());
+  for (char& c : body) {
+    if (c == ',') c = ' ';
+  }
+  std::istringstream in(body);
+  for (double v; in >> v;) values.push_back(v);
+  return values;
+}
+
+// pca --mean reuses a computed mean: no mean iterations, the same model.
+TEST(RunStatusCliTest, PcaReusesAComputedMean) {
+  const std::string dir = TempDir();
+  const std::string inputs = kSquare + "," + kBent + "," +
+                             DataPath("simple/square4.ply");
+  std::string out, err;
+  ASSERT_EQ(RunCli("mean --quiet --json --inputs " + inputs + " --output " +
+                       dir + "/m.ply",
+                   &out, &err),
+            0)
+      << err;
+  std::string fresh, reused;
+  ASSERT_EQ(RunCli("pca --quiet --json --modes 1 --inputs " + inputs +
+                       " --output " + dir + "/fresh",
+                   &fresh, &err),
+            0)
+      << err;
+  ASSERT_EQ(RunCli("pca --quiet --json --modes 1 --inputs " + inputs +
+                       " --mean " + dir + "/m.ply --output " + dir + "/reused",
+                   &reused, &err),
+            0)
+      << err;
+  EXPECT_GT(Number(fresh, "mean_iterations"), 0) << fresh;
+  EXPECT_EQ(Number(reused, "mean_iterations"), 0) << reused;
+  EXPECT_EQ(Number(reused, "mean_newton_iterations"), 0) << reused;
+  EXPECT_TRUE(Has(reused, "\"mean_converged\": true")) << reused;
+  const std::vector<double> a = Numbers(fresh, "eigenvalues");
+  const std::vector<double> b = Numbers(reused, "eigenvalues");
+  ASSERT_EQ(a.size(), 3u);
+  ASSERT_EQ(b.size(), 3u);
+  for (int j = 0; j < 2; ++j) EXPECT_NEAR(b[j], a[j], 1e-6 * a[0]) << j;
+  EXPECT_NEAR(Number(reused, "mean_energy"), Number(fresh, "mean_energy"),
+              1e-9 * Number(fresh, "mean_energy"));
+}
+
+// spline --method ltheta --energy=false: the LTheta path without the F_K
+// evaluation (one midpoint solve per step).
+TEST(RunStatusCliTest, LThetaSplineWithoutTheEnergy) {
+  const std::string dir = TempDir();
+  std::string out, err;
+  ASSERT_EQ(RunCli("spline --quiet --json --method ltheta --energy=false "
+                   "--keyframes " + kSquare + "," + kBent + "," + kSquare +
+                       " --at 0,2,4 --steps 4 --output " + dir + "/s",
+                   &out, &err),
+            0)
+      << err;
+  EXPECT_FALSE(Has(out, "spline_energy")) << out;
+  EXPECT_EQ(Number(out, "frames"), 5) << out;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/s/shape_004.ply"));
+  // With the F_K evaluation the same run fails: a midpoint of this LTheta
+  // path is degenerate (the report, not the path, needs it).
+  std::string with;
+  EXPECT_EQ(RunCli("spline --quiet --json --method ltheta --keyframes " +
+                       kSquare + "," + kBent + "," + kSquare +
+                       " --at 0,2,4 --steps 4 --output " + dir + "/t",
+                   &with, &err),
+            1);
+  EXPECT_TRUE(Has(err, "degenerate")) << err;
+}
+
+}  // namespace
+}  // namespace shellspace

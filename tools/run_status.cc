@@ -1,0 +1,61 @@
+#include "shellspace/tools/run_status.h"
+
+#include <gflags/gflags.h>
+
+#include <cstdio>
+#include <iostream>
+
+#include "shellspace/tools/common_flags.h"
+
+DEFINE_bool(allow_unconverged, false,
+            "see `shellspace VERB --help`");
+DEFINE_bool(allow_unsolved, false, "see `shellspace VERB --help`");
+
+namespace shellspace {
+
+FlagSpec AllowUnconvergedFlag() {
+  return TextFlag("allow_unconverged",
+                  "exit 0 (with a warning line) even if a solve missed its "
+                  "stopping criterion; without it such a run writes its "
+                  "outputs and exits " +
+                      std::to_string(kExitNotConverged));
+}
+
+FlagSpec AllowUnsolvedFlag() {
+  return TextFlag("allow_unsolved",
+                  "exit 0 (with a warning line naming the step) even if an "
+                  "EXP step has no solution; without it exit " +
+                      std::to_string(kExitNotConverged));
+}
+
+void RunStatus::Require(bool met, const std::string& what) {
+  if (!met) failures_.push_back(what);
+}
+
+void RunStatus::Warn(const std::string& text) {
+  warnings_.push_back(text);
+  if (!FLAGS_quiet) std::cerr << verb_ << ": warning: " << text << "\n";
+}
+
+int RunStatus::Finish() const {
+  if (ok()) return 0;
+  std::string line;
+  for (size_t i = 0; i < failures_.size(); ++i) {
+    line += (i ? "; " : "") + failures_[i];
+  }
+  if (FLAGS_allow_unconverged || FLAGS_allow_unsolved) {
+    std::cerr << "shellspace " << verb_ << ": warning: not converged: " << line
+              << "\n";
+    return 0;
+  }
+  std::cerr << "shellspace " << verb_ << ": not converged: " << line << "\n";
+  return kExitNotConverged;
+}
+
+std::string Short(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.3g", value);
+  return text;
+}
+
+}  // namespace shellspace
