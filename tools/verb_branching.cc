@@ -35,6 +35,7 @@
 #include "shellspace/io/png_writer.h"
 #include "shellspace/render/branching_image.h"
 #include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/run_paths.h"
 #include "shellspace/io/json_writer.h"
 #include "shellspace/tools/verb.h"
 
@@ -195,11 +196,7 @@ std::string InterfaceCsv(const RelaxedField& field,
 double BranchingHeight() { return FLAGS_height > 0 ? FLAGS_height : 0.5; }
 
 std::string PrepareOutput() {
-  std::error_code error;
-  if (std::filesystem::exists(FLAGS_output, error) &&
-      !std::filesystem::is_directory(FLAGS_output, error)) {
-    throw InputError("--output exists and is not a directory: " + FLAGS_output);
-  }
+  RunPaths().OutputDirectory("output", FLAGS_output).Check();
   return FLAGS_output;
 }
 

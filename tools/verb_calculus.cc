@@ -12,6 +12,7 @@
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/geodesic_solve.h"
 #include "shellspace/tools/path_summary.h"
+#include "shellspace/tools/run_paths.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
 
@@ -94,6 +95,13 @@ FlagTable TransportFlags() {
 
 int RunShoot() {
   const auto clock = std::chrono::steady_clock::now();
+  RunPaths()
+      .InputFile("first", FLAGS_first)
+      .InputFile("second", FLAGS_second)
+      .InputFile("mask", FLAGS_mask)
+      .OutputDirectory("output", FLAGS_output)
+      .OutputFile("png", FLAGS_png)
+      .Check();
   const Shell first = LoadShell(FLAGS_first);
   const Mesh second = LoadCompatibleShell(FLAGS_second, first);
   const ShellSpace space = SpaceFromFlags(first);
@@ -119,6 +127,12 @@ int RunShoot() {
 
 int RunLog() {
   const auto clock = std::chrono::steady_clock::now();
+  RunPaths()
+      .InputFile("start", FLAGS_start)
+      .InputFile("end", FLAGS_end)
+      .InputFile("mask", FLAGS_mask)
+      .OutputFile("output", FLAGS_output)
+      .Check();
   const auto [start, end] = LoadStartEndFromFlags();
   const ShellSpace space = SpaceFromFlags(start);
   GeodesicInput input;
@@ -145,6 +159,13 @@ int RunLog() {
 
 int RunTransport() {
   const auto clock = std::chrono::steady_clock::now();
+  RunPaths()
+      .InputFrames("path", FLAGS_path)
+      .InputFile("variation", FLAGS_variation)
+      .InputFile("mask", FLAGS_mask)
+      .OutputDirectory("output", FLAGS_output)
+      .OutputFile("png", FLAGS_png)
+      .Check();
   const std::vector<std::string> files = ListFrameFiles(FLAGS_path);
   if (files.size() < 2) {
     throw InputError(FLAGS_path + ": need at least 2 frames");

@@ -10,6 +10,7 @@
 #include "shellspace/problems/calculus/elastic_deformation.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/path_summary.h"
+#include "shellspace/tools/run_paths.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
 
@@ -38,6 +39,12 @@ FlagTable DeformFlags() {
 
 int RunDeform() {
   const auto start = std::chrono::steady_clock::now();
+  RunPaths()
+      .InputFile("reference", FLAGS_reference)
+      .InputFile("targets", FLAGS_targets)
+      .InputFile("mask", FLAGS_mask)
+      .OutputFile("output", FLAGS_output)
+      .Check();
   const Shell reference = LoadShell(FLAGS_reference);
   const Mesh targets = LoadCompatibleShell(FLAGS_targets, reference);
   const ShellSpace space = SpaceFromFlags(reference);

@@ -17,6 +17,7 @@
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/path_summary.h"
 #include "shellspace/tools/shell_inputs.h"
+#include "shellspace/tools/run_paths.h"
 #include "shellspace/tools/verb.h"
 
 DEFINE_int32(extrapolate, 4, "demo: EXP steps beyond the end shape");
@@ -41,6 +42,7 @@ FlagTable DemoFlags() {
 
 int RunDemo() {
   const std::string dir = FLAGS_output;
+  RunPaths().OutputDirectory("output", dir).Check();
   const auto clock = std::chrono::steady_clock::now();
   const Mesh finger = MakeFinger();
   const double pi = std::acos(-1.0);

@@ -9,6 +9,7 @@
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/geodesic_solve.h"
 #include "shellspace/tools/path_summary.h"
+#include "shellspace/tools/run_paths.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
 
@@ -37,6 +38,13 @@ FlagTable GeodesicFlags() {
 
 int RunGeodesic() {
   const auto clock = std::chrono::steady_clock::now();
+  RunPaths()
+      .InputFile("start", FLAGS_start)
+      .InputFile("end", FLAGS_end)
+      .InputFile("mask", FLAGS_mask)
+      .OutputDirectory("output", FLAGS_output)
+      .OutputFile("png", FLAGS_png)
+      .Check();
   const auto [start, end] = LoadStartEndFromFlags();
   const ShellSpace space = SpaceFromFlags(start);
   GeodesicInput input;

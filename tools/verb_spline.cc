@@ -10,6 +10,7 @@
 #include "shellspace/problems/splines/spline.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/path_summary.h"
+#include "shellspace/tools/run_paths.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
 
@@ -132,6 +133,11 @@ int RunSpline() {
     throw InputError("--method must be nonlinear or ltheta");
   }
   const auto clock = std::chrono::steady_clock::now();
+  RunPaths()
+      .InputList("keyframes", FLAGS_keyframes)
+      .OutputDirectory("output", FLAGS_output)
+      .OutputFile("png", FLAGS_png)
+      .Check();
   const ShellSet set = LoadShellList(FLAGS_keyframes, "keyframes");
   const std::vector<Positions>& keyframes = set.shapes;
   const std::vector<int> at = ParseIndices(FLAGS_at);
@@ -155,6 +161,11 @@ int RunSpline() {
 
 int RunRegress() {
   const auto clock = std::chrono::steady_clock::now();
+  RunPaths()
+      .InputList("inputs", FLAGS_inputs)
+      .OutputDirectory("output", FLAGS_output)
+      .OutputFile("png", FLAGS_png)
+      .Check();
   const ShellSet set = LoadShellList(FLAGS_inputs, "inputs");
   const std::vector<int> at = ParseIndices(FLAGS_at);
   CheckIndexCount(at, set.shapes.size(), "inputs");

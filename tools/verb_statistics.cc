@@ -21,6 +21,7 @@
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/io/json_writer.h"
 #include "shellspace/tools/shell_inputs.h"
+#include "shellspace/tools/run_paths.h"
 #include "shellspace/tools/verb.h"
 
 DEFINE_int32(modes, 3, "pca: number of modes");
@@ -132,6 +133,10 @@ std::vector<std::string> WarnAboutFarInputs(const ShellSet& inputs,
 
 int RunMean() {
   const auto clock = std::chrono::steady_clock::now();
+  RunPaths()
+      .InputList("inputs", FLAGS_inputs)
+      .OutputFile("output", FLAGS_output)
+      .Check();
   const ShellSet inputs = LoadInputs(1);
   const ShellSpace space = SpaceFromFlags(inputs.first);
   const ElasticMeanResult result =
@@ -280,6 +285,11 @@ int RunPca() {
                      FLAGS_displacement + "'");
   }
   const auto clock = std::chrono::steady_clock::now();
+  RunPaths()
+      .InputList("inputs", FLAGS_inputs)
+      .OutputDirectory("output", FLAGS_output)
+      .OutputFile("png", FLAGS_png)
+      .Check();
   const ShellSet inputs = LoadInputs(FLAGS_loo ? 3 : 2);
   const int n = static_cast<int>(inputs.shapes.size());
   if (FLAGS_modes > n - 1) {
