@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "shellspace/geometry/mesh.h"
+#include "shellspace/tools/run_output.h"
 #include "shellspace/tools/verb.h"
 
 namespace shellspace {
@@ -156,6 +157,7 @@ void ApplyDefaultsAndValidate(const Verb& verb) {
 
 int main(int argc, char** argv) {
   using shellspace::VerbRegistry;
+  shellspace::SetRunCommandLine(argc, argv);
   if (argc < 2 || shellspace::IsHelp(argv[1])) {
     shellspace::PrintUsage();
     return argc < 2 ? 1 : 0;

@@ -35,6 +35,7 @@
 #include "shellspace/io/png_writer.h"
 #include "shellspace/render/branching_image.h"
 #include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/run_output.h"
 #include "shellspace/tools/run_paths.h"
 #include "shellspace/io/json_writer.h"
 #include "shellspace/tools/verb.h"
@@ -200,12 +201,6 @@ std::string PrepareOutput() {
   return FLAGS_output;
 }
 
-void MakeOutputDirectory(const std::string& dir) {
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  if (error) throw InputError("cannot create directory " + dir);
-}
-
 JsonObject EnergyJson(double elastic, double interfacial) {
   JsonObject e;
   e.Add("elastic", elastic).Add("interfacial", interfacial)
@@ -314,19 +309,17 @@ int RunSimulate() {
     summary.Add("extrapolation", e);
   }
 
-  MakeOutputDirectory(dir);
   const int width_px = 800;
   const int height_px = std::clamp(
       static_cast<int>(std::lround(width_px * s.height / s.length)), 200, 1600);
-  AtomicFileSet files;
-  files.Add(dir + "/uy.png",
-            EncodePng(RenderSlope(result.field, width_px, height_px)));
-  files.Add(dir + "/u.csv", FieldCsv(result.field));
-  files.Add(dir + "/interfaces.csv",
-            InterfaceCsv(result.field, result.interfaces));
-  files.Add(dir + "/summary.json", summary.str() + "\n");
-  files.Commit();
-  if (FLAGS_json) std::cout << summary.str() << "\n";
+  RunDirectory output(dir);
+  WriteFileAtomically(output.File("uy.png"),
+                      EncodePng(RenderSlope(result.field, width_px, height_px)));
+  WriteFileAtomically(output.File("u.csv"), FieldCsv(result.field));
+  WriteFileAtomically(output.File("interfaces.csv"),
+                      InterfaceCsv(result.field, result.interfaces));
+  const std::string text = output.Commit(summary);
+  if (FLAGS_json) std::cout << text << "\n";
   if (!FLAGS_quiet) {
     std::cerr << "energy " << result.energy.total() << " (elastic "
               << result.energy.elastic << ", interfacial "
@@ -449,15 +442,14 @@ int RunGeneral(double epsilon, const std::string& dir) {
   const int height_px = std::clamp(
       static_cast<int>(std::lround(width_px * height / FLAGS_length)), 100,
       1800);
-  MakeOutputDirectory(dir);
-  AtomicFileSet files;
-  files.Add(dir + "/pattern.png",
-            EncodePng(RenderConstruction(c, height, width_px, height_px)));
-  files.Add(dir + "/summary.json", summary.str() + "\n");
-  files.Add(dir + "/pattern.txt", DescribeGeneral(best));
-  files.Commit();
+  RunDirectory output(dir);
+  WriteFileAtomically(
+      output.File("pattern.png"),
+      EncodePng(RenderConstruction(c, height, width_px, height_px)));
+  WriteFileAtomically(output.File("pattern.txt"), DescribeGeneral(best));
+  const std::string text = output.Commit(summary);
   if (FLAGS_json) {
-    std::cout << summary.str() << "\n";
+    std::cout << text << "\n";
   } else if (!FLAGS_quiet) {
     std::cout << DescribeGeneral(best) << "general: constant " << best.constant_free
               << " (free lengths; geometric " << best.constant_geometric
@@ -537,13 +529,11 @@ int RunConstruct() {
       1800);
   const RgbImage image = RenderConstruction(
       result.ToConstruction(FLAGS_length), height, width_px, height_px);
-  MakeOutputDirectory(dir);
-  AtomicFileSet files;
-  files.Add(dir + "/pattern.png", EncodePng(image));
-  files.Add(dir + "/summary.json", summary.str() + "\n");
-  files.Commit();
+  RunDirectory output(dir);
+  WriteFileAtomically(output.File("pattern.png"), EncodePng(image));
+  const std::string text = output.Commit(summary);
   if (FLAGS_json) {
-    std::cout << summary.str() << "\n";
+    std::cout << text << "\n";
   } else if (!FLAGS_quiet) {
     std::cout << result.family << ": constant " << result.constant
               << " (C_KM closed form " << KmClosedFormConstant() << ", ratio "

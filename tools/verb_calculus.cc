@@ -114,14 +114,12 @@ int RunShoot() {
       throw InputError("EXP step failed: " + step.summary.message);
     }
   }
-  WritePathOutputs(FLAGS_output, first.mesh.faces, result.path);
-  if (FLAGS_json) {
-    std::cout << ShootJson(result)
-                     .Add("seconds", Seconds(clock))
-                     .Add("output", FLAGS_output)
-                     .str()
-              << "\n";
-  }
+  RunDirectory output(FLAGS_output);
+  WritePathOutputs(&output, first.mesh.faces, result.path);
+  const std::string summary = output.Commit(ShootJson(result)
+                                                .Add("seconds", Seconds(clock))
+                                                .Add("output", FLAGS_output));
+  if (FLAGS_json) std::cout << summary << "\n";
   return 0;
 }
 
@@ -146,13 +144,12 @@ int RunLog() {
   const Positions log = LogOfGeodesic(geodesic.path);
   WriteMesh(Mesh{start.mesh.positions + log, start.mesh.faces}, FLAGS_output);
   if (FLAGS_json) {
-    std::cout << GeodesicJson(geodesic)
-                     .Raw("multires_levels", MultiresolutionJson(multires))
-                     .Add("log_max_norm", log.cwiseAbs().maxCoeff())
-                     .Add("seconds", Seconds(clock))
-                     .Add("output", FLAGS_output)
-                     .str()
-              << "\n";
+    JsonObject json = GeodesicJson(geodesic);
+    json.Raw("multires_levels", MultiresolutionJson(multires))
+        .Add("log_max_norm", log.cwiseAbs().maxCoeff())
+        .Add("seconds", Seconds(clock))
+        .Add("output", FLAGS_output);
+    std::cout << AddRunFields(json).str() << "\n";
   }
   return 0;
 }
@@ -181,22 +178,21 @@ int RunTransport() {
       space, path, varied.positions - first.mesh.positions, FLAGS_epsilon,
       MaskFromFlags(first.mesh.num_vertices()),
       SettingsFromFlags("transport"));
-  WritePathOutputs(FLAGS_output, first.mesh.faces, result.shapes);
-  if (FLAGS_json) {
-    std::vector<double> norms;
-    for (const Positions& xi : result.variations) {
-      norms.push_back(xi.cwiseAbs().maxCoeff());
-    }
-    std::cout << JsonObject()
-                     .Add("variation_max_norms", norms)
-                     .Add("exp_residuals", result.exp_residuals)
-                     .Add("epsilon", FLAGS_epsilon)
-                     .Add("frames", static_cast<int>(result.shapes.size()))
-                     .Add("seconds", Seconds(clock))
-                     .Add("output", FLAGS_output)
-                     .str()
-              << "\n";
+  RunDirectory output(FLAGS_output);
+  WritePathOutputs(&output, first.mesh.faces, result.shapes);
+  std::vector<double> norms;
+  for (const Positions& xi : result.variations) {
+    norms.push_back(xi.cwiseAbs().maxCoeff());
   }
+  const std::string summary =
+      output.Commit(JsonObject()
+                        .Add("variation_max_norms", norms)
+                        .Add("exp_residuals", result.exp_residuals)
+                        .Add("epsilon", FLAGS_epsilon)
+                        .Add("frames", static_cast<int>(result.shapes.size()))
+                        .Add("seconds", Seconds(clock))
+                        .Add("output", FLAGS_output));
+  if (FLAGS_json) std::cout << summary << "\n";
   return 0;
 }
 

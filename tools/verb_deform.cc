@@ -10,6 +10,7 @@
 #include "shellspace/problems/calculus/elastic_deformation.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/path_summary.h"
+#include "shellspace/tools/run_output.h"
 #include "shellspace/tools/run_paths.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
@@ -63,7 +64,8 @@ int RunDeform() {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
           .count();
   if (FLAGS_json) {
-    std::cout << JsonObject()
+    JsonObject json;
+    std::cout << AddRunFields(json)
                      .Add("membrane", result.energy.membrane)
                      .Add("bending", result.energy.bending)
                      .Add("total", result.energy.total)

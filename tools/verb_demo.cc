@@ -17,6 +17,7 @@
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/path_summary.h"
 #include "shellspace/tools/shell_inputs.h"
+#include "shellspace/tools/run_output.h"
 #include "shellspace/tools/run_paths.h"
 #include "shellspace/tools/verb.h"
 
@@ -81,16 +82,16 @@ int RunDemo() {
       shot.step_energies.empty() ? shot.step_energies.end()
                                  : shot.step_energies.begin() + 1,
       shot.step_energies.end());
-  MakeDirectory(dir);
-  WriteFrames(dir + "/frames", finger.faces, frames);
+  RunDirectory output(dir);
+  WriteFrames(output.File("frames"), finger.faces, frames);
   RenderOptions options;
   options.view = ParseView("front");  // the bend lies in the x-y plane
   options.max_per_row = 7;
-  WriteFilmStrip(frames, finger.faces, options, dir + "/film_strip.png");
+  WriteFilmStrip(frames, finger.faces, options, output.File("film_strip.png"));
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock)
           .count();
-  const std::string json =
+  const std::string json = output.Commit(
       JsonObject()
           .Add("path_energy", geodesic.path_energy)
           .Add("step_energies", geodesic.step_energies)
@@ -117,9 +118,7 @@ int RunDemo() {
           .Add("extrapolated_steps", FLAGS_extrapolate)
           .Add("vertices", finger.num_vertices())
           .Add("frames_dir", dir + "/frames")
-          .Add("film_strip", dir + "/film_strip.png")
-          .str();
-  WriteFileAtomically(dir + "/summary.json", json + "\n");
+          .Add("film_strip", dir + "/film_strip.png"));
   std::cout << json << "\n";
   return 0;
 }

@@ -59,17 +59,18 @@ int RunGeodesic() {
     throw InputError("solver failed: " + result.summary.message);
   }
   if (FLAGS_report) std::cerr << result.summary.FullReport() << "\n";
-  WritePathOutputs(FLAGS_output, start.mesh.faces, result.path);
+  RunDirectory output(FLAGS_output);
+  WritePathOutputs(&output, start.mesh.faces, result.path);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock)
           .count();
+  const std::string summary =
+      output.Commit(GeodesicJson(result)
+                        .Raw("multires_levels", MultiresolutionJson(multires))
+                        .Add("seconds", seconds)
+                        .Add("output", FLAGS_output));
   if (FLAGS_json) {
-    std::cout << GeodesicJson(result)
-                     .Raw("multires_levels", MultiresolutionJson(multires))
-                     .Add("seconds", seconds)
-                     .Add("output", FLAGS_output)
-                     .str()
-              << "\n";
+    std::cout << summary << "\n";
   } else if (!FLAGS_quiet) {
     std::cerr << result.summary.BriefReport() << "\n";
     std::cout << "E_K = " << result.path_energy << " over " << FLAGS_steps

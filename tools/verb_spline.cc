@@ -102,9 +102,10 @@ SplineSettings SplineSettingsFromFlags(const std::string& label) {
 
 void Report(const Faces& faces,
             const SplineResult& result, double seconds, JsonObject extra) {
-  WritePathOutputs(FLAGS_output, faces, result.path);
-  if (FLAGS_json) {
-    std::cout << extra.Add("spline_energy", result.spline_energy)
+  RunDirectory output(FLAGS_output);
+  WritePathOutputs(&output, faces, result.path);
+  const std::string summary =
+      output.Commit(extra.Add("spline_energy", result.spline_energy)
                      .Add("data_energy", result.data_energy)
                      .Add("objective", result.objective)
                      .Add("iterations", std::max(0, static_cast<int>(
@@ -119,9 +120,9 @@ void Report(const Faces& faces,
                               : "not optimised")
                      .Add("seconds", seconds)
                      .Add("frames", static_cast<int>(result.path.size()))
-                     .Add("output", FLAGS_output)
-                     .str()
-              << "\n";
+                     .Add("output", FLAGS_output));
+  if (FLAGS_json) {
+    std::cout << summary << "\n";
   } else if (!FLAGS_quiet) {
     std::cout << "F_K = " << result.spline_energy << "; wrote " << FLAGS_output
               << "/shape_*.ply\n";

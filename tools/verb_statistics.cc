@@ -13,6 +13,7 @@
 
 #include "shellspace/io/atomic_file.h"
 #include "shellspace/io/mesh_io.h"
+#include "shellspace/io/png_writer.h"
 #include "shellspace/problems/statistics/elastic_mean.h"
 #include "shellspace/problems/statistics/leave_one_out.h"
 #include "shellspace/problems/statistics/procrustes_pca.h"
@@ -21,6 +22,7 @@
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/io/json_writer.h"
 #include "shellspace/tools/shell_inputs.h"
+#include "shellspace/tools/run_output.h"
 #include "shellspace/tools/run_paths.h"
 #include "shellspace/tools/verb.h"
 
@@ -151,7 +153,8 @@ int RunMean() {
         result.initial_gradient_norm > 0
             ? result.gradient_norm / result.initial_gradient_norm
             : 0.0;
-    std::cout << JsonObject()
+    JsonObject json;
+    std::cout << AddRunFields(json)
                      .Add("energy", result.energy)
                      .Add("energies", result.energies)
                      .Add("far_inputs", far)
@@ -390,26 +393,22 @@ int RunPca() {
     table_text = TableText(table);
   }
   json.Add("seconds", Seconds(clock)).Add("output", FLAGS_output);
+  AddRunFields(json);
 
-  // All results computed: write the files (the PLY set and the JSON
-  // summary, together or none).
-  MakeDirectory(FLAGS_output);
-  {
-    AtomicFileSet set;
-    std::vector<Mesh> meshes;
-    meshes.reserve(files.size());
-    for (const auto& [name, positions] : files) {
-      meshes.push_back(Mesh{positions, inputs.first.mesh.faces});
-      const std::string path = FLAGS_output + "/" + name;
-      set.Add(path, MeshWriter(meshes.back(), path));
-    }
-    set.Add(FLAGS_output + "/pca.json", json.str() + "\n");
-    set.Commit();
+  // All results computed: write the directory (the PLY set, pca.json and
+  // summary.json, the same object) whole, then the film strip.
+  RunDirectory output(FLAGS_output);
+  for (const auto& [name, positions] : files) {
+    WriteMesh(Mesh{positions, inputs.first.mesh.faces}, output.File(name));
   }
+  WriteFileAtomically(output.File("pca.json"), json.str() + "\n");
   if (!FLAGS_png.empty()) {
     RenderOptions render;
-    WriteFilmStrip(strip, inputs.first.mesh.faces, render, FLAGS_png);
+    output.Outside().Add(
+        FLAGS_png,
+        EncodePng(RenderFilmStrip(strip, inputs.first.mesh.faces, render)));
   }
+  output.CommitSummary(json.str());
   if (FLAGS_json) {
     std::cout << json.str() << "\n";
     if (!FLAGS_quiet && !table_text.empty()) std::cerr << table_text;
