@@ -5,6 +5,8 @@
 #include <chrono>
 #include <ctime>
 
+#include "shellspace/tools/stop_request.h"
+
 namespace shellspace {
 namespace {
 
@@ -42,7 +44,11 @@ const std::string& RunId() {
 }
 
 JsonObject& AddRunFields(JsonObject& json) {
-  return json.Add("run_id", RunId()).Add("command_line", RunCommandLine());
+  const StopCause stop = ObservedStop();
+  return json.Add("partial", stop != StopCause::kNone)
+      .Add("stop_reason", StopCauseText(stop))
+      .Add("run_id", RunId())
+      .Add("command_line", RunCommandLine());
 }
 
 std::string RunDirectory::Commit(JsonObject summary) {

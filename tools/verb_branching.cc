@@ -37,6 +37,7 @@
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/run_output.h"
 #include "shellspace/tools/run_paths.h"
+#include "shellspace/tools/stop_request.h"
 #include "shellspace/io/json_writer.h"
 #include "shellspace/tools/verb.h"
 
@@ -133,6 +134,7 @@ FlagTable SimulateFlags() {
                        "(this many, r = 2^(1/2)) and fit the constant as "
                        "delta -> 0",
                        0, 16),
+           TimeLimitFlag(),
        }});
 }
 
@@ -234,6 +236,7 @@ int RunSimulate() {
   s.periods = FLAGS_periods;
   s.seed = static_cast<unsigned>(FLAGS_init_seed);
   s.max_iterations = FLAGS_lm_iterations;
+  s.stop = StopPollForRun();
   CheckSimulationSettings(s);
   const std::string dir = PrepareOutput();
   if (!FLAGS_quiet) {
@@ -285,7 +288,7 @@ int RunSimulate() {
     counts.push_back(result.interfaces[k]);
   }
   summary.Add("x", x).Add("interfaces", counts);
-  if (FLAGS_delta_extrapolation >= 2) {
+  if (FLAGS_delta_extrapolation >= 2 && ObservedStop() == StopCause::kNone) {
     std::vector<double> deltas;
     for (int k = 0; k < FLAGS_delta_extrapolation; ++k) {
       deltas.push_back(result.delta * std::pow(std::sqrt(0.5), k));

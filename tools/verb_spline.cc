@@ -93,6 +93,8 @@ SplineSettings SplineSettingsFromFlags(const std::string& label) {
   settings.inner = SettingsFromFlags(label + " midpoint");
   settings.inner.progress = false;
   settings.inner.gradient_tolerance = 1e-10;
+  settings.stop = settings.inner.stop;  // the outer loop stops,
+  settings.inner.stop = nullptr;        // every F_K evaluation is exact
   settings.max_iterations = FLAGS_max_iterations;
   settings.gradient_tolerance = FLAGS_tolerance;
   settings.progress = !FLAGS_quiet;

@@ -24,6 +24,7 @@
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/run_output.h"
 #include "shellspace/tools/run_paths.h"
+#include "shellspace/tools/stop_request.h"
 #include "shellspace/tools/verb.h"
 
 DEFINE_int32(modes, 3, "pca: number of modes");
@@ -313,6 +314,26 @@ int RunPca() {
   const ElasticMeanResult mean =
       ComputeElasticMean(space, inputs.shapes, settings);
   CheckSolve(mean.summary, "elastic mean");
+  if (ObservedStop() != StopCause::kNone) {
+    // Stopped during the mean: the mean so far, no modes.
+    JsonObject json;
+    json.Add("inputs", n)
+        .Add("mean_energy", mean.energy)
+        .Add("mean_iterations", mean.lm_iterations)
+        .Add("mean_newton_iterations", mean.newton_iterations)
+        .Add("mean_gradient_norm", mean.gradient_norm)
+        .Add("modes", 0)
+        .Add("seconds", Seconds(clock))
+        .Add("output", FLAGS_output);
+    AddRunFields(json);
+    RunDirectory output(FLAGS_output);
+    WriteMesh(Mesh{mean.mean, inputs.first.mesh.faces},
+              output.File("mean.ply"));
+    WriteFileAtomically(output.File("pca.json"), json.str() + "\n");
+    output.CommitSummary(json.str());
+    if (FLAGS_json) std::cout << json.str() << "\n";
+    return 0;
+  }
   const std::vector<std::string> far = WarnAboutFarInputs(inputs, mean, "pca");
   if (!FLAGS_quiet) std::cerr << "pca: elastic mean done\n";
   const ShellPcaModel shell =

@@ -143,7 +143,8 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
                           attempt < GeodesicInput::kMaxNewtonAttempts;
       run_lm(newton ? threshold : settings.gradient_tolerance);
       if (!newton || result.final_gradient <= tolerance ||
-          result.summary.termination_type == ceres::FAILURE) {
+          result.summary.termination_type == ceres::FAILURE ||
+          StoppedByRequest(result.summary)) {
         break;
       }
       PathNewtonSettings polish;
@@ -152,6 +153,7 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
       polish.num_threads = settings.num_threads;
       polish.progress = settings.progress;
       polish.progress_label = settings.progress_label + " newton";
+      polish.stop = settings.stop;
       const PathNewtonReport report =
           PolishPathNewton(space, input.fixed_vertices, polish, &result.path);
       result.newton.Append(report);
@@ -163,7 +165,7 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
       stage.final_gradient = report.final_gradient;
       stage.termination = report.stop_reason;
       result.stages.push_back(stage);
-      if (report.converged) break;
+      if (report.converged || report.stop == NewtonStop::kStopped) break;
       threshold *= 0.1;  // not yet in Newton's basin: more LM first
     }
     result.initial_gradient = g0;

@@ -165,6 +165,7 @@ bool NewtonFinish(const ShellSpace& space, const std::vector<Positions>& shapes,
   newton.forcing = 1e-10;
   newton.max_halvings = 4;  // t = 1, ..., 1/16
   newton.accept_smaller_two_norm = true;
+  newton.stop = settings.stop;
   const int before = *iterations;
   if (settings.progress) {
     newton.progress = [&](const NewtonReport& r, double, bool accepted) {
@@ -243,10 +244,11 @@ ElasticMeanResult ComputeElasticMean(const ShellSpace& space,
     first_chunk = false;
     result.lm_iterations += static_cast<int>(summary.iterations.size());
     usable = summary.IsSolutionUsable();
-    if (!usable || last) break;
+    if (!usable || last || StoppedByRequest(summary)) break;
     ++attempts;
     if (NewtonFinish(space, shapes, target, options, settings, &result.mean,
-                     &result.newton_iterations)) {
+                     &result.newton_iterations) ||
+        StopRequested(settings)) {
       break;
     }
     result.newton_fell_back = true;

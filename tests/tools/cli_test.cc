@@ -427,7 +427,7 @@ TEST(CliTest, HelpListsOnlyTheVerbsFlags) {
   const std::set<std::string> expected = {
       "start", "end",  "steps",  "output",    "mask",      "png",
       "report", "mu",  "lambda", "eta",       "tolerance", "max_iterations",
-      "threads", "quiet", "json", "multires", "linear_solver",
+      "threads", "quiet", "json", "multires", "linear_solver", "time_limit",
       "minloglevel"};
   EXPECT_EQ(geodesic, expected) << text;
   // Default and valid range of a numeric flag.
