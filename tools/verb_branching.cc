@@ -35,6 +35,7 @@
 #include "shellspace/io/png_writer.h"
 #include "shellspace/render/branching_image.h"
 #include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/memory_limits.h"
 #include "shellspace/tools/run_output.h"
 #include "shellspace/tools/run_paths.h"
 #include "shellspace/tools/stop_request.h"
@@ -109,7 +110,11 @@ FlagTable SimulateFlags() {
        {
            RealFlag("height", "domain height H (0: 0.5)", 0, End::kClosed),
            IntegerFlag("nx", "number of x-cells", 2, 4096),
-           IntegerFlag("ny", "number of y-nodes (periodic)", 8, 8192),
+           IntegerFlag("ny",
+                       "number of y-nodes (periodic); the grid's estimated "
+                       "memory 16 MB + 3 KB x (nx + 1) x ny must lie within "
+                       "half the physical memory",
+                       8, 8192),
            TextFlag("init",
                     "initial guess laminate|random|km|needle|lens (km: the "
                     "psi-junction cell; needle: the T2 cell)")
@@ -238,6 +243,11 @@ int RunSimulate() {
   s.max_iterations = FLAGS_lm_iterations;
   s.stop = StopPollForRun();
   CheckSimulationSettings(s);
+  const double nodes = (static_cast<double>(s.nx) + 1) * s.ny;
+  CheckMemory(BranchingBytes(nodes),
+              "--nx " + std::to_string(s.nx) + " --ny " + std::to_string(s.ny) +
+                  " (" + std::to_string(static_cast<long>(nodes)) + " nodes)",
+              "16 MB + 3 KB x (nx + 1) x ny");
   const std::string dir = PrepareOutput();
   if (!FLAGS_quiet) {
     std::cerr << "branching simulate: eps " << s.epsilon << ", L " << s.length

@@ -11,6 +11,7 @@
 #include "shellspace/problems/calculus/parallel_transport.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/geodesic_solve.h"
+#include "shellspace/tools/memory_limits.h"
 #include "shellspace/tools/path_summary.h"
 #include "shellspace/tools/run_paths.h"
 #include "shellspace/tools/shell_inputs.h"
@@ -24,6 +25,9 @@ DEFINE_string(variation, "", "transport: shell s_0 + xi_0");
 
 namespace shellspace {
 namespace {
+
+const char* const kGeodesicModel = "64 MB + 1500 B x #V x K^2";
+const char* const kPathModel = "64 MB + 200 B x #V x (K + 1)";
 
 double Seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since)
@@ -47,7 +51,11 @@ FlagTable ShootFlags() {
            TextFlag("second",
                     "the shell s_1 (s_1 - s_0 is the initial velocity / K)")
                .Required(),
-           IntegerFlag("steps", "number of time steps K (K + 1 shapes)", 1),
+           IntegerFlag("steps",
+                       "number of time steps K (K + 1 shapes; K = 1: s_0, "
+                       "s_1, nothing to solve)" +
+                           StepsBoundText(kPathModel),
+                       1, kMaxSteps),
            TextFlag("output", "directory of the frames shape_000.ply ...")
                .Required(),
            TextFlag("backward", "extrapolate backward in time, before s_0"),
@@ -62,7 +70,11 @@ FlagTable LogFlags() {
       {{
            TextFlag("start", "the shell A at which LOG_K is taken").Required(),
            TextFlag("end", "the shell B").Required(),
-           IntegerFlag("steps", "K of LOG_K (the geodesic's time steps)", 1),
+           IntegerFlag("steps",
+                       "K of LOG_K (the geodesic's time steps; K = 1: "
+                       "B - A, nothing to solve)" +
+                           StepsBoundText(kGeodesicModel),
+                       1, kMaxSteps),
            TextFlag("output", "the shell A + LOG_K(A -> B): PLY, OBJ or OFF")
                .Required(),
            MaskFlag(),
@@ -104,6 +116,10 @@ int RunShoot() {
       .Check();
   const Shell first = LoadShell(FLAGS_first);
   const Mesh second = LoadCompatibleShell(FLAGS_second, first);
+  CheckMemory(PathBytes(first.mesh.num_vertices(), FLAGS_steps + 1),
+              "--steps " + std::to_string(FLAGS_steps) + " on " +
+                  std::to_string(first.mesh.num_vertices()) + " vertices",
+              kPathModel);
   const ShellSpace space = SpaceFromFlags(first);
   const ShootResult result = ShootWithReport(
       space, first.mesh.positions, second.positions, FLAGS_steps,
@@ -132,6 +148,10 @@ int RunLog() {
       .OutputFile("output", FLAGS_output)
       .Check();
   const auto [start, end] = LoadStartEndFromFlags();
+  CheckMemory(GeodesicBytes(start.mesh.num_vertices(), FLAGS_steps),
+              "--steps " + std::to_string(FLAGS_steps) + " on " +
+                  std::to_string(start.mesh.num_vertices()) + " vertices",
+              kGeodesicModel);
   const ShellSpace space = SpaceFromFlags(start);
   GeodesicInput input;
   input.start = start.mesh.positions;

@@ -15,6 +15,7 @@
 #include "shellspace/problems/calculus/exponential_map.h"
 #include "shellspace/render/film_strip.h"
 #include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/memory_limits.h"
 #include "shellspace/tools/path_summary.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/run_output.h"
@@ -34,7 +35,7 @@ FlagTable DemoFlags() {
                         .Default("demo-output"),
                     IntegerFlag("steps",
                                 "time steps K of the geodesic (K + 1 shapes)",
-                                2),
+                                2, kMaxSteps),
                     IntegerFlag("extrapolate", "EXP steps beyond the end shape",
                                 0),
                 },

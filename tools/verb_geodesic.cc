@@ -8,6 +8,7 @@
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/geodesic_solve.h"
+#include "shellspace/tools/memory_limits.h"
 #include "shellspace/tools/path_summary.h"
 #include "shellspace/tools/run_paths.h"
 #include "shellspace/tools/shell_inputs.h"
@@ -16,12 +17,18 @@
 namespace shellspace {
 namespace {
 
+const char* const kGeodesicModel = "64 MB + 1500 B x #V x K^2";
+
 FlagTable GeodesicFlags() {
   return Flags(
       {{
            TextFlag("start", "first shell s_0 of the path").Required(),
            TextFlag("end", "last shell s_K of the path").Required(),
-           IntegerFlag("steps", "number of time steps K (K + 1 shapes)", 1),
+           IntegerFlag("steps",
+                       "number of time steps K (K + 1 shapes; K = 1: the two "
+                       "ends, nothing to solve)" +
+                           StepsBoundText(kGeodesicModel),
+                       1, kMaxSteps),
            TextFlag("output", "directory of the frames shape_000.ply ...")
                .Required(),
            TextFlag("mask",
@@ -46,6 +53,10 @@ int RunGeodesic() {
       .OutputFile("png", FLAGS_png)
       .Check();
   const auto [start, end] = LoadStartEndFromFlags();
+  CheckMemory(GeodesicBytes(start.mesh.num_vertices(), FLAGS_steps),
+              "--steps " + std::to_string(FLAGS_steps) + " on " +
+                  std::to_string(start.mesh.num_vertices()) + " vertices",
+              kGeodesicModel);
   const ShellSpace space = SpaceFromFlags(start);
   GeodesicInput input;
   input.start = start.mesh.positions;
@@ -55,7 +66,8 @@ int RunGeodesic() {
   const MultiresolutionResult multires =
       SolveGeodesicFromFlags(space, input, SettingsFromFlags("geodesic"));
   const GeodesicResult& result = multires.geodesic;
-  if (result.summary.termination_type == ceres::FAILURE) {
+  if (!result.stages.empty() &&  // K = 1: no solve
+      result.summary.termination_type == ceres::FAILURE) {
     throw InputError("solver failed: " + result.summary.message);
   }
   if (FLAGS_report) std::cerr << result.summary.FullReport() << "\n";

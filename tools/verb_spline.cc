@@ -9,6 +9,7 @@
 #include "shellspace/problems/splines/ltheta_spline.h"
 #include "shellspace/problems/splines/spline.h"
 #include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/memory_limits.h"
 #include "shellspace/tools/path_summary.h"
 #include "shellspace/tools/run_paths.h"
 #include "shellspace/tools/shell_inputs.h"
@@ -24,7 +25,8 @@ namespace {
 
 FlagTable PathFlags() {
   return {
-      IntegerFlag("steps", "number of time steps K (K + 1 shapes)", 2),
+      IntegerFlag("steps", "number of time steps K (K + 1 shapes)", 2,
+                  kMaxSteps),
       TextFlag("output", "directory of the frames shape_000.ply ...")
           .Required(),
       TextFlag("png", "also write a PNG film strip of the frames here"),
