@@ -244,5 +244,28 @@ TEST(InterruptCliTest, ATimeLimitThatIsNotReachedChangesNoNumber) {
   }
 }
 
+// SIGKILL (no handler can run) during the solve of a run into a directory
+// that holds an earlier run: the earlier run is untouched, nothing is left
+// beside it. A second SIGTERM kills at once, with the same result.
+TEST(InterruptCliTest, AKilledRunLeavesThePreviousOutputUntouched) {
+  const std::string base = TempDir();
+  const std::string dir = base + "/g";
+  ASSERT_EQ(testing::RunCli("geodesic --quiet --steps 2 --start " + kPlate +
+                            " --end " + kRolled + " --output " + dir),
+            0);
+  const std::vector<std::string> listing = DirectoryListing(dir);
+  std::vector<std::string> contents;
+  for (const std::string& name : listing) contents.push_back(Slurp(dir + "/" + name));
+  std::string err;
+  const int code = RunAndSignal(LongGeodesic(8, dir), base + "/out",
+                                "geodesic iter   1", SIGKILL, 60, &err);
+  EXPECT_EQ(code, -1) << err;  // killed, no exit status
+  EXPECT_EQ(DirectoryListing(dir), listing);
+  for (size_t i = 0; i < listing.size(); ++i) {
+    EXPECT_EQ(Slurp(dir + "/" + listing[i]), contents[i]) << listing[i];
+  }
+  EXPECT_EQ(DirectoryListing(base), (std::vector<std::string>{"g", "out"}));
+}
+
 }  // namespace
 }  // namespace shellspace
