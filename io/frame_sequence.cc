@@ -6,6 +6,7 @@
 #include <system_error>
 
 #include "shellspace/io/mesh_io.h"
+#include "shellspace/io/output_directory.h"
 
 namespace shellspace {
 namespace {
@@ -34,7 +35,9 @@ std::vector<std::string> ListDirectory(const std::string& dir) {
   for (fs::directory_iterator it(dir, error), end; !error && it != end;
        it.increment(error)) {
     std::error_code type_error;
-    if (it->is_regular_file(type_error) && HasMeshExtension(it->path())) {
+    const std::string name = it->path().filename().string();
+    if (it->is_regular_file(type_error) && HasMeshExtension(it->path()) &&
+        name[0] != '.' && !IsTemporaryName(name)) {
       files.push_back(it->path().string());
     }
   }

@@ -18,7 +18,9 @@ struct FrameSequence {
 
 // The mesh files named by `input`: either a directory, giving every regular
 // file in it ending in .ply, .obj or .off (any case) in natural name order
-// (digit runs compare as numbers, so shape_2 comes before shape_10), or a
+// (digit runs compare as numbers, so shape_2 comes before shape_10), hidden
+// files (".name") and the temporaries of io/atomic_file.h and
+// io/output_directory.h excepted, or a
 // comma-separated list of files, kept in the given order. Throws InputError
 // if `input` is empty, a directory does not exist or holds no meshes, or a
 // list entry is empty.

@@ -37,6 +37,8 @@ std::string NewtonStopText(NewtonStop stop, NewtonMode mode) {
       return "round-off floor";
     case NewtonStop::kNoProgress:
       return "no progress";
+    case NewtonStop::kStopped:
+      return "stopped on request";
   }
   return "unknown";
 }
@@ -126,6 +128,10 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
     }
     if (report.steps >= settings.max_steps) {
       finish(NewtonStop::kMaxSteps);
+      break;
+    }
+    if (settings.stop && settings.stop()) {
+      finish(NewtonStop::kStopped);
       break;
     }
     const double assembly_start = timer.Seconds();

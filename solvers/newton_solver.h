@@ -135,6 +135,8 @@ struct NewtonSettings {
   std::function<void(const NewtonReport& report, double merit,
                      bool accepted)>
       progress;
+  // Polled before every step: true stops at the current point (kStopped).
+  std::function<bool()> stop;
 };
 
 enum class NewtonStop {
@@ -147,6 +149,7 @@ enum class NewtonStop {
   kLineSearchFailed,   // no step length accepted
   kRoundOffFloor,      // the round-off floor rule
   kNoProgress,         // the no-progress rule
+  kStopped,            // NewtonSettings::stop returned true
 };
 
 // The text of a stop reason (the same for every problem), e.g. "converged",

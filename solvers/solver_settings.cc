@@ -66,6 +66,20 @@ double GradientMaxNorm(ceres::Problem* problem) {
   return norm;
 }
 
+bool StopRequested(const SolverSettings& settings) {
+  return settings.stop && settings.stop();
+}
+
+bool StoppedByRequest(const ceres::Solver::Summary& summary) {
+  return summary.termination_type == ceres::USER_SUCCESS;
+}
+
+ceres::CallbackReturnType StopCallback::operator()(
+    const ceres::IterationSummary&) {
+  return stop_ && stop_() ? ceres::SOLVER_TERMINATE_SUCCESSFULLY
+                          : ceres::SOLVER_CONTINUE;
+}
+
 ceres::Solver::Summary SolveWithSettings(ceres::Problem* problem,
                                          const SolverSettings& settings,
                                          double reference_gradient_norm) {
@@ -74,6 +88,8 @@ ceres::Solver::Summary SolveWithSettings(ceres::Problem* problem,
                                              : GradientMaxNorm(problem));
   ProgressPrinter printer(settings.progress_label);
   if (settings.progress) options.callbacks.push_back(&printer);
+  StopCallback stop(settings.stop);
+  if (settings.stop) options.callbacks.push_back(&stop);
   ceres::Solver::Summary summary;
   ceres::Solve(options, problem, &summary);
   return summary;

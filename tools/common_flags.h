@@ -32,5 +32,6 @@ DECLARE_string(inputs);
 DECLARE_string(at);
 DECLARE_string(multires);
 DECLARE_string(linear_solver);
+DECLARE_double(time_limit);
 
 #endif  // SHELLSPACE_TOOLS_COMMON_FLAGS_H_

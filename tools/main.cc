@@ -18,6 +18,9 @@
 #include <vector>
 
 #include "shellspace/geometry/mesh.h"
+#include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/run_output.h"
+#include "shellspace/tools/stop_request.h"
 #include "shellspace/tools/verb.h"
 
 namespace shellspace {
@@ -157,6 +160,7 @@ void ApplyDefaultsAndValidate(const Verb& verb) {
 
 int main(int argc, char** argv) {
   using shellspace::VerbRegistry;
+  shellspace::SetRunCommandLine(argc, argv);
   if (argc < 2 || shellspace::IsHelp(argv[1])) {
     shellspace::PrintUsage();
     return argc < 2 ? 1 : 0;
@@ -235,7 +239,18 @@ int main(int argc, char** argv) {
   google::InitGoogleLogging(argv[0]);
   try {
     shellspace::ApplyDefaultsAndValidate(verb);
-    return verb.run();
+    shellspace::InstallStopHandlers(
+        shellspace::FindFlag(verb.flags, "time_limit") ? FLAGS_time_limit : 0);
+    const int code = verb.run();
+    const shellspace::StopCause stop = shellspace::RequestedStop();
+    if (code != 0 || stop == shellspace::StopCause::kNone) return code;
+    std::cerr << "shellspace " << name << ": stopped ("
+              << shellspace::StopCauseText(stop) << "): "
+              << (shellspace::ObservedStop() != shellspace::StopCause::kNone
+                      ? "wrote the best state so far, marked partial"
+                      : "after the solves; the output is complete")
+              << "\n";
+    return shellspace::StopExitCode(stop);
   } catch (const shellspace::InputError& error) {
     std::cerr << "shellspace " << name << ": error: " << error.what() << "\n";
     return 1;

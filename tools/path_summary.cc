@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "shellspace/io/png_writer.h"
 #include "shellspace/render/film_strip.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/shell_inputs.h"
@@ -155,12 +156,15 @@ void CheckShoot(const ShootResult& result, RunStatus* status) {
   }
 }
 
-void WritePathOutputs(const std::string& dir, const Faces& faces,
+void WritePathOutputs(RunDirectory* out, const Faces& faces,
                       const ShellPath& path) {
-  RenderOptions options;
-  if (!FLAGS_png.empty()) ValidateRenderOptions(options);
-  WriteFrames(dir, faces, path);
-  if (!FLAGS_png.empty()) WriteFilmStrip(path, faces, options, FLAGS_png);
+  WriteFrames(out->staging(), faces, path);
+  if (!FLAGS_png.empty()) {
+    RenderOptions options;
+    ValidateRenderOptions(options);
+    out->Outside().Add(FLAGS_png,
+                       EncodePng(RenderFilmStrip(path, faces, options)));
+  }
 }
 
 }  // namespace shellspace

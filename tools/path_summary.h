@@ -12,6 +12,7 @@
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/io/json_writer.h"
 #include "shellspace/problems/calculus/exponential_map.h"
+#include "shellspace/tools/run_output.h"
 #include "shellspace/tools/run_status.h"
 
 namespace shellspace {
@@ -70,8 +71,9 @@ JsonObject ShootJson(const ShootResult& result);
 // Records each unsolved EXP step of the shot in `status`.
 void CheckShoot(const ShootResult& result, RunStatus* status);
 
-// Writes DIR/shape_000.ply ... and, if --png is set, a film strip.
-void WritePathOutputs(const std::string& dir, const Faces& faces,
+// Writes shape_000.ply ... into the run's output directory and, if --png
+// is set, adds the film strip to its outside files (tools/run_output.h).
+void WritePathOutputs(RunDirectory* out, const Faces& faces,
                       const ShellPath& path);
 
 }  // namespace shellspace

@@ -8,6 +8,7 @@
 #include "shellspace/io/atomic_file.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/stop_request.h"
 
 namespace shellspace {
 
@@ -80,6 +81,7 @@ SolverSettings SettingsFromFlags(const std::string& label) {
   settings.gradient_tolerance = FLAGS_tolerance;
   settings.max_iterations = FLAGS_max_iterations;
   settings.num_threads = FLAGS_threads;
+  settings.stop = StopPollForRun();
   return settings;
 }
 

@@ -60,7 +60,8 @@ ShellSpace SpaceFromFlags(const Shell& shell);
 std::vector<int> MaskFromFlags(int num_vertices);
 
 // Solver settings of --tolerance, --max_iterations, --threads, with
-// progress on unless --quiet.
+// progress on unless --quiet, stopped by --time_limit and SIGINT/SIGTERM
+// (tools/stop_request.h).
 SolverSettings SettingsFromFlags(const std::string& label);
 
 // Splits "a,b,c" at commas (empty items are an error naming `flag`).

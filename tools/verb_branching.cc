@@ -35,6 +35,10 @@
 #include "shellspace/io/png_writer.h"
 #include "shellspace/render/branching_image.h"
 #include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/memory_limits.h"
+#include "shellspace/tools/run_output.h"
+#include "shellspace/tools/run_paths.h"
+#include "shellspace/tools/stop_request.h"
 #include "shellspace/io/json_writer.h"
 #include "shellspace/tools/verb.h"
 
@@ -106,7 +110,11 @@ FlagTable SimulateFlags() {
        {
            RealFlag("height", "domain height H (0: 0.5)", 0, End::kClosed),
            IntegerFlag("nx", "number of x-cells", 2, 4096),
-           IntegerFlag("ny", "number of y-nodes (periodic)", 8, 8192),
+           IntegerFlag("ny",
+                       "number of y-nodes (periodic); the grid's estimated "
+                       "memory 16 MB + 3 KB x (nx + 1) x ny must lie within "
+                       "half the physical memory",
+                       8, 8192),
            TextFlag("init",
                     "initial guess laminate|random|km|needle|lens (km: the "
                     "psi-junction cell; needle: the T2 cell)")
@@ -131,6 +139,7 @@ FlagTable SimulateFlags() {
                        "(this many, r = 2^(1/2)) and fit the constant as "
                        "delta -> 0",
                        0, 16),
+           TimeLimitFlag(),
        }});
 }
 
@@ -195,18 +204,8 @@ std::string InterfaceCsv(const RelaxedField& field,
 double BranchingHeight() { return FLAGS_height > 0 ? FLAGS_height : 0.5; }
 
 std::string PrepareOutput() {
-  std::error_code error;
-  if (std::filesystem::exists(FLAGS_output, error) &&
-      !std::filesystem::is_directory(FLAGS_output, error)) {
-    throw InputError("--output exists and is not a directory: " + FLAGS_output);
-  }
+  RunPaths().OutputDirectory("output", FLAGS_output).Check();
   return FLAGS_output;
-}
-
-void MakeOutputDirectory(const std::string& dir) {
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  if (error) throw InputError("cannot create directory " + dir);
 }
 
 JsonObject EnergyJson(double elastic, double interfacial) {
@@ -242,7 +241,13 @@ int RunSimulate() {
   s.periods = FLAGS_periods;
   s.seed = static_cast<unsigned>(FLAGS_init_seed);
   s.max_iterations = FLAGS_lm_iterations;
+  s.stop = StopPollForRun();
   CheckSimulationSettings(s);
+  const double nodes = (static_cast<double>(s.nx) + 1) * s.ny;
+  CheckMemory(BranchingBytes(nodes),
+              "--nx " + std::to_string(s.nx) + " --ny " + std::to_string(s.ny) +
+                  " (" + std::to_string(static_cast<long>(nodes)) + " nodes)",
+              "16 MB + 3 KB x (nx + 1) x ny");
   const std::string dir = PrepareOutput();
   if (!FLAGS_quiet) {
     std::cerr << "branching simulate: eps " << s.epsilon << ", L " << s.length
@@ -293,7 +298,7 @@ int RunSimulate() {
     counts.push_back(result.interfaces[k]);
   }
   summary.Add("x", x).Add("interfaces", counts);
-  if (FLAGS_delta_extrapolation >= 2) {
+  if (FLAGS_delta_extrapolation >= 2 && ObservedStop() == StopCause::kNone) {
     std::vector<double> deltas;
     for (int k = 0; k < FLAGS_delta_extrapolation; ++k) {
       deltas.push_back(result.delta * std::pow(std::sqrt(0.5), k));
@@ -317,19 +322,17 @@ int RunSimulate() {
     summary.Add("extrapolation", e);
   }
 
-  MakeOutputDirectory(dir);
   const int width_px = 800;
   const int height_px = std::clamp(
       static_cast<int>(std::lround(width_px * s.height / s.length)), 200, 1600);
-  AtomicFileSet files;
-  files.Add(dir + "/uy.png",
-            EncodePng(RenderSlope(result.field, width_px, height_px)));
-  files.Add(dir + "/u.csv", FieldCsv(result.field));
-  files.Add(dir + "/interfaces.csv",
-            InterfaceCsv(result.field, result.interfaces));
-  files.Add(dir + "/summary.json", summary.str() + "\n");
-  files.Commit();
-  if (FLAGS_json) std::cout << summary.str() << "\n";
+  RunDirectory output(dir);
+  WriteFileAtomically(output.File("uy.png"),
+                      EncodePng(RenderSlope(result.field, width_px, height_px)));
+  WriteFileAtomically(output.File("u.csv"), FieldCsv(result.field));
+  WriteFileAtomically(output.File("interfaces.csv"),
+                      InterfaceCsv(result.field, result.interfaces));
+  const std::string text = output.Commit(summary);
+  if (FLAGS_json) std::cout << text << "\n";
   if (!FLAGS_quiet) {
     std::cerr << "energy " << result.energy.total() << " (elastic "
               << result.energy.elastic << ", interfacial "
@@ -452,15 +455,14 @@ int RunGeneral(double epsilon, const std::string& dir) {
   const int height_px = std::clamp(
       static_cast<int>(std::lround(width_px * height / FLAGS_length)), 100,
       1800);
-  MakeOutputDirectory(dir);
-  AtomicFileSet files;
-  files.Add(dir + "/pattern.png",
-            EncodePng(RenderConstruction(c, height, width_px, height_px)));
-  files.Add(dir + "/summary.json", summary.str() + "\n");
-  files.Add(dir + "/pattern.txt", DescribeGeneral(best));
-  files.Commit();
+  RunDirectory output(dir);
+  WriteFileAtomically(
+      output.File("pattern.png"),
+      EncodePng(RenderConstruction(c, height, width_px, height_px)));
+  WriteFileAtomically(output.File("pattern.txt"), DescribeGeneral(best));
+  const std::string text = output.Commit(summary);
   if (FLAGS_json) {
-    std::cout << summary.str() << "\n";
+    std::cout << text << "\n";
   } else if (!FLAGS_quiet) {
     std::cout << DescribeGeneral(best) << "general: constant " << best.constant_free
               << " (free lengths; geometric " << best.constant_geometric
@@ -540,13 +542,11 @@ int RunConstruct() {
       1800);
   const RgbImage image = RenderConstruction(
       result.ToConstruction(FLAGS_length), height, width_px, height_px);
-  MakeOutputDirectory(dir);
-  AtomicFileSet files;
-  files.Add(dir + "/pattern.png", EncodePng(image));
-  files.Add(dir + "/summary.json", summary.str() + "\n");
-  files.Commit();
+  RunDirectory output(dir);
+  WriteFileAtomically(output.File("pattern.png"), EncodePng(image));
+  const std::string text = output.Commit(summary);
   if (FLAGS_json) {
-    std::cout << summary.str() << "\n";
+    std::cout << text << "\n";
   } else if (!FLAGS_quiet) {
     std::cout << result.family << ": constant " << result.constant
               << " (C_KM closed form " << KmClosedFormConstant() << ", ratio "

@@ -11,7 +11,9 @@
 #include "shellspace/problems/calculus/parallel_transport.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/geodesic_solve.h"
+#include "shellspace/tools/memory_limits.h"
 #include "shellspace/tools/path_summary.h"
+#include "shellspace/tools/run_paths.h"
 #include "shellspace/tools/run_status.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
@@ -24,6 +26,9 @@ DEFINE_string(variation, "", "transport: shell s_0 + xi_0");
 
 namespace shellspace {
 namespace {
+
+const char* const kGeodesicModel = "64 MB + 1500 B x #V x K^2";
+const char* const kPathModel = "64 MB + 200 B x #V x (K + 1)";
 
 double Seconds(std::chrono::steady_clock::time_point since) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - since)
@@ -47,7 +52,11 @@ FlagTable ShootFlags() {
            TextFlag("second",
                     "the shell s_1 (s_1 - s_0 is the initial velocity / K)")
                .Required(),
-           IntegerFlag("steps", "number of time steps K (K + 1 shapes)", 1),
+           IntegerFlag("steps",
+                       "number of time steps K (K + 1 shapes; K = 1: s_0, "
+                       "s_1, nothing to solve)" +
+                           StepsBoundText(kPathModel),
+                       1, kMaxSteps),
            TextFlag("output", "directory of the frames shape_000.ply ...")
                .Required(),
            TextFlag("backward", "extrapolate backward in time, before s_0"),
@@ -63,7 +72,11 @@ FlagTable LogFlags() {
       {{
            TextFlag("start", "the shell A at which LOG_K is taken").Required(),
            TextFlag("end", "the shell B").Required(),
-           IntegerFlag("steps", "K of LOG_K (the geodesic's time steps)", 1),
+           IntegerFlag("steps",
+                       "K of LOG_K (the geodesic's time steps; K = 1: "
+                       "B - A, nothing to solve)" +
+                           StepsBoundText(kGeodesicModel),
+                       1, kMaxSteps),
            TextFlag("output", "the shell A + LOG_K(A -> B): PLY, OBJ or OFF")
                .Required(),
            MaskFlag(),
@@ -97,8 +110,19 @@ FlagTable TransportFlags() {
 
 int RunShoot() {
   const auto clock = std::chrono::steady_clock::now();
+  RunPaths()
+      .InputFile("first", FLAGS_first)
+      .InputFile("second", FLAGS_second)
+      .InputFile("mask", FLAGS_mask)
+      .OutputDirectory("output", FLAGS_output)
+      .OutputFile("png", FLAGS_png)
+      .Check();
   const Shell first = LoadShell(FLAGS_first);
   const Mesh second = LoadCompatibleShell(FLAGS_second, first);
+  CheckMemory(PathBytes(first.mesh.num_vertices(), FLAGS_steps + 1),
+              "--steps " + std::to_string(FLAGS_steps) + " on " +
+                  std::to_string(first.mesh.num_vertices()) + " vertices",
+              kPathModel);
   const ShellSpace space = SpaceFromFlags(first);
   const ShootResult result = ShootWithReport(
       space, first.mesh.positions, second.positions, FLAGS_steps,
@@ -106,21 +130,30 @@ int RunShoot() {
       MaskFromFlags(first.mesh.num_vertices()), SettingsFromFlags("shoot"));
   RunStatus status("shoot");
   CheckShoot(result, &status);
-  WritePathOutputs(FLAGS_output, first.mesh.faces, result.path);
-  if (FLAGS_json) {
-    std::cout << ShootJson(result)
-                     .Add("bending_model", FLAGS_bending)
-                     .Add("seconds", Seconds(clock))
-                     .Add("output", FLAGS_output)
-                     .str()
-              << "\n";
-  }
+  RunDirectory output(FLAGS_output);
+  WritePathOutputs(&output, first.mesh.faces, result.path);
+  const std::string summary =
+      output.Commit(ShootJson(result)
+                        .Add("bending_model", FLAGS_bending)
+                        .Add("seconds", Seconds(clock))
+                        .Add("output", FLAGS_output));
+  if (FLAGS_json) std::cout << summary << "\n";
   return status.Finish();
 }
 
 int RunLog() {
   const auto clock = std::chrono::steady_clock::now();
+  RunPaths()
+      .InputFile("start", FLAGS_start)
+      .InputFile("end", FLAGS_end)
+      .InputFile("mask", FLAGS_mask)
+      .OutputFile("output", FLAGS_output)
+      .Check();
   const auto [start, end] = LoadStartEndFromFlags();
+  CheckMemory(GeodesicBytes(start.mesh.num_vertices(), FLAGS_steps),
+              "--steps " + std::to_string(FLAGS_steps) + " on " +
+                  std::to_string(start.mesh.num_vertices()) + " vertices",
+              kGeodesicModel);
   const ShellSpace space = SpaceFromFlags(start);
   GeodesicInput input;
   input.start = start.mesh.positions;
@@ -135,20 +168,26 @@ int RunLog() {
   CheckGeodesic(geodesic, "log: the geodesic", &status);
   WriteMesh(Mesh{start.mesh.positions + log, start.mesh.faces}, FLAGS_output);
   if (FLAGS_json) {
-    std::cout << GeodesicJson(geodesic)
-                     .Add("bending_model", FLAGS_bending)
-                     .Raw("multires_levels", MultiresolutionJson(multires))
-                     .Add("log_max_norm", log.cwiseAbs().maxCoeff())
-                     .Add("seconds", Seconds(clock))
-                     .Add("output", FLAGS_output)
-                     .str()
-              << "\n";
+    JsonObject json = GeodesicJson(geodesic);
+    json.Add("bending_model", FLAGS_bending)
+        .Raw("multires_levels", MultiresolutionJson(multires))
+        .Add("log_max_norm", log.cwiseAbs().maxCoeff())
+        .Add("seconds", Seconds(clock))
+        .Add("output", FLAGS_output);
+    std::cout << AddRunFields(json).str() << "\n";
   }
   return status.Finish();
 }
 
 int RunTransport() {
   const auto clock = std::chrono::steady_clock::now();
+  RunPaths()
+      .InputFrames("path", FLAGS_path)
+      .InputFile("variation", FLAGS_variation)
+      .InputFile("mask", FLAGS_mask)
+      .OutputDirectory("output", FLAGS_output)
+      .OutputFile("png", FLAGS_png)
+      .Check();
   const std::vector<std::string> files = ListFrameFiles(FLAGS_path);
   if (files.size() < 2) {
     throw InputError(FLAGS_path + ": need at least 2 frames");
@@ -178,44 +217,43 @@ int RunTransport() {
                   std::to_string(rung.divisor) + " and scaled back");
     }
   }
-  WritePathOutputs(FLAGS_output, first.mesh.faces, result.shapes);
-  if (FLAGS_json) {
-    std::vector<double> norms;
-    for (const Positions& xi : result.variations) {
-      norms.push_back(xi.cwiseAbs().maxCoeff());
-    }
-    std::vector<std::string> rungs;
-    int iterations = 0;
-    for (size_t k = 0; k < result.rungs.size(); ++k) {
-      const TransportResult::Rung& rung = result.rungs[k];
-      iterations += rung.newton_steps + rung.lm_iterations;
-      rungs.push_back(
-          JsonObject()
-              .Add("rung", static_cast<int>(k + 1))
-              .Add("solved", rung.solved)
-              .Add("relative_residual", rung.relative_residual)
-              .Add("method", rung.method == ExpStepResult::Method::kNewton
-                                 ? "newton"
-                                 : "levenberg-marquardt")
-              .Add("epsilon_divisor", rung.divisor)
-              .Add("newton_steps", rung.newton_steps)
-              .Add("lm_iterations", rung.lm_iterations)
-              .str());
-    }
-    std::cout << JsonObject()
-                     .Add("bending_model", FLAGS_bending)
-                     .Add("variation_max_norms", norms)
-                     .Add("exp_residuals", result.exp_residuals)
-                     .Add("converged", result.all_solved)
-                     .Add("iterations", iterations)
-                     .Raw("rungs", JsonArray(rungs))
-                     .Add("epsilon", FLAGS_epsilon)
-                     .Add("frames", static_cast<int>(result.shapes.size()))
-                     .Add("seconds", Seconds(clock))
-                     .Add("output", FLAGS_output)
-                     .str()
-              << "\n";
+  RunDirectory output(FLAGS_output);
+  WritePathOutputs(&output, first.mesh.faces, result.shapes);
+  std::vector<double> norms;
+  for (const Positions& xi : result.variations) {
+    norms.push_back(xi.cwiseAbs().maxCoeff());
   }
+  std::vector<std::string> rungs;
+  int iterations = 0;
+  for (size_t k = 0; k < result.rungs.size(); ++k) {
+    const TransportResult::Rung& rung = result.rungs[k];
+    iterations += rung.newton_steps + rung.lm_iterations;
+    rungs.push_back(
+        JsonObject()
+            .Add("rung", static_cast<int>(k + 1))
+            .Add("solved", rung.solved)
+            .Add("relative_residual", rung.relative_residual)
+            .Add("method", rung.method == ExpStepResult::Method::kNewton
+                               ? "newton"
+                               : "levenberg-marquardt")
+            .Add("epsilon_divisor", rung.divisor)
+            .Add("newton_steps", rung.newton_steps)
+            .Add("lm_iterations", rung.lm_iterations)
+            .str());
+  }
+  const std::string summary =
+      output.Commit(JsonObject()
+                        .Add("bending_model", FLAGS_bending)
+                        .Add("variation_max_norms", norms)
+                        .Add("exp_residuals", result.exp_residuals)
+                        .Add("converged", result.all_solved)
+                        .Add("iterations", iterations)
+                        .Raw("rungs", JsonArray(rungs))
+                        .Add("epsilon", FLAGS_epsilon)
+                        .Add("frames", static_cast<int>(result.shapes.size()))
+                        .Add("seconds", Seconds(clock))
+                        .Add("output", FLAGS_output));
+  if (FLAGS_json) std::cout << summary << "\n";
   return status.Finish();
 }
 

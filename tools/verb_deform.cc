@@ -11,6 +11,8 @@
 #include "shellspace/problems/calculus/elastic_deformation.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/path_summary.h"
+#include "shellspace/tools/run_output.h"
+#include "shellspace/tools/run_paths.h"
 #include "shellspace/tools/run_status.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
@@ -40,6 +42,12 @@ FlagTable DeformFlags() {
 
 int RunDeform() {
   const auto start = std::chrono::steady_clock::now();
+  RunPaths()
+      .InputFile("reference", FLAGS_reference)
+      .InputFile("targets", FLAGS_targets)
+      .InputFile("mask", FLAGS_mask)
+      .OutputFile("output", FLAGS_output)
+      .Check();
   const Shell reference = LoadShell(FLAGS_reference);
   const Mesh targets = LoadCompatibleShell(FLAGS_targets, reference);
   const ShellSpace space = SpaceFromFlags(reference);
@@ -74,8 +82,9 @@ int RunDeform() {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
           .count();
   if (FLAGS_json) {
-    std::cout << JsonObject()
-                     .Add("bending_model", FLAGS_bending)
+    JsonObject json;
+    json.Add("bending_model", FLAGS_bending);
+    std::cout << AddRunFields(json)
                      .Add("membrane", result.energy.membrane)
                      .Add("bending", result.energy.bending)
                      .Add("total", result.energy.total)

@@ -15,9 +15,12 @@
 #include "shellspace/problems/calculus/exponential_map.h"
 #include "shellspace/render/film_strip.h"
 #include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/memory_limits.h"
 #include "shellspace/tools/path_summary.h"
 #include "shellspace/tools/run_status.h"
 #include "shellspace/tools/shell_inputs.h"
+#include "shellspace/tools/run_output.h"
+#include "shellspace/tools/run_paths.h"
 #include "shellspace/tools/verb.h"
 
 DEFINE_int32(extrapolate, 4, "demo: EXP steps beyond the end shape");
@@ -33,7 +36,7 @@ FlagTable DemoFlags() {
                         .Default("demo-output"),
                     IntegerFlag("steps",
                                 "time steps K of the geodesic (K + 1 shapes)",
-                                2),
+                                2, kMaxSteps),
                     IntegerFlag("extrapolate", "EXP steps beyond the end shape",
                                 0),
                 },
@@ -42,6 +45,7 @@ FlagTable DemoFlags() {
 
 int RunDemo() {
   const std::string dir = FLAGS_output;
+  RunPaths().OutputDirectory("output", dir).Check();
   const auto clock = std::chrono::steady_clock::now();
   const Mesh finger = MakeFinger();
   const double pi = std::acos(-1.0);
@@ -83,16 +87,16 @@ int RunDemo() {
   RunStatus status("demo");
   CheckGeodesic(geodesic, "demo: the geodesic", &status);
   CheckShoot(shot, &status);
-  MakeDirectory(dir);
-  WriteFrames(dir + "/frames", finger.faces, frames);
+  RunDirectory output(dir);
+  WriteFrames(output.File("frames"), finger.faces, frames);
   RenderOptions options;
   options.view = ParseView("front");  // the bend lies in the x-y plane
   options.max_per_row = 7;
-  WriteFilmStrip(frames, finger.faces, options, dir + "/film_strip.png");
+  WriteFilmStrip(frames, finger.faces, options, output.File("film_strip.png"));
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock)
           .count();
-  const std::string json =
+  const std::string json = output.Commit(
       JsonObject()
           .Add("path_energy", geodesic.path_energy)
           .Add("step_energies", geodesic.step_energies)
@@ -121,9 +125,7 @@ int RunDemo() {
           .Add("extrapolated_steps", FLAGS_extrapolate)
           .Add("vertices", finger.num_vertices())
           .Add("frames_dir", dir + "/frames")
-          .Add("film_strip", dir + "/film_strip.png")
-          .str();
-  WriteFileAtomically(dir + "/summary.json", json + "\n");
+          .Add("film_strip", dir + "/film_strip.png"));
   std::cout << json << "\n";
   return status.Finish();
 }

@@ -95,7 +95,17 @@ FlagTable SolverFlags() {
       IntegerFlag("threads", "threads of the solves", 1, 1024),
       TextFlag("quiet", "suppress progress output"),
       AllowUnconvergedFlag(),
+      TimeLimitFlag(),
   };
+}
+
+FlagSpec TimeLimitFlag() {
+  return RealFlag("time_limit",
+                  "stop the solves after this many seconds of wall clock (or "
+                  "at SIGINT/SIGTERM), write the best state so far marked "
+                  "\"partial\": true, exit 124 (130 SIGINT, 143 SIGTERM); 0: "
+                  "no limit",
+                  0, End::kClosed);
 }
 
 FlagTable JsonFlag() {

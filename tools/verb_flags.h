@@ -63,7 +63,9 @@ FlagTable Flags(std::initializer_list<FlagTable> parts);
 
 // Shared groups, each flag with the same meaning in every verb using it.
 FlagTable MaterialFlags();  // --mu, --lambda, --eta, --bending
-FlagTable SolverFlags();    // --tolerance, --max_iterations, --threads, --quiet
+// --tolerance, --max_iterations, --threads, --quiet, --time_limit
+FlagTable SolverFlags();
+FlagSpec TimeLimitFlag();  // --time_limit (tools/stop_request.h)
 FlagTable JsonFlag();       // --json
 
 // The flag of `table` called `name`, or nullptr.

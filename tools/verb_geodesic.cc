@@ -8,7 +8,9 @@
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/geodesic_solve.h"
+#include "shellspace/tools/memory_limits.h"
 #include "shellspace/tools/path_summary.h"
+#include "shellspace/tools/run_paths.h"
 #include "shellspace/tools/run_status.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
@@ -16,12 +18,18 @@
 namespace shellspace {
 namespace {
 
+const char* const kGeodesicModel = "64 MB + 1500 B x #V x K^2";
+
 FlagTable GeodesicFlags() {
   return Flags(
       {{
            TextFlag("start", "first shell s_0 of the path").Required(),
            TextFlag("end", "last shell s_K of the path").Required(),
-           IntegerFlag("steps", "number of time steps K (K + 1 shapes)", 1),
+           IntegerFlag("steps",
+                       "number of time steps K (K + 1 shapes; K = 1: the two "
+                       "ends, nothing to solve)" +
+                           StepsBoundText(kGeodesicModel),
+                       1, kMaxSteps),
            TextFlag("output", "directory of the frames shape_000.ply ...")
                .Required(),
            TextFlag("mask",
@@ -38,7 +46,18 @@ FlagTable GeodesicFlags() {
 
 int RunGeodesic() {
   const auto clock = std::chrono::steady_clock::now();
+  RunPaths()
+      .InputFile("start", FLAGS_start)
+      .InputFile("end", FLAGS_end)
+      .InputFile("mask", FLAGS_mask)
+      .OutputDirectory("output", FLAGS_output)
+      .OutputFile("png", FLAGS_png)
+      .Check();
   const auto [start, end] = LoadStartEndFromFlags();
+  CheckMemory(GeodesicBytes(start.mesh.num_vertices(), FLAGS_steps),
+              "--steps " + std::to_string(FLAGS_steps) + " on " +
+                  std::to_string(start.mesh.num_vertices()) + " vertices",
+              kGeodesicModel);
   const ShellSpace space = SpaceFromFlags(start);
   GeodesicInput input;
   input.start = start.mesh.positions;
@@ -48,24 +67,26 @@ int RunGeodesic() {
   const MultiresolutionResult multires =
       SolveGeodesicFromFlags(space, input, SettingsFromFlags("geodesic"));
   const GeodesicResult& result = multires.geodesic;
-  if (result.summary.termination_type == ceres::FAILURE) {
+  if (!result.stages.empty() &&  // K = 1: no solve
+      result.summary.termination_type == ceres::FAILURE) {
     throw InputError("solver failed: " + result.summary.message);
   }
   if (FLAGS_report) std::cerr << result.summary.FullReport() << "\n";
   RunStatus status("geodesic");
   CheckGeodesic(result, "geodesic", &status);
-  WritePathOutputs(FLAGS_output, start.mesh.faces, result.path);
+  RunDirectory output(FLAGS_output);
+  WritePathOutputs(&output, start.mesh.faces, result.path);
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock)
           .count();
+  const std::string summary =
+      output.Commit(GeodesicJson(result)
+                        .Add("bending_model", FLAGS_bending)
+                        .Raw("multires_levels", MultiresolutionJson(multires))
+                        .Add("seconds", seconds)
+                        .Add("output", FLAGS_output));
   if (FLAGS_json) {
-    std::cout << GeodesicJson(result)
-                     .Add("bending_model", FLAGS_bending)
-                     .Raw("multires_levels", MultiresolutionJson(multires))
-                     .Add("seconds", seconds)
-                     .Add("output", FLAGS_output)
-                     .str()
-              << "\n";
+    std::cout << summary << "\n";
   } else if (!FLAGS_quiet) {
     std::cerr << result.summary.BriefReport() << "\n";
     std::cout << "E_K = " << result.path_energy << " over " << FLAGS_steps

@@ -11,6 +11,7 @@
 #include "shellspace/io/frame_sequence.h"
 #include "shellspace/render/view.h"
 #include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/run_paths.h"
 #include "shellspace/tools/verb.h"
 
 DEFINE_string(input, "", "render: the meshes");
@@ -75,6 +76,10 @@ int RunRender() {
   } catch (const InputError& error) {
     throw InputError(std::string("--") + error.what());
   }
+  RunPaths()
+      .InputFrames("input", FLAGS_input)
+      .OutputFile("output", FLAGS_output)
+      .Check();
   const FrameSequence sequence = ReadFrameSequence(FLAGS_input);
   const RgbImage image =
       RenderFilmStrip(sequence.frames, sequence.faces, options);

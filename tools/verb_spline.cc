@@ -9,7 +9,9 @@
 #include "shellspace/problems/splines/ltheta_spline.h"
 #include "shellspace/problems/splines/spline.h"
 #include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/memory_limits.h"
 #include "shellspace/tools/path_summary.h"
+#include "shellspace/tools/run_paths.h"
 #include "shellspace/tools/run_status.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
@@ -32,7 +34,8 @@ namespace {
 
 FlagTable PathFlags() {
   return {
-      IntegerFlag("steps", "number of time steps K (K + 1 shapes)", 2),
+      IntegerFlag("steps", "number of time steps K (K + 1 shapes)", 2,
+                  kMaxSteps),
       TextFlag("output", "directory of the frames shape_000.ply ...")
           .Required(),
       TextFlag("png", "also write a PNG film strip of the frames here"),
@@ -106,6 +109,8 @@ SplineSettings SplineSettingsFromFlags(const std::string& label) {
   settings.inner.progress = false;
   settings.inner.gradient_tolerance = 1e-10;
   settings.inner.max_iterations = kInnerMaxIterations;
+  settings.stop = settings.inner.stop;  // the outer loop stops,
+  settings.inner.stop = nullptr;        // every F_K evaluation is exact
   settings.max_iterations = FLAGS_max_iterations;
   settings.gradient_tolerance = FLAGS_tolerance;
   settings.progress = !FLAGS_quiet;
@@ -131,9 +136,10 @@ int Report(const std::string& verb, const Faces& faces,
                            result.summary.termination_type) +
                        ")");
   }
-  WritePathOutputs(FLAGS_output, faces, result.path);
-  if (FLAGS_json) {
-    std::cout << extra.Add("bending_model", FLAGS_bending)
+  RunDirectory output(FLAGS_output);
+  WritePathOutputs(&output, faces, result.path);
+  const std::string summary =
+      output.Commit(extra.Add("bending_model", FLAGS_bending)
                      .Add("spline_energy", result.spline_energy)
                      .Add("data_energy", result.data_energy)
                      .Add("objective", result.objective)
@@ -153,9 +159,9 @@ int Report(const std::string& verb, const Faces& faces,
                               : "not optimised")
                      .Add("seconds", seconds)
                      .Add("frames", static_cast<int>(result.path.size()))
-                     .Add("output", FLAGS_output)
-                     .str()
-              << "\n";
+                     .Add("output", FLAGS_output));
+  if (FLAGS_json) {
+    std::cout << summary << "\n";
   } else if (!FLAGS_quiet) {
     std::cout << "F_K = " << result.spline_energy << "; wrote " << FLAGS_output
               << "/shape_*.ply\n";
@@ -168,6 +174,11 @@ int RunSpline() {
     throw InputError("--method must be nonlinear or ltheta");
   }
   const auto clock = std::chrono::steady_clock::now();
+  RunPaths()
+      .InputList("keyframes", FLAGS_keyframes)
+      .OutputDirectory("output", FLAGS_output)
+      .OutputFile("png", FLAGS_png)
+      .Check();
   const ShellSet set = LoadShellList(FLAGS_keyframes, "keyframes");
   const std::vector<Positions>& keyframes = set.shapes;
   const std::vector<int> at = ParseIndices(FLAGS_at);
@@ -187,20 +198,20 @@ int RunSpline() {
     SplineResult plain;
     plain.path = ltheta;
     plain.converged = plain.gradient_criterion_met = true;
-    WritePathOutputs(FLAGS_output, set.first.mesh.faces, plain.path);
-    if (FLAGS_json) {
-      std::cout << JsonObject()
-                       .Add("method", FLAGS_method)
-                       .Add("ltheta_seconds", ltheta_seconds)
-                       .Add("iterations", 0)
-                       .Add("converged", true)
-                       .Add("termination", "not optimised")
-                       .Add("seconds", Seconds(clock))
-                       .Add("frames", static_cast<int>(plain.path.size()))
-                       .Add("output", FLAGS_output)
-                       .str()
-                << "\n";
-    }
+    RunDirectory output(FLAGS_output);
+    WritePathOutputs(&output, set.first.mesh.faces, plain.path);
+    const std::string summary =
+        output.Commit(JsonObject()
+                          .Add("bending_model", FLAGS_bending)
+                          .Add("method", FLAGS_method)
+                          .Add("ltheta_seconds", ltheta_seconds)
+                          .Add("iterations", 0)
+                          .Add("converged", true)
+                          .Add("termination", "not optimised")
+                          .Add("seconds", Seconds(clock))
+                          .Add("frames", static_cast<int>(plain.path.size()))
+                          .Add("output", FLAGS_output));
+    if (FLAGS_json) std::cout << summary << "\n";
     return 0;
   }
   SplineSettings settings = SplineSettingsFromFlags("spline");
@@ -216,6 +227,11 @@ int RunSpline() {
 
 int RunRegress() {
   const auto clock = std::chrono::steady_clock::now();
+  RunPaths()
+      .InputList("inputs", FLAGS_inputs)
+      .OutputDirectory("output", FLAGS_output)
+      .OutputFile("png", FLAGS_png)
+      .Check();
   const ShellSet set = LoadShellList(FLAGS_inputs, "inputs");
   const std::vector<int> at = ParseIndices(FLAGS_at);
   CheckIndexCount(at, set.shapes.size(), "inputs");

@@ -13,6 +13,7 @@
 
 #include "shellspace/io/atomic_file.h"
 #include "shellspace/io/mesh_io.h"
+#include "shellspace/io/png_writer.h"
 #include "shellspace/problems/statistics/elastic_mean.h"
 #include "shellspace/problems/statistics/leave_one_out.h"
 #include "shellspace/problems/statistics/procrustes_pca.h"
@@ -22,6 +23,9 @@
 #include "shellspace/io/json_writer.h"
 #include "shellspace/tools/run_status.h"
 #include "shellspace/tools/shell_inputs.h"
+#include "shellspace/tools/run_output.h"
+#include "shellspace/tools/run_paths.h"
+#include "shellspace/tools/stop_request.h"
 #include "shellspace/tools/verb.h"
 
 DEFINE_int32(modes, 3, "pca: number of modes");
@@ -151,6 +155,10 @@ void CheckMean(const ElasticMeanResult& mean, const std::string& what,
 
 int RunMean() {
   const auto clock = std::chrono::steady_clock::now();
+  RunPaths()
+      .InputList("inputs", FLAGS_inputs)
+      .OutputFile("output", FLAGS_output)
+      .Check();
   const ShellSet inputs = LoadInputs(1);
   const ShellSpace space = SpaceFromFlags(inputs.first);
   const ElasticMeanResult result =
@@ -167,8 +175,9 @@ int RunMean() {
         result.initial_gradient_norm > 0
             ? result.gradient_norm / result.initial_gradient_norm
             : 0.0;
-    std::cout << JsonObject()
-                     .Add("bending_model", FLAGS_bending)
+    JsonObject json;
+    json.Add("bending_model", FLAGS_bending);
+    std::cout << AddRunFields(json)
                      .Add("energy", result.energy)
                      .Add("energies", result.energies)
                      .Add("far_inputs", far)
@@ -304,6 +313,11 @@ int RunPca() {
                      FLAGS_displacement + "'");
   }
   const auto clock = std::chrono::steady_clock::now();
+  RunPaths()
+      .InputList("inputs", FLAGS_inputs)
+      .OutputDirectory("output", FLAGS_output)
+      .OutputFile("png", FLAGS_png)
+      .Check();
   const ShellSet inputs = LoadInputs(FLAGS_loo ? 3 : 2);
   const int n = static_cast<int>(inputs.shapes.size());
   if (FLAGS_modes > n - 1) {
@@ -335,6 +349,26 @@ int RunPca() {
   CheckSolve(mean.summary, "elastic mean");
   RunStatus status("pca");
   CheckMean(mean, "the elastic mean", &status);
+  if (ObservedStop() != StopCause::kNone) {
+    // Stopped during the mean: the mean so far, no modes.
+    JsonObject json;
+    json.Add("inputs", n)
+        .Add("mean_energy", mean.energy)
+        .Add("mean_iterations", mean.lm_iterations)
+        .Add("mean_newton_iterations", mean.newton_iterations)
+        .Add("mean_gradient_norm", mean.gradient_norm)
+        .Add("modes", 0)
+        .Add("seconds", Seconds(clock))
+        .Add("output", FLAGS_output);
+    AddRunFields(json);
+    RunDirectory output(FLAGS_output);
+    WriteMesh(Mesh{mean.mean, inputs.first.mesh.faces},
+              output.File("mean.ply"));
+    WriteFileAtomically(output.File("pca.json"), json.str() + "\n");
+    output.CommitSummary(json.str());
+    if (FLAGS_json) std::cout << json.str() << "\n";
+    return 0;
+  }
   const std::vector<std::string> far = WarnAboutFarInputs(inputs, mean, "pca");
   if (!FLAGS_quiet) {
     std::cerr << "pca: elastic mean done (" << mean.lm_iterations << " LM + "
@@ -431,26 +465,22 @@ int RunPca() {
     table_text = TableText(table);
   }
   json.Add("seconds", Seconds(clock)).Add("output", FLAGS_output);
+  AddRunFields(json);
 
-  // All results computed: write the files (the PLY set and the JSON
-  // summary, together or none).
-  MakeDirectory(FLAGS_output);
-  {
-    AtomicFileSet set;
-    std::vector<Mesh> meshes;
-    meshes.reserve(files.size());
-    for (const auto& [name, positions] : files) {
-      meshes.push_back(Mesh{positions, inputs.first.mesh.faces});
-      const std::string path = FLAGS_output + "/" + name;
-      set.Add(path, MeshWriter(meshes.back(), path));
-    }
-    set.Add(FLAGS_output + "/pca.json", json.str() + "\n");
-    set.Commit();
+  // All results computed: write the directory (the PLY set, pca.json and
+  // summary.json, the same object) whole, then the film strip.
+  RunDirectory output(FLAGS_output);
+  for (const auto& [name, positions] : files) {
+    WriteMesh(Mesh{positions, inputs.first.mesh.faces}, output.File(name));
   }
+  WriteFileAtomically(output.File("pca.json"), json.str() + "\n");
   if (!FLAGS_png.empty()) {
     RenderOptions render;
-    WriteFilmStrip(strip, inputs.first.mesh.faces, render, FLAGS_png);
+    output.Outside().Add(
+        FLAGS_png,
+        EncodePng(RenderFilmStrip(strip, inputs.first.mesh.faces, render)));
   }
+  output.CommitSummary(json.str());
   if (FLAGS_json) {
     std::cout << json.str() << "\n";
     if (!FLAGS_quiet && !table_text.empty()) std::cerr << table_text;

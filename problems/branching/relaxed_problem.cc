@@ -103,6 +103,7 @@ RelaxedStage SolveStage(RelaxedField* field, double epsilon, double delta,
     settings.gradient_tolerance = 1e-14;  // absolute (reference 0 below)
     settings.parameter_tolerance = 1e-12;
     settings.num_threads = options.num_threads;
+    settings.stop = options.stop;
     ceres::Solver::Options solver =
         MakeSolverOptions(settings, /*initial_gradient_norm=*/0);
     std::unique_ptr<ProgressCallback> callback;
@@ -110,6 +111,8 @@ RelaxedStage SolveStage(RelaxedField* field, double epsilon, double delta,
       callback = std::make_unique<ProgressCallback>(delta, options.progress);
       solver.callbacks.push_back(callback.get());
     }
+    StopCallback stop(options.stop);
+    if (options.stop) solver.callbacks.push_back(&stop);
     ceres::Solver::Summary summary;
     ceres::Solve(solver, &problem, &summary);
     RelaxedStage stage;
@@ -152,6 +155,7 @@ std::vector<RelaxedStage> SolveRelaxed(RelaxedField* field, double epsilon,
       break;
     }
     if (stages.back().termination == "COLLAPSED") break;
+    if (options.stop && options.stop()) break;  // the stages done so far
   }
   return stages;
 }

@@ -51,6 +51,9 @@ struct RelaxedSolveOptions {
   double function_tolerance = 1e-9;
   // Called after every LM iteration (progress output); may be empty.
   std::function<void(double delta, int iteration, double energy)> progress;
+  // Polled after every LM iteration (SolverSettings::stop): true ends the
+  // stage at its best iterate and the continuation after it.
+  std::function<bool()> stop;
 };
 
 struct RelaxedStage {

@@ -94,6 +94,7 @@ SimulationResult RunSimulation(const SimulationSettings& s) {
   options.max_iterations = s.max_iterations;
   options.num_threads = s.num_threads;
   options.progress = s.progress;
+  options.stop = s.stop;
   result.stages = SolveRelaxed(&result.field, s.epsilon, options);
   result.energy = result.stages.back().energy;
   for (const RelaxedStage& stage : result.stages) {

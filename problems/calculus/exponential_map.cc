@@ -1,6 +1,7 @@
 #include "shellspace/problems/calculus/exponential_map.h"
 
 #include <algorithm>
+#include <cstdio>
 #include <cmath>
 
 #include "shellspace/cost_functions/gradient_field_residual.h"
@@ -143,8 +144,16 @@ ShootResult ShootSteps(const ShellSpace& space, const Positions& s0,
   ShellPath& path = result.path;
   path = forward ? ShellPath{s0, s1} : ShellPath{s1, s0};
   for (int k = 2; k <= steps; ++k) {
+    if (StopRequested(settings)) break;  // the steps done so far
     ExpStepResult step = ExpStep(space, path[k - 2], path[k - 1], direction,
                                  fixed_vertices, settings);
+    if (StoppedByRequest(step.summary)) break;  // an unfinished step
+    if (settings.progress) {
+      std::fprintf(stderr, "%s step %d of %d  max |F| %.3e  %s\n",
+                   settings.progress_label.c_str(), k, steps,
+                   step.residual_norm,
+                   ceres::TerminationTypeToString(step.summary.termination_type));
+    }
     path.push_back(std::move(step.shape));
     step.shape = Positions();
     result.exp_steps.push_back(std::move(step));

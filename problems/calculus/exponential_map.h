@@ -76,7 +76,9 @@ ShellPath Shoot(const ShellSpace& space, const Positions& s0,
 // result (in the order computed; `shape` is left empty, the shapes are in
 // `path`) and the path energy of the result.
 struct ShootResult {
-  ShellPath path;                      // time order, steps + 1 shapes
+  // Time order, steps + 1 shapes; fewer if settings.stop ended the shot
+  // (the steps completed before it, SolverSettings::stop).
+  ShellPath path;
   std::vector<ExpStepResult> exp_steps;
   double path_energy = 0;              // E_K of `path`, K = steps
   std::vector<double> step_energies;   // W[s_{k-1}, s_k], time order

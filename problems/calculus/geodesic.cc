@@ -158,7 +158,8 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
                           attempt < GeodesicInput::kMaxNewtonAttempts;
       run_lm(newton ? threshold : settings.gradient_tolerance);
       if (!newton || result.final_gradient <= tolerance ||
-          result.summary.termination_type == ceres::FAILURE) {
+          result.summary.termination_type == ceres::FAILURE ||
+          StoppedByRequest(result.summary)) {
         break;
       }
       if (lm_left <= 0) break;  // the budget is spent
@@ -169,6 +170,7 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
       polish.progress = settings.progress;
       polish.progress_label = settings.progress_label + " newton";
       polish.max_steps = std::min(polish.max_steps, lm_left);
+      polish.stop = settings.stop;
       const PathNewtonReport report =
           PolishPathNewton(space, input.fixed_vertices, polish, &result.path);
       result.newton.Append(report);
@@ -181,7 +183,10 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
       stage.final_gradient = report.final_gradient;
       stage.termination = report.stop_reason;
       result.stages.push_back(stage);
-      if (report.converged || lm_left <= 0) break;
+      if (report.converged || lm_left <= 0 ||
+          report.stop == NewtonStop::kStopped) {
+        break;
+      }
       threshold *= 0.1;  // not yet in Newton's basin: more LM first
     }
     result.initial_gradient = g0;

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
 
@@ -22,18 +23,26 @@ TransportResult ParallelTransport(const ShellSpace& space,
   Positions p = path[0] + epsilon * variation;
   result.shapes.push_back(p);
   for (size_t k = 1; k < path.size(); ++k) {
+    if (StopRequested(settings)) break;  // the rungs done so far
     TransportResult::Rung rung;
     Positions best;
     double best_scale = 1;
     double best_residual = HUGE_VAL;
+    bool stopped = false;  // a stop request inside the rung
     for (int halvings = 0; halvings <= kMaxRungHalvings; ++halvings) {
       const int divisor = 1 << halvings;
       // The rung from p' = s_{k-1} + (p - s_{k-1}) / divisor.
       const Positions start =
           divisor == 1 ? p : Positions(path[k - 1] + (p - path[k - 1]) / divisor);
       const Positions initial = 0.5 * (start + path[k]);
-      const Positions midpoint = SolveWeightedMidpoint(
-          space, start, path[k], 1.0, 1.0, initial, fixed_vertices, settings);
+      ceres::Solver::Summary midpoint_summary;
+      const Positions midpoint =
+          SolveWeightedMidpoint(space, start, path[k], 1.0, 1.0, initial,
+                                fixed_vertices, settings, &midpoint_summary);
+      if (StoppedByRequest(midpoint_summary)) {
+        stopped = true;
+        break;
+      }
       // Besides 2 m_k - s_{k-1}, start from s_k + (p_{k-1} - s_{k-1}): the
       // previous rung's variation at the new base point (the same point in
       // Euclidean space; the better one of the two on curved paths).
@@ -41,6 +50,10 @@ TransportResult ParallelTransport(const ShellSpace& space,
       const ExpStepResult step =
           ExpStep(space, path[k - 1], midpoint, StepDirection::kForward,
                   fixed_vertices, settings, &carried);
+      if (StoppedByRequest(step.summary)) {
+        stopped = true;
+        break;
+      }
       rung.newton_steps += step.newton_steps;
       rung.lm_iterations += step.lm_iterations;
       const bool better = step.solved || step.relative_residual <
@@ -62,6 +75,7 @@ TransportResult ParallelTransport(const ShellSpace& space,
       }
       if (step.solved) break;
     }
+    if (stopped) break;  // an unfinished rung is not kept
     p = best;
     result.exp_residuals.push_back(best_residual /
                                    std::max(best_scale, 1e-300));
@@ -69,6 +83,11 @@ TransportResult ParallelTransport(const ShellSpace& space,
     result.rungs.push_back(rung);
     result.shapes.push_back(p);
     result.variations.push_back((p - path[k]) / epsilon);
+    if (settings.progress) {
+      std::fprintf(stderr, "%s rung %zu of %zu  relative EXP residual %.3e\n",
+                   settings.progress_label.c_str(), k, path.size() - 1,
+                   result.exp_residuals.back());
+    }
   }
   return result;
 }

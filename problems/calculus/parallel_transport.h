@@ -10,7 +10,9 @@ namespace shellspace {
 
 struct TransportResult {
   std::vector<Positions> variations;  // xi_0 .. xi_K
-  std::vector<Positions> shapes;      // p_k = s_k + eps xi_k
+  // p_k = s_k + eps xi_k; fewer than the path's shapes if settings.stop
+  // ended the transport (the rungs completed before it).
+  std::vector<Positions> shapes;
   // Per rung k = 1..K: max |F| of the EXP step's Euler-Lagrange residual at
   // p_k relative to max |D_2 W[s_{k-1}, m_k]| (0: solved exactly). Thin
   // shells make the EXP step badly conditioned; a large value says the rung

@@ -179,6 +179,7 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
   newton.accept_smaller_max_norm = true;
   newton.merit_round_off = 1e-10;
   newton.max_shifts = kPathNewtonMaxShifts;
+  newton.stop = settings.stop;
   if (settings.progress) {
     newton.progress = [&](const NewtonReport& r, double energy,
                           bool accepted) {

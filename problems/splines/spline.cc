@@ -140,6 +140,8 @@ SplineResult Run(const ShellSpace& space, SplineSpec spec,
     options.logging_type = ceres::SILENT;
     ProgressPrinter printer(settings.progress_label, scale);
     if (settings.progress) options.callbacks.push_back(&printer);
+    StopCallback stop(settings.stop);
+    if (settings.stop) options.callbacks.push_back(&stop);
     ceres::Solve(options, problem, y.data(), &result.summary);
     x = scaled.ToX(y.data());
     const auto& iterations = result.summary.iterations;

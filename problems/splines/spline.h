@@ -44,6 +44,9 @@ struct SplineSettings {
   bool progress = false;
   std::string progress_label = "spline";
   SolverSettings inner;  // the midpoint solves
+  // Polled by the outer L-BFGS loop (SolverSettings::stop); give the inner
+  // solves none, so that every evaluation of F_K stays exact.
+  StopPoll stop;
   // L-BFGS in the variables of SplinePreconditioner (spline_preconditioner.h;
   // metrics of the initial free shapes); false: in the vertex coordinates.
   bool precondition = true;

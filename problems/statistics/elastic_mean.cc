@@ -166,6 +166,7 @@ bool NewtonFinish(const ShellSpace& space, const std::vector<Positions>& shapes,
   newton.max_halvings = 4;  // t = 1, ..., 1/16
   newton.accept_smaller_two_norm = true;
   newton.max_shifts = 6;  // H + lambda I where the Newton step fails
+  newton.stop = settings.stop;
   const int before = *iterations;
   if (settings.progress) {
     newton.progress = [&](const NewtonReport& r, double, bool accepted) {
@@ -249,7 +250,7 @@ ElasticMeanResult ComputeElasticMean(const ShellSpace& space,
     result.lm_iterations +=
         std::max(0, static_cast<int>(summary.iterations.size()) - 1);
     usable = summary.IsSolutionUsable();
-    if (!usable || last) break;
+    if (!usable || last || StoppedByRequest(summary)) break;
     ++attempts;
     ElasticMeanOptions attempt = options;
     attempt.max_newton_iterations = std::min(
@@ -258,7 +259,8 @@ ElasticMeanResult ComputeElasticMean(const ShellSpace& space,
             result.newton_iterations);
     if (attempt.max_newton_iterations <= 0) break;
     if (NewtonFinish(space, shapes, target, attempt, settings, &result.mean,
-                     &result.newton_iterations, &newton_stop)) {
+                     &result.newton_iterations, &newton_stop) ||
+        StopRequested(settings)) {
       break;
     }
     result.newton_fell_back = true;

@@ -1,9 +1,12 @@
-// The CLI on every defective mesh of tests/io/bad_mesh_files.h (and on bad
-// masks): one line on stderr naming the file, a non-zero exit, no file
-// created, no file changed.
+// The CLI on every defective mesh of tests/io/bad_mesh_files.h, on bad
+// masks, on outputs that would overwrite an input or cannot be written, and
+// on sizes above the memory bound: one line on stderr naming the file or
+// the flag, a non-zero exit, no file created, no file changed (the tree's
+// names, sizes, modification times and content hashes before and after).
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -17,21 +20,38 @@ namespace {
 
 using testing::MeshFormat;
 
-// Every file under `dir` (recursively) with its content.
+// Every file and directory under `dir` (recursively, `dir` included):
+// type, size, modification time (ns) and, for a file, a hash of its
+// content (FNV-1a, 64 bits) and the content itself; a symbolic link by its
+// target.
 std::map<std::string, std::string> Snapshot(const std::string& dir) {
+  namespace fs = std::filesystem;
   std::map<std::string, std::string> files;
-  for (const auto& entry :
-       std::filesystem::recursive_directory_iterator(dir)) {
-    std::string content;
-    if (entry.is_regular_file()) {
-      std::ifstream in(entry.path(), std::ios::binary);
+  const auto describe = [](const fs::path& path) {
+    std::error_code error;
+    const fs::file_status status = fs::symlink_status(path, error);
+    std::ostringstream text;
+    if (fs::is_symlink(status)) {
+      text << "link -> " << fs::read_symlink(path, error).string();
+      return text.str();
+    }
+    text << "mtime " << fs::last_write_time(path, error).time_since_epoch().count();
+    if (fs::is_regular_file(status)) {
+      std::ifstream in(path, std::ios::binary);
       std::ostringstream bytes;
       bytes << in.rdbuf();
-      content = bytes.str();
+      const std::string content = bytes.str();
+      uint64_t hash = 1469598103934665603ull;
+      for (unsigned char c : content) hash = (hash ^ c) * 1099511628211ull;
+      text << " size " << content.size() << " fnv " << hash << " " << content;
     } else {
-      content = "<dir>";
+      text << " <dir>";
     }
-    files[entry.path().string()] = content;
+    return text.str();
+  };
+  files[dir] = describe(dir);
+  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
+    files[entry.path().string()] = describe(entry.path());
   }
   return files;
 }
@@ -121,6 +141,72 @@ TEST(BadInputCliTest, EveryBadMaskIsRejectedWithOneLine) {
             std::string::npos)
       << err;
   for (char c : err) EXPECT_TRUE(c == '\n' || (c >= 0x20 && c < 0x7f));
+}
+
+// Outputs that are inputs (also through a symbolic or a hard link, or
+// spelled differently), directories that hold inputs or the user's files,
+// outputs that cannot be written, sizes above the memory bound, bad
+// --time_limit values: each rejected before any work.
+TEST(BadInputCliTest, OutputsThatWouldOverwriteOrCannotBeWrittenAreRejected) {
+  namespace fs = std::filesystem;
+  const std::string d = testing::TempDir();
+  const std::string a = d + "/a.ply", b = d + "/b.ply";
+  fs::copy_file(testing::DataPath("simple/square4.ply"), a);
+  fs::copy_file(testing::DataPath("simple/square4_bent.ply"), b);
+  fs::create_symlink(a, d + "/link.ply");
+  fs::create_hard_link(a, d + "/hard.ply");
+  std::ofstream(d + "/mask.txt") << "1\n2\n3\n4\n";
+  std::ofstream(d + "/file.txt") << "mine\n";
+  fs::create_directory(d + "/mine");
+  std::ofstream(d + "/mine/notes.txt") << "mine\n";
+  // A previous run's output directory, and a transport input path.
+  ASSERT_EQ(testing::RunCli("geodesic --quiet --steps 2 --start " + a +
+                            " --end " + b + " --output " + d + "/g"),
+            0);
+  const std::string ab = " --start " + a + " --end " + b;
+  const std::string deform =
+      "deform --quiet --reference " + a + " --mask " + d + "/mask.txt --targets " + b;
+  struct Case {
+    std::string args, message;
+  };
+  const std::vector<Case> cases = {
+      {deform + " --output " + a, "--output " + a + " is also the input --reference"},
+      {deform + " --output " + d + "/link.ply", "is also the input --reference"},
+      {deform + " --output " + d + "/mask.txt", "is also the input --mask"},
+      {deform + " --output " + d + "/mine", "--output " + d + "/mine is a directory"},
+      {"log --quiet" + ab + " --output " + b, "is also the input --end"},
+      {"log --quiet" + ab + " --output " + d + "/hard.ply", "is also the input --start"},
+      {"log --quiet" + ab + " --output " + d + "/./b.ply", "is also the input --end"},
+      {"mean --quiet --inputs " + a + "," + b + " --output " + b, "is also the input --inputs"},
+      {"render --input " + a + "," + b + " --output " + a, "is also the input --input"},
+      {"render --input " + d + "/g --output " + d + "/g/shape_001.ply", "is also the input --input"},
+      {"geodesic --quiet" + ab + " --output " + d + "/out --png " + a, "--png " + a + " is also the input --start"},
+      {"geodesic --quiet" + ab + " --output " + d, "holds the input --start"},
+      {"geodesic --quiet" + ab + " --output " + d + "/mine", "holds notes.txt, which no run writes"},
+      {"geodesic --quiet" + ab + " --output " + d + "/file.txt", "file.txt is not a directory"},
+      {"geodesic --quiet" + ab + " --output " + d + "/missing/out", "/missing does not exist"},
+      {"geodesic --quiet" + ab + " --output " + d + "/out --png " + d + "/missing/s.png", "/missing does not exist"},
+      {"geodesic --quiet" + ab + " --output " + d + "/g --png " + d + "/g/s.png", "is inside --output"},
+      {"geodesic --quiet" + ab + " --output " + d + "/out --png " + d + "/mine", "is a directory"},
+      {"geodesic --quiet" + ab + " --output " + d + "/out --png " + d + "/file.txt/s.png", "file.txt is not a directory"},
+      {"shoot --quiet --first " + a + " --second " + b + " --output " + a, "holds the input --first"},
+      {"transport --quiet --path " + d + "/g --variation " + a + " --output " + d + "/g", "holds the input --path"},
+      {"transport --quiet --path " + d + "/g --variation " + a + " --output " + d + "/g/../g/", "holds the input --path"},
+      {"transport --quiet --path " + d + "/g --variation " + a + " --output " + d, "holds the input --path"},
+      {"spline --quiet --keyframes " + a + "," + b + "," + a + " --at 0,1,2 --steps 2 --output " + d, "holds the input --keyframes"},
+      {"regress --quiet --inputs " + a + "," + b + " --at 0,2 --steps 2 --output " + d + "/g --png " + b, "is also the input --inputs"},
+      {"pca --quiet --modes 1 --inputs " + a + "," + b + "," + a + " --output " + d, "holds the input --inputs"},
+      {"demo --quiet --output " + d + "/mine", "holds notes.txt"},
+      {"branching construct --output " + d + "/file.txt", "file.txt is not a directory"},
+      {"geodesic --quiet" + ab + " --steps 10000 --output " + d + "/out", "--steps 10000 on 5 vertices needs about"},
+      {"log --quiet" + ab + " --steps 100000 --output " + d + "/log.ply", "--steps 100000 on 5 vertices needs about"},
+      {"shoot --quiet --first " + a + " --second " + b + " --steps 200000 --output " + d + "/s", "--steps must be an integer in [1, 100000]"},
+      {"branching simulate --nx 4096 --ny 8192 --output " + d + "/br", "nodes) needs about"},
+      {"geodesic --quiet" + ab + " --output " + d + "/out --time_limit -1", "--time_limit must be a number >= 0"},
+      {"mean --quiet --inputs " + a + "," + b + " --output " + d + "/m.ply --time_limit nan", "--time_limit must be a number >= 0, got nan"},
+  };
+  for (const Case& c : cases) ExpectRejected(c.args, c.message, d);
+  EXPECT_EQ(cases.size(), 34u);
 }
 
 }  // namespace

@@ -83,6 +83,13 @@ std::vector<std::string> Frames(int count) {
   return names;
 }
 
+// The frames and the run's summary.json: an output directory's listing.
+std::vector<std::string> FramesAndSummary(int count) {
+  std::vector<std::string> names = Frames(count);
+  names.push_back("summary.json");
+  return names;
+}
+
 std::string Slurp(const std::string& path) {
   std::ifstream in(path);
   std::stringstream s;
@@ -189,7 +196,11 @@ TEST(CliTest, GeodesicReportsTheLibraryNumbers) {
   EXPECT_NEAR(Number(json, "relative_gradient_norm"), g / g0, 1e-15);
   EXPECT_EQ(Number(json, "frames"), 9);
   // The frames, nothing else; the ends are the inputs.
-  EXPECT_EQ(Listing(dir), Frames(9));
+  EXPECT_EQ(Listing(dir), FramesAndSummary(9));
+  // summary.json is the printed report, with the run's identity.
+  EXPECT_EQ(Slurp(dir + "/summary.json"), json);
+  EXPECT_NE(json.find("\"run_id\": \""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"command_line\": \""), std::string::npos) << json;
   EXPECT_EQ(ReadMesh(dir + "/shape_000.ply").positions, a.positions);
   EXPECT_EQ(ReadMesh(dir + "/shape_008.ply").positions, b.positions);
   // The frames' energy, evaluated by the library from the files, is the
@@ -212,7 +223,7 @@ TEST(CliTest, ShootLogAndTransportAlongAGeodesic) {
       RunOk("shoot --quiet --json --steps 4 --first " + geodesic +
           "/shape_000.ply --second " + geodesic + "/shape_001.ply --output " +
           shot);
-  EXPECT_EQ(Listing(shot), Frames(5));
+  EXPECT_EQ(Listing(shot), FramesAndSummary(5));
   // The shot ends at the geodesic's end up to a rigid motion (the gauges of
   // the two solves differ): W[end, shot end] = 0.
   const std::string w = RunOk("energy --json --reference " + kBent +
@@ -249,7 +260,7 @@ TEST(CliTest, ShootLogAndTransportAlongAGeodesic) {
   ASSERT_EQ(norms.size(), 5u) << t_json;
   for (double n : norms) EXPECT_LT(n, 1e-6) << t_json;
   EXPECT_EQ(Number(t_json, "epsilon"), 1.0);
-  EXPECT_EQ(Listing(moved), Frames(5));
+  EXPECT_EQ(Listing(moved), FramesAndSummary(5));
 }
 
 TEST(CliTest, SplineThroughKeyframesAndRegression) {
@@ -263,7 +274,7 @@ TEST(CliTest, SplineThroughKeyframesAndRegression) {
   const std::string json =
       RunOk("spline --quiet --json --keyframes " + keys +
             " --at 0,2,4 --steps 4 --output " + dir + "/spline");
-  EXPECT_EQ(Listing(dir + "/spline"), Frames(5));
+  EXPECT_EQ(Listing(dir + "/spline"), FramesAndSummary(5));
   EXPECT_LT(std::abs(Number(json, "spline_energy")), 1e-8) << json;
   // The keyframes are data: the frame at 2 is the input.
   EXPECT_EQ(ReadMesh(dir + "/spline/shape_002.ply").positions,
@@ -280,7 +291,7 @@ TEST(CliTest, SplineThroughKeyframesAndRegression) {
             "," + kBent + " --at 0,2 --steps 2 --sigma 0.5 --output " + dir +
             "/regress");
   EXPECT_FALSE(Bool(r_json, "converged")) << r_json;
-  EXPECT_EQ(Listing(dir + "/regress"), Frames(3));
+  EXPECT_EQ(Listing(dir + "/regress"), FramesAndSummary(3));
   const double data = Number(r_json, "data_energy");
   const double spline = Number(r_json, "spline_energy");
   EXPECT_GE(data, 0);
@@ -318,9 +329,11 @@ TEST(CliTest, MeanAndPca) {
           "," + DataPath("simple/square4.ply") + " --output " + pca);
   EXPECT_EQ(Listing(pca),
             (std::vector<std::string>{"mean.ply", "mode_1_minus.ply",
-                                      "mode_1_plus.ply", "pca.json"}));
-  // pca.json is the printed summary.
+                                      "mode_1_plus.ply", "pca.json",
+                                      "summary.json"}));
+  // pca.json and summary.json are the printed summary.
   EXPECT_EQ(Slurp(pca + "/pca.json"), p_json);
+  EXPECT_EQ(Slurp(pca + "/summary.json"), p_json);
   // The Gram matrix of 3 displacements, two of them equal (the first and
   // the third input are one shell): rank <= 2, the third eigenvalue is 0.
   const std::vector<double> eigenvalues = Numbers(p_json, "eigenvalues");
@@ -420,11 +433,12 @@ TEST(CliTest, HelpListsOnlyTheVerbsFlags) {
       "start", "end",  "steps",  "output",    "mask",      "png",
       "report", "mu",  "lambda", "eta",       "bending",   "tolerance",
       "max_iterations",
-      "threads", "quiet", "json", "multires", "linear_solver",
+      "threads", "quiet", "json", "multires", "linear_solver", "time_limit",
       "minloglevel", "allow_unconverged"};
   EXPECT_EQ(geodesic, expected) << text;
   // Default and valid range of a numeric flag.
-  EXPECT_NE(text.find("default: 8; valid: an integer >= 1"), std::string::npos)
+  EXPECT_NE(text.find("default: 8; valid: an integer in [1, 100000]"),
+            std::string::npos)
       << text;
   // --epsilon means one thing in transport, another in branching.
   std::string transport, branching;
@@ -454,7 +468,7 @@ TEST(CliTest, OutOfRangeFlagsAreRejectedByName) {
   const std::vector<Case> cases = {
       {"geodesic --start " + kSquare + " --end " + kBent + " --output " + dir +
            "/g --steps 0",
-       "--steps must be an integer >= 1, got 0"},
+       "--steps must be an integer in [1, 100000], got 0"},
       {"geodesic --start " + kSquare + " --end " + kBent + " --output " + dir +
            "/g --tolerance 2",
        "--tolerance must be a number (0, 1), got 2"},

@@ -1,0 +1,72 @@
+// An output directory written whole: every file of a run goes into a
+// temporary sibling of the target, unique to the run
+// ("<parent>/.<name>.tmp-<pid>-<n>": hidden, and never named like a frame),
+// which Commit() then moves into place:
+//
+//   1. if DIR exists, rename it aside to "<parent>/.<name>.old-<pid>-<n>";
+//   2. rename the staging directory to DIR;
+//   3. remove the old directory (recursively).
+//
+// So a finished DIR holds exactly one run; a run that fails or is killed
+// before step 2 leaves the previous DIR untouched (a kill between steps 1
+// and 2 leaves DIR missing and the previous run whole under its .old name);
+// no step leaves a file under a frame's name in DIR. Two runs committing to
+// one DIR at once never mix: each step is one rename, a directory is never
+// renamed onto a non-empty one, so the last run to reach step 2 wins whole;
+// a run whose step 2 finds DIR already re-created by the other run fails
+// with an InputError (its own output discarded, the other run's kept).
+//
+// A DIR that exists must be replaceable (ReplaceableDirectoryProblem): the
+// previous output of a run, not a directory of the user's own files.
+#ifndef SHELLSPACE_IO_OUTPUT_DIRECTORY_H_
+#define SHELLSPACE_IO_OUTPUT_DIRECTORY_H_
+
+#include <string>
+
+namespace shellspace {
+
+class StagedDirectory {
+ public:
+  // Checks that `dir` is replaceable (throws InputError naming it, see
+  // ReplaceableDirectoryProblem) and creates the staging sibling.
+  explicit StagedDirectory(const std::string& dir);
+  StagedDirectory(const StagedDirectory&) = delete;
+  StagedDirectory& operator=(const StagedDirectory&) = delete;
+  // Removes the staging directory unless committed.
+  ~StagedDirectory();
+
+  // The staging directory (write the run's files here) and a file in it.
+  const std::string& staging() const { return staging_; }
+  std::string File(const std::string& name) const;
+  // The target directory.
+  const std::string& target() const { return target_; }
+
+  // Steps 1-3 above. Throws InputError if DIR cannot be renamed aside, or
+  // another run re-created it in between (the staging directory is removed).
+  void Commit();
+
+ private:
+  std::string target_, staging_;
+  bool committed_ = false;
+};
+
+// Why `dir` may not be replaced by a run's output, or "" if it may: it
+// does not exist, or is an empty directory, or every entry is a name a run
+// writes (shape_NNN.ply, summary.json, pca.json, mean.ply,
+// mode_J_{minus,plus}.ply, procrustes_*.ply, u.csv, uy.png,
+// interfaces.csv, pattern.png, pattern.txt, film_strip.png, and a frames/
+// directory of shape_NNN.ply). Otherwise e.g. "DIR is not a directory" or
+// "DIR holds notes.txt, which no run writes".
+std::string ReplaceableDirectoryProblem(const std::string& dir);
+
+// True for the names of the temporaries of this file and of atomic_file.h
+// (".X.tmp-...", ".X.old-...", "X.tmp-..."): readers of a directory skip
+// them.
+bool IsTemporaryName(const std::string& name);
+
+// `path` without trailing slashes ("out/" -> "out"; "/" stays).
+std::string WithoutTrailingSlash(const std::string& path);
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_IO_OUTPUT_DIRECTORY_H_

@@ -1,0 +1,92 @@
+// StagedDirectory: a directory appears whole on Commit, is replaced whole,
+// never replaces a directory of other files, and leaves nothing behind
+// when destroyed without Commit.
+#include "shellspace/io/output_directory.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+#include "shellspace/geometry/mesh.h"
+#include "shellspace/tests/testing/test_support.h"
+
+namespace shellspace {
+namespace {
+
+using testing::DirectoryListing;
+
+void Touch(const std::string& path, const std::string& text = "x\n") {
+  std::ofstream(path) << text;
+}
+
+TEST(OutputDirectoryTest, AppearsOnCommitOnly) {
+  const std::string base = testing::TempDir();
+  const std::string dir = base + "/out";
+  {
+    StagedDirectory staged(dir);
+    Touch(staged.File("shape_000.ply"));
+    EXPECT_FALSE(std::filesystem::exists(dir));
+    // The staging directory is a hidden sibling, never named like a frame.
+    const std::string name =
+        std::filesystem::path(staged.staging()).filename().string();
+    EXPECT_EQ(name.rfind(".out.tmp-", 0), 0u) << name;
+    EXPECT_TRUE(IsTemporaryName(name));
+    staged.Commit();
+  }
+  EXPECT_EQ(DirectoryListing(base), std::vector<std::string>{"out"});
+  EXPECT_EQ(DirectoryListing(dir), std::vector<std::string>{"shape_000.ply"});
+  {
+    StagedDirectory abandoned(dir);
+    Touch(abandoned.File("shape_001.ply"));
+  }  // no Commit: the staging directory is removed, the output kept
+  EXPECT_EQ(DirectoryListing(base), std::vector<std::string>{"out"});
+  EXPECT_EQ(DirectoryListing(dir), std::vector<std::string>{"shape_000.ply"});
+}
+
+TEST(OutputDirectoryTest, ReplacesWholeAndTheLastCommitWins) {
+  const std::string base = testing::TempDir();
+  const std::string dir = base + "/out";
+  StagedDirectory first(dir), second(dir);
+  Touch(first.File("shape_000.ply"));
+  Touch(first.File("shape_001.ply"));
+  Touch(second.File("summary.json"));
+  first.Commit();
+  second.Commit();
+  EXPECT_EQ(DirectoryListing(dir), std::vector<std::string>{"summary.json"});
+  EXPECT_EQ(DirectoryListing(base), std::vector<std::string>{"out"});
+}
+
+TEST(OutputDirectoryTest, NeverReplacesOtherFiles) {
+  const std::string base = testing::TempDir();
+  const std::string dir = base + "/out";
+  std::filesystem::create_directory(dir);
+  Touch(dir + "/shape_000.ply");
+  StagedDirectory staged(dir);
+  Touch(staged.File("shape_000.ply"));
+  // The user adds a file of their own while the run computes.
+  Touch(dir + "/notes.txt");
+  EXPECT_THROW(staged.Commit(), InputError);
+  EXPECT_EQ(DirectoryListing(dir),
+            (std::vector<std::string>{"notes.txt", "shape_000.ply"}));
+  EXPECT_THROW(StagedDirectory again(dir), InputError);
+  EXPECT_NE(ReplaceableDirectoryProblem(dir).find("holds notes.txt"),
+            std::string::npos);
+  Touch(base + "/file");
+  EXPECT_NE(ReplaceableDirectoryProblem(base + "/file").find("not a directory"),
+            std::string::npos);
+  EXPECT_EQ(ReplaceableDirectoryProblem(base + "/missing"), "");
+}
+
+TEST(OutputDirectoryTest, TemporaryNames) {
+  EXPECT_TRUE(IsTemporaryName(".g.tmp-12-0"));
+  EXPECT_TRUE(IsTemporaryName(".g.old-12-3"));
+  EXPECT_TRUE(IsTemporaryName("shape_000.ply.tmp-12-0"));
+  EXPECT_FALSE(IsTemporaryName("shape_000.ply"));
+  EXPECT_FALSE(IsTemporaryName("summary.json"));
+  EXPECT_EQ(WithoutTrailingSlash("a/b//"), "a/b");
+  EXPECT_EQ(WithoutTrailingSlash("/"), "/");
+}
+
+}  // namespace
+}  // namespace shellspace

@@ -1,0 +1,271 @@
+// Stopping a long run: SIGTERM or SIGINT once it iterates, or --time_limit,
+// ends it with the best state so far written whole (complete frames,
+// summary.json and --json with "partial": true and the reason), exit code
+// 143 / 130 / 124, and no temporary left; a run the time limit does not
+// stop reports the same numbers as one without it.
+#include <fcntl.h>
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "shellspace/io/mesh_io.h"
+#include "shellspace/problems/calculus/geodesic.h"
+#include "shellspace/tests/testing/test_support.h"
+
+namespace shellspace {
+namespace {
+
+using testing::DataPath;
+using testing::DirectoryListing;
+using testing::TempDir;
+
+const std::string kPlate = DataPath("plate/plate121.ply");
+const std::string kRolled = DataPath("plate/plate121_rolledA.ply");
+
+std::string Slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+double Number(const std::string& json, const std::string& key) {
+  const std::string needle = "\"" + key + "\": ";
+  const auto at = json.find(needle);
+  if (at == std::string::npos) return std::nan("");
+  return std::strtod(json.c_str() + at + needle.size(), nullptr);
+}
+
+// A geodesic of about 10 LM iterations and a Newton finish (K = 8: a few
+// seconds on 2 cores), or longer (K = 32: about 10 times that).
+std::string LongGeodesic(int steps, const std::string& output) {
+  return "geodesic --json --multires off --tolerance 1e-14 "
+         "--max_iterations 100000 --steps " +
+         std::to_string(steps) + " --start " + kPlate + " --end " + kRolled +
+         " --output " + output;
+}
+
+// Starts `shellspace ARGS > out_path` with stderr on a pipe; once a stderr
+// line contains `wait_for`, sends `signal_number` (0: none); returns the
+// exit code (-1 if it did not exit normally) and the stderr text. Gives up
+// (killing the child) after `timeout_seconds`.
+int RunAndSignal(const std::string& args, const std::string& out_path,
+                 const std::string& wait_for, int signal_number,
+                 double timeout_seconds, std::string* err,
+                 double* signal_after = nullptr) {
+  int fds[2];
+  if (pipe(fds) != 0) return -2;
+  const std::string command =
+      std::string("exec ") + SHELLSPACE_CLI + " " + args + " > " + out_path;
+  const auto start = std::chrono::steady_clock::now();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    dup2(fds[1], 2);
+    close(fds[0]);
+    close(fds[1]);
+    execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  close(fds[1]);
+  bool sent = signal_number == 0;
+  std::string buffer;
+  char chunk[4096];
+  while (true) {
+    const double elapsed = std::chrono::duration<double>(
+                               std::chrono::steady_clock::now() - start)
+                               .count();
+    if (elapsed > timeout_seconds) {
+      kill(pid, SIGKILL);
+      break;
+    }
+    pollfd p{fds[0], POLLIN, 0};
+    if (poll(&p, 1, 100) <= 0) continue;
+    const ssize_t n = read(fds[0], chunk, sizeof(chunk));
+    if (n <= 0) break;  // EOF: the child exited
+    buffer.append(chunk, static_cast<size_t>(n));
+    if (!sent && buffer.find(wait_for) != std::string::npos) {
+      kill(pid, signal_number);
+      sent = true;
+      if (signal_after) *signal_after = elapsed;
+    }
+  }
+  close(fds[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  *err = buffer;
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// The frames shape_000 ... shape_K and summary.json.
+std::vector<std::string> FramesAndSummary(int count) {
+  std::vector<std::string> names;
+  for (int k = 0; k < count; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "shape_%03d.ply", k);
+    names.push_back(name);
+  }
+  names.push_back("summary.json");
+  return names;
+}
+
+// The stopped geodesic's directory: every frame complete, the ends the
+// inputs, the reported E_K the frames' E_K, --json == summary.json.
+void ExpectCompletePartialGeodesic(const std::string& dir,
+                                   const std::string& json,
+                                   const std::string& reason, int kSteps) {
+  EXPECT_NE(json.find("\"partial\": true"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"stop_reason\": \"" + reason + "\""),
+            std::string::npos)
+      << json;
+  EXPECT_NE(json.find("\"converged\": false"), std::string::npos) << json;
+  EXPECT_EQ(Slurp(dir + "/summary.json"), json + "\n");
+  ASSERT_EQ(DirectoryListing(dir), FramesAndSummary(kSteps + 1));
+  const Mesh a = ReadMesh(kPlate), b = ReadMesh(kRolled);
+  ShellPath path;
+  for (int k = 0; k <= kSteps; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "/shape_%03d.ply", k);
+    const Mesh frame = ReadMesh(dir + name);
+    ASSERT_EQ(frame.num_vertices(), a.num_vertices());
+    path.push_back(frame.positions);
+  }
+  EXPECT_EQ(path.front(), a.positions);
+  EXPECT_EQ(path.back(), b.positions);
+  const double energy = Number(json, "path_energy");
+  EXPECT_NEAR(PathEnergy(testing::MakeSpace(a), path), energy, 1e-9 * energy);
+  // At most the linear path's (the initial guess).
+  EXPECT_LE(energy, PathEnergy(testing::MakeSpace(a),
+                               LinearPath(a.positions, b.positions, kSteps)));
+}
+
+TEST(InterruptCliTest, SigtermAfterTheFirstIterationWritesThePartialPath) {
+  const std::string base = TempDir();
+  const std::string dir = base + "/g";
+  std::string err;
+  double after = 0;
+  const auto start = std::chrono::steady_clock::now();
+  const int code = RunAndSignal(LongGeodesic(8, dir), base + "/out",
+                                "geodesic iter   1", SIGTERM, 60, &err, &after);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+          .count();
+  EXPECT_EQ(code, 143) << err;
+  EXPECT_NE(err.find("stopped (SIGTERM): wrote the best state so far"),
+            std::string::npos)
+      << err;
+  const std::string json = Slurp(base + "/out");
+  ExpectCompletePartialGeodesic(dir, json.substr(0, json.find('\n')),
+                                "SIGTERM", 8);
+  EXPECT_EQ(DirectoryListing(base), (std::vector<std::string>{"g", "out"}));
+  std::cout << "SIGTERM sent " << after << " s after the start, run ended "
+            << seconds << " s after the start\n";
+}
+
+TEST(InterruptCliTest, SigintStopsAShotAfterCompleteSteps) {
+  const std::string base = TempDir();
+  const std::string dir = base + "/shot";
+  // The first step of a plate -> rolled plate geodesic, extrapolated by
+  // 2000 EXP steps (minutes); SIGINT once step 5 is done.
+  ASSERT_EQ(testing::RunCli("geodesic --quiet --multires off --steps 4 "
+                            "--start " + kPlate + " --end " + kRolled +
+                            " --output " + base + "/g"),
+            0);
+  std::string err;
+  const int code = RunAndSignal(
+      "shoot --json --steps 2000 --first " + base +
+          "/g/shape_000.ply --second " + base + "/g/shape_001.ply --output " +
+          dir,
+      base + "/out", "shoot step 5 of 2000", SIGINT, 60, &err);
+  EXPECT_EQ(code, 130) << err;
+  const std::string json = Slurp(base + "/out");
+  EXPECT_NE(json.find("\"partial\": true"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"stop_reason\": \"SIGINT\""), std::string::npos)
+      << json;
+  const int frames = static_cast<int>(Number(json, "frames"));
+  EXPECT_GE(frames, 6);  // s_0, s_1 and at least steps 2..5
+  EXPECT_LT(frames, 2001);
+  EXPECT_EQ(Slurp(dir + "/summary.json"), json);
+  EXPECT_EQ(DirectoryListing(dir), FramesAndSummary(frames));
+  for (int k = 0; k < frames; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "/shape_%03d.ply", k);
+    EXPECT_EQ(ReadMesh(dir + name).num_vertices(), 121);
+  }
+  EXPECT_EQ(DirectoryListing(base),
+            (std::vector<std::string>{"g", "out", "shot"}));
+}
+
+TEST(InterruptCliTest, TimeLimitStopsTheGeodesic) {
+  const std::string base = TempDir();
+  const std::string dir = base + "/g";
+  std::string err;
+  const int code = RunAndSignal(LongGeodesic(32, dir) + " --time_limit 1",
+                                base + "/out", "", 0, 60, &err);
+  EXPECT_EQ(code, 124) << err;
+  const std::string json = Slurp(base + "/out");
+  ExpectCompletePartialGeodesic(dir, json.substr(0, json.find('\n')),
+                                "time limit 1 s", 32);
+}
+
+TEST(InterruptCliTest, ATimeLimitThatIsNotReachedChangesNoNumber) {
+  const std::string base = TempDir();
+  const std::string common =
+      "geodesic --quiet --json --multires off --steps 4 --start " + kPlate +
+      " --end " + kRolled;
+  std::string with, without, err;
+  ASSERT_EQ(testing::RunCli(common + " --output " + base + "/a", &without,
+                            &err),
+            0)
+      << err;
+  ASSERT_EQ(testing::RunCli(common + " --time_limit 1000 --output " + base +
+                                "/b",
+                            &with, &err),
+            0)
+      << err;
+  EXPECT_NE(with.find("\"partial\": false"), std::string::npos) << with;
+  for (const char* key : {"path_energy", "iterations", "final_gradient_norm",
+                          "newton_steps"}) {
+    EXPECT_EQ(Number(with, key), Number(without, key)) << key;
+  }
+  for (int k = 0; k <= 4; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "/shape_%03d.ply", k);
+    EXPECT_EQ(Slurp(base + "/a" + name), Slurp(base + "/b" + name)) << name;
+  }
+}
+
+// SIGKILL (no handler can run) during the solve of a run into a directory
+// that holds an earlier run: the earlier run is untouched, nothing is left
+// beside it. A second SIGTERM kills at once, with the same result.
+TEST(InterruptCliTest, AKilledRunLeavesThePreviousOutputUntouched) {
+  const std::string base = TempDir();
+  const std::string dir = base + "/g";
+  ASSERT_EQ(testing::RunCli("geodesic --quiet --steps 2 --start " + kPlate +
+                            " --end " + kRolled + " --output " + dir),
+            0);
+  const std::vector<std::string> listing = DirectoryListing(dir);
+  std::vector<std::string> contents;
+  for (const std::string& name : listing) contents.push_back(Slurp(dir + "/" + name));
+  std::string err;
+  const int code = RunAndSignal(LongGeodesic(8, dir), base + "/out",
+                                "geodesic iter   1", SIGKILL, 60, &err);
+  EXPECT_EQ(code, -1) << err;  // killed, no exit status
+  EXPECT_EQ(DirectoryListing(dir), listing);
+  for (size_t i = 0; i < listing.size(); ++i) {
+    EXPECT_EQ(Slurp(dir + "/" + listing[i]), contents[i]) << listing[i];
+  }
+  EXPECT_EQ(DirectoryListing(base), (std::vector<std::string>{"g", "out"}));
+}
+
+}  // namespace
+}  // namespace shellspace

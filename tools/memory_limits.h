@@ -1,0 +1,44 @@
+// Memory estimates of the solves whose size the user picks (--steps, the
+// branching grid), checked before anything is allocated: above the limit,
+// one line naming the flags, the estimate and the limit. The estimates are
+// fits of the peak resident memory measured with /usr/bin/time (README,
+// "Limits"); they are rough, on the safe side for the meshes measured.
+#ifndef SHELLSPACE_TOOLS_MEMORY_LIMITS_H_
+#define SHELLSPACE_TOOLS_MEMORY_LIMITS_H_
+
+#include <string>
+
+namespace shellspace {
+
+// The largest --steps of any verb (also bounded by the estimates below).
+constexpr int kMaxSteps = 100000;
+
+// Half the physical memory of the machine.
+double MemoryLimitBytes();
+
+// A geodesic solve (geodesic, log) of K steps on V vertices:
+// 64 MB + 1500 B x V x K^2 (LM and the Newton finish on the whole path;
+// measured 79 MB at V = 121, K = 16 and 749 MB at K = 64; 481 MB at V = 5,
+// K = 1000).
+double GeodesicBytes(int vertices, int steps);
+
+// A path of `frames` shapes kept and written (shoot, transport, spline):
+// 64 MB + 200 B x V x frames.
+double PathBytes(int vertices, int frames);
+
+// The branching simulation on `nodes` grid nodes: 16 MB + 3 KB x nodes
+// (measured 18 MB at 2,112 nodes, 101 MB at 33,024).
+double BranchingBytes(double nodes);
+
+// Throws InputError "<what> needs about X GB (<model>), above the limit
+// Y GB (half the physical memory)" if estimate > MemoryLimitBytes().
+void CheckMemory(double estimate, const std::string& what,
+                 const std::string& model);
+
+// The --help text of the bound of --steps for a verb whose estimate is
+// `model`.
+std::string StepsBoundText(const std::string& model);
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_TOOLS_MEMORY_LIMITS_H_

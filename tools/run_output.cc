@@ -1,0 +1,67 @@
+#include "shellspace/tools/run_output.h"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <ctime>
+
+#include "shellspace/tools/stop_request.h"
+
+namespace shellspace {
+namespace {
+
+std::string& CommandLineStorage() {
+  static std::string line;
+  return line;
+}
+
+}  // namespace
+
+void SetRunCommandLine(int argc, char** argv) {
+  std::string line;
+  for (int i = 0; i < argc; ++i) {
+    const std::string arg = argv[i];
+    const bool quote = arg.find_first_of(" \t\"'") != std::string::npos;
+    line += (i ? " " : "") + (quote ? "'" + arg + "'" : arg);
+  }
+  CommandLineStorage() = line;
+}
+
+const std::string& RunCommandLine() { return CommandLineStorage(); }
+
+const std::string& RunId() {
+  static const std::string id = [] {
+    const std::time_t now = std::chrono::system_clock::to_time_t(
+        std::chrono::system_clock::now());
+    std::tm utc{};
+    gmtime_r(&now, &utc);
+    char text[32];
+    std::strftime(text, sizeof(text), "%Y%m%dT%H%M%SZ", &utc);
+    return std::string(text) + "-" +
+           std::to_string(static_cast<long>(::getpid()));
+  }();
+  return id;
+}
+
+JsonObject& AddRunFields(JsonObject& json) {
+  const StopCause stop = ObservedStop();
+  return json.Add("partial", stop != StopCause::kNone)
+      .Add("stop_reason", StopCauseText(stop))
+      .Add("run_id", RunId())
+      .Add("command_line", RunCommandLine());
+}
+
+std::string RunDirectory::Commit(JsonObject summary) {
+  AddRunFields(summary);
+  const std::string text = summary.str();
+  CommitSummary(text);
+  return text;
+}
+
+void RunDirectory::CommitSummary(const std::string& text) {
+  WriteFileAtomically(staged_.File("summary.json"), text + "\n");
+  staged_.Commit();
+  outside_.Commit();
+}
+
+}  // namespace shellspace

@@ -1,0 +1,53 @@
+// What a verb run writes: its identity (run id, command line), the fields
+// every --json report and summary.json carry, and an output directory
+// written whole (io/output_directory.h) with its summary.json.
+#ifndef SHELLSPACE_TOOLS_RUN_OUTPUT_H_
+#define SHELLSPACE_TOOLS_RUN_OUTPUT_H_
+
+#include <string>
+
+#include "shellspace/io/atomic_file.h"
+#include "shellspace/io/json_writer.h"
+#include "shellspace/io/output_directory.h"
+
+namespace shellspace {
+
+// Set once by main: the command line of this run.
+void SetRunCommandLine(int argc, char** argv);
+// "YYYYMMDDTHHMMSSZ-PID" (UTC start time and process id: unique per run on
+// one machine); information only.
+const std::string& RunId();
+// The command line, arguments separated by spaces (quoted if they hold
+// spaces).
+const std::string& RunCommandLine();
+
+// Adds run_id, command_line, partial (a time limit or a signal cut a solve
+// short, tools/stop_request.h) and stop_reason ("" or e.g. "SIGTERM",
+// "time limit 10 s") to `json`.
+JsonObject& AddRunFields(JsonObject& json);
+
+// An output directory of one run: files go into File(name) (the staging
+// directory, created by the constructor: construct it after the solves);
+// files outside it (a --png film strip) into Outside(); Commit writes
+// summary.json, moves the directory into place and then renames the outside
+// files into place. Destroyed without Commit, nothing is left behind.
+class RunDirectory {
+ public:
+  explicit RunDirectory(const std::string& dir) : staged_(dir) {}
+  std::string File(const std::string& name) const { return staged_.File(name); }
+  const std::string& staging() const { return staged_.staging(); }
+  AtomicFileSet& Outside() { return outside_; }
+  // AddRunFields(summary), then CommitSummary. Returns the summary's text.
+  std::string Commit(JsonObject summary);
+  // `text` (a JSON object with the run fields) as summary.json, then the
+  // moves.
+  void CommitSummary(const std::string& text);
+
+ private:
+  StagedDirectory staged_;
+  AtomicFileSet outside_;
+};
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_TOOLS_RUN_OUTPUT_H_
