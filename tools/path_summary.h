@@ -1,60 +1,21 @@
-// The --json reports of the verbs, built from the library's own results
-// (nothing is recomputed here), and the frame output of the path verbs.
+// The frame output of the path verbs; their --json reports are built by
+// reports/path_reports.h (shared with the Python module).
 #ifndef SHELLSPACE_TOOLS_PATH_SUMMARY_H_
 #define SHELLSPACE_TOOLS_PATH_SUMMARY_H_
 
-#include <ceres/solver.h>
-
 #include <string>
-#include <vector>
 
-#include "shellspace/cost_functions/shell/shell_space.h"
 #include "shellspace/problems/calculus/geodesic.h"
-#include "shellspace/io/json_writer.h"
-#include "shellspace/problems/calculus/exponential_map.h"
+#include "shellspace/reports/path_reports.h"
+#include "shellspace/tools/verb_flags.h"
 
 namespace shellspace {
 
-// LM iterations of a Ceres solve, without Ceres' iteration 0 (the initial
-// evaluation).
-int LmIterations(const ceres::Solver::Summary& summary);
+// The --gltf flag of the verbs that write frames.
+FlagSpec GltfFlag();
 
-// A JSON array of already serialised objects.
-std::string JsonArray(const std::vector<std::string>& objects);
-
-// The stages of a geodesic solve, one object each: method
-// ("levenberg-marquardt" or "newton"), iterations, final_gradient_norm,
-// termination.
-std::vector<std::string> GeodesicStages(const GeodesicResult& result);
-
-// The EXP steps of a shot, one object each: method "exp step",
-// newton_steps, lm_iterations, iterations (their sum), residual (max |F|),
-// termination.
-std::vector<std::string> ExpStepStages(const ShootResult& result);
-
-// Totals over the EXP steps of a shot: Newton steps plus LM iterations,
-// every step converged, the largest residual max |F|.
-struct ShootTotals {
-  int iterations = 0;
-  bool converged = true;
-  double max_residual = 0;
-};
-ShootTotals TotalsOf(const ShootResult& result);
-
-// A geodesic solve (SolveGeodesic, LogK): path_energy (E_K), step_energies,
-// iterations (every LM stage and every Newton step), initial_gradient_norm,
-// final_gradient_norm (after the last stage, max norm over the free
-// coordinates), relative_gradient_norm (final / initial), converged (the
-// stopping criterion was met), termination (of the last stage), stages,
-// newton_steps, newton_seconds, factorizations, cg_iterations, frames.
-JsonObject GeodesicJson(const GeodesicResult& result);
-
-// A shot (ShootWithReport): path_energy, step_energies, iterations (Newton
-// steps and LM iterations of every EXP step), max_exp_residual, converged
-// (every EXP step converged), stages (the EXP steps), frames.
-JsonObject ShootJson(const ShootResult& result);
-
-// Writes DIR/shape_000.ply ... and, if --png is set, a film strip.
+// Writes DIR/shape_000.ply ..., if --png is set a film strip, and if --gltf
+// is set the frames as one glTF 2.0 morph animation (io/gltf_writer.h).
 void WritePathOutputs(const std::string& dir, const Faces& faces,
                       const ShellPath& path);
 

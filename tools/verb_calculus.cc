@@ -52,6 +52,7 @@ FlagTable ShootFlags() {
            TextFlag("backward", "extrapolate backward in time, before s_0"),
            MaskFlag(),
            PngFlag(),
+           GltfFlag(),
        },
        MaterialFlags(), SolverFlags(), JsonFlag()});
 }
@@ -88,6 +89,7 @@ FlagTable TransportFlags() {
                     0, End::kOpen),
            MaskFlag(),
            PngFlag(),
+           GltfFlag(),
        },
        MaterialFlags(), SolverFlags(), JsonFlag()});
 }
@@ -162,15 +164,7 @@ int RunTransport() {
       SettingsFromFlags("transport"));
   WritePathOutputs(FLAGS_output, first.mesh.faces, result.shapes);
   if (FLAGS_json) {
-    std::vector<double> norms;
-    for (const Positions& xi : result.variations) {
-      norms.push_back(xi.cwiseAbs().maxCoeff());
-    }
-    std::cout << JsonObject()
-                     .Add("variation_max_norms", norms)
-                     .Add("exp_residuals", result.exp_residuals)
-                     .Add("epsilon", FLAGS_epsilon)
-                     .Add("frames", static_cast<int>(result.shapes.size()))
+    std::cout << TransportJson(result, FLAGS_epsilon)
                      .Add("seconds", Seconds(clock))
                      .Add("output", FLAGS_output)
                      .str()
@@ -185,7 +179,7 @@ int RunTransport() {
 SHELLSPACE_REGISTER_VERB(
     "shoot",
     "shoot --first S0.ply --second S1.ply --steps K --output DIR [--backward] "
-    "[--mask M.txt] [--json] [--png strip.png]",
+    "[--mask M.txt] [--json] [--png strip.png] [--gltf path.glb]",
     shellspace::ShootFlags(), shellspace::RunShoot);
 SHELLSPACE_REGISTER_VERB(
     "log",
@@ -195,5 +189,5 @@ SHELLSPACE_REGISTER_VERB(
 SHELLSPACE_REGISTER_VERB(
     "transport",
     "transport --path DIR --variation P0.ply --output DIR [--epsilon 1] "
-    "[--json] [--png strip.png]",
+    "[--json] [--png strip.png] [--gltf path.glb]",
     shellspace::TransportFlags(), shellspace::RunTransport);

@@ -6,7 +6,7 @@
 
 #include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/tools/common_flags.h"
-#include "shellspace/io/json_writer.h"
+#include "shellspace/reports/shape_reports.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
 
@@ -35,15 +35,7 @@ int RunEnergy() {
   const DeformationEnergy e = EvaluateDeformationEnergy(
       space, reference.mesh.positions, deformed.positions);
   if (FLAGS_json) {
-    std::cout << JsonObject()
-                     .Add("membrane", e.membrane)
-                     .Add("bending", e.bending)
-                     .Add("total", e.total)
-                     .Add("mu", space.material.mu)
-                     .Add("lambda", space.material.lambda)
-                     .Add("eta", space.material.eta)
-                     .str()
-              << "\n";
+    std::cout << EnergyJson(e, space.material).str() << "\n";
   } else {
     std::printf("W_mem  %.12g\nW_bend %.12g\nW      %.12g  (eta = %g)\n",
                 e.membrane, e.bending, e.total, space.material.eta);

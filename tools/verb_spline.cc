@@ -27,6 +27,7 @@ FlagTable PathFlags() {
       TextFlag("output", "directory of the frames shape_000.ply ...")
           .Required(),
       TextFlag("png", "also write a PNG film strip of the frames here"),
+      GltfFlag(),
   };
 }
 
@@ -103,21 +104,7 @@ void Report(const Faces& faces,
             const SplineResult& result, double seconds, JsonObject extra) {
   WritePathOutputs(FLAGS_output, faces, result.path);
   if (FLAGS_json) {
-    std::cout << extra.Add("spline_energy", result.spline_energy)
-                     .Add("data_energy", result.data_energy)
-                     .Add("objective", result.objective)
-                     .Add("iterations", std::max(0, static_cast<int>(
-                                                 result.summary.iterations
-                                                     .size()) - 1))
-                     .Add("converged", result.summary.termination_type ==
-                                           ceres::CONVERGENCE)
-                     .Add("termination",
-                          result.summary.iterations.size() > 1
-                              ? ceres::TerminationTypeToString(
-                                    result.summary.termination_type)
-                              : "not optimised")
-                     .Add("seconds", seconds)
-                     .Add("frames", static_cast<int>(result.path.size()))
+    std::cout << SplineJson(std::move(extra), result, seconds)
                      .Add("output", FLAGS_output)
                      .str()
               << "\n";
@@ -173,10 +160,11 @@ int RunRegress() {
 SHELLSPACE_REGISTER_VERB(
     "spline",
     "spline --keyframes a.ply,b.ply,c.ply --at 0,4,8 --steps 8 --output DIR "
-    "[--method nonlinear|ltheta] [--periodic] [--json] [--png strip.png]",
+    "[--method nonlinear|ltheta] [--periodic] [--json] [--png strip.png] "
+    "[--gltf path.glb]",
     shellspace::SplineFlags(), shellspace::RunSpline);
 SHELLSPACE_REGISTER_VERB(
     "regress",
     "regress --inputs a.ply,b.ply,... --at 0,3,... --steps K --sigma S "
-    "--output DIR [--json] [--png strip.png]",
+    "--output DIR [--json] [--png strip.png] [--gltf path.glb]",
     shellspace::RegressFlags(), shellspace::RunRegress);

@@ -20,6 +20,7 @@
 #include "shellspace/render/film_strip.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/io/json_writer.h"
+#include "shellspace/reports/shape_reports.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
 
@@ -142,29 +143,7 @@ int RunMean() {
   if (FLAGS_report) std::cerr << result.summary.FullReport() << "\n";
   WriteMesh(Mesh{result.mean, inputs.first.mesh.faces}, FLAGS_output);
   if (FLAGS_json) {
-    const double relative =
-        result.initial_gradient_norm > 0
-            ? result.gradient_norm / result.initial_gradient_norm
-            : 0.0;
-    std::cout << JsonObject()
-                     .Add("energy", result.energy)
-                     .Add("energies", result.energies)
-                     .Add("far_inputs", far)
-                     .Add("inputs", static_cast<int>(inputs.shapes.size()))
-                     .Add("iterations",
-                          result.lm_iterations + result.newton_iterations)
-                     .Add("lm_iterations", result.lm_iterations)
-                     .Add("newton_iterations", result.newton_iterations)
-                     .Raw("stages",
-                          JsonObject()
-                              .Add("lm_iterations", result.lm_iterations)
-                              .Add("newton_steps", result.newton_iterations)
-                              .str())
-                     .Add("newton_fell_back", result.newton_fell_back)
-                     .Add("initial_gradient_norm", result.initial_gradient_norm)
-                     .Add("final_gradient_norm", result.gradient_norm)
-                     .Add("relative_gradient_norm", relative)
-                     .Add("converged", result.converged)
+    std::cout << MeanJson(result, static_cast<int>(inputs.shapes.size()), far)
                      .Add("seconds", Seconds(clock))
                      .Add("output", FLAGS_output)
                      .str()

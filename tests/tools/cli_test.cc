@@ -413,9 +413,9 @@ TEST(CliTest, HelpListsOnlyTheVerbsFlags) {
   const std::set<std::string> geodesic = HelpFlags("geodesic", &text);
   const std::set<std::string> expected = {
       "start", "end",  "steps",  "output",    "mask",      "png",
-      "report", "mu",  "lambda", "eta",       "tolerance", "max_iterations",
-      "threads", "quiet", "json", "multires", "linear_solver",
-      "minloglevel"};
+      "gltf",  "report", "mu",  "lambda", "eta",       "tolerance",
+      "max_iterations", "threads", "quiet", "json", "multires",
+      "linear_solver", "minloglevel"};
   EXPECT_EQ(geodesic, expected) << text;
   // Default and valid range of a numeric flag.
   EXPECT_NE(text.find("default: 8; valid: an integer >= 1"), std::string::npos)
@@ -433,7 +433,7 @@ TEST(CliTest, HelpListsOnlyTheVerbsFlags) {
   // Every verb's help works and lists --json or --output.
   for (const char* verb :
        {"energy", "deform", "shoot", "log", "spline", "regress", "mean", "pca",
-        "render", "demo"}) {
+        "render", "export", "demo"}) {
     const std::set<std::string> flags = HelpFlags(verb, &text);
     EXPECT_TRUE(flags.count("json") || flags.count("output")) << verb;
     EXPECT_FALSE(flags.count("inputs") && flags.count("start")) << verb;
