@@ -17,6 +17,7 @@
 #include <chrono>
 #include <cmath>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -36,7 +37,11 @@
 #include "shellspace/problems/splines/ltheta_spline.h"
 #include "shellspace/problems/splines/spline.h"
 #include "shellspace/problems/statistics/elastic_mean.h"
+#include "shellspace/problems/statistics/leave_one_out.h"
+#include "shellspace/problems/statistics/procrustes_pca.h"
+#include "shellspace/problems/statistics/shell_pca.h"
 #include "shellspace/render/film_strip.h"
+#include "shellspace/reports/branching_reports.h"
 #include "shellspace/reports/path_reports.h"
 #include "shellspace/reports/shape_reports.h"
 #include "shellspace/reports/solve_choices.h"
@@ -632,6 +637,319 @@ py::tuple MeanPy(const py::object& inputs_object, const IndexArray& F,
                         ToDict(AddOutput(json, output)));
 }
 
+// The `pca` verb: elastic mean, shell PCA modes shot by EXP_K, optionally
+// the Procrustes baseline and the leave-one-out table. Returns ({name:
+// shape} with the names of the CLI's files without ".ply", summary).
+py::tuple PcaPy(const py::object& inputs_object, const IndexArray& F,
+                int modes, const std::string& baseline, bool loo,
+                double amplitude, int log_steps, int exp_steps,
+                int max_exp_steps, const std::string& displacement,
+                const std::optional<std::string>& output,
+                const std::optional<std::string>& png, double mu,
+                double lambda, double eta, const SolverOptions& solver) {
+  if (baseline != "" && baseline != "procrustes") {
+    throw InputError("baseline must be 'procrustes' (or empty), got '" +
+                     baseline + "'");
+  }
+  CheckAtLeast("modes", modes, 1);
+  CheckAtLeast("log_steps", log_steps, 1);
+  CheckAtLeast("exp_steps", exp_steps, 1);
+  if (max_exp_steps < exp_steps) {
+    throw InputError("max_exp_steps must be at least exp_steps");
+  }
+  if (!(amplitude >= 0) || !std::isfinite(amplitude)) {
+    throw InputError("amplitude must be >= 0");
+  }
+  ShellPcaOptions options;
+  options.steps = log_steps;
+  options.exp_steps = exp_steps;
+  options.max_exp_steps = max_exp_steps;
+  if (displacement == "log") {
+    options.displacement = DisplacementKind::kLog;
+  } else if (displacement == "difference") {
+    options.displacement = DisplacementKind::kAlignedDifference;
+  } else {
+    throw InputError("displacement must be 'log' or 'difference', got '" +
+                     displacement + "'");
+  }
+  const auto clock = Clock::now();
+  const ShapeSet set = MakeShapeSet(inputs_object, F, "inputs");
+  const int n = static_cast<int>(set.shapes.size());
+  const int minimum = loo ? 3 : 2;
+  if (n < minimum) {
+    throw InputError("inputs needs at least " + std::to_string(minimum) +
+                     " shells, got " + std::to_string(n));
+  }
+  if (modes > n - 1) {
+    throw InputError("modes " + std::to_string(modes) + " exceeds " +
+                     std::to_string(n - 1) + " (number of inputs - 1)");
+  }
+  if (loo && modes > n - 2) {
+    throw InputError("loo with modes " + std::to_string(modes) +
+                     " needs at least " + std::to_string(modes + 2) +
+                     " inputs");
+  }
+  const ShellSpace space(set.first.mesh, set.first.topology,
+                         Material(mu, lambda, eta));
+  const SolverSettings settings = solver.Settings("pca");
+  SolverSettings inner = settings;
+  inner.progress = false;
+
+  std::vector<std::pair<std::string, Positions>> shapes;
+  std::vector<Positions> strip;
+  std::vector<std::string> failed_shapes, far;
+  JsonObject json;
+  {
+    py::gil_scoped_release release;
+    const ElasticMeanResult mean =
+        ComputeElasticMean(space, set.shapes, settings);
+    if (mean.summary.termination_type == ceres::FAILURE) {
+      throw InputError("elastic mean failed: " + mean.summary.message);
+    }
+    for (int i : FarInputs(mean.energies)) {
+      far.push_back("inputs[" + std::to_string(i) + "]");
+    }
+    const ShellPcaModel shell =
+        ComputeShellPca(space, mean.mean, set.shapes, options, inner);
+    const int shell_modes =
+        std::min<int>(modes, static_cast<int>(shell.modes.size()));
+    shapes.emplace_back("mean", mean.mean);
+    strip.push_back(mean.mean);
+    for (int j = 0; j < shell_modes; ++j) {
+      for (const double sign : {-1.0, 1.0}) {
+        const std::string name = "mode_" + std::to_string(j + 1) +
+                                 (sign < 0 ? "_minus" : "_plus");
+        // A mode shape whose EXP shot has no solution is not returned; it
+        // is listed in the summary (as the CLI does).
+        try {
+          shapes.emplace_back(name, ShellModeShape(space, shell, j,
+                                                   sign * amplitude, options,
+                                                   inner));
+          strip.push_back(shapes.back().second);
+        } catch (const InputError&) {
+          failed_shapes.push_back(name + ".ply");
+        }
+      }
+    }
+    json = PcaJson(n, mean, displacement, options, shell, shell_modes,
+                   failed_shapes, far, amplitude);
+    if (baseline == "procrustes") {
+      const ProcrustesPcaModel procrustes = ComputeProcrustesPca(set.shapes);
+      shapes.emplace_back("procrustes_mean", procrustes.mean);
+      const int pm =
+          std::min<int>(modes, static_cast<int>(procrustes.modes.size()));
+      for (int j = 0; j < pm; ++j) {
+        const std::string stem = "procrustes_mode_" + std::to_string(j + 1);
+        shapes.emplace_back(stem + "_minus",
+                            ProcrustesModeShape(procrustes, j, -amplitude));
+        shapes.emplace_back(stem + "_plus",
+                            ProcrustesModeShape(procrustes, j, amplitude));
+      }
+      AddProcrustesJson(procrustes, pm, &json);
+    }
+    if (loo) {
+      LeaveOneOutOptions loo_options;
+      loo_options.max_modes = modes;
+      loo_options.pca = options;
+      loo_options.initial_mean = mean.mean;
+      const LeaveOneOutTable table =
+          EvaluateLeaveOneOut(space, set.shapes, loo_options, inner);
+      json.Raw("leave_one_out", LeaveOneOutJson(table));
+    }
+  }
+  json.Add("seconds", Seconds(clock));
+  AddOutput(json, output);
+  if (output) {  // the CLI's files: the PLY set and pca.json, together
+    MakeDirectory(*output);
+    AtomicFileSet files;
+    std::vector<Mesh> meshes;
+    meshes.reserve(shapes.size());
+    for (const auto& [name, positions] : shapes) {
+      meshes.push_back(Mesh{positions, set.first.mesh.faces});
+      const std::string path = *output + "/" + name + ".ply";
+      files.Add(path, MeshWriter(meshes.back(), path));
+    }
+    files.Add(*output + "/pca.json", json.str() + "\n");
+    files.Commit();
+  }
+  if (png) {
+    WriteFilmStrip(strip, set.first.mesh.faces, RenderOptions(), *png);
+  }
+  py::dict out;
+  for (const auto& [name, positions] : shapes) {
+    out[py::str(name)] = FromPositions(positions);
+  }
+  return py::make_tuple(out, ToDict(json));
+}
+
+// `branching simulate`: the relaxed Kohn-Mueller simulation. Returns (u as
+// an (nx + 1) x ny array, u[i, j] at node x_i, y_j; summary).
+py::tuple BranchingSimulatePy(double epsilon, double length, double height,
+                              int nx, int ny, const std::string& init,
+                              double delta, double grading, int continuation,
+                              int periods, int init_seed, int lm_iterations,
+                              int delta_extrapolation) {
+  using namespace branching;
+  if (init != "laminate" && init != "random" && init != "km" &&
+      init != "needle" && init != "lens") {
+    throw InputError("init must be laminate, random, km, needle or lens, "
+                     "got '" + init + "'");
+  }
+  if (delta_extrapolation == 1 || delta_extrapolation < 0) {
+    throw InputError("delta_extrapolation must be 0 or >= 2");
+  }
+  SimulationSettings s;
+  s.epsilon = epsilon;
+  s.length = length;
+  s.height = height > 0 ? height : 0.5;
+  s.nx = nx;
+  s.ny = ny;
+  s.grading = grading;
+  s.delta = delta;
+  s.continuation = continuation;
+  s.init = init;
+  s.periods = periods;
+  s.seed = static_cast<unsigned>(init_seed);
+  s.max_iterations = lm_iterations;
+  if (delta > 0 && s.height / ny > delta / 2.0) {
+    throw InputError("delta is not resolved: need height / ny <= delta / 2");
+  }
+  CheckSimulationSettings(s);
+  std::optional<SimulationResult> simulation;
+  JsonObject summary;
+  {
+    py::gil_scoped_release release;
+    simulation.emplace(RunSimulation(s));
+    const SimulationResult& result = *simulation;
+    if (result.stages.back().termination == "COLLAPSED") {
+      throw InputError(
+          "branching simulate: the pattern collapsed to u = 0 at delta " +
+          std::to_string(result.stages.back().delta) +
+          " (max |u_y| < 0.5): the grid cannot hold it; use more y-nodes "
+          "or a smaller delta");
+    }
+    summary = SimulationJson(s, result);
+    if (delta_extrapolation >= 2) {
+      std::vector<double> deltas;
+      for (int k = 0; k < delta_extrapolation; ++k) {
+        deltas.push_back(result.delta * std::pow(std::sqrt(0.5), k));
+      }
+      summary.Add("extrapolation",
+                  DeltaExtrapolationJson(ExtrapolateDelta(s, deltas)));
+    }
+  }
+  const SimulationResult& result = *simulation;
+  const RelaxedGrid& g = result.field.grid;
+  py::array_t<double> u({static_cast<py::ssize_t>(g.nx + 1),
+                         static_cast<py::ssize_t>(g.ny)});
+  for (int i = 0; i <= g.nx; ++i) {
+    for (int j = 0; j < g.ny; ++j) {
+      u.mutable_at(i, j) = result.field.at(i, j);
+    }
+  }
+  return py::make_tuple(u, ToDict(summary));
+}
+
+// `branching construct`: the self-similar constructions. Returns the
+// summary.
+py::object BranchingConstructPy(double epsilon, double length,
+                                const std::string& family, bool optimize,
+                                bool search, const std::string& search_ratios,
+                                int search_pairs, int subintervals,
+                                int search_starts,
+                                const std::string& search_filter,
+                                int search_threads) {
+  using namespace branching;
+  if (!(epsilon > 0) || !(length > 0)) {
+    throw InputError("epsilon and length must be > 0");
+  }
+  if (family != "km" && family != "needle" && family != "lens" &&
+      family != "general") {
+    throw InputError("family must be km, needle, lens or general, got '" +
+                     family + "'");
+  }
+  py::gil_scoped_release release;
+  if (family == "general") {
+    if (subintervals < 1 || subintervals > 16) {
+      throw InputError("subintervals must lie in [1, 16]");
+    }
+    if (search_pairs < 1 || search_pairs > 2) {
+      throw InputError("search_pairs must be 1 or 2");
+    }
+    if (search_starts < 0 || search_threads < 1) {
+      throw InputError("search_starts must be >= 0, search_threads >= 1");
+    }
+    std::vector<int> ratios;
+    {
+      std::stringstream in(search_ratios);
+      std::string item;
+      while (std::getline(in, item, ',')) {
+        if (item != "2" && item != "3" && item != "4") {
+          throw InputError("search_ratios must be a list of 2, 3, 4");
+        }
+        ratios.push_back(std::stoi(item));
+      }
+      if (ratios.empty()) throw InputError("search_ratios is empty");
+    }
+    GeneralResult best;
+    int solves = 1;
+    const auto start = Clock::now();
+    if (search) {
+      GeneralSearchOptions o;
+      o.ratios = ratios;
+      o.max_pairs = search_pairs;
+      o.subintervals = subintervals;
+      o.starts_per_topology = search_starts;
+      o.num_threads = search_threads;
+      o.filter = search_filter;
+      const GeneralSearchResult r = SearchGeneral(o, nullptr);
+      best = r.best;
+      solves = r.solves;
+    } else {
+      // The lens topology (as the CLI): one group, needles in the middle of
+      // both lamellae, all interfaces free.
+      GeneralTopology t;
+      t.pairs = 1;
+      t.r = 3;
+      t.subintervals = subintervals;
+      t.name = "lens";
+      NucleationGroup group;
+      group.tau = 0.5;
+      group.needles = {{0, 0.5}, {1, 0.5}};
+      t.groups = {group};
+      best = SolveGeneral(t, 0.0, 0.0, 1);
+    }
+    const double seconds = Seconds(start);
+    if (!best.ok) throw InputError("general construct: no valid pattern found");
+    const FreeLengthSeries series =
+        OptimalFreeLengths(best.A, best.B, best.topology.r, epsilon, length);
+    const JsonObject summary = GeneralConstructionJson(
+        best, series, epsilon, length, search, solves, seconds);
+    py::gil_scoped_acquire acquire;
+    return ToDict(summary);
+  }
+  if (search) throw InputError("search needs family general");
+  ConstructionResult result;
+  if (family == "km" || family == "needle") {
+    const bool km = family == "km";
+    result = km ? DefaultKm(epsilon, length) : DefaultNeedle(epsilon, length);
+    if (optimize) {
+      result = km ? OptimizeKm(epsilon, length, 0.5 * result.h0, 0.3)
+                  : OptimizeNeedle(epsilon, length, 0.5 * result.h0, 0.3);
+    }
+  } else {
+    result = DefaultLens(epsilon, length);
+    if (optimize) {
+      result = OptimizeLens(epsilon, length, result.h0, result.theta,
+                            LensShape{0.2, 0.0, 0.0});
+    }
+  }
+  const JsonObject summary = ConstructionJson(result, epsilon, length,
+                                              optimize);
+  py::gil_scoped_acquire acquire;
+  return ToDict(summary);
+}
+
 void WriteGltfPy(const std::string& path, const py::object& frames_object,
                  const IndexArray& F, double fps,
                  const std::string& interpolation) {
@@ -824,6 +1142,48 @@ PYBIND11_MODULE(shellspace, m) {
       SHELLSPACE_SOLVER_ARGS,
       "Shape regression (data term + sigma spline energy): returns (path, "
       "summary).");
+  m.def(
+      "pca",
+      [](const py::object& inputs, const IndexArray& F, int modes,
+         const std::string& baseline, bool loo, double amplitude,
+         int log_steps, int exp_steps, int max_exp_steps,
+         const std::string& displacement,
+         const std::optional<std::string>& output,
+         const std::optional<std::string>& png, double mu, double lambda,
+         double eta, double tolerance, int max_iterations, int threads,
+         bool quiet) {
+        return PcaPy(inputs, F, modes, baseline, loo, amplitude, log_steps,
+                     exp_steps, max_exp_steps, displacement, output, png, mu,
+                     lambda, eta, {tolerance, max_iterations, threads, quiet});
+      },
+      py::arg("inputs"), py::arg("F"), py::arg("modes") = 3,
+      py::arg("baseline") = "", py::arg("loo") = false,
+      py::arg("amplitude") = 1.0, py::arg("log_steps") = 2,
+      py::arg("exp_steps") = 4, py::arg("max_exp_steps") = 16,
+      py::arg("displacement") = "log", py::arg("output") = py::none(),
+      py::arg("png") = py::none(), SHELLSPACE_MATERIAL_ARGS,
+      SHELLSPACE_SOLVER_ARGS,
+      "Shell PCA at the elastic mean (and the Procrustes baseline, "
+      "leave-one-out): returns ({'mean': ..., 'mode_1_minus': ..., ...}, "
+      "summary). output: the CLI's directory (PLY files and pca.json).");
+  m.def("branching_simulate", &BranchingSimulatePy,
+        py::arg("epsilon") = 0.001, py::arg("length") = 1.0,
+        py::arg("height") = 0.0, py::arg("nx") = 64, py::arg("ny") = 128,
+        py::arg("init") = "needle", py::arg("delta") = 0.0,
+        py::arg("grading") = 2.0, py::arg("continuation") = 3,
+        py::arg("periods") = 0, py::arg("init_seed") = 1,
+        py::arg("lm_iterations") = 200, py::arg("delta_extrapolation") = 0,
+        "The relaxed Kohn-Mueller simulation (`branching simulate`): "
+        "returns (u (nx + 1) x ny, summary). Writes no files.");
+  m.def("branching_construct", &BranchingConstructPy,
+        py::arg("epsilon") = 0.001, py::arg("length") = 1.0,
+        py::arg("family") = "km", py::arg("optimize") = false,
+        py::arg("search") = false, py::arg("search_ratios") = "2,3,4",
+        py::arg("search_pairs") = 2, py::arg("subintervals") = 3,
+        py::arg("search_starts") = 1, py::arg("search_filter") = "",
+        py::arg("search_threads") = 1,
+        "A self-similar construction (`branching construct`): returns the "
+        "summary. Writes no files.");
   m.def(
       "mean",
       [](const py::object& inputs, const IndexArray& F, bool report,

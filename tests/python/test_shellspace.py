@@ -329,3 +329,81 @@ def test_errors_raise_with_the_library_message(tmp_path):
     with pytest.raises(ValueError, match="#V x 3"):
         shellspace.energy(V[:, :2], W, F)
     assert not os.listdir(tmp_path)
+
+
+# ---- Statistics and branching against the CLI ----------------------------
+
+def without_times(summary):
+    """The summary without wall-clock entries and the output path."""
+    if isinstance(summary, dict):
+        return {k: without_times(v) for k, v in summary.items()
+                if "seconds" not in k and k not in ("output", "far_inputs")}
+    if isinstance(summary, list):
+        return [without_times(v) for v in summary]
+    return summary
+
+
+def assert_same_numbers(a, b, rel=1e-10):
+    assert type(a) == type(b) or {type(a), type(b)} <= {int, float}, (a, b)
+    if isinstance(a, dict):
+        assert set(a) == set(b)
+        for k in a:
+            assert_same_numbers(a[k], b[k], rel)
+    elif isinstance(a, list):
+        assert len(a) == len(b)
+        for x, y in zip(a, b):
+            assert_same_numbers(x, y, rel)
+    elif isinstance(a, float) or isinstance(b, float):
+        assert a == pytest.approx(b, rel=rel, abs=1e-14)
+    else:
+        assert a == b
+
+
+def test_pca_matches_cli(tmp_path):
+    V, F = mesh(DOUBLE)
+    W, _ = mesh(DOUBLE_BENT)
+    frames, _ = shellspace.geodesic(V, W, F, steps=2, quiet=True,
+                                    output=str(tmp_path / "in"))
+    inputs = [frames[0], frames[1], frames[2]]
+    shapes, summary = shellspace.pca(inputs, F, modes=1, baseline="procrustes",
+                                     quiet=True, output=str(tmp_path / "py"))
+    files = ",".join(str(tmp_path / "in" / ("shape_%03d.ply" % k))
+                     for k in range(3))
+    cli = cli_json(["pca", "--inputs", files, "--modes", "1", "--baseline",
+                    "procrustes", "--output", str(tmp_path / "cli")])
+    assert_same_numbers(without_times(summary), without_times(cli))
+    assert sorted(shapes) == sorted(
+        f[:-4] for f in os.listdir(tmp_path / "cli") if f.endswith(".ply"))
+    for name, shape in shapes.items():
+        written, _ = mesh(str(tmp_path / "cli" / (name + ".ply")))
+        assert np.max(np.abs(written - shape)) < 1e-10, name
+    assert sorted(os.listdir(tmp_path / "py")) == sorted(
+        os.listdir(tmp_path / "cli"))
+    with pytest.raises(ValueError, match="modes 3 exceeds 2"):
+        shellspace.pca(inputs, F, modes=3, quiet=True)
+
+
+def test_branching_construct_matches_cli(tmp_path):
+    for family in ("km", "lens"):
+        summary = shellspace.branching_construct(family=family, epsilon=0.002)
+        cli = cli_json(["branching", "construct", "--family", family,
+                        "--epsilon", "0.002", "--output",
+                        str(tmp_path / family)])
+        assert_same_numbers(without_times(summary), without_times(cli))
+    km = shellspace.branching_construct()
+    assert km["constant"] == pytest.approx(km["km_shifted_constant_closed_form"],
+                                           rel=1e-6)
+    with pytest.raises(ValueError, match="family must be"):
+        shellspace.branching_construct(family="tree")
+
+
+def test_branching_simulate_matches_cli(tmp_path):
+    args = dict(nx=8, ny=32, continuation=1, lm_iterations=30)
+    u, summary = shellspace.branching_simulate(**args)
+    cli = cli_json(["branching", "simulate", "--nx", "8", "--ny", "32",
+                    "--continuation", "1", "--lm_iterations", "30",
+                    "--output", str(tmp_path / "sim")])
+    assert_same_numbers(without_times(summary), without_times(cli))
+    assert u.shape == (9, 32)
+    csv = np.loadtxt(tmp_path / "sim" / "u.csv", delimiter=",", skiprows=1)
+    assert np.max(np.abs(csv[:, 4] - u.ravel())) < 1e-10
