@@ -136,16 +136,21 @@ void MakeDirectory(const std::string& dir) {
   }
 }
 
-void WriteFrames(const std::string& dir, const Faces& faces,
-                 const std::vector<Positions>& frames) {
+void AddFrames(const std::string& dir, const Faces& faces,
+               const std::vector<Positions>& frames, AtomicFileSet* files) {
   MakeDirectory(dir);
-  AtomicFileSet files;
   for (size_t k = 0; k < frames.size(); ++k) {
     char name[64];
     std::snprintf(name, sizeof(name), "/shape_%03zu.ply", k);
     const std::string path = dir + name;
-    files.Add(path, MeshWriter(Mesh{frames[k], faces}, path));
+    files->Add(path, MeshWriter(Mesh{frames[k], faces}, path));
   }
+}
+
+void WriteFrames(const std::string& dir, const Faces& faces,
+                 const std::vector<Positions>& frames) {
+  AtomicFileSet files;
+  AddFrames(dir, faces, frames, &files);
   files.Commit();
 }
 

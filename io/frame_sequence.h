@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "shellspace/geometry/mesh.h"
+#include "shellspace/io/atomic_file.h"
 
 namespace shellspace {
 
@@ -39,6 +40,11 @@ void MakeDirectory(const std::string& dir);
 // AtomicFileSet).
 void WriteFrames(const std::string& dir, const Faces& faces,
                  const std::vector<Positions>& frames);
+
+// The frames of WriteFrames added to `files` (committed by the caller with
+// other files, all together or none); creates DIR if missing.
+void AddFrames(const std::string& dir, const Faces& faces,
+               const std::vector<Positions>& frames, AtomicFileSet* files);
 
 // True if `a` comes before `b` in natural order (see ListFrameFiles).
 bool NaturalLess(const std::string& a, const std::string& b);

@@ -30,6 +30,7 @@
 #include "shellspace/io/frame_sequence.h"
 #include "shellspace/io/gltf_writer.h"
 #include "shellspace/io/mesh_io.h"
+#include "shellspace/io/png_writer.h"
 #include "shellspace/problems/calculus/exponential_map.h"
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/problems/calculus/multiresolution.h"
@@ -258,10 +259,11 @@ void WritePath(const std::optional<std::string>& output,
                const std::vector<Positions>& path) {
   RenderOptions options;
   if (png) ValidateRenderOptions(options);
-  const std::string glb = gltf ? EncodeGltfMorphAnimation(path, faces) : "";
-  if (output) WriteFrames(*output, faces, path);
-  if (png) WriteFilmStrip(path, faces, options, *png);
-  if (gltf) WriteFileAtomically(*gltf, glb);
+  AtomicFileSet files;  // all together or none, as the CLI
+  if (gltf) files.Add(*gltf, EncodeGltfMorphAnimation(path, faces));
+  if (png) files.Add(*png, EncodePng(RenderFilmStrip(path, faces, options)));
+  if (output) AddFrames(*output, faces, path, &files);
+  files.Commit();
 }
 
 JsonObject& AddOutput(JsonObject& json,

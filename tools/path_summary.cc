@@ -2,6 +2,7 @@
 
 #include "shellspace/io/atomic_file.h"
 #include "shellspace/io/gltf_writer.h"
+#include "shellspace/io/png_writer.h"
 #include "shellspace/render/film_strip.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/shell_inputs.h"
@@ -19,12 +20,18 @@ void WritePathOutputs(const std::string& dir, const Faces& faces,
                       const ShellPath& path) {
   RenderOptions options;
   if (!FLAGS_png.empty()) ValidateRenderOptions(options);
-  // Encoded before anything is written: a bad path writes no file.
-  const std::string glb =
-      FLAGS_gltf.empty() ? "" : EncodeGltfMorphAnimation(path, faces);
-  WriteFrames(dir, faces, path);
-  if (!FLAGS_png.empty()) WriteFilmStrip(path, faces, options, FLAGS_png);
-  if (!FLAGS_gltf.empty()) WriteFileAtomically(FLAGS_gltf, glb);
+  // One set: the frames, the film strip and the .glb appear together or
+  // not at all (a .glb in a missing directory leaves no frames behind).
+  // The single files first, so that a failure creates no directory.
+  AtomicFileSet files;
+  if (!FLAGS_gltf.empty()) {
+    files.Add(FLAGS_gltf, EncodeGltfMorphAnimation(path, faces));
+  }
+  if (!FLAGS_png.empty()) {
+    files.Add(FLAGS_png, EncodePng(RenderFilmStrip(path, faces, options)));
+  }
+  AddFrames(dir, faces, path, &files);
+  files.Commit();
 }
 
 }  // namespace shellspace

@@ -15,7 +15,8 @@ namespace shellspace {
 FlagSpec GltfFlag();
 
 // Writes DIR/shape_000.ply ..., if --png is set a film strip, and if --gltf
-// is set the frames as one glTF 2.0 morph animation (io/gltf_writer.h).
+// is set the frames as one glTF 2.0 morph animation (io/gltf_writer.h), all
+// together or none.
 void WritePathOutputs(const std::string& dir, const Faces& faces,
                       const ShellPath& path);
 

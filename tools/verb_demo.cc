@@ -81,15 +81,16 @@ int RunDemo() {
       shot.step_energies.empty() ? shot.step_energies.end()
                                  : shot.step_energies.begin() + 1,
       shot.step_energies.end());
+  // The .glb first: a bad --gltf path fails before anything is written.
+  if (!FLAGS_gltf.empty()) {
+    WriteGltfMorphAnimation(FLAGS_gltf, frames, finger.faces);
+  }
   MakeDirectory(dir);
   WriteFrames(dir + "/frames", finger.faces, frames);
   RenderOptions options;
   options.view = ParseView("front");  // the bend lies in the x-y plane
   options.max_per_row = 7;
   WriteFilmStrip(frames, finger.faces, options, dir + "/film_strip.png");
-  if (!FLAGS_gltf.empty()) {
-    WriteGltfMorphAnimation(FLAGS_gltf, frames, finger.faces);
-  }
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock)
           .count();

@@ -407,3 +407,27 @@ def test_branching_simulate_matches_cli(tmp_path):
     assert u.shape == (9, 32)
     csv = np.loadtxt(tmp_path / "sim" / "u.csv", delimiter=",", skiprows=1)
     assert np.max(np.abs(csv[:, 4] - u.ravel())) < 1e-10
+
+
+def test_gltf_of_a_path_is_the_clis_export(tmp_path):
+    V, F = mesh(DOUBLE)
+    W, _ = mesh(DOUBLE_BENT)
+    frames, _ = shellspace.geodesic(V, W, F, steps=3, quiet=True,
+                                    output=str(tmp_path / "frames"),
+                                    gltf=str(tmp_path / "geodesic.glb"))
+    shellspace.write_gltf(str(tmp_path / "py.glb"), frames, F,
+                          interpolation="step", fps=2)
+    subprocess.run([CLI, "export", "--input", str(tmp_path / "frames"),
+                    "--output", str(tmp_path / "cli.glb"), "--interpolation",
+                    "step", "--fps", "2", "--quiet"], check=True)
+    py = (tmp_path / "py.glb").read_bytes()
+    assert py[:4] == b"glTF" and py == (tmp_path / "cli.glb").read_bytes()
+    assert (tmp_path / "geodesic.glb").read_bytes()[:4] == b"glTF"
+    with pytest.raises(ValueError, match="interpolation must be"):
+        shellspace.write_gltf(str(tmp_path / "x.glb"), frames, F,
+                              interpolation="cubic")
+    with pytest.raises(ValueError, match="missing"):
+        shellspace.geodesic(V, W, F, steps=2, quiet=True,
+                            output=str(tmp_path / "none"),
+                            gltf=str(tmp_path / "missing" / "a.glb"))
+    assert not (tmp_path / "none").exists()

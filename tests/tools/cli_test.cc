@@ -395,6 +395,30 @@ TEST(CliTest, AVerbRejectsAnotherVerbsFlag) {
   EXPECT_TRUE(Listing(dir).empty());
 }
 
+// --gltf and --png are written with the frames, together or not at all: a
+// .glb or a film strip in a missing directory fails with one line and leaves
+// no frames, no directory and no temporary behind; with good paths all
+// three appear.
+TEST(CliTest, GltfAndPngAreWrittenWithTheFramesOrNothing) {
+  const std::string dir = TempDir();
+  const std::string common = "geodesic --quiet --steps 2 --start " + kSquare +
+                             " --end " + kBent + " --output " + dir + "/g";
+  for (const std::string& extra :
+       {" --gltf " + dir + "/missing/a.glb",
+        " --gltf " + dir + "/a.glb --png " + dir + "/missing/a.png"}) {
+    std::string err;
+    EXPECT_EQ(RunCli(common + extra, nullptr, &err), 1) << extra;
+    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+    EXPECT_NE(err.find("missing"), std::string::npos) << err;
+    EXPECT_TRUE(Listing(dir).empty()) << extra;
+  }
+  ASSERT_EQ(RunCli(common + " --gltf " + dir + "/a.glb --png " + dir +
+                   "/a.png"),
+            0);
+  EXPECT_EQ(Listing(dir), (std::vector<std::string>{"a.glb", "a.png", "g"}));
+  EXPECT_EQ(Listing(dir + "/g").size(), 3u);
+}
+
 // The flags listed by `shellspace ARGS --help`.
 std::set<std::string> HelpFlags(const std::string& args, std::string* text) {
   EXPECT_EQ(RunCli(args + " --help", text), 0) << args;
