@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdio>
 #include <filesystem>
 #include <system_error>
 
+#include "shellspace/io/atomic_file.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/io/output_directory.h"
 
@@ -127,6 +129,32 @@ FrameSequence ReadFrameSequence(const std::string& input) {
     sequence.frames.push_back(std::move(mesh.positions));
   }
   return sequence;
+}
+
+void MakeDirectory(const std::string& dir) {
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  if (error || !std::filesystem::is_directory(dir)) {
+    throw InputError("cannot create output directory " + dir);
+  }
+}
+
+void AddFrames(const std::string& dir, const Faces& faces,
+               const std::vector<Positions>& frames, AtomicFileSet* files) {
+  MakeDirectory(dir);
+  for (size_t k = 0; k < frames.size(); ++k) {
+    char name[64];
+    std::snprintf(name, sizeof(name), "/shape_%03zu.ply", k);
+    const std::string path = dir + name;
+    files->Add(path, MeshWriter(Mesh{frames[k], faces}, path));
+  }
+}
+
+void WriteFrames(const std::string& dir, const Faces& faces,
+                 const std::vector<Positions>& frames) {
+  AtomicFileSet files;
+  AddFrames(dir, faces, frames, &files);
+  files.Commit();
 }
 
 }  // namespace shellspace

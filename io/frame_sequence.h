@@ -1,4 +1,5 @@
-// Reading a sequence of shells (frames) for rendering.
+// Reading and writing a sequence of shells (frames): the paths of the
+// calculus as directories of PLY files.
 #ifndef SHELLSPACE_IO_FRAME_SEQUENCE_H_
 #define SHELLSPACE_IO_FRAME_SEQUENCE_H_
 
@@ -6,6 +7,7 @@
 #include <vector>
 
 #include "shellspace/geometry/mesh.h"
+#include "shellspace/io/atomic_file.h"
 
 namespace shellspace {
 
@@ -30,6 +32,21 @@ std::vector<std::string> ListFrameFiles(const std::string& input);
 // as ListFrameFiles and ReadMesh do, and if a mesh has another vertex count
 // or other faces than the first one.
 FrameSequence ReadFrameSequence(const std::string& input);
+
+// Creates directory `dir` (and parents) if missing; InputError naming it on
+// failure.
+void MakeDirectory(const std::string& dir);
+
+// Writes shapes (each #V x 3, sharing `faces`) as DIR/shape_000.ply ...,
+// creating DIR if missing, all together or none (io/atomic_file.h
+// AtomicFileSet).
+void WriteFrames(const std::string& dir, const Faces& faces,
+                 const std::vector<Positions>& frames);
+
+// The frames of WriteFrames added to `files` (committed by the caller with
+// other files, all together or none); creates DIR if missing.
+void AddFrames(const std::string& dir, const Faces& faces,
+               const std::vector<Positions>& frames, AtomicFileSet* files);
 
 // True if `a` comes before `b` in natural order (see ListFrameFiles).
 bool NaturalLess(const std::string& a, const std::string& b);

@@ -20,6 +20,8 @@ declare -A allowed=(
   [problems/branching]="geometry cost_functions solvers"
   # problems/branching: the pictures of constructions and relaxed fields.
   [render]="geometry io problems/branching"
+  # The verbs' summaries (CLI --json and the Python module's dicts).
+  [reports]="geometry cost_functions solvers io problems/calculus problems/splines problems/statistics problems/branching"
 )
 
 # The room of an include path "shellspace/<room>/...".
@@ -53,7 +55,7 @@ done
 while IFS= read -r line; do
   echo "layering: include without the shellspace/ prefix: $line"
   violations=$((violations + 1))
-done < <(grep -rnE '^\s*#include "(geometry|cost_functions|solvers|problems|io|render|tools)/' \
-           geometry cost_functions solvers problems io render tools bench tests --include='*.h' --include='*.cc' || true)
+done < <(grep -rnE '^\s*#include "(geometry|cost_functions|solvers|problems|io|render|reports|tools|python)/' \
+           geometry cost_functions solvers problems io render reports tools python bench tests --include='*.h' --include='*.cc' || true)
 echo "layering: ${checked} includes checked, ${violations} violations"
 [[ $violations -eq 0 ]]

@@ -15,6 +15,7 @@ DEFINE_double(lambda, 1.0, SHELLSPACE_PER_VERB);
 DEFINE_double(eta, 0.01, SHELLSPACE_PER_VERB);
 DEFINE_string(bending, "discrete-shells", SHELLSPACE_PER_VERB);
 DEFINE_string(png, "", SHELLSPACE_PER_VERB);
+DEFINE_string(gltf, "", SHELLSPACE_PER_VERB);
 DEFINE_string(reference, "", SHELLSPACE_PER_VERB);
 DEFINE_string(mask, "", SHELLSPACE_PER_VERB);
 DEFINE_int32(steps, 8, SHELLSPACE_PER_VERB);

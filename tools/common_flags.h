@@ -19,6 +19,7 @@ DECLARE_double(lambda);
 DECLARE_double(eta);
 DECLARE_string(bending);
 DECLARE_string(png);
+DECLARE_string(gltf);
 DECLARE_string(reference);
 DECLARE_string(mask);
 DECLARE_int32(steps);

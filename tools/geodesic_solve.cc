@@ -1,6 +1,5 @@
 #include "shellspace/tools/geodesic_solve.h"
 
-#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -21,27 +20,7 @@ FlagSpec MultiresFlag() {
 }
 
 MultiresolutionSettings MultiresFromFlags(int num_vertices) {
-  MultiresolutionSettings settings;
-  const std::string& value = FLAGS_multires;
-  if (value == "off") {
-    settings.levels = 0;
-  } else if (value == "auto") {
-    settings.levels = 0;
-    settings.min_vertices = kAutoMinVertices;
-    for (double n = 0.25 * num_vertices; n >= kAutoMinVertices; n *= 0.25) {
-      ++settings.levels;
-    }
-  } else {
-    char* end = nullptr;
-    const long levels = std::strtol(value.c_str(), &end, 10);
-    if (value.empty() || *end != '\0' || levels < 0 || levels > 8) {
-      throw InputError("--multires must be auto, off or a number of levels "
-                       "from 0 to 8, got '" + value + "'");
-    }
-    settings.levels = static_cast<int>(levels);
-    settings.min_vertices = 20;
-  }
-  return settings;
+  return ParseMultiresolution(FLAGS_multires, num_vertices, "--multires");
 }
 
 FlagSpec LinearSolverFlag() {
@@ -57,24 +36,11 @@ FlagSpec LinearSolverFlag() {
 }
 
 PathLinearSolver LinearSolverFromFlags() {
-  const std::string& value = FLAGS_linear_solver;
-  if (value == "auto") return PathLinearSolver::kAuto;
-  if (value == "direct") return PathLinearSolver::kDirect;
-  if (value == "block-jacobi") return PathLinearSolver::kBlockJacobi;
-  throw InputError("--linear_solver must be auto, direct or block-jacobi, "
-                   "got '" + value + "'");
+  return ParsePathLinearSolver(FLAGS_linear_solver, "--linear_solver");
 }
 
 const char* LinearSolverName(PathLinearSolver solver) {
-  switch (solver) {
-    case PathLinearSolver::kAuto:
-      return "auto";
-    case PathLinearSolver::kDirect:
-      return "direct";
-    case PathLinearSolver::kBlockJacobi:
-      return "block-jacobi";
-  }
-  return "auto";
+  return PathLinearSolverName(solver);
 }
 
 MultiresolutionResult SolveGeodesicFromFlags(const ShellSpace& space,
@@ -84,22 +50,6 @@ MultiresolutionResult SolveGeodesicFromFlags(const ShellSpace& space,
   with_solver.linear_solver = LinearSolverFromFlags();
   return SolveGeodesicMultiresolution(space, with_solver, settings,
                                       MultiresFromFlags(space.num_vertices));
-}
-
-std::string MultiresolutionJson(const MultiresolutionResult& result) {
-  std::vector<std::string> levels;
-  for (const MultiresolutionLevel& level : result.levels) {
-    levels.push_back(JsonObject()
-                         .Add("vertices", level.vertices)
-                         .Add("faces", level.faces)
-                         .Add("iterations", level.iterations)
-                         .Add("path_energy", level.path_energy)
-                         .Add("final_gradient_norm", level.final_gradient)
-                         .Add("converged", level.converged)
-                         .Add("seconds", level.seconds)
-                         .str());
-  }
-  return JsonArray(levels);
 }
 
 }  // namespace shellspace

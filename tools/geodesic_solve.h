@@ -5,6 +5,8 @@
 
 #include "shellspace/io/json_writer.h"
 #include "shellspace/problems/calculus/multiresolution.h"
+#include "shellspace/reports/path_reports.h"
+#include "shellspace/reports/solve_choices.h"
 #include "shellspace/tools/verb_flags.h"
 
 namespace shellspace {
@@ -18,7 +20,6 @@ FlagSpec MultiresFlag();
 // below 4 kAutoMinVertices). Throws InputError naming --multires for
 // anything else.
 MultiresolutionSettings MultiresFromFlags(int num_vertices);
-constexpr int kAutoMinVertices = 2500;
 
 // The --linear_solver flag: the linear solver of the Newton finish.
 FlagSpec LinearSolverFlag();
@@ -35,9 +36,6 @@ const char* LinearSolverName(PathLinearSolver solver);
 MultiresolutionResult SolveGeodesicFromFlags(const ShellSpace& space,
                                              const GeodesicInput& input,
                                              const SolverSettings& settings);
-
-// The levels as a JSON array (coarsest first; the last is the input mesh).
-std::string MultiresolutionJson(const MultiresolutionResult& result);
 
 }  // namespace shellspace
 

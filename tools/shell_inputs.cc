@@ -1,7 +1,5 @@
 #include "shellspace/tools/shell_inputs.h"
 
-#include <cstdio>
-#include <filesystem>
 #include <sstream>
 
 #include "shellspace/geometry/validation.h"
@@ -96,27 +94,6 @@ std::vector<std::string> SplitList(const std::string& list,
   }
   if (items.empty()) throw InputError("--" + flag + " is empty");
   return items;
-}
-
-void MakeDirectory(const std::string& dir) {
-  std::error_code error;
-  std::filesystem::create_directories(dir, error);
-  if (error || !std::filesystem::is_directory(dir)) {
-    throw InputError("cannot create output directory " + dir);
-  }
-}
-
-void WriteFrames(const std::string& dir, const Faces& faces,
-                 const std::vector<Positions>& frames) {
-  MakeDirectory(dir);
-  AtomicFileSet files;
-  for (size_t k = 0; k < frames.size(); ++k) {
-    char name[64];
-    std::snprintf(name, sizeof(name), "/shape_%03zu.ply", k);
-    const std::string path = dir + name;
-    files.Add(path, MeshWriter(Mesh{frames[k], faces}, path));
-  }
-  files.Commit();
 }
 
 }  // namespace shellspace

@@ -10,6 +10,7 @@
 #include "shellspace/cost_functions/shell/shell_space.h"
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/geometry/topology.h"
+#include "shellspace/io/frame_sequence.h"
 #include "shellspace/solvers/solver_settings.h"
 
 namespace shellspace {
@@ -67,14 +68,6 @@ SolverSettings SettingsFromFlags(const std::string& label);
 // Splits "a,b,c" at commas (empty items are an error naming `flag`).
 std::vector<std::string> SplitList(const std::string& list,
                                    const std::string& flag);
-
-// Creates directory `dir` (and parents) if missing; InputError on failure.
-void MakeDirectory(const std::string& dir);
-
-// Writes shapes as DIR/shape_000.ply ... all together or none
-// (io/atomic_file.h AtomicFileSet).
-void WriteFrames(const std::string& dir, const Faces& faces,
-                 const std::vector<Positions>& frames);
 
 }  // namespace shellspace
 

@@ -40,6 +40,7 @@
 #include "shellspace/tools/run_paths.h"
 #include "shellspace/tools/stop_request.h"
 #include "shellspace/io/json_writer.h"
+#include "shellspace/reports/branching_reports.h"
 #include "shellspace/tools/verb.h"
 
 DEFINE_double(length, 1.0, "branching: domain length L");
@@ -208,13 +209,6 @@ std::string PrepareOutput() {
   return FLAGS_output;
 }
 
-JsonObject EnergyJson(double elastic, double interfacial) {
-  JsonObject e;
-  e.Add("elastic", elastic).Add("interfacial", interfacial)
-      .Add("total", elastic + interfacial);
-  return e;
-}
-
 int RunSimulate() {
   if (FLAGS_init != "laminate" && FLAGS_init != "random" &&
       FLAGS_init != "km" && FLAGS_init != "needle" && FLAGS_init != "lens") {
@@ -270,34 +264,7 @@ int RunSimulate() {
   }
   const double scale = std::pow(s.epsilon, 2.0 / 3.0) * std::cbrt(s.length);
 
-  JsonObject summary;
-  summary.Add("command", "branching simulate")
-      .Add("epsilon", s.epsilon).Add("length", s.length)
-      .Add("height", s.height).Add("nx", s.nx).Add("ny", s.ny)
-      .Add("grading", s.grading).Add("delta", result.delta)
-      .Add("init", s.init).Add("periods", result.periods)
-      .Add("energy", EnergyJson(result.energy.elastic,
-                                result.energy.interfacial()))
-      .Add("energy_over_eps23_L13", result.energy.total() / scale)
-      .Add("km_constant", KmClosedFormConstant())
-      .Add("iterations", result.iterations).Add("seconds", result.seconds);
-  std::string stages = "[";
-  for (size_t k = 0; k < result.stages.size(); ++k) {
-    const RelaxedStage& st = result.stages[k];
-    JsonObject o;
-    o.Add("delta", st.delta).Add("iterations", st.iterations)
-        .Add("energy", st.energy.total()).Add("seconds", st.seconds)
-        .Add("max_slope", st.max_slope).Add("retried", st.retried)
-        .Add("termination", st.termination);
-    stages += (k ? ", " : "") + o.str();
-  }
-  summary.Raw("stages", stages + "]");
-  std::vector<double> x, counts;
-  for (size_t k = 0; k < result.interfaces.size(); ++k) {
-    x.push_back(result.field.grid.x(static_cast<int>(k) + 1));
-    counts.push_back(result.interfaces[k]);
-  }
-  summary.Add("x", x).Add("interfaces", counts);
+  JsonObject summary = SimulationJson(s, result);
   if (FLAGS_delta_extrapolation >= 2 && ObservedStop() == StopCause::kNone) {
     std::vector<double> deltas;
     for (int k = 0; k < FLAGS_delta_extrapolation; ++k) {
@@ -310,16 +277,7 @@ int RunSimulate() {
             std::cerr << "  extrapolation: delta " << delta << "  C " << c << "\n";
           }
         });
-    JsonObject e;
-    std::vector<double> nys(ex.ny.begin(), ex.ny.end());
-    e.Add("delta", ex.deltas).Add("ny", nys).Add("constant", ex.constants)
-        .Add("linear_c0", ex.c0).Add("linear_c1", ex.c1)
-        .Add("linear_rms", ex.linear_rms);
-    if (ex.has_quadratic) {
-      e.Add("quadratic_q0", ex.q0).Add("quadratic_q1", ex.q1)
-          .Add("quadratic_q2", ex.q2).Add("quadratic_rms", ex.quadratic_rms);
-    }
-    summary.Add("extrapolation", e);
+    summary.Add("extrapolation", DeltaExtrapolationJson(ex));
   }
 
   const int width_px = 800;
@@ -412,39 +370,8 @@ int RunGeneral(double epsilon, const std::string& dir) {
   if (!best.ok) throw InputError("general construct: no valid pattern found");
   const FreeLengthSeries series =
       OptimalFreeLengths(best.A, best.B, best.topology.r, epsilon, FLAGS_length);
-  JsonObject params;
-  params.Add("topology", best.topology.name).Add("r", best.topology.r)
-      .Add("pairs", best.topology.pairs)
-      .Add("label_offset", best.topology.label_offset)
-      .Add("subintervals", best.topology.subintervals)
-      .Add("delta", best.delta).Add("h0", series.h0)
-      .Add("x", best.x);
-  std::vector<double> taus, pieces, ps;
-  for (const NucleationGroup& g : best.topology.groups) {
-    for (const NeedleEvent& e : g.needles) {
-      taus.push_back(g.tau);
-      pieces.push_back(e.piece);
-      ps.push_back(e.p);
-    }
-  }
-  params.Add("needle_tau", taus).Add("needle_piece", pieces).Add("needle_p", ps);
-  std::vector<double> lengths(series.lengths.begin(),
-                              series.lengths.begin() + 12);
-  params.Add("lengths_first12", lengths);
-  JsonObject summary;
-  summary.Add("command", "branching construct").Add("family", "general")
-      .Add("search", FLAGS_search).Add("epsilon", epsilon)
-      .Add("length", FLAGS_length).Add("constant", best.constant_free)
-      .Add("constant_geometric_lengths", best.constant_geometric)
-      .Add("parameters", params).Add("A", best.A).Add("B", best.B)
-      .Add("AB2", best.AB2)
-      .Add("energy", EnergyJson(series.elastic, series.interfacial))
-      .Add("km_constant_closed_form", KmClosedFormConstant())
-      .Add("km_shifted_constant_closed_form", KmShiftedClosedFormConstant())
-      .Add("ratio_to_km", best.constant_free / KmClosedFormConstant())
-      .Add("ratio_to_km_shifted",
-           best.constant_free / KmShiftedClosedFormConstant())
-      .Add("solves", solves).Add("seconds", seconds);
+  const JsonObject summary = GeneralConstructionJson(
+      best, series, epsilon, FLAGS_length, FLAGS_search, solves, seconds);
   Construction c;
   c.pattern = GeneralCellPattern(best);
   c.length = FLAGS_length;
@@ -500,41 +427,8 @@ int RunConstruct() {
                             LensShape{0.2, 0.0, 0.0});
     }
   }
-  JsonObject params;
-  params.Add("r", result.r).Add("h0", result.h0).Add("theta", result.theta);
-  if (result.family == "lens") {
-    params.Add("tau", result.shape.tau).Add("a1", result.shape.a1)
-        .Add("a2", result.shape.a2);
-  }
-  // Every generation length free (same cell): C_free = K_r^free / K_r C at
-  // the optimal theta.
-  const double free_factor =
-      FreeLengthSeriesConstant(result.r) /
-      SeriesConstant(1.0, 1.0, result.r, OptimalTheta(result.r));
-  const double best_geometric =
-      SeriesConstant(result.A, result.B, result.r, OptimalTheta(result.r));
-  JsonObject summary;
-  summary.Add("command", "branching construct").Add("family", result.family)
-      .Add("optimized", FLAGS_optimize).Add("epsilon", epsilon)
-      .Add("length", FLAGS_length).Add("constant", result.constant)
-      .Add("constant_free_lengths", best_geometric * free_factor)
-      .Add("parameters", params).Add("A", result.A).Add("B", result.B)
-      .Add("energy", EnergyJson(result.elastic, result.interfacial));
-  if (result.family == "km") {
-    summary.Add("A_zero_edge", result.A_zero_edge)
-        .Add("constant_zero_edge", result.constant_zero_edge);
-  }
-  summary.Add("km_constant_closed_form", KmClosedFormConstant())
-      .Add("km_shifted_constant_closed_form", KmShiftedClosedFormConstant())
-      .Add("needle_constant_closed_form", NeedleClosedFormConstant())
-      .Add("ratio_to_km", result.constant / KmClosedFormConstant())
-      .Add("ratio_to_km_shifted",
-           result.constant / KmShiftedClosedFormConstant());
-  if (FLAGS_optimize) {
-    summary.Add("iterations", result.iterations)
-        .Add("seconds", result.seconds)
-        .Add("termination", result.termination);
-  }
+  const JsonObject summary =
+      ConstructionJson(result, epsilon, FLAGS_length, FLAGS_optimize);
   const double height = FLAGS_height > 0 ? FLAGS_height : 2.0 * result.h0;
   const int width_px = 900;
   const int height_px = std::clamp(

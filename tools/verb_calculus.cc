@@ -63,6 +63,7 @@ FlagTable ShootFlags() {
            MaskFlag(),
            PngFlag(),
            AllowUnsolvedFlag(),
+           GltfFlag(),
        },
        MaterialFlags(), SolverFlags(), JsonFlag()});
 }
@@ -104,6 +105,7 @@ FlagTable TransportFlags() {
            MaskFlag(),
            PngFlag(),
            AllowUnsolvedFlag(),
+           GltfFlag(),
        },
        MaterialFlags(), SolverFlags(), JsonFlag()});
 }
@@ -219,38 +221,9 @@ int RunTransport() {
   }
   RunDirectory output(FLAGS_output);
   WritePathOutputs(&output, first.mesh.faces, result.shapes);
-  std::vector<double> norms;
-  for (const Positions& xi : result.variations) {
-    norms.push_back(xi.cwiseAbs().maxCoeff());
-  }
-  std::vector<std::string> rungs;
-  int iterations = 0;
-  for (size_t k = 0; k < result.rungs.size(); ++k) {
-    const TransportResult::Rung& rung = result.rungs[k];
-    iterations += rung.newton_steps + rung.lm_iterations;
-    rungs.push_back(
-        JsonObject()
-            .Add("rung", static_cast<int>(k + 1))
-            .Add("solved", rung.solved)
-            .Add("relative_residual", rung.relative_residual)
-            .Add("method", rung.method == ExpStepResult::Method::kNewton
-                               ? "newton"
-                               : "levenberg-marquardt")
-            .Add("epsilon_divisor", rung.divisor)
-            .Add("newton_steps", rung.newton_steps)
-            .Add("lm_iterations", rung.lm_iterations)
-            .str());
-  }
   const std::string summary =
-      output.Commit(JsonObject()
+      output.Commit(TransportJson(result, FLAGS_epsilon)
                         .Add("bending_model", FLAGS_bending)
-                        .Add("variation_max_norms", norms)
-                        .Add("exp_residuals", result.exp_residuals)
-                        .Add("converged", result.all_solved)
-                        .Add("iterations", iterations)
-                        .Raw("rungs", JsonArray(rungs))
-                        .Add("epsilon", FLAGS_epsilon)
-                        .Add("frames", static_cast<int>(result.shapes.size()))
                         .Add("seconds", Seconds(clock))
                         .Add("output", FLAGS_output));
   if (FLAGS_json) std::cout << summary << "\n";
@@ -263,7 +236,7 @@ int RunTransport() {
 SHELLSPACE_REGISTER_VERB(
     "shoot",
     "shoot --first S0.ply --second S1.ply --steps K --output DIR [--backward] "
-    "[--mask M.txt] [--json] [--png strip.png]",
+    "[--mask M.txt] [--json] [--png strip.png] [--gltf path.glb]",
     shellspace::ShootFlags(), shellspace::RunShoot);
 SHELLSPACE_REGISTER_VERB(
     "log",
@@ -273,5 +246,5 @@ SHELLSPACE_REGISTER_VERB(
 SHELLSPACE_REGISTER_VERB(
     "transport",
     "transport --path DIR --variation P0.ply --output DIR [--epsilon 1] "
-    "[--json] [--png strip.png]",
+    "[--json] [--png strip.png] [--gltf path.glb]",
     shellspace::TransportFlags(), shellspace::RunTransport);

@@ -10,6 +10,7 @@
 
 #include "shellspace/geometry/validation.h"
 #include "shellspace/io/atomic_file.h"
+#include "shellspace/io/gltf_writer.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/geometry/procedural_shapes.h"
 #include "shellspace/problems/calculus/exponential_map.h"
@@ -39,6 +40,7 @@ FlagTable DemoFlags() {
                                 2, kMaxSteps),
                     IntegerFlag("extrapolate", "EXP steps beyond the end shape",
                                 0),
+                    GltfFlag(),
                 },
                 MaterialFlags(), SolverFlags()});
 }
@@ -89,6 +91,10 @@ int RunDemo() {
   CheckShoot(shot, &status);
   RunDirectory output(dir);
   WriteFrames(output.File("frames"), finger.faces, frames);
+  if (!FLAGS_gltf.empty()) {
+    output.Outside().Add(FLAGS_gltf,
+                         EncodeGltfMorphAnimation(frames, finger.faces));
+  }
   RenderOptions options;
   options.view = ParseView("front");  // the bend lies in the x-y plane
   options.max_per_row = 7;
@@ -96,36 +102,37 @@ int RunDemo() {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock)
           .count();
-  const std::string json = output.Commit(
-      JsonObject()
-          .Add("path_energy", geodesic.path_energy)
-          .Add("step_energies", geodesic.step_energies)
-          .Add("extrapolated_step_energies", extrapolated)
-          .Add("iterations", geodesic.iterations + shot_iterations)
-          .Add("geodesic_iterations", geodesic.iterations)
-          .Add("extrapolation_iterations", shot_iterations)
-          .Add("initial_gradient_norm", geodesic.initial_gradient)
-          .Add("final_gradient_norm", geodesic.final_gradient)
-          .Add("relative_gradient_norm",
-               geodesic.initial_gradient > 0
-                   ? geodesic.final_gradient / geodesic.initial_gradient
-                   : 0.0)
-          .Add("converged", geodesic.converged && shot_converged)
-          .Add("geodesic_converged", geodesic.converged)
-          .Add("extrapolation_converged", shot_converged)
-          .Add("step_energy_ratio", geodesic.step_energy_ratio)
-          .Add("uneven_steps", geodesic.uneven_steps)
-          .Raw("stages", JsonArray(stages))
-          .Add("newton_steps", geodesic.newton.steps)
-          .Add("factorizations", geodesic.newton.factorizations)
-          .Add("cg_iterations", geodesic.newton.cg_iterations)
-          .Add("seconds", seconds)
-          .Add("frames", static_cast<int>(frames.size()))
-          .Add("geodesic_steps", FLAGS_steps)
-          .Add("extrapolated_steps", FLAGS_extrapolate)
-          .Add("vertices", finger.num_vertices())
-          .Add("frames_dir", dir + "/frames")
-          .Add("film_strip", dir + "/film_strip.png"));
+  JsonObject summary;
+  summary.Add("path_energy", geodesic.path_energy)
+      .Add("step_energies", geodesic.step_energies)
+      .Add("extrapolated_step_energies", extrapolated)
+      .Add("iterations", geodesic.iterations + shot_iterations)
+      .Add("geodesic_iterations", geodesic.iterations)
+      .Add("extrapolation_iterations", shot_iterations)
+      .Add("initial_gradient_norm", geodesic.initial_gradient)
+      .Add("final_gradient_norm", geodesic.final_gradient)
+      .Add("relative_gradient_norm",
+           geodesic.initial_gradient > 0
+               ? geodesic.final_gradient / geodesic.initial_gradient
+               : 0.0)
+      .Add("converged", geodesic.converged && shot_converged)
+      .Add("geodesic_converged", geodesic.converged)
+      .Add("extrapolation_converged", shot_converged)
+      .Add("step_energy_ratio", geodesic.step_energy_ratio)
+      .Add("uneven_steps", geodesic.uneven_steps)
+      .Raw("stages", JsonArray(stages))
+      .Add("newton_steps", geodesic.newton.steps)
+      .Add("factorizations", geodesic.newton.factorizations)
+      .Add("cg_iterations", geodesic.newton.cg_iterations)
+      .Add("seconds", seconds)
+      .Add("frames", static_cast<int>(frames.size()))
+      .Add("geodesic_steps", FLAGS_steps)
+      .Add("extrapolated_steps", FLAGS_extrapolate)
+      .Add("vertices", finger.num_vertices())
+      .Add("frames_dir", dir + "/frames")
+      .Add("film_strip", dir + "/film_strip.png");
+  if (!FLAGS_gltf.empty()) summary.Add("gltf", FLAGS_gltf);
+  const std::string json = output.Commit(summary);
   std::cout << json << "\n";
   return status.Finish();
 }
@@ -135,6 +142,7 @@ int RunDemo() {
 
 SHELLSPACE_REGISTER_VERB(
     "demo",
-    "demo [--output demo-output] [--steps 8] [--extrapolate 4]: procedural "
+    "demo [--output demo-output] [--steps 8] [--extrapolate 4] "
+    "[--gltf path.glb]: procedural "
     "finger -> bent finger geodesic, extrapolated, with a PNG film strip",
     shellspace::DemoFlags(), shellspace::RunDemo);

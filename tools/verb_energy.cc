@@ -6,7 +6,7 @@
 
 #include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/tools/common_flags.h"
-#include "shellspace/io/json_writer.h"
+#include "shellspace/reports/shape_reports.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb.h"
 
@@ -59,14 +59,8 @@ int RunEnergy() {
         reference.mesh.positions, deformed.positions);
   }
   if (FLAGS_json) {
-    JsonObject json;
-    json.Add("membrane", e.membrane)
-        .Add("bending", e.bending)
-        .Add("total", e.total)
-        .Add("mu", space.material.mu)
-        .Add("lambda", space.material.lambda)
-        .Add("eta", space.material.eta)
-        .Add("bending_model", both ? "both" : FLAGS_bending);
+    JsonObject json = EnergyJson(e, space.material);
+    json.Add("bending_model", both ? "both" : FLAGS_bending);
     if (both) {
       json.Raw("bending_models",
                JsonObject()

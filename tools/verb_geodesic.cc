@@ -37,6 +37,7 @@ FlagTable GeodesicFlags() {
                     "comments): vertices held at their linearly "
                     "interpolated positions"),
            TextFlag("png", "also write a PNG film strip of the frames here"),
+           GltfFlag(),
            TextFlag("report", "print Ceres' full report on stderr"),
            MultiresFlag(),
            LinearSolverFlag(),
@@ -104,5 +105,6 @@ SHELLSPACE_REGISTER_VERB(
     "geodesic",
     "geodesic --start A.ply --end B.ply --steps K --output DIR [--mask M.txt] "
     "[--eta E] [--multires auto|off|LEVELS] "
-    "[--linear_solver auto|direct|block-jacobi] [--json] [--png strip.png]",
+    "[--linear_solver auto|direct|block-jacobi] [--json] [--png strip.png] "
+    "[--gltf path.glb]",
     shellspace::GeodesicFlags(), shellspace::RunGeodesic);

@@ -39,6 +39,7 @@ FlagTable PathFlags() {
       TextFlag("output", "directory of the frames shape_000.ply ...")
           .Required(),
       TextFlag("png", "also write a PNG film strip of the frames here"),
+      GltfFlag(),
   };
 }
 
@@ -138,28 +139,10 @@ int Report(const std::string& verb, const Faces& faces,
   }
   RunDirectory output(FLAGS_output);
   WritePathOutputs(&output, faces, result.path);
-  const std::string summary =
-      output.Commit(extra.Add("bending_model", FLAGS_bending)
-                     .Add("spline_energy", result.spline_energy)
-                     .Add("data_energy", result.data_energy)
-                     .Add("objective", result.objective)
-                     .Add("iterations", result.iterations)
-                     .Add("initial_gradient_norm",
-                          result.initial_gradient_norm)
-                     .Add("final_gradient_norm", result.final_gradient_norm)
-                     .Add("relative_gradient_norm",
-                          result.relative_gradient_norm)
-                     .Add("gradient_criterion_met",
-                          result.gradient_criterion_met)
-                     .Add("converged", optimised ? result.converged : true)
-                     .Add("termination",
-                          result.summary.iterations.size() > 1
-                              ? ceres::TerminationTypeToString(
-                                    result.summary.termination_type)
-                              : "not optimised")
-                     .Add("seconds", seconds)
-                     .Add("frames", static_cast<int>(result.path.size()))
-                     .Add("output", FLAGS_output));
+  extra.Add("bending_model", FLAGS_bending);
+  const std::string summary = output.Commit(
+      SplineJson(std::move(extra), result, seconds, optimised)
+          .Add("output", FLAGS_output));
   if (FLAGS_json) {
     std::cout << summary << "\n";
   } else if (!FLAGS_quiet) {
@@ -250,10 +233,10 @@ SHELLSPACE_REGISTER_VERB(
     "spline",
     "spline --keyframes a.ply,b.ply,c.ply --at 0,4,8 --steps 8 --output DIR "
     "[--method nonlinear|ltheta] [--energy=false] [--periodic] [--json] "
-    "[--png strip.png]",
+    "[--png strip.png] [--gltf path.glb]",
     shellspace::SplineFlags(), shellspace::RunSpline);
 SHELLSPACE_REGISTER_VERB(
     "regress",
     "regress --inputs a.ply,b.ply,... --at 0,3,... --steps K --sigma S "
-    "--output DIR [--json] [--png strip.png]",
+    "--output DIR [--json] [--png strip.png] [--gltf path.glb]",
     shellspace::RegressFlags(), shellspace::RunRegress);

@@ -21,6 +21,7 @@
 #include "shellspace/render/film_strip.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/io/json_writer.h"
+#include "shellspace/reports/shape_reports.h"
 #include "shellspace/tools/run_status.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/run_output.h"
@@ -116,10 +117,6 @@ void CheckSolve(const ceres::Solver::Summary& summary, const char* what) {
   }
 }
 
-std::vector<double> ToVector(const Eigen::VectorXd& v) {
-  return std::vector<double>(v.data(), v.data() + v.size());
-}
-
 // The inputs far from the others (FarInputs), by path, each with a warning
 // on stderr unless --quiet: such an input dominates the mean and the leading
 // shell PCA mode, and EXP shots along that mode may have no solution.
@@ -171,33 +168,10 @@ int RunMean() {
   CheckMean(result, "elastic mean", &status);
   WriteMesh(Mesh{result.mean, inputs.first.mesh.faces}, FLAGS_output);
   if (FLAGS_json) {
-    const double relative =
-        result.initial_gradient_norm > 0
-            ? result.gradient_norm / result.initial_gradient_norm
-            : 0.0;
-    JsonObject json;
+    JsonObject json =
+        MeanJson(result, static_cast<int>(inputs.shapes.size()), far);
     json.Add("bending_model", FLAGS_bending);
     std::cout << AddRunFields(json)
-                     .Add("energy", result.energy)
-                     .Add("energies", result.energies)
-                     .Add("far_inputs", far)
-                     .Add("inputs", static_cast<int>(inputs.shapes.size()))
-                     .Add("iterations",
-                          result.lm_iterations + result.newton_iterations)
-                     .Add("lm_iterations", result.lm_iterations)
-                     .Add("newton_iterations", result.newton_iterations)
-                     .Raw("stages",
-                          JsonObject()
-                              .Add("lm_iterations", result.lm_iterations)
-                              .Add("newton_steps", result.newton_iterations)
-                              .str())
-                     .Add("newton_fell_back", result.newton_fell_back)
-                     .Add("initial_gradient_norm", result.initial_gradient_norm)
-                     .Add("final_gradient_norm", result.gradient_norm)
-                     .Add("relative_gradient_norm", relative)
-                     .Add("gradient_target", result.gradient_target)
-                     .Add("converged", result.converged)
-                     .Add("termination", result.termination)
                      .Add("seconds", Seconds(clock))
                      .Add("output", FLAGS_output)
                      .str()
@@ -232,64 +206,6 @@ std::string TableText(const LeaveOneOutTable& table) {
     out << line;
   }
   return out.str();
-}
-
-std::string TableJson(const LeaveOneOutTable& table) {
-  std::string rows = "[";
-  for (size_t i = 0; i < table.rows.size(); ++i) {
-    const LeaveOneOutRow& row = table.rows[i];
-    rows += (i ? ", " : "") +
-            JsonObject()
-                .Add("modes", row.modes)
-                .Add("shell_vertex_error", row.shell_vertex_error)
-                .Add("shell_energy", row.shell_energy)
-                .Add("procrustes_vertex_error", row.procrustes_vertex_error)
-                .Add("procrustes_energy", row.procrustes_energy)
-                .Add("shell_failed", row.shell_failed)
-                .Add("procrustes_vertex_error_shell_folds",
-                     row.procrustes_vertex_error_shell_folds)
-                .Add("procrustes_energy_shell_folds",
-                     row.procrustes_energy_shell_folds)
-                .str();
-  }
-  rows += "]";
-  std::string folds = "[";
-  for (size_t i = 0; i < table.folds.size(); ++i) {
-    const LeaveOneOutFold& f = table.folds[i];
-    std::vector<double> shot_steps, shot_drift;
-    std::vector<double> shot_ok;  // 1: passed the safeguard
-    for (const ExpShotReport& r : f.shell_shots) {
-      shot_steps.push_back(r.steps);
-      shot_drift.push_back(r.energy_drift);
-      shot_ok.push_back(r.ok ? 1.0 : 0.0);
-    }
-    folds += (i ? ", " : "") +
-             JsonObject()
-                 .Add("held_out", f.held_out)
-                 .Add("mean_energy", f.mean_energy)
-                 .Add("mean_iterations", f.mean_iterations)
-                 .Add("mean_newton_iterations", f.mean_newton_iterations)
-                 .Add("mean_converged", f.mean_converged)
-                 .Add("log_iterations", f.log_iterations)
-                 .Add("shell_vertex_error", f.shell_vertex_error)
-                 .Add("shell_energy", f.shell_energy)
-                 .Add("procrustes_vertex_error", f.procrustes_vertex_error)
-                 .Add("procrustes_energy", f.procrustes_energy)
-                 .Add("shell_exp_steps", shot_steps)
-                 .Add("shell_exp_energy_drift", shot_drift)
-                 .Add("shell_exp_ok", shot_ok)
-                 .Add("seconds", f.seconds)
-                 .str();
-  }
-  folds += "]";
-  return JsonObject()
-      .Add("energy_order", "W[truth, reconstruction]")
-      .Add("vertex_error",
-           "mean over vertices of |aligned reconstruction - truth|")
-      .Raw("rows", rows)
-      .Raw("folds", folds)
-      .Add("seconds", table.seconds)
-      .str();
 }
 
 int RunPca() {
@@ -410,26 +326,9 @@ int RunPca() {
   }
   if (!FLAGS_quiet) std::cerr << "pca: shell modes done\n";
 
-  JsonObject json;
-  json.Add("bending_model", FLAGS_bending).Add("inputs", n)
-      .Add("mean_energy", mean.energy)
-      .Add("mean_iterations", mean.lm_iterations)
-      .Add("mean_newton_iterations", mean.newton_iterations)
-      .Add("mean_gradient_norm", mean.gradient_norm)
-      .Add("mean_relative_gradient_norm",
-           mean.initial_gradient_norm > 0
-               ? mean.gradient_norm / mean.initial_gradient_norm
-               : 0.0)
-      .Add("mean_converged", mean.converged)
-      .Add("mean_termination", mean.termination)
-      .Add("displacement", FLAGS_displacement)
-      .Add("log_steps", FLAGS_log_steps)
-      .Add("exp_steps", FLAGS_exp_steps)
-      .Add("eigenvalues", ToVector(shell.eigenvalues))
-      .Add("modes", shell_modes)
-      .Add("failed_mode_shapes", failed_shapes)
-      .Add("far_inputs", far)
-      .Add("amplitude", FLAGS_amplitude)
+  JsonObject json = PcaJson(n, mean, FLAGS_displacement, options, shell,
+                            shell_modes, failed_shapes, far, FLAGS_amplitude);
+  json.Add("bending_model", FLAGS_bending)
       .Add("converged", status.ok());  // the mean; mode shapes: warned
 
   if (FLAGS_baseline == "procrustes") {
@@ -444,8 +343,7 @@ int RunPca() {
       files.emplace_back(stem + "_plus.ply",
                          ProcrustesModeShape(procrustes, j, FLAGS_amplitude));
     }
-    json.Add("procrustes_eigenvalues", ToVector(procrustes.eigenvalues))
-        .Add("procrustes_modes", pm);
+    AddProcrustesJson(procrustes, pm, &json);
   }
 
   std::string table_text;
@@ -461,7 +359,7 @@ int RunPca() {
     }
     const LeaveOneOutTable table =
         EvaluateLeaveOneOut(space, inputs.shapes, loo, inner);
-    json.Raw("leave_one_out", TableJson(table));
+    json.Raw("leave_one_out", LeaveOneOutJson(table));
     table_text = TableText(table);
   }
   json.Add("seconds", Seconds(clock)).Add("output", FLAGS_output);

@@ -413,6 +413,30 @@ TEST(CliTest, AVerbRejectsAnotherVerbsFlag) {
   EXPECT_TRUE(Listing(dir).empty());
 }
 
+// --gltf and --png are written with the frames, together or not at all: a
+// .glb or a film strip in a missing directory fails with one line and leaves
+// no frames, no directory and no temporary behind; with good paths all
+// three appear.
+TEST(CliTest, GltfAndPngAreWrittenWithTheFramesOrNothing) {
+  const std::string dir = TempDir();
+  const std::string common = "geodesic --quiet --steps 2 --start " + kSquare +
+                             " --end " + kBent + " --output " + dir + "/g";
+  for (const std::string& extra :
+       {" --gltf " + dir + "/missing/a.glb",
+        " --gltf " + dir + "/a.glb --png " + dir + "/missing/a.png"}) {
+    std::string err;
+    EXPECT_EQ(RunCli(common + extra, nullptr, &err), 1) << extra;
+    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+    EXPECT_NE(err.find("missing"), std::string::npos) << err;
+    EXPECT_TRUE(Listing(dir).empty()) << extra;
+  }
+  ASSERT_EQ(RunCli(common + " --gltf " + dir + "/a.glb --png " + dir +
+                   "/a.png"),
+            0);
+  EXPECT_EQ(Listing(dir), (std::vector<std::string>{"a.glb", "a.png", "g"}));
+  EXPECT_EQ(Listing(dir + "/g").size(), 3u);
+}
+
 // The flags listed by `shellspace ARGS --help`.
 std::set<std::string> HelpFlags(const std::string& args, std::string* text) {
   EXPECT_EQ(RunCli(args + " --help", text), 0) << args;
@@ -431,10 +455,9 @@ TEST(CliTest, HelpListsOnlyTheVerbsFlags) {
   const std::set<std::string> geodesic = HelpFlags("geodesic", &text);
   const std::set<std::string> expected = {
       "start", "end",  "steps",  "output",    "mask",      "png",
-      "report", "mu",  "lambda", "eta",       "bending",   "tolerance",
-      "max_iterations",
-      "threads", "quiet", "json", "multires", "linear_solver", "time_limit",
-      "minloglevel", "allow_unconverged"};
+      "gltf",  "report", "mu",  "lambda", "eta",       "bending",
+      "tolerance", "max_iterations", "threads", "quiet", "json", "multires",
+      "linear_solver", "time_limit", "minloglevel", "allow_unconverged"};
   EXPECT_EQ(geodesic, expected) << text;
   // Default and valid range of a numeric flag.
   EXPECT_NE(text.find("default: 8; valid: an integer in [1, 100000]"),
@@ -453,7 +476,7 @@ TEST(CliTest, HelpListsOnlyTheVerbsFlags) {
   // Every verb's help works and lists --json or --output.
   for (const char* verb :
        {"energy", "deform", "shoot", "log", "spline", "regress", "mean", "pca",
-        "render", "demo"}) {
+        "render", "export", "demo"}) {
     const std::set<std::string> flags = HelpFlags(verb, &text);
     EXPECT_TRUE(flags.count("json") || flags.count("output")) << verb;
     EXPECT_FALSE(flags.count("inputs") && flags.count("start")) << verb;

@@ -1,0 +1,218 @@
+#include "shellspace/io/gltf_writer.h"
+
+// tinygltf (Debian libtinygltf-dev, the compiled libtinygltf) is private to
+// this file: no image support is needed for a mesh animation.
+#define TINYGLTF_NO_STB_IMAGE
+#define TINYGLTF_NO_STB_IMAGE_WRITE
+#define TINYGLTF_NO_EXTERNAL_IMAGE
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <sstream>
+
+#include "shellspace/io/atomic_file.h"
+
+namespace shellspace {
+namespace {
+
+// The binary buffer and the model's views and accessors on it.
+class GltfBuilder {
+ public:
+  explicit GltfBuilder(tinygltf::Model* model) : model_(model) {}
+
+  // A tightly packed view of `values` (4-byte components) with an
+  // accessor of `count` elements of `type`; min/max per component if
+  // `bounds`. Returns the accessor index.
+  template <typename T>
+  int AddAccessor(const std::vector<T>& values, int component_type, int type,
+                  int components, int target, bool bounds) {
+    static_assert(sizeof(T) == 4, "4-byte components only");
+    std::vector<unsigned char>& data = buffer().data;
+    const size_t offset = data.size();  // a multiple of 4
+    data.resize(offset + values.size() * sizeof(T));
+    std::memcpy(data.data() + offset, values.data(), values.size() * sizeof(T));
+
+    tinygltf::BufferView view;
+    view.buffer = 0;
+    view.byteOffset = offset;
+    view.byteLength = values.size() * sizeof(T);
+    if (target != 0) view.target = target;
+    model_->bufferViews.push_back(view);
+
+    tinygltf::Accessor accessor;
+    accessor.bufferView = static_cast<int>(model_->bufferViews.size()) - 1;
+    accessor.byteOffset = 0;
+    accessor.componentType = component_type;
+    accessor.count = values.size() / components;
+    accessor.type = type;
+    if (bounds) {
+      accessor.minValues.assign(components,
+                                std::numeric_limits<double>::infinity());
+      accessor.maxValues.assign(components,
+                                -std::numeric_limits<double>::infinity());
+      for (size_t i = 0; i < values.size(); ++i) {
+        const double v = static_cast<double>(values[i]);
+        double& lo = accessor.minValues[i % components];
+        double& hi = accessor.maxValues[i % components];
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+      }
+    }
+    model_->accessors.push_back(accessor);
+    return static_cast<int>(model_->accessors.size()) - 1;
+  }
+
+ private:
+  tinygltf::Buffer& buffer() {
+    if (model_->buffers.empty()) model_->buffers.emplace_back();
+    return model_->buffers[0];
+  }
+  tinygltf::Model* model_;
+};
+
+std::vector<float> ToFloats(const Positions& positions) {
+  std::vector<float> out(positions.size());
+  for (Eigen::Index i = 0; i < positions.size(); ++i) {
+    out[i] = static_cast<float>(positions.data()[i]);
+  }
+  return out;
+}
+
+void CheckFrames(const std::vector<Positions>& frames, const Faces& faces) {
+  if (frames.empty()) throw InputError("glTF export: no frames");
+  const Eigen::Index n = frames[0].rows();
+  for (size_t k = 0; k < frames.size(); ++k) {
+    if (frames[k].rows() != n) {
+      throw InputError("glTF export: frame " + std::to_string(k) + " has " +
+                       std::to_string(frames[k].rows()) +
+                       " vertices, frame 0 has " + std::to_string(n));
+    }
+    if (!frames[k].allFinite()) {
+      throw InputError("glTF export: frame " + std::to_string(k) +
+                       " has a non-finite coordinate");
+    }
+  }
+  if (faces.rows() == 0) throw InputError("glTF export: no faces");
+  if (faces.minCoeff() < 0 || faces.maxCoeff() >= n) {
+    throw InputError("glTF export: a face index is outside [0, " +
+                     std::to_string(n) + ")");
+  }
+}
+
+}  // namespace
+
+std::string EncodeGltfMorphAnimation(const std::vector<Positions>& frames,
+                                     const Faces& faces,
+                                     const GltfAnimationOptions& options) {
+  CheckFrames(frames, faces);
+  if (!(options.frames_per_second > 0) ||
+      !std::isfinite(options.frames_per_second)) {
+    throw InputError("glTF export: frames per second must be > 0");
+  }
+  tinygltf::Model model;
+  model.asset.version = "2.0";
+  model.asset.generator = "shellspace";
+  GltfBuilder builder(&model);
+
+  tinygltf::Primitive primitive;
+  primitive.mode = TINYGLTF_MODE_TRIANGLES;
+  const std::vector<float> base = ToFloats(frames[0]);
+  primitive.attributes["POSITION"] = builder.AddAccessor(
+      base, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, 3,
+      TINYGLTF_TARGET_ARRAY_BUFFER, true);
+  std::vector<std::uint32_t> indices(faces.size());
+  for (Eigen::Index i = 0; i < faces.size(); ++i) {
+    indices[i] = static_cast<std::uint32_t>(faces.data()[i]);
+  }
+  primitive.indices = builder.AddAccessor(
+      indices, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, 1,
+      TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER, false);
+
+  const int targets = static_cast<int>(frames.size()) - 1;
+  tinygltf::Value::Array names;
+  for (int t = 0; t < targets; ++t) {
+    // Deltas against the float32 base: base + delta is frames[t + 1] up to
+    // the rounding of delta and of the sum.
+    std::vector<float> delta(base.size());
+    const Positions& frame = frames[t + 1];
+    for (size_t i = 0; i < base.size(); ++i) {
+      delta[i] = static_cast<float>(frame.data()[i] -
+                                    static_cast<double>(base[i]));
+    }
+    std::map<std::string, int> target;
+    target["POSITION"] = builder.AddAccessor(
+        delta, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, 3,
+        TINYGLTF_TARGET_ARRAY_BUFFER, true);
+    primitive.targets.push_back(target);
+    char name[32];
+    std::snprintf(name, sizeof(name), "shape_%03d", t + 1);
+    names.emplace_back(std::string(name));
+  }
+
+  tinygltf::Mesh mesh;
+  mesh.name = "shell";
+  mesh.primitives.push_back(primitive);
+  if (targets > 0) {
+    mesh.weights.assign(targets, 0.0);
+    tinygltf::Value::Object extras;
+    extras["targetNames"] = tinygltf::Value(names);
+    mesh.extras = tinygltf::Value(extras);
+  }
+  model.meshes.push_back(mesh);
+
+  tinygltf::Node node;
+  node.mesh = 0;
+  node.name = "shell";
+  model.nodes.push_back(node);
+  tinygltf::Scene scene;
+  scene.nodes.push_back(0);
+  model.scenes.push_back(scene);
+  model.defaultScene = 0;
+
+  if (targets > 0) {
+    std::vector<float> times(frames.size());
+    std::vector<float> weights(frames.size() * targets, 0.0f);
+    for (size_t k = 0; k < frames.size(); ++k) {
+      times[k] = static_cast<float>(k / options.frames_per_second);
+      if (k > 0) weights[k * targets + (k - 1)] = 1.0f;
+    }
+    tinygltf::AnimationSampler sampler;
+    sampler.input = builder.AddAccessor(times, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                        TINYGLTF_TYPE_SCALAR, 1, 0, true);
+    sampler.output = builder.AddAccessor(weights, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                         TINYGLTF_TYPE_SCALAR, 1, 0, false);
+    sampler.interpolation =
+        options.interpolation == GltfAnimationOptions::Interpolation::kStep
+            ? "STEP"
+            : "LINEAR";
+    tinygltf::AnimationChannel channel;
+    channel.sampler = 0;
+    channel.target_node = 0;
+    channel.target_path = "weights";
+    tinygltf::Animation animation;
+    animation.name = "path";
+    animation.samplers.push_back(sampler);
+    animation.channels.push_back(channel);
+    model.animations.push_back(animation);
+  }
+
+  std::ostringstream stream;
+  tinygltf::TinyGLTF writer;
+  if (!writer.WriteGltfSceneToStream(&model, stream, false, true)) {
+    throw InputError("glTF export: tinygltf could not encode the model");
+  }
+  return stream.str();
+}
+
+void WriteGltfMorphAnimation(const std::string& path,
+                             const std::vector<Positions>& frames,
+                             const Faces& faces,
+                             const GltfAnimationOptions& options) {
+  WriteFileAtomically(path, EncodeGltfMorphAnimation(frames, faces, options));
+}
+
+}  // namespace shellspace

@@ -1,0 +1,1203 @@
+// The Python module `shellspace`: the library's functions on NumPy arrays.
+//
+// A mesh is a pair (V, F): V a #V x 3 float64 array of vertex positions, F a
+// #F x 3 integer array of counter-clockwise triangles; every shape of one
+// call shares F. A path is a (K + 1) x #V x 3 array. Each function of a CLI
+// verb takes that verb's options as keyword arguments with the verb's
+// defaults (`shellspace VERB --help`), calls the library functions the verb
+// calls, and returns its results and the verb's --json summary as a dict
+// (reports/: the same objects the CLI prints; `output` and `seconds` as the
+// CLI has them). Bad input raises shellspace.InputError (a ValueError) with
+// the library's message; other library errors RuntimeError.
+#include <glog/logging.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <cmath>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "shellspace/cost_functions/shell/deformation_energy.h"
+#include "shellspace/cost_functions/shell/energy_derivatives.h"
+#include "shellspace/cost_functions/shell/shell_space.h"
+#include "shellspace/geometry/mesh.h"
+#include "shellspace/geometry/validation.h"
+#include "shellspace/io/atomic_file.h"
+#include "shellspace/io/frame_sequence.h"
+#include "shellspace/io/gltf_writer.h"
+#include "shellspace/io/mesh_io.h"
+#include "shellspace/io/png_writer.h"
+#include "shellspace/problems/calculus/exponential_map.h"
+#include "shellspace/problems/calculus/geodesic.h"
+#include "shellspace/problems/calculus/multiresolution.h"
+#include "shellspace/problems/calculus/parallel_transport.h"
+#include "shellspace/problems/splines/ltheta_spline.h"
+#include "shellspace/problems/splines/spline.h"
+#include "shellspace/problems/statistics/elastic_mean.h"
+#include "shellspace/problems/statistics/leave_one_out.h"
+#include "shellspace/problems/statistics/procrustes_pca.h"
+#include "shellspace/problems/statistics/shell_pca.h"
+#include "shellspace/render/film_strip.h"
+#include "shellspace/reports/branching_reports.h"
+#include "shellspace/reports/path_reports.h"
+#include "shellspace/reports/shape_reports.h"
+#include "shellspace/reports/solve_choices.h"
+
+namespace py = pybind11;
+
+namespace shellspace {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+using IndexArray =
+    py::array_t<long long, py::array::c_style | py::array::forcecast>;
+
+double Seconds(Clock::time_point since) {
+  return std::chrono::duration<double>(Clock::now() - since).count();
+}
+
+// ---- Arrays -------------------------------------------------------------
+
+Positions ToPositions(const DoubleArray& array, const std::string& name) {
+  if (array.ndim() != 2 || array.shape(1) != 3) {
+    throw InputError(name + " must be a #V x 3 array, got " +
+                     std::to_string(array.ndim()) + " dimensions");
+  }
+  Positions positions(array.shape(0), 3);
+  std::copy(array.data(), array.data() + array.size(), positions.data());
+  return positions;
+}
+
+Faces ToFaces(const IndexArray& array) {
+  if (array.ndim() != 2 || array.shape(1) != 3) {
+    throw InputError("F must be a #F x 3 array of vertex indices");
+  }
+  Faces faces(array.shape(0), 3);
+  for (py::ssize_t i = 0; i < array.size(); ++i) {
+    const long long v = array.data()[i];
+    if (v < 0 || v > std::numeric_limits<int>::max()) {
+      throw InputError("F: face " + std::to_string(i / 3) +
+                       " has the vertex index " + std::to_string(v));
+    }
+    faces.data()[i] = static_cast<int>(v);
+  }
+  return faces;
+}
+
+py::array_t<double> FromPositions(const Positions& positions) {
+  py::array_t<double> out({static_cast<py::ssize_t>(positions.rows()),
+                           static_cast<py::ssize_t>(3)});
+  std::copy(positions.data(), positions.data() + positions.size(),
+            out.mutable_data());
+  return out;
+}
+
+py::array_t<long long> FromFaces(const Faces& faces) {
+  py::array_t<long long> out({static_cast<py::ssize_t>(faces.rows()),
+                              static_cast<py::ssize_t>(3)});
+  for (Eigen::Index i = 0; i < faces.size(); ++i) {
+    out.mutable_data()[i] = faces.data()[i];
+  }
+  return out;
+}
+
+// A path as a (K + 1) x #V x 3 array.
+py::array_t<double> FromPath(const std::vector<Positions>& path) {
+  const py::ssize_t n = path.empty() ? 0 : path[0].rows();
+  py::array_t<double> out(
+      {static_cast<py::ssize_t>(path.size()), n, static_cast<py::ssize_t>(3)});
+  double* data = out.mutable_data();
+  for (const Positions& shape : path) {
+    std::copy(shape.data(), shape.data() + shape.size(), data);
+    data += shape.size();
+  }
+  return out;
+}
+
+// A list of shapes: a K x #V x 3 array or a sequence of #V x 3 arrays.
+std::vector<Positions> ToShapes(const py::object& object,
+                                const std::string& name) {
+  std::vector<Positions> shapes;
+  if (py::isinstance<py::array>(object) &&
+      py::array(object.cast<py::array>()).ndim() == 3) {
+    const DoubleArray array = object.cast<DoubleArray>();
+    for (py::ssize_t k = 0; k < array.shape(0); ++k) {
+      Positions shape(array.shape(1), 3);
+      std::copy(array.data(k, 0, 0), array.data(k, 0, 0) + shape.size(),
+                shape.data());
+      shapes.push_back(shape);
+    }
+  } else {
+    int k = 0;
+    for (const py::handle item : object) {
+      shapes.push_back(ToPositions(item.cast<DoubleArray>(),
+                                   name + "[" + std::to_string(k++) + "]"));
+    }
+  }
+  if (shapes.empty()) throw InputError(name + " is empty");
+  return shapes;
+}
+
+py::object ToDict(const JsonObject& json) {
+  return py::module_::import("json").attr("loads")(json.str());
+}
+
+// ---- Inputs -------------------------------------------------------------
+
+// A validated shell (V, F) and its topology.
+struct Shell {
+  Mesh mesh;
+  Topology topology;
+};
+
+Shell MakeShell(const DoubleArray& V, const IndexArray& F,
+                const std::string& name) {
+  Shell shell;
+  shell.mesh = Mesh{ToPositions(V, name), ToFaces(F)};
+  shell.topology = ValidateShell(shell.mesh, name);
+  return shell;
+}
+
+// Positions of a pose of `like` (same vertex count), validated.
+Positions CompatiblePositions(const Positions& positions, const Shell& like,
+                              const std::string& name) {
+  if (positions.rows() != like.mesh.positions.rows()) {
+    throw InputError(name + " has " + std::to_string(positions.rows()) +
+                     " vertices, expected " +
+                     std::to_string(like.mesh.positions.rows()));
+  }
+  ValidateShellPositions(Mesh{positions, like.mesh.faces}, like.topology,
+                         name);
+  return positions;
+}
+
+Positions CompatiblePositions(const DoubleArray& V, const Shell& like,
+                              const std::string& name) {
+  return CompatiblePositions(ToPositions(V, name), like, name);
+}
+
+ShellMaterial Material(double mu, double lambda, double eta) {
+  ShellMaterial material;
+  material.mu = mu;
+  material.lambda = lambda;
+  material.eta = eta;
+  material.Validate();
+  return material;
+}
+
+// The vertex mask: None, a mask file's path, or a sequence of 0-based
+// vertex indices (sorted and made unique, as ReadMask returns them).
+std::vector<int> Mask(const py::object& mask, int num_vertices) {
+  if (mask.is_none()) return {};
+  if (py::isinstance<py::str>(mask)) {
+    return ReadMask(mask.cast<std::string>(), num_vertices);
+  }
+  std::vector<int> indices;
+  for (const py::handle item : mask) {
+    const long long v = item.cast<long long>();
+    if (v < 0 || v >= num_vertices) {
+      throw InputError("mask: vertex index " + std::to_string(v) +
+                       " outside [0, " + std::to_string(num_vertices) + ")");
+    }
+    indices.push_back(static_cast<int>(v));
+  }
+  std::sort(indices.begin(), indices.end());
+  indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
+  return indices;
+}
+
+// The CLI's solver options (SolverFlags: the same ranges).
+struct SolverOptions {
+  double tolerance = 1e-8;
+  int max_iterations = 200;
+  int threads = 2;
+  bool quiet = false;
+
+  SolverSettings Settings(const std::string& label) const {
+    if (!(tolerance > 0 && tolerance < 1)) {
+      throw InputError("tolerance must be in (0, 1), got " +
+                       std::to_string(tolerance));
+    }
+    if (max_iterations < 1) {
+      throw InputError("max_iterations must be >= 1, got " +
+                       std::to_string(max_iterations));
+    }
+    if (threads < 1 || threads > 1024) {
+      throw InputError("threads must be in [1, 1024], got " +
+                       std::to_string(threads));
+    }
+    SolverSettings settings;
+    settings.progress = !quiet;
+    settings.progress_label = label;
+    settings.gradient_tolerance = tolerance;
+    settings.max_iterations = max_iterations;
+    settings.num_threads = threads;
+    return settings;
+  }
+};
+
+void CheckAtLeast(const std::string& name, long value, long min) {
+  if (value < min) {
+    throw InputError(name + " must be >= " + std::to_string(min) + ", got " +
+                     std::to_string(value));
+  }
+}
+
+// ---- Outputs ------------------------------------------------------------
+
+// What a path verb writes: `output` (a directory of shape_000.ply ...),
+// `png` (a film strip) and `gltf` (a .glb morph animation,
+// io/gltf_writer.h), each if given (not None).
+void WritePath(const std::optional<std::string>& output,
+               const std::optional<std::string>& png,
+               const std::optional<std::string>& gltf, const Faces& faces,
+               const std::vector<Positions>& path) {
+  RenderOptions options;
+  if (png) ValidateRenderOptions(options);
+  AtomicFileSet files;  // all together or none, as the CLI
+  if (gltf) files.Add(*gltf, EncodeGltfMorphAnimation(path, faces));
+  if (png) files.Add(*png, EncodePng(RenderFilmStrip(path, faces, options)));
+  if (output) AddFrames(*output, faces, path, &files);
+  files.Commit();
+}
+
+JsonObject& AddOutput(JsonObject& json,
+                      const std::optional<std::string>& output) {
+  if (output) json.Add("output", *output);
+  return json;
+}
+
+ShellSide Side(const std::string& side, const std::string& name) {
+  if (side == "reference") return ShellSide::kReference;
+  if (side == "deformed") return ShellSide::kDeformed;
+  throw InputError(name + " must be 'reference' or 'deformed', got '" + side +
+                   "'");
+}
+
+// ---- The functions ------------------------------------------------------
+
+py::tuple ReadMeshPy(const std::string& path) {
+  const Mesh mesh = ReadMesh(path);
+  return py::make_tuple(FromPositions(mesh.positions), FromFaces(mesh.faces));
+}
+
+void WriteMeshPy(const std::string& path, const DoubleArray& V,
+                 const IndexArray& F) {
+  const Mesh mesh{ToPositions(V, "V"), ToFaces(F)};
+  ValidateMeshStructure(mesh, path);
+  WriteMesh(mesh, path);
+}
+
+py::object EnergyPy(const DoubleArray& reference, const DoubleArray& deformed,
+                    const IndexArray& F, double mu, double lambda,
+                    double eta) {
+  const Shell shell = MakeShell(reference, F, "reference");
+  const Positions d = CompatiblePositions(deformed, shell, "deformed");
+  const ShellSpace space(shell.mesh, shell.topology,
+                         Material(mu, lambda, eta));
+  const DeformationEnergy e =
+      EvaluateDeformationEnergy(space, shell.mesh.positions, d);
+  return ToDict(EnergyJson(e, space.material));
+}
+
+py::array_t<double> GradientPy(const DoubleArray& reference,
+                               const DoubleArray& deformed,
+                               const IndexArray& F, const std::string& side,
+                               double mu, double lambda, double eta) {
+  const Shell shell = MakeShell(reference, F, "reference");
+  const Positions d = CompatiblePositions(deformed, shell, "deformed");
+  const ShellSpace space(shell.mesh, shell.topology,
+                         Material(mu, lambda, eta));
+  const Eigen::VectorXd g =
+      EnergyGradient(space, shell.mesh.positions, d, Side(side, "side"));
+  Positions out(shell.mesh.num_vertices(), 3);
+  std::copy(g.data(), g.data() + g.size(), out.data());
+  return FromPositions(out);
+}
+
+py::tuple HessianPy(const DoubleArray& reference, const DoubleArray& deformed,
+                    const IndexArray& F, const std::string& rows,
+                    const std::string& cols, double mu, double lambda,
+                    double eta) {
+  const Shell shell = MakeShell(reference, F, "reference");
+  const Positions d = CompatiblePositions(deformed, shell, "deformed");
+  const ShellSpace space(shell.mesh, shell.topology,
+                         Material(mu, lambda, eta));
+  const SparseMatrix H =
+      EnergyHessian(space, shell.mesh.positions, d, Side(rows, "rows"),
+                    Side(cols, "cols"));
+  const py::ssize_t nnz = H.nonZeros();
+  py::array_t<long long> r(nnz), c(nnz);
+  py::array_t<double> v(nnz);
+  py::ssize_t i = 0;
+  for (int k = 0; k < H.outerSize(); ++k) {
+    for (SparseMatrix::InnerIterator it(H, k); it; ++it, ++i) {
+      r.mutable_data()[i] = it.row();
+      c.mutable_data()[i] = it.col();
+      v.mutable_data()[i] = it.value();
+    }
+  }
+  return py::make_tuple(r, c, v);
+}
+
+void CheckGeodesic(const GeodesicResult& result) {
+  if (result.summary.termination_type == ceres::FAILURE) {
+    throw InputError("solver failed: " + result.summary.message);
+  }
+}
+
+MultiresolutionResult SolveGeodesicPy(const Shell& start, const Positions& end,
+                                      int steps, const py::object& mask,
+                                      const ShellSpace& space,
+                                      const std::string& multires,
+                                      const std::string& linear_solver,
+                                      const SolverSettings& settings) {
+  CheckAtLeast("steps", steps, 1);
+  GeodesicInput input;
+  input.start = start.mesh.positions;
+  input.end = end;
+  input.steps = steps;
+  input.fixed_vertices = Mask(mask, start.mesh.num_vertices());
+  input.linear_solver = ParsePathLinearSolver(linear_solver, "linear_solver");
+  const MultiresolutionSettings levels = ParseMultiresolution(
+      multires, start.mesh.num_vertices(), "multires");
+  py::gil_scoped_release release;
+  return SolveGeodesicMultiresolution(space, input, settings, levels);
+}
+
+py::tuple GeodesicPy(const DoubleArray& start_v, const DoubleArray& end_v,
+                     const IndexArray& F, int steps, const py::object& mask,
+                     const std::string& multires,
+                     const std::string& linear_solver, bool report,
+                     const std::optional<std::string>& output,
+                     const std::optional<std::string>& png,
+                  const std::optional<std::string>& gltf, double mu,
+                     double lambda, double eta, const SolverOptions& solver) {
+  const auto clock = Clock::now();
+  const Shell start = MakeShell(start_v, F, "start");
+  const Positions end = CompatiblePositions(end_v, start, "end");
+  const ShellSpace space(start.mesh, start.topology,
+                         Material(mu, lambda, eta));
+  const MultiresolutionResult multi =
+      SolveGeodesicPy(start, end, steps, mask, space, multires, linear_solver,
+                      solver.Settings("geodesic"));
+  const GeodesicResult& result = multi.geodesic;
+  CheckGeodesic(result);
+  if (report) py::print(result.summary.FullReport(), py::arg("file") =
+                            py::module_::import("sys").attr("stderr"));
+  WritePath(output, png, gltf, start.mesh.faces, result.path);
+  JsonObject json = GeodesicJson(result);
+  json.Raw("multires_levels", MultiresolutionJson(multi))
+      .Add("seconds", Seconds(clock));
+  return py::make_tuple(FromPath(result.path), ToDict(AddOutput(json, output)));
+}
+
+py::tuple LogPy(const DoubleArray& start_v, const DoubleArray& end_v,
+                const IndexArray& F, int steps, const py::object& mask,
+                const std::string& multires, const std::string& linear_solver,
+                const std::optional<std::string>& output, double mu,
+                double lambda, double eta, const SolverOptions& solver) {
+  const auto clock = Clock::now();
+  const Shell start = MakeShell(start_v, F, "start");
+  const Positions end = CompatiblePositions(end_v, start, "end");
+  const ShellSpace space(start.mesh, start.topology,
+                         Material(mu, lambda, eta));
+  const MultiresolutionResult multi =
+      SolveGeodesicPy(start, end, steps, mask, space, multires, linear_solver,
+                      solver.Settings("log"));
+  const GeodesicResult& geodesic = multi.geodesic;
+  const Positions log = LogOfGeodesic(geodesic.path);
+  if (output) {
+    WriteMesh(Mesh{start.mesh.positions + log, start.mesh.faces}, *output);
+  }
+  JsonObject json = GeodesicJson(geodesic);
+  json.Raw("multires_levels", MultiresolutionJson(multi))
+      .Add("log_max_norm", log.cwiseAbs().maxCoeff())
+      .Add("seconds", Seconds(clock));
+  return py::make_tuple(FromPositions(log), ToDict(AddOutput(json, output)));
+}
+
+py::tuple ShootPy(const DoubleArray& first_v, const DoubleArray& second_v,
+                  const IndexArray& F, int steps, bool backward,
+                  const py::object& mask,
+                  const std::optional<std::string>& output,
+                  const std::optional<std::string>& png,
+                  const std::optional<std::string>& gltf, double mu,
+                  double lambda, double eta, const SolverOptions& solver) {
+  const auto clock = Clock::now();
+  CheckAtLeast("steps", steps, 1);
+  const Shell first = MakeShell(first_v, F, "first");
+  const Positions second = CompatiblePositions(second_v, first, "second");
+  const ShellSpace space(first.mesh, first.topology,
+                         Material(mu, lambda, eta));
+  const std::vector<int> fixed = Mask(mask, first.mesh.num_vertices());
+  const SolverSettings settings = solver.Settings("shoot");
+  ShootResult result;
+  {
+    py::gil_scoped_release release;
+    result = ShootWithReport(
+        space, first.mesh.positions, second, steps,
+        backward ? StepDirection::kBackward : StepDirection::kForward, fixed,
+        settings);
+  }
+  for (const ExpStepResult& step : result.exp_steps) {
+    if (step.summary.termination_type == ceres::FAILURE) {
+      throw InputError("EXP step failed: " + step.summary.message);
+    }
+  }
+  WritePath(output, png, gltf, first.mesh.faces, result.path);
+  JsonObject json = ShootJson(result);
+  json.Add("seconds", Seconds(clock));
+  return py::make_tuple(FromPath(result.path), ToDict(AddOutput(json, output)));
+}
+
+py::tuple TransportPy(const py::object& path_object,
+                      const DoubleArray& variation_v, const IndexArray& F,
+                      double epsilon, const py::object& mask,
+                      const std::optional<std::string>& output,
+                      const std::optional<std::string>& png,
+                  const std::optional<std::string>& gltf, double mu,
+                      double lambda, double eta, const SolverOptions& solver) {
+  const auto clock = Clock::now();
+  if (!(epsilon > 0) || !std::isfinite(epsilon)) {
+    throw InputError("epsilon must be > 0, got " + std::to_string(epsilon));
+  }
+  const std::vector<Positions> frames = ToShapes(path_object, "path");
+  if (frames.size() < 2) throw InputError("path: need at least 2 frames");
+  const Shell first = MakeShell(DoubleArray(FromPositions(frames[0])), F,
+                                "path[0]");
+  ShellPath path = {first.mesh.positions};
+  for (size_t k = 1; k < frames.size(); ++k) {
+    path.push_back(CompatiblePositions(frames[k], first,
+                                       "path[" + std::to_string(k) + "]"));
+  }
+  const Positions varied = CompatiblePositions(variation_v, first, "variation");
+  const ShellSpace space(first.mesh, first.topology,
+                         Material(mu, lambda, eta));
+  const std::vector<int> fixed = Mask(mask, first.mesh.num_vertices());
+  const SolverSettings settings = solver.Settings("transport");
+  TransportResult result;
+  {
+    py::gil_scoped_release release;
+    result = ParallelTransport(space, path, varied - first.mesh.positions,
+                               epsilon, fixed, settings);
+  }
+  WritePath(output, png, gltf, first.mesh.faces, result.shapes);
+  JsonObject json = TransportJson(result, epsilon);
+  json.Add("seconds", Seconds(clock));
+  return py::make_tuple(FromPath(result.shapes),
+                        ToDict(AddOutput(json, output)));
+}
+
+// The shapes of a list (keyframes, inputs) with the connectivity F.
+struct ShapeSet {
+  Shell first;
+  std::vector<Positions> shapes;
+};
+
+ShapeSet MakeShapeSet(const py::object& list, const IndexArray& F,
+                      const std::string& name) {
+  const std::vector<Positions> shapes = ToShapes(list, name);
+  ShapeSet set;
+  set.first = MakeShell(DoubleArray(FromPositions(shapes[0])), F, name + "[0]");
+  set.shapes.push_back(set.first.mesh.positions);
+  for (size_t i = 1; i < shapes.size(); ++i) {
+    set.shapes.push_back(CompatiblePositions(
+        shapes[i], set.first, name + "[" + std::to_string(i) + "]"));
+  }
+  return set;
+}
+
+std::vector<int> Indices(const std::vector<long long>& at, size_t shapes,
+                         const std::string& name) {
+  std::vector<int> out;
+  for (long long v : at) {
+    if (!out.empty() && v <= out.back()) {
+      throw InputError("at must be strictly increasing");
+    }
+    out.push_back(static_cast<int>(v));
+  }
+  if (out.size() != shapes) {
+    throw InputError("at gives " + std::to_string(out.size()) +
+                     " indices for " + std::to_string(shapes) + " " + name);
+  }
+  return out;
+}
+
+SplineSettings SplineSettingsOf(const SolverOptions& solver,
+                                const std::string& label) {
+  SplineSettings settings;
+  settings.inner = solver.Settings(label + " midpoint");
+  settings.inner.progress = false;
+  settings.inner.gradient_tolerance = 1e-10;
+  settings.max_iterations = solver.max_iterations;
+  settings.gradient_tolerance = solver.tolerance;
+  settings.progress = !solver.quiet;
+  settings.progress_label = label;
+  return settings;
+}
+
+py::tuple SplinePy(const py::object& keyframes_object,
+                   const std::vector<long long>& at_list, const IndexArray& F,
+                   int steps, const std::string& method, bool periodic,
+                   const std::optional<std::string>& output,
+                   const std::optional<std::string>& png,
+                  const std::optional<std::string>& gltf, double mu,
+                   double lambda, double eta, const SolverOptions& solver) {
+  if (method != "nonlinear" && method != "ltheta") {
+    throw InputError("method must be nonlinear or ltheta");
+  }
+  CheckAtLeast("steps", steps, 2);
+  const auto clock = Clock::now();
+  const ShapeSet set = MakeShapeSet(keyframes_object, F, "keyframes");
+  const std::vector<int> at = Indices(at_list, set.shapes.size(), "keyframes");
+  const ShellSpace space(set.first.mesh, set.first.topology,
+                         Material(mu, lambda, eta));
+  SolverSettings ltheta_settings = solver.Settings("ltheta");
+  ltheta_settings.progress = false;
+  SplineSettings settings = SplineSettingsOf(solver, "spline");
+  if (method == "ltheta") settings.max_iterations = 0;
+  SplineResult result;
+  double ltheta_seconds = 0;
+  {
+    py::gil_scoped_release release;
+    const ShellPath ltheta = LThetaSpline(space, set.shapes, at, steps,
+                                          periodic, ltheta_settings);
+    ltheta_seconds = Seconds(clock);
+    result = SolveSpline(space, set.shapes, at, steps, periodic, ltheta,
+                         settings);
+  }
+  WritePath(output, png, gltf, set.first.mesh.faces, result.path);
+  JsonObject head;
+  head.Add("method", method).Add("ltheta_seconds", ltheta_seconds);
+  JsonObject json = SplineJson(head, result, Seconds(clock));
+  return py::make_tuple(FromPath(result.path), ToDict(AddOutput(json, output)));
+}
+
+py::tuple RegressPy(const py::object& inputs_object,
+                    const std::vector<long long>& at_list,
+                    const IndexArray& F, int steps, double sigma,
+                    const std::optional<std::string>& output,
+                    const std::optional<std::string>& png,
+                  const std::optional<std::string>& gltf, double mu,
+                    double lambda, double eta, const SolverOptions& solver) {
+  CheckAtLeast("steps", steps, 2);
+  if (!(sigma >= 0) || !std::isfinite(sigma)) {
+    throw InputError("sigma must be >= 0, got " + std::to_string(sigma));
+  }
+  const auto clock = Clock::now();
+  const ShapeSet set = MakeShapeSet(inputs_object, F, "inputs");
+  const std::vector<int> at = Indices(at_list, set.shapes.size(), "inputs");
+  const ShellSpace space(set.first.mesh, set.first.topology,
+                         Material(mu, lambda, eta));
+  const SplineSettings settings = SplineSettingsOf(solver, "regress");
+  SplineResult result;
+  {
+    py::gil_scoped_release release;
+    result = SolveRegression(space, set.shapes, at, steps, sigma, {}, settings);
+  }
+  WritePath(output, png, gltf, set.first.mesh.faces, result.path);
+  JsonObject head;
+  head.Add("sigma", sigma);
+  JsonObject json = SplineJson(head, result, Seconds(clock));
+  return py::make_tuple(FromPath(result.path), ToDict(AddOutput(json, output)));
+}
+
+py::tuple MeanPy(const py::object& inputs_object, const IndexArray& F,
+                 bool report, const std::optional<std::string>& output,
+                 double mu, double lambda, double eta,
+                 const SolverOptions& solver) {
+  const auto clock = Clock::now();
+  const ShapeSet set = MakeShapeSet(inputs_object, F, "inputs");
+  const ShellSpace space(set.first.mesh, set.first.topology,
+                         Material(mu, lambda, eta));
+  const SolverSettings settings = solver.Settings("mean");
+  ElasticMeanResult result;
+  {
+    py::gil_scoped_release release;
+    result = ComputeElasticMean(space, set.shapes, settings);
+  }
+  if (result.summary.termination_type == ceres::FAILURE) {
+    throw InputError("elastic mean failed: " + result.summary.message);
+  }
+  std::vector<std::string> far;
+  for (int i : FarInputs(result.energies)) {
+    far.push_back("inputs[" + std::to_string(i) + "]");
+  }
+  if (report) py::print(result.summary.FullReport(), py::arg("file") =
+                            py::module_::import("sys").attr("stderr"));
+  if (output) WriteMesh(Mesh{result.mean, set.first.mesh.faces}, *output);
+  JsonObject json =
+      MeanJson(result, static_cast<int>(set.shapes.size()), far);
+  json.Add("seconds", Seconds(clock));
+  return py::make_tuple(FromPositions(result.mean),
+                        ToDict(AddOutput(json, output)));
+}
+
+// The `pca` verb: elastic mean, shell PCA modes shot by EXP_K, optionally
+// the Procrustes baseline and the leave-one-out table. Returns ({name:
+// shape} with the names of the CLI's files without ".ply", summary).
+py::tuple PcaPy(const py::object& inputs_object, const IndexArray& F,
+                int modes, const std::string& baseline, bool loo,
+                double amplitude, int log_steps, int exp_steps,
+                int max_exp_steps, const std::string& displacement,
+                const std::optional<std::string>& output,
+                const std::optional<std::string>& png, double mu,
+                double lambda, double eta, const SolverOptions& solver) {
+  if (baseline != "" && baseline != "procrustes") {
+    throw InputError("baseline must be 'procrustes' (or empty), got '" +
+                     baseline + "'");
+  }
+  CheckAtLeast("modes", modes, 1);
+  CheckAtLeast("log_steps", log_steps, 1);
+  CheckAtLeast("exp_steps", exp_steps, 1);
+  if (max_exp_steps < exp_steps) {
+    throw InputError("max_exp_steps must be at least exp_steps");
+  }
+  if (!(amplitude >= 0) || !std::isfinite(amplitude)) {
+    throw InputError("amplitude must be >= 0");
+  }
+  ShellPcaOptions options;
+  options.steps = log_steps;
+  options.exp_steps = exp_steps;
+  options.max_exp_steps = max_exp_steps;
+  if (displacement == "log") {
+    options.displacement = DisplacementKind::kLog;
+  } else if (displacement == "difference") {
+    options.displacement = DisplacementKind::kAlignedDifference;
+  } else {
+    throw InputError("displacement must be 'log' or 'difference', got '" +
+                     displacement + "'");
+  }
+  const auto clock = Clock::now();
+  const ShapeSet set = MakeShapeSet(inputs_object, F, "inputs");
+  const int n = static_cast<int>(set.shapes.size());
+  const int minimum = loo ? 3 : 2;
+  if (n < minimum) {
+    throw InputError("inputs needs at least " + std::to_string(minimum) +
+                     " shells, got " + std::to_string(n));
+  }
+  if (modes > n - 1) {
+    throw InputError("modes " + std::to_string(modes) + " exceeds " +
+                     std::to_string(n - 1) + " (number of inputs - 1)");
+  }
+  if (loo && modes > n - 2) {
+    throw InputError("loo with modes " + std::to_string(modes) +
+                     " needs at least " + std::to_string(modes + 2) +
+                     " inputs");
+  }
+  const ShellSpace space(set.first.mesh, set.first.topology,
+                         Material(mu, lambda, eta));
+  const SolverSettings settings = solver.Settings("pca");
+  SolverSettings inner = settings;
+  inner.progress = false;
+
+  std::vector<std::pair<std::string, Positions>> shapes;
+  std::vector<Positions> strip;
+  std::vector<std::string> failed_shapes, far;
+  JsonObject json;
+  {
+    py::gil_scoped_release release;
+    const ElasticMeanResult mean =
+        ComputeElasticMean(space, set.shapes, settings);
+    if (mean.summary.termination_type == ceres::FAILURE) {
+      throw InputError("elastic mean failed: " + mean.summary.message);
+    }
+    for (int i : FarInputs(mean.energies)) {
+      far.push_back("inputs[" + std::to_string(i) + "]");
+    }
+    const ShellPcaModel shell =
+        ComputeShellPca(space, mean.mean, set.shapes, options, inner);
+    const int shell_modes =
+        std::min<int>(modes, static_cast<int>(shell.modes.size()));
+    shapes.emplace_back("mean", mean.mean);
+    strip.push_back(mean.mean);
+    for (int j = 0; j < shell_modes; ++j) {
+      for (const double sign : {-1.0, 1.0}) {
+        const std::string name = "mode_" + std::to_string(j + 1) +
+                                 (sign < 0 ? "_minus" : "_plus");
+        // A mode shape whose EXP shot has no solution is not returned; it
+        // is listed in the summary (as the CLI does).
+        try {
+          shapes.emplace_back(name, ShellModeShape(space, shell, j,
+                                                   sign * amplitude, options,
+                                                   inner));
+          strip.push_back(shapes.back().second);
+        } catch (const InputError&) {
+          failed_shapes.push_back(name + ".ply");
+        }
+      }
+    }
+    json = PcaJson(n, mean, displacement, options, shell, shell_modes,
+                   failed_shapes, far, amplitude);
+    if (baseline == "procrustes") {
+      const ProcrustesPcaModel procrustes = ComputeProcrustesPca(set.shapes);
+      shapes.emplace_back("procrustes_mean", procrustes.mean);
+      const int pm =
+          std::min<int>(modes, static_cast<int>(procrustes.modes.size()));
+      for (int j = 0; j < pm; ++j) {
+        const std::string stem = "procrustes_mode_" + std::to_string(j + 1);
+        shapes.emplace_back(stem + "_minus",
+                            ProcrustesModeShape(procrustes, j, -amplitude));
+        shapes.emplace_back(stem + "_plus",
+                            ProcrustesModeShape(procrustes, j, amplitude));
+      }
+      AddProcrustesJson(procrustes, pm, &json);
+    }
+    if (loo) {
+      LeaveOneOutOptions loo_options;
+      loo_options.max_modes = modes;
+      loo_options.pca = options;
+      loo_options.initial_mean = mean.mean;
+      const LeaveOneOutTable table =
+          EvaluateLeaveOneOut(space, set.shapes, loo_options, inner);
+      json.Raw("leave_one_out", LeaveOneOutJson(table));
+    }
+  }
+  json.Add("seconds", Seconds(clock));
+  AddOutput(json, output);
+  if (output) {  // the CLI's files: the PLY set and pca.json, together
+    MakeDirectory(*output);
+    AtomicFileSet files;
+    std::vector<Mesh> meshes;
+    meshes.reserve(shapes.size());
+    for (const auto& [name, positions] : shapes) {
+      meshes.push_back(Mesh{positions, set.first.mesh.faces});
+      const std::string path = *output + "/" + name + ".ply";
+      files.Add(path, MeshWriter(meshes.back(), path));
+    }
+    files.Add(*output + "/pca.json", json.str() + "\n");
+    files.Commit();
+  }
+  if (png) {
+    WriteFilmStrip(strip, set.first.mesh.faces, RenderOptions(), *png);
+  }
+  py::dict out;
+  for (const auto& [name, positions] : shapes) {
+    out[py::str(name)] = FromPositions(positions);
+  }
+  return py::make_tuple(out, ToDict(json));
+}
+
+// `branching simulate`: the relaxed Kohn-Mueller simulation. Returns (u as
+// an (nx + 1) x ny array, u[i, j] at node x_i, y_j; summary).
+py::tuple BranchingSimulatePy(double epsilon, double length, double height,
+                              int nx, int ny, const std::string& init,
+                              double delta, double grading, int continuation,
+                              int periods, int init_seed, int lm_iterations,
+                              int delta_extrapolation) {
+  using namespace branching;
+  if (init != "laminate" && init != "random" && init != "km" &&
+      init != "needle" && init != "lens") {
+    throw InputError("init must be laminate, random, km, needle or lens, "
+                     "got '" + init + "'");
+  }
+  if (delta_extrapolation == 1 || delta_extrapolation < 0) {
+    throw InputError("delta_extrapolation must be 0 or >= 2");
+  }
+  SimulationSettings s;
+  s.epsilon = epsilon;
+  s.length = length;
+  s.height = height > 0 ? height : 0.5;
+  s.nx = nx;
+  s.ny = ny;
+  s.grading = grading;
+  s.delta = delta;
+  s.continuation = continuation;
+  s.init = init;
+  s.periods = periods;
+  s.seed = static_cast<unsigned>(init_seed);
+  s.max_iterations = lm_iterations;
+  if (delta > 0 && s.height / ny > delta / 2.0) {
+    throw InputError("delta is not resolved: need height / ny <= delta / 2");
+  }
+  CheckSimulationSettings(s);
+  std::optional<SimulationResult> simulation;
+  JsonObject summary;
+  {
+    py::gil_scoped_release release;
+    simulation.emplace(RunSimulation(s));
+    const SimulationResult& result = *simulation;
+    if (result.stages.back().termination == "COLLAPSED") {
+      throw InputError(
+          "branching simulate: the pattern collapsed to u = 0 at delta " +
+          std::to_string(result.stages.back().delta) +
+          " (max |u_y| < 0.5): the grid cannot hold it; use more y-nodes "
+          "or a smaller delta");
+    }
+    summary = SimulationJson(s, result);
+    if (delta_extrapolation >= 2) {
+      std::vector<double> deltas;
+      for (int k = 0; k < delta_extrapolation; ++k) {
+        deltas.push_back(result.delta * std::pow(std::sqrt(0.5), k));
+      }
+      summary.Add("extrapolation",
+                  DeltaExtrapolationJson(ExtrapolateDelta(s, deltas)));
+    }
+  }
+  const SimulationResult& result = *simulation;
+  const RelaxedGrid& g = result.field.grid;
+  py::array_t<double> u({static_cast<py::ssize_t>(g.nx + 1),
+                         static_cast<py::ssize_t>(g.ny)});
+  for (int i = 0; i <= g.nx; ++i) {
+    for (int j = 0; j < g.ny; ++j) {
+      u.mutable_at(i, j) = result.field.at(i, j);
+    }
+  }
+  return py::make_tuple(u, ToDict(summary));
+}
+
+// `branching construct`: the self-similar constructions. Returns the
+// summary.
+py::object BranchingConstructPy(double epsilon, double length,
+                                const std::string& family, bool optimize,
+                                bool search, const std::string& search_ratios,
+                                int search_pairs, int subintervals,
+                                int search_starts,
+                                const std::string& search_filter,
+                                int search_threads) {
+  using namespace branching;
+  if (!(epsilon > 0) || !(length > 0)) {
+    throw InputError("epsilon and length must be > 0");
+  }
+  if (family != "km" && family != "needle" && family != "lens" &&
+      family != "general") {
+    throw InputError("family must be km, needle, lens or general, got '" +
+                     family + "'");
+  }
+  py::gil_scoped_release release;
+  if (family == "general") {
+    if (subintervals < 1 || subintervals > 16) {
+      throw InputError("subintervals must lie in [1, 16]");
+    }
+    if (search_pairs < 1 || search_pairs > 2) {
+      throw InputError("search_pairs must be 1 or 2");
+    }
+    if (search_starts < 0 || search_threads < 1) {
+      throw InputError("search_starts must be >= 0, search_threads >= 1");
+    }
+    std::vector<int> ratios;
+    {
+      std::stringstream in(search_ratios);
+      std::string item;
+      while (std::getline(in, item, ',')) {
+        if (item != "2" && item != "3" && item != "4") {
+          throw InputError("search_ratios must be a list of 2, 3, 4");
+        }
+        ratios.push_back(std::stoi(item));
+      }
+      if (ratios.empty()) throw InputError("search_ratios is empty");
+    }
+    GeneralResult best;
+    int solves = 1;
+    const auto start = Clock::now();
+    if (search) {
+      GeneralSearchOptions o;
+      o.ratios = ratios;
+      o.max_pairs = search_pairs;
+      o.subintervals = subintervals;
+      o.starts_per_topology = search_starts;
+      o.num_threads = search_threads;
+      o.filter = search_filter;
+      const GeneralSearchResult r = SearchGeneral(o, nullptr);
+      best = r.best;
+      solves = r.solves;
+    } else {
+      // The lens topology (as the CLI): one group, needles in the middle of
+      // both lamellae, all interfaces free.
+      GeneralTopology t;
+      t.pairs = 1;
+      t.r = 3;
+      t.subintervals = subintervals;
+      t.name = "lens";
+      NucleationGroup group;
+      group.tau = 0.5;
+      group.needles = {{0, 0.5}, {1, 0.5}};
+      t.groups = {group};
+      best = SolveGeneral(t, 0.0, 0.0, 1);
+    }
+    const double seconds = Seconds(start);
+    if (!best.ok) throw InputError("general construct: no valid pattern found");
+    const FreeLengthSeries series =
+        OptimalFreeLengths(best.A, best.B, best.topology.r, epsilon, length);
+    const JsonObject summary = GeneralConstructionJson(
+        best, series, epsilon, length, search, solves, seconds);
+    py::gil_scoped_acquire acquire;
+    return ToDict(summary);
+  }
+  if (search) throw InputError("search needs family general");
+  ConstructionResult result;
+  if (family == "km" || family == "needle") {
+    const bool km = family == "km";
+    result = km ? DefaultKm(epsilon, length) : DefaultNeedle(epsilon, length);
+    if (optimize) {
+      result = km ? OptimizeKm(epsilon, length, 0.5 * result.h0, 0.3)
+                  : OptimizeNeedle(epsilon, length, 0.5 * result.h0, 0.3);
+    }
+  } else {
+    result = DefaultLens(epsilon, length);
+    if (optimize) {
+      result = OptimizeLens(epsilon, length, result.h0, result.theta,
+                            LensShape{0.2, 0.0, 0.0});
+    }
+  }
+  const JsonObject summary = ConstructionJson(result, epsilon, length,
+                                              optimize);
+  py::gil_scoped_acquire acquire;
+  return ToDict(summary);
+}
+
+void WriteGltfPy(const std::string& path, const py::object& frames_object,
+                 const IndexArray& F, double fps,
+                 const std::string& interpolation) {
+  GltfAnimationOptions options;
+  options.frames_per_second = fps;
+  if (interpolation == "linear") {
+    options.interpolation = GltfAnimationOptions::Interpolation::kLinear;
+  } else if (interpolation == "step") {
+    options.interpolation = GltfAnimationOptions::Interpolation::kStep;
+  } else {
+    throw InputError("interpolation must be linear or step, got '" +
+                     interpolation + "'");
+  }
+  WriteGltfMorphAnimation(path, ToShapes(frames_object, "frames"), ToFaces(F),
+                          options);
+}
+
+}  // namespace
+}  // namespace shellspace
+
+// The keyword arguments shared by the verbs, with the CLI's defaults.
+#define SHELLSPACE_MATERIAL_ARGS                                     \
+  py::arg("mu") = 1.0, py::arg("lambda_") = 1.0, py::arg("eta") = 0.01
+#define SHELLSPACE_SOLVER_ARGS                                         \
+  py::arg("tolerance") = 1e-8, py::arg("max_iterations") = 200,        \
+      py::arg("threads") = 2, py::arg("quiet") = false
+
+PYBIND11_MODULE(shellspace, m) {
+  using namespace shellspace;
+  // Ceres' routine warnings hidden, as in the CLI (its --minloglevel=0).
+  FLAGS_minloglevel = google::GLOG_ERROR;
+  FLAGS_logtostderr = true;
+
+  m.doc() =
+      "shellspace: the time-discrete geodesic calculus on discrete shells.\n"
+      "Meshes are (V, F): V #V x 3 float64, F #F x 3 int; paths are\n"
+      "(K + 1) x #V x 3 arrays. Each verb function takes the CLI verb's\n"
+      "options as keyword arguments (lambda as lambda_) and returns its\n"
+      "results and the verb's --json summary as a dict.";
+  py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+
+  m.def("read_mesh", &ReadMeshPy, py::arg("path"),
+        "Reads a PLY, OBJ or OFF mesh (strict readers): returns (V, F).");
+  m.def("write_mesh", &WriteMeshPy, py::arg("path"), py::arg("V"),
+        py::arg("F"),
+        "Writes (V, F) as PLY, OBJ or OFF (by the extension), atomically.");
+  m.def("write_gltf", &WriteGltfPy, py::arg("path"), py::arg("frames"),
+        py::arg("F"), py::arg("fps") = 4.0, py::arg("interpolation") = "linear",
+        "Writes frames (a path) as one glTF 2.0 morph animation (.glb), as "
+        "`shellspace export` does.");
+  m.def("read_mask", &ReadMask, py::arg("path"), py::arg("num_vertices"),
+        "Reads a vertex mask file: sorted unique 0-based indices.");
+
+  m.def(
+      "energy",
+      [](const DoubleArray& reference, const DoubleArray& deformed,
+         const IndexArray& F, double mu, double lambda, double eta) {
+        return EnergyPy(reference, deformed, F, mu, lambda, eta);
+      },
+      py::arg("reference"), py::arg("deformed"), py::arg("F"),
+      SHELLSPACE_MATERIAL_ARGS,
+      "W[reference, deformed] = W_mem + eta W_bend: the `energy` verb's "
+      "summary {membrane, bending, total, mu, lambda, eta}.");
+  m.def("energy_gradient", &GradientPy, py::arg("reference"),
+        py::arg("deformed"), py::arg("F"), py::arg("side") = "deformed",
+        SHELLSPACE_MATERIAL_ARGS,
+        "D_2 W (side='deformed') or D_1 W (side='reference') as a #V x 3 "
+        "array (the derivative by vertex v, coordinate c at [v, c]).");
+  m.def("energy_hessian", &HessianPy, py::arg("reference"),
+        py::arg("deformed"), py::arg("F"), py::arg("rows") = "deformed",
+        py::arg("cols") = "deformed", SHELLSPACE_MATERIAL_ARGS,
+        "The 3#V x 3#V block d_rows d_cols W (coordinate 3 v + c) as "
+        "triplets (rows, cols, vals): scipy.sparse.coo_matrix((vals, (rows, "
+        "cols)), shape=(3 * nV, 3 * nV)). rows/cols: 'deformed' or "
+        "'reference' ('reference', 'deformed' is the mixed D_1 D_2 W).");
+
+  m.def(
+      "geodesic",
+      [](const DoubleArray& start, const DoubleArray& end, const IndexArray& F,
+         int steps, const py::object& mask, const std::string& multires,
+         const std::string& linear_solver, bool report,
+         const std::optional<std::string>& output,
+         const std::optional<std::string>& png,
+                  const std::optional<std::string>& gltf, double mu, double lambda,
+         double eta, double tolerance, int max_iterations, int threads,
+         bool quiet) {
+        return GeodesicPy(start, end, F, steps, mask, multires, linear_solver,
+                          report, output, png, gltf, mu, lambda, eta,
+                          {tolerance, max_iterations, threads, quiet});
+      },
+      py::arg("start"), py::arg("end"), py::arg("F"), py::arg("steps") = 8,
+      py::arg("mask") = py::none(), py::arg("multires") = "auto",
+      py::arg("linear_solver") = "auto", py::arg("report") = false,
+      py::arg("output") = py::none(), py::arg("png") = py::none(), py::arg("gltf") = py::none(),
+      SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
+      "Discrete geodesic from start to end in `steps` steps: returns (path, "
+      "summary). mask: vertex indices or a mask file held at their linear "
+      "positions. output: also write DIR/shape_000.ply ...; png: a film "
+      "strip.");
+  m.def(
+      "log",
+      [](const DoubleArray& start, const DoubleArray& end, const IndexArray& F,
+         int steps, const py::object& mask, const std::string& multires,
+         const std::string& linear_solver,
+         const std::optional<std::string>& output, double mu, double lambda,
+         double eta, double tolerance, int max_iterations, int threads,
+         bool quiet) {
+        return LogPy(start, end, F, steps, mask, multires, linear_solver,
+                     output, mu, lambda, eta,
+                     {tolerance, max_iterations, threads, quiet});
+      },
+      py::arg("start"), py::arg("end"), py::arg("F"), py::arg("steps") = 8,
+      py::arg("mask") = py::none(), py::arg("multires") = "auto",
+      py::arg("linear_solver") = "auto", py::arg("output") = py::none(),
+      SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
+      "LOG_K(start -> end) = K (s_1 - s_0) of the discrete geodesic: returns "
+      "(log #V x 3, summary). output: write start + log (as the CLI).");
+  m.def(
+      "shoot",
+      [](const DoubleArray& first, const DoubleArray& second,
+         const IndexArray& F, int steps, bool backward, const py::object& mask,
+         const std::optional<std::string>& output,
+         const std::optional<std::string>& png,
+                  const std::optional<std::string>& gltf, double mu, double lambda,
+         double eta, double tolerance, int max_iterations, int threads,
+         bool quiet) {
+        return ShootPy(first, second, F, steps, backward, mask, output, png, gltf,
+                       mu, lambda, eta,
+                       {tolerance, max_iterations, threads, quiet});
+      },
+      py::arg("first"), py::arg("second"), py::arg("F"), py::arg("steps") = 8,
+      py::arg("backward") = false, py::arg("mask") = py::none(),
+      py::arg("output") = py::none(), py::arg("png") = py::none(), py::arg("gltf") = py::none(),
+      SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
+      "Geodesic shooting (EXP steps) from (first, second): returns (path, "
+      "summary).");
+  m.def(
+      "transport",
+      [](const py::object& path, const DoubleArray& variation,
+         const IndexArray& F, double epsilon, const py::object& mask,
+         const std::optional<std::string>& output,
+         const std::optional<std::string>& png,
+                  const std::optional<std::string>& gltf, double mu, double lambda,
+         double eta, double tolerance, int max_iterations, int threads,
+         bool quiet) {
+        return TransportPy(path, variation, F, epsilon, mask, output, png, gltf, mu,
+                           lambda, eta,
+                           {tolerance, max_iterations, threads, quiet});
+      },
+      py::arg("path"), py::arg("variation"), py::arg("F"),
+      py::arg("epsilon") = 1.0, py::arg("mask") = py::none(),
+      py::arg("output") = py::none(), py::arg("png") = py::none(), py::arg("gltf") = py::none(),
+      SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
+      "Schild's-ladder transport of variation - path[0] along path: returns "
+      "(shapes s_k + epsilon xi_k, summary).");
+  m.def(
+      "spline",
+      [](const py::object& keyframes, const std::vector<long long>& at,
+         const IndexArray& F, int steps, const std::string& method,
+         bool periodic, const std::optional<std::string>& output,
+         const std::optional<std::string>& png,
+                  const std::optional<std::string>& gltf, double mu, double lambda,
+         double eta, double tolerance, int max_iterations, int threads,
+         bool quiet) {
+        return SplinePy(keyframes, at, F, steps, method, periodic, output, png, gltf,
+                        mu, lambda, eta,
+                        {tolerance, max_iterations, threads, quiet});
+      },
+      py::arg("keyframes"), py::arg("at"), py::arg("F"), py::arg("steps") = 8,
+      py::arg("method") = "nonlinear", py::arg("periodic") = false,
+      py::arg("output") = py::none(), py::arg("png") = py::none(), py::arg("gltf") = py::none(),
+      SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
+      "Riemannian spline through keyframes at path indices `at`: returns "
+      "(path, summary).");
+  m.def(
+      "regress",
+      [](const py::object& inputs, const std::vector<long long>& at,
+         const IndexArray& F, int steps, double sigma,
+         const std::optional<std::string>& output,
+         const std::optional<std::string>& png,
+                  const std::optional<std::string>& gltf, double mu, double lambda,
+         double eta, double tolerance, int max_iterations, int threads,
+         bool quiet) {
+        return RegressPy(inputs, at, F, steps, sigma, output, png, gltf, mu, lambda,
+                         eta, {tolerance, max_iterations, threads, quiet});
+      },
+      py::arg("inputs"), py::arg("at"), py::arg("F"), py::arg("steps") = 8,
+      py::arg("sigma") = 1.0, py::arg("output") = py::none(),
+      py::arg("png") = py::none(), py::arg("gltf") = py::none(), SHELLSPACE_MATERIAL_ARGS,
+      SHELLSPACE_SOLVER_ARGS,
+      "Shape regression (data term + sigma spline energy): returns (path, "
+      "summary).");
+  m.def(
+      "pca",
+      [](const py::object& inputs, const IndexArray& F, int modes,
+         const std::string& baseline, bool loo, double amplitude,
+         int log_steps, int exp_steps, int max_exp_steps,
+         const std::string& displacement,
+         const std::optional<std::string>& output,
+         const std::optional<std::string>& png, double mu, double lambda,
+         double eta, double tolerance, int max_iterations, int threads,
+         bool quiet) {
+        return PcaPy(inputs, F, modes, baseline, loo, amplitude, log_steps,
+                     exp_steps, max_exp_steps, displacement, output, png, mu,
+                     lambda, eta, {tolerance, max_iterations, threads, quiet});
+      },
+      py::arg("inputs"), py::arg("F"), py::arg("modes") = 3,
+      py::arg("baseline") = "", py::arg("loo") = false,
+      py::arg("amplitude") = 1.0, py::arg("log_steps") = 2,
+      py::arg("exp_steps") = 4, py::arg("max_exp_steps") = 16,
+      py::arg("displacement") = "log", py::arg("output") = py::none(),
+      py::arg("png") = py::none(), SHELLSPACE_MATERIAL_ARGS,
+      SHELLSPACE_SOLVER_ARGS,
+      "Shell PCA at the elastic mean (and the Procrustes baseline, "
+      "leave-one-out): returns ({'mean': ..., 'mode_1_minus': ..., ...}, "
+      "summary). output: the CLI's directory (PLY files and pca.json).");
+  m.def("branching_simulate", &BranchingSimulatePy,
+        py::arg("epsilon") = 0.001, py::arg("length") = 1.0,
+        py::arg("height") = 0.0, py::arg("nx") = 64, py::arg("ny") = 128,
+        py::arg("init") = "needle", py::arg("delta") = 0.0,
+        py::arg("grading") = 2.0, py::arg("continuation") = 3,
+        py::arg("periods") = 0, py::arg("init_seed") = 1,
+        py::arg("lm_iterations") = 200, py::arg("delta_extrapolation") = 0,
+        "The relaxed Kohn-Mueller simulation (`branching simulate`): "
+        "returns (u (nx + 1) x ny, summary). Writes no files.");
+  m.def("branching_construct", &BranchingConstructPy,
+        py::arg("epsilon") = 0.001, py::arg("length") = 1.0,
+        py::arg("family") = "km", py::arg("optimize") = false,
+        py::arg("search") = false, py::arg("search_ratios") = "2,3,4",
+        py::arg("search_pairs") = 2, py::arg("subintervals") = 3,
+        py::arg("search_starts") = 1, py::arg("search_filter") = "",
+        py::arg("search_threads") = 1,
+        "A self-similar construction (`branching construct`): returns the "
+        "summary. Writes no files.");
+  m.def(
+      "mean",
+      [](const py::object& inputs, const IndexArray& F, bool report,
+         const std::optional<std::string>& output, double mu, double lambda,
+         double eta, double tolerance, int max_iterations, int threads,
+         bool quiet) {
+        return MeanPy(inputs, F, report, output, mu, lambda, eta,
+                      {tolerance, max_iterations, threads, quiet});
+      },
+      py::arg("inputs"), py::arg("F"), py::arg("report") = false,
+      py::arg("output") = py::none(), SHELLSPACE_MATERIAL_ARGS,
+      SHELLSPACE_SOLVER_ARGS,
+      "Elastic mean argmin_s sum_i W[inputs_i, s]: returns (mean #V x 3, "
+      "summary).");
+}

@@ -1,0 +1,49 @@
+// The summaries of `branching simulate` and `branching construct` as JSON
+// objects, built from the library's results (problems/branching/). The CLI
+// prints them with --json and writes them as summary.json; the Python
+// module returns them as dicts (python/).
+#ifndef SHELLSPACE_REPORTS_BRANCHING_REPORTS_H_
+#define SHELLSPACE_REPORTS_BRANCHING_REPORTS_H_
+
+#include "shellspace/io/json_writer.h"
+#include "shellspace/problems/branching/construction_optimizer.h"
+#include "shellspace/problems/branching/general_search.h"
+#include "shellspace/problems/branching/self_similar_series.h"
+#include "shellspace/problems/branching/simulation.h"
+
+namespace shellspace {
+
+// {elastic, interfacial, total}.
+JsonObject BranchingEnergyJson(double elastic, double interfacial);
+
+// A relaxed simulation with settings `s`: command, epsilon, length, height,
+// nx, ny, grading, delta, init, periods, energy, energy_over_eps23_L13
+// (E / (eps^2/3 L^1/3)), km_constant, iterations, seconds, stages (per
+// continuation stage), x and interfaces (interface counts per node row).
+JsonObject SimulationJson(const branching::SimulationSettings& s,
+                          const branching::SimulationResult& result);
+
+// The delta -> 0 extrapolation: delta, ny, constant, linear_c0, linear_c1,
+// linear_rms and, if fitted, quadratic_q0..q2, quadratic_rms.
+JsonObject DeltaExtrapolationJson(const branching::DeltaExtrapolation& ex);
+
+// A construction of the km, needle or lens family: command, family,
+// optimized, epsilon, length, constant, constant_free_lengths, parameters
+// {r, h0, theta (lens: tau, a1, a2)}, A, B, energy, (km: A_zero_edge,
+// constant_zero_edge), the closed-form constants and the ratios to them,
+// (optimized: iterations, seconds, termination).
+JsonObject ConstructionJson(const branching::ConstructionResult& result,
+                            double epsilon, double length, bool optimized);
+
+// The general family's best pattern `best` with its free-length series:
+// command, family "general", search, epsilon, length, constant,
+// constant_geometric_lengths, parameters (topology, needles, the first 12
+// lengths), A, B, AB2, energy, the KM constants and ratios, solves, seconds.
+JsonObject GeneralConstructionJson(const branching::GeneralResult& best,
+                                   const branching::FreeLengthSeries& series,
+                                   double epsilon, double length, bool search,
+                                   int solves, double seconds);
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_REPORTS_BRANCHING_REPORTS_H_

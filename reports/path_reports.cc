@@ -1,0 +1,183 @@
+#include "shellspace/reports/path_reports.h"
+
+#include <algorithm>
+
+namespace shellspace {
+
+int LmIterations(const ceres::Solver::Summary& summary) {
+  return std::max(0, static_cast<int>(summary.iterations.size()) - 1);
+}
+
+std::string JsonArray(const std::vector<std::string>& objects) {
+  std::string out = "[";
+  for (size_t i = 0; i < objects.size(); ++i) {
+    out += (i ? ", " : "") + objects[i];
+  }
+  return out + "]";
+}
+
+std::vector<std::string> GeodesicStages(const GeodesicResult& result) {
+  std::vector<std::string> stages;
+  for (const GeodesicStage& stage : result.stages) {
+    const bool newton = stage.method == GeodesicStage::Method::kNewton;
+    stages.push_back(JsonObject()
+                         .Add("method", newton ? "newton"
+                                               : "levenberg-marquardt")
+                         .Add("iterations", stage.iterations)
+                         .Add("final_gradient_norm", stage.final_gradient)
+                         .Add("termination", stage.termination)
+                         .str());
+  }
+  return stages;
+}
+
+const char* ExpMethodName(ExpStepResult::Method method) {
+  return method == ExpStepResult::Method::kNewton ? "newton"
+                                                  : "levenberg-marquardt";
+}
+
+std::vector<std::string> ExpStepStages(const ShootResult& result) {
+  std::vector<std::string> stages;
+  for (const ExpStepResult& step : result.exp_steps) {
+    const int lm = LmIterations(step.summary);
+    stages.push_back(
+        JsonObject()
+            .Add("method", ExpMethodName(step.method))
+            .Add("solved", step.solved)
+            .Add("newton_steps", step.newton_steps)
+            .Add("lm_iterations", lm)
+            .Add("iterations", step.newton_steps + lm)
+            .Add("residual", step.residual_norm)
+            .Add("relative_residual", step.relative_residual)
+            .Add("termination", ceres::TerminationTypeToString(
+                                    step.summary.termination_type))
+            .str());
+  }
+  return stages;
+}
+
+JsonObject GeodesicJson(const GeodesicResult& result) {
+  const double relative = result.initial_gradient > 0
+                              ? result.final_gradient / result.initial_gradient
+                              : 0.0;
+  JsonObject json;
+  json.Add("path_energy", result.path_energy)
+      .Add("step_energies", result.step_energies)
+      .Add("iterations", result.iterations)
+      .Add("initial_gradient_norm", result.initial_gradient)
+      .Add("final_gradient_norm", result.final_gradient)
+      .Add("relative_gradient_norm", relative)
+      .Add("converged", result.converged)
+      .Add("termination", result.stages.empty()
+                              ? std::string("no unknowns")
+                              : result.stages.back().termination)
+      .Raw("stages", JsonArray(GeodesicStages(result)))
+      .Add("newton_steps", result.newton.steps)
+      .Add("newton_seconds", result.newton.seconds)
+      .Add("factorizations", result.newton.factorizations)
+      .Add("cg_iterations", result.newton.cg_iterations)
+      .Add("linear_solver", result.newton.linear_solver.empty()
+                                ? std::string("none")
+                                : result.newton.linear_solver)
+      .Add("cg_not_converged", result.newton.cg_not_converged)
+      .Add("newton_shifted_steps", result.newton.shifted_steps)
+      .Add("step_energy_ratio", result.step_energy_ratio)
+      .Add("uneven_steps", result.uneven_steps)
+      .Add("frames", static_cast<int>(result.path.size()));
+  return json;
+}
+
+std::string MultiresolutionJson(const MultiresolutionResult& result) {
+  std::vector<std::string> levels;
+  for (const MultiresolutionLevel& level : result.levels) {
+    levels.push_back(JsonObject()
+                         .Add("vertices", level.vertices)
+                         .Add("faces", level.faces)
+                         .Add("iterations", level.iterations)
+                         .Add("path_energy", level.path_energy)
+                         .Add("final_gradient_norm", level.final_gradient)
+                         .Add("converged", level.converged)
+                         .Add("seconds", level.seconds)
+                         .str());
+  }
+  return JsonArray(levels);
+}
+
+ShootTotals TotalsOf(const ShootResult& result) {
+  ShootTotals totals;
+  for (const ExpStepResult& step : result.exp_steps) {
+    totals.iterations += step.newton_steps + LmIterations(step.summary);
+    totals.max_residual = std::max(totals.max_residual, step.residual_norm);
+    totals.max_relative_residual =
+        std::max(totals.max_relative_residual, step.relative_residual);
+    totals.converged &= step.solved;
+  }
+  return totals;
+}
+
+JsonObject ShootJson(const ShootResult& result) {
+  const ShootTotals totals = TotalsOf(result);
+  JsonObject json;
+  json.Add("path_energy", result.path_energy)
+      .Add("step_energies", result.step_energies)
+      .Add("iterations", totals.iterations)
+      .Add("max_exp_residual", totals.max_residual)
+      .Add("max_relative_residual", totals.max_relative_residual)
+      .Add("converged", totals.converged)
+      .Raw("stages", JsonArray(ExpStepStages(result)))
+      .Add("frames", static_cast<int>(result.path.size()));
+  return json;
+}
+
+JsonObject TransportJson(const TransportResult& result, double epsilon) {
+  std::vector<double> norms;
+  for (const Positions& xi : result.variations) {
+    norms.push_back(xi.cwiseAbs().maxCoeff());
+  }
+  std::vector<std::string> rungs;
+  int iterations = 0;
+  for (size_t k = 0; k < result.rungs.size(); ++k) {
+    const TransportResult::Rung& rung = result.rungs[k];
+    iterations += rung.newton_steps + rung.lm_iterations;
+    rungs.push_back(JsonObject()
+                        .Add("rung", static_cast<int>(k + 1))
+                        .Add("solved", rung.solved)
+                        .Add("relative_residual", rung.relative_residual)
+                        .Add("method", ExpMethodName(rung.method))
+                        .Add("epsilon_divisor", rung.divisor)
+                        .Add("newton_steps", rung.newton_steps)
+                        .Add("lm_iterations", rung.lm_iterations)
+                        .str());
+  }
+  JsonObject json;
+  json.Add("variation_max_norms", norms)
+      .Add("exp_residuals", result.exp_residuals)
+      .Add("converged", result.all_solved)
+      .Add("iterations", iterations)
+      .Raw("rungs", JsonArray(rungs))
+      .Add("epsilon", epsilon)
+      .Add("frames", static_cast<int>(result.shapes.size()));
+  return json;
+}
+
+JsonObject SplineJson(JsonObject head, const SplineResult& result,
+                      double seconds, bool optimised) {
+  head.Add("spline_energy", result.spline_energy)
+      .Add("data_energy", result.data_energy)
+      .Add("objective", result.objective)
+      .Add("iterations", result.iterations)
+      .Add("initial_gradient_norm", result.initial_gradient_norm)
+      .Add("final_gradient_norm", result.final_gradient_norm)
+      .Add("relative_gradient_norm", result.relative_gradient_norm)
+      .Add("gradient_criterion_met", result.gradient_criterion_met)
+      .Add("converged", optimised ? result.converged : true)
+      .Add("termination", result.summary.iterations.size() > 1
+                              ? ceres::TerminationTypeToString(
+                                    result.summary.termination_type)
+                              : "not optimised")
+      .Add("seconds", seconds)
+      .Add("frames", static_cast<int>(result.path.size()));
+  return head;
+}
+
+}  // namespace shellspace

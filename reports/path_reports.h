@@ -1,0 +1,97 @@
+// The summaries of the path verbs (`geodesic`, `log`, `shoot`, `transport`,
+// `spline`, `regress`, `demo`) as JSON objects, built from the library's own
+// results (nothing is recomputed here). The CLI prints them with --json; the
+// Python module returns them as dicts (python/). Keys of each object are
+// listed above its function.
+#ifndef SHELLSPACE_REPORTS_PATH_REPORTS_H_
+#define SHELLSPACE_REPORTS_PATH_REPORTS_H_
+
+#include <ceres/solver.h>
+
+#include <string>
+#include <vector>
+
+#include "shellspace/io/json_writer.h"
+#include "shellspace/problems/calculus/exponential_map.h"
+#include "shellspace/problems/calculus/geodesic.h"
+#include "shellspace/problems/calculus/multiresolution.h"
+#include "shellspace/problems/calculus/parallel_transport.h"
+#include "shellspace/problems/splines/spline.h"
+
+namespace shellspace {
+
+// LM iterations of a Ceres solve, without Ceres' iteration 0 (the initial
+// evaluation).
+int LmIterations(const ceres::Solver::Summary& summary);
+
+// A JSON array of already serialised objects.
+std::string JsonArray(const std::vector<std::string>& objects);
+
+// The stages of a geodesic solve, one object each: method
+// ("levenberg-marquardt" or "newton"), iterations, final_gradient_norm,
+// termination.
+std::vector<std::string> GeodesicStages(const GeodesicResult& result);
+
+// The EXP steps of a shot, one object each: method ("newton" or
+// "levenberg-marquardt": the solver that produced the shape), solved
+// (relative_residual <= kExpStepAcceptance), newton_steps, lm_iterations,
+// iterations (their sum), residual (max |F|), relative_residual (max |F| /
+// max |D_2 W|), termination.
+std::vector<std::string> ExpStepStages(const ShootResult& result);
+
+// "newton" or "levenberg-marquardt".
+const char* ExpMethodName(ExpStepResult::Method method);
+
+// Totals over the EXP steps of a shot: Newton steps plus LM iterations,
+// every step converged, the largest residual max |F|.
+struct ShootTotals {
+  int iterations = 0;
+  bool converged = true;  // every EXP step solved
+  double max_residual = 0;
+  double max_relative_residual = 0;
+};
+ShootTotals TotalsOf(const ShootResult& result);
+
+// A geodesic solve (SolveGeodesic, LogK): path_energy (E_K), step_energies,
+// iterations (every LM stage and every Newton step), initial_gradient_norm,
+// final_gradient_norm (after the last stage, max norm over the free
+// coordinates), relative_gradient_norm (final / initial), converged (the
+// stopping criterion was met), termination (of the last stage), stages,
+// newton_steps, newton_seconds, factorizations, cg_iterations,
+// linear_solver, cg_not_converged, newton_shifted_steps (Newton steps from
+// H + lambda I), step_energy_ratio (max / min step energy), uneven_steps
+// (ratio > kUnevenStepEnergyRatio), frames.
+JsonObject GeodesicJson(const GeodesicResult& result);
+
+// The levels of a multiresolution solve as a JSON array (coarsest first; the
+// last is the input mesh), one object each: vertices, faces, iterations,
+// path_energy, final_gradient_norm, converged, seconds.
+std::string MultiresolutionJson(const MultiresolutionResult& result);
+
+// A shot (ShootWithReport): path_energy, step_energies, iterations (Newton
+// steps and LM iterations of every EXP step), max_exp_residual, converged
+// (every EXP step solved), max_relative_residual, stages (the EXP steps),
+// frames.
+JsonObject ShootJson(const ShootResult& result);
+
+// A parallel transport: variation_max_norms (max |xi_k| per frame),
+// exp_residuals (per rung), converged (every rung solved), iterations (Newton
+// steps and LM iterations of every rung), rungs (per rung: rung, solved,
+// relative_residual, method, epsilon_divisor (the rung was solved at
+// epsilon / divisor and scaled back), newton_steps, lm_iterations),
+// epsilon, frames.
+JsonObject TransportJson(const TransportResult& result, double epsilon);
+
+// A spline or regression solve, appended to `head` (the verb's own keys):
+// spline_energy (F_K), data_energy, objective, iterations (L-BFGS, without
+// Ceres' iteration 0), initial_gradient_norm, final_gradient_norm,
+// relative_gradient_norm, gradient_criterion_met, converged (`optimised`:
+// the outer solver ran and met its criterion, SplineResult::converged;
+// otherwise true), termination ("not optimised" if no iteration ran), then
+// `seconds` and frames.
+JsonObject SplineJson(JsonObject head, const SplineResult& result,
+                      double seconds, bool optimised = true);
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_REPORTS_PATH_REPORTS_H_

@@ -1,0 +1,433 @@
+"""Tests of the Python module `shellspace` (python/shellspace_module.cc).
+
+Run by CTest (`python_tests`) with PYTHONPATH at the build tree's python/
+folder, SHELLSPACE_CLI the built `shellspace` tool and SHELLSPACE_DATA_DIR the
+shared meshes. Values are checked against independent expectations: W[S, S] =
+0, central finite differences of the energy and of the gradient (each with a
+negative twin that must fail the same check), and the CLI's own numbers.
+"""
+import json
+import os
+import subprocess
+
+import numpy as np
+import pytest
+import scipy.sparse
+
+import shellspace
+
+DATA = os.environ.get("SHELLSPACE_DATA_DIR", "../shared/data")
+CLI = os.environ.get("SHELLSPACE_CLI", "build/shellspace")
+SQUARE = os.path.join(DATA, "simple", "square4.ply")
+SQUARE_BENT = os.path.join(DATA, "simple", "square4_bent.ply")
+DOUBLE = os.path.join(DATA, "simple", "double_square.ply")
+DOUBLE_BENT = os.path.join(DATA, "simple", "double_square_bent.ply")
+
+
+def mesh(path):
+    return shellspace.read_mesh(path)
+
+
+def cli_json(args, quiet=True):
+    out = subprocess.run([CLI] + args + ["--json"] + ["--quiet"] * quiet,
+                         check=True,
+                         capture_output=True, text=True).stdout
+    return json.loads(out)
+
+
+def relative_error(a, b):
+    return np.max(np.abs(a - b)) / max(1.0, np.max(np.abs(b)))
+
+
+# ---- Finite-difference checks (with negative twins) ----------------------
+
+def gradient_error(energy, gradient, x, h=1e-6):
+    """max |gradient(x) - central FD of energy| relative to max(1, |FD|)."""
+    fd = np.zeros_like(x)
+    for i in np.ndindex(x.shape):
+        e = np.zeros_like(x)
+        e[i] = h
+        fd[i] = (energy(x + e) - energy(x - e)) / (2 * h)
+    return relative_error(gradient(x), fd)
+
+
+def hessian_error(gradient, hessian, x, h=1e-6):
+    """max |H(x) - central FD of the gradient|, column by column."""
+    n = x.size
+    fd = np.zeros((gradient(x).size, n))
+    for j in range(n):
+        e = np.zeros(n)
+        e[j] = h
+        fd[:, j] = (gradient((x.ravel() + e).reshape(x.shape)).ravel() -
+                    gradient((x.ravel() - e).reshape(x.shape)).ravel()) / (2 * h)
+    return relative_error(hessian(x), fd)
+
+
+def hessian_matrix(triplets, n):
+    rows, cols, vals = triplets
+    return scipy.sparse.coo_matrix((vals, (rows, cols)),
+                                   shape=(3 * n, 3 * n)).toarray()
+
+
+@pytest.fixture(scope="module")
+def double_square():
+    V, F = mesh(DOUBLE)
+    W, _ = mesh(DOUBLE_BENT)
+    return V, W, F
+
+
+def test_read_mesh_shapes_and_types(double_square):
+    V, W, F = double_square
+    assert V.dtype == np.float64 and V.shape[1] == 3
+    assert np.issubdtype(F.dtype, np.integer) and F.shape[1] == 3
+    assert W.shape == V.shape
+
+
+def test_write_read_round_trip(tmp_path, double_square):
+    V, W, F = double_square
+    path = str(tmp_path / "w.ply")
+    shellspace.write_mesh(path, W, F)
+    W2, F2 = shellspace.read_mesh(path)
+    assert np.array_equal(F2, F)
+    assert np.max(np.abs(W2 - W)) == 0.0  # 17 digits written
+
+
+def test_energy_of_a_mesh_against_itself_is_zero(double_square):
+    V, _, F = double_square
+    e = shellspace.energy(V, V, F)
+    assert abs(e["membrane"]) < 1e-14
+    assert abs(e["bending"]) < 1e-14
+    assert abs(e["total"]) < 1e-14
+    assert (e["mu"], e["lambda"], e["eta"]) == (1, 1, 0.01)
+
+
+def test_energy_matches_cli(double_square):
+    V, W, F = double_square
+    e = shellspace.energy(V, W, F, eta=0.1)
+    cli = cli_json(["energy", "--reference", DOUBLE, "--deformed",
+                    DOUBLE_BENT, "--eta", "0.1"], quiet=False)
+    assert e == cli
+    assert abs(e["total"] - (e["membrane"] + 0.1 * e["bending"])) < 1e-14
+
+
+@pytest.mark.parametrize("side", ["deformed", "reference"])
+def test_gradient_against_finite_differences(double_square, side):
+    V, W, F = double_square
+    if side == "deformed":
+        energy = lambda x: shellspace.energy(V, x, F)["total"]
+        gradient = lambda x: shellspace.energy_gradient(V, x, F, side=side)
+        x = W
+    else:
+        energy = lambda x: shellspace.energy(x, W, F)["total"]
+        gradient = lambda x: shellspace.energy_gradient(x, W, F, side=side)
+        x = V
+    assert np.max(np.abs(gradient(x))) > 1e-2  # a non-trivial point
+    assert gradient_error(energy, gradient, x) < 1e-6
+    # Negative twin: one wrong entry (1 % off) fails the same check.
+    def wrong(y):
+        g = gradient(y).copy()
+        g[1, 2] *= 1.01
+        return g
+    assert gradient_error(energy, wrong, x) > 1e-4
+
+
+@pytest.mark.parametrize("rows,cols", [("deformed", "deformed"),
+                                       ("reference", "reference"),
+                                       ("reference", "deformed")])
+def test_hessian_triplets_against_finite_differences(double_square, rows,
+                                                     cols):
+    V, W, F = double_square
+    n = V.shape[0]
+
+    def args(x):  # (reference, deformed) with the `cols` side at x
+        return (x, W) if cols == "reference" else (V, x)
+
+    gradient = lambda x: shellspace.energy_gradient(*args(x), F, side=rows)
+    hessian = lambda x: hessian_matrix(
+        shellspace.energy_hessian(*args(x), F, rows=rows, cols=cols), n)
+    x = V if cols == "reference" else W
+    H = hessian(x)
+    if rows == cols:
+        assert np.max(np.abs(H - H.T)) < 1e-12 * max(1, np.max(np.abs(H)))
+    assert hessian_error(gradient, hessian, x) < 1e-6
+    # Negative twin: a symmetric perturbation of one entry pair (0.1 % of
+    # the largest entry) fails the same check.
+    def wrong(y):
+        M = hessian(y).copy()
+        M[0, 4] += 1e-3 * np.max(np.abs(M))
+        M[4, 0] += 1e-3 * np.max(np.abs(M))
+        return M
+    assert hessian_error(gradient, wrong, x) > 1e-4
+
+
+def test_mixed_hessian_is_the_transpose_of_its_twin(double_square):
+    V, W, F = double_square
+    n = V.shape[0]
+    A = hessian_matrix(shellspace.energy_hessian(
+        V, W, F, rows="reference", cols="deformed"), n)
+    B = hessian_matrix(shellspace.energy_hessian(
+        V, W, F, rows="deformed", cols="reference"), n)
+    assert np.max(np.abs(A - B.T)) < 1e-12
+
+
+# ---- Paths --------------------------------------------------------------
+
+def test_geodesic_round_trip_against_cli(tmp_path):
+    V, F = mesh(DOUBLE)
+    W, _ = mesh(DOUBLE_BENT)
+    path, summary = shellspace.geodesic(V, W, F, steps=4, quiet=True,
+                                        output=str(tmp_path / "py"))
+    cli = cli_json(["geodesic", "--start", DOUBLE, "--end", DOUBLE_BENT,
+                    "--steps", "4", "--output", str(tmp_path / "cli")])
+    assert summary["converged"] and cli["converged"]
+    assert abs(summary["path_energy"] - cli["path_energy"]) <= \
+        1e-10 * abs(cli["path_energy"])
+    assert summary["iterations"] == cli["iterations"]
+    drop = {"seconds", "newton_seconds", "output", "multires_levels"}
+    assert {k for k in summary} == {k for k in cli}
+    for key in set(summary) - drop - {"stages", "step_energies"}:
+        assert summary[key] == pytest.approx(cli[key], rel=1e-10), key
+    assert path.shape == (5,) + V.shape
+    assert np.array_equal(path[0], V) and np.array_equal(path[4], W)
+    for k in range(5):
+        frame, _ = mesh(str(tmp_path / "cli" / ("shape_%03d.ply" % k)))
+        assert np.max(np.abs(frame - path[k])) < 1e-10
+        mine, _ = mesh(str(tmp_path / "py" / ("shape_%03d.ply" % k)))
+        assert np.max(np.abs(mine - path[k])) == 0.0
+    # E_K = K sum_k W[s_{k-1}, s_k], from the energy function itself.
+    e = sum(shellspace.energy(path[k - 1], path[k], F)["total"]
+            for k in range(1, 5))
+    assert abs(4 * e - summary["path_energy"]) < 1e-10 * summary["path_energy"]
+
+
+def test_log_then_shoot_returns_to_the_end(tmp_path):
+    V, F = mesh(DOUBLE)
+    W, _ = mesh(DOUBLE_BENT)
+    K = 4
+    log, summary = shellspace.log(V, W, F, steps=K, quiet=True)
+    geodesic, _ = shellspace.geodesic(V, W, F, steps=K, quiet=True)
+    # LOG_K = K (s_1 - s_0) of the geodesic.
+    assert np.max(np.abs(log - K * (geodesic[1] - geodesic[0]))) < 1e-12
+    assert summary["log_max_norm"] == pytest.approx(np.max(np.abs(log)),
+                                                    rel=1e-15)
+    # EXP_K of LOG_K: shooting from (s_0, s_0 + LOG_K / K) retraces the
+    # geodesic. Inner shapes are defined up to a rigid motion (W is
+    # invariant under rigid motions of either argument), so the shapes are
+    # compared by W[geodesic_k, shot_k], which is 0 exactly for the same
+    # shape up to a rigid motion.
+    shot, shoot_summary = shellspace.shoot(V, V + log / K, F, steps=K,
+                                           quiet=True)
+    assert shoot_summary["converged"]
+    assert shot.shape == geodesic.shape
+    assert np.max(np.abs(shot[1] - geodesic[1])) < 1e-12
+    for k in range(2, K + 1):
+        w = shellspace.energy(geodesic[k], shot[k], F)["total"]
+        assert w < 1e-12, (k, w)
+    assert shoot_summary["path_energy"] == pytest.approx(
+        summary["path_energy"], rel=1e-6)
+    # The CLI writes start + LOG_K and reports the same E_K.
+    out = str(tmp_path / "log.ply")
+    cli = cli_json(["log", "--start", DOUBLE, "--end", DOUBLE_BENT, "--steps",
+                    str(K), "--output", out])
+    assert summary["path_energy"] == pytest.approx(cli["path_energy"],
+                                                   rel=1e-10)
+    written, _ = mesh(out)
+    assert np.max(np.abs(written - (V + log))) < 1e-12
+
+
+def test_shoot_matches_cli(tmp_path):
+    V, F = mesh(DOUBLE)
+    W, _ = mesh(DOUBLE_BENT)
+    S1 = V + 0.25 * (W - V)
+    s1_path = str(tmp_path / "s1.ply")
+    shellspace.write_mesh(s1_path, S1, F)
+    path, summary = shellspace.shoot(V, S1, F, steps=3, quiet=True)
+    cli = cli_json(["shoot", "--first", DOUBLE, "--second", s1_path,
+                    "--steps", "3", "--output", str(tmp_path / "cli")])
+    assert summary["path_energy"] == pytest.approx(cli["path_energy"],
+                                                   rel=1e-10)
+    assert summary["stages"] == cli["stages"]
+
+
+def test_transport_matches_cli(tmp_path):
+    V, F = mesh(DOUBLE)
+    W, _ = mesh(DOUBLE_BENT)
+    geodesic, _ = shellspace.geodesic(V, W, F, steps=3, quiet=True,
+                                      output=str(tmp_path / "path"))
+    # The variation: a shear of the first frame.
+    varied = V.copy()
+    varied[:, 0] += 0.05 * V[:, 1]
+    shellspace.write_mesh(str(tmp_path / "varied.ply"), varied, F)
+    shapes, summary = shellspace.transport(geodesic, varied, F, quiet=True)
+    cli = cli_json(["transport", "--path", str(tmp_path / "path"),
+                    "--variation", str(tmp_path / "varied.ply"), "--output",
+                    str(tmp_path / "out")])
+    assert summary["frames"] == cli["frames"] == 4
+    assert shapes.shape == (4,) + V.shape
+    assert np.array_equal(shapes[0], varied)
+    assert summary["variation_max_norms"] == pytest.approx(
+        cli["variation_max_norms"], rel=1e-10)
+    assert max(summary["exp_residuals"]) < 1e-8
+    for k in range(4):
+        frame, _ = mesh(str(tmp_path / "out" / ("shape_%03d.ply" % k)))
+        assert np.max(np.abs(frame - shapes[k])) < 1e-10
+    # A zero variation is transported as zero (to the EXP steps' solver
+    # tolerance): the shapes are the path.
+    same, zero = shellspace.transport(geodesic, V, F, quiet=True)
+    assert zero["variation_max_norms"][0] == 0.0
+    assert max(zero["variation_max_norms"]) < 1e-6
+    assert np.max(np.abs(same - geodesic)) < 1e-6
+
+
+def test_mean_of_two_copies_is_that_shape():
+    V, F = mesh(DOUBLE_BENT)
+    mean, summary = shellspace.mean([V, V], F, quiet=True)
+    assert summary["inputs"] == 2 and summary["converged"]
+    assert summary["energy"] < 1e-20
+    assert np.max(np.abs(mean - V)) < 1e-8
+
+
+def test_spline_and_regression_hit_their_data():
+    V, F = mesh(DOUBLE)
+    W, _ = mesh(DOUBLE_BENT)
+    M = 0.5 * (V + W)
+    path, summary = shellspace.spline([V, M, W], [0, 2, 4], F, steps=4,
+                                      quiet=True)
+    assert path.shape == (5,) + V.shape
+    for k, S in ((0, V), (2, M), (4, W)):
+        assert np.array_equal(path[k], S)
+    assert summary["method"] == "nonlinear" and summary["frames"] == 5
+    path, summary = shellspace.regress([V, W], [0, 4], F, steps=4,
+                                       sigma=1e-6, quiet=True)
+    assert summary["sigma"] == 1e-6
+    # A tiny spline weight: the data term wins, the ends stay at the data.
+    assert relative_error(path[0], V) < 1e-3
+    assert relative_error(path[4], W) < 1e-3
+
+
+# ---- Errors -------------------------------------------------------------
+
+def test_errors_raise_with_the_library_message(tmp_path):
+    V, F = mesh(SQUARE)
+    W, _ = mesh(SQUARE_BENT)
+    with pytest.raises(ValueError, match="deformed has 3 vertices"):
+        shellspace.energy(V, W[:3], F)
+    with pytest.raises(shellspace.InputError, match="multires must be auto"):
+        shellspace.geodesic(V, W, F, multires="two", quiet=True)
+    with pytest.raises(ValueError, match="steps must be >= 1"):
+        shellspace.geodesic(V, W, F, steps=0, quiet=True)
+    with pytest.raises(ValueError, match="mu"):
+        shellspace.energy(V, W, F, mu=-1)
+    with pytest.raises(ValueError, match="no_such_file.ply"):
+        shellspace.read_mesh(str(tmp_path / "no_such_file.ply"))
+    bad = F.copy()
+    bad[0, 0] = 99
+    with pytest.raises(ValueError, match="face 0"):
+        shellspace.energy(V, W, bad)
+    with pytest.raises(ValueError, match="mask: vertex index 7"):
+        shellspace.shoot(V, W, F, steps=2, mask=[7], quiet=True)
+    with pytest.raises(ValueError, match="#V x 3"):
+        shellspace.energy(V[:, :2], W, F)
+    assert not os.listdir(tmp_path)
+
+
+# ---- Statistics and branching against the CLI ----------------------------
+
+def without_times(summary):
+    """The summary without wall-clock entries and the output path."""
+    if isinstance(summary, dict):
+        return {k: without_times(v) for k, v in summary.items()
+                if "seconds" not in k and k not in ("output", "far_inputs")}
+    if isinstance(summary, list):
+        return [without_times(v) for v in summary]
+    return summary
+
+
+def assert_same_numbers(a, b, rel=1e-10):
+    assert type(a) == type(b) or {type(a), type(b)} <= {int, float}, (a, b)
+    if isinstance(a, dict):
+        assert set(a) == set(b)
+        for k in a:
+            assert_same_numbers(a[k], b[k], rel)
+    elif isinstance(a, list):
+        assert len(a) == len(b)
+        for x, y in zip(a, b):
+            assert_same_numbers(x, y, rel)
+    elif isinstance(a, float) or isinstance(b, float):
+        assert a == pytest.approx(b, rel=rel, abs=1e-14)
+    else:
+        assert a == b
+
+
+def test_pca_matches_cli(tmp_path):
+    V, F = mesh(DOUBLE)
+    W, _ = mesh(DOUBLE_BENT)
+    frames, _ = shellspace.geodesic(V, W, F, steps=2, quiet=True,
+                                    output=str(tmp_path / "in"))
+    inputs = [frames[0], frames[1], frames[2]]
+    shapes, summary = shellspace.pca(inputs, F, modes=1, baseline="procrustes",
+                                     quiet=True, output=str(tmp_path / "py"))
+    files = ",".join(str(tmp_path / "in" / ("shape_%03d.ply" % k))
+                     for k in range(3))
+    cli = cli_json(["pca", "--inputs", files, "--modes", "1", "--baseline",
+                    "procrustes", "--output", str(tmp_path / "cli")])
+    assert_same_numbers(without_times(summary), without_times(cli))
+    assert sorted(shapes) == sorted(
+        f[:-4] for f in os.listdir(tmp_path / "cli") if f.endswith(".ply"))
+    for name, shape in shapes.items():
+        written, _ = mesh(str(tmp_path / "cli" / (name + ".ply")))
+        assert np.max(np.abs(written - shape)) < 1e-10, name
+    assert sorted(os.listdir(tmp_path / "py")) == sorted(
+        os.listdir(tmp_path / "cli"))
+    with pytest.raises(ValueError, match="modes 3 exceeds 2"):
+        shellspace.pca(inputs, F, modes=3, quiet=True)
+
+
+def test_branching_construct_matches_cli(tmp_path):
+    for family in ("km", "lens"):
+        summary = shellspace.branching_construct(family=family, epsilon=0.002)
+        cli = cli_json(["branching", "construct", "--family", family,
+                        "--epsilon", "0.002", "--output",
+                        str(tmp_path / family)])
+        assert_same_numbers(without_times(summary), without_times(cli))
+    km = shellspace.branching_construct()
+    assert km["constant"] == pytest.approx(km["km_shifted_constant_closed_form"],
+                                           rel=1e-6)
+    with pytest.raises(ValueError, match="family must be"):
+        shellspace.branching_construct(family="tree")
+
+
+def test_branching_simulate_matches_cli(tmp_path):
+    args = dict(nx=8, ny=32, continuation=1, lm_iterations=30)
+    u, summary = shellspace.branching_simulate(**args)
+    cli = cli_json(["branching", "simulate", "--nx", "8", "--ny", "32",
+                    "--continuation", "1", "--lm_iterations", "30",
+                    "--output", str(tmp_path / "sim")])
+    assert_same_numbers(without_times(summary), without_times(cli))
+    assert u.shape == (9, 32)
+    csv = np.loadtxt(tmp_path / "sim" / "u.csv", delimiter=",", skiprows=1)
+    assert np.max(np.abs(csv[:, 4] - u.ravel())) < 1e-10
+
+
+def test_gltf_of_a_path_is_the_clis_export(tmp_path):
+    V, F = mesh(DOUBLE)
+    W, _ = mesh(DOUBLE_BENT)
+    frames, _ = shellspace.geodesic(V, W, F, steps=3, quiet=True,
+                                    output=str(tmp_path / "frames"),
+                                    gltf=str(tmp_path / "geodesic.glb"))
+    shellspace.write_gltf(str(tmp_path / "py.glb"), frames, F,
+                          interpolation="step", fps=2)
+    subprocess.run([CLI, "export", "--input", str(tmp_path / "frames"),
+                    "--output", str(tmp_path / "cli.glb"), "--interpolation",
+                    "step", "--fps", "2", "--quiet"], check=True)
+    py = (tmp_path / "py.glb").read_bytes()
+    assert py[:4] == b"glTF" and py == (tmp_path / "cli.glb").read_bytes()
+    assert (tmp_path / "geodesic.glb").read_bytes()[:4] == b"glTF"
+    with pytest.raises(ValueError, match="interpolation must be"):
+        shellspace.write_gltf(str(tmp_path / "x.glb"), frames, F,
+                              interpolation="cubic")
+    with pytest.raises(ValueError, match="missing"):
+        shellspace.geodesic(V, W, F, steps=2, quiet=True,
+                            output=str(tmp_path / "none"),
+                            gltf=str(tmp_path / "missing" / "a.glb"))
+    assert not (tmp_path / "none").exists()
