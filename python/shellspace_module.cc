@@ -14,8 +14,10 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <sstream>
 #include <string>
@@ -124,7 +126,7 @@ std::vector<Positions> ToShapes(const py::object& object,
                                 const std::string& name) {
   std::vector<Positions> shapes;
   if (py::isinstance<py::array>(object) &&
-      py::array(object.cast<py::array>()).ndim() == 3) {
+      object.cast<py::array>().ndim() == 3) {
     const DoubleArray array = object.cast<DoubleArray>();
     for (py::ssize_t k = 0; k < array.shape(0); ++k) {
       Positions shape(array.shape(1), 3);
