@@ -249,6 +249,10 @@ int RunPca() {
   const SolverSettings settings = SettingsFromFlags("pca");
   SolverSettings inner = settings;
   inner.progress = false;
+  // A stop ends the mean (written alone, partial); the LOG/EXP solves of
+  // the modes and leave-one-out are not cut short (a shot stopped midway
+  // would give a wrong mode shape): a second signal kills the run.
+  inner.stop = nullptr;
 
   // Shell model.
   Positions given_mean;

@@ -186,6 +186,44 @@ TEST(NewtonSolverTest, WrongHessianFailsTheQuadraticRateCheck) {
   EXPECT_FALSE(QuadraticRate(problem.iterates, example.Minimiser(), 5.0));
 }
 
+// The stop hook: true at the third poll stops before the third step, at
+// the point two steps reach (the same as max_steps = 2); a hook that never
+// fires changes nothing.
+TEST(NewtonSolverTest, StopHookEndsAtTheCurrentPoint) {
+  const ConvexExample example(6);
+  FunctionProblem capped(example.MakeCallbacks(), Eigen::VectorXd::Zero(6),
+                         true);
+  ReusableCholesky cholesky;
+  const NewtonReport two = SolveNewton(&capped, &cholesky, Minimize(1e-13, 2));
+  FunctionProblem stopped(example.MakeCallbacks(), Eigen::VectorXd::Zero(6),
+                          true);
+  NewtonSettings settings = Minimize(1e-13, 100);
+  int polls = 0;
+  settings.stop = [&polls] { return ++polls == 3; };
+  ReusableCholesky cholesky2;
+  const NewtonReport report = SolveNewton(&stopped, &cholesky2, settings);
+  EXPECT_EQ(report.stop, NewtonStop::kStopped);
+  EXPECT_EQ(report.stop_reason, "stopped on request");
+  EXPECT_FALSE(report.converged);
+  EXPECT_EQ(report.steps, 2);
+  EXPECT_EQ(polls, 3);
+  EXPECT_EQ(report.final_gradient, two.final_gradient);
+  EXPECT_EQ(stopped.iterates.back(), capped.iterates.back());
+  // Never firing: the same run as without the hook.
+  FunctionProblem plain(example.MakeCallbacks(), Eigen::VectorXd::Zero(6),
+                        true), hooked(example.MakeCallbacks(),
+                                      Eigen::VectorXd::Zero(6), true);
+  ReusableCholesky c3, c4;
+  NewtonSettings never = Minimize(1e-13, 100);
+  never.stop = [] { return false; };
+  const NewtonReport a = SolveNewton(&plain, &c3, Minimize(1e-13, 100));
+  const NewtonReport b = SolveNewton(&hooked, &c4, never);
+  EXPECT_TRUE(b.converged);
+  EXPECT_EQ(a.steps, b.steps);
+  EXPECT_EQ(a.final_gradient, b.final_gradient);
+  EXPECT_EQ(plain.iterates.back(), hooked.iterates.back());
+}
+
 TEST(NewtonSolverTest, MaxStepsIsNotConvergence) {
   const ConvexExample example(6);
   FunctionProblem problem(example.MakeCallbacks(), Eigen::VectorXd::Zero(6),
