@@ -178,7 +178,7 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
   newton.max_halvings = 2;
   newton.accept_smaller_max_norm = true;
   newton.merit_round_off = 1e-10;
-  newton.max_shifts = kPathNewtonMaxShifts;
+  newton.max_shifts = settings.max_shifts;
   newton.stop = settings.stop;
   if (settings.progress) {
     newton.progress = [&](const NewtonReport& r, double energy,

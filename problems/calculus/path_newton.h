@@ -52,6 +52,7 @@ inline constexpr int kPathNewtonMaxShifts = 6;
 struct PathNewtonSettings {
   PathLinearSolver linear_solver = PathLinearSolver::kAuto;
   int max_steps = 8;
+  int max_shifts = kPathNewtonMaxShifts;  // 0: plain Newton (no H + lambda I)
   // Stop when max |G| <= gradient_tolerance (absolute, max norm over the
   // free coordinates; the same quantity as Ceres' gradient_max_norm).
   double gradient_tolerance = 0;

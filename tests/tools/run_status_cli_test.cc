@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "shellspace/io/mesh_io.h"
 #include "shellspace/tests/testing/test_support.h"
 
 namespace shellspace {
@@ -208,6 +209,50 @@ TEST(RunStatusCliTest, LThetaSplineWithoutTheEnergy) {
                    &with, &err),
             1);
   EXPECT_TRUE(Has(err, "degenerate")) << err;
+}
+
+// A transport rung without an EXP solution even at epsilon / 16: along the
+// plate geodesic (rolledA, K = 4) the variation 6 (rolledB - plate). The
+// run writes its frames, reports the rung unsolved and exits 4 with one
+// line naming it; --allow_unsolved: exit 0, the line as a warning.
+TEST(RunStatusCliTest, TransportNamesTheUnsolvedRung) {
+  const std::string dir = TempDir();
+  const std::string plate = DataPath("plate/plate121.ply");
+  std::string out, err;
+  ASSERT_EQ(RunCli("geodesic --quiet --steps 4 --start " + plate + " --end " +
+                       DataPath("plate/plate121_rolledA.ply") + " --output " +
+                       dir + "/g",
+                   &out, &err),
+            0)
+      << err;
+  Mesh varied = ReadMesh(plate);
+  const Mesh b = ReadMesh(DataPath("plate/plate121_rolledB.ply"));
+  varied.positions += 6.0 * (b.positions - varied.positions);
+  WriteMesh(varied, dir + "/var6.ply");
+  const std::string args = "transport --quiet --json --path " + dir +
+                           "/g --variation " + dir + "/var6.ply --output " +
+                           dir + "/t";
+  EXPECT_EQ(RunCli(args, &out, &err), 4) << err;
+  ExpectOneNotConvergedLine(err, "transport",
+                            "rung 4 not solved: EXP residual ");
+  EXPECT_TRUE(Has(err, "(also at epsilon / 16)")) << err;
+  EXPECT_TRUE(Has(out, "\"converged\": false")) << out;
+  const auto rung4 = out.find("\"rung\": 4");
+  ASSERT_NE(rung4, std::string::npos) << out;
+  const std::string last = out.substr(rung4);
+  EXPECT_TRUE(Has(last, "\"solved\": false")) << out;
+  EXPECT_EQ(Number(last, "epsilon_divisor"), 16) << out;
+  EXPECT_GT(Number(last, "relative_residual"), 1e-8) << out;
+  EXPECT_TRUE(std::filesystem::exists(dir + "/t/shape_004.ply"));
+
+  EXPECT_EQ(RunCli(args + " --allow_unsolved", &out, &err), 0) << err;
+  const std::vector<std::string> lines = Lines(err);
+  ASSERT_EQ(lines.size(), 1u) << err;
+  EXPECT_EQ(lines[0].rfind("shellspace transport: warning: not converged: "
+                           "rung 4 not solved",
+                           0),
+            0u)
+      << err;
 }
 
 }  // namespace

@@ -433,6 +433,46 @@ TEST(PathNewtonTest, NewtonPolishAgreesWithPureLevenbergMarquardt) {
   EXPECT_NEAR(g, newton.final_gradient, 1e-3 * newton.final_gradient + 1e-14);
 }
 
+// Far from the geodesic (the linear path of the plate, K = 4) plain Newton
+// cannot continue (Hessian not positive definite, or no step length lowers
+// E_K); with the shifted Hessian H + lambda I the polish goes on, never
+// raising E_K, to the geodesic of LM.
+TEST(PathNewtonTest, ShiftedNewtonFromTheLinearPathDecreasesTheEnergy) {
+  const Mesh a = testing::LoadData("plate/plate121.ply");
+  const Mesh b = testing::LoadData("plate/plate121_rolledA.ply");
+  const ShellSpace space = testing::MakeSpace(a);
+  const ShellPath linear = LinearPath(a.positions, b.positions, 4);
+  const double linear_energy = PathEnergy(space, linear);
+  PathNewtonSettings settings;
+  settings.max_steps = 60;
+  settings.gradient_tolerance = 1e-9;
+  settings.max_shifts = 0;
+  ShellPath plain = linear;
+  const PathNewtonReport p = PolishPathNewton(space, {}, settings, &plain);
+  std::cout << "plain: " << p.steps << " steps, " << p.stop_reason << "\n";
+  EXPECT_FALSE(p.converged);
+  EXPECT_NE(p.stop, NewtonStop::kMaxSteps);
+  settings.max_shifts = kPathNewtonMaxShifts;
+  ShellPath shifted = linear;
+  const PathNewtonReport r = PolishPathNewton(space, {}, settings, &shifted);
+  std::cout << "shifted: " << r.steps << " steps (" << r.shifted_steps
+            << " shifted, largest lambda " << r.max_shift << "), "
+            << r.stop_reason << ", E_K " << r.final_merit << "\n";
+  EXPECT_TRUE(r.converged) << r.stop_reason;
+  EXPECT_GE(r.shifted_steps, 1);
+  EXPECT_LT(r.final_merit, linear_energy);
+  EXPECT_LE(r.final_merit, p.final_merit);
+  GeodesicInput input;
+  input.start = a.positions;
+  input.end = b.positions;
+  input.steps = 4;
+  input.newton_from = 0;  // LM alone
+  const GeodesicResult lm =
+      SolveGeodesic(space, input, testing::TightSettings(1e-10));
+  EXPECT_NEAR(PathEnergy(space, shifted), lm.path_energy,
+              1e-8 * lm.path_energy);
+}
+
 // Newton tried far from the geodesic (at half the initial gradient) meets an
 // indefinite Hessian, LM goes on, and a later attempt converges to the same
 // geodesic.
