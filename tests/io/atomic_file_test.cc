@@ -15,18 +15,13 @@
 #include "shellspace/io/frame_sequence.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/io/png_writer.h"
+#include "shellspace/tests/testing/cli_output.h"
 #include "shellspace/tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {
 
-std::string Slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
+using testing::Slurp;
 std::vector<std::string> Listing(const std::string& dir) {
   return testing::DirectoryListing(dir);
 }
@@ -122,8 +117,8 @@ TEST(AtomicFileTest, MeshAndPngWritersGoThroughIt) {
   EXPECT_EQ(png, EncodePng(image));
   ASSERT_GT(png.size(), 8u);
   EXPECT_EQ(png.substr(1, 3), "PNG");
-  EXPECT_EQ(Listing(dir), (std::vector<std::string>{"i.png", "m.obj", "m.off",
-                                                    "m.ply"}));
+  EXPECT_EQ(Listing(dir),
+            (std::vector<std::string>{"i.png", "m.obj", "m.off", "m.ply"}));
 }
 
 }  // namespace

@@ -12,11 +12,12 @@
 #include <vector>
 
 #include "shellspace/geometry/mesh.h"
+#include "shellspace/io/frame_sequence.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/render/camera.h"
 #include "shellspace/render/film_strip.h"
-#include "shellspace/io/frame_sequence.h"
 #include "shellspace/render/view.h"
+#include "shellspace/tests/testing/cli_output.h"
 #include "shellspace/tests/testing/test_support.h"
 
 namespace shellspace {
@@ -26,6 +27,7 @@ using ::shellspace::testing::DataPath;
 using ::shellspace::testing::LoadData;
 using ::shellspace::testing::RunCli;
 using ::shellspace::testing::TempDir;
+using testing::Slurp;
 
 // The square [-1, 1]^2 x {z} with outward normal +z, two triangles.
 Mesh Square(double z = 0) {
@@ -53,7 +55,9 @@ Mesh UvSphere(int rings, int segments, double radius) {
           radius * std::cos(theta), radius * std::sin(theta) * std::sin(phi);
     }
   }
-  auto index = [&](int r, int s) { return 1 + (r - 1) * segments + s % segments; };
+  auto index = [&](int r, int s) {
+    return 1 + (r - 1) * segments + s % segments;
+  };
   std::vector<Eigen::Vector3i> faces;
   for (int s = 0; s < segments; ++s) {
     faces.emplace_back(0, index(1, s + 1), index(1, s));
@@ -115,11 +119,6 @@ Eigen::Vector2d CoveredCentroid(const RgbImage& image,
   return count ? Eigen::Vector2d(sum / count) : Eigen::Vector2d(-1, -1);
 }
 
-std::string Slurp(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return std::string(std::istreambuf_iterator<char>(in), {});
-}
-
 // Width and height from a PNG file's IHDR chunk; (-1, -1) if not a PNG.
 std::pair<int, int> PngSize(const std::string& path) {
   const std::string bytes = Slurp(path);
@@ -175,9 +174,9 @@ TEST(CameraTest, ViewFramesLookAlongTheNamedAxis) {
 }
 
 TEST(CameraTest, FrameBoxFitsTheBoxIntoTheMargins) {
-  const Camera camera = FrameBox(Eigen::Vector3d(0, 0, 0),
-                                 Eigen::Vector3d(4, 2, 1), ParseView("front"),
-                                 200, 100, 0.05);
+  const Camera camera =
+      FrameBox(Eigen::Vector3d(0, 0, 0), Eigen::Vector3d(4, 2, 1),
+               ParseView("front"), 200, 100, 0.05);
   // Width limits: 4 units -> 180 pixels.
   EXPECT_NEAR(camera.scale, 45, 1e-12);
   const Eigen::Vector3d lo = camera.Project(Eigen::Vector3d(0, 0, 1));
@@ -186,7 +185,7 @@ TEST(CameraTest, FrameBoxFitsTheBoxIntoTheMargins) {
   EXPECT_NEAR(hi.x(), 190, 1e-9);
   EXPECT_NEAR(lo.y(), 95, 1e-9);  // y = 0 at the bottom (rows grow down)
   EXPECT_NEAR(hi.y(), 5, 1e-9);
-  EXPECT_LT(lo.z(), hi.z());      // z = 1 is nearer to a front viewer
+  EXPECT_LT(lo.z(), hi.z());  // z = 1 is nearer to a front viewer
 }
 
 TEST(CameraTest, FrameVerticesTouchesTheMargins) {
@@ -198,7 +197,8 @@ TEST(CameraTest, FrameVerticesTouchesTheMargins) {
   const Camera camera =
       FrameVertices({points, shifted}, ParseView("iso"), 300, 200, 0.1);
   double lo_x = 1e9, hi_x = -1e9, lo_y = 1e9, hi_y = -1e9;
-  for (const Positions* p : {static_cast<const Positions*>(&points), &shifted}) {
+  for (const Positions* p :
+       {static_cast<const Positions*>(&points), &shifted}) {
     for (int i = 0; i < 3; ++i) {
       const Eigen::Vector3d q = camera.Project(p->row(i).transpose());
       lo_x = std::min(lo_x, q.x());
@@ -263,7 +263,8 @@ void ExpectSphereCoverage(const Mesh& sphere, const std::string& view,
   const double actual =
       static_cast<double>(CoveredPixels(image, options)) / (size * size);
   EXPECT_GT(actual / expected, low) << view << " " << actual << " " << expected;
-  EXPECT_LT(actual / expected, high) << view << " " << actual << " " << expected;
+  EXPECT_LT(actual / expected, high)
+      << view << " " << actual << " " << expected;
 }
 
 TEST(RenderTest, FineSphereCoversItsDisc) {
@@ -387,9 +388,9 @@ TEST(FilmStripTest, TwoPosesGiveDifferentFrames) {
   const Mesh straight = LoadData("finger/finger0.ply");
   const Mesh bent = LoadData("finger/finger1.ply");
   const RenderOptions options = Options(160, 160, 2);
-  const RgbImage image = RenderFilmStrip(
-      {straight.positions, bent.positions, straight.positions}, straight.faces,
-      options);
+  const RgbImage image =
+      RenderFilmStrip({straight.positions, bent.positions, straight.positions},
+                      straight.faces, options);
   ASSERT_EQ(image.width, 3 * 160);
   ASSERT_EQ(image.height, 160);
   int differing = 0, equal_first_last = 0;
@@ -429,9 +430,9 @@ TEST(FilmStripTest, CameraIsFixedAcrossFrames) {
 TEST(FilmStripTest, LayoutWrapsIntoRows) {
   const Mesh square = Square();
   const RenderOptions options = Options(40, 30);
-  RgbImage image = RenderFilmStrip({square.positions, square.positions,
-                                    square.positions},
-                                   square.faces, options);
+  RgbImage image =
+      RenderFilmStrip({square.positions, square.positions, square.positions},
+                      square.faces, options);
   EXPECT_EQ(image.width, 3 * 40);
   EXPECT_EQ(image.height, 30);
   const std::vector<Positions> eight(8, square.positions);
@@ -478,9 +479,9 @@ TEST(FilmStripTest, RejectsBadInput) {
                  InputError);
   }
   const Mesh other = UvSphere(4, 4, 1);
-  EXPECT_THROW(WriteFilmStrip({square, other}, Options(10, 10),
-                              TempDir() + "/x.png"),
-               InputError);
+  EXPECT_THROW(
+      WriteFilmStrip({square, other}, Options(10, 10), TempDir() + "/x.png"),
+      InputError);
 }
 
 // ---------------------------------------------------------------- inputs

@@ -1,5 +1,7 @@
 #include "shellspace/tests/testing/test_support.h"
 
+#include "shellspace/tests/testing/cli_output.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cstdio>
@@ -59,15 +61,6 @@ std::string TempDir() {
   const char* dir = mkdtemp(pattern);
   return dir ? dir : "/tmp";
 }
-
-namespace {
-std::string Slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-}  // namespace
 
 int RunCli(const std::string& args, std::string* out, std::string* err) {
   const std::string dir = TempDir();

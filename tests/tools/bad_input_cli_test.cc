@@ -35,7 +35,8 @@ std::map<std::string, std::string> Snapshot(const std::string& dir) {
       text << "link -> " << fs::read_symlink(path, error).string();
       return text.str();
     }
-    text << "mtime " << fs::last_write_time(path, error).time_since_epoch().count();
+    text << "mtime "
+         << fs::last_write_time(path, error).time_since_epoch().count();
     if (fs::is_regular_file(status)) {
       std::ifstream in(path, std::ios::binary);
       std::ostringstream bytes;
@@ -76,8 +77,8 @@ TEST(BadInputCliTest, EveryBadMeshIsRejectedWithOneLine) {
   for (const testing::BadMeshCase& c : testing::BadMeshCases()) {
     for (MeshFormat format : c.formats) {
       const std::string path = testing::WriteBadMesh(dir, c, format);
-      ExpectRejected("energy --reference " + path + " --deformed " + path,
-                     path, dir);
+      ExpectRejected("energy --reference " + path + " --deformed " + path, path,
+                     dir);
       ++runs;
     }
   }
@@ -97,9 +98,9 @@ TEST(BadInputCliTest, EveryBadMeshIsRejectedWithOneLine) {
       ExpectRejected("shoot --quiet --steps 2 --first " + path + " --second " +
                          path + " --output " + dir + "/out",
                      path, dir);
-      ExpectRejected("deform --quiet --reference " + path + " --mask " +
-                         dir + "/mask.txt --targets " + path + " --output " +
-                         dir + "/deformed.ply",
+      ExpectRejected("deform --quiet --reference " + path + " --mask " + dir +
+                         "/mask.txt --targets " + path + " --output " + dir +
+                         "/deformed.ply",
                      path, dir);
       runs += 4;
     }
@@ -128,8 +129,7 @@ TEST(BadInputCliTest, EveryBadMaskIsRejectedWithOneLine) {
   };
   for (const std::string& mask : masks) {
     ExpectRejected("deform --reference " + square + " --mask " + mask +
-                       " --targets " + square + " --output " + dir +
-                       "/out.ply",
+                       " --targets " + square + " --output " + dir + "/out.ply",
                    mask, dir);
   }
   // The error echoes no raw byte.
@@ -164,46 +164,87 @@ TEST(BadInputCliTest, OutputsThatWouldOverwriteOrCannotBeWrittenAreRejected) {
                             " --end " + b + " --output " + d + "/g"),
             0);
   const std::string ab = " --start " + a + " --end " + b;
-  const std::string deform =
-      "deform --quiet --reference " + a + " --mask " + d + "/mask.txt --targets " + b;
+  const std::string deform = "deform --quiet --reference " + a + " --mask " +
+                             d + "/mask.txt --targets " + b;
   struct Case {
     std::string args, message;
   };
   const std::vector<Case> cases = {
-      {deform + " --output " + a, "--output " + a + " is also the input --reference"},
-      {deform + " --output " + d + "/link.ply", "is also the input --reference"},
+      {deform + " --output " + a,
+       "--output " + a + " is also the input --reference"},
+      {deform + " --output " + d + "/link.ply",
+       "is also the input --reference"},
       {deform + " --output " + d + "/mask.txt", "is also the input --mask"},
-      {deform + " --output " + d + "/mine", "--output " + d + "/mine is a directory"},
+      {deform + " --output " + d + "/mine",
+       "--output " + d + "/mine is a directory"},
       {"log --quiet" + ab + " --output " + b, "is also the input --end"},
-      {"log --quiet" + ab + " --output " + d + "/hard.ply", "is also the input --start"},
-      {"log --quiet" + ab + " --output " + d + "/./b.ply", "is also the input --end"},
-      {"mean --quiet --inputs " + a + "," + b + " --output " + b, "is also the input --inputs"},
-      {"render --input " + a + "," + b + " --output " + a, "is also the input --input"},
-      {"render --input " + d + "/g --output " + d + "/g/shape_001.ply", "is also the input --input"},
-      {"geodesic --quiet" + ab + " --output " + d + "/out --png " + a, "--png " + a + " is also the input --start"},
+      {"log --quiet" + ab + " --output " + d + "/hard.ply",
+       "is also the input --start"},
+      {"log --quiet" + ab + " --output " + d + "/./b.ply",
+       "is also the input --end"},
+      {"mean --quiet --inputs " + a + "," + b + " --output " + b,
+       "is also the input --inputs"},
+      {"render --input " + a + "," + b + " --output " + a,
+       "is also the input --input"},
+      {"render --input " + d + "/g --output " + d + "/g/shape_001.ply",
+       "is also the input --input"},
+      {"geodesic --quiet" + ab + " --output " + d + "/out --png " + a,
+       "--png " + a + " is also the input --start"},
       {"geodesic --quiet" + ab + " --output " + d, "holds the input --start"},
-      {"geodesic --quiet" + ab + " --output " + d + "/mine", "holds notes.txt, which no run writes"},
-      {"geodesic --quiet" + ab + " --output " + d + "/file.txt", "file.txt is not a directory"},
-      {"geodesic --quiet" + ab + " --output " + d + "/missing/out", "/missing does not exist"},
-      {"geodesic --quiet" + ab + " --output " + d + "/out --png " + d + "/missing/s.png", "/missing does not exist"},
-      {"geodesic --quiet" + ab + " --output " + d + "/g --png " + d + "/g/s.png", "is inside --output"},
-      {"geodesic --quiet" + ab + " --output " + d + "/out --png " + d + "/mine", "is a directory"},
-      {"geodesic --quiet" + ab + " --output " + d + "/out --png " + d + "/file.txt/s.png", "file.txt is not a directory"},
-      {"shoot --quiet --first " + a + " --second " + b + " --output " + a, "holds the input --first"},
-      {"transport --quiet --path " + d + "/g --variation " + a + " --output " + d + "/g", "holds the input --path"},
-      {"transport --quiet --path " + d + "/g --variation " + a + " --output " + d + "/g/../g/", "holds the input --path"},
-      {"transport --quiet --path " + d + "/g --variation " + a + " --output " + d, "holds the input --path"},
-      {"spline --quiet --keyframes " + a + "," + b + "," + a + " --at 0,1,2 --steps 2 --output " + d, "holds the input --keyframes"},
-      {"regress --quiet --inputs " + a + "," + b + " --at 0,2 --steps 2 --output " + d + "/g --png " + b, "is also the input --inputs"},
-      {"pca --quiet --modes 1 --inputs " + a + "," + b + "," + a + " --output " + d, "holds the input --inputs"},
+      {"geodesic --quiet" + ab + " --output " + d + "/mine",
+       "holds notes.txt, which no run writes"},
+      {"geodesic --quiet" + ab + " --output " + d + "/file.txt",
+       "file.txt is not a directory"},
+      {"geodesic --quiet" + ab + " --output " + d + "/missing/out",
+       "/missing does not exist"},
+      {"geodesic --quiet" + ab + " --output " + d + "/out --png " + d +
+           "/missing/s.png",
+       "/missing does not exist"},
+      {"geodesic --quiet" + ab + " --output " + d + "/g --png " + d +
+           "/g/s.png",
+       "is inside --output"},
+      {"geodesic --quiet" + ab + " --output " + d + "/out --png " + d + "/mine",
+       "is a directory"},
+      {"geodesic --quiet" + ab + " --output " + d + "/out --png " + d +
+           "/file.txt/s.png",
+       "file.txt is not a directory"},
+      {"shoot --quiet --first " + a + " --second " + b + " --output " + a,
+       "holds the input --first"},
+      {"transport --quiet --path " + d + "/g --variation " + a + " --output " +
+           d + "/g",
+       "holds the input --path"},
+      {"transport --quiet --path " + d + "/g --variation " + a + " --output " +
+           d + "/g/../g/",
+       "holds the input --path"},
+      {"transport --quiet --path " + d + "/g --variation " + a + " --output " +
+           d,
+       "holds the input --path"},
+      {"spline --quiet --keyframes " + a + "," + b + "," + a +
+           " --at 0,1,2 --steps 2 --output " + d,
+       "holds the input --keyframes"},
+      {"regress --quiet --inputs " + a + "," + b +
+           " --at 0,2 --steps 2 --output " + d + "/g --png " + b,
+       "is also the input --inputs"},
+      {"pca --quiet --modes 1 --inputs " + a + "," + b + "," + a +
+           " --output " + d,
+       "holds the input --inputs"},
       {"demo --quiet --output " + d + "/mine", "holds notes.txt"},
-      {"branching construct --output " + d + "/file.txt", "file.txt is not a directory"},
-      {"geodesic --quiet" + ab + " --steps 10000 --output " + d + "/out", "--steps 10000 on 5 vertices needs about"},
-      {"log --quiet" + ab + " --steps 100000 --output " + d + "/log.ply", "--steps 100000 on 5 vertices needs about"},
-      {"shoot --quiet --first " + a + " --second " + b + " --steps 200000 --output " + d + "/s", "--steps must be an integer in [1, 100000]"},
-      {"branching simulate --nx 4096 --ny 8192 --output " + d + "/br", "nodes) needs about"},
-      {"geodesic --quiet" + ab + " --output " + d + "/out --time_limit -1", "--time_limit must be a number >= 0"},
-      {"mean --quiet --inputs " + a + "," + b + " --output " + d + "/m.ply --time_limit nan", "--time_limit must be a number >= 0, got nan"},
+      {"branching construct --output " + d + "/file.txt",
+       "file.txt is not a directory"},
+      {"geodesic --quiet" + ab + " --steps 10000 --output " + d + "/out",
+       "--steps 10000 on 5 vertices needs about"},
+      {"log --quiet" + ab + " --steps 100000 --output " + d + "/log.ply",
+       "--steps 100000 on 5 vertices needs about"},
+      {"shoot --quiet --first " + a + " --second " + b +
+           " --steps 200000 --output " + d + "/s",
+       "--steps must be an integer in [1, 100000]"},
+      {"branching simulate --nx 4096 --ny 8192 --output " + d + "/br",
+       "nodes) needs about"},
+      {"geodesic --quiet" + ab + " --output " + d + "/out --time_limit -1",
+       "--time_limit must be a number >= 0"},
+      {"mean --quiet --inputs " + a + "," + b + " --output " + d +
+           "/m.ply --time_limit nan",
+       "--time_limit must be a number >= 0, got nan"},
   };
   for (const Case& c : cases) ExpectRejected(c.args, c.message, d);
   EXPECT_EQ(cases.size(), 34u);

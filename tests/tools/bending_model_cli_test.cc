@@ -12,23 +12,18 @@
 #include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/geodesic.h"
+#include "shellspace/tests/testing/cli_output.h"
 #include "shellspace/tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {
 
 using testing::DataPath;
+using testing::Number;
 using testing::RunCli;
 
 const std::string kSquare = DataPath("simple/square4.ply");
 const std::string kBent = DataPath("simple/square4_bent.ply");
-
-double Number(const std::string& json, const std::string& key) {
-  const std::string needle = "\"" + key + "\": ";
-  const auto at = json.find(needle);
-  if (at == std::string::npos) return std::nan("");
-  return std::strtod(json.c_str() + at + needle.size(), nullptr);
-}
 
 std::string RunOk(const std::string& args) {
   std::string out, err;
@@ -69,7 +64,8 @@ TEST(BendingModelCliTest, EnergyReportsTheChosenModelAndBoth) {
   EXPECT_NEAR(Number(shape, "bending"), so.bending, 1e-12 * so.bending);
   EXPECT_NEAR(Number(shape, "total"), so.total, 1e-12 * so.total);
   const std::string both = RunOk(common + " --bending both");
-  EXPECT_NE(both.find("\"bending_model\": \"both\""), std::string::npos) << both;
+  EXPECT_NE(both.find("\"bending_model\": \"both\""), std::string::npos)
+      << both;
   EXPECT_NEAR(Number(both, "discrete-shells"), ds, 1e-12 * ds) << both;
   EXPECT_NEAR(Number(both, "shape-operator"), so.bending, 1e-12 * so.bending)
       << both;
@@ -78,9 +74,10 @@ TEST(BendingModelCliTest, EnergyReportsTheChosenModelAndBoth) {
 
 TEST(BendingModelCliTest, GeodesicWithTheShapeOperatorModel) {
   const std::string dir = testing::TempDir() + "/so";
-  const std::string json =
-      RunOk("geodesic --quiet --json --steps 4 --bending shape-operator "
-            "--start " + kSquare + " --end " + kBent + " --output " + dir);
+  const std::string json = RunOk(
+      "geodesic --quiet --json --steps 4 --bending shape-operator "
+      "--start " +
+      kSquare + " --end " + kBent + " --output " + dir);
   EXPECT_NE(json.find("\"bending_model\": \"shape-operator\""),
             std::string::npos)
       << json;
@@ -93,7 +90,8 @@ TEST(BendingModelCliTest, GeodesicWithTheShapeOperatorModel) {
     path.push_back(ReadMesh(dir + name).positions);
   }
   const double so = PathEnergy(
-      testing::MakeSpace(a, Material(BendingModel::kShapeOperator, 0.01)), path);
+      testing::MakeSpace(a, Material(BendingModel::kShapeOperator, 0.01)),
+      path);
   const double ds = PathEnergy(
       testing::MakeSpace(a, Material(BendingModel::kDiscreteShells, 0.01)),
       path);
@@ -107,19 +105,19 @@ TEST(BendingModelCliTest, GeodesicWithTheShapeOperatorModel) {
 }
 
 TEST(BendingModelCliTest, EveryVerbWithMaterialFlagsTakesBending) {
-  for (const char* verb : {"energy", "deform", "geodesic", "shoot", "log",
-                           "transport", "spline", "regress", "mean", "pca",
-                           "demo"}) {
+  for (const char* verb :
+       {"energy", "deform", "geodesic", "shoot", "log", "transport", "spline",
+        "regress", "mean", "pca", "demo"}) {
     std::string help, err;
     EXPECT_EQ(RunCli(std::string(verb) + " --help", &help, &err), 0) << verb;
     EXPECT_NE(help.find("--bending (string)"), std::string::npos) << verb;
   }
   std::string err;
-  EXPECT_EQ(RunCli("geodesic --quiet --steps 2 --bending both --start " +
-                       kSquare + " --end " + kBent + " --output " +
-                       testing::TempDir() + "/x",
-                   nullptr, &err),
-            1);
+  EXPECT_EQ(
+      RunCli("geodesic --quiet --steps 2 --bending both --start " + kSquare +
+                 " --end " + kBent + " --output " + testing::TempDir() + "/x",
+             nullptr, &err),
+      1);
   EXPECT_NE(err.find("--bending"), std::string::npos) << err;
 }
 

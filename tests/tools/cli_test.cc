@@ -16,44 +16,24 @@
 
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/geodesic.h"
+#include "shellspace/tests/testing/cli_output.h"
 #include "shellspace/tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {
 
+using testing::Bool;
 using testing::DataPath;
+using testing::Frames;
+using testing::FramesAndSummary;
+using testing::Number;
+using testing::Numbers;
 using testing::RunCli;
+using testing::Slurp;
 using testing::TempDir;
 
 const std::string kSquare = DataPath("simple/square4.ply");
 const std::string kBent = DataPath("simple/square4_bent.ply");
-
-// The number after "KEY": in `json` (the first occurrence); NaN if absent.
-double Number(const std::string& json, const std::string& key) {
-  const std::string needle = "\"" + key + "\": ";
-  const auto at = json.find(needle);
-  if (at == std::string::npos) return std::nan("");
-  return std::strtod(json.c_str() + at + needle.size(), nullptr);
-}
-
-bool Bool(const std::string& json, const std::string& key) {
-  return json.find("\"" + key + "\": true") != std::string::npos;
-}
-
-// The numbers of the array "KEY": [...].
-std::vector<double> Numbers(const std::string& json, const std::string& key) {
-  const std::string needle = "\"" + key + "\": [";
-  const auto at = json.find(needle);
-  std::vector<double> values;
-  if (at == std::string::npos) return values;
-  const auto end = json.find(']', at);
-  std::string body = json.substr(at + needle.size(), end - at - needle.size());
-  std::replace(body.begin(), body.end(), ',', ' ');
-  std::istringstream in(body);
-  double v;
-  while (in >> v) values.push_back(v);
-  return values;
-}
 
 // Sum of every "iterations" inside the "stages" array.
 int StageIterations(const std::string& json) {
@@ -73,30 +53,6 @@ std::vector<std::string> Listing(const std::string& dir) {
   return testing::DirectoryListing(dir);
 }
 
-std::vector<std::string> Frames(int count) {
-  std::vector<std::string> names;
-  for (int k = 0; k < count; ++k) {
-    char name[32];
-    std::snprintf(name, sizeof(name), "shape_%03d.ply", k);
-    names.push_back(name);
-  }
-  return names;
-}
-
-// The frames and the run's summary.json: an output directory's listing.
-std::vector<std::string> FramesAndSummary(int count) {
-  std::vector<std::string> names = Frames(count);
-  names.push_back("summary.json");
-  return names;
-}
-
-std::string Slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 // Runs a verb that must succeed; returns its stdout.
 std::string RunOk(const std::string& args) {
   std::string out, err;
@@ -109,8 +65,8 @@ std::string RunOk(const std::string& args) {
 double ScaledDensity(double s) {
   const double mu = 1, lambda = 1;
   const double tr = 2 * s * s, det = s * s * s * s;
-  return mu / 2 * tr + lambda / 4 * det - (mu / 2 + lambda / 4) * std::log(det) -
-         mu - lambda / 4;
+  return mu / 2 * tr + lambda / 4 * det -
+         (mu / 2 + lambda / 4) * std::log(det) - mu - lambda / 4;
 }
 
 // square4 scaled by 2 about its centre vertex (the origin).
@@ -132,9 +88,9 @@ TEST(CliTest, EnergyOfAShellWithItselfIsZero) {
 
 TEST(CliTest, EnergyOfAScaledFlatSquareIsTheClosedForm) {
   const std::string dir = TempDir();
-  const std::string json = RunOk("energy --json --reference " + kSquare +
-                               " --deformed " + ScaledSquare(dir) +
-                               " --eta 0.5");
+  const std::string json =
+      RunOk("energy --json --reference " + kSquare + " --deformed " +
+            ScaledSquare(dir) + " --eta 0.5");
   // Reference area 1 (the unit square); flat stays flat: no bending.
   EXPECT_NEAR(Number(json, "membrane"), ScaledDensity(2.0), 1e-12) << json;
   EXPECT_NEAR(Number(json, "bending"), 0.0, 1e-20) << json;
@@ -149,7 +105,7 @@ TEST(CliTest, DeformWithTheBoundaryScaledKeepsTheSymmetricCentre) {
   const std::string out = dir + "/deformed.off";
   const std::string json =
       RunOk("deform --quiet --json --reference " + kSquare + " --mask " + mask +
-          " --targets " + ScaledSquare(dir) + " --output " + out);
+            " --targets " + ScaledSquare(dir) + " --output " + out);
   // The centre stays at the origin by symmetry: every triangle is scaled by
   // 2, the closed form.
   EXPECT_NEAR(Number(json, "total"), ScaledDensity(2.0), 1e-9) << json;
@@ -158,8 +114,9 @@ TEST(CliTest, DeformWithTheBoundaryScaledKeepsTheSymmetricCentre) {
   EXPECT_LT(deformed.positions.row(0).norm(), 1e-9);
   const Mesh square = ReadMesh(kSquare);
   for (int v = 1; v <= 4; ++v) {
-    EXPECT_NEAR((deformed.positions.row(v) - 2 * square.positions.row(v)).norm(),
-                0, 1e-12);
+    EXPECT_NEAR(
+        (deformed.positions.row(v) - 2 * square.positions.row(v)).norm(), 0,
+        1e-12);
   }
   EXPECT_EQ(Listing(dir),
             (std::vector<std::string>{"boundary.txt", "deformed.off",
@@ -168,9 +125,9 @@ TEST(CliTest, DeformWithTheBoundaryScaledKeepsTheSymmetricCentre) {
 
 TEST(CliTest, GeodesicReportsTheLibraryNumbers) {
   const std::string dir = TempDir() + "/geodesic";
-  const std::string json = RunOk("geodesic --quiet --json --steps 8 --start " +
-                               kSquare + " --end " + kBent + " --output " +
-                               dir);
+  const std::string json =
+      RunOk("geodesic --quiet --json --steps 8 --start " + kSquare + " --end " +
+            kBent + " --output " + dir);
   const double energy = Number(json, "path_energy");
   const std::vector<double> steps = Numbers(json, "step_energies");
   ASSERT_EQ(steps.size(), 8u) << json;
@@ -183,8 +140,8 @@ TEST(CliTest, GeodesicReportsTheLibraryNumbers) {
   EXPECT_LT(*hi / *lo - 1, 0.05) << json;
   // Below the energy of the linear path (the initial guess).
   const Mesh a = ReadMesh(kSquare), b = ReadMesh(kBent);
-  const double linear =
-      PathEnergy(testing::MakeSpace(a), LinearPath(a.positions, b.positions, 8));
+  const double linear = PathEnergy(testing::MakeSpace(a),
+                                   LinearPath(a.positions, b.positions, 8));
   EXPECT_LE(energy, linear);
   // iterations counts every stage; converged means the gradient criterion.
   EXPECT_EQ(Number(json, "iterations"), StageIterations(json)) << json;
@@ -216,13 +173,12 @@ TEST(CliTest, ShootLogAndTransportAlongAGeodesic) {
   const std::string base = TempDir();
   const std::string geodesic = base + "/geodesic";
   RunOk("geodesic --quiet --steps 4 --start " + kSquare + " --end " + kBent +
-      " --output " + geodesic);
+        " --output " + geodesic);
   // Shooting from the geodesic's first step continues it to its end.
   const std::string shot = base + "/shot";
-  const std::string json =
-      RunOk("shoot --quiet --json --steps 4 --first " + geodesic +
-          "/shape_000.ply --second " + geodesic + "/shape_001.ply --output " +
-          shot);
+  const std::string json = RunOk("shoot --quiet --json --steps 4 --first " +
+                                 geodesic + "/shape_000.ply --second " +
+                                 geodesic + "/shape_001.ply --output " + shot);
   EXPECT_EQ(Listing(shot), FramesAndSummary(5));
   // The shot ends at the geodesic's end up to a rigid motion (the gauges of
   // the two solves differ): W[end, shot end] = 0.
@@ -239,9 +195,9 @@ TEST(CliTest, ShootLogAndTransportAlongAGeodesic) {
 
   // LOG_4(A -> B) = 4 (s_1 - A) of the same geodesic.
   const std::string log = base + "/log.ply";
-  const std::string log_json = RunOk("log --quiet --json --steps 4 --start " +
-                                   kSquare + " --end " + kBent +
-                                   " --output " + log);
+  const std::string log_json =
+      RunOk("log --quiet --json --steps 4 --start " + kSquare + " --end " +
+            kBent + " --output " + log);
   const Mesh a = ReadMesh(kSquare);
   const Mesh s1 = ReadMesh(geodesic + "/shape_001.ply");
   const Positions expected = a.positions + 4 * (s1.positions - a.positions);
@@ -255,7 +211,7 @@ TEST(CliTest, ShootLogAndTransportAlongAGeodesic) {
   const std::string moved = base + "/transport";
   const std::string t_json =
       RunOk("transport --quiet --json --path " + geodesic + " --variation " +
-          geodesic + "/shape_000.ply --output " + moved);
+            geodesic + "/shape_000.ply --output " + moved);
   const std::vector<double> norms = Numbers(t_json, "variation_max_norms");
   ASSERT_EQ(norms.size(), 5u) << t_json;
   for (double n : norms) EXPECT_LT(n, 1e-6) << t_json;
@@ -286,10 +242,9 @@ TEST(CliTest, SplineThroughKeyframesAndRegression) {
   // This regression stops after 200 L-BFGS iterations short of the
   // gradient tolerance: it says so ("converged": false, exit 4, below with
   // --allow_unconverged to accept it).
-  const std::string r_json =
-      RunOk("regress --quiet --json --allow_unconverged --inputs " + kSquare +
-            "," + kBent + " --at 0,2 --steps 2 --sigma 0.5 --output " + dir +
-            "/regress");
+  const std::string r_json = RunOk(
+      "regress --quiet --json --allow_unconverged --inputs " + kSquare + "," +
+      kBent + " --at 0,2 --steps 2 --sigma 0.5 --output " + dir + "/regress");
   EXPECT_FALSE(Bool(r_json, "converged")) << r_json;
   EXPECT_EQ(Listing(dir + "/regress"), FramesAndSummary(3));
   const double data = Number(r_json, "data_energy");
@@ -305,12 +260,13 @@ TEST(CliTest, MeanAndPca) {
   const std::string dir = TempDir();
   // The mean of two copies of one shell is that shell: energy 0.
   const std::string same = RunOk("mean --quiet --json --inputs " + kSquare +
-                               "," + kSquare + " --output " + dir + "/m.ply");
+                                 "," + kSquare + " --output " + dir + "/m.ply");
   EXPECT_LT(Number(same, "energy"), 1e-20) << same;
   EXPECT_TRUE(Bool(same, "converged")) << same;
 
-  const std::string json = RunOk("mean --quiet --json --inputs " + kSquare +
-                               "," + kBent + " --output " + dir + "/mean.ply");
+  const std::string json =
+      RunOk("mean --quiet --json --inputs " + kSquare + "," + kBent +
+            " --output " + dir + "/mean.ply");
   const std::vector<double> energies = Numbers(json, "energies");
   ASSERT_EQ(energies.size(), 2u);
   EXPECT_NEAR(Number(json, "energy"), energies[0] + energies[1],
@@ -326,11 +282,10 @@ TEST(CliTest, MeanAndPca) {
   const std::string pca = dir + "/pca";
   const std::string p_json =
       RunOk("pca --quiet --json --modes 1 --inputs " + kSquare + "," + kBent +
-          "," + DataPath("simple/square4.ply") + " --output " + pca);
-  EXPECT_EQ(Listing(pca),
-            (std::vector<std::string>{"mean.ply", "mode_1_minus.ply",
-                                      "mode_1_plus.ply", "pca.json",
-                                      "summary.json"}));
+            "," + DataPath("simple/square4.ply") + " --output " + pca);
+  EXPECT_EQ(Listing(pca), (std::vector<std::string>{
+                              "mean.ply", "mode_1_minus.ply", "mode_1_plus.ply",
+                              "pca.json", "summary.json"}));
   // pca.json and summary.json are the printed summary.
   EXPECT_EQ(Slurp(pca + "/pca.json"), p_json);
   EXPECT_EQ(Slurp(pca + "/summary.json"), p_json);
@@ -347,7 +302,7 @@ TEST(CliTest, RenderWritesTheStripItReports) {
   const std::string dir = TempDir();
   const std::string out = dir + "/strip.png";
   const std::string json = RunOk("render --json --input " + kSquare + "," +
-                               kBent + " --output " + out + " --width 40");
+                                 kBent + " --output " + out + " --width 40");
   EXPECT_EQ(Number(json, "frames"), 2);
   EXPECT_EQ(Number(json, "frame_width"), 40);
   EXPECT_EQ(Number(json, "frame_height"), 320);
@@ -407,8 +362,7 @@ TEST(CliTest, AVerbRejectsAnotherVerbsFlag) {
     std::string out, err;
     EXPECT_EQ(RunCli(c.args, &out, &err), 2) << c.args;
     EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
-    EXPECT_NE(err.find(c.flag + " is not a flag of"), std::string::npos)
-        << err;
+    EXPECT_NE(err.find(c.flag + " is not a flag of"), std::string::npos) << err;
   }
   EXPECT_TRUE(Listing(dir).empty());
 }
@@ -430,9 +384,8 @@ TEST(CliTest, GltfAndPngAreWrittenWithTheFramesOrNothing) {
     EXPECT_NE(err.find("missing"), std::string::npos) << err;
     EXPECT_TRUE(Listing(dir).empty()) << extra;
   }
-  ASSERT_EQ(RunCli(common + " --gltf " + dir + "/a.glb --png " + dir +
-                   "/a.png"),
-            0);
+  ASSERT_EQ(
+      RunCli(common + " --gltf " + dir + "/a.glb --png " + dir + "/a.png"), 0);
   EXPECT_EQ(Listing(dir), (std::vector<std::string>{"a.glb", "a.png", "g"}));
   EXPECT_EQ(Listing(dir + "/g").size(), 3u);
 }
@@ -453,11 +406,28 @@ std::set<std::string> HelpFlags(const std::string& args, std::string* text) {
 TEST(CliTest, HelpListsOnlyTheVerbsFlags) {
   std::string text;
   const std::set<std::string> geodesic = HelpFlags("geodesic", &text);
-  const std::set<std::string> expected = {
-      "start", "end",  "steps",  "output",    "mask",      "png",
-      "gltf",  "report", "mu",  "lambda", "eta",       "bending",
-      "tolerance", "max_iterations", "threads", "quiet", "json", "multires",
-      "linear_solver", "time_limit", "minloglevel", "allow_unconverged"};
+  const std::set<std::string> expected = {"start",
+                                          "end",
+                                          "steps",
+                                          "output",
+                                          "mask",
+                                          "png",
+                                          "gltf",
+                                          "report",
+                                          "mu",
+                                          "lambda",
+                                          "eta",
+                                          "bending",
+                                          "tolerance",
+                                          "max_iterations",
+                                          "threads",
+                                          "quiet",
+                                          "json",
+                                          "multires",
+                                          "linear_solver",
+                                          "time_limit",
+                                          "minloglevel",
+                                          "allow_unconverged"};
   EXPECT_EQ(geodesic, expected) << text;
   // Default and valid range of a numeric flag.
   EXPECT_NE(text.find("default: 8; valid: an integer in [1, 100000]"),
@@ -522,10 +492,11 @@ TEST(CliTest, GeodesicMultiresolutionLevels) {
       " --end " + testing::DataPath("plate/plate121_rolledA.ply") +
       " --steps 4 --quiet --json --tolerance 1e-10 --output " + dir;
   std::string out_multi, out_single, err;
-  ASSERT_EQ(testing::RunCli(common + "/multi --multires 1", &out_multi, &err), 0)
-      << err;
-  ASSERT_EQ(testing::RunCli(common + "/single --multires off", &out_single, &err),
+  ASSERT_EQ(testing::RunCli(common + "/multi --multires 1", &out_multi, &err),
             0)
+      << err;
+  ASSERT_EQ(
+      testing::RunCli(common + "/single --multires off", &out_single, &err), 0)
       << err;
   const double multi = Number(out_multi, "path_energy");
   const double single = Number(out_single, "path_energy");
@@ -578,20 +549,20 @@ TEST(CliTest, GeodesicLinearSolverFlag) {
   const double e_direct = Number(direct, "path_energy");
   EXPECT_NEAR(Number(jacobi, "path_energy"), e_direct, 1e-8 * e_direct);
   EXPECT_EQ(Number(automatic, "path_energy"), e_direct);
-  EXPECT_EQ(RunCli(common + "/bad --linear_solver cholesky", nullptr, &err),
-            1);
+  EXPECT_EQ(RunCli(common + "/bad --linear_solver cholesky", nullptr, &err), 1);
   EXPECT_NE(err.find("--linear_solver must be auto, direct or block-jacobi"),
             std::string::npos)
       << err;
   // log reads the flag too.
   std::string log;
-  ASSERT_EQ(RunCli("log --start " + testing::DataPath("plate/plate121.ply") +
-                       " --end " +
-                       testing::DataPath("plate/plate121_rolledA.ply") +
-                       " --steps 4 --json --linear_solver block-jacobi "
-                       "--output " + dir + "/log.ply",
-                   &log, &err),
-            0)
+  ASSERT_EQ(
+      RunCli("log --start " + testing::DataPath("plate/plate121.ply") +
+                 " --end " + testing::DataPath("plate/plate121_rolledA.ply") +
+                 " --steps 4 --json --linear_solver block-jacobi "
+                 "--output " +
+                 dir + "/log.ply",
+             &log, &err),
+      0)
       << err;
   EXPECT_EQ(Text(log, "linear_solver"), "block-jacobi") << log;
 }

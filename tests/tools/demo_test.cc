@@ -10,9 +10,9 @@
 #include <fstream>
 #include <sstream>
 
-#include "shellspace/io/mesh_io.h"
 #include "shellspace/geometry/procedural_shapes.h"
 #include "shellspace/geometry/validation.h"
+#include "shellspace/io/mesh_io.h"
 #include "shellspace/tests/testing/test_support.h"
 
 namespace shellspace {

@@ -3,15 +3,15 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
-#include <functional>
 #include <fstream>
+#include <functional>
 
+#include "shellspace/geometry/validation.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/exponential_map.h"
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/problems/calculus/parallel_transport.h"
 #include "shellspace/problems/splines/spline.h"
-#include "shellspace/geometry/validation.h"
 #include "shellspace/tests/testing/test_support.h"
 
 namespace shellspace {
@@ -119,10 +119,17 @@ TEST(InputErrorsTest, LibraryMessagesNameTheInputNotAFlag) {
   geodesic.start = geodesic.end = square.positions;
   geodesic.steps = 0;
   const Case cases[] = {
-      {message([] { ShellMaterial{-1, 1, 0}.Validate(); }),
+      {message([] {
+         ShellMaterial{-1, 1, 0}.Validate();
+       }),
        "membrane weight mu must be a positive number, got -1"},
-      {message([] { ShellMaterial{1, 0, 0}.Validate(); }), "lambda"},
-      {message([] { ShellMaterial{1, 1, -2}.Validate(); }),
+      {message([] {
+         ShellMaterial{1, 0, 0}.Validate();
+       }),
+       "lambda"},
+      {message([] {
+         ShellMaterial{1, 1, -2}.Validate();
+       }),
        "bending weight eta"},
       {message([&] { SolveGeodesic(space, geodesic, SolverSettings{}); }),
        "geodesic: the number of steps K must be at least 1, got 0"},
@@ -137,8 +144,8 @@ TEST(InputErrorsTest, LibraryMessagesNameTheInputNotAFlag) {
        }),
        "step epsilon must be positive"},
       {message([&] {
-         SolveRegression(space, {square.positions, square.positions}, {0, 2},
-                         2, -1.0, {}, SplineSettings{});
+         SolveRegression(space, {square.positions, square.positions}, {0, 2}, 2,
+                         -1.0, {}, SplineSettings{});
        }),
        "weight sigma"},
       {message([&] {

@@ -4,12 +4,11 @@
 // 143 / 130 / 124, and no temporary left; a run the time limit does not
 // stop reports the same numbers as one without it.
 #include <fcntl.h>
+#include <gtest/gtest.h>
 #include <poll.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
-
-#include <gtest/gtest.h>
 
 #include <chrono>
 #include <cmath>
@@ -20,6 +19,7 @@
 
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/geodesic.h"
+#include "shellspace/tests/testing/cli_output.h"
 #include "shellspace/tests/testing/test_support.h"
 
 namespace shellspace {
@@ -27,24 +27,13 @@ namespace {
 
 using testing::DataPath;
 using testing::DirectoryListing;
+using testing::FramesAndSummary;
+using testing::Number;
+using testing::Slurp;
 using testing::TempDir;
 
 const std::string kPlate = DataPath("plate/plate121.ply");
 const std::string kRolled = DataPath("plate/plate121_rolledA.ply");
-
-std::string Slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
-double Number(const std::string& json, const std::string& key) {
-  const std::string needle = "\"" + key + "\": ";
-  const auto at = json.find(needle);
-  if (at == std::string::npos) return std::nan("");
-  return std::strtod(json.c_str() + at + needle.size(), nullptr);
-}
 
 // A geodesic of about 10 LM iterations and a Newton finish (K = 8: a few
 // seconds on 2 cores), or longer (K = 32: about 10 times that).
@@ -81,9 +70,9 @@ int RunAndSignal(const std::string& args, const std::string& out_path,
   std::string buffer;
   char chunk[4096];
   while (true) {
-    const double elapsed = std::chrono::duration<double>(
-                               std::chrono::steady_clock::now() - start)
-                               .count();
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+            .count();
     if (elapsed > timeout_seconds) {
       kill(pid, SIGKILL);
       break;
@@ -106,26 +95,13 @@ int RunAndSignal(const std::string& args, const std::string& out_path,
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
 }
 
-// The frames shape_000 ... shape_K and summary.json.
-std::vector<std::string> FramesAndSummary(int count) {
-  std::vector<std::string> names;
-  for (int k = 0; k < count; ++k) {
-    char name[32];
-    std::snprintf(name, sizeof(name), "shape_%03d.ply", k);
-    names.push_back(name);
-  }
-  names.push_back("summary.json");
-  return names;
-}
-
 // The stopped geodesic's directory: every frame complete, the ends the
 // inputs, the reported E_K the frames' E_K, --json == summary.json.
 void ExpectCompletePartialGeodesic(const std::string& dir,
                                    const std::string& json,
                                    const std::string& reason, int kSteps) {
   EXPECT_NE(json.find("\"partial\": true"), std::string::npos) << json;
-  EXPECT_NE(json.find("\"stop_reason\": \"" + reason + "\""),
-            std::string::npos)
+  EXPECT_NE(json.find("\"stop_reason\": \"" + reason + "\""), std::string::npos)
       << json;
   EXPECT_NE(json.find("\"converged\": false"), std::string::npos) << json;
   EXPECT_EQ(Slurp(dir + "/summary.json"), json + "\n");
@@ -164,8 +140,8 @@ TEST(InterruptCliTest, SigtermAfterTheFirstIterationWritesThePartialPath) {
             std::string::npos)
       << err;
   const std::string json = Slurp(base + "/out");
-  ExpectCompletePartialGeodesic(dir, json.substr(0, json.find('\n')),
-                                "SIGTERM", 8);
+  ExpectCompletePartialGeodesic(dir, json.substr(0, json.find('\n')), "SIGTERM",
+                                8);
   EXPECT_EQ(DirectoryListing(base), (std::vector<std::string>{"g", "out"}));
   std::cout << "SIGTERM sent " << after << " s after the start, run ended "
             << seconds << " s after the start\n";
@@ -177,15 +153,16 @@ TEST(InterruptCliTest, SigintStopsAShotAfterCompleteSteps) {
   // The first step of a plate -> rolled plate geodesic, extrapolated by
   // 2000 EXP steps (minutes); SIGINT once step 5 is done.
   ASSERT_EQ(testing::RunCli("geodesic --quiet --multires off --steps 4 "
-                            "--start " + kPlate + " --end " + kRolled +
-                            " --output " + base + "/g"),
+                            "--start " +
+                            kPlate + " --end " + kRolled + " --output " + base +
+                            "/g"),
             0);
   std::string err;
-  const int code = RunAndSignal(
-      "shoot --json --steps 2000 --first " + base +
-          "/g/shape_000.ply --second " + base + "/g/shape_001.ply --output " +
-          dir,
-      base + "/out", "shoot step 5 of 2000", SIGINT, 60, &err);
+  const int code =
+      RunAndSignal("shoot --json --steps 2000 --first " + base +
+                       "/g/shape_000.ply --second " + base +
+                       "/g/shape_001.ply --output " + dir,
+                   base + "/out", "shoot step 5 of 2000", SIGINT, 60, &err);
   EXPECT_EQ(code, 130) << err;
   const std::string json = Slurp(base + "/out");
   EXPECT_NE(json.find("\"partial\": true"), std::string::npos) << json;
@@ -223,18 +200,17 @@ TEST(InterruptCliTest, ATimeLimitThatIsNotReachedChangesNoNumber) {
       "geodesic --quiet --json --multires off --steps 4 --start " + kPlate +
       " --end " + kRolled;
   std::string with, without, err;
-  ASSERT_EQ(testing::RunCli(common + " --output " + base + "/a", &without,
-                            &err),
-            0)
+  ASSERT_EQ(
+      testing::RunCli(common + " --output " + base + "/a", &without, &err), 0)
       << err;
-  ASSERT_EQ(testing::RunCli(common + " --time_limit 1000 --output " + base +
-                                "/b",
-                            &with, &err),
-            0)
+  ASSERT_EQ(
+      testing::RunCli(common + " --time_limit 1000 --output " + base + "/b",
+                      &with, &err),
+      0)
       << err;
   EXPECT_NE(with.find("\"partial\": false"), std::string::npos) << with;
-  for (const char* key : {"path_energy", "iterations", "final_gradient_norm",
-                          "newton_steps"}) {
+  for (const char* key :
+       {"path_energy", "iterations", "final_gradient_norm", "newton_steps"}) {
     EXPECT_EQ(Number(with, key), Number(without, key)) << key;
   }
   for (int k = 0; k <= 4; ++k) {
@@ -255,7 +231,8 @@ TEST(InterruptCliTest, AKilledRunLeavesThePreviousOutputUntouched) {
             0);
   const std::vector<std::string> listing = DirectoryListing(dir);
   std::vector<std::string> contents;
-  for (const std::string& name : listing) contents.push_back(Slurp(dir + "/" + name));
+  for (const std::string& name : listing)
+    contents.push_back(Slurp(dir + "/" + name));
   std::string err;
   const int code = RunAndSignal(LongGeodesic(8, dir), base + "/out",
                                 "geodesic iter   1", SIGKILL, 60, &err);

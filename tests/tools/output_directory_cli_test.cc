@@ -11,6 +11,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "shellspace/tests/testing/cli_output.h"
 #include "shellspace/tests/testing/test_support.h"
 
 namespace shellspace {
@@ -18,29 +19,13 @@ namespace {
 
 using testing::DataPath;
 using testing::DirectoryListing;
+using testing::FramesAndSummary;
 using testing::RunCli;
+using testing::Slurp;
 using testing::TempDir;
 
 const std::string kSquare = DataPath("simple/square4.ply");
 const std::string kBent = DataPath("simple/square4_bent.ply");
-
-std::vector<std::string> FramesAndSummary(int count) {
-  std::vector<std::string> names;
-  for (int k = 0; k < count; ++k) {
-    char name[32];
-    std::snprintf(name, sizeof(name), "shape_%03d.ply", k);
-    names.push_back(name);
-  }
-  names.push_back("summary.json");
-  return names;
-}
-
-std::string Slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 std::string Geodesic(int steps, const std::string& output) {
   return "geodesic --quiet --steps " + std::to_string(steps) + " --start " +
@@ -76,8 +61,7 @@ TEST(OutputDirectoryCliTest, ADirectoryOfOtherFilesIsNotReplaced) {
   std::string err;
   EXPECT_EQ(RunCli(Geodesic(2, dir), nullptr, &err), 1);
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
-  EXPECT_NE(err.find("holds notes.txt, which no run writes"),
-            std::string::npos)
+  EXPECT_NE(err.find("holds notes.txt, which no run writes"), std::string::npos)
       << err;
   EXPECT_EQ(DirectoryListing(dir),
             (std::vector<std::string>{"notes.txt", "shape_000.ply"}));
@@ -98,10 +82,10 @@ TEST(OutputDirectoryCliTest, ConcurrentRunsNeverMix) {
   const std::string cli = SHELLSPACE_CLI;
   int conflicts = 0;
   for (int trial = 0; trial < 6; ++trial) {
-    const std::string command =
-        "(" + cli + " " + Geodesic(2, dir) + " 2> " + base + "/e2; echo $? > " +
-        base + "/c2) & (" + cli + " " + Geodesic(4, dir) + " 2> " + base +
-        "/e4; echo $? > " + base + "/c4) & wait";
+    const std::string command = "(" + cli + " " + Geodesic(2, dir) + " 2> " +
+                                base + "/e2; echo $? > " + base + "/c2) & (" +
+                                cli + " " + Geodesic(4, dir) + " 2> " + base +
+                                "/e4; echo $? > " + base + "/c4) & wait";
     ASSERT_EQ(std::system(("bash -c '" + command + "'").c_str()), 0);
     const std::vector<std::string> listing = DirectoryListing(dir);
     const std::string summary = Slurp(dir + "/summary.json");

@@ -13,24 +13,20 @@
 #include <vector>
 
 #include "shellspace/io/mesh_io.h"
+#include "shellspace/tests/testing/cli_output.h"
 #include "shellspace/tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {
 
 using testing::DataPath;
+using testing::Number;
+using testing::Numbers;
 using testing::RunCli;
 using testing::TempDir;
 
 const std::string kSquare = DataPath("simple/square4.ply");
 const std::string kBent = DataPath("simple/square4_bent.ply");
-
-double Number(const std::string& json, const std::string& key) {
-  const std::string needle = "\"" + key + "\": ";
-  const auto at = json.find(needle);
-  if (at == std::string::npos) return std::nan("");
-  return std::strtod(json.c_str() + at + needle.size(), nullptr);
-}
 
 bool Has(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
@@ -125,7 +121,8 @@ TEST(RunStatusCliTest, RegressionCappedAtOneIterationExitsFour) {
   std::string out, err;
   EXPECT_EQ(RunCli("regress --quiet --json --inputs " + kSquare + "," + kBent +
                        " --at 0,2 --steps 2 --sigma 0.5 --max_iterations 1 "
-                       "--output " + dir + "/r",
+                       "--output " +
+                       dir + "/r",
                    &out, &err),
             4)
       << err;
@@ -135,27 +132,11 @@ TEST(RunStatusCliTest, RegressionCappedAtOneIterationExitsFour) {
   EXPECT_GT(Number(out, "relative_gradient_norm"), 1e-8) << out;
 }
 
-// The numbers of the array "KEY": [...].
-std::vector<double> Numbers(const std::string& json, const std::string& key) {
-  const std::string needle = "\"" + key + "\": [";
-  const auto at = json.find(needle);
-  std::vector<double> values;
-  if (at == std::string::npos) return values;
-  const auto end = json.find(']', at);
-  std::string body = json.substr(at + needle.size(), end - at - needle.size());
-  for (char& c : body) {
-    if (c == ',') c = ' ';
-  }
-  std::istringstream in(body);
-  for (double v; in >> v;) values.push_back(v);
-  return values;
-}
-
 // pca --mean reuses a computed mean: no mean iterations, the same model.
 TEST(RunStatusCliTest, PcaReusesAComputedMean) {
   const std::string dir = TempDir();
-  const std::string inputs = kSquare + "," + kBent + "," +
-                             DataPath("simple/square4.ply");
+  const std::string inputs =
+      kSquare + "," + kBent + "," + DataPath("simple/square4.ply");
   std::string out, err;
   ASSERT_EQ(RunCli("mean --quiet --json --inputs " + inputs + " --output " +
                        dir + "/m.ply",
@@ -192,7 +173,8 @@ TEST(RunStatusCliTest, LThetaSplineWithoutTheEnergy) {
   const std::string dir = TempDir();
   std::string out, err;
   ASSERT_EQ(RunCli("spline --quiet --json --method ltheta --energy=false "
-                   "--keyframes " + kSquare + "," + kBent + "," + kSquare +
+                   "--keyframes " +
+                       kSquare + "," + kBent + "," + kSquare +
                        " --at 0,2,4 --steps 4 --output " + dir + "/s",
                    &out, &err),
             0)

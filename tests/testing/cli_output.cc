@@ -1,0 +1,60 @@
+#include "shellspace/tests/testing/cli_output.h"
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+
+namespace shellspace::testing {
+
+double Number(const std::string& json, const std::string& key) {
+  const std::string needle = "\"" + key + "\": ";
+  const auto at = json.find(needle);
+  if (at == std::string::npos) return std::nan("");
+  return std::strtod(json.c_str() + at + needle.size(), nullptr);
+}
+
+bool Bool(const std::string& json, const std::string& key) {
+  return json.find("\"" + key + "\": true") != std::string::npos;
+}
+
+std::vector<double> Numbers(const std::string& json, const std::string& key) {
+  const std::string needle = "\"" + key + "\": [";
+  const auto at = json.find(needle);
+  std::vector<double> values;
+  if (at == std::string::npos) return values;
+  const auto end = json.find(']', at);
+  std::string body = json.substr(at + needle.size(), end - at - needle.size());
+  for (char& c : body) {
+    if (c == ',') c = ' ';
+  }
+  std::istringstream in(body);
+  for (double v; in >> v;) values.push_back(v);
+  return values;
+}
+
+std::vector<std::string> Frames(int count) {
+  std::vector<std::string> names;
+  for (int k = 0; k < count; ++k) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "shape_%03d.ply", k);
+    names.push_back(name);
+  }
+  return names;
+}
+
+std::vector<std::string> FramesAndSummary(int count) {
+  std::vector<std::string> names = Frames(count);
+  names.push_back("summary.json");
+  return names;
+}
+
+std::string Slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+}  // namespace shellspace::testing

@@ -1,0 +1,30 @@
+// Reading what the CLI printed and wrote, for the CLI tests: values of its
+// --json object (flat key lookup, the first occurrence of a key), frame
+// names of an output directory, file contents.
+#ifndef SHELLSPACE_TESTS_TESTING_CLI_OUTPUT_H_
+#define SHELLSPACE_TESTS_TESTING_CLI_OUTPUT_H_
+
+#include <string>
+#include <vector>
+
+namespace shellspace::testing {
+
+// The number after "KEY": in `json`; NaN if absent.
+double Number(const std::string& json, const std::string& key);
+// True if `json` holds "KEY": true.
+bool Bool(const std::string& json, const std::string& key);
+// The numbers of the array "KEY": [...] (empty if absent).
+std::vector<double> Numbers(const std::string& json, const std::string& key);
+
+// shape_000.ply ... shape_{count-1}.ply.
+std::vector<std::string> Frames(int count);
+// Frames(count) and summary.json: the listing of a path verb's output
+// directory.
+std::vector<std::string> FramesAndSummary(int count);
+
+// The whole content of a file ("" if it cannot be read).
+std::string Slurp(const std::string& path);
+
+}  // namespace shellspace::testing
+
+#endif  // SHELLSPACE_TESTS_TESTING_CLI_OUTPUT_H_
