@@ -95,7 +95,11 @@ void GradientFieldCache::PrepareForEvaluation(bool evaluate_jacobians,
         } else {
           GatherCoordinates(reference, stencil, ref);
           GatherCoordinates(deformed, stencil, def);
-          good = d.Compute(group.element, ref, def, unknown_side_, 1.0);
+          // Only the rows of the fixed side's gradient are used.
+          good = d.Compute(group.element, ref, def, unknown_side_, 1.0,
+                           unknown_is_reference
+                               ? ElementSecondDerivatives<kV>::Rows::kDeformed
+                               : ElementSecondDerivatives<kV>::Rows::kReference);
           if (good) {
             const auto& grad =
                 unknown_is_reference ? d.grad_deformed : d.grad_reference;

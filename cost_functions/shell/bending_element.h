@@ -5,6 +5,9 @@
 
 #include <Eigen/Core>
 
+#include <cmath>
+
+#include "shellspace/cost_functions/shell/element_hessian.h"
 #include "shellspace/geometry/element_geometry.h"
 
 namespace shellspace {
@@ -24,35 +27,38 @@ struct BendingElement {
 
   double eta = 0.01;
 
+  // The stencil quantities of one flap, shared by Evaluate and
+  // SecondDerivatives: the reference areas, the dihedral angles of both
+  // sides, wbar, scale = sqrt(2 eta wbar), delta = theta - thetabar. `ok` is
+  // false for a degenerate flap (then the angles are not computed).
   template <typename T>
-  bool Evaluate(const Vec3<T>* ref, const Vec3<T>* def, T* residual,
-                Jacobian<T>* jacobian_reference,
-                Jacobian<T>* jacobian_deformed) const {
-    const TriangleArea<T> area0(ref[0], ref[1], ref[2]);
-    const TriangleArea<T> area1(ref[1], ref[0], ref[3]);
-    const T area_sum = area0.area + area1.area;
-    if (!(ScalarValue(area0.area) > 0.0 && ScalarValue(area1.area) > 0.0)) {
-      return false;
-    }
-    const Vec3<T> edge = ref[1] - ref[0];
-    const T edge_sq = edge.squaredNorm();
-    const T weight = T(3) * edge_sq / area_sum;
-    const T scale = sqrt(T(2.0 * eta) * weight);
-    const DihedralAngle<T> angle(def[0], def[1], def[2], def[3]);
-    const DihedralAngle<T> angle_bar(ref[0], ref[1], ref[2], ref[3]);
-    const T delta = angle.theta - angle_bar.theta;
-    if (!std::isfinite(ScalarValue(delta))) return false;
-    residual[0] = scale * delta;
-    if (jacobian_deformed) {
-      for (int v = 0; v < 4; ++v) {
-        jacobian_deformed->template segment<3>(3 * v) =
-            scale * angle.grad[v].transpose();
+  struct Stencil {
+    TriangleArea<T> area0, area1;
+    T area_sum, edge_sq, weight, scale, delta;
+    Vec3<T> edge;
+    DihedralAngle<T> angle, angle_bar;
+    bool ok = false;
+
+    Stencil(const Vec3<T>* ref, const Vec3<T>* def, double eta)
+        : area0(ref[0], ref[1], ref[2]),
+          area1(ref[1], ref[0], ref[3]),
+          angle(def[0], def[1], def[2], def[3]),
+          angle_bar(ref[0], ref[1], ref[2], ref[3]) {
+      area_sum = area0.area + area1.area;
+      if (!(ScalarValue(area0.area) > 0.0 && ScalarValue(area1.area) > 0.0)) {
+        return;
       }
+      edge = ref[1] - ref[0];
+      edge_sq = edge.squaredNorm();
+      weight = T(3) * edge_sq / area_sum;
+      scale = sqrt(T(2.0 * eta) * weight);
+      delta = angle.theta - angle_bar.theta;
+      ok = std::isfinite(ScalarValue(delta));
     }
-    if (jacobian_reference) {
-      // d scale = eta d weight / scale,
-      // d weight = 3 d|Ebar|^2 / A - 3 |Ebar|^2 dA / A^2, A = abar_0 + abar_1.
-      Vec3<T> d_area[4];
+
+    // d_weight[v] = d wbar / d Xbar_v:
+    // d wbar = 3 d|Ebar|^2 / A - 3 |Ebar|^2 dA / A^2, A = abar_0 + abar_1.
+    void WeightGradient(Vec3<T>* d_area, Vec3<T>* d_weight) const {
       d_area[0] = area0.grad[0] + area1.grad[1];
       d_area[1] = area0.grad[1] + area1.grad[0];
       d_area[2] = area0.grad[2];
@@ -60,12 +66,153 @@ struct BendingElement {
       const Vec3<T> zero = Vec3<T>::Zero();
       const Vec3<T> d_edge_sq[4] = {T(-2) * edge, T(2) * edge, zero, zero};
       for (int v = 0; v < 4; ++v) {
-        const Vec3<T> d_weight =
-            T(3) * d_edge_sq[v] / area_sum -
-            (T(3) * edge_sq / (area_sum * area_sum)) * d_area[v];
-        const Vec3<T> d_scale = T(eta) * d_weight / scale;
+        d_weight[v] = T(3) * d_edge_sq[v] / area_sum -
+                      (T(3) * edge_sq / (area_sum * area_sum)) * d_area[v];
+      }
+    }
+  };
+
+  template <typename T>
+  bool Evaluate(const Vec3<T>* ref, const Vec3<T>* def, T* residual,
+                Jacobian<T>* jacobian_reference,
+                Jacobian<T>* jacobian_deformed) const {
+    const Stencil<T> s(ref, def, eta);
+    if (!s.ok) return false;
+    residual[0] = s.scale * s.delta;
+    if (jacobian_deformed) {
+      for (int v = 0; v < 4; ++v) {
+        jacobian_deformed->template segment<3>(3 * v) =
+            s.scale * s.angle.grad[v].transpose();
+      }
+    }
+    if (jacobian_reference) {
+      // d scale = eta d weight / scale.
+      Vec3<T> d_area[4], d_weight[4];
+      s.WeightGradient(d_area, d_weight);
+      for (int v = 0; v < 4; ++v) {
+        const Vec3<T> d_scale = T(eta) * d_weight[v] / s.scale;
         jacobian_reference->template segment<3>(3 * v) =
-            (d_scale * delta - scale * angle_bar.grad[v]).transpose();
+            (d_scale * s.delta - s.scale * s.angle_bar.grad[v]).transpose();
+      }
+    }
+    return true;
+  }
+
+  // Energy, gradients and second derivatives (element_hessian.h) of
+  // e = 1/2 r^2 = eta wbar delta^2, from the Stencil (no dual numbers):
+  //   D_2^2 e = 2 eta wbar (dtheta dtheta^T + delta d2theta),
+  //   d_Xbar d_X e = 2 eta (delta dwbar - wbar dthetabar) dtheta^T
+  //                  (rows Xbar, columns X),
+  //   D_1^2 e = eta (delta^2 d2wbar - 2 delta (dwbar dthetabar^T +
+  //             dthetabar dwbar^T) + 2 wbar dthetabar dthetabar^T
+  //             - 2 wbar delta d2thetabar),
+  //   d2wbar = 3 d2|Ebar|^2 / A - 3 (d|Ebar|^2 dA^T + dA d|Ebar|^2^T) / A^2
+  //            + 6 |Ebar|^2 dA dA^T / A^3 - 3 |Ebar|^2 d2A / A^2,
+  // with d2theta (DihedralAngle::Hessian), d2A the sum of the two triangle
+  // area Hessians (TriangleArea::Hessian), d2|Ebar|^2 = 2 c c^T (x) I, c =
+  // (-1, 1, 0, 0). The energy and the gradients are computed exactly as
+  // 1/2 r^2 and J^T r of Evaluate.
+  bool SecondDerivatives(const double* reference, const double* deformed,
+                         ShellSide active, double weight,
+                         ElementSecondDerivatives<4>::Rows rows,
+                         ElementSecondDerivatives<4>* out) const {
+    using Rows = ElementSecondDerivatives<4>::Rows;
+    using Vec12 = Eigen::Matrix<double, 12, 1>;
+    using Mat12 = Eigen::Matrix<double, 12, 12>;
+    Vec3<double> ref[4], def[4];
+    for (int v = 0; v < 4; ++v) {
+      ref[v] = Eigen::Map<const Eigen::Vector3d>(reference + 3 * v);
+      def[v] = Eigen::Map<const Eigen::Vector3d>(deformed + 3 * v);
+    }
+    const Stencil<double> s(ref, def, eta);
+    if (!s.ok) return false;
+    const bool want_ref = rows != Rows::kDeformed;
+    const bool want_def = rows != Rows::kReference;
+    const bool deformed_active = active == ShellSide::kDeformed;
+    const double r = s.scale * s.delta;
+    out->energy = 0.5 * weight * r * r;
+    Vec12 d_theta, d_theta_bar, d_wbar;
+    for (int v = 0; v < 4; ++v) {
+      d_theta.segment<3>(3 * v) = s.angle.grad[v];
+      d_theta_bar.segment<3>(3 * v) = s.angle_bar.grad[v];
+    }
+    if (want_def) {
+      out->grad_deformed = weight * ((s.scale * d_theta) * r);
+    }
+    Vec3<double> d_area[4], d_weight[4];
+    if (want_ref) {
+      s.WeightGradient(d_area, d_weight);
+      for (int v = 0; v < 4; ++v) {
+        d_wbar.segment<3>(3 * v) = d_weight[v];
+        const Vec3<double> d_scale = eta * d_weight[v] / s.scale;
+        out->grad_reference.segment<3>(3 * v) =
+            weight * ((d_scale * s.delta - s.scale * s.angle_bar.grad[v]) * r);
+      }
+    }
+    // (delta dwbar - wbar dthetabar): the mixed block is 2 eta (this) dtheta^T.
+    auto mixed_left = [&]() {
+      if (!want_ref) {
+        s.WeightGradient(d_area, d_weight);
+        for (int v = 0; v < 4; ++v) d_wbar.segment<3>(3 * v) = d_weight[v];
+      }
+      return Vec12(s.delta * d_wbar - s.weight * d_theta_bar);
+    };
+    if (deformed_active) {
+      if (want_def) {
+        Mat12 h;
+        s.angle.Hessian(&h);
+        out->d_grad_deformed =
+            (weight * 2 * eta * s.weight) *
+            (d_theta * d_theta.transpose() + s.delta * h);
+      }
+      if (want_ref) {
+        out->d_grad_reference =
+            (weight * 2 * eta) * (mixed_left() * d_theta.transpose());
+      }
+    } else {
+      if (want_def) {
+        out->d_grad_deformed =
+            (weight * 2 * eta) * (d_theta * mixed_left().transpose());
+      }
+      if (want_ref) {
+        // d2 wbar.
+        Eigen::Matrix<double, 9, 9> h0, h1;
+        s.area0.Hessian(&h0);
+        s.area1.Hessian(&h1);
+        Mat12 d2_area = Mat12::Zero();
+        const int map0[3] = {0, 1, 2}, map1[3] = {1, 0, 3};
+        for (int a = 0; a < 3; ++a) {
+          for (int b = 0; b < 3; ++b) {
+            d2_area.block<3, 3>(3 * map0[a], 3 * map0[b]) +=
+                h0.block<3, 3>(3 * a, 3 * b);
+            d2_area.block<3, 3>(3 * map1[a], 3 * map1[b]) +=
+                h1.block<3, 3>(3 * a, 3 * b);
+          }
+        }
+        Vec12 d_a = Vec12::Zero(), d_edge_sq = Vec12::Zero();
+        for (int v = 0; v < 4; ++v) d_a.segment<3>(3 * v) = d_area[v];
+        d_edge_sq.segment<3>(0) = -2 * s.edge;
+        d_edge_sq.segment<3>(3) = 2 * s.edge;
+        const double area = s.area_sum;
+        const double area2 = area * area;
+        const Mat12 cross = d_edge_sq * d_a.transpose();
+        Mat12 d2_wbar = (6 * s.edge_sq / (area2 * area)) * d_a * d_a.transpose() -
+                        (3 / area2) * (cross + cross.transpose()) -
+                        (3 * s.edge_sq / area2) * d2_area;
+        for (int c = 0; c < 3; ++c) {
+          d2_wbar(c, c) += 6 / area;
+          d2_wbar(3 + c, 3 + c) += 6 / area;
+          d2_wbar(c, 3 + c) -= 6 / area;
+          d2_wbar(3 + c, c) -= 6 / area;
+        }
+        Mat12 h_bar;
+        s.angle_bar.Hessian(&h_bar);
+        const Mat12 wt = d_wbar * d_theta_bar.transpose();
+        out->d_grad_reference =
+            (weight * eta) *
+            (s.delta * s.delta * d2_wbar - 2 * s.delta * (wt + wt.transpose()) +
+             2 * s.weight * d_theta_bar * d_theta_bar.transpose() -
+             2 * s.weight * s.delta * h_bar);
       }
     }
     return true;

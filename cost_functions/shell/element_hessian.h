@@ -1,13 +1,17 @@
-// Second derivatives of one element's energy e = 1/2 |r|^2, obtained by
-// differentiating the element's analytic gradient (J^T r, the same stencil as
-// the cost functions) with forward-mode dual numbers (ceres::Jet). Exact to
-// round-off; no finite differences.
+// Second derivatives of one element's energy e = 1/2 |r|^2: the element's
+// own hand-derived second derivatives where it provides them (an element
+// method SecondDerivatives, see below: MembraneElement, BendingElement), else
+// by differentiating the element's analytic gradient (J^T r, the same stencil
+// as the cost functions) with forward-mode dual numbers (ceres::Jet). Both
+// exact to round-off; no finite differences.
 #ifndef SHELLSPACE_COST_FUNCTIONS_SHELL_ELEMENT_HESSIAN_H_
 #define SHELLSPACE_COST_FUNCTIONS_SHELL_ELEMENT_HESSIAN_H_
 
 #include <ceres/jet.h>
 
 #include <Eigen/Core>
+#include <type_traits>
+#include <utility>
 
 #include "shellspace/geometry/scalar_traits.h"
 
@@ -29,6 +33,33 @@ enum class ShellSide { kReference, kDeformed };
 // grad_reference and d_grad_reference (grad_deformed, d_grad_deformed) are
 // computed -- one residual Jacobian fewer in dual numbers; the others are
 // left unchanged.
+//
+// Analytic second derivatives: an element type E (element_set.h) may provide
+//   bool SecondDerivatives(const double* reference, const double* deformed,
+//       ShellSide active, double weight,
+//       typename ElementSecondDerivatives<E::kNumVertices>::Rows rows,
+//       ElementSecondDerivatives<E::kNumVertices>* out) const;
+// filling exactly what Compute documents (same layout, same `rows` and
+// `active` semantics, energy and gradients included, fields not asked for
+// left unchanged) and returning false exactly when Evaluate would. Compute
+// then uses it (detected at compile time, HasAnalyticSecondDerivatives);
+// otherwise, and always in ComputeWithDualNumbers, it differentiates J^T r
+// with dual numbers.
+template <int kVertices>
+struct ElementSecondDerivatives;
+
+template <class Element, class = void>
+struct HasAnalyticSecondDerivatives : std::false_type {};
+template <class Element>
+struct HasAnalyticSecondDerivatives<
+    Element,
+    std::void_t<decltype(std::declval<const Element&>().SecondDerivatives(
+        std::declval<const double*>(), std::declval<const double*>(),
+        ShellSide::kDeformed, 1.0,
+        ElementSecondDerivatives<Element::kNumVertices>::Rows::kBoth,
+        std::declval<ElementSecondDerivatives<Element::kNumVertices>*>()))>>
+    : std::true_type {};
+
 template <int kVertices>
 struct ElementSecondDerivatives {
   static constexpr int n = 3 * kVertices;
@@ -43,6 +74,23 @@ struct ElementSecondDerivatives {
   bool Compute(const Element& element, const double* reference,
                const double* deformed, ShellSide active, double weight,
                Rows rows = Rows::kBoth) {
+    static_assert(Element::kNumVertices == kVertices,
+                  "ElementSecondDerivatives: stencil size mismatch");
+    if constexpr (HasAnalyticSecondDerivatives<Element>::value) {
+      return element.SecondDerivatives(reference, deformed, active, weight,
+                                       rows, this);
+    } else {
+      return ComputeWithDualNumbers(element, reference, deformed, active,
+                                    weight, rows);
+    }
+  }
+
+  // The dual-number path for any element (the reference the analytic
+  // second derivatives are tested against).
+  template <class Element>
+  bool ComputeWithDualNumbers(const Element& element, const double* reference,
+                              const double* deformed, ShellSide active,
+                              double weight, Rows rows = Rows::kBoth) {
     using J = ceres::Jet<double, n>;
     Vec3<J> ref[kVertices], def[kVertices];
     for (int v = 0; v < kVertices; ++v) {

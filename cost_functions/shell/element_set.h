@@ -36,6 +36,12 @@
 //       double* e) const;   // the unweighted term e in closed form,
 //                           // independent of the residuals; false if
 //                           // degenerate
+// and optionally
+//   bool SecondDerivatives(const double* ref, const double* def,
+//       ShellSide active, double weight, Rows rows,
+//       ElementSecondDerivatives<kNumVertices>* out) const;
+//       // hand-derived second derivatives (element_hessian.h); without it
+//       // they are taken by dual numbers over Evaluate's J^T r
 // and the evaluators are templates over it (ElementSecondDerivatives,
 // ElementCostFunction, ...): no evaluator names an element type.
 //

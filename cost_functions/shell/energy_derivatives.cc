@@ -83,6 +83,32 @@ bool TryEnergyGradientDerivative(const ShellSpace& space,
     using Group = std::decay_t<decltype(group)>;
     using E = typename Group::Element;
     constexpr int kV = Group::kVertices;
+    if constexpr (HasAnalyticSecondDerivatives<E>::value) {
+      // The element's own block of the Hessian times p (only the rows of
+      // `gradient`).
+      using D = ElementSecondDerivatives<kV>;
+      D d;
+      double ref[3 * kV], def[3 * kV];
+      Eigen::Matrix<double, 3 * kV, 1> p_local;
+      const auto rows = of_reference ? D::Rows::kReference : D::Rows::kDeformed;
+      for (int e = 0; e < group.size(); ++e) {
+        const auto& vs = group.stencils[e];
+        GatherCoordinates(reference, vs, ref);
+        GatherCoordinates(deformed, vs, def);
+        for (int a = 0; a < kV; ++a)
+          p_local.template segment<3>(3 * a) = p.segment<3>(3 * vs[a]);
+        if (!d.Compute(group.element, ref, def, moved, 1.0, rows)) {
+          set.Fail(group.first_element + e, failure);
+          ok = false;
+          return;
+        }
+        const Eigen::Matrix<double, 3 * kV, 1> local =
+            (of_reference ? d.d_grad_reference : d.d_grad_deformed) * p_local;
+        for (int a = 0; a < kV; ++a)
+          out->segment<3>(3 * vs[a]) += local.template segment<3>(3 * a);
+      }
+      return;
+    }
     Vec3<J> x_ref[kV], x_def[kV];
     J r[E::kNumResiduals];
     typename E::template Jacobian<J> jac;

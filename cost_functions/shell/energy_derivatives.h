@@ -34,9 +34,10 @@ bool TryEnergyGradient(const ShellSpace& space, const Positions& reference,
 // d/de D W[reference + e p, deformed] (moved kReference) or
 // d/de D W[reference, deformed + e p] (moved kDeformed) at e = 0, with D =
 // D_1 (gradient kReference) or D_2 (kDeformed): the product of the block
-// EnergyHessian(gradient, moved) with p, without assembling it (dual numbers
-// with one derivative over the element gradients). Throws InputError if an
-// element is degenerate.
+// EnergyHessian(gradient, moved) with p, without assembling it (per element
+// its analytic second-derivative block times p; for an element without them,
+// dual numbers with one derivative over the element gradient). Throws
+// InputError if an element is degenerate.
 Eigen::VectorXd EnergyGradientDerivative(const ShellSpace& space,
                                          const Positions& reference,
                                          const Positions& deformed,

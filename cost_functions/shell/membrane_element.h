@@ -1,6 +1,8 @@
 // One triangle's membrane residuals with Jacobians w.r.t. reference and
 // deformed vertices: the membrane law (membrane_law.h) composed with the
-// triangle distortion (geometry/triangle_distortion.h).
+// triangle distortion (geometry/triangle_distortion.h); its hand-derived
+// second derivatives through the first fundamental forms
+// (membrane_form_derivatives.h).
 #ifndef SHELLSPACE_COST_FUNCTIONS_SHELL_MEMBRANE_ELEMENT_H_
 #define SHELLSPACE_COST_FUNCTIONS_SHELL_MEMBRANE_ELEMENT_H_
 
@@ -8,6 +10,8 @@
 
 #include <cmath>
 
+#include "shellspace/cost_functions/shell/element_hessian.h"
+#include "shellspace/cost_functions/shell/membrane_form_derivatives.h"
 #include "shellspace/cost_functions/shell/membrane_law.h"
 #include "shellspace/geometry/element_geometry.h"
 #include "shellspace/geometry/triangle_distortion.h"
@@ -57,6 +61,91 @@ struct MembraneElement {
       }
     }
     return true;
+  }
+
+  // Energy, gradients and second derivatives (element_hessian.h) of e =
+  // abar W_m(gbar^-1 g) = F(p, q) (membrane_form_derivatives.h), p, q the
+  // entries of gbar, g (FirstFundamentalForm), chained to the 9 coordinates
+  // of each triangle with J_p = dp/dXbar, J_q = dq/dX (3 x 9):
+  //   d_X e = J_q^T F_q,  d_Xbar e = J_p^T F_p,
+  //   D_2^2 e = J_q^T F_qq J_q + sum_m F_q,m d2q_m/dX2,
+  //   D_1^2 e = J_p^T F_pp J_p + sum_m F_p,m d2p_m/dXbar2,
+  //   d_Xbar d_X e = J_p^T F_pq J_q   (rows Xbar, columns X),
+  // where d2g11/dX2 = 2 a a^T (x) I, d2g12/dX2 = (a b^T + b a^T) (x) I,
+  // d2g22/dX2 = 2 b b^T (x) I with a = (-1, 1, 0), b = (-1, 0, 1) over the
+  // vertices (i, j, k). The energy is the closed form (as Energy), the
+  // gradients equal J^T r of Evaluate up to round-off. False exactly for a
+  // degenerate triangle (det gbar or det g not positive and finite).
+  bool SecondDerivatives(const double* reference, const double* deformed,
+                         ShellSide active, double weight,
+                         ElementSecondDerivatives<3>::Rows rows,
+                         ElementSecondDerivatives<3>* out) const {
+    using Rows = ElementSecondDerivatives<3>::Rows;
+    using Mat39 = Eigen::Matrix<double, 3, 9>;
+    using Mat9 = Eigen::Matrix<double, 9, 9>;
+    Vec3<double> ref[3], def[3];
+    for (int v = 0; v < 3; ++v) {
+      ref[v] = Eigen::Map<const Eigen::Vector3d>(reference + 3 * v);
+      def[v] = Eigen::Map<const Eigen::Vector3d>(deformed + 3 * v);
+    }
+    const FirstFundamentalForm<double> gbar(ref[0], ref[1], ref[2]);
+    const FirstFundamentalForm<double> g(def[0], def[1], def[2]);
+    const double p[3] = {gbar.g11, gbar.g12, gbar.g22};
+    const double q[3] = {g.g11, g.g12, g.g22};
+    const bool want_ref = rows != Rows::kDeformed;
+    const bool want_def = rows != Rows::kReference;
+    const bool deformed_active = active == ShellSide::kDeformed;
+    MembraneFormDerivatives f;
+    if (!f.Compute(law.mu, law.lambda, p, q, want_ref && !deformed_active,
+                   want_def && deformed_active,
+                   deformed_active ? want_ref : want_def)) {
+      return false;
+    }
+    Mat39 jp, jq;
+    for (int m = 0; m < 3; ++m) {
+      for (int v = 0; v < 3; ++v) {
+        jp.block<1, 3>(m, 3 * v) = gbar.grad[m][v].transpose();
+        jq.block<1, 3>(m, 3 * v) = g.grad[m][v].transpose();
+      }
+    }
+    out->energy = weight * f.energy;
+    if (want_ref) {
+      out->grad_reference = weight * (jp.transpose() * f.grad_p);
+      if (deformed_active) {
+        out->d_grad_reference = weight * (jp.transpose() * f.h_pq * jq);
+      } else {
+        out->d_grad_reference = weight * FormHessian(jp, f.h_pp, f.grad_p);
+      }
+    }
+    if (want_def) {
+      out->grad_deformed = weight * (jq.transpose() * f.grad_q);
+      if (deformed_active) {
+        out->d_grad_deformed = weight * FormHessian(jq, f.h_qq, f.grad_q);
+      } else {
+        out->d_grad_deformed =
+            weight * Mat9(jq.transpose() * f.h_pq.transpose() * jp);
+      }
+    }
+    return true;
+  }
+
+  // J^T H J + sum_m G_m d2(form entry m)/dX2 for a first fundamental form
+  // with Jacobian J (3 x 9), its Hessian H and gradient G w.r.t. the entries.
+  static Eigen::Matrix<double, 9, 9> FormHessian(
+      const Eigen::Matrix<double, 3, 9>& j, const Eigen::Matrix3d& h,
+      const Eigen::Vector3d& g) {
+    Eigen::Matrix<double, 9, 9> out = j.transpose() * h * j;
+    const Eigen::Vector3d a(-1, 1, 0), b(-1, 0, 1);
+    const Eigen::Matrix3d ab = a * b.transpose();
+    const Eigen::Matrix3d s = 2 * g(0) * a * a.transpose() +
+                              g(1) * (ab + ab.transpose()) +
+                              2 * g(2) * b * b.transpose();
+    for (int v = 0; v < 3; ++v) {
+      for (int w = 0; w < 3; ++w) {
+        for (int c = 0; c < 3; ++c) out(3 * v + c, 3 * w + c) += s(v, w);
+      }
+    }
+    return out;
   }
 
   // abar W_m(gbar^-1 g) in closed form from the first fundamental forms

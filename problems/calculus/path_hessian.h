@@ -28,8 +28,10 @@ namespace shellspace {
 // pair (v_a, v_b). The pairs of the mesh are enumerated once (CSR over the
 // column vertex) and every element knows the slot of each of its pairs, so
 // one assembly is: per element, the second derivatives of its energy
-// (ElementSecondDerivatives: dual numbers over the analytic gradient, the
-// same stencil as the cost functions) scattered into per-slice block arrays,
+// (ElementSecondDerivatives: the elements' hand-derived second derivatives,
+// from the same stencil as the cost functions; dual numbers over the
+// analytic gradient for an element without them) scattered into per-slice
+// block arrays,
 // then one pass T_v^T B T_w over the blocks into compressed columns. No
 // triplets, no sparse products.
 class PathHessianAssembler {

@@ -25,6 +25,13 @@ double CentralDifferenceError(const VectorFunction& f, const Eigen::VectorXd& x,
   return error / std::max(scale > 0 ? scale : numeric_scale, 1e-300);
 }
 
+double NormwiseRelativeError(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
+                             double scale) {
+  if (a.rows() != b.rows() || a.cols() != b.cols()) return HUGE_VAL;
+  const double reference = scale > 0 ? scale : b.cwiseAbs().maxCoeff();
+  return (a - b).cwiseAbs().maxCoeff() / std::max(reference, 1e-300);
+}
+
 std::vector<int> ProbeCoordinates(int n, int count, unsigned seed) {
   std::vector<int> all(n);
   for (int i = 0; i < n; ++i) all[i] = i;

@@ -59,6 +59,12 @@ class CostFunctionWithWrongJacobian : public ceres::CostFunction {
   double offset_;
 };
 
+// max |a - b| / max |b| over all entries (normwise relative): the check that
+// two computations of one derivative block agree (e.g. analytic against
+// dual numbers); `scale` > 0 replaces max |b|.
+double NormwiseRelativeError(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
+                             double scale = 0);
+
 // The negative twin of an analytic derivative column: `analytic` with entry
 // `row` of column `col` off by `offset`.
 DerivativeColumn WrongInOneEntry(DerivativeColumn analytic, int row, int col,
