@@ -1,8 +1,6 @@
 #!/usr/bin/env bash
 # Sets up (scripts/setup.sh), builds and runs the whole test suite with CTest,
-# then builds and runs the fast tests under AddressSanitizer +
-# UndefinedBehaviorSanitizer (./build-sanitize), then fuzzes the mesh and mask
-# readers: a separate clang build in
+# then fuzzes the mesh and mask readers: a separate clang build in
 # ./build-fuzz (-DSHELLSPACE_BUILD_FUZZERS=ON, only the fuzz targets and the
 # geometry and io rooms, with ASan + UBSan) and fuzz/run.sh with 20000
 # inputs per target (about 3 minutes on 2 cores from a clean build dir).
@@ -14,14 +12,6 @@ scripts/setup.sh -DSHELLSPACE_BUILD_BENCHMARKS=ON
 cd build
 ctest --output-on-failure -j"$(nproc)"
 cd ..
-
-# Sanitizer stage: the library, the CLI and the fast tests of
-# SHELLSPACE_SANITIZED_TESTS (tests/CMakeLists.txt) built with ASan + UBSan
-# in ./build-sanitize and run; any report fails the stage.
-cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Release -DSHELLSPACE_SANITIZE=ON \
-  -DSHELLSPACE_BUILD_BENCHMARKS=OFF >/dev/null
-cmake --build build-sanitize -j"$(nproc)" --target sanitized_tests
-scripts/run_sanitized_tests.sh build-sanitize
 
 # Fuzz stage (fuzz/CMakeLists.txt, fuzz/run.sh).
 cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++ \
