@@ -1,5 +1,7 @@
 #include "shellspace/tools/run_status.h"
 
+#include "shellspace/tools/stop_request.h"
+
 #include <gflags/gflags.h>
 
 #include <cstdio>
@@ -39,6 +41,9 @@ void RunStatus::Warn(const std::string& text) {
 
 int RunStatus::Finish() const {
   if (ok()) return 0;
+  // A run cut short by a time limit or a signal did not try to converge:
+  // main reports the stop ("stopped (...)", exit 124, 130 or 143).
+  if (ObservedStop() != StopCause::kNone) return 0;
   std::string line;
   for (size_t i = 0; i < failures_.size(); ++i) {
     line += (i ? "; " : "") + failures_[i];

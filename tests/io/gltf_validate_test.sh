@@ -25,13 +25,13 @@ b="$data/simple/double_square_bent.ply"
 g="$tmp/geo"
 # Every verb that writes frames writes the same frames as a .glb.
 "$cli" shoot --first "$g/shape_000.ply" --second "$g/shape_001.ply" --steps 3 \
-  --output "$tmp/shoot" --gltf "$tmp/shoot.glb" --quiet
+  --output "$tmp/shoot" --gltf "$tmp/shoot.glb" --quiet --allow_unconverged
 "$cli" transport --path "$g" --variation "$g/shape_001.ply" \
-  --output "$tmp/transport" --gltf "$tmp/transport.glb" --quiet
+  --output "$tmp/transport" --gltf "$tmp/transport.glb" --quiet --allow_unconverged
 "$cli" spline --keyframes "$g/shape_000.ply,$g/shape_002.ply,$g/shape_004.ply" \
-  --at 0,2,4 --steps 4 --output "$tmp/spline" --gltf "$tmp/spline.glb" --quiet
+  --at 0,2,4 --steps 4 --output "$tmp/spline" --gltf "$tmp/spline.glb" --quiet --allow_unconverged
 "$cli" regress --inputs "$g/shape_000.ply,$g/shape_004.ply" --at 0,4 \
-  --steps 4 --output "$tmp/regress" --gltf "$tmp/regress.glb" --quiet
+  --steps 4 --output "$tmp/regress" --gltf "$tmp/regress.glb" --quiet --allow_unconverged
 "$cli" demo --steps 2 --extrapolate 1 --output "$tmp/demo" \
   --gltf "$tmp/demo.glb" --quiet >/dev/null
 "$cli" export --input "$tmp/geo" --output "$tmp/export_dir.glb" --quiet

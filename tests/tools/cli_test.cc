@@ -387,7 +387,7 @@ TEST(CliTest, GltfAndPngAreWrittenWithTheFramesOrNothing) {
   ASSERT_EQ(
       RunCli(common + " --gltf " + dir + "/a.glb --png " + dir + "/a.png"), 0);
   EXPECT_EQ(Listing(dir), (std::vector<std::string>{"a.glb", "a.png", "g"}));
-  EXPECT_EQ(Listing(dir + "/g").size(), 3u);
+  EXPECT_EQ(Listing(dir + "/g"), FramesAndSummary(3));
 }
 
 // The flags listed by `shellspace ARGS --help`.
