@@ -55,7 +55,8 @@ namespace shellspace {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-using DoubleArray = py::array_t<double, py::array::c_style | py::array::forcecast>;
+using DoubleArray =
+    py::array_t<double, py::array::c_style | py::array::forcecast>;
 using IndexArray =
     py::array_t<long long, py::array::c_style | py::array::forcecast>;
 
@@ -100,8 +101,8 @@ py::array_t<double> FromPositions(const Positions& positions) {
 }
 
 py::array_t<long long> FromFaces(const Faces& faces) {
-  py::array_t<long long> out({static_cast<py::ssize_t>(faces.rows()),
-                              static_cast<py::ssize_t>(3)});
+  py::array_t<long long> out(
+      {static_cast<py::ssize_t>(faces.rows()), static_cast<py::ssize_t>(3)});
   for (Eigen::Index i = 0; i < faces.size(); ++i) {
     out.mutable_data()[i] = faces.data()[i];
   }
@@ -173,14 +174,32 @@ Positions CompatiblePositions(const Positions& positions, const Shell& like,
                      " vertices, expected " +
                      std::to_string(like.mesh.positions.rows()));
   }
-  ValidateShellPositions(Mesh{positions, like.mesh.faces}, like.topology,
-                         name);
+  ValidateShellPositions(Mesh{positions, like.mesh.faces}, like.topology, name);
   return positions;
 }
 
 Positions CompatiblePositions(const DoubleArray& V, const Shell& like,
                               const std::string& name) {
   return CompatiblePositions(ToPositions(V, name), like, name);
+}
+
+// Two poses of one shell and the shell space of the first: the input of
+// every verb between two shapes (energy, geodesic, log, shoot).
+struct ShellPair {
+  Shell first;
+  Positions second;
+  ShellSpace space;
+};
+
+ShellPair MakeShellPair(const DoubleArray& first, const DoubleArray& second,
+                        const IndexArray& F, const std::string& first_name,
+                        const std::string& second_name,
+                        const ShellMaterial& material) {
+  ShellPair pair;
+  pair.first = MakeShell(first, F, first_name);
+  pair.second = CompatiblePositions(second, pair.first, second_name);
+  pair.space = ShellSpace(pair.first.mesh, pair.first.topology, material);
+  return pair;
 }
 
 ShellMaterial Material(double mu, double lambda, double eta) {
@@ -296,25 +315,22 @@ void WriteMeshPy(const std::string& path, const DoubleArray& V,
 }
 
 py::object EnergyPy(const DoubleArray& reference, const DoubleArray& deformed,
-                    const IndexArray& F, double mu, double lambda,
-                    double eta) {
-  const Shell shell = MakeShell(reference, F, "reference");
-  const Positions d = CompatiblePositions(deformed, shell, "deformed");
-  const ShellSpace space(shell.mesh, shell.topology,
-                         Material(mu, lambda, eta));
+                    const IndexArray& F, double mu, double lambda, double eta) {
+  const auto [shell, d, space] =
+      MakeShellPair(reference, deformed, F, "reference", "deformed",
+                    Material(mu, lambda, eta));
   const DeformationEnergy e =
       EvaluateDeformationEnergy(space, shell.mesh.positions, d);
   return ToDict(EnergyJson(e, space.material));
 }
 
 py::array_t<double> GradientPy(const DoubleArray& reference,
-                               const DoubleArray& deformed,
-                               const IndexArray& F, const std::string& side,
-                               double mu, double lambda, double eta) {
-  const Shell shell = MakeShell(reference, F, "reference");
-  const Positions d = CompatiblePositions(deformed, shell, "deformed");
-  const ShellSpace space(shell.mesh, shell.topology,
-                         Material(mu, lambda, eta));
+                               const DoubleArray& deformed, const IndexArray& F,
+                               const std::string& side, double mu,
+                               double lambda, double eta) {
+  const auto [shell, d, space] =
+      MakeShellPair(reference, deformed, F, "reference", "deformed",
+                    Material(mu, lambda, eta));
   const Eigen::VectorXd g =
       EnergyGradient(space, shell.mesh.positions, d, Side(side, "side"));
   Positions out(shell.mesh.num_vertices(), 3);
@@ -326,13 +342,11 @@ py::tuple HessianPy(const DoubleArray& reference, const DoubleArray& deformed,
                     const IndexArray& F, const std::string& rows,
                     const std::string& cols, double mu, double lambda,
                     double eta) {
-  const Shell shell = MakeShell(reference, F, "reference");
-  const Positions d = CompatiblePositions(deformed, shell, "deformed");
-  const ShellSpace space(shell.mesh, shell.topology,
-                         Material(mu, lambda, eta));
-  const SparseMatrix H =
-      EnergyHessian(space, shell.mesh.positions, d, Side(rows, "rows"),
-                    Side(cols, "cols"));
+  const auto [shell, d, space] =
+      MakeShellPair(reference, deformed, F, "reference", "deformed",
+                    Material(mu, lambda, eta));
+  const SparseMatrix H = EnergyHessian(space, shell.mesh.positions, d,
+                                       Side(rows, "rows"), Side(cols, "cols"));
   const py::ssize_t nnz = H.nonZeros();
   py::array_t<long long> r(nnz), c(nnz);
   py::array_t<double> v(nnz);
@@ -366,8 +380,8 @@ MultiresolutionResult SolveGeodesicPy(const Shell& start, const Positions& end,
   input.steps = steps;
   input.fixed_vertices = Mask(mask, start.mesh.num_vertices());
   input.linear_solver = ParsePathLinearSolver(linear_solver, "linear_solver");
-  const MultiresolutionSettings levels = ParseMultiresolution(
-      multires, start.mesh.num_vertices(), "multires");
+  const MultiresolutionSettings levels =
+      ParseMultiresolution(multires, start.mesh.num_vertices(), "multires");
   py::gil_scoped_release release;
   return SolveGeodesicMultiresolution(space, input, settings, levels);
 }
@@ -378,20 +392,19 @@ py::tuple GeodesicPy(const DoubleArray& start_v, const DoubleArray& end_v,
                      const std::string& linear_solver, bool report,
                      const std::optional<std::string>& output,
                      const std::optional<std::string>& png,
-                  const std::optional<std::string>& gltf, double mu,
+                     const std::optional<std::string>& gltf, double mu,
                      double lambda, double eta, const SolverOptions& solver) {
   const auto clock = Clock::now();
-  const Shell start = MakeShell(start_v, F, "start");
-  const Positions end = CompatiblePositions(end_v, start, "end");
-  const ShellSpace space(start.mesh, start.topology,
-                         Material(mu, lambda, eta));
+  const auto [start, end, space] = MakeShellPair(
+      start_v, end_v, F, "start", "end", Material(mu, lambda, eta));
   const MultiresolutionResult multi =
       SolveGeodesicPy(start, end, steps, mask, space, multires, linear_solver,
                       solver.Settings("geodesic"));
   const GeodesicResult& result = multi.geodesic;
   CheckGeodesic(result);
-  if (report) py::print(result.summary.FullReport(), py::arg("file") =
-                            py::module_::import("sys").attr("stderr"));
+  if (report)
+    py::print(result.summary.FullReport(),
+              py::arg("file") = py::module_::import("sys").attr("stderr"));
   WritePath(output, png, gltf, start.mesh.faces, result.path);
   JsonObject json = GeodesicJson(result);
   json.Raw("multires_levels", MultiresolutionJson(multi))
@@ -405,10 +418,8 @@ py::tuple LogPy(const DoubleArray& start_v, const DoubleArray& end_v,
                 const std::optional<std::string>& output, double mu,
                 double lambda, double eta, const SolverOptions& solver) {
   const auto clock = Clock::now();
-  const Shell start = MakeShell(start_v, F, "start");
-  const Positions end = CompatiblePositions(end_v, start, "end");
-  const ShellSpace space(start.mesh, start.topology,
-                         Material(mu, lambda, eta));
+  const auto [start, end, space] = MakeShellPair(
+      start_v, end_v, F, "start", "end", Material(mu, lambda, eta));
   const MultiresolutionResult multi =
       SolveGeodesicPy(start, end, steps, mask, space, multires, linear_solver,
                       solver.Settings("log"));
@@ -433,10 +444,8 @@ py::tuple ShootPy(const DoubleArray& first_v, const DoubleArray& second_v,
                   double lambda, double eta, const SolverOptions& solver) {
   const auto clock = Clock::now();
   CheckAtLeast("steps", steps, 1);
-  const Shell first = MakeShell(first_v, F, "first");
-  const Positions second = CompatiblePositions(second_v, first, "second");
-  const ShellSpace space(first.mesh, first.topology,
-                         Material(mu, lambda, eta));
+  const auto [first, second, space] = MakeShellPair(
+      first_v, second_v, F, "first", "second", Material(mu, lambda, eta));
   const std::vector<int> fixed = Mask(mask, first.mesh.num_vertices());
   const SolverSettings settings = solver.Settings("shoot");
   ShootResult result;
@@ -463,7 +472,7 @@ py::tuple TransportPy(const py::object& path_object,
                       double epsilon, const py::object& mask,
                       const std::optional<std::string>& output,
                       const std::optional<std::string>& png,
-                  const std::optional<std::string>& gltf, double mu,
+                      const std::optional<std::string>& gltf, double mu,
                       double lambda, double eta, const SolverOptions& solver) {
   const auto clock = Clock::now();
   if (!(epsilon > 0) || !std::isfinite(epsilon)) {
@@ -471,16 +480,15 @@ py::tuple TransportPy(const py::object& path_object,
   }
   const std::vector<Positions> frames = ToShapes(path_object, "path");
   if (frames.size() < 2) throw InputError("path: need at least 2 frames");
-  const Shell first = MakeShell(DoubleArray(FromPositions(frames[0])), F,
-                                "path[0]");
+  const Shell first =
+      MakeShell(DoubleArray(FromPositions(frames[0])), F, "path[0]");
   ShellPath path = {first.mesh.positions};
   for (size_t k = 1; k < frames.size(); ++k) {
     path.push_back(CompatiblePositions(frames[k], first,
                                        "path[" + std::to_string(k) + "]"));
   }
   const Positions varied = CompatiblePositions(variation_v, first, "variation");
-  const ShellSpace space(first.mesh, first.topology,
-                         Material(mu, lambda, eta));
+  const ShellSpace space(first.mesh, first.topology, Material(mu, lambda, eta));
   const std::vector<int> fixed = Mask(mask, first.mesh.num_vertices());
   const SolverSettings settings = solver.Settings("transport");
   TransportResult result;
@@ -549,7 +557,7 @@ py::tuple SplinePy(const py::object& keyframes_object,
                    int steps, const std::string& method, bool periodic,
                    const std::optional<std::string>& output,
                    const std::optional<std::string>& png,
-                  const std::optional<std::string>& gltf, double mu,
+                   const std::optional<std::string>& gltf, double mu,
                    double lambda, double eta, const SolverOptions& solver) {
   if (method != "nonlinear" && method != "ltheta") {
     throw InputError("method must be nonlinear or ltheta");
@@ -568,11 +576,11 @@ py::tuple SplinePy(const py::object& keyframes_object,
   double ltheta_seconds = 0;
   {
     py::gil_scoped_release release;
-    const ShellPath ltheta = LThetaSpline(space, set.shapes, at, steps,
-                                          periodic, ltheta_settings);
+    const ShellPath ltheta =
+        LThetaSpline(space, set.shapes, at, steps, periodic, ltheta_settings);
     ltheta_seconds = Seconds(clock);
-    result = SolveSpline(space, set.shapes, at, steps, periodic, ltheta,
-                         settings);
+    result =
+        SolveSpline(space, set.shapes, at, steps, periodic, ltheta, settings);
   }
   WritePath(output, png, gltf, set.first.mesh.faces, result.path);
   JsonObject head;
@@ -582,11 +590,11 @@ py::tuple SplinePy(const py::object& keyframes_object,
 }
 
 py::tuple RegressPy(const py::object& inputs_object,
-                    const std::vector<long long>& at_list,
-                    const IndexArray& F, int steps, double sigma,
+                    const std::vector<long long>& at_list, const IndexArray& F,
+                    int steps, double sigma,
                     const std::optional<std::string>& output,
                     const std::optional<std::string>& png,
-                  const std::optional<std::string>& gltf, double mu,
+                    const std::optional<std::string>& gltf, double mu,
                     double lambda, double eta, const SolverOptions& solver) {
   CheckAtLeast("steps", steps, 2);
   if (!(sigma >= 0) || !std::isfinite(sigma)) {
@@ -631,11 +639,11 @@ py::tuple MeanPy(const py::object& inputs_object, const IndexArray& F,
   for (int i : FarInputs(result.energies)) {
     far.push_back("inputs[" + std::to_string(i) + "]");
   }
-  if (report) py::print(result.summary.FullReport(), py::arg("file") =
-                            py::module_::import("sys").attr("stderr"));
+  if (report)
+    py::print(result.summary.FullReport(),
+              py::arg("file") = py::module_::import("sys").attr("stderr"));
   if (output) WriteMesh(Mesh{result.mean, set.first.mesh.faces}, *output);
-  JsonObject json =
-      MeanJson(result, static_cast<int>(set.shapes.size()), far);
+  JsonObject json = MeanJson(result, static_cast<int>(set.shapes.size()), far);
   json.Add("seconds", Seconds(clock));
   return py::make_tuple(FromPositions(result.mean),
                         ToDict(AddOutput(json, output)));
@@ -644,13 +652,13 @@ py::tuple MeanPy(const py::object& inputs_object, const IndexArray& F,
 // The `pca` verb: elastic mean, shell PCA modes shot by EXP_K, optionally
 // the Procrustes baseline and the leave-one-out table. Returns ({name:
 // shape} with the names of the CLI's files without ".ply", summary).
-py::tuple PcaPy(const py::object& inputs_object, const IndexArray& F,
-                int modes, const std::string& baseline, bool loo,
-                double amplitude, int log_steps, int exp_steps,
-                int max_exp_steps, const std::string& displacement,
+py::tuple PcaPy(const py::object& inputs_object, const IndexArray& F, int modes,
+                const std::string& baseline, bool loo, double amplitude,
+                int log_steps, int exp_steps, int max_exp_steps,
+                const std::string& displacement,
                 const std::optional<std::string>& output,
-                const std::optional<std::string>& png, double mu,
-                double lambda, double eta, const SolverOptions& solver) {
+                const std::optional<std::string>& png, double mu, double lambda,
+                double eta, const SolverOptions& solver) {
   if (baseline != "" && baseline != "procrustes") {
     throw InputError("baseline must be 'procrustes' (or empty), got '" +
                      baseline + "'");
@@ -721,14 +729,14 @@ py::tuple PcaPy(const py::object& inputs_object, const IndexArray& F,
     strip.push_back(mean.mean);
     for (int j = 0; j < shell_modes; ++j) {
       for (const double sign : {-1.0, 1.0}) {
-        const std::string name = "mode_" + std::to_string(j + 1) +
-                                 (sign < 0 ? "_minus" : "_plus");
+        const std::string name =
+            "mode_" + std::to_string(j + 1) + (sign < 0 ? "_minus" : "_plus");
         // A mode shape whose EXP shot has no solution is not returned; it
         // is listed in the summary (as the CLI does).
         try {
-          shapes.emplace_back(name, ShellModeShape(space, shell, j,
-                                                   sign * amplitude, options,
-                                                   inner));
+          shapes.emplace_back(
+              name, ShellModeShape(space, shell, j, sign * amplitude, options,
+                                   inner));
           strip.push_back(shapes.back().second);
         } catch (const InputError&) {
           failed_shapes.push_back(name + ".ply");
@@ -796,8 +804,10 @@ py::tuple BranchingSimulatePy(double epsilon, double length, double height,
   using namespace branching;
   if (init != "laminate" && init != "random" && init != "km" &&
       init != "needle" && init != "lens") {
-    throw InputError("init must be laminate, random, km, needle or lens, "
-                     "got '" + init + "'");
+    throw InputError(
+        "init must be laminate, random, km, needle or lens, "
+        "got '" +
+        init + "'");
   }
   if (delta_extrapolation == 1 || delta_extrapolation < 0) {
     throw InputError("delta_extrapolation must be 0 or >= 2");
@@ -844,8 +854,8 @@ py::tuple BranchingSimulatePy(double epsilon, double length, double height,
   }
   const SimulationResult& result = *simulation;
   const RelaxedGrid& g = result.field.grid;
-  py::array_t<double> u({static_cast<py::ssize_t>(g.nx + 1),
-                         static_cast<py::ssize_t>(g.ny)});
+  py::array_t<double> u(
+      {static_cast<py::ssize_t>(g.nx + 1), static_cast<py::ssize_t>(g.ny)});
   for (int i = 0; i <= g.nx; ++i) {
     for (int j = 0; j < g.ny; ++j) {
       u.mutable_at(i, j) = result.field.at(i, j);
@@ -948,8 +958,8 @@ py::object BranchingConstructPy(double epsilon, double length,
                             LensShape{0.2, 0.0, 0.0});
     }
   }
-  const JsonObject summary = ConstructionJson(result, epsilon, length,
-                                              optimize);
+  const JsonObject summary =
+      ConstructionJson(result, epsilon, length, optimize);
   py::gil_scoped_acquire acquire;
   return ToDict(summary);
 }
@@ -975,11 +985,11 @@ void WriteGltfPy(const std::string& path, const py::object& frames_object,
 }  // namespace shellspace
 
 // The keyword arguments shared by the verbs, with the CLI's defaults.
-#define SHELLSPACE_MATERIAL_ARGS                                     \
+#define SHELLSPACE_MATERIAL_ARGS \
   py::arg("mu") = 1.0, py::arg("lambda_") = 1.0, py::arg("eta") = 0.01
-#define SHELLSPACE_SOLVER_ARGS                                         \
-  py::arg("tolerance") = 1e-8, py::arg("max_iterations") = 200,        \
-      py::arg("threads") = 2, py::arg("quiet") = false
+#define SHELLSPACE_SOLVER_ARGS                                  \
+  py::arg("tolerance") = 1e-8, py::arg("max_iterations") = 200, \
+  py::arg("threads") = 2, py::arg("quiet") = false
 
 PYBIND11_MODULE(shellspace, m) {
   using namespace shellspace;
@@ -997,8 +1007,7 @@ PYBIND11_MODULE(shellspace, m) {
 
   m.def("read_mesh", &ReadMeshPy, py::arg("path"),
         "Reads a PLY, OBJ or OFF mesh (strict readers): returns (V, F).");
-  m.def("write_mesh", &WriteMeshPy, py::arg("path"), py::arg("V"),
-        py::arg("F"),
+  m.def("write_mesh", &WriteMeshPy, py::arg("path"), py::arg("V"), py::arg("F"),
         "Writes (V, F) as PLY, OBJ or OFF (by the extension), atomically.");
   m.def("write_gltf", &WriteGltfPy, py::arg("path"), py::arg("frames"),
         py::arg("F"), py::arg("fps") = 4.0, py::arg("interpolation") = "linear",
@@ -1022,8 +1031,8 @@ PYBIND11_MODULE(shellspace, m) {
         SHELLSPACE_MATERIAL_ARGS,
         "D_2 W (side='deformed') or D_1 W (side='reference') as a #V x 3 "
         "array (the derivative by vertex v, coordinate c at [v, c]).");
-  m.def("energy_hessian", &HessianPy, py::arg("reference"),
-        py::arg("deformed"), py::arg("F"), py::arg("rows") = "deformed",
+  m.def("energy_hessian", &HessianPy, py::arg("reference"), py::arg("deformed"),
+        py::arg("F"), py::arg("rows") = "deformed",
         py::arg("cols") = "deformed", SHELLSPACE_MATERIAL_ARGS,
         "The 3#V x 3#V block d_rows d_cols W (coordinate 3 v + c) as "
         "triplets (rows, cols, vals): scipy.sparse.coo_matrix((vals, (rows, "
@@ -1037,7 +1046,7 @@ PYBIND11_MODULE(shellspace, m) {
          const std::string& linear_solver, bool report,
          const std::optional<std::string>& output,
          const std::optional<std::string>& png,
-                  const std::optional<std::string>& gltf, double mu, double lambda,
+         const std::optional<std::string>& gltf, double mu, double lambda,
          double eta, double tolerance, int max_iterations, int threads,
          bool quiet) {
         return GeodesicPy(start, end, F, steps, mask, multires, linear_solver,
@@ -1047,8 +1056,9 @@ PYBIND11_MODULE(shellspace, m) {
       py::arg("start"), py::arg("end"), py::arg("F"), py::arg("steps") = 8,
       py::arg("mask") = py::none(), py::arg("multires") = "auto",
       py::arg("linear_solver") = "auto", py::arg("report") = false,
-      py::arg("output") = py::none(), py::arg("png") = py::none(), py::arg("gltf") = py::none(),
-      SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
+      py::arg("output") = py::none(), py::arg("png") = py::none(),
+      py::arg("gltf") = py::none(), SHELLSPACE_MATERIAL_ARGS,
+      SHELLSPACE_SOLVER_ARGS,
       "Discrete geodesic from start to end in `steps` steps: returns (path, "
       "summary). mask: vertex indices or a mask file held at their linear "
       "positions. output: also write DIR/shape_000.ply ...; png: a film "
@@ -1077,17 +1087,18 @@ PYBIND11_MODULE(shellspace, m) {
          const IndexArray& F, int steps, bool backward, const py::object& mask,
          const std::optional<std::string>& output,
          const std::optional<std::string>& png,
-                  const std::optional<std::string>& gltf, double mu, double lambda,
+         const std::optional<std::string>& gltf, double mu, double lambda,
          double eta, double tolerance, int max_iterations, int threads,
          bool quiet) {
-        return ShootPy(first, second, F, steps, backward, mask, output, png, gltf,
-                       mu, lambda, eta,
+        return ShootPy(first, second, F, steps, backward, mask, output, png,
+                       gltf, mu, lambda, eta,
                        {tolerance, max_iterations, threads, quiet});
       },
       py::arg("first"), py::arg("second"), py::arg("F"), py::arg("steps") = 8,
       py::arg("backward") = false, py::arg("mask") = py::none(),
-      py::arg("output") = py::none(), py::arg("png") = py::none(), py::arg("gltf") = py::none(),
-      SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
+      py::arg("output") = py::none(), py::arg("png") = py::none(),
+      py::arg("gltf") = py::none(), SHELLSPACE_MATERIAL_ARGS,
+      SHELLSPACE_SOLVER_ARGS,
       "Geodesic shooting (EXP steps) from (first, second): returns (path, "
       "summary).");
   m.def(
@@ -1096,17 +1107,18 @@ PYBIND11_MODULE(shellspace, m) {
          const IndexArray& F, double epsilon, const py::object& mask,
          const std::optional<std::string>& output,
          const std::optional<std::string>& png,
-                  const std::optional<std::string>& gltf, double mu, double lambda,
+         const std::optional<std::string>& gltf, double mu, double lambda,
          double eta, double tolerance, int max_iterations, int threads,
          bool quiet) {
-        return TransportPy(path, variation, F, epsilon, mask, output, png, gltf, mu,
-                           lambda, eta,
+        return TransportPy(path, variation, F, epsilon, mask, output, png, gltf,
+                           mu, lambda, eta,
                            {tolerance, max_iterations, threads, quiet});
       },
       py::arg("path"), py::arg("variation"), py::arg("F"),
       py::arg("epsilon") = 1.0, py::arg("mask") = py::none(),
-      py::arg("output") = py::none(), py::arg("png") = py::none(), py::arg("gltf") = py::none(),
-      SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
+      py::arg("output") = py::none(), py::arg("png") = py::none(),
+      py::arg("gltf") = py::none(), SHELLSPACE_MATERIAL_ARGS,
+      SHELLSPACE_SOLVER_ARGS,
       "Schild's-ladder transport of variation - path[0] along path: returns "
       "(shapes s_k + epsilon xi_k, summary).");
   m.def(
@@ -1115,17 +1127,18 @@ PYBIND11_MODULE(shellspace, m) {
          const IndexArray& F, int steps, const std::string& method,
          bool periodic, const std::optional<std::string>& output,
          const std::optional<std::string>& png,
-                  const std::optional<std::string>& gltf, double mu, double lambda,
+         const std::optional<std::string>& gltf, double mu, double lambda,
          double eta, double tolerance, int max_iterations, int threads,
          bool quiet) {
-        return SplinePy(keyframes, at, F, steps, method, periodic, output, png, gltf,
-                        mu, lambda, eta,
+        return SplinePy(keyframes, at, F, steps, method, periodic, output, png,
+                        gltf, mu, lambda, eta,
                         {tolerance, max_iterations, threads, quiet});
       },
       py::arg("keyframes"), py::arg("at"), py::arg("F"), py::arg("steps") = 8,
       py::arg("method") = "nonlinear", py::arg("periodic") = false,
-      py::arg("output") = py::none(), py::arg("png") = py::none(), py::arg("gltf") = py::none(),
-      SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
+      py::arg("output") = py::none(), py::arg("png") = py::none(),
+      py::arg("gltf") = py::none(), SHELLSPACE_MATERIAL_ARGS,
+      SHELLSPACE_SOLVER_ARGS,
       "Riemannian spline through keyframes at path indices `at`: returns "
       "(path, summary).");
   m.def(
@@ -1134,24 +1147,24 @@ PYBIND11_MODULE(shellspace, m) {
          const IndexArray& F, int steps, double sigma,
          const std::optional<std::string>& output,
          const std::optional<std::string>& png,
-                  const std::optional<std::string>& gltf, double mu, double lambda,
+         const std::optional<std::string>& gltf, double mu, double lambda,
          double eta, double tolerance, int max_iterations, int threads,
          bool quiet) {
-        return RegressPy(inputs, at, F, steps, sigma, output, png, gltf, mu, lambda,
-                         eta, {tolerance, max_iterations, threads, quiet});
+        return RegressPy(inputs, at, F, steps, sigma, output, png, gltf, mu,
+                         lambda, eta,
+                         {tolerance, max_iterations, threads, quiet});
       },
       py::arg("inputs"), py::arg("at"), py::arg("F"), py::arg("steps") = 8,
       py::arg("sigma") = 1.0, py::arg("output") = py::none(),
-      py::arg("png") = py::none(), py::arg("gltf") = py::none(), SHELLSPACE_MATERIAL_ARGS,
-      SHELLSPACE_SOLVER_ARGS,
+      py::arg("png") = py::none(), py::arg("gltf") = py::none(),
+      SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
       "Shape regression (data term + sigma spline energy): returns (path, "
       "summary).");
   m.def(
       "pca",
       [](const py::object& inputs, const IndexArray& F, int modes,
-         const std::string& baseline, bool loo, double amplitude,
-         int log_steps, int exp_steps, int max_exp_steps,
-         const std::string& displacement,
+         const std::string& baseline, bool loo, double amplitude, int log_steps,
+         int exp_steps, int max_exp_steps, const std::string& displacement,
          const std::optional<std::string>& output,
          const std::optional<std::string>& png, double mu, double lambda,
          double eta, double tolerance, int max_iterations, int threads,
@@ -1170,10 +1183,9 @@ PYBIND11_MODULE(shellspace, m) {
       "Shell PCA at the elastic mean (and the Procrustes baseline, "
       "leave-one-out): returns ({'mean': ..., 'mode_1_minus': ..., ...}, "
       "summary). output: the CLI's directory (PLY files and pca.json).");
-  m.def("branching_simulate", &BranchingSimulatePy,
-        py::arg("epsilon") = 0.001, py::arg("length") = 1.0,
-        py::arg("height") = 0.0, py::arg("nx") = 64, py::arg("ny") = 128,
-        py::arg("init") = "needle", py::arg("delta") = 0.0,
+  m.def("branching_simulate", &BranchingSimulatePy, py::arg("epsilon") = 0.001,
+        py::arg("length") = 1.0, py::arg("height") = 0.0, py::arg("nx") = 64,
+        py::arg("ny") = 128, py::arg("init") = "needle", py::arg("delta") = 0.0,
         py::arg("grading") = 2.0, py::arg("continuation") = 3,
         py::arg("periods") = 0, py::arg("init_seed") = 1,
         py::arg("lm_iterations") = 200, py::arg("delta_extrapolation") = 0,
