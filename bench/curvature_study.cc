@@ -31,10 +31,10 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
-#include <map>
 #include <string>
 #include <vector>
 
+#include "shellspace/cost_functions/edge_angle_bending.h"
 #include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/cost_functions/shell/element_set.h"
 #include "shellspace/geometry/element_geometry.h"
@@ -50,158 +50,31 @@ namespace {
 constexpr double kPi = 3.14159265358979323846;
 
 // ---------------------------------------------------------------------------
-// Per-face data of the functional sum_T w_T tr((L^-1 H_T L^-T)^2), with
-// w_T, L from a metric face (the shape itself for the sphere, the flat sheet
-// for the cylinder) and H_T from the shape's mid-edge normals, possibly
-// rotated by phi.
-struct FaceData {
-  double weight = 0;        // area of the metric face
-  double p = 0, q = 0, s = 0;  // L^-1 = [[p, 0], [q, s]]
-  double h[3] = {0, 0, 0};     // altitudes of the shape's face
-  double half_theta[3] = {0, 0, 0};
-  int edge[3] = {-1, -1, -1};  // interior edge index, -1 boundary
-  double sign[3] = {0, 0, 0};
-  bool counted = true;  // part of the reported sum
-};
-
-// Residuals of one face (alpha = 0, beta = 1): 1/2 |r|^2 = w tr(K^2).
-struct FaceResidual {
-  explicit FaceResidual(const FaceData& d) : d(d) {}
-  template <typename T>
-  void Residuals(const T* phi0, const T* phi1, const T* phi2,
-                 T* r) const {
-    const T* phi[3] = {phi0, phi1, phi2};
-    T c[3];
-    for (int i = 0; i < 3; ++i) {
-      c[i] = d.edge[i] < 0 ? T(0)
-                           : T(2 * d.h[i]) *
-                                 sin(T(d.half_theta[i]) + T(d.sign[i]) * phi[i][0]);
-    }
-    const T a11 = c[0] + c[1], a12 = c[0], a22 = c[0] + c[2];
-    const T k11 = T(d.p * d.p) * a11;
-    const T k12 = T(d.p) * (T(d.q) * a11 + T(d.s) * a12);
-    const T k22 = T(d.q * d.q) * a11 + T(2 * d.q * d.s) * a12 + T(d.s * d.s) * a22;
-    const T w(std::sqrt(d.weight));
-    r[0] = w * (k11 + k22);
-    r[1] = w * (k11 - k22);
-    r[2] = T(2) * w * k12;
-  }
-  template <typename T>
-  bool operator()(const T* phi0, const T* phi1, const T* phi2, T* r) const {
-    Residuals(phi0, phi1, phi2, r);
-    return true;
-  }
-  FaceData d;
-};
-
-// w tr(K^2) = 1/2 |r|^2 at phi.
-double FaceValue(const FaceData& d, const std::vector<double>& phi) {
-  double p[3];
-  for (int i = 0; i < 3; ++i) p[i] = d.edge[i] < 0 ? 0.0 : phi[d.edge[i]];
-  double r[3];
-  FaceResidual(d).Residuals(&p[0], &p[1], &p[2], r);
-  return 0.5 * (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]);
-}
-
-// The faces' data of `shape` with metric `metric` (same connectivity).
-std::vector<FaceData> Faces(const Mesh& mesh, const Topology& topo,
-                            const Positions& metric, const Positions& shape) {
-  // Directed edge -> (interior edge index, vertex across, sign).
-  struct Across {
-    int edge, vertex;
-    double sign;
-  };
-  std::map<std::pair<int, int>, Across> across;
-  for (int e = 0; e < static_cast<int>(topo.interior_edges.size()); ++e) {
-    const EdgeFlap& f = topo.interior_edges[e];
-    across[{f.i, f.j}] = {e, f.l, 1.0};
-    across[{f.j, f.i}] = {e, f.k, -1.0};
-  }
-  std::vector<FaceData> out(mesh.num_faces());
-  for (int f = 0; f < mesh.num_faces(); ++f) {
-    FaceData& d = out[f];
-    Vec3<double> x[3], m[3];
-    for (int a = 0; a < 3; ++a) {
-      x[a] = shape.row(mesh.faces(f, a)).transpose();
-      m[a] = metric.row(mesh.faces(f, a)).transpose();
-    }
-    const FirstFundamentalForm<double> g(m[0], m[1], m[2]);
-    const double l11 = std::sqrt(g.g11), l21 = g.g12 / l11;
-    const double l22 = std::sqrt(g.g22 - l21 * l21);
-    d.p = 1 / l11;
-    d.q = -l21 / (l11 * l22);
-    d.s = 1 / l22;
-    d.weight = TriangleArea<double>(m[0], m[1], m[2]).area;
-    const Vec3<double> normal = (x[1] - x[0]).cross(x[2] - x[0]);
-    const double area = 0.5 * normal.norm();
-    const Vec3<double> n = normal.normalized();
-    int interior = 0;
-    for (int i = 0; i < 3; ++i) {
-      const int a = mesh.faces(f, (i + 1) % 3), b = mesh.faces(f, (i + 2) % 3);
-      const Vec3<double> xa = shape.row(a).transpose(),
-                         xb = shape.row(b).transpose();
-      d.h[i] = 2 * area / (xb - xa).norm();
-      const auto it = across.find({a, b});
-      if (it == across.end()) continue;
-      ++interior;
-      const Vec3<double> xp = shape.row(it->second.vertex).transpose();
-      const Vec3<double> edge = (xb - xa).normalized();
-      Vec3<double> t = 0.5 * (xa + xb) - x[i];
-      t = (t - t.dot(edge) * edge).normalized();
-      const Vec3<double> n_i = (xa - xb).cross(xp - xb).normalized();
-      d.half_theta[i] = 0.5 * std::atan2(n_i.dot(t), n.dot(n_i));
-      d.edge[i] = it->second.edge;
-      d.sign[i] = it->second.sign;
-    }
-    d.counted = interior == 3;
-  }
-  return out;
-}
-
-// sum over counted faces of w tr(K^2), phi = 0 and minimised over phi.
+// The shape-operator functional sum_T w_T tr(Gbar_T^-1 H_T)^2 of `shape`
+// with metric `metric` (same connectivity; target Hbar = 0), at phi = 0 and
+// with the edge angles fitted (cost_functions/edge_angle_bending.h), summed
+// over the faces with three interior edges; `area` their metric area.
 struct FunctionalValue {
   double plain = 0, rotated = 0, area = 0;
 };
-FunctionalValue Functional(const std::vector<FaceData>& faces, int num_edges,
-                           bool minimise) {
+FunctionalValue Functional(const Mesh& mesh, const Topology& topo,
+                           const Positions& metric, const Positions& shape) {
+  const std::vector<EdgeAngleFace> faces = EdgeAngleFaces(mesh, topo, shape);
+  const std::vector<EdgeAngleReferenceFace> reference =
+      EdgeAngleReferenceFaces(mesh, metric);
+  const int num_edges = static_cast<int>(topo.interior_edges.size());
+  // The objective is the whole functional of the shape (all faces),
+  // whichever faces are reported.
+  const EdgeAngleFit fit = FitEdgeAngles(faces, reference, num_edges);
+  if (!fit.converged) std::fprintf(stderr, "phi fit: %s\n", fit.message.c_str());
   FunctionalValue out;
-  std::vector<double> phi(num_edges, 0.0);
-  for (const FaceData& d : faces) {
-    if (!d.counted) continue;
-    out.plain += FaceValue(d, phi);
-    out.area += d.weight;
-  }
-  if (!minimise) return out;
-  ceres::Problem problem;
-  double boundary[3] = {0, 0, 0};  // constant phi of boundary edge slot i
-  for (const FaceData& d : faces) {
-    // The objective is the whole bending functional of the shape (all
-    // faces), whichever faces are reported.
-    double* blocks[3];
-    for (int i = 0; i < 3; ++i) {
-      blocks[i] = d.edge[i] < 0 ? &boundary[i] : &phi[d.edge[i]];
+  for (size_t f = 0; f < faces.size(); ++f) {
+    if (!(faces[f].interior(0) && faces[f].interior(1) && faces[f].interior(2))) {
+      continue;
     }
-    auto* cost = new ceres::AutoDiffCostFunction<FaceResidual, 3, 1, 1, 1>(
-        new FaceResidual(d));
-    problem.AddResidualBlock(cost, nullptr, blocks[0], blocks[1], blocks[2]);
-    for (int i = 0; i < 3; ++i) {
-      if (d.edge[i] < 0) problem.SetParameterBlockConstant(blocks[i]);
-    }
-  }
-  ceres::Solver::Options options;
-  options.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
-  options.max_num_iterations = 100;
-  options.function_tolerance = 1e-14;
-  options.gradient_tolerance = 1e-14;
-  options.parameter_tolerance = 1e-14;
-  options.num_threads = 1;
-  ceres::Solver::Summary summary;
-  ceres::Solve(options, &problem, &summary);
-  if (summary.termination_type != ceres::CONVERGENCE) {
-    std::fprintf(stderr, "phi minimisation: %s\n", summary.BriefReport().c_str());
-  }
-  for (const FaceData& d : faces) {
-    if (d.counted) out.rotated += FaceValue(d, phi);
+    out.plain += fit.face_energy_at_zero[f];
+    out.rotated += fit.face_energy[f];
+    out.area += reference[f].area;
   }
   return out;
 }
@@ -257,9 +130,7 @@ Row SphereRow(int level, bool jittered) {
     mesh.positions = JitterTangentially(mesh.positions, mesh.positions, 0.3 * h, 1);
     mesh.positions.rowwise().normalize();
   }
-  const auto faces = Faces(mesh, topo, mesh.positions, mesh.positions);
-  const FunctionalValue so =
-      Functional(faces, static_cast<int>(topo.interior_edges.size()), true);
+  const FunctionalValue so = Functional(mesh, topo, mesh.positions, mesh.positions);
   const ShellsValue ds = DiscreteShells(topo, mesh.positions, mesh.positions, false);
   return {"sphere", jittered ? "jittered" : "regular", level, mesh.num_faces(),
           so.plain / (8 * kPi), so.rotated / (8 * kPi), ds.energy / (8 * kPi)};
@@ -278,9 +149,7 @@ Row CylinderRow(int level, bool jittered) {
     flat.positions = JitterTangentially(flat.positions, normals, 0.3 * h, 1);
   }
   const Positions rolled = RollOntoCylinder(flat.positions, radius);
-  const auto faces = Faces(flat, topo, flat.positions, rolled);
-  const FunctionalValue so =
-      Functional(faces, static_cast<int>(topo.interior_edges.size()), true);
+  const FunctionalValue so = Functional(flat, topo, flat.positions, rolled);
   const ShellsValue ds = DiscreteShells(topo, flat.positions, rolled, true);
   const double k2 = 1 / (radius * radius);
   return {"cylinder", jittered ? "jittered" : "regular", level, flat.num_faces(),

@@ -14,6 +14,17 @@ JsonObject EnergyJson(const DeformationEnergy& energy,
   return json;
 }
 
+JsonObject EdgeAngleBendingJson(const EdgeAngleBending& bending) {
+  JsonObject json;
+  json.Add("bending", bending.energy)
+      .Add("reference_functional", bending.reference.energy)
+      .Add("reference_iterations", bending.reference.iterations)
+      .Add("deformed_iterations", bending.deformed.iterations)
+      .Add("iterations", bending.reference.iterations + bending.deformed.iterations)
+      .Add("converged", bending.converged);
+  return json;
+}
+
 JsonObject MeanJson(const ElasticMeanResult& result, int inputs,
                     const std::vector<std::string>& far_inputs) {
   const double relative =

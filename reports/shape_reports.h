@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "shellspace/cost_functions/edge_angle_bending.h"
 #include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/cost_functions/shell/shell_space.h"
 #include "shellspace/io/json_writer.h"
@@ -22,6 +23,12 @@ namespace shellspace {
 // total (W_mem + eta W_bend), mu, lambda, eta.
 JsonObject EnergyJson(const DeformationEnergy& energy,
                       const ShellMaterial& material);
+
+// The edge-angle variant's W_bend (without eta): bending (phi fitted),
+// reference_functional (the reference's own fitted curvature functional),
+// the Levenberg-Marquardt iterations of each fit and their sum, converged
+// (both fits).
+JsonObject EdgeAngleBendingJson(const EdgeAngleBending& bending);
 
 // An elastic mean of `inputs` shapes: energy (sum_i W[S_i, mean]), energies,
 // far_inputs (the names given), inputs, iterations (LM + Newton),

@@ -47,6 +47,12 @@ ShellPair LoadStartEndFromFlags() {
 BendingModel BendingModelFromFlags() {
   BendingModel model;
   if (!ParseBendingModel(FLAGS_bending, &model)) {
+    if (FLAGS_bending == "shape-operator-edge-angles") {
+      throw InputError(
+          "--bending shape-operator-edge-angles: the edge-angle variant is "
+          "evaluated only by `shellspace energy` (no problem differentiates "
+          "through its angle fit); use shape-operator here");
+    }
     throw InputError("--bending: unknown bending model '" + FLAGS_bending +
                      "' (discrete-shells or shape-operator)");
   }

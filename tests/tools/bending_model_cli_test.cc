@@ -1,15 +1,19 @@
 // The --bending flag of the CLI (issue 18): every verb with material flags
 // accepts it and reports `bending_model` in --json; `energy --bending both`
-// reports both models' W_bend, each equal to the library's value; a geodesic
+// reports both models' W_bend, each equal to the library's value, and the
+// edge-angle variant (energy only; every other verb refuses it); a geodesic
 // with the shape-operator model reports the energy the library evaluates on
 // its frames with that model.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <string>
 
+#include "shellspace/cost_functions/edge_angle_bending.h"
 #include "shellspace/cost_functions/shell/deformation_energy.h"
+#include "shellspace/geometry/topology.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/tests/testing/cli_output.h"
@@ -119,6 +123,49 @@ TEST(BendingModelCliTest, EveryVerbWithMaterialFlagsTakesBending) {
              nullptr, &err),
       1);
   EXPECT_NE(err.find("--bending"), std::string::npos) << err;
+}
+
+TEST(BendingModelCliTest, EnergyReportsTheEdgeAngleVariantOnlyThere) {
+  // The cactus pair: a real mesh with boundary (faces with 1-3 interior
+  // edges), where the fitted angles change W_bend by tens of percent.
+  const std::string a_path = DataPath("cactus/cactus0.ply");
+  const std::string b_path = DataPath("cactus/cactus1.ply");
+  const Mesh a = ReadMesh(a_path), b = ReadMesh(b_path);
+  const EdgeAngleBending variant = EvaluateEdgeAngleBending(
+      a, Topology::Build(a), a.positions, b.positions);
+  ASSERT_TRUE(variant.converged);
+  const DeformationEnergy so = EvaluateDeformationEnergy(
+      testing::MakeSpace(a, Material(BendingModel::kShapeOperator, 0.01)),
+      a.positions, b.positions);
+  EXPECT_LT(variant.energy, 0.95 * so.bending);  // the angles matter here
+  const std::string common =
+      "energy --json --reference " + a_path + " --deformed " + b_path;
+  const std::string json = RunOk(common + " --bending shape-operator-edge-angles");
+  EXPECT_NE(json.find("\"bending_model\": \"shape-operator-edge-angles\""),
+            std::string::npos)
+      << json;
+  EXPECT_NEAR(Number(json, "bending"), variant.energy, 1e-12 * variant.energy);
+  EXPECT_NEAR(Number(json, "total"), so.membrane + 0.01 * variant.energy,
+              1e-12 * so.total);
+  EXPECT_EQ(Number(json, "iterations"),
+            variant.reference.iterations + variant.deformed.iterations);
+  EXPECT_TRUE(testing::Bool(json, "converged")) << json;
+  const std::string both = RunOk(common + " --bending both");
+  EXPECT_NEAR(Number(both, "shape-operator-edge-angles"), variant.energy,
+              1e-12 * variant.energy)
+      << both;
+  EXPECT_NEAR(Number(both, "shape-operator"), so.bending, 1e-12 * so.bending);
+  // Every other verb refuses it with one line naming the flag.
+  std::string err;
+  EXPECT_EQ(RunCli("geodesic --quiet --steps 2 --bending "
+                   "shape-operator-edge-angles --start " +
+                       kSquare + " --end " + kBent + " --output " +
+                       testing::TempDir() + "/edge_angles",
+                   nullptr, &err),
+            1);
+  EXPECT_NE(err.find("--bending shape-operator-edge-angles"), std::string::npos)
+      << err;
+  EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
 }
 
 }  // namespace
