@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <map>
 
 namespace shellspace {
@@ -20,6 +21,41 @@ void CheckFinite(const Mesh& mesh, const std::string& name) {
   }
 }
 
+// "%.3g" of a number (std::to_string prints 1e-201 as 0.000000).
+std::string Short(double value) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof buffer, "%.3g", value);
+  return buffer;
+}
+
+// The energies use up to fourth powers of lengths (det of the first
+// fundamental form, its inverse), so coordinates must be far from overflow
+// and the mesh far from underflow: |x| <= kLargestCoordinate and a
+// bounding-box diagonal >= kSmallestExtent. Anything in between is scaled
+// exactly by the calculus (W_mem ~ length^2, W_bend scale-free).
+constexpr double kLargestCoordinate = 1e30;
+constexpr double kSmallestExtent = 1e-30;
+
+void CheckScale(const Mesh& mesh, const std::string& name) {
+  const double largest = mesh.positions.cwiseAbs().maxCoeff();
+  if (largest > kLargestCoordinate) {
+    throw InputError(name + ": coordinates up to " + Short(largest) +
+                     " (at most " + Short(kLargestCoordinate) +
+                     ": the energies use fourth powers of lengths and would "
+                     "overflow; rescale the mesh)");
+  }
+  const double extent =
+      (mesh.positions.colwise().maxCoeff() - mesh.positions.colwise().minCoeff())
+          .norm();
+  if (extent < kSmallestExtent) {
+    throw InputError(name + ": the mesh spans only " + Short(extent) +
+                     " (bounding-box diagonal; at least " +
+                     Short(kSmallestExtent) +
+                     ": the energies use fourth powers of lengths and would "
+                     "underflow; rescale the mesh)");
+  }
+}
+
 void CheckTriangles(const Mesh& mesh, const Topology& topology,
                     const std::string& name) {
   double mean_sq = 0;
@@ -34,7 +70,8 @@ void CheckTriangles(const Mesh& mesh, const Topology& topology,
     const double area = 0.5 * (b - a).cross(c - a).norm();
     if (!(area > 1e-12 * mean_sq)) {
       throw InputError(name + ": triangle " + std::to_string(f) +
-                       " is degenerate (area " + std::to_string(area) + ")");
+                       " is degenerate (area " + Short(area) +
+                       ", mean squared edge length " + Short(mean_sq) + ")");
     }
   }
 }
@@ -100,6 +137,7 @@ Topology ValidateMeshStructure(const Mesh& mesh, const std::string& name) {
 
 Topology ValidateShell(const Mesh& mesh, const std::string& name) {
   Topology topology = ValidateMeshStructure(mesh, name);
+  CheckScale(mesh, name);
   CheckTriangles(mesh, topology, name);
   return topology;
 }
@@ -107,6 +145,7 @@ Topology ValidateShell(const Mesh& mesh, const std::string& name) {
 void ValidateShellPositions(const Mesh& mesh, const Topology& topology,
                             const std::string& name) {
   CheckFinite(mesh, name);
+  CheckScale(mesh, name);
   CheckTriangles(mesh, topology, name);
 }
 

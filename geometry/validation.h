@@ -21,12 +21,14 @@ namespace shellspace {
 // b); 0-based). Returns the topology.
 Topology ValidateMeshStructure(const Mesh& mesh, const std::string& name);
 
-// ValidateMeshStructure and no degenerate triangle (area <= 1e-12 times the
+// ValidateMeshStructure, a scale the energies can compute with (every
+// |coordinate| <= 1e30 and a bounding-box diagonal >= 1e-30: they use fourth
+// powers of lengths) and no degenerate triangle (area <= 1e-12 times the
 // mean squared edge length). Returns the topology.
 Topology ValidateShell(const Mesh& mesh, const std::string& name);
 
 // The checks of ValidateShell that depend on the positions (finite
-// coordinates, no degenerate triangle) for a mesh whose connectivity is
+// coordinates, scale, no degenerate triangle) for a mesh whose connectivity is
 // known to be that of `topology` (a pose of an already validated shell, see
 // CheckCompatible): does not build the topology again.
 void ValidateShellPositions(const Mesh& mesh, const Topology& topology,

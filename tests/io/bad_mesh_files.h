@@ -9,6 +9,7 @@
 #include <cstring>
 #include <fstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 namespace shellspace::testing {
@@ -295,6 +296,21 @@ inline std::vector<BadMeshCase> BadMeshCases() {
     s.vertices[2] = {"2", "0", "0"};
     s.faces = {{"0", "1", "2"}, {"0", "3", "1"}};
     BadMeshCase c{"degenerate", s, all, {"triangle 0 is degenerate"}};
+    c.degenerate_only = true;
+    cases.push_back(c);
+  }
+  // Valid structure and shape, but a scale at which fourth powers of
+  // lengths overflow or underflow (1e+-35 are still finite floats for
+  // binary PLY).
+  for (const auto& [name, side, word] :
+       {std::tuple<const char*, const char*, const char*>{
+            "huge", "1e35", "coordinates up to 1e+35"},
+        {"tiny", "1e-35", "spans only 1.41e-35"}}) {
+    MeshSpec s = Square();
+    for (auto& v : s.vertices) {
+      for (auto& x : v) x = x == "0" ? "0" : side;
+    }
+    BadMeshCase c{name, s, all, {word, "flow"}};
     c.degenerate_only = true;
     cases.push_back(c);
   }
