@@ -108,14 +108,6 @@ ShellsValue DiscreteShells(const Topology& topo, const Positions& metric,
   return out;
 }
 
-double MeanEdgeLength(const Mesh& mesh, const Topology& topo) {
-  double sum = 0;
-  for (const auto& e : topo.edges) {
-    sum += (mesh.positions.row(e[0]) - mesh.positions.row(e[1])).norm();
-  }
-  return sum / topo.edges.size();
-}
-
 struct Row {
   std::string shape, mesh;
   int level, faces;

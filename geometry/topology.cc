@@ -86,4 +86,12 @@ Topology Topology::Build(const Mesh& mesh) {
   return topo;
 }
 
+double MeanEdgeLength(const Mesh& mesh, const Topology& topology) {
+  double sum = 0;
+  for (const auto& e : topology.edges) {
+    sum += (mesh.positions.row(e[0]) - mesh.positions.row(e[1])).norm();
+  }
+  return topology.edges.empty() ? 0.0 : sum / topology.edges.size();
+}
+
 }  // namespace shellspace

@@ -44,6 +44,9 @@ struct Topology {
   static Topology Build(const Mesh& mesh);
 };
 
+// The mean length of the mesh's edges (topology.edges) at its positions.
+double MeanEdgeLength(const Mesh& mesh, const Topology& topology);
+
 }  // namespace shellspace
 
 #endif  // SHELLSPACE_GEOMETRY_TOPOLOGY_H_

@@ -13,6 +13,7 @@
 #include <cstdio>
 #include <memory>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "shellspace/cost_functions/edge_angle_bending.h"
@@ -27,47 +28,14 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
-ShellMaterial ShapeOperatorMaterial(double alpha, double beta) {
-  ShellMaterial material;
-  material.eta = 1;
-  material.bending_model = BendingModel::kShapeOperator;
-  material.shape_operator_alpha = alpha;
-  material.shape_operator_beta = beta;
-  return material;
-}
-
-// A bumpy 6 x 5 equilateral sheet (faces with 1, 2 and 3 interior edges):
-// two curved shells of one connectivity.
-struct TestShells {
-  Mesh mesh;
+// The bumpy sheet pair of the shape-operator tests, with its topology.
+struct TestShells : testing::BumpySheetPair {
   Topology topology;
-  Positions reference, deformed;
 };
 TestShells MakeTestShells() {
-  TestShells s;
-  s.mesh = MakeEquilateralSheet(6, 5, 1.0);
+  TestShells s{testing::MakeBumpySheetPair(), {}};
   s.topology = Topology::Build(s.mesh);
-  std::mt19937 rng(5);
-  std::uniform_real_distribution<double> noise(-0.05, 0.05);
-  s.reference = s.mesh.positions;
-  s.deformed = s.mesh.positions;
-  for (int v = 0; v < s.mesh.num_vertices(); ++v) {
-    const double x = s.mesh.positions(v, 0), y = s.mesh.positions(v, 1);
-    s.reference(v, 0) += noise(rng);
-    s.reference(v, 2) = 0.3 * std::sin(0.8 * x) * std::cos(0.6 * y) + noise(rng);
-    s.deformed(v, 2) = 0.5 * std::cos(0.5 * x + 0.3 * y) + noise(rng);
-    s.deformed(v, 1) += noise(rng);
-  }
-  s.mesh.positions = s.reference;
   return s;
-}
-
-double MeanEdgeLength(const Mesh& mesh, const Topology& topology) {
-  double sum = 0;
-  for (const auto& e : topology.edges) {
-    sum += (mesh.positions.row(e[0]) - mesh.positions.row(e[1])).norm();
-  }
-  return sum / topology.edges.size();
 }
 
 // The total sum_T e_T(phi) of `shape` against `reference`.
@@ -93,7 +61,7 @@ TEST(EdgeAngleBendingTest, AtZeroAnglesIsThePlainShapeOperatorEnergy) {
   for (const auto& [alpha, beta] : {std::pair{0.0, 1.0}, std::pair{0.3, 0.7}}) {
     const double plain =
         EvaluateDeformationEnergy(
-            testing::MakeSpace(s.mesh, ShapeOperatorMaterial(alpha, beta)),
+            testing::MakeSpace(s.mesh, testing::ShapeOperatorMaterial(1, alpha, beta)),
             s.reference, s.deformed)
             .bending;
     ASSERT_GT(plain, 1e-2);

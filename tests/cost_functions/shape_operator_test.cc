@@ -116,39 +116,9 @@ class DirectShapeOperator {
   std::map<std::pair<int, int>, int> half_edge_;
 };
 
-ShellMaterial ShapeOperatorMaterial(double eta, double alpha = 0,
-                                    double beta = 1) {
-  ShellMaterial material;
-  material.eta = eta;
-  material.bending_model = BendingModel::kShapeOperator;
-  material.shape_operator_alpha = alpha;
-  material.shape_operator_beta = beta;
-  return material;
-}
-
-// A bumpy 5 x 4 equilateral sheet (faces with 1, 2 and 3 interior edges)
-// and two smooth non-isometric bendings of it, plus noise.
-struct TestShells {
-  Mesh mesh;
-  Positions reference, deformed;
-};
-TestShells MakeTestShells() {
-  TestShells s;
-  s.mesh = MakeEquilateralSheet(5, 4, 1.0);
-  std::mt19937 rng(7);
-  std::uniform_real_distribution<double> noise(-0.05, 0.05);
-  s.reference = s.mesh.positions;
-  s.deformed = s.mesh.positions;
-  for (int v = 0; v < s.mesh.num_vertices(); ++v) {
-    const double x = s.mesh.positions(v, 0), y = s.mesh.positions(v, 1);
-    s.reference(v, 2) = 0.3 * std::sin(0.8 * x) * std::cos(0.6 * y) + noise(rng);
-    s.deformed(v, 2) = 0.5 * std::cos(0.5 * x + 0.3 * y) + noise(rng);
-    s.deformed(v, 0) += noise(rng);
-    s.deformed(v, 1) += noise(rng);
-  }
-  s.mesh.positions = s.reference;
-  return s;
-}
+using testing::ShapeOperatorMaterial;
+using TestShells = testing::BumpySheetPair;
+TestShells MakeTestShells() { return testing::MakeBumpySheetPair(); }
 
 // ---------------------------------------------------------------------------
 

@@ -4,6 +4,7 @@
 
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -12,6 +13,7 @@
 #include <sstream>
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
+#include "shellspace/geometry/procedural_shapes.h"
 #include "shellspace/geometry/validation.h"
 #include "shellspace/io/mesh_io.h"
 
@@ -92,6 +94,33 @@ std::vector<std::string> DirectoryListing(const std::string& dir) {
   }
   std::sort(names.begin(), names.end());
   return names;
+}
+
+ShellMaterial ShapeOperatorMaterial(double eta, double alpha, double beta) {
+  ShellMaterial material;
+  material.eta = eta;
+  material.bending_model = BendingModel::kShapeOperator;
+  material.shape_operator_alpha = alpha;
+  material.shape_operator_beta = beta;
+  return material;
+}
+
+BumpySheetPair MakeBumpySheetPair() {
+  BumpySheetPair s;
+  s.mesh = MakeEquilateralSheet(5, 4, 1.0);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> noise(-0.05, 0.05);
+  s.reference = s.mesh.positions;
+  s.deformed = s.mesh.positions;
+  for (int v = 0; v < s.mesh.num_vertices(); ++v) {
+    const double x = s.mesh.positions(v, 0), y = s.mesh.positions(v, 1);
+    s.reference(v, 2) = 0.3 * std::sin(0.8 * x) * std::cos(0.6 * y) + noise(rng);
+    s.deformed(v, 2) = 0.5 * std::cos(0.5 * x + 0.3 * y) + noise(rng);
+    s.deformed(v, 0) += noise(rng);
+    s.deformed(v, 1) += noise(rng);
+  }
+  s.mesh.positions = s.reference;
+  return s;
 }
 
 }  // namespace shellspace::testing

@@ -51,6 +51,21 @@ std::vector<std::string> DirectoryListing(const std::string& dir);
 int RunCli(const std::string& args, std::string* out = nullptr,
            std::string* err = nullptr);
 
+// The shape-operator material with bending weight eta and weights alpha,
+// beta (shape_operator.md).
+ShellMaterial ShapeOperatorMaterial(double eta, double alpha = 0,
+                                    double beta = 1);
+
+// Two curved shells of one connectivity: a 5 x 4 equilateral sheet (faces
+// with 1, 2 and 3 interior edges) bent by two smooth height fields plus a
+// fixed-seed noise of 0.05 (the deformed one also in the plane); mesh's
+// positions are the reference's.
+struct BumpySheetPair {
+  Mesh mesh;
+  Positions reference, deformed;
+};
+BumpySheetPair MakeBumpySheetPair();
+
 // A random rigid motion (rotation by a random unit quaternion, translation
 // with entries in [-1, 1]) applied to `p`, with a fixed seed.
 Positions RandomRigidMotion(const Positions& p, unsigned seed);
