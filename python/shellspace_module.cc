@@ -37,6 +37,7 @@
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/problems/calculus/multiresolution.h"
 #include "shellspace/problems/calculus/parallel_transport.h"
+#include "shellspace/problems/calculus/shape_comparison.h"
 #include "shellspace/problems/splines/ltheta_spline.h"
 #include "shellspace/problems/splines/spline.h"
 #include "shellspace/problems/statistics/elastic_mean.h"
@@ -964,6 +965,41 @@ py::object BranchingConstructPy(double epsilon, double length,
   return ToDict(summary);
 }
 
+// `compare`: a and b each one #V x 3 array (a shell) or a sequence / #frames
+// x #V x 3 array (a path), with the connectivity F.
+py::object ComparePy(const py::object& a_object, const py::object& b_object,
+                     const IndexArray& F, double tolerance,
+                     double energy_tolerance, double mu, double lambda,
+                     double eta) {
+  for (const auto& [name, value] :
+       {std::pair{"tolerance", tolerance}, {"energy_tolerance", energy_tolerance}}) {
+    if (!(value >= 0) || !std::isfinite(value)) {
+      throw InputError(std::string(name) + " must be >= 0, got " +
+                       std::to_string(value));
+    }
+  }
+  auto side = [](const py::object& object, const std::string& name) {
+    if (py::isinstance<py::array>(object) &&
+        object.cast<py::array>().ndim() == 2) {
+      return std::vector<Positions>{ToPositions(object.cast<DoubleArray>(), name)};
+    }
+    return ToShapes(object, name);
+  };
+  const std::vector<Positions> a_shapes = side(a_object, "a");
+  const std::vector<Positions> b_shapes = side(b_object, "b");
+  const Shell first = MakeShell(DoubleArray(FromPositions(a_shapes[0])), F, "a[0]");
+  ShellPath a, b;
+  for (size_t k = 0; k < a_shapes.size(); ++k) {
+    a.push_back(CompatiblePositions(a_shapes[k], first, "a[" + std::to_string(k) + "]"));
+  }
+  for (size_t k = 0; k < b_shapes.size(); ++k) {
+    b.push_back(CompatiblePositions(b_shapes[k], first, "b[" + std::to_string(k) + "]"));
+  }
+  const ShellSpace space(first.mesh, first.topology, Material(mu, lambda, eta));
+  return ToDict(ComparisonJson(CompareShapes(space, a, b), tolerance,
+                               energy_tolerance));
+}
+
 void WriteGltfPy(const std::string& path, const py::object& frames_object,
                  const IndexArray& F, double fps,
                  const std::string& interpolation) {
@@ -1009,6 +1045,13 @@ PYBIND11_MODULE(shellspace, m) {
         "Reads a PLY, OBJ or OFF mesh (strict readers): returns (V, F).");
   m.def("write_mesh", &WriteMeshPy, py::arg("path"), py::arg("V"), py::arg("F"),
         "Writes (V, F) as PLY, OBJ or OFF (by the extension), atomically.");
+  m.def("compare", &ComparePy, py::arg("a"), py::arg("b"), py::arg("F"),
+        py::arg("tolerance") = 1e-6, py::arg("energy_tolerance") = 1e-6,
+        SHELLSPACE_MATERIAL_ARGS,
+        "Two shells (#V x 3 arrays) or two paths (sequences of them) up to "
+        "rigid motion per frame: the `compare` verb's summary (max and mean "
+        "vertex distance per frame, E_K of each path or W[a, b], `equal` "
+        "against the tolerances).");
   m.def("write_gltf", &WriteGltfPy, py::arg("path"), py::arg("frames"),
         py::arg("F"), py::arg("fps") = 4.0, py::arg("interpolation") = "linear",
         "Writes frames (a path) as one glTF 2.0 morph animation (.glb), as "

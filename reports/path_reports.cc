@@ -180,4 +180,33 @@ JsonObject SplineJson(JsonObject head, const SplineResult& result,
   return head;
 }
 
+JsonObject ComparisonJson(const ShapeComparison& comparison, double tolerance,
+                          double energy_tolerance) {
+  std::vector<double> max_distance, mean_distance;
+  for (const FrameDifference& d : comparison.frames) {
+    max_distance.push_back(d.max_distance);
+    mean_distance.push_back(d.mean_distance);
+  }
+  JsonObject json;
+  json.Add("frames", static_cast<int>(comparison.frames.size()))
+      .Add("max_distance", comparison.max_distance)
+      .Add("mean_distance", comparison.mean_distance)
+      .Add("diameter", comparison.diameter)
+      .Add("relative_max_distance", comparison.relative_max_distance)
+      .Add("frame_max_distance", max_distance)
+      .Add("frame_mean_distance", mean_distance);
+  if (comparison.frames.size() > 1) {
+    json.Add("path_energy_a", comparison.energy_a)
+        .Add("path_energy_b", comparison.energy_b)
+        .Add("relative_energy_difference", comparison.relative_energy_difference);
+  } else {
+    json.Add("energy_a_to_b", comparison.energy_a_to_b);
+  }
+  json.Add("tolerance", tolerance)
+      .Add("energy_tolerance", energy_tolerance)
+      .Add("equal",
+           JudgeComparison(comparison, tolerance, energy_tolerance).agree());
+  return json;
+}
+
 }  // namespace shellspace

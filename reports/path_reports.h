@@ -13,6 +13,7 @@
 
 #include "shellspace/io/json_writer.h"
 #include "shellspace/problems/calculus/exponential_map.h"
+#include "shellspace/problems/calculus/shape_comparison.h"
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/problems/calculus/multiresolution.h"
 #include "shellspace/problems/calculus/parallel_transport.h"
@@ -91,6 +92,14 @@ JsonObject TransportJson(const TransportResult& result, double epsilon);
 // `seconds` and frames.
 JsonObject SplineJson(JsonObject head, const SplineResult& result,
                       double seconds, bool optimised = true);
+
+// The summary of `compare` (CompareShapes and its verdict): frames,
+// max_distance, mean_distance, diameter, relative_max_distance,
+// frame_max_distance, frame_mean_distance, then path_energy_a,
+// path_energy_b, relative_energy_difference (paths) or energy_a_to_b
+// (single shells), tolerance, energy_tolerance, equal.
+JsonObject ComparisonJson(const ShapeComparison& comparison, double tolerance,
+                          double energy_tolerance);
 
 }  // namespace shellspace
 

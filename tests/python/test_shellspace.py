@@ -445,3 +445,35 @@ def test_gltf_of_a_path_is_the_clis_export(tmp_path):
                             output=str(tmp_path / "none"),
                             gltf=str(tmp_path / "missing" / "a.glb"))
     assert not (tmp_path / "none").exists()
+
+
+def test_compare_matches_cli_for_meshes_and_paths(tmp_path):
+    V, F = mesh(DOUBLE)
+    W, _ = mesh(DOUBLE_BENT)
+    # Two meshes: the CLI's numbers (its exit 1 says they differ).
+    mine = shellspace.compare(V, W, F)
+    out = subprocess.run([CLI, "compare", "--json", "--a", DOUBLE, "--b",
+                          DOUBLE_BENT], capture_output=True, text=True)
+    assert out.returncode == 1
+    cli = json.loads(out.stdout)
+    assert not mine["equal"] and not cli["equal"]
+    for key in ("max_distance", "mean_distance", "energy_a_to_b"):
+        assert mine[key] == pytest.approx(cli[key], rel=1e-12), key
+    assert mine["energy_a_to_b"] == pytest.approx(
+        shellspace.energy(V, W, F)["total"], rel=1e-12)
+    # A path against itself rigidly moved (a rotation about z by 90
+    # degrees): equal, with the same E_K.
+    path, _ = shellspace.geodesic(V, W, F, steps=3, quiet=True,
+                                  output=str(tmp_path / "path"))
+    turn = np.array([[0.0, -1.0, 0.0], [1.0, 0.0, 0.0], [0.0, 0.0, 1.0]])
+    moved = [frame @ turn.T + 1.0 for frame in path]
+    same = shellspace.compare(list(path), moved, F)
+    assert same["equal"] and same["frames"] == 4
+    assert same["max_distance"] < 1e-12
+    assert same["relative_energy_difference"] < 1e-12
+    cli = cli_json(["compare", "--a", str(tmp_path / "path"), "--b",
+                    str(tmp_path / "path")])
+    assert cli["path_energy_a"] == pytest.approx(same["path_energy_a"],
+                                                 rel=1e-10)
+    with pytest.raises(Exception, match="frames"):
+        shellspace.compare(list(path), list(path)[:2], F)

@@ -1,0 +1,121 @@
+// `shellspace compare`: two shells or two paths of one connectivity against
+// each other, up to rigid motion (problems/calculus/shape_comparison.h):
+// the check of a downstream test against a pinned reference solution.
+#include <gflags/gflags.h>
+
+#include <cstdio>
+#include <iostream>
+#include <string>
+#include <vector>
+
+#include "shellspace/io/frame_sequence.h"
+#include "shellspace/io/json_writer.h"
+#include "shellspace/reports/path_reports.h"
+#include "shellspace/problems/calculus/shape_comparison.h"
+#include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/run_status.h"
+#include "shellspace/tools/shell_inputs.h"
+#include "shellspace/tools/verb.h"
+
+DEFINE_string(a, "", "compare: the first shell or path");
+DEFINE_string(b, "", "compare: the second shell or path");
+DEFINE_double(energy_tolerance, 1e-6, "compare: relative E_K difference");
+
+namespace shellspace {
+namespace {
+
+constexpr char kSide[] =
+    "a mesh file (PLY, OBJ, OFF), a path directory (its *.ply, *.obj, *.off "
+    "in natural name order) or a comma-separated list of mesh files";
+
+FlagTable CompareFlags() {
+  return Flags({{
+                    TextFlag("a", std::string("the reference side: ") + kSide)
+                        .Required(),
+                    TextFlag("b",
+                             std::string("the side checked against it, with "
+                                         "a's connectivity and frame count: ") +
+                                 kSide)
+                        .Required(),
+                    RealFlag("tolerance",
+                             "largest vertex distance after rigid alignment, "
+                             "relative to the bounding-box diagonal of a's "
+                             "first frame, that still counts as equal",
+                             0, End::kClosed)
+                        .Default("1e-6"),
+                    RealFlag("energy_tolerance",
+                             "paths: largest |E_K(a) - E_K(b)| / max(E_K) that "
+                             "still counts as equal",
+                             0, End::kClosed),
+                    TextFlag("quiet", "no lines on stdout"),
+                },
+                MaterialFlags(), JsonFlag()});
+}
+
+// The shapes of one side, checked against `like` (a's first shell), or
+// validated as the first shell if `like` is null.
+ShellPath LoadSide(const std::string& input, const Shell* like, Shell* first) {
+  const std::vector<std::string> files = ListFrameFiles(input);
+  ShellPath path;
+  for (size_t k = 0; k < files.size(); ++k) {
+    if (like == nullptr && k == 0) {
+      *first = LoadShell(files[0]);
+      path.push_back(first->mesh.positions);
+    } else {
+      path.push_back(LoadCompatibleShell(files[k], like ? *like : *first).positions);
+    }
+  }
+  return path;
+}
+
+int RunCompare() {
+  Shell first_a, unused;
+  const ShellPath a = LoadSide(FLAGS_a, nullptr, &first_a);
+  const ShellPath b = LoadSide(FLAGS_b, &first_a, &unused);
+  if (a.size() != b.size()) {
+    throw InputError("compare: " + FLAGS_a + " has " + std::to_string(a.size()) +
+                     " frame(s), " + FLAGS_b + " has " + std::to_string(b.size()));
+  }
+  const ShellSpace space = SpaceFromFlags(first_a);
+  const ShapeComparison c = CompareShapes(space, a, b);
+  const bool paths = a.size() > 1;
+  const ComparisonVerdict verdict =
+      JudgeComparison(c, FLAGS_tolerance, FLAGS_energy_tolerance);
+  if (FLAGS_json) {
+    JsonObject json = ComparisonJson(c, FLAGS_tolerance, FLAGS_energy_tolerance);
+    std::cout << json.Add("a", FLAGS_a).Add("b", FLAGS_b).str() << "\n";
+  } else if (!FLAGS_quiet) {
+    std::printf("%zu frame(s): max distance %.6g (%.3g of the diameter %.6g), "
+                "mean %.6g\n",
+                a.size(), c.max_distance, c.relative_max_distance, c.diameter,
+                c.mean_distance);
+    if (paths) {
+      std::printf("E_K: a %.12g, b %.12g (relative difference %.3g)\n",
+                  c.energy_a, c.energy_b, c.relative_energy_difference);
+    } else {
+      std::printf("W[a, b] = %.12g\n", c.energy_a_to_b);
+    }
+  }
+  if (verdict.agree()) return 0;
+  std::string why;
+  if (!verdict.shapes_agree) {
+    why = "relative max distance " + Short(c.relative_max_distance) + " > " +
+          Short(FLAGS_tolerance);
+  }
+  if (!verdict.energies_agree) {
+    why += std::string(why.empty() ? "" : "; ") + "relative E_K difference " +
+           Short(c.relative_energy_difference) + " > " +
+           Short(FLAGS_energy_tolerance);
+  }
+  std::fprintf(stderr, "shellspace compare: differ: %s\n", why.c_str());
+  return 1;
+}
+
+}  // namespace
+}  // namespace shellspace
+
+SHELLSPACE_REGISTER_VERB(
+    "compare",
+    "compare --a A --b B [--tolerance 1e-6] [--energy_tolerance 1e-6] [--json] "
+    "(A, B: meshes or path directories; exit 0 equal, 1 different or bad input)",
+    shellspace::CompareFlags(), shellspace::RunCompare);
