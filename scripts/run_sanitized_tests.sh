@@ -12,6 +12,25 @@ export ASAN_OPTIONS=detect_leaks=1:halt_on_error=1:exitcode=86
 export UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1:exitcode=87
 failed=()
 count=0
+# The negative twin: the canary's deliberate heap-buffer-overflow and signed
+# overflow must each fail with a sanitizer's report (the out-of-bounds read
+# is caught by UBSan's object-size check before ASan sees it).
+for mode in "heap:heap-buffer-overflow|insufficient space for an object" \
+            "overflow:signed integer overflow"; do
+  name=${mode%%:*}
+  report=${mode#*:}
+  log="$build/sanitized_canary_$name.log"
+  if "$build/tests/sanitizer_canary" "$name" >"$log" 2>&1; then
+    echo "sanitized: the canary's $name defect went unreported (log $log)" >&2
+    exit 1
+  fi
+  if ! grep -Eq "$report" "$log"; then
+    echo "sanitized: the canary's $name defect failed without '$report' (log $log):" >&2
+    tail -n 20 "$log" >&2
+    exit 1
+  fi
+  echo "sanitized: canary $name reported ($report)"
+done
 while read -r name; do
   [ -n "$name" ] || continue
   count=$((count + 1))

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Sets up (scripts/setup.sh), builds and runs the whole test suite with CTest,
-# then fuzzes the mesh and mask readers: a separate clang build in
+# runs the fast tests under ASan + UBSan (./build-sanitize), then fuzzes the
+# mesh and mask readers: a separate clang build in
 # ./build-fuzz (-DSHELLSPACE_BUILD_FUZZERS=ON, only the fuzz targets and the
 # geometry and io rooms, with ASan + UBSan) and fuzz/run.sh with 20000
 # inputs per target (about 3 minutes on 2 cores from a clean build dir).
@@ -12,6 +13,18 @@ scripts/setup.sh -DSHELLSPACE_BUILD_BENCHMARKS=ON
 cd build
 ctest --output-on-failure -j"$(nproc)"
 cd ..
+
+# Sanitizer stage: the fast tests of tests/CMakeLists.txt
+# (SHELLSPACE_SANITIZED_TESTS) and the sanitizer canary built with
+# AddressSanitizer + UndefinedBehaviorSanitizer at -O1 in ./build-sanitize
+# (only the rooms they need: geometry, io, cost_functions, solvers,
+# calculus; about 15 minutes of the 2 cores), then run by
+# scripts/run_sanitized_tests.sh: any report or failure fails the stage, and
+# so does a canary defect that goes unreported.
+cmake -S . -B build-sanitize -DCMAKE_BUILD_TYPE=Release -DSHELLSPACE_SANITIZE=ON \
+  -DSHELLSPACE_BUILD_BENCHMARKS=OFF -DSHELLSPACE_BUILD_PYTHON=OFF >/dev/null
+cmake --build build-sanitize -j"$(nproc)" --target sanitized_tests
+scripts/run_sanitized_tests.sh build-sanitize
 
 # Fuzz stage (fuzz/CMakeLists.txt, fuzz/run.sh).
 cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=Release -DCMAKE_CXX_COMPILER=clang++ \
