@@ -7,14 +7,14 @@
 // writes OUT_DIR/shape_000.ply ... and prints E_K, the step energies and
 // the iterations of each stage.
 #include <shellspace/cost_functions/shell/shell_space.h>
-#include <shellspace/geometry/validation.h>
 #include <shellspace/io/frame_sequence.h>
-#include <shellspace/io/mesh_io.h>
 #include <shellspace/problems/calculus/geodesic.h>
 
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+
+#include "example_inputs.h"
 
 namespace {
 
@@ -23,15 +23,12 @@ int Run(int argc, char** argv) {
     std::fprintf(stderr, "usage: %s START END STEPS OUT_DIR [MASK]\n", argv[0]);
     return 2;
   }
-  const shellspace::Mesh start = shellspace::ReadMesh(argv[1]);
-  const shellspace::Topology topology = shellspace::ValidateShell(start, argv[1]);
-  const shellspace::Mesh end = shellspace::ReadMesh(argv[2]);
-  shellspace::CheckCompatible(start, argv[1], end, argv[2]);
-  shellspace::ValidateShellPositions(end, topology, argv[2]);
-
-  const shellspace::ShellSpace space(start, topology, shellspace::ShellMaterial{});
+  const examples::TwoPoses poses = examples::ReadTwoPoses(argv[1], argv[2]);
+  const shellspace::Mesh& start = poses.first;
+  const shellspace::ShellSpace space(start, poses.topology,
+                                     shellspace::ShellMaterial{});
   shellspace::GeodesicInput input = shellspace::GeodesicInput::Between(
-      start.positions, end.positions, std::atoi(argv[3]));
+      start.positions, poses.second, std::atoi(argv[3]));
   if (argc == 6) {
     input.fixed_vertices = shellspace::ReadMask(argv[5], start.num_vertices());
   }

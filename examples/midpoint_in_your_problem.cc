@@ -15,14 +15,14 @@
 #include <shellspace/cost_functions/deformation_energy_residuals.h>
 #include <shellspace/cost_functions/shell/deformation_energy.h>
 #include <shellspace/geometry/rigid_alignment.h>
-#include <shellspace/geometry/validation.h>
-#include <shellspace/io/mesh_io.h>
 #include <shellspace/problems/calculus/geodesic.h>
 
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+
+#include "example_inputs.h"
 
 namespace {
 
@@ -49,13 +49,11 @@ int Run(int argc, char** argv) {
     std::fprintf(stderr, "usage: %s A B [K_WEIGHT]\n", argv[0]);
     return 2;
   }
-  const shellspace::Mesh a = shellspace::ReadMesh(argv[1]);
-  const shellspace::Topology topology = shellspace::ValidateShell(a, argv[1]);
-  const shellspace::Mesh b = shellspace::ReadMesh(argv[2]);
-  shellspace::CheckCompatible(a, argv[1], b, argv[2]);
-  shellspace::ValidateShellPositions(b, topology, argv[2]);
+  const examples::TwoPoses poses = examples::ReadTwoPoses(argv[1], argv[2]);
+  const shellspace::Mesh& a = poses.first;
+  const shellspace::Mesh b{poses.second, a.faces};
   const double k = argc == 4 ? std::atof(argv[3]) : 1e-8;
-  const shellspace::ShellSpace space(a, topology, shellspace::ShellMaterial{});
+  const shellspace::ShellSpace space(a, poses.topology, shellspace::ShellMaterial{});
 
   const shellspace::Positions average = 0.5 * (a.positions + b.positions);
   shellspace::Positions s = average;  // the unknown, started at the average

@@ -1,0 +1,34 @@
+// What the examples share: reading two poses of one shell from files, with
+// the checks the CLI makes (geometry/validation.h). Header-only, so each
+// example stays one translation unit.
+#ifndef SHELLSPACE_EXAMPLES_EXAMPLE_INPUTS_H_
+#define SHELLSPACE_EXAMPLES_EXAMPLE_INPUTS_H_
+
+#include <shellspace/geometry/topology.h>
+#include <shellspace/geometry/validation.h>
+#include <shellspace/io/mesh_io.h>
+
+namespace examples {
+
+// The first shell (validated), the second one's positions (the first's
+// connectivity, validated), and the topology they share.
+struct TwoPoses {
+  shellspace::Mesh first;
+  shellspace::Positions second;
+  shellspace::Topology topology;
+};
+
+inline TwoPoses ReadTwoPoses(const char* first_path, const char* second_path) {
+  TwoPoses poses;
+  poses.first = shellspace::ReadMesh(first_path);
+  poses.topology = shellspace::ValidateShell(poses.first, first_path);
+  const shellspace::Mesh second = shellspace::ReadMesh(second_path);
+  shellspace::CheckCompatible(poses.first, first_path, second, second_path);
+  shellspace::ValidateShellPositions(second, poses.topology, second_path);
+  poses.second = second.positions;
+  return poses;
+}
+
+}  // namespace examples
+
+#endif  // SHELLSPACE_EXAMPLES_EXAMPLE_INPUTS_H_
