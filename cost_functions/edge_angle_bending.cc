@@ -6,6 +6,8 @@
 #include <cmath>
 #include <string>
 
+#include "shellspace/geometry/blas_threads.h"
+
 namespace shellspace {
 namespace {
 
@@ -96,6 +98,9 @@ EdgeAngleFit FitEdgeAngles(const std::vector<EdgeAngleFace>& shape,
   fit.energy_at_zero = total(fit.angles);
   fit.face_energy_at_zero = fit.face_energy;
   if (num_interior_edges > 0) {
+    // One BLAS thread: the fit's factorisations are small and many
+    // (geometry/blas_threads.h has the measurement).
+    const ScopedBlasThreads blas(1);
     ceres::Solver::Options solver;
     solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;
     solver.max_num_iterations = options.max_iterations;

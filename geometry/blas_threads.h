@@ -1,0 +1,30 @@
+// The thread count of the optimised BLAS (OpenBLAS) behind CHOLMOD, set for
+// a scope: its worker threads spin between small factorisations, where they
+// only cost CPU (issue 13, "no idle spinning"). Measured on 2 idle cores:
+// `energy --bending shape-operator-edge-angles` on the faces subdivided once
+// (28k vertices; two edge-angle fits) took 15.2 s wall / 24.4 s CPU with 2
+// BLAS threads and 15.1 s / 15.0 s with 1; the finger geodesic pays for
+// them (16.0 s vs 19.8 s wall), so the calculus keeps the default. Deterministic: the count is fixed, not chosen by timing.
+#ifndef SHELLSPACE_GEOMETRY_BLAS_THREADS_H_
+#define SHELLSPACE_GEOMETRY_BLAS_THREADS_H_
+
+namespace shellspace {
+
+// Sets OpenBLAS's thread count to `threads` for the lifetime of the object
+// and restores it after, unless the user fixed it with OPENBLAS_NUM_THREADS
+// (then nothing changes). Without OpenBLAS (the reference BLAS: no such
+// functions at run time) it does nothing.
+class ScopedBlasThreads {
+ public:
+  explicit ScopedBlasThreads(int threads);
+  ~ScopedBlasThreads();
+  ScopedBlasThreads(const ScopedBlasThreads&) = delete;
+  ScopedBlasThreads& operator=(const ScopedBlasThreads&) = delete;
+
+ private:
+  int previous_ = 0;  // 0: nothing to restore
+};
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_GEOMETRY_BLAS_THREADS_H_
