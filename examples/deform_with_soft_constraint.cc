@@ -25,6 +25,8 @@
 #include <exception>
 #include <string>
 
+#include "example_inputs.h"
+
 namespace {
 
 // r = sqrt(k) (x - target): 1/2 |r|^2 = k/2 |x - target|^2.
@@ -98,11 +100,4 @@ int Run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  try {
-    return Run(argc, argv);
-  } catch (const std::exception& e) {  // shellspace::InputError: one line
-    std::fprintf(stderr, "%s\n", e.what());
-    return 1;
-  }
-}
+int main(int argc, char** argv) { return examples::Main(Run, argc, argv); }

@@ -1,5 +1,6 @@
 // What the examples share: reading two poses of one shell from files, with
-// the checks the CLI makes (geometry/validation.h). Header-only, so each
+// the checks the CLI makes (geometry/validation.h), and main's error
+// handling. Header-only, so each
 // example stays one translation unit.
 #ifndef SHELLSPACE_EXAMPLES_EXAMPLE_INPUTS_H_
 #define SHELLSPACE_EXAMPLES_EXAMPLE_INPUTS_H_
@@ -7,6 +8,9 @@
 #include <shellspace/geometry/topology.h>
 #include <shellspace/geometry/validation.h>
 #include <shellspace/io/mesh_io.h>
+
+#include <cstdio>
+#include <exception>
 
 namespace examples {
 
@@ -27,6 +31,19 @@ inline TwoPoses ReadTwoPoses(const char* first_path, const char* second_path) {
   shellspace::ValidateShellPositions(second, poses.topology, second_path);
   poses.second = second.positions;
   return poses;
+}
+
+// main's body for every example: Run(argc, argv), with a library error
+// (shellspace::InputError, one line naming the input) printed as that line
+// and exit 1.
+template <typename RunFunction>
+int Main(RunFunction run, int argc, char** argv) {
+  try {
+    return run(argc, argv);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "%s\n", e.what());
+    return 1;
+  }
 }
 
 }  // namespace examples
