@@ -92,13 +92,31 @@ namespace {
 
 using namespace branching;
 
+// The dimensional flags (epsilon, lengths, heights) lie in [1e-12, 1e12]:
+// the energies use powers such as eps^(2/3) L^(1/3) and H / ny, which
+// underflow or overflow far outside it (--height 1e-300 gave energy nan and
+// exit 0).
+constexpr double kSmallestScale = 1e-12, kLargestScale = 1e12;
+
+FlagSpec ScaleFlag(const std::string& name, const std::string& meaning) {
+  return RealFlag(name, meaning, kSmallestScale, End::kClosed, kLargestScale,
+                  End::kClosed);
+}
+
+// 0 (the verb's default) or a scale in [1e-12, 1e12].
+FlagSpec ScaleOrZeroFlag(const std::string& name, const std::string& meaning) {
+  return CheckedFlag(name, meaning, "0 or a number in [1e-12, 1e+12]",
+                     [](double value) {
+                       return value == 0 ||
+                              (value >= kSmallestScale && value <= kLargestScale);
+                     });
+}
+
 FlagTable CommonFlags() {
   return {
-      RealFlag("epsilon", "twin-boundary (interfacial) energy per length",
-               0, End::kOpen)
+      ScaleFlag("epsilon", "twin-boundary (interfacial) energy per length")
           .Default("0.001"),
-      RealFlag("length", "domain length L (distance from the austenite)", 0,
-               End::kOpen),
+      ScaleFlag("length", "domain length L (distance from the austenite)"),
       TextFlag("output", "output directory").Required(),
       TextFlag("json", "print the summary JSON on stdout"),
       TextFlag("quiet", "suppress progress output"),
@@ -109,7 +127,7 @@ FlagTable SimulateFlags() {
   return Flags(
       {CommonFlags(),
        {
-           RealFlag("height", "domain height H (0: 0.5)", 0, End::kClosed),
+           ScaleOrZeroFlag("height", "domain height H (0: 0.5)"),
            IntegerFlag("nx", "number of x-cells", 2, 4096),
            IntegerFlag("ny",
                        "number of y-nodes (periodic); the grid's estimated "
@@ -169,8 +187,7 @@ FlagTable ConstructFlags() {
                        1, 64),
            TextFlag("optimize",
                     "optimise h0, theta (and the lens shape) by LM"),
-           RealFlag("height", "height of the picture (0: 2 h0)", 0,
-                    End::kClosed),
+           ScaleOrZeroFlag("height", "height of the picture (0: 2 h0)"),
        }});
 }
 
@@ -261,6 +278,12 @@ int RunSimulate() {
         std::to_string(result.stages.back().delta) +
         " (max |u_y| < 0.5): the grid cannot hold it; use more y-nodes "
         "(--ny) or a smaller --delta");
+  }
+  if (!std::isfinite(result.energy.total())) {
+    throw InputError("branching simulate: the energy is not finite (" +
+                     std::to_string(result.energy.total()) +
+                     "): epsilon, length and height this far apart leave "
+                     "the grid no resolution");
   }
   const double scale = std::pow(s.epsilon, 2.0 / 3.0) * std::cbrt(s.length);
 
@@ -426,6 +449,12 @@ int RunConstruct() {
       result = OptimizeLens(epsilon, FLAGS_length, result.h0, result.theta,
                             LensShape{0.2, 0.0, 0.0});
     }
+  }
+  if (!std::isfinite(result.constant) || !std::isfinite(result.h0)) {
+    throw InputError("branching construct: the construction is not finite "
+                     "(constant " + std::to_string(result.constant) + ", h0 " +
+                     std::to_string(result.h0) +
+                     "): epsilon and length this far apart");
   }
   const JsonObject summary =
       ConstructionJson(result, epsilon, FLAGS_length, FLAGS_optimize);

@@ -169,7 +169,7 @@ TEST(BadInputCliTest, OutputsThatWouldOverwriteOrCannotBeWrittenAreRejected) {
   struct Case {
     std::string args, message;
   };
-  const std::vector<Case> cases = {
+  std::vector<Case> cases = {
       {deform + " --output " + a,
        "--output " + a + " is also the input --reference"},
       {deform + " --output " + d + "/link.ply",
@@ -246,8 +246,16 @@ TEST(BadInputCliTest, OutputsThatWouldOverwriteOrCannotBeWrittenAreRejected) {
            "/m.ply --time_limit nan",
        "--time_limit must be a number >= 0, got nan"},
   };
+  // Dimensional branching flags far outside [1e-12, 1e12] (energy nan or
+  // constant inf with exit 0 before).
+  cases.push_back({"branching simulate --height 1e-300 --output " + d + "/br",
+                   "--height must be 0 or a number in [1e-12, 1e+12], got 1e-300"});
+  cases.push_back({"branching construct --length 1e-300 --output " + d + "/br",
+                   "--length must be a number [1e-12, 1e+12], got 1e-300"});
+  cases.push_back({"branching construct --epsilon 1e20 --output " + d + "/br",
+                   "--epsilon must be a number [1e-12, 1e+12], got 1e+20"});
   for (const Case& c : cases) ExpectRejected(c.args, c.message, d);
-  EXPECT_EQ(cases.size(), 34u);
+  EXPECT_EQ(cases.size(), 37u);
 }
 
 }  // namespace
