@@ -27,11 +27,21 @@ Mesh LoadCompatibleShell(const std::string& path, const Shell& like) {
 }
 
 ShellSet LoadShellList(const std::string& list, const std::string& flag) {
+  return LoadShellFiles(SplitList(list, flag));
+}
+
+ShellSet LoadShellFiles(const std::vector<std::string>& paths, const Shell* like) {
   ShellSet set;
-  set.paths = SplitList(list, flag);
-  set.first = LoadShell(set.paths[0]);
-  set.shapes.push_back(set.first.mesh.positions);
-  for (size_t i = 1; i < set.paths.size(); ++i) {
+  set.paths = paths;
+  size_t next = 0;
+  if (like != nullptr) {
+    set.first = *like;
+  } else {
+    set.first = LoadShell(set.paths[0]);
+    set.shapes.push_back(set.first.mesh.positions);
+    next = 1;
+  }
+  for (size_t i = next; i < set.paths.size(); ++i) {
     set.shapes.push_back(LoadCompatibleShell(set.paths[i], set.first).positions);
   }
   return set;

@@ -39,6 +39,12 @@ struct ShellSet {
 };
 ShellSet LoadShellList(const std::string& list, const std::string& flag);
 
+// The same for files already listed (e.g. by ListFrameFiles). With `like`,
+// every file (the first too) is checked compatible with it instead, and
+// `first` is `like`.
+ShellSet LoadShellFiles(const std::vector<std::string>& paths,
+                        const Shell* like = nullptr);
+
 // The shells of --start and --end, the second checked compatible with the
 // first.
 struct ShellPair {

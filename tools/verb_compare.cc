@@ -52,26 +52,12 @@ FlagTable CompareFlags() {
                 MaterialFlags(), JsonFlag()});
 }
 
-// The shapes of one side, checked against `like` (a's first shell), or
-// validated as the first shell if `like` is null.
-ShellPath LoadSide(const std::string& input, const Shell* like, Shell* first) {
-  const std::vector<std::string> files = ListFrameFiles(input);
-  ShellPath path;
-  for (size_t k = 0; k < files.size(); ++k) {
-    if (like == nullptr && k == 0) {
-      *first = LoadShell(files[0]);
-      path.push_back(first->mesh.positions);
-    } else {
-      path.push_back(LoadCompatibleShell(files[k], like ? *like : *first).positions);
-    }
-  }
-  return path;
-}
-
 int RunCompare() {
-  Shell first_a, unused;
-  const ShellPath a = LoadSide(FLAGS_a, nullptr, &first_a);
-  const ShellPath b = LoadSide(FLAGS_b, &first_a, &unused);
+  const ShellSet side_a = LoadShellFiles(ListFrameFiles(FLAGS_a));
+  const ShellSet side_b = LoadShellFiles(ListFrameFiles(FLAGS_b), &side_a.first);
+  const Shell& first_a = side_a.first;
+  const ShellPath& a = side_a.shapes;
+  const ShellPath& b = side_b.shapes;
   if (a.size() != b.size()) {
     throw InputError("compare: " + FLAGS_a + " has " + std::to_string(a.size()) +
                      " frame(s), " + FLAGS_b + " has " + std::to_string(b.size()));
