@@ -368,23 +368,38 @@ void CheckGeodesic(const GeodesicResult& result) {
   }
 }
 
-MultiresolutionResult SolveGeodesicPy(const Shell& start, const Positions& end,
-                                      int steps, const py::object& mask,
-                                      const ShellSpace& space,
-                                      const std::string& multires,
-                                      const std::string& linear_solver,
-                                      const SolverSettings& settings) {
+// The geodesic between two arrays of one mesh (geodesic, log): the start
+// shell and the (multiresolution) solve.
+struct GeodesicPySolve {
+  Shell start;
+  MultiresolutionResult multi;
+};
+
+GeodesicPySolve SolveGeodesicPy(const DoubleArray& start_v,
+                                const DoubleArray& end_v, const IndexArray& F,
+                                int steps, const py::object& mask,
+                                const std::string& multires,
+                                const std::string& linear_solver,
+                                const ShellMaterial& material,
+                                const SolverSettings& settings) {
   CheckAtLeast("steps", steps, 1);
+  ShellPair pair = MakeShellPair(start_v, end_v, F, "start", "end", material);
   GeodesicInput input;
-  input.start = start.mesh.positions;
-  input.end = end;
+  input.start = pair.first.mesh.positions;
+  input.end = pair.second;
   input.steps = steps;
-  input.fixed_vertices = Mask(mask, start.mesh.num_vertices());
+  input.fixed_vertices = Mask(mask, pair.first.mesh.num_vertices());
   input.linear_solver = ParsePathLinearSolver(linear_solver, "linear_solver");
-  const MultiresolutionSettings levels =
-      ParseMultiresolution(multires, start.mesh.num_vertices(), "multires");
-  py::gil_scoped_release release;
-  return SolveGeodesicMultiresolution(space, input, settings, levels);
+  const MultiresolutionSettings levels = ParseMultiresolution(
+      multires, pair.first.mesh.num_vertices(), "multires");
+  GeodesicPySolve solve;
+  {
+    py::gil_scoped_release release;
+    solve.multi =
+        SolveGeodesicMultiresolution(pair.space, input, settings, levels);
+  }
+  solve.start = std::move(pair.first);
+  return solve;
 }
 
 py::tuple GeodesicPy(const DoubleArray& start_v, const DoubleArray& end_v,
@@ -396,11 +411,9 @@ py::tuple GeodesicPy(const DoubleArray& start_v, const DoubleArray& end_v,
                      const std::optional<std::string>& gltf, double mu,
                      double lambda, double eta, const SolverOptions& solver) {
   const auto clock = Clock::now();
-  const auto [start, end, space] = MakeShellPair(
-      start_v, end_v, F, "start", "end", Material(mu, lambda, eta));
-  const MultiresolutionResult multi =
-      SolveGeodesicPy(start, end, steps, mask, space, multires, linear_solver,
-                      solver.Settings("geodesic"));
+  const auto [start, multi] = SolveGeodesicPy(
+      start_v, end_v, F, steps, mask, multires, linear_solver,
+      Material(mu, lambda, eta), solver.Settings("geodesic"));
   const GeodesicResult& result = multi.geodesic;
   CheckGeodesic(result);
   if (report)
@@ -419,11 +432,9 @@ py::tuple LogPy(const DoubleArray& start_v, const DoubleArray& end_v,
                 const std::optional<std::string>& output, double mu,
                 double lambda, double eta, const SolverOptions& solver) {
   const auto clock = Clock::now();
-  const auto [start, end, space] = MakeShellPair(
-      start_v, end_v, F, "start", "end", Material(mu, lambda, eta));
-  const MultiresolutionResult multi =
-      SolveGeodesicPy(start, end, steps, mask, space, multires, linear_solver,
-                      solver.Settings("log"));
+  const auto [start, multi] = SolveGeodesicPy(
+      start_v, end_v, F, steps, mask, multires, linear_solver,
+      Material(mu, lambda, eta), solver.Settings("log"));
   const GeodesicResult& geodesic = multi.geodesic;
   const Positions log = LogOfGeodesic(geodesic.path);
   if (output) {

@@ -5,6 +5,7 @@
 
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/memory_limits.h"
 #include "shellspace/tools/path_summary.h"
 
 namespace shellspace {
@@ -21,6 +22,15 @@ FlagSpec MultiresFlag() {
 
 MultiresolutionSettings MultiresFromFlags(int num_vertices) {
   return ParseMultiresolution(FLAGS_multires, num_vertices, "--multires");
+}
+
+FlagTable GeodesicEndsFlags(const std::string& start, const std::string& end) {
+  return {TextFlag("start", start).Required(), TextFlag("end", end).Required()};
+}
+
+FlagSpec GeodesicStepsFlag(const std::string& what) {
+  return IntegerFlag("steps", what + StepsBoundText(kGeodesicModel), 1,
+                     kMaxSteps);
 }
 
 FlagSpec LinearSolverFlag() {
@@ -50,6 +60,21 @@ MultiresolutionResult SolveGeodesicFromFlags(const ShellSpace& space,
   with_solver.linear_solver = LinearSolverFromFlags();
   return SolveGeodesicMultiresolution(space, with_solver, settings,
                                       MultiresFromFlags(space.num_vertices));
+}
+
+GeodesicOfFlags SolveGeodesicOfFlags(const std::string& verb) {
+  const auto [start, end] = LoadStartEndFromFlags();
+  CheckMemory(GeodesicBytes(start.mesh.num_vertices(), FLAGS_steps),
+              "--steps " + std::to_string(FLAGS_steps) + " on " +
+                  std::to_string(start.mesh.num_vertices()) + " vertices",
+              kGeodesicModel);
+  const ShellSpace space = SpaceFromFlags(start);
+  GeodesicInput input;
+  input.start = start.mesh.positions;
+  input.end = end.positions;
+  input.steps = FLAGS_steps;
+  input.fixed_vertices = MaskFromFlags(start.mesh.num_vertices());
+  return {start, SolveGeodesicFromFlags(space, input, SettingsFromFlags(verb))};
 }
 
 }  // namespace shellspace

@@ -3,10 +3,13 @@
 #ifndef SHELLSPACE_TOOLS_GEODESIC_SOLVE_H_
 #define SHELLSPACE_TOOLS_GEODESIC_SOLVE_H_
 
+#include <string>
+
 #include "shellspace/io/json_writer.h"
 #include "shellspace/problems/calculus/multiresolution.h"
 #include "shellspace/reports/path_reports.h"
 #include "shellspace/reports/solve_choices.h"
+#include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb_flags.h"
 
 namespace shellspace {
@@ -20,6 +23,18 @@ FlagSpec MultiresFlag();
 // below 4 kAutoMinVertices). Throws InputError naming --multires for
 // anything else.
 MultiresolutionSettings MultiresFromFlags(int num_vertices);
+
+// The memory model of a geodesic solve of K steps (GeodesicBytes in
+// memory_limits.h), as named in errors and --help.
+inline constexpr const char* kGeodesicModel = "64 MB + 1500 B x #V x K^2";
+
+// The required --start and --end flags of the verbs that solve geodesics,
+// with their meanings in that verb.
+FlagTable GeodesicEndsFlags(const std::string& start, const std::string& end);
+
+// The --steps flag of the verbs that solve geodesics: `what` says what K is
+// in that verb; the help text adds the bound of kGeodesicModel.
+FlagSpec GeodesicStepsFlag(const std::string& what);
 
 // The --linear_solver flag: the linear solver of the Newton finish.
 FlagSpec LinearSolverFlag();
@@ -36,6 +51,15 @@ const char* LinearSolverName(PathLinearSolver solver);
 MultiresolutionResult SolveGeodesicFromFlags(const ShellSpace& space,
                                              const GeodesicInput& input,
                                              const SolverSettings& settings);
+
+// The geodesic of the flags of `verb` (geodesic, log): --start, --end,
+// --steps (checked against kGeodesicModel's memory estimate first), --mask,
+// the material and the solver flags.
+struct GeodesicOfFlags {
+  Shell start;
+  MultiresolutionResult multires;
+};
+GeodesicOfFlags SolveGeodesicOfFlags(const std::string& verb);
 
 }  // namespace shellspace
 

@@ -27,7 +27,6 @@ DEFINE_string(variation, "", "transport: shell s_0 + xi_0");
 namespace shellspace {
 namespace {
 
-const char* const kGeodesicModel = "64 MB + 1500 B x #V x K^2";
 const char* const kPathModel = "64 MB + 200 B x #V x (K + 1)";
 
 double Seconds(std::chrono::steady_clock::time_point since) {
@@ -70,14 +69,10 @@ FlagTable ShootFlags() {
 
 FlagTable LogFlags() {
   return Flags(
-      {{
-           TextFlag("start", "the shell A at which LOG_K is taken").Required(),
-           TextFlag("end", "the shell B").Required(),
-           IntegerFlag("steps",
-                       "K of LOG_K (the geodesic's time steps; K = 1: "
-                       "B - A, nothing to solve)" +
-                           StepsBoundText(kGeodesicModel),
-                       1, kMaxSteps),
+      {GeodesicEndsFlags("the shell A at which LOG_K is taken", "the shell B"),
+       {
+           GeodesicStepsFlag("K of LOG_K (the geodesic's time steps; K = 1: "
+                             "B - A, nothing to solve)"),
            TextFlag("output", "the shell A + LOG_K(A -> B): PLY, OBJ or OFF")
                .Required(),
            MaskFlag(),
@@ -151,19 +146,7 @@ int RunLog() {
       .InputFile("mask", FLAGS_mask)
       .OutputFile("output", FLAGS_output)
       .Check();
-  const auto [start, end] = LoadStartEndFromFlags();
-  CheckMemory(GeodesicBytes(start.mesh.num_vertices(), FLAGS_steps),
-              "--steps " + std::to_string(FLAGS_steps) + " on " +
-                  std::to_string(start.mesh.num_vertices()) + " vertices",
-              kGeodesicModel);
-  const ShellSpace space = SpaceFromFlags(start);
-  GeodesicInput input;
-  input.start = start.mesh.positions;
-  input.end = end.positions;
-  input.steps = FLAGS_steps;
-  input.fixed_vertices = MaskFromFlags(start.mesh.num_vertices());
-  const MultiresolutionResult multires =
-      SolveGeodesicFromFlags(space, input, SettingsFromFlags("log"));
+  const auto [start, multires] = SolveGeodesicOfFlags("log");
   const GeodesicResult& geodesic = multires.geodesic;
   const Positions log = LogOfGeodesic(geodesic.path);
   RunStatus status("log");

@@ -18,18 +18,14 @@
 namespace shellspace {
 namespace {
 
-const char* const kGeodesicModel = "64 MB + 1500 B x #V x K^2";
 
 FlagTable GeodesicFlags() {
   return Flags(
-      {{
-           TextFlag("start", "first shell s_0 of the path").Required(),
-           TextFlag("end", "last shell s_K of the path").Required(),
-           IntegerFlag("steps",
-                       "number of time steps K (K + 1 shapes; K = 1: the two "
-                       "ends, nothing to solve)" +
-                           StepsBoundText(kGeodesicModel),
-                       1, kMaxSteps),
+      {GeodesicEndsFlags("first shell s_0 of the path",
+                         "last shell s_K of the path"),
+       {
+           GeodesicStepsFlag("number of time steps K (K + 1 shapes; K = 1: "
+                             "the two ends, nothing to solve)"),
            TextFlag("output", "directory of the frames shape_000.ply ...")
                .Required(),
            TextFlag("mask",
@@ -54,19 +50,7 @@ int RunGeodesic() {
       .OutputDirectory("output", FLAGS_output)
       .OutputFile("png", FLAGS_png)
       .Check();
-  const auto [start, end] = LoadStartEndFromFlags();
-  CheckMemory(GeodesicBytes(start.mesh.num_vertices(), FLAGS_steps),
-              "--steps " + std::to_string(FLAGS_steps) + " on " +
-                  std::to_string(start.mesh.num_vertices()) + " vertices",
-              kGeodesicModel);
-  const ShellSpace space = SpaceFromFlags(start);
-  GeodesicInput input;
-  input.start = start.mesh.positions;
-  input.end = end.positions;
-  input.steps = FLAGS_steps;
-  input.fixed_vertices = MaskFromFlags(start.mesh.num_vertices());
-  const MultiresolutionResult multires =
-      SolveGeodesicFromFlags(space, input, SettingsFromFlags("geodesic"));
+  const auto [start, multires] = SolveGeodesicOfFlags("geodesic");
   const GeodesicResult& result = multires.geodesic;
   if (!result.stages.empty() &&  // K = 1: no solve
       result.summary.termination_type == ceres::FAILURE) {

@@ -13,6 +13,17 @@ namespace {
                    failure.description);
 }
 
+// Calls visit(group) for the groups of `set` in order until one returns
+// false (an element failed); returns whether all returned true.
+template <typename Visitor>
+bool VisitGroupsUntilFailure(const ElementSet& set, Visitor&& visit) {
+  bool ok = true;
+  set.ForEachGroup([&](const auto& group) {
+    if (ok) ok = visit(group);
+  });
+  return ok;
+}
+
 }  // namespace
 
 bool TryEnergyGradient(const ShellSpace& space, const Positions& reference,
@@ -21,9 +32,7 @@ bool TryEnergyGradient(const ShellSpace& space, const Positions& reference,
   const ElementSet& set = space.elements();
   gradient->setZero(3 * space.num_vertices);
   const bool want_ref = side == ShellSide::kReference;
-  bool ok = true;
-  set.ForEachGroup([&](const auto& group) {
-    if (!ok) return;
+  const bool ok = VisitGroupsUntilFailure(set, [&](const auto& group) {
     using Group = std::decay_t<decltype(group)>;
     using E = typename Group::Element;
     constexpr int kV = Group::kVertices;
@@ -38,8 +47,7 @@ bool TryEnergyGradient(const ShellSpace& space, const Positions& reference,
                                   want_ref ? &jac_ref : nullptr,
                                   want_ref ? nullptr : &jac_def)) {
         set.Fail(group.first_element + e, failure);
-        ok = false;
-        return;
+        return false;
       }
       const auto& jac = want_ref ? jac_ref : jac_def;
       for (int a = 0; a < kV; ++a) {
@@ -51,6 +59,7 @@ bool TryEnergyGradient(const ShellSpace& space, const Positions& reference,
         }
       }
     }
+    return true;
   });
   return ok;
 }
@@ -77,9 +86,7 @@ bool TryEnergyGradientDerivative(const ShellSpace& space,
   const ElementSet& set = space.elements();
   out->setZero(3 * space.num_vertices);
   const bool of_reference = gradient == ShellSide::kReference;
-  bool ok = true;
-  set.ForEachGroup([&](const auto& group) {
-    if (!ok) return;
+  const bool ok = VisitGroupsUntilFailure(set, [&](const auto& group) {
     using Group = std::decay_t<decltype(group)>;
     using E = typename Group::Element;
     constexpr int kV = Group::kVertices;
@@ -99,15 +106,14 @@ bool TryEnergyGradientDerivative(const ShellSpace& space,
           p_local.template segment<3>(3 * a) = p.segment<3>(3 * vs[a]);
         if (!d.Compute(group.element, ref, def, moved, 1.0, rows)) {
           set.Fail(group.first_element + e, failure);
-          ok = false;
-          return;
+          return false;
         }
         const Eigen::Matrix<double, 3 * kV, 1> local =
             (of_reference ? d.d_grad_reference : d.d_grad_deformed) * p_local;
         for (int a = 0; a < kV; ++a)
           out->segment<3>(3 * vs[a]) += local.template segment<3>(3 * a);
       }
-      return;
+      return true;
     }
     Vec3<J> x_ref[kV], x_def[kV];
     J r[E::kNumResiduals];
@@ -126,8 +132,7 @@ bool TryEnergyGradientDerivative(const ShellSpace& space,
                                   of_reference ? &jac : nullptr,
                                   of_reference ? nullptr : &jac)) {
         set.Fail(group.first_element + e, failure);
-        ok = false;
-        return;
+        return false;
       }
       for (int a = 0; a < kV; ++a) {
         for (int c = 0; c < 3; ++c) {
@@ -138,6 +143,7 @@ bool TryEnergyGradientDerivative(const ShellSpace& space,
         }
       }
     }
+    return true;
   });
   return ok;
 }
@@ -163,9 +169,7 @@ bool TryEnergyHessianColumns(const ShellSpace& space,
                              ElementFailure* failure) {
   const ElementSet& set = space.elements();
   std::vector<Eigen::Triplet<double>> rows_reference, rows_deformed;
-  bool ok = true;
-  set.ForEachGroup([&](const auto& group) {
-    if (!ok) return;
+  const bool ok = VisitGroupsUntilFailure(set, [&](const auto& group) {
     using Group = std::decay_t<decltype(group)>;
     constexpr int kV = Group::kVertices;
     ElementSecondDerivatives<kV> d;
@@ -176,8 +180,7 @@ bool TryEnergyHessianColumns(const ShellSpace& space,
       GatherCoordinates(deformed, vs, def);
       if (!d.Compute(group.element, ref, def, cols, 1.0)) {
         set.Fail(group.first_element + e, failure);
-        ok = false;
-        return;
+        return false;
       }
       for (int a = 0; a < kV; ++a) {
         for (int b = 0; b < kV; ++b) {
@@ -193,6 +196,7 @@ bool TryEnergyHessianColumns(const ShellSpace& space,
         }
       }
     }
+    return true;
   });
   if (!ok) return false;
   const int n = 3 * space.num_vertices;

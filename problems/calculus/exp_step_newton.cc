@@ -59,17 +59,15 @@ std::vector<char> FixedFlags(int num_vertices,
 
 }  // namespace
 
-double ExpResidualMaxNorm(const ShellSpace& space, const Positions& fixed,
-                          ShellSide unknown_side,
-                          const Eigen::VectorXd& constant,
-                          const std::vector<int>& fixed_vertices,
+double ExpResidualMaxNorm(const ExpStepEquation& equation,
                           const Positions& s) {
   Eigen::VectorXd f;
-  if (TryResidual(space, fixed, unknown_side, constant, s, &f) !=
-      EvaluationStatus::kOk) {
+  if (TryResidual(equation.space, equation.fixed, equation.unknown_side,
+                  equation.constant, s, &f) != EvaluationStatus::kOk) {
     return HUGE_VAL;
   }
-  return MaxNorm(f, FixedFlags(space.num_vertices, fixed_vertices));
+  return MaxNorm(f, FixedFlags(equation.space.num_vertices,
+                               equation.fixed_vertices));
 }
 
 namespace {
@@ -145,24 +143,19 @@ class ExpStepProblem : public NewtonProblem {
 
 }  // namespace
 
-ExpNewtonReport SolveExpStepNewton(const ShellSpace& space,
-                                   const Positions& fixed,
-                                   ShellSide unknown_side,
-                                   const Eigen::VectorXd& constant,
-                                   const std::vector<int>& fixed_vertices,
-                                   double tolerance,
-                                   double stall_tolerance, int max_steps,
+ExpNewtonReport SolveExpStepNewton(const ExpStepEquation& equation,
+                                   const ExpNewtonStopping& stopping,
                                    Positions* s) {
-  ExpStepProblem problem(space, fixed, unknown_side, constant, fixed_vertices,
-                         s);
+  ExpStepProblem problem(equation.space, equation.fixed, equation.unknown_side,
+                         equation.constant, equation.fixed_vertices, s);
   NewtonSettings newton;
   newton.mode = NewtonMode::kRootFind;
-  newton.max_steps = max_steps;
-  newton.tolerance = tolerance;
+  newton.max_steps = stopping.max_steps;
+  newton.tolerance = stopping.tolerance;
   newton.max_halvings = kMaxHalvings;
   newton.accept_smaller_max_norm = true;
   newton.accept_smaller_two_norm = true;
-  newton.round_off_floor = stall_tolerance;
+  newton.round_off_floor = stopping.stall_tolerance;
   newton.round_off_factor = 0.5;
   newton.progress_steps = kProgressSteps;
   newton.progress_factor = 0.5;

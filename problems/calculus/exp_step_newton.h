@@ -16,13 +16,21 @@ namespace shellspace {
 // final_gradient are max |F| over the unknown vertices.
 using ExpNewtonReport = NewtonReport;
 
-// max |F(s)| over the vertices not in `fixed_vertices` (F as below); +inf
-// if s has a degenerate triangle.
-double ExpResidualMaxNorm(const ShellSpace& space, const Positions& fixed,
-                          ShellSide unknown_side,
-                          const Eigen::VectorXd& constant,
-                          const std::vector<int>& fixed_vertices,
-                          const Positions& s);
+// The equation of one EXP step, F(s) = c + D_fixed W = 0 (see
+// SolveExpStepNewton): the shell space, the fixed shell s_k, which side of
+// W the unknown s is, the constant c (3 x #V) and the masked vertices. Holds
+// references: the referents must outlive it.
+struct ExpStepEquation {
+  const ShellSpace& space;
+  const Positions& fixed;
+  ShellSide unknown_side;
+  const Eigen::VectorXd& constant;
+  const std::vector<int>& fixed_vertices;
+};
+
+// max |F(s)| over the vertices not in `fixed_vertices`; +inf if s has a
+// degenerate triangle.
+double ExpResidualMaxNorm(const ExpStepEquation& equation, const Positions& s);
 
 // Solves F(s) = c + D_fixed W = 0 (gradient_field_residual.h: forward step
 // unknown_side = kDeformed, F = D_2 W[s_{k-1}, s_k] + D_1 W[s_k, s]; backward
@@ -45,13 +53,13 @@ double ExpResidualMaxNorm(const ShellSpace& space, const Positions& fixed,
 // |c| and further steps only shuffle round-off, 0.5 s each), or when 8
 // accepted steps have not halved max |F| (no root nearby). Masked
 // vertices of *s are not touched.
-ExpNewtonReport SolveExpStepNewton(const ShellSpace& space,
-                                   const Positions& fixed,
-                                   ShellSide unknown_side,
-                                   const Eigen::VectorXd& constant,
-                                   const std::vector<int>& fixed_vertices,
-                                   double tolerance,
-                                   double stall_tolerance, int max_steps,
+struct ExpNewtonStopping {
+  double tolerance = 0;        // stop at max |F| <= tolerance
+  double stall_tolerance = 0;  // the round-off floor, absolute like tolerance
+  int max_steps = 0;
+};
+ExpNewtonReport SolveExpStepNewton(const ExpStepEquation& equation,
+                                   const ExpNewtonStopping& stopping,
                                    Positions* s);
 
 }  // namespace shellspace

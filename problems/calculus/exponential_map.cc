@@ -35,9 +35,10 @@ ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
 
   std::vector<char> is_fixed(space.num_vertices, 0);
   for (int v : fixed_vertices) is_fixed[v] = 1;
+  const ExpStepEquation equation{space, b, unknown_side, constant,
+                                 fixed_vertices};
   const auto residual_norm = [&](const Positions& s) {
-    return ExpResidualMaxNorm(space, b, unknown_side, constant, fixed_vertices,
-                              s);
+    return ExpResidualMaxNorm(equation, s);
   };
 
   ExpStepResult result;
@@ -62,9 +63,10 @@ ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
   {
     Positions trial = result.shape;
     const ExpNewtonReport newton = SolveExpStepNewton(
-        space, b, unknown_side, constant, fixed_vertices,
-        kExpNewtonTolerance * scale, kExpNewtonAccept * scale,
-        kMaxExpNewtonSteps, &trial);
+        equation,
+        ExpNewtonStopping{kExpNewtonTolerance * scale,
+                          kExpNewtonAccept * scale, kMaxExpNewtonSteps},
+        &trial);
     result.newton_steps = newton.steps;
     result.residual_scale = scale;
     if (newton.final_gradient <= kExpNewtonAccept * scale) {

@@ -87,6 +87,19 @@ inline std::string MeshFileContent(const MeshSpec& s, MeshFormat format) {
     if (f == 0 && !s.extra_face_token.empty()) t.push_back(s.extra_face_token);
     return t;
   };
+  // The text body of ASCII PLY and OFF: one line per vertex, then one per
+  // face led by its vertex count, then the spec's extra line.
+  const auto counted_lines = [&] {
+    std::string body;
+    for (size_t i = 0; i < s.vertices.size(); ++i) {
+      body += vertex_line(i) + "\n";
+    }
+    for (size_t f = 0; f < s.faces.size(); ++f) {
+      body += std::to_string(s.faces[f].size()) + " " +
+              Join(face_tokens(f, 0)) + "\n";
+    }
+    return body + s.extra_line;
+  };
   bool float_indices = false;
   for (const auto& f : s.faces) {
     for (const auto& v : f) float_indices |= !IsInteger(v);
@@ -104,14 +117,7 @@ inline std::string MeshFileContent(const MeshSpec& s, MeshFormat format) {
             (binary && float_indices ? "float" : "int") +
             " vertex_indices\nend_header\n";
       if (!binary) {
-        for (size_t i = 0; i < s.vertices.size(); ++i) {
-          out += vertex_line(i) + "\n";
-        }
-        for (size_t f = 0; f < s.faces.size(); ++f) {
-          out += std::to_string(s.faces[f].size()) + " " +
-                 Join(face_tokens(f, 0)) + "\n";
-        }
-        out += s.extra_line;
+        out += counted_lines();
       } else {
         const auto put = [&out](const void* p, size_t n) {
           out.append(static_cast<const char*>(p), n);
@@ -149,15 +155,8 @@ inline std::string MeshFileContent(const MeshSpec& s, MeshFormat format) {
       out += s.extra_line;
       break;
     case MeshFormat::kOff:
-      out = "OFF\n" + std::to_string(nv) + " " + std::to_string(nf) + " 0\n";
-      for (size_t i = 0; i < s.vertices.size(); ++i) {
-        out += vertex_line(i) + "\n";
-      }
-      for (size_t f = 0; f < s.faces.size(); ++f) {
-        out += std::to_string(s.faces[f].size()) + " " +
-               Join(face_tokens(f, 0)) + "\n";
-      }
-      out += s.extra_line;
+      out = "OFF\n" + std::to_string(nv) + " " + std::to_string(nf) + " 0\n" +
+            counted_lines();
       break;
   }
   return out;

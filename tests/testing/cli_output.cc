@@ -6,6 +6,10 @@
 #include <fstream>
 #include <sstream>
 
+#include <gtest/gtest.h>
+
+#include "shellspace/tests/testing/test_support.h"
+
 namespace shellspace::testing {
 
 double Number(const std::string& json, const std::string& key) {
@@ -55,6 +59,15 @@ std::string Slurp(const std::string& path) {
   std::stringstream s;
   s << in.rdbuf();
   return s.str();
+}
+
+std::string Square4() { return DataPath("simple/square4.ply"); }
+std::string Square4Bent() { return DataPath("simple/square4_bent.ply"); }
+
+std::string RunOk(const std::string& args) {
+  std::string out, err;
+  EXPECT_EQ(RunCli(args, &out, &err), 0) << args << "\n" << err;
+  return out;
 }
 
 }  // namespace shellspace::testing

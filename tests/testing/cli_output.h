@@ -25,6 +25,15 @@ std::vector<std::string> FramesAndSummary(int count);
 // The whole content of a file ("" if it cannot be read).
 std::string Slurp(const std::string& path);
 
+// The two meshes most CLI tests run on: simple/square4.ply (a flat 3 x 3
+// vertex square) and simple/square4_bent.ply (the same square bent).
+std::string Square4();
+std::string Square4Bent();
+
+// Runs `shellspace ARGS` (RunCli), expects exit 0 (a failed expectation
+// prints the arguments and stderr) and returns its stdout.
+std::string RunOk(const std::string& args);
+
 }  // namespace shellspace::testing
 
 #endif  // SHELLSPACE_TESTS_TESTING_CLI_OUTPUT_H_

@@ -25,15 +25,10 @@ namespace {
 using testing::DataPath;
 using testing::Number;
 using testing::RunCli;
+using testing::RunOk;
 
-const std::string kSquare = DataPath("simple/square4.ply");
-const std::string kBent = DataPath("simple/square4_bent.ply");
-
-std::string RunOk(const std::string& args) {
-  std::string out, err;
-  EXPECT_EQ(RunCli(args, &out, &err), 0) << args << "\n" << err;
-  return out;
-}
+const std::string kSquare = testing::Square4();
+const std::string kBent = testing::Square4Bent();
 
 ShellMaterial Material(BendingModel model, double eta) {
   ShellMaterial material;

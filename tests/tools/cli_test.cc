@@ -29,11 +29,12 @@ using testing::FramesAndSummary;
 using testing::Number;
 using testing::Numbers;
 using testing::RunCli;
+using testing::RunOk;
 using testing::Slurp;
 using testing::TempDir;
 
-const std::string kSquare = DataPath("simple/square4.ply");
-const std::string kBent = DataPath("simple/square4_bent.ply");
+const std::string kSquare = testing::Square4();
+const std::string kBent = testing::Square4Bent();
 
 // Sum of every "iterations" inside the "stages" array.
 int StageIterations(const std::string& json) {
@@ -51,13 +52,6 @@ int StageIterations(const std::string& json) {
 
 std::vector<std::string> Listing(const std::string& dir) {
   return testing::DirectoryListing(dir);
-}
-
-// Runs a verb that must succeed; returns its stdout.
-std::string RunOk(const std::string& args) {
-  std::string out, err;
-  EXPECT_EQ(RunCli(args, &out, &err), 0) << args << "\n" << err;
-  return out;
 }
 
 // W_m(s^2 I) of shells.md with mu = lambda = 1: the membrane energy density

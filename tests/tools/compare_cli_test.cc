@@ -15,12 +15,11 @@
 namespace shellspace {
 namespace {
 
-using testing::DataPath;
 using testing::Number;
 using testing::RunCli;
 
-const std::string kSquare = DataPath("simple/square4.ply");
-const std::string kBent = DataPath("simple/square4_bent.ply");
+const std::string kSquare = testing::Square4();
+const std::string kBent = testing::Square4Bent();
 
 int Lines(const std::string& text) {
   return static_cast<int>(std::count(text.begin(), text.end(), '\n'));

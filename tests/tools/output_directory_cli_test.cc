@@ -17,15 +17,14 @@
 namespace shellspace {
 namespace {
 
-using testing::DataPath;
 using testing::DirectoryListing;
 using testing::FramesAndSummary;
 using testing::RunCli;
 using testing::Slurp;
 using testing::TempDir;
 
-const std::string kSquare = DataPath("simple/square4.ply");
-const std::string kBent = DataPath("simple/square4_bent.ply");
+const std::string kSquare = testing::Square4();
+const std::string kBent = testing::Square4Bent();
 
 std::string Geodesic(int steps, const std::string& output) {
   return "geodesic --quiet --steps " + std::to_string(steps) + " --start " +

@@ -25,8 +25,8 @@ using testing::Numbers;
 using testing::RunCli;
 using testing::TempDir;
 
-const std::string kSquare = DataPath("simple/square4.ply");
-const std::string kBent = DataPath("simple/square4_bent.ply");
+const std::string kSquare = testing::Square4();
+const std::string kBent = testing::Square4Bent();
 
 bool Has(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
