@@ -25,6 +25,7 @@
 
 #include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
+#include "shellspace/cost_functions/shell/relative_bending_weight.h"
 #include "shellspace/cost_functions/shell/shell_space.h"
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/geometry/validation.h"
@@ -192,24 +193,42 @@ struct ShellPair {
   ShellSpace space;
 };
 
+// The material keywords of every verb: mu, lambda_, and eta (absolute) or,
+// when eta is None, relative_eta x the reference's area (the CLI's --eta /
+// --relative_eta, cost_functions/shell/relative_bending_weight.h).
+struct MaterialArgs {
+  double mu = 1;
+  double lambda = 1;
+  std::optional<double> eta;
+  double relative_eta = kDefaultRelativeEta;
+};
+
+ShellMaterial Material(const MaterialArgs& args, const Mesh& reference) {
+  ShellMaterial material;
+  material.mu = args.mu;
+  material.lambda = args.lambda;
+  material.eta = args.eta ? *args.eta
+                          : EtaFromRelative(args.relative_eta, reference);
+  material.Validate();
+  return material;
+}
+
+// The material as resolved for `reference` (the CLI's "material" record).
+std::string MaterialRecord(const ShellSpace& space, const Mesh& reference,
+                           const MaterialArgs& args) {
+  return MaterialJson(space.material, reference, args.eta.has_value()).str();
+}
+
 ShellPair MakeShellPair(const DoubleArray& first, const DoubleArray& second,
                         const IndexArray& F, const std::string& first_name,
                         const std::string& second_name,
-                        const ShellMaterial& material) {
+                        const MaterialArgs& material_args) {
   ShellPair pair;
   pair.first = MakeShell(first, F, first_name);
   pair.second = CompatiblePositions(second, pair.first, second_name);
-  pair.space = ShellSpace(pair.first.mesh, pair.first.topology, material);
+  pair.space = ShellSpace(pair.first.mesh, pair.first.topology,
+                          Material(material_args, pair.first.mesh));
   return pair;
-}
-
-ShellMaterial Material(double mu, double lambda, double eta) {
-  ShellMaterial material;
-  material.mu = mu;
-  material.lambda = lambda;
-  material.eta = eta;
-  material.Validate();
-  return material;
 }
 
 // The vertex mask: None, a mask file's path, or a sequence of 0-based
@@ -316,10 +335,10 @@ void WriteMeshPy(const std::string& path, const DoubleArray& V,
 }
 
 py::object EnergyPy(const DoubleArray& reference, const DoubleArray& deformed,
-                    const IndexArray& F, double mu, double lambda, double eta) {
+                    const IndexArray& F, const MaterialArgs& material_args) {
   const auto [shell, d, space] =
       MakeShellPair(reference, deformed, F, "reference", "deformed",
-                    Material(mu, lambda, eta));
+                    material_args);
   const DeformationEnergy e =
       EvaluateDeformationEnergy(space, shell.mesh.positions, d);
   return ToDict(EnergyJson(e, space.material));
@@ -327,11 +346,10 @@ py::object EnergyPy(const DoubleArray& reference, const DoubleArray& deformed,
 
 py::array_t<double> GradientPy(const DoubleArray& reference,
                                const DoubleArray& deformed, const IndexArray& F,
-                               const std::string& side, double mu,
-                               double lambda, double eta) {
+                               const std::string& side, const MaterialArgs& material_args) {
   const auto [shell, d, space] =
       MakeShellPair(reference, deformed, F, "reference", "deformed",
-                    Material(mu, lambda, eta));
+                    material_args);
   const Eigen::VectorXd g =
       EnergyGradient(space, shell.mesh.positions, d, Side(side, "side"));
   Positions out(shell.mesh.num_vertices(), 3);
@@ -341,11 +359,10 @@ py::array_t<double> GradientPy(const DoubleArray& reference,
 
 py::tuple HessianPy(const DoubleArray& reference, const DoubleArray& deformed,
                     const IndexArray& F, const std::string& rows,
-                    const std::string& cols, double mu, double lambda,
-                    double eta) {
+                    const std::string& cols, const MaterialArgs& material_args) {
   const auto [shell, d, space] =
       MakeShellPair(reference, deformed, F, "reference", "deformed",
-                    Material(mu, lambda, eta));
+                    material_args);
   const SparseMatrix H = EnergyHessian(space, shell.mesh.positions, d,
                                        Side(rows, "rows"), Side(cols, "cols"));
   const py::ssize_t nnz = H.nonZeros();
@@ -372,6 +389,7 @@ void CheckGeodesic(const GeodesicResult& result) {
 // shell and the (multiresolution) solve.
 struct GeodesicPySolve {
   Shell start;
+  ShellSpace space;
   MultiresolutionResult multi;
 };
 
@@ -380,10 +398,11 @@ GeodesicPySolve SolveGeodesicPy(const DoubleArray& start_v,
                                 int steps, const py::object& mask,
                                 const std::string& multires,
                                 const std::string& linear_solver,
-                                const ShellMaterial& material,
+                                const MaterialArgs& material_args,
                                 const SolverSettings& settings) {
   CheckAtLeast("steps", steps, 1);
-  ShellPair pair = MakeShellPair(start_v, end_v, F, "start", "end", material);
+  ShellPair pair =
+      MakeShellPair(start_v, end_v, F, "start", "end", material_args);
   GeodesicInput input;
   input.start = pair.first.mesh.positions;
   input.end = pair.second;
@@ -399,6 +418,7 @@ GeodesicPySolve SolveGeodesicPy(const DoubleArray& start_v,
         SolveGeodesicMultiresolution(pair.space, input, settings, levels);
   }
   solve.start = std::move(pair.first);
+  solve.space = std::move(pair.space);
   return solve;
 }
 
@@ -408,12 +428,11 @@ py::tuple GeodesicPy(const DoubleArray& start_v, const DoubleArray& end_v,
                      const std::string& linear_solver, bool report,
                      const std::optional<std::string>& output,
                      const std::optional<std::string>& png,
-                     const std::optional<std::string>& gltf, double mu,
-                     double lambda, double eta, const SolverOptions& solver) {
+                     const std::optional<std::string>& gltf, const MaterialArgs& material_args, const SolverOptions& solver) {
   const auto clock = Clock::now();
-  const auto [start, multi] = SolveGeodesicPy(
+  const auto [start, space, multi] = SolveGeodesicPy(
       start_v, end_v, F, steps, mask, multires, linear_solver,
-      Material(mu, lambda, eta), solver.Settings("geodesic"));
+      material_args, solver.Settings("geodesic"));
   const GeodesicResult& result = multi.geodesic;
   CheckGeodesic(result);
   if (report)
@@ -422,6 +441,8 @@ py::tuple GeodesicPy(const DoubleArray& start_v, const DoubleArray& end_v,
   WritePath(output, png, gltf, start.mesh.faces, result.path);
   JsonObject json = GeodesicJson(result);
   json.Raw("multires_levels", MultiresolutionJson(multi))
+      .Raw("energy_split", PathEnergySplitJson(space, result.path))
+      .Raw("material", MaterialRecord(space, start.mesh, material_args))
       .Add("seconds", Seconds(clock));
   return py::make_tuple(FromPath(result.path), ToDict(AddOutput(json, output)));
 }
@@ -429,12 +450,11 @@ py::tuple GeodesicPy(const DoubleArray& start_v, const DoubleArray& end_v,
 py::tuple LogPy(const DoubleArray& start_v, const DoubleArray& end_v,
                 const IndexArray& F, int steps, const py::object& mask,
                 const std::string& multires, const std::string& linear_solver,
-                const std::optional<std::string>& output, double mu,
-                double lambda, double eta, const SolverOptions& solver) {
+                const std::optional<std::string>& output, const MaterialArgs& material_args, const SolverOptions& solver) {
   const auto clock = Clock::now();
-  const auto [start, multi] = SolveGeodesicPy(
+  const auto [start, space, multi] = SolveGeodesicPy(
       start_v, end_v, F, steps, mask, multires, linear_solver,
-      Material(mu, lambda, eta), solver.Settings("log"));
+      material_args, solver.Settings("log"));
   const GeodesicResult& geodesic = multi.geodesic;
   const Positions log = LogOfGeodesic(geodesic.path);
   if (output) {
@@ -442,6 +462,8 @@ py::tuple LogPy(const DoubleArray& start_v, const DoubleArray& end_v,
   }
   JsonObject json = GeodesicJson(geodesic);
   json.Raw("multires_levels", MultiresolutionJson(multi))
+      .Raw("energy_split", PathEnergySplitJson(space, geodesic.path))
+      .Raw("material", MaterialRecord(space, start.mesh, material_args))
       .Add("log_max_norm", log.cwiseAbs().maxCoeff())
       .Add("seconds", Seconds(clock));
   return py::make_tuple(FromPositions(log), ToDict(AddOutput(json, output)));
@@ -452,12 +474,11 @@ py::tuple ShootPy(const DoubleArray& first_v, const DoubleArray& second_v,
                   const py::object& mask,
                   const std::optional<std::string>& output,
                   const std::optional<std::string>& png,
-                  const std::optional<std::string>& gltf, double mu,
-                  double lambda, double eta, const SolverOptions& solver) {
+                  const std::optional<std::string>& gltf, const MaterialArgs& material_args, const SolverOptions& solver) {
   const auto clock = Clock::now();
   CheckAtLeast("steps", steps, 1);
   const auto [first, second, space] = MakeShellPair(
-      first_v, second_v, F, "first", "second", Material(mu, lambda, eta));
+      first_v, second_v, F, "first", "second", material_args);
   const std::vector<int> fixed = Mask(mask, first.mesh.num_vertices());
   const SolverSettings settings = solver.Settings("shoot");
   ShootResult result;
@@ -475,7 +496,9 @@ py::tuple ShootPy(const DoubleArray& first_v, const DoubleArray& second_v,
   }
   WritePath(output, png, gltf, first.mesh.faces, result.path);
   JsonObject json = ShootJson(result);
-  json.Add("seconds", Seconds(clock));
+  json.Raw("energy_split", PathEnergySplitJson(space, result.path))
+      .Raw("material", MaterialRecord(space, first.mesh, material_args))
+      .Add("seconds", Seconds(clock));
   return py::make_tuple(FromPath(result.path), ToDict(AddOutput(json, output)));
 }
 
@@ -484,8 +507,7 @@ py::tuple TransportPy(const py::object& path_object,
                       double epsilon, const py::object& mask,
                       const std::optional<std::string>& output,
                       const std::optional<std::string>& png,
-                      const std::optional<std::string>& gltf, double mu,
-                      double lambda, double eta, const SolverOptions& solver) {
+                      const std::optional<std::string>& gltf, const MaterialArgs& material_args, const SolverOptions& solver) {
   const auto clock = Clock::now();
   if (!(epsilon > 0) || !std::isfinite(epsilon)) {
     throw InputError("epsilon must be > 0, got " + std::to_string(epsilon));
@@ -500,7 +522,7 @@ py::tuple TransportPy(const py::object& path_object,
                                        "path[" + std::to_string(k) + "]"));
   }
   const Positions varied = CompatiblePositions(variation_v, first, "variation");
-  const ShellSpace space(first.mesh, first.topology, Material(mu, lambda, eta));
+  const ShellSpace space(first.mesh, first.topology, Material(material_args, first.mesh));
   const std::vector<int> fixed = Mask(mask, first.mesh.num_vertices());
   const SolverSettings settings = solver.Settings("transport");
   TransportResult result;
@@ -511,7 +533,9 @@ py::tuple TransportPy(const py::object& path_object,
   }
   WritePath(output, png, gltf, first.mesh.faces, result.shapes);
   JsonObject json = TransportJson(result, epsilon);
-  json.Add("seconds", Seconds(clock));
+  json.Raw("energy_split", PathEnergySplitJson(space, result.shapes))
+      .Raw("material", MaterialRecord(space, first.mesh, material_args))
+      .Add("seconds", Seconds(clock));
   return py::make_tuple(FromPath(result.shapes),
                         ToDict(AddOutput(json, output)));
 }
@@ -569,8 +593,7 @@ py::tuple SplinePy(const py::object& keyframes_object,
                    int steps, const std::string& method, bool periodic,
                    const std::optional<std::string>& output,
                    const std::optional<std::string>& png,
-                   const std::optional<std::string>& gltf, double mu,
-                   double lambda, double eta, const SolverOptions& solver) {
+                   const std::optional<std::string>& gltf, const MaterialArgs& material_args, const SolverOptions& solver) {
   if (method != "nonlinear" && method != "ltheta") {
     throw InputError("method must be nonlinear or ltheta");
   }
@@ -579,7 +602,7 @@ py::tuple SplinePy(const py::object& keyframes_object,
   const ShapeSet set = MakeShapeSet(keyframes_object, F, "keyframes");
   const std::vector<int> at = Indices(at_list, set.shapes.size(), "keyframes");
   const ShellSpace space(set.first.mesh, set.first.topology,
-                         Material(mu, lambda, eta));
+                         Material(material_args, set.first.mesh));
   SolverSettings ltheta_settings = solver.Settings("ltheta");
   ltheta_settings.progress = false;
   SplineSettings settings = SplineSettingsOf(solver, "spline");
@@ -597,6 +620,8 @@ py::tuple SplinePy(const py::object& keyframes_object,
   WritePath(output, png, gltf, set.first.mesh.faces, result.path);
   JsonObject head;
   head.Add("method", method).Add("ltheta_seconds", ltheta_seconds);
+  head.Raw("energy_split", PathEnergySplitJson(space, result.path))
+      .Raw("material", MaterialRecord(space, set.first.mesh, material_args));
   JsonObject json = SplineJson(head, result, Seconds(clock));
   return py::make_tuple(FromPath(result.path), ToDict(AddOutput(json, output)));
 }
@@ -606,8 +631,7 @@ py::tuple RegressPy(const py::object& inputs_object,
                     int steps, double sigma,
                     const std::optional<std::string>& output,
                     const std::optional<std::string>& png,
-                    const std::optional<std::string>& gltf, double mu,
-                    double lambda, double eta, const SolverOptions& solver) {
+                    const std::optional<std::string>& gltf, const MaterialArgs& material_args, const SolverOptions& solver) {
   CheckAtLeast("steps", steps, 2);
   if (!(sigma >= 0) || !std::isfinite(sigma)) {
     throw InputError("sigma must be >= 0, got " + std::to_string(sigma));
@@ -616,7 +640,7 @@ py::tuple RegressPy(const py::object& inputs_object,
   const ShapeSet set = MakeShapeSet(inputs_object, F, "inputs");
   const std::vector<int> at = Indices(at_list, set.shapes.size(), "inputs");
   const ShellSpace space(set.first.mesh, set.first.topology,
-                         Material(mu, lambda, eta));
+                         Material(material_args, set.first.mesh));
   const SplineSettings settings = SplineSettingsOf(solver, "regress");
   SplineResult result;
   {
@@ -626,18 +650,20 @@ py::tuple RegressPy(const py::object& inputs_object,
   WritePath(output, png, gltf, set.first.mesh.faces, result.path);
   JsonObject head;
   head.Add("sigma", sigma);
+  head.Raw("energy_split", PathEnergySplitJson(space, result.path))
+      .Raw("material", MaterialRecord(space, set.first.mesh, material_args));
   JsonObject json = SplineJson(head, result, Seconds(clock));
   return py::make_tuple(FromPath(result.path), ToDict(AddOutput(json, output)));
 }
 
 py::tuple MeanPy(const py::object& inputs_object, const IndexArray& F,
                  bool report, const std::optional<std::string>& output,
-                 double mu, double lambda, double eta,
+                 const MaterialArgs& material_args,
                  const SolverOptions& solver) {
   const auto clock = Clock::now();
   const ShapeSet set = MakeShapeSet(inputs_object, F, "inputs");
   const ShellSpace space(set.first.mesh, set.first.topology,
-                         Material(mu, lambda, eta));
+                         Material(material_args, set.first.mesh));
   const SolverSettings settings = solver.Settings("mean");
   ElasticMeanResult result;
   {
@@ -656,7 +682,9 @@ py::tuple MeanPy(const py::object& inputs_object, const IndexArray& F,
               py::arg("file") = py::module_::import("sys").attr("stderr"));
   if (output) WriteMesh(Mesh{result.mean, set.first.mesh.faces}, *output);
   JsonObject json = MeanJson(result, static_cast<int>(set.shapes.size()), far);
-  json.Add("seconds", Seconds(clock));
+  json.Raw("energy_split", MeanEnergySplitJson(space, result.mean, set.shapes))
+      .Raw("material", MaterialRecord(space, set.first.mesh, material_args))
+      .Add("seconds", Seconds(clock));
   return py::make_tuple(FromPositions(result.mean),
                         ToDict(AddOutput(json, output)));
 }
@@ -669,8 +697,7 @@ py::tuple PcaPy(const py::object& inputs_object, const IndexArray& F, int modes,
                 int log_steps, int exp_steps, int max_exp_steps,
                 const std::string& displacement,
                 const std::optional<std::string>& output,
-                const std::optional<std::string>& png, double mu, double lambda,
-                double eta, const SolverOptions& solver) {
+                const std::optional<std::string>& png, const MaterialArgs& material_args, const SolverOptions& solver) {
   if (baseline != "" && baseline != "procrustes") {
     throw InputError("baseline must be 'procrustes' (or empty), got '" +
                      baseline + "'");
@@ -714,7 +741,7 @@ py::tuple PcaPy(const py::object& inputs_object, const IndexArray& F, int modes,
                      " inputs");
   }
   const ShellSpace space(set.first.mesh, set.first.topology,
-                         Material(mu, lambda, eta));
+                         Material(material_args, set.first.mesh));
   const SolverSettings settings = solver.Settings("pca");
   SolverSettings inner = settings;
   inner.progress = false;
@@ -757,6 +784,7 @@ py::tuple PcaPy(const py::object& inputs_object, const IndexArray& F, int modes,
     }
     json = PcaJson(n, mean, displacement, options, shell, shell_modes,
                    failed_shapes, far, amplitude);
+    json.Raw("material", MaterialRecord(space, set.first.mesh, material_args));
     if (baseline == "procrustes") {
       const ProcrustesPcaModel procrustes = ComputeProcrustesPca(set.shapes);
       shapes.emplace_back("procrustes_mean", procrustes.mean);
@@ -980,8 +1008,7 @@ py::object BranchingConstructPy(double epsilon, double length,
 // x #V x 3 array (a path), with the connectivity F.
 py::object ComparePy(const py::object& a_object, const py::object& b_object,
                      const IndexArray& F, double tolerance,
-                     double energy_tolerance, double mu, double lambda,
-                     double eta) {
+                     double energy_tolerance, const MaterialArgs& material_args) {
   for (const auto& [name, value] :
        {std::pair{"tolerance", tolerance}, {"energy_tolerance", energy_tolerance}}) {
     if (!(value >= 0) || !std::isfinite(value)) {
@@ -1006,7 +1033,7 @@ py::object ComparePy(const py::object& a_object, const py::object& b_object,
   for (size_t k = 0; k < b_shapes.size(); ++k) {
     b.push_back(CompatiblePositions(b_shapes[k], first, "b[" + std::to_string(k) + "]"));
   }
-  const ShellSpace space(first.mesh, first.topology, Material(mu, lambda, eta));
+  const ShellSpace space(first.mesh, first.topology, Material(material_args, first.mesh));
   return ToDict(ComparisonJson(CompareShapes(space, a, b), tolerance,
                                energy_tolerance));
 }
@@ -1033,7 +1060,8 @@ void WriteGltfPy(const std::string& path, const py::object& frames_object,
 
 // The keyword arguments shared by the verbs, with the CLI's defaults.
 #define SHELLSPACE_MATERIAL_ARGS \
-  py::arg("mu") = 1.0, py::arg("lambda_") = 1.0, py::arg("eta") = 0.01
+  py::arg("mu") = 1.0, py::arg("lambda_") = 1.0, py::arg("eta") = py::none(), \
+      py::arg("relative_eta") = kDefaultRelativeEta
 #define SHELLSPACE_SOLVER_ARGS                                  \
   py::arg("tolerance") = 1e-8, py::arg("max_iterations") = 200, \
   py::arg("threads") = 2, py::arg("quiet") = false
@@ -1056,7 +1084,14 @@ PYBIND11_MODULE(shellspace, m) {
         "Reads a PLY, OBJ or OFF mesh (strict readers): returns (V, F).");
   m.def("write_mesh", &WriteMeshPy, py::arg("path"), py::arg("V"), py::arg("F"),
         "Writes (V, F) as PLY, OBJ or OFF (by the extension), atomically.");
-  m.def("compare", &ComparePy, py::arg("a"), py::arg("b"), py::arg("F"),
+  m.def("compare",
+        [](const py::object& a, const py::object& b, const IndexArray& F,
+           double tolerance, double energy_tolerance, double mu,
+           double lambda, std::optional<double> eta, double relative_eta) {
+          return ComparePy(a, b, F, tolerance, energy_tolerance,
+                           MaterialArgs{mu, lambda, eta, relative_eta});
+        },
+        py::arg("a"), py::arg("b"), py::arg("F"),
         py::arg("tolerance") = 1e-6, py::arg("energy_tolerance") = 1e-6,
         SHELLSPACE_MATERIAL_ARGS,
         "Two shells (#V x 3 arrays) or two paths (sequences of them) up to "
@@ -1073,19 +1108,34 @@ PYBIND11_MODULE(shellspace, m) {
   m.def(
       "energy",
       [](const DoubleArray& reference, const DoubleArray& deformed,
-         const IndexArray& F, double mu, double lambda, double eta) {
-        return EnergyPy(reference, deformed, F, mu, lambda, eta);
+         const IndexArray& F, double mu, double lambda, std::optional<double> eta, double relative_eta) {
+        return EnergyPy(reference, deformed, F, MaterialArgs{mu, lambda, eta, relative_eta});
       },
       py::arg("reference"), py::arg("deformed"), py::arg("F"),
       SHELLSPACE_MATERIAL_ARGS,
       "W[reference, deformed] = W_mem + eta W_bend: the `energy` verb's "
       "summary {membrane, bending, total, mu, lambda, eta}.");
-  m.def("energy_gradient", &GradientPy, py::arg("reference"),
+  m.def("energy_gradient",
+        [](const DoubleArray& reference, const DoubleArray& deformed,
+           const IndexArray& F, const std::string& side, double mu,
+           double lambda, std::optional<double> eta, double relative_eta) {
+          return GradientPy(reference, deformed, F, side,
+                            MaterialArgs{mu, lambda, eta, relative_eta});
+        },
+        py::arg("reference"),
         py::arg("deformed"), py::arg("F"), py::arg("side") = "deformed",
         SHELLSPACE_MATERIAL_ARGS,
         "D_2 W (side='deformed') or D_1 W (side='reference') as a #V x 3 "
         "array (the derivative by vertex v, coordinate c at [v, c]).");
-  m.def("energy_hessian", &HessianPy, py::arg("reference"), py::arg("deformed"),
+  m.def("energy_hessian",
+        [](const DoubleArray& reference, const DoubleArray& deformed,
+           const IndexArray& F, const std::string& rows,
+           const std::string& cols, double mu, double lambda,
+           std::optional<double> eta, double relative_eta) {
+          return HessianPy(reference, deformed, F, rows, cols,
+                           MaterialArgs{mu, lambda, eta, relative_eta});
+        },
+        py::arg("reference"), py::arg("deformed"),
         py::arg("F"), py::arg("rows") = "deformed",
         py::arg("cols") = "deformed", SHELLSPACE_MATERIAL_ARGS,
         "The 3#V x 3#V block d_rows d_cols W (coordinate 3 v + c) as "
@@ -1101,10 +1151,10 @@ PYBIND11_MODULE(shellspace, m) {
          const std::optional<std::string>& output,
          const std::optional<std::string>& png,
          const std::optional<std::string>& gltf, double mu, double lambda,
-         double eta, double tolerance, int max_iterations, int threads,
+         std::optional<double> eta, double relative_eta, double tolerance, int max_iterations, int threads,
          bool quiet) {
         return GeodesicPy(start, end, F, steps, mask, multires, linear_solver,
-                          report, output, png, gltf, mu, lambda, eta,
+                          report, output, png, gltf, MaterialArgs{mu, lambda, eta, relative_eta},
                           {tolerance, max_iterations, threads, quiet});
       },
       py::arg("start"), py::arg("end"), py::arg("F"), py::arg("steps") = 8,
@@ -1123,10 +1173,10 @@ PYBIND11_MODULE(shellspace, m) {
          int steps, const py::object& mask, const std::string& multires,
          const std::string& linear_solver,
          const std::optional<std::string>& output, double mu, double lambda,
-         double eta, double tolerance, int max_iterations, int threads,
+         std::optional<double> eta, double relative_eta, double tolerance, int max_iterations, int threads,
          bool quiet) {
         return LogPy(start, end, F, steps, mask, multires, linear_solver,
-                     output, mu, lambda, eta,
+                     output, MaterialArgs{mu, lambda, eta, relative_eta},
                      {tolerance, max_iterations, threads, quiet});
       },
       py::arg("start"), py::arg("end"), py::arg("F"), py::arg("steps") = 8,
@@ -1142,10 +1192,10 @@ PYBIND11_MODULE(shellspace, m) {
          const std::optional<std::string>& output,
          const std::optional<std::string>& png,
          const std::optional<std::string>& gltf, double mu, double lambda,
-         double eta, double tolerance, int max_iterations, int threads,
+         std::optional<double> eta, double relative_eta, double tolerance, int max_iterations, int threads,
          bool quiet) {
         return ShootPy(first, second, F, steps, backward, mask, output, png,
-                       gltf, mu, lambda, eta,
+                       gltf, MaterialArgs{mu, lambda, eta, relative_eta},
                        {tolerance, max_iterations, threads, quiet});
       },
       py::arg("first"), py::arg("second"), py::arg("F"), py::arg("steps") = 8,
@@ -1162,10 +1212,10 @@ PYBIND11_MODULE(shellspace, m) {
          const std::optional<std::string>& output,
          const std::optional<std::string>& png,
          const std::optional<std::string>& gltf, double mu, double lambda,
-         double eta, double tolerance, int max_iterations, int threads,
+         std::optional<double> eta, double relative_eta, double tolerance, int max_iterations, int threads,
          bool quiet) {
         return TransportPy(path, variation, F, epsilon, mask, output, png, gltf,
-                           mu, lambda, eta,
+                           MaterialArgs{mu, lambda, eta, relative_eta},
                            {tolerance, max_iterations, threads, quiet});
       },
       py::arg("path"), py::arg("variation"), py::arg("F"),
@@ -1182,10 +1232,10 @@ PYBIND11_MODULE(shellspace, m) {
          bool periodic, const std::optional<std::string>& output,
          const std::optional<std::string>& png,
          const std::optional<std::string>& gltf, double mu, double lambda,
-         double eta, double tolerance, int max_iterations, int threads,
+         std::optional<double> eta, double relative_eta, double tolerance, int max_iterations, int threads,
          bool quiet) {
         return SplinePy(keyframes, at, F, steps, method, periodic, output, png,
-                        gltf, mu, lambda, eta,
+                        gltf, MaterialArgs{mu, lambda, eta, relative_eta},
                         {tolerance, max_iterations, threads, quiet});
       },
       py::arg("keyframes"), py::arg("at"), py::arg("F"), py::arg("steps") = 8,
@@ -1202,10 +1252,10 @@ PYBIND11_MODULE(shellspace, m) {
          const std::optional<std::string>& output,
          const std::optional<std::string>& png,
          const std::optional<std::string>& gltf, double mu, double lambda,
-         double eta, double tolerance, int max_iterations, int threads,
+         std::optional<double> eta, double relative_eta, double tolerance, int max_iterations, int threads,
          bool quiet) {
-        return RegressPy(inputs, at, F, steps, sigma, output, png, gltf, mu,
-                         lambda, eta,
+        return RegressPy(inputs, at, F, steps, sigma, output, png, gltf, 
+                         MaterialArgs{mu, lambda, eta, relative_eta},
                          {tolerance, max_iterations, threads, quiet});
       },
       py::arg("inputs"), py::arg("at"), py::arg("F"), py::arg("steps") = 8,
@@ -1221,11 +1271,11 @@ PYBIND11_MODULE(shellspace, m) {
          int exp_steps, int max_exp_steps, const std::string& displacement,
          const std::optional<std::string>& output,
          const std::optional<std::string>& png, double mu, double lambda,
-         double eta, double tolerance, int max_iterations, int threads,
+         std::optional<double> eta, double relative_eta, double tolerance, int max_iterations, int threads,
          bool quiet) {
         return PcaPy(inputs, F, modes, baseline, loo, amplitude, log_steps,
-                     exp_steps, max_exp_steps, displacement, output, png, mu,
-                     lambda, eta, {tolerance, max_iterations, threads, quiet});
+                     exp_steps, max_exp_steps, displacement, output, png, 
+                     MaterialArgs{mu, lambda, eta, relative_eta}, {tolerance, max_iterations, threads, quiet});
       },
       py::arg("inputs"), py::arg("F"), py::arg("modes") = 3,
       py::arg("baseline") = "", py::arg("loo") = false,
@@ -1258,9 +1308,9 @@ PYBIND11_MODULE(shellspace, m) {
       "mean",
       [](const py::object& inputs, const IndexArray& F, bool report,
          const std::optional<std::string>& output, double mu, double lambda,
-         double eta, double tolerance, int max_iterations, int threads,
+         std::optional<double> eta, double relative_eta, double tolerance, int max_iterations, int threads,
          bool quiet) {
-        return MeanPy(inputs, F, report, output, mu, lambda, eta,
+        return MeanPy(inputs, F, report, output, MaterialArgs{mu, lambda, eta, relative_eta},
                       {tolerance, max_iterations, threads, quiet});
       },
       py::arg("inputs"), py::arg("F"), py::arg("report") = false,

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "shellspace/cost_functions/shell/deformation_energy.h"
+
 namespace shellspace {
 
 int LmIterations(const ceres::Solver::Summary& summary) {
@@ -14,6 +16,24 @@ std::string JsonArray(const std::vector<std::string>& objects) {
     out += (i ? ", " : "") + objects[i];
   }
   return out + "]";
+}
+
+std::string PathEnergySplitJson(const ShellSpace& space,
+                                const ShellPath& path) {
+  double membrane = 0, bending = 0;
+  const double steps = path.size() > 1 ? path.size() - 1.0 : 0.0;
+  for (size_t k = 1; k < path.size(); ++k) {
+    const DeformationEnergy w =
+        EvaluateDeformationEnergy(space, path[k - 1], path[k]);
+    membrane += steps * w.membrane;
+    bending += steps * (w.total - w.membrane);
+  }
+  const double total = membrane + bending;
+  return JsonObject()
+      .Add("membrane", membrane)
+      .Add("bending", bending)
+      .Add("bending_share", total > 0 ? bending / total : 0.0)
+      .str();
 }
 
 std::vector<std::string> GeodesicStages(const GeodesicResult& result) {

@@ -25,6 +25,14 @@ namespace shellspace {
 // evaluation).
 int LmIterations(const ceres::Solver::Summary& summary);
 
+// The membrane / bending split of the path energy of the frames s_0..s_K
+// of `path` in `space`: {"membrane": K sum_k W_mem[s_k-1, s_k], "bending":
+// K sum_k eta W_bend[s_k-1, s_k] (eta included, so membrane + bending =
+// E_K), "bending_share": bending / (membrane + bending) (0 for E_K = 0)}.
+// Frames with a degenerate triangle give InputError. Costs one energy
+// evaluation per step.
+std::string PathEnergySplitJson(const ShellSpace& space, const ShellPath& path);
+
 // A JSON array of already serialised objects.
 std::string JsonArray(const std::vector<std::string>& objects);
 

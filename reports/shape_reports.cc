@@ -1,5 +1,7 @@
 #include "shellspace/reports/shape_reports.h"
 
+#include "shellspace/cost_functions/shell/relative_bending_weight.h"
+
 namespace shellspace {
 
 JsonObject EnergyJson(const DeformationEnergy& energy,
@@ -10,7 +12,10 @@ JsonObject EnergyJson(const DeformationEnergy& energy,
       .Add("total", energy.total)
       .Add("mu", material.mu)
       .Add("lambda", material.lambda)
-      .Add("eta", material.eta);
+      .Add("eta", material.eta)
+      .Add("bending_share",
+           energy.total > 0 ? (energy.total - energy.membrane) / energy.total
+                            : 0.0);
   return json;
 }
 
@@ -23,6 +28,37 @@ JsonObject EdgeAngleBendingJson(const EdgeAngleBending& bending) {
       .Add("iterations", bending.reference.iterations + bending.deformed.iterations)
       .Add("converged", bending.converged);
   return json;
+}
+
+JsonObject MaterialJson(const ShellMaterial& material, const Mesh& reference,
+                        bool eta_absolute) {
+  const double area = SurfaceArea(reference);
+  JsonObject json;
+  json.Add("mu", material.mu)
+      .Add("lambda", material.lambda)
+      .Add("eta", material.eta)
+      .Add("relative_eta", material.eta / area)
+      .Add("eta_from", eta_absolute ? "absolute" : "relative")
+      .Add("reference_area", area)
+      .Add("bending_model", BendingModelName(material.bending_model));
+  return json;
+}
+
+std::string MeanEnergySplitJson(const ShellSpace& space,
+                                const Positions& mean,
+                                const std::vector<Positions>& shapes) {
+  double membrane = 0, bending = 0;
+  for (const Positions& shape : shapes) {
+    const DeformationEnergy w = EvaluateDeformationEnergy(space, mean, shape);
+    membrane += w.membrane;
+    bending += w.total - w.membrane;
+  }
+  const double total = membrane + bending;
+  return JsonObject()
+      .Add("membrane", membrane)
+      .Add("bending", bending)
+      .Add("bending_share", total > 0 ? bending / total : 0.0)
+      .str();
 }
 
 JsonObject MeanJson(const ElasticMeanResult& result, int inputs,

@@ -35,6 +35,20 @@ JsonObject EdgeAngleBendingJson(const EdgeAngleBending& bending);
 // lm_iterations, newton_iterations, stages {lm_iterations, newton_steps},
 // newton_fell_back, initial_gradient_norm, final_gradient_norm,
 // relative_gradient_norm, converged.
+// The material of a run as resolved from its options: mu, lambda, eta,
+// relative_eta (eta / area of the reference), eta_from ("absolute" when eta
+// was given, else "relative"), reference_area, bending_model
+// (cost_functions/shell/relative_bending_weight.h).
+JsonObject MaterialJson(const ShellMaterial& material, const Mesh& reference,
+                        bool eta_absolute);
+
+// The membrane / bending split of the mean's objective sum_i W[mean, s_i]
+// ({"membrane", "bending" (eta included), "bending_share"}, as
+// PathEnergySplitJson in path_reports.h).
+std::string MeanEnergySplitJson(const ShellSpace& space,
+                                const Positions& mean,
+                                const std::vector<Positions>& shapes);
+
 JsonObject MeanJson(const ElasticMeanResult& result, int inputs,
                     const std::vector<std::string>& far_inputs);
 

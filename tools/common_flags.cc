@@ -2,6 +2,8 @@
 // FlagTable (`shellspace VERB --help`); the text here is only gflags' own.
 #include "shellspace/tools/common_flags.h"
 
+#include "shellspace/cost_functions/shell/relative_bending_weight.h"
+
 #define SHELLSPACE_PER_VERB "see `shellspace VERB --help`"
 
 DEFINE_string(output, "", SHELLSPACE_PER_VERB);
@@ -12,7 +14,11 @@ DEFINE_double(width, 0, SHELLSPACE_PER_VERB);
 DEFINE_double(height, 0, SHELLSPACE_PER_VERB);
 DEFINE_double(mu, 1.0, SHELLSPACE_PER_VERB);
 DEFINE_double(lambda, 1.0, SHELLSPACE_PER_VERB);
-DEFINE_double(eta, 0.01, SHELLSPACE_PER_VERB);
+// -1: not given (eta is then relative_eta x the reference's area; a given
+// --eta must be >= 0).
+DEFINE_double(eta, -1, SHELLSPACE_PER_VERB);
+DEFINE_double(relative_eta, shellspace::kDefaultRelativeEta,
+              SHELLSPACE_PER_VERB);
 DEFINE_string(bending, "discrete-shells", SHELLSPACE_PER_VERB);
 DEFINE_string(png, "", SHELLSPACE_PER_VERB);
 DEFINE_string(gltf, "", SHELLSPACE_PER_VERB);

@@ -17,6 +17,7 @@ DECLARE_double(height);
 DECLARE_double(mu);
 DECLARE_double(lambda);
 DECLARE_double(eta);
+DECLARE_double(relative_eta);
 DECLARE_string(bending);
 DECLARE_string(png);
 DECLARE_string(gltf);

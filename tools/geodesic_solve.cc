@@ -68,13 +68,15 @@ GeodesicOfFlags SolveGeodesicOfFlags(const std::string& verb) {
               "--steps " + std::to_string(FLAGS_steps) + " on " +
                   std::to_string(start.mesh.num_vertices()) + " vertices",
               kGeodesicModel);
-  const ShellSpace space = SpaceFromFlags(start);
+  ShellSpace space = SpaceFromFlags(start);
   GeodesicInput input;
   input.start = start.mesh.positions;
   input.end = end.positions;
   input.steps = FLAGS_steps;
   input.fixed_vertices = MaskFromFlags(start.mesh.num_vertices());
-  return {start, SolveGeodesicFromFlags(space, input, SettingsFromFlags(verb))};
+  MultiresolutionResult multires =
+      SolveGeodesicFromFlags(space, input, SettingsFromFlags(verb));
+  return {start, std::move(space), std::move(multires)};
 }
 
 }  // namespace shellspace

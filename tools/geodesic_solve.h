@@ -57,6 +57,7 @@ MultiresolutionResult SolveGeodesicFromFlags(const ShellSpace& space,
 // the material and the solver flags.
 struct GeodesicOfFlags {
   Shell start;
+  ShellSpace space;  // of start, with the flags' material
   MultiresolutionResult multires;
 };
 GeodesicOfFlags SolveGeodesicOfFlags(const std::string& verb);

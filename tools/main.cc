@@ -84,7 +84,9 @@ void PrintVerbHelp(const Verb& verb) {
     if (spec.required) {
       std::cout << "required";
     } else {
-      const std::string value = DefaultOf(spec, info);
+      const std::string value = spec.shown_default.empty()
+                                    ? DefaultOf(spec, info)
+                                    : spec.shown_default;
       std::cout << "default: " << (value.empty() ? "\"\"" : value);
     }
     if (!spec.range.empty()) std::cout << "; valid: " << spec.range;
@@ -144,7 +146,7 @@ void ApplyDefaultsAndValidate(const Verb& verb) {
     if (spec.required && info.current_value.empty()) {
       throw InputError("--" + spec.name + " is required");
     }
-    if (spec.valid) {
+    if (spec.valid && !(info.is_default && !spec.shown_default.empty())) {
       char* end = nullptr;
       const double value = std::strtod(info.current_value.c_str(), &end);
       if (*end != '\0' || !std::isfinite(value) || !spec.valid(value)) {

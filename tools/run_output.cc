@@ -5,6 +5,7 @@
 #include <chrono>
 #include <ctime>
 
+#include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/stop_request.h"
 
 namespace shellspace {
@@ -45,6 +46,8 @@ const std::string& RunId() {
 
 JsonObject& AddRunFields(JsonObject& json) {
   const StopCause stop = ObservedStop();
+  const std::string material = RunMaterialJson();
+  if (!material.empty()) json.Raw("material", material);
   return json.Add("partial", stop != StopCause::kNone)
       .Add("stop_reason", StopCauseText(stop))
       .Add("run_id", RunId())

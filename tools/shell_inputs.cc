@@ -1,8 +1,13 @@
 #include "shellspace/tools/shell_inputs.h"
 
+#include <cmath>
 #include <sstream>
 
+#include <gflags/gflags.h>
+
+#include "shellspace/cost_functions/shell/relative_bending_weight.h"
 #include "shellspace/geometry/validation.h"
+#include "shellspace/reports/shape_reports.h"
 #include "shellspace/io/atomic_file.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/tools/common_flags.h"
@@ -69,18 +74,42 @@ BendingModel BendingModelFromFlags() {
   return model;
 }
 
-ShellMaterial MaterialFromFlags() {
+namespace {
+
+std::string& RunMaterialStorage() {
+  static std::string json;
+  return json;
+}
+
+bool Given(const char* flag) {
+  gflags::CommandLineFlagInfo info;
+  return gflags::GetCommandLineFlagInfo(flag, &info) && !info.is_default;
+}
+
+}  // namespace
+
+ShellMaterial MaterialFromFlags(const Mesh& reference) {
   ShellMaterial material;
   material.bending_model = BendingModelFromFlags();
   material.mu = FLAGS_mu;
   material.lambda = FLAGS_lambda;
-  material.eta = FLAGS_eta;
+  const bool absolute = Given("eta");
+  if (absolute && Given("relative_eta")) {
+    throw InputError(
+        "--eta and --relative_eta: give one of them (--eta is absolute, "
+        "--relative_eta is multiplied by the reference's area)");
+  }
+  material.eta =
+      absolute ? FLAGS_eta : EtaFromRelative(FLAGS_relative_eta, reference);
   material.Validate();
+  RunMaterialStorage() = MaterialJson(material, reference, absolute).str();
   return material;
 }
 
+std::string RunMaterialJson() { return RunMaterialStorage(); }
+
 ShellSpace SpaceFromFlags(const Shell& shell) {
-  return ShellSpace(shell.mesh, shell.topology, MaterialFromFlags());
+  return ShellSpace(shell.mesh, shell.topology, MaterialFromFlags(shell.mesh));
 }
 
 std::vector<int> MaskFromFlags(int num_vertices) {

@@ -56,11 +56,19 @@ ShellPair LoadStartEndFromFlags();
 // The bending model of --bending (InputError for an unknown name).
 BendingModel BendingModelFromFlags();
 
-// The material of --mu, --lambda, --eta and --bending.
-ShellMaterial MaterialFromFlags();
+// The material of --mu, --lambda, --eta / --relative_eta and --bending for
+// shells whose reference is `reference`: eta is --eta if given, else
+// --relative_eta x SurfaceArea(reference) (relative_bending_weight.h);
+// InputError if both are given. Records the result for RunMaterialJson.
+ShellMaterial MaterialFromFlags(const Mesh& reference);
+
+// The material of this run as MaterialFromFlags last resolved it, as JSON:
+// mu, lambda, eta, relative_eta (eta / area), eta_from ("relative" or
+// "absolute"), reference_area, bending_model; "" if none was resolved.
+std::string RunMaterialJson();
 
 // ShellSpace of a validated shell with the flags' material (its topology
-// reused).
+// reused; the shell is the reference of MaterialFromFlags).
 ShellSpace SpaceFromFlags(const Shell& shell);
 
 // The --mask vertices, or none if --mask is empty.

@@ -131,6 +131,8 @@ int RunShoot() {
   WritePathOutputs(&output, first.mesh.faces, result.path);
   const std::string summary =
       output.Commit(ShootJson(result)
+                        .Raw("energy_split",
+                             PathEnergySplitJson(space, result.path))
                         .Add("bending_model", FLAGS_bending)
                         .Add("seconds", Seconds(clock))
                         .Add("output", FLAGS_output));
@@ -146,7 +148,7 @@ int RunLog() {
       .InputFile("mask", FLAGS_mask)
       .OutputFile("output", FLAGS_output)
       .Check();
-  const auto [start, multires] = SolveGeodesicOfFlags("log");
+  const auto [start, space, multires] = SolveGeodesicOfFlags("log");
   const GeodesicResult& geodesic = multires.geodesic;
   const Positions log = LogOfGeodesic(geodesic.path);
   RunStatus status("log");
@@ -154,6 +156,7 @@ int RunLog() {
   WriteMesh(Mesh{start.mesh.positions + log, start.mesh.faces}, FLAGS_output);
   if (FLAGS_json) {
     JsonObject json = GeodesicJson(geodesic);
+    json.Raw("energy_split", PathEnergySplitJson(space, geodesic.path));
     json.Add("bending_model", FLAGS_bending)
         .Raw("multires_levels", MultiresolutionJson(multires))
         .Add("log_max_norm", log.cwiseAbs().maxCoeff())
@@ -206,6 +209,8 @@ int RunTransport() {
   WritePathOutputs(&output, first.mesh.faces, result.shapes);
   const std::string summary =
       output.Commit(TransportJson(result, FLAGS_epsilon)
+                        .Raw("energy_split",
+                             PathEnergySplitJson(space, result.shapes))
                         .Add("bending_model", FLAGS_bending)
                         .Add("seconds", Seconds(clock))
                         .Add("output", FLAGS_output));

@@ -53,7 +53,7 @@ int RunDemo() {
   const double pi = std::acos(-1.0);
   const Positions bent = BendAlongY(finger.positions, 4.0, 0.5 * pi);
   const ShellSpace space(finger, ValidateShell(finger, "procedural finger"),
-                         MaterialFromFlags());
+                         MaterialFromFlags(finger));
   const std::vector<int> base = FingerBaseVertices();
   SolverSettings settings = SettingsFromFlags("demo geodesic");
 

@@ -109,7 +109,7 @@ int RunEnergy() {
   }
   if (FLAGS_json) {
     JsonObject json = EnergyJson(e, space.material);
-    json.Add("bending_model", requested);
+    json.Add("bending_model", requested).Raw("material", RunMaterialJson());
     if (both) {
       json.Raw("bending_models",
                JsonObject()

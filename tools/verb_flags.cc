@@ -74,8 +74,17 @@ FlagTable MaterialFlags() {
   return {
       RealFlag("mu", "membrane Lame weight mu", 0, End::kOpen),
       RealFlag("lambda", "membrane Lame weight lambda", 0, End::kOpen),
-      RealFlag("eta", "bending weight eta (squared thickness)", 0,
-               End::kClosed),
+      RealFlag("eta",
+               "absolute bending weight eta of W = W_mem + eta W_bend; "
+               "replaces relative_eta x area (not both)",
+               0, End::kClosed)
+          .ShownDefault("relative_eta x area of the reference shell"),
+      RealFlag("relative_eta",
+               "bending weight relative to the size: eta = relative_eta x "
+               "the surface area of the reference shell (the first input), "
+               "the same material at any scale (W_mem scales like area, "
+               "W_bend not at all)",
+               0, End::kClosed),
       TextFlag("bending",
                "bending model: discrete-shells (default) or shape-operator"),
   };

@@ -34,6 +34,13 @@ struct FlagSpec {
     verb_default = value;
     return *this;
   }
+  // What --help prints as the default, for a flag whose gflags default is a
+  // "not given" sentinel (e.g. --eta: NaN, "relative_eta x area").
+  std::string shown_default;
+  FlagSpec& ShownDefault(const std::string& text) {
+    shown_default = text;
+    return *this;
+  }
 };
 
 using FlagTable = std::vector<FlagSpec>;

@@ -50,7 +50,7 @@ int RunGeodesic() {
       .OutputDirectory("output", FLAGS_output)
       .OutputFile("png", FLAGS_png)
       .Check();
-  const auto [start, multires] = SolveGeodesicOfFlags("geodesic");
+  const auto [start, space, multires] = SolveGeodesicOfFlags("geodesic");
   const GeodesicResult& result = multires.geodesic;
   if (!result.stages.empty() &&  // K = 1: no solve
       result.summary.termination_type == ceres::FAILURE) {
@@ -66,6 +66,8 @@ int RunGeodesic() {
           .count();
   const std::string summary =
       output.Commit(GeodesicJson(result)
+                        .Raw("energy_split",
+                             PathEnergySplitJson(space, result.path))
                         .Add("bending_model", FLAGS_bending)
                         .Raw("multires_levels", MultiresolutionJson(multires))
                         .Add("seconds", seconds)

@@ -121,7 +121,7 @@ SplineSettings SplineSettingsFromFlags(const std::string& label) {
 
 // Writes the frames and the report; returns the exit code. `optimised`:
 // the outer solver ran (not --method ltheta).
-int Report(const std::string& verb, const Faces& faces,
+int Report(const std::string& verb, const ShellSpace& space, const Faces& faces,
            const SplineResult& result, double seconds, JsonObject extra,
            bool optimised = true) {
   RunStatus status(verb);
@@ -139,7 +139,8 @@ int Report(const std::string& verb, const Faces& faces,
   }
   RunDirectory output(FLAGS_output);
   WritePathOutputs(&output, faces, result.path);
-  extra.Add("bending_model", FLAGS_bending);
+  extra.Add("bending_model", FLAGS_bending)
+      .Raw("energy_split", PathEnergySplitJson(space, result.path));
   const std::string summary = output.Commit(
       SplineJson(std::move(extra), result, seconds, optimised)
           .Add("output", FLAGS_output));
@@ -201,7 +202,7 @@ int RunSpline() {
   if (FLAGS_method == "ltheta") settings.max_iterations = 0;
   SplineResult result = SolveSpline(space, keyframes, at, FLAGS_steps,
                                     FLAGS_periodic, ltheta, settings);
-  return Report("spline", set.first.mesh.faces, result, Seconds(clock),
+  return Report("spline", space, set.first.mesh.faces, result, Seconds(clock),
                 JsonObject()
                     .Add("method", FLAGS_method)
                     .Add("ltheta_seconds", ltheta_seconds),
@@ -222,7 +223,7 @@ int RunRegress() {
   const SplineResult result =
       SolveRegression(space, set.shapes, at, FLAGS_steps, FLAGS_sigma, {},
                       SplineSettingsFromFlags("regress"));
-  return Report("regress", set.first.mesh.faces, result, Seconds(clock),
+  return Report("regress", space, set.first.mesh.faces, result, Seconds(clock),
                 JsonObject().Add("sigma", FLAGS_sigma));
 }
 

@@ -170,7 +170,9 @@ int RunMean() {
   if (FLAGS_json) {
     JsonObject json =
         MeanJson(result, static_cast<int>(inputs.shapes.size()), far);
-    json.Add("bending_model", FLAGS_bending);
+    json.Add("bending_model", FLAGS_bending)
+        .Raw("energy_split", MeanEnergySplitJson(space, result.mean,
+                                                 inputs.shapes));
     std::cout << AddRunFields(json)
                      .Add("seconds", Seconds(clock))
                      .Add("output", FLAGS_output)

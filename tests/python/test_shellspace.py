@@ -107,7 +107,14 @@ def test_energy_of_a_mesh_against_itself_is_zero(double_square):
     assert abs(e["membrane"]) < 1e-14
     assert abs(e["bending"]) < 1e-14
     assert abs(e["total"]) < 1e-14
-    assert (e["mu"], e["lambda"], e["eta"]) == (1, 1, 0.01)
+    # The default bending weight is relative: eta = 0.01 x the reference's
+    # area (here 1.98, from the triangles directly).
+    a, b, c = (V[F[:, i]] for i in range(3))
+    area = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1).sum()
+    assert (e["mu"], e["lambda"]) == (1, 1)
+    assert e["eta"] == pytest.approx(0.01 * area, rel=1e-14)
+    assert shellspace.energy(V, V, F, relative_eta=0.5)["eta"] == \
+        pytest.approx(0.5 * area, rel=1e-14)
 
 
 def test_energy_matches_cli(double_square):
@@ -115,20 +122,26 @@ def test_energy_matches_cli(double_square):
     e = shellspace.energy(V, W, F, eta=0.1)
     cli = cli_json(["energy", "--reference", DOUBLE, "--deformed",
                     DOUBLE_BENT, "--eta", "0.1"], quiet=False)
+    material = cli.pop("material")  # the CLI's resolved material record
+    assert (material["eta"], material["eta_from"]) == (0.1, "absolute")
     assert e == cli
     assert abs(e["total"] - (e["membrane"] + 0.1 * e["bending"])) < 1e-14
 
 
 @pytest.mark.parametrize("side", ["deformed", "reference"])
 def test_gradient_against_finite_differences(double_square, side):
+    # Derivatives are at a fixed eta: with the default relative eta, moving
+    # the reference would also change eta (its area), so eta is given.
     V, W, F = double_square
     if side == "deformed":
-        energy = lambda x: shellspace.energy(V, x, F)["total"]
-        gradient = lambda x: shellspace.energy_gradient(V, x, F, side=side)
+        energy = lambda x: shellspace.energy(V, x, F, eta=0.01)["total"]
+        gradient = lambda x: shellspace.energy_gradient(V, x, F, side=side,
+                                                        eta=0.01)
         x = W
     else:
-        energy = lambda x: shellspace.energy(x, W, F)["total"]
-        gradient = lambda x: shellspace.energy_gradient(x, W, F, side=side)
+        energy = lambda x: shellspace.energy(x, W, F, eta=0.01)["total"]
+        gradient = lambda x: shellspace.energy_gradient(x, W, F, side=side,
+                                                        eta=0.01)
         x = V
     assert np.max(np.abs(gradient(x))) > 1e-2  # a non-trivial point
     assert gradient_error(energy, gradient, x) < 1e-6
@@ -151,9 +164,12 @@ def test_hessian_triplets_against_finite_differences(double_square, rows,
     def args(x):  # (reference, deformed) with the `cols` side at x
         return (x, W) if cols == "reference" else (V, x)
 
-    gradient = lambda x: shellspace.energy_gradient(*args(x), F, side=rows)
+    # At a fixed eta (see test_gradient_against_finite_differences).
+    gradient = lambda x: shellspace.energy_gradient(*args(x), F, side=rows,
+                                                    eta=0.01)
     hessian = lambda x: hessian_matrix(
-        shellspace.energy_hessian(*args(x), F, rows=rows, cols=cols), n)
+        shellspace.energy_hessian(*args(x), F, rows=rows, cols=cols,
+                                  eta=0.01), n)
     x = V if cols == "reference" else W
     H = hessian(x)
     if rows == cols:
@@ -203,10 +219,24 @@ def test_geodesic_round_trip_against_cli(tmp_path):
         assert np.max(np.abs(frame - path[k])) < 1e-10
         mine, _ = mesh(str(tmp_path / "py" / ("shape_%03d.ply" % k)))
         assert np.max(np.abs(mine - path[k])) == 0.0
-    # E_K = K sum_k W[s_{k-1}, s_k], from the energy function itself.
-    e = sum(shellspace.energy(path[k - 1], path[k], F)["total"]
-            for k in range(1, 5))
+    # E_K = K sum_k W[s_{k-1}, s_k], from the energy function itself, with
+    # the path's one material (eta resolved on s_0: 0.01 x its area).
+    eta = summary["material"]["eta"]
+    assert summary["material"]["eta_from"] == "relative"
+    assert eta == pytest.approx(0.01 * summary["material"]["reference_area"],
+                                rel=1e-14)
+    parts = [shellspace.energy(path[k - 1], path[k], F, eta=eta)
+             for k in range(1, 5)]
+    e = sum(p["total"] for p in parts)
     assert abs(4 * e - summary["path_energy"]) < 1e-10 * summary["path_energy"]
+    # The membrane / bending split of the report is the same sum by parts.
+    split = summary["energy_split"]
+    assert split["membrane"] == pytest.approx(
+        4 * sum(p["membrane"] for p in parts), rel=1e-12)
+    assert split["bending"] == pytest.approx(
+        4 * eta * sum(p["bending"] for p in parts), rel=1e-12)
+    assert split["membrane"] + split["bending"] == pytest.approx(
+        summary["path_energy"], rel=1e-10)
 
 
 def test_log_then_shoot_returns_to_the_end(tmp_path):

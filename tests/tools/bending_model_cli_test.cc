@@ -133,8 +133,8 @@ TEST(BendingModelCliTest, EnergyReportsTheEdgeAngleVariantOnlyThere) {
       testing::MakeSpace(a, Material(BendingModel::kShapeOperator, 0.01)),
       a.positions, b.positions);
   EXPECT_LT(variant.energy, 0.95 * so.bending);  // the angles matter here
-  const std::string common =
-      "energy --json --reference " + a_path + " --deformed " + b_path;
+  const std::string common = "energy --json --eta 0.01 --reference " + a_path +
+                             " --deformed " + b_path;
   const std::string json = RunOk(common + " --bending shape-operator-edge-angles");
   EXPECT_NE(json.find("\"bending_model\": \"shape-operator-edge-angles\""),
             std::string::npos)

@@ -411,6 +411,7 @@ TEST(CliTest, HelpListsOnlyTheVerbsFlags) {
                                           "mu",
                                           "lambda",
                                           "eta",
+                                          "relative_eta",
                                           "bending",
                                           "tolerance",
                                           "max_iterations",

@@ -12,12 +12,14 @@
 
 #include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
+#include "shellspace/cost_functions/shell/relative_bending_weight.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/problems/statistics/elastic_mean.h"
 #include "shellspace/problems/statistics/leave_one_out.h"
 #include "shellspace/problems/statistics/procrustes_pca.h"
 #include "shellspace/problems/statistics/shell_pca.h"
+#include "shellspace/tests/testing/cli_output.h"
 #include "shellspace/tests/testing/test_support.h"
 
 namespace shellspace {
@@ -26,6 +28,7 @@ namespace {
 using testing::DataPath;
 using testing::LoadData;
 using testing::MakeSpace;
+using testing::Number;
 using testing::RandomRigidMotion;
 using testing::RunCli;
 using testing::TempDir;
@@ -543,11 +546,16 @@ TEST(StatisticsCliTest, MeanWritesTheShapeAndJson) {
       << stderr_text;
   EXPECT_TRUE(std::filesystem::exists(out));
   EXPECT_NE(stdout_text.find("\"energy\""), std::string::npos);
-  // The written shape is the library's elastic mean.
+  // The written shape is the library's elastic mean, with the CLI's default
+  // material: eta = 0.01 x the area of the first input.
   std::vector<Positions> shapes = LoadSpheres();
   shapes.resize(3);
-  const ElasticMeanResult mean = ComputeElasticMean(
-      MakeSpace(LoadData(kSpheres[0])), shapes, SolverSettings{});
+  const Mesh first = LoadData(kSpheres[0]);
+  ShellMaterial material;
+  material.eta = 0.01 * SurfaceArea(first);
+  EXPECT_NEAR(Number(stdout_text, "eta"), material.eta, 1e-15 * material.eta);
+  const ElasticMeanResult mean =
+      ComputeElasticMean(MakeSpace(first, material), shapes, SolverSettings{});
   EXPECT_LT(RelativeDistanceUpToRigidMotion(ReadMesh(out).positions, mean.mean),
             1e-6);
 }
@@ -608,7 +616,7 @@ TEST(StatisticsCliTest, PcaSkipsModeShapesWithoutAnExpSolution) {
   const std::string dir = TempDir() + "/pca_far";
   std::string stdout_text, stderr_text;
   ASSERT_EQ(RunCli("pca --inputs " + SphereList(4) + " --modes 2 --output " +
-                       dir + " --amplitude 40 --json",
+                       dir + " --amplitude 40 --eta 0.01 --json",
                    &stdout_text, &stderr_text),
             0)
       << stderr_text;
