@@ -50,4 +50,5 @@ write_basic_package_version_file(
 install(FILES
   ${PROJECT_BINARY_DIR}/shellspaceConfig.cmake
   ${PROJECT_BINARY_DIR}/shellspaceConfigVersion.cmake
+  ${CMAKE_CURRENT_LIST_DIR}/shellspaceSystemLibraries.cmake
   DESTINATION ${SHELLSPACE_INSTALL_CMAKEDIR})
