@@ -31,10 +31,12 @@ foreach(_shellspace_library IN LISTS shellspace_system_libraries)
   endif()
   if(_shellspace_library STREQUAL "fast_blas")
     # Debian installs libopenblas.so in the architecture's library folder
-    # (an alternatives link) and in its openblas-pthread/ subfolder.
+    # (the alternatives link to the chosen variant), else in its
+    # openblas-pthread/ subfolder.
     find_library(SHELLSPACE_FAST_BLAS NAMES openblas
-      PATH_SUFFIXES openblas-pthread
       DOC "Optimised BLAS linked ahead of Ceres' BLAS (empty: none)")
+    find_library(SHELLSPACE_FAST_BLAS NAMES openblas
+      PATH_SUFFIXES openblas-pthread)
     add_library(shellspace_system::fast_blas INTERFACE IMPORTED)
     if(SHELLSPACE_FAST_BLAS)
       set_property(TARGET shellspace_system::fast_blas PROPERTY
