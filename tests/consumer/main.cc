@@ -8,7 +8,7 @@
 // a flat 4 x 4 grid, one corner pulled out of the plane towards a target point
 // by the consumer's own residual and the three other corners held fixed (so
 // the grid has to stretch and bend, not just tilt). No data files: the mesh is
-// built here. Exits non-zero unless the solution is sane.
+// built in code (grid.h). Exits non-zero unless the solution is sane.
 #include <ceres/ceres.h>
 #include <shellspace/cost_functions/deformation_energy_residuals.h>
 #include <shellspace/cost_functions/shell/deformation_energy.h>
@@ -23,39 +23,14 @@
 #include <exception>
 #include <vector>
 
+#include "grid.h"
+
 namespace {
 
-constexpr int kGridSize = 4;  // vertices per side
-constexpr double kSpacing = 1.0 / (kGridSize - 1);
+using consumer::kGridSize;
+using consumer::MakeFlatGrid;
+using consumer::VertexIndex;
 constexpr double kPullStiffness = 1.0;
-
-int VertexIndex(int i, int j) { return j * kGridSize + i; }
-
-// A flat kGridSize x kGridSize grid on [0, 1]^2 in the plane z = 0, each cell
-// split into two counter-clockwise triangles.
-shellspace::Mesh MakeFlatGrid() {
-  shellspace::Mesh mesh;
-  mesh.positions.resize(kGridSize * kGridSize, 3);
-  for (int j = 0; j < kGridSize; ++j) {
-    for (int i = 0; i < kGridSize; ++i) {
-      mesh.positions.row(VertexIndex(i, j)) << i * kSpacing, j * kSpacing, 0.0;
-    }
-  }
-  const int num_cells = (kGridSize - 1) * (kGridSize - 1);
-  mesh.faces.resize(2 * num_cells, 3);
-  int face = 0;
-  for (int j = 0; j + 1 < kGridSize; ++j) {
-    for (int i = 0; i + 1 < kGridSize; ++i) {
-      const int v00 = VertexIndex(i, j);
-      const int v10 = VertexIndex(i + 1, j);
-      const int v01 = VertexIndex(i, j + 1);
-      const int v11 = VertexIndex(i + 1, j + 1);
-      mesh.faces.row(face++) << v00, v10, v11;
-      mesh.faces.row(face++) << v00, v11, v01;
-    }
-  }
-  return mesh;
-}
 
 // The consumer's own residual: r = sqrt(k) (x - target) for one vertex, so
 // that 1/2 |r|^2 = k/2 |x - target|^2.
