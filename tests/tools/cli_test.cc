@@ -302,11 +302,14 @@ TEST(CliTest, RenderWritesTheStripItReports) {
   const std::string dir = TempDir();
   const std::string out = dir + "/strip.png";
   const std::string json = RunOk("render --json --input " + kSquare + "," +
-                                 kBent + " --output " + out + " --width 40");
+                                 kBent + " --output " + out + " --width 80");
+  // --width is the whole image; frames are square unless --height, with a
+  // label strip of 12 rows under them.
   EXPECT_EQ(Number(json, "frames"), 2);
   EXPECT_EQ(Number(json, "frame_width"), 40);
-  EXPECT_EQ(Number(json, "frame_height"), 320);
+  EXPECT_EQ(Number(json, "frame_height"), 40);
   EXPECT_EQ(Number(json, "width"), 80);
+  EXPECT_EQ(Number(json, "height"), 40 + 12);
   const std::string png = Slurp(out);
   ASSERT_GT(png.size(), 24u);
   EXPECT_EQ(png.substr(1, 3), "PNG");
