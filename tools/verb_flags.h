@@ -13,6 +13,7 @@
 #include <initializer_list>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace shellspace {
@@ -25,6 +26,10 @@ struct FlagSpec {
   std::function<bool(double)> valid;
   std::string verb_default;  // this verb's default; "" keeps the gflags one
   bool required = false;     // a string flag that must be non-empty
+  // String flags: throws InputError with a one-line message (without the
+  // flag's name) if the value is not valid; main runs it on the flag's value
+  // before the verb runs, so a bad value fails before any work.
+  std::function<void(const std::string&)> check;
 
   FlagSpec& Required() {
     required = true;
@@ -32,6 +37,10 @@ struct FlagSpec {
   }
   FlagSpec& Default(const std::string& value) {
     verb_default = value;
+    return *this;
+  }
+  FlagSpec& Check(std::function<void(const std::string&)> test) {
+    check = std::move(test);
     return *this;
   }
 };

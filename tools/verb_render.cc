@@ -11,6 +11,7 @@
 #include "shellspace/io/frame_sequence.h"
 #include "shellspace/render/view.h"
 #include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/film_strip_flags.h"
 #include "shellspace/tools/run_paths.h"
 #include "shellspace/tools/verb.h"
 
@@ -47,16 +48,16 @@ FlagTable RenderFlags() {
                        "0 (the default) or a whole number in [1, 8192]",
                        [](double v) { return IsWholeOrZero(v, 8192); }),
            TextFlag("view",
-                    "front (along -z, +y up, for the up axis y), back, "
-                    "side (along -x), left, top (along -y), bottom, iso, or "
+                    "front (along -z, +y up, for --up y), back, side "
+                    "(along -x), left, top (along -y), bottom, iso, or "
                     "AZIMUTH,ELEVATION in degrees (e.g. --view=30,20; "
                     "azimuth about the up axis from the front view, "
-                    "elevation towards it); the up axis is the first "
-                    "frame's long axis, which turns the world first"),
+                    "elevation towards it); other --up values turn the "
+                    "world first (--up z: front looks along +y, x right)"),
            TextFlag("shading", "flat or gouraud"),
            TextFlag("quiet", "no line on stdout"),
        },
-       JsonFlag()});
+       FilmStripFlags(), JsonFlag()});
 }
 
 std::string JsonString(const std::string& text) {
@@ -77,7 +78,7 @@ std::string JsonString(const std::string& text) {
 }
 
 int RunRender() {
-  RenderOptions options;
+  RenderOptions options = FilmStripOptionsFromFlags();
   options.width = static_cast<int>(FLAGS_width);
   options.height = static_cast<int>(FLAGS_height);
   try {
@@ -133,7 +134,7 @@ int RunRender() {
 SHELLSPACE_REGISTER_VERB(
     "render",
     "render --input DIR|a.ply,b.ply --output strip.png [--width W --height H "
-    "--view V]",
+    "--view V --up auto|x|y|z|-x|-y|-z --labels=false --color displacement]",
     RenderFlags(), RunRender);
 
 }  // namespace shellspace

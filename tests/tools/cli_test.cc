@@ -430,7 +430,10 @@ TEST(CliTest, HelpListsOnlyTheVerbsFlags) {
                                           "linear_solver",
                                           "time_limit",
                                           "minloglevel",
-                                          "allow_unconverged"};
+                                          "allow_unconverged",
+                                          "up",
+                                          "labels",
+                                          "color"};
   EXPECT_EQ(geodesic, expected) << text;
   // Default and valid range of a numeric flag.
   EXPECT_NE(text.find("default: 8; valid: an integer in [1, 100000]"),
