@@ -1055,6 +1055,23 @@ void WriteGltfPy(const std::string& path, const py::object& frames_object,
                           options);
 }
 
+// `shellspace render` on frames in memory: the same options, the same file.
+void WriteFilmStripPy(const std::string& path, const py::object& frames_object,
+                      const IndexArray& F, int width, int height,
+                      const std::string& view, const std::string& up,
+                      bool labels, const std::string& color,
+                      const std::string& shading) {
+  RenderOptions options;
+  options.width = width;
+  options.height = height;
+  options.view = ParseView(view);
+  options.up = ParseUpAxis(up);
+  options.labels = labels;
+  options.color = ParseSurfaceColor(color);
+  options.shading = ParseShading(shading);
+  WriteFilmStrip(ToShapes(frames_object, "frames"), ToFaces(F), options, path);
+}
+
 }  // namespace
 }  // namespace shellspace
 
@@ -1102,6 +1119,15 @@ PYBIND11_MODULE(shellspace, m) {
         py::arg("F"), py::arg("fps") = 4.0, py::arg("interpolation") = "linear",
         "Writes frames (a path) as one glTF 2.0 morph animation (.glb), as "
         "`shellspace export` does.");
+  m.def("write_film_strip", &WriteFilmStripPy, py::arg("path"),
+        py::arg("frames"), py::arg("F"), py::arg("width") = 0,
+        py::arg("height") = 0, py::arg("view") = "front",
+        py::arg("up") = "auto", py::arg("labels") = true,
+        py::arg("color") = "plain", py::arg("shading") = "gouraud",
+        "Writes frames as a PNG film strip, as `shellspace render` does: "
+        "width the whole image (0: 320 per column), height per frame (0: "
+        "square), up auto|x|y|z|-x|-y|-z, labels under the frames, color "
+        "plain|displacement.");
   m.def("read_mask", &ReadMask, py::arg("path"), py::arg("num_vertices"),
         "Reads a vertex mask file: sorted unique 0-based indices.");
 

@@ -1,11 +1,32 @@
 #include "shellspace/render/branching_image.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <vector>
 
 namespace shellspace::branching {
+namespace {
+
+constexpr std::array<std::uint8_t, 3> kPlus = {235, 140, 40};
+constexpr std::array<std::uint8_t, 3> kMinus = {45, 95, 200};
+constexpr std::array<std::uint8_t, 3> kInterface = {30, 30, 30};
+
+PlotAxes BranchingAxes(double length, double height, int width_px) {
+  PlotAxes axes;
+  axes.x_min = 0;
+  axes.x_max = length;
+  axes.y_min = 0;
+  axes.y_max = height;
+  axes.x_name = "x  (austenite at x = 0)";
+  axes.y_name = "y";
+  axes.text_scale =
+      std::clamp(static_cast<int>(std::lround(width_px / 450.0)), 1, 3);
+  return axes;
+}
+
+}  // namespace
 
 RgbImage RenderConstruction(const Construction& construction, double height,
                             int width_px, int height_px) {
@@ -20,13 +41,9 @@ RgbImage RenderConstruction(const Construction& construction, double height,
       const int v = construction.VariantAt(x, y, &d);
       std::uint8_t* rgb = image.at(px, py);
       const bool edge = d < 0.6 * dy;
-      if (edge) {
-        rgb[0] = 30, rgb[1] = 30, rgb[2] = 30;
-      } else if (v > 0) {
-        rgb[0] = 235, rgb[1] = 140, rgb[2] = 40;
-      } else {
-        rgb[0] = 45, rgb[1] = 95, rgb[2] = 200;
-      }
+      const std::array<std::uint8_t, 3>& color =
+          edge ? kInterface : v > 0 ? kPlus : kMinus;
+      for (int c = 0; c < 3; ++c) rgb[c] = color[c];
     }
   }
   return image;
@@ -50,8 +67,7 @@ RgbImage RenderSlope(const RelaxedField& field, int width_px, int height_px) {
       j = ((j % g.ny) + g.ny) % g.ny;
       const double v = std::clamp(field.uy(i, j), -1.0, 1.0);
       const double a = std::fabs(v);
-      const double base[3] = {v > 0 ? 235.0 : 45.0, v > 0 ? 140.0 : 95.0,
-                              v > 0 ? 40.0 : 200.0};
+      const std::array<std::uint8_t, 3>& base = v > 0 ? kPlus : kMinus;
       std::uint8_t* rgb = image.at(px, py);
       for (int c = 0; c < 3; ++c) {
         rgb[c] = static_cast<std::uint8_t>(
@@ -60,6 +76,23 @@ RgbImage RenderSlope(const RelaxedField& field, int width_px, int height_px) {
     }
   }
   return image;
+}
+
+RgbImage ConstructionFigure(const Construction& construction, double height,
+                            int width_px, int height_px) {
+  PlotAxes axes = BranchingAxes(construction.length, height, width_px);
+  axes.legend = {{kPlus, "u_y = +1"}, {kMinus, "u_y = -1"},
+                 {kInterface, "interface"}};
+  return FramePlot(
+      RenderConstruction(construction, height, width_px, height_px), axes);
+}
+
+RgbImage SlopeFigure(const RelaxedField& field, int width_px, int height_px) {
+  PlotAxes axes = BranchingAxes(field.grid.length, field.grid.height, width_px);
+  axes.legend = {{kPlus, "u_y = +1"},
+                 {{255, 255, 255}, "u_y = 0"},
+                 {kMinus, "u_y = -1"}};
+  return FramePlot(RenderSlope(field, width_px, height_px), axes);
 }
 
 }  // namespace shellspace::branching

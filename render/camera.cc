@@ -17,6 +17,18 @@ void ViewFrame(const ViewAngles& view, Eigen::Vector3d* right,
   *up = right->cross(*forward);
 }
 
+void ViewFrame(const ViewAngles& view, UpAxis up_axis, Eigen::Vector3d* right,
+               Eigen::Vector3d* up, Eigen::Vector3d* forward) {
+  ViewFrame(view, right, up, forward);
+  if (up_axis == UpAxis::kPlusY) return;
+  // R is a signed permutation: R^T v only moves and negates coordinates, so
+  // the frame stays exactly orthonormal.
+  const Eigen::Matrix3d inverse = UpRotation(up_axis).transpose();
+  *right = inverse * *right;
+  *up = inverse * *up;
+  *forward = inverse * *forward;
+}
+
 void BoundingBox(const std::vector<Positions>& frames, Eigen::Vector3d* lower,
                  Eigen::Vector3d* upper) {
   const double inf = std::numeric_limits<double>::infinity();
@@ -69,11 +81,12 @@ Camera FrameBox(const Eigen::Vector3d& lower, const Eigen::Vector3d& upper,
 
 Camera FrameVertices(const std::vector<Positions>& frames,
                      const ViewAngles& view, int width, int height,
-                     double margin) {
+                     double margin, UpAxis up_axis) {
   Eigen::Vector3d lower, upper;
   BoundingBox(frames, &lower, &upper);  // validates
   Camera camera;
-  ViewFrame(view, &camera.right, &camera.up, &camera.forward);
+  ViewFrame(view, ResolveUpAxis(up_axis, frames[0]), &camera.right,
+            &camera.up, &camera.forward);
   camera.width = width;
   camera.height = height;
   const double inf = std::numeric_limits<double>::infinity();

@@ -7,6 +7,7 @@
 #include <Eigen/Core>
 
 #include "shellspace/geometry/mesh.h"
+#include "shellspace/render/up_axis.h"
 #include "shellspace/render/view.h"
 
 namespace shellspace {
@@ -43,6 +44,15 @@ struct Camera {
 void ViewFrame(const ViewAngles& view, Eigen::Vector3d* right,
                Eigen::Vector3d* up, Eigen::Vector3d* forward);
 
+// The same frame for another up axis (up_axis.h): the view's frame in the
+// world rotated by R = UpRotation(up_axis), brought back to world
+// coordinates (each vector R^T v), so that UpDirection(up_axis) plays the
+// part of +y: it never appears tilted, the azimuth turns about it and
+// elevation 90 looks down along it. kPlusY gives ViewFrame(view) exactly.
+// Throws std::invalid_argument for kAuto.
+void ViewFrame(const ViewAngles& view, UpAxis up_axis, Eigen::Vector3d* right,
+               Eigen::Vector3d* up, Eigen::Vector3d* forward);
+
 // Axis-aligned bounding box of all vertices of all frames. Throws InputError
 // if there are no vertices or a coordinate is not finite.
 void BoundingBox(const std::vector<Positions>& frames, Eigen::Vector3d* lower,
@@ -67,10 +77,12 @@ Camera FrameBox(const Eigen::Vector3d& lower, const Eigen::Vector3d& upper,
 //               (1 - 2 margin) height / (hi_y - lo_y))
 // (zero ranges as in FrameBox), so the projected vertices touch the margins
 // on at least one side. One camera for all frames: motion stays visible.
-// Throws InputError as BoundingBox does.
+// The camera frame is ViewFrame(view, up_axis) with up_axis resolved by
+// ResolveUpAxis(up_axis, frames[0]) (kAuto: from the first frame). Throws
+// InputError as BoundingBox does.
 Camera FrameVertices(const std::vector<Positions>& frames,
                      const ViewAngles& view, int width, int height,
-                     double margin);
+                     double margin, UpAxis up_axis = UpAxis::kPlusY);
 
 }  // namespace shellspace
 

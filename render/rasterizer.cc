@@ -57,8 +57,15 @@ bool FrameBuffer::covered(int x, int y) const {
 
 void RasterizeMesh(const Positions& positions, const Faces& faces,
                    const Camera& camera, Shading shading,
-                   const Lighting& lighting, FrameBuffer* target) {
+                   const Lighting& lighting, FrameBuffer* target,
+                   const std::vector<Eigen::Vector3d>* vertex_colors) {
   CheckFaces(faces, static_cast<int>(positions.rows()));
+  if (vertex_colors &&
+      vertex_colors->size() != static_cast<size_t>(positions.rows())) {
+    throw InputError("vertex colours: " +
+                     std::to_string(vertex_colors->size()) + " for " +
+                     std::to_string(positions.rows()) + " vertices");
+  }
   const Eigen::Vector3d light =
       (lighting.light_in_camera.x() * camera.right +
        lighting.light_in_camera.y() * camera.up -
@@ -124,7 +131,13 @@ void RasterizeMesh(const Positions& positions, const Faces& faces,
         if (!(z < target->depth[index])) continue;
         target->depth[index] = z;
         const double s = w0 * shade[0] + w1 * shade[1] + w2 * shade[2];
-        target->color[index] = s * base;
+        if (vertex_colors) {
+          target->color[index] = s * (w0 * (*vertex_colors)[faces(f, 0)] +
+                                      w1 * (*vertex_colors)[faces(f, 1)] +
+                                      w2 * (*vertex_colors)[faces(f, 2)]);
+        } else {
+          target->color[index] = s * base;
+        }
       }
     }
   }

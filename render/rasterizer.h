@@ -29,11 +29,16 @@ struct FrameBuffer {
 // and the depth interpolated there is smaller than the stored depth (ties keep
 // the earlier triangle, so the result depends only on the input). Triangles
 // that project to zero area (seen edge-on) are skipped. Colours follow
-// `lighting` and `shading` (shading.h). Throws InputError if a face refers to
-// a vertex outside [0, positions.rows()).
+// `lighting` and `shading` (shading.h). With `vertex_colors` (one RGB colour
+// per vertex), a pixel's base colour is the barycentric interpolation of its
+// triangle's vertex colours on both sides, replacing front_color and
+// back_color; the shading multiplies it as before. Throws InputError if a
+// face refers to a vertex outside [0, positions.rows()) or vertex_colors has
+// another size than positions.rows().
 void RasterizeMesh(const Positions& positions, const Faces& faces,
                    const Camera& camera, Shading shading,
-                   const Lighting& lighting, FrameBuffer* target);
+                   const Lighting& lighting, FrameBuffer* target,
+                   const std::vector<Eigen::Vector3d>* vertex_colors = nullptr);
 
 }  // namespace shellspace
 

@@ -11,7 +11,9 @@ namespace shellspace {
 //   c = (cos(elevation) sin(azimuth), sin(elevation), cos(elevation) cos(azimuth))
 // as seen from the object and looks along -c. Azimuth 0, elevation 0 is the
 // front view (camera on +z looking along -z, +x right, +y up); azimuth 90 puts
-// the camera on +x, elevation 90 puts it on +y (looking down).
+// the camera on +x, elevation 90 puts it on +y (looking down). These are the
+// directions for the up axis +y; another up axis (up_axis.h) turns the world
+// first, so that the azimuth turns about that axis (camera.h ViewFrame).
 struct ViewAngles {
   double azimuth = 0;    // degrees, any finite value, about the +y axis
   double elevation = 0;  // degrees, in [-90, 90]

@@ -2,7 +2,8 @@
 // registered in tools/verb_*.cc. Before a verb runs, main checks its flags
 // against the verb's table (tools/verb_flags.h): a flag the verb does not
 // take is rejected (exit 2), the verb's own defaults are applied, and
-// required flags and numeric ranges are checked (exit 1). Input errors are
+// required flags, numeric ranges and the values of string flags with a check
+// are checked (exit 1). Input errors are
 // printed as one line and exit with 1.
 #include <gflags/gflags.h>
 #include <glog/logging.h>
@@ -145,6 +146,13 @@ void ApplyDefaultsAndValidate(const Verb& verb) {
     }
     if (spec.required && info.current_value.empty()) {
       throw InputError("--" + spec.name + " is required");
+    }
+    if (spec.check) {
+      try {
+        spec.check(info.current_value);
+      } catch (const InputError& error) {
+        throw InputError("--" + spec.name + ": " + error.what());
+      }
     }
     if (spec.valid && !(info.is_default && !spec.shown_default.empty())) {
       char* end = nullptr;

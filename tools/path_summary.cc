@@ -7,6 +7,7 @@
 #include "shellspace/io/png_writer.h"
 #include "shellspace/render/film_strip.h"
 #include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/film_strip_flags.h"
 #include "shellspace/tools/shell_inputs.h"
 
 namespace shellspace {
@@ -54,7 +55,7 @@ void CheckShoot(const ShootResult& result, RunStatus* status) {
 
 void WritePathOutputs(RunDirectory* out, const Faces& faces,
                       const ShellPath& path) {
-  RenderOptions options;
+  const RenderOptions options = FilmStripOptionsFromFlags();
   if (!FLAGS_png.empty()) ValidateRenderOptions(options);
   // The film strip and the .glb are files outside the directory: they are
   // renamed into place with it at Commit (or not at all).

@@ -308,7 +308,7 @@ int RunSimulate() {
       static_cast<int>(std::lround(width_px * s.height / s.length)), 200, 1600);
   RunDirectory output(dir);
   WriteFileAtomically(output.File("uy.png"),
-                      EncodePng(RenderSlope(result.field, width_px, height_px)));
+                      EncodePng(SlopeFigure(result.field, width_px, height_px)));
   WriteFileAtomically(output.File("u.csv"), FieldCsv(result.field));
   WriteFileAtomically(output.File("interfaces.csv"),
                       InterfaceCsv(result.field, result.interfaces));
@@ -408,7 +408,7 @@ int RunGeneral(double epsilon, const std::string& dir) {
   RunDirectory output(dir);
   WriteFileAtomically(
       output.File("pattern.png"),
-      EncodePng(RenderConstruction(c, height, width_px, height_px)));
+      EncodePng(ConstructionFigure(c, height, width_px, height_px)));
   WriteFileAtomically(output.File("pattern.txt"), DescribeGeneral(best));
   const std::string text = output.Commit(summary);
   if (FLAGS_json) {
@@ -463,7 +463,7 @@ int RunConstruct() {
   const int height_px = std::clamp(
       static_cast<int>(std::lround(width_px * height / FLAGS_length)), 100,
       1800);
-  const RgbImage image = RenderConstruction(
+  const RgbImage image = ConstructionFigure(
       result.ToConstruction(FLAGS_length), height, width_px, height_px);
   RunDirectory output(dir);
   WriteFileAtomically(output.File("pattern.png"), EncodePng(image));

@@ -10,6 +10,7 @@
 #include "shellspace/problems/calculus/exponential_map.h"
 #include "shellspace/problems/calculus/parallel_transport.h"
 #include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/film_strip_flags.h"
 #include "shellspace/tools/geodesic_solve.h"
 #include "shellspace/tools/memory_limits.h"
 #include "shellspace/tools/path_summary.h"
@@ -64,7 +65,7 @@ FlagTable ShootFlags() {
            AllowUnsolvedFlag(),
            GltfFlag(),
        },
-       MaterialFlags(), SolverFlags(), JsonFlag()});
+       MaterialFlags(), SolverFlags(), JsonFlag(), FilmStripFlags()});
 }
 
 FlagTable LogFlags() {
@@ -102,7 +103,7 @@ FlagTable TransportFlags() {
            AllowUnsolvedFlag(),
            GltfFlag(),
        },
-       MaterialFlags(), SolverFlags(), JsonFlag()});
+       MaterialFlags(), SolverFlags(), JsonFlag(), FilmStripFlags()});
 }
 
 int RunShoot() {

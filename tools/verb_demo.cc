@@ -16,6 +16,7 @@
 #include "shellspace/problems/calculus/exponential_map.h"
 #include "shellspace/render/film_strip.h"
 #include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/film_strip_flags.h"
 #include "shellspace/tools/memory_limits.h"
 #include "shellspace/tools/path_summary.h"
 #include "shellspace/tools/run_status.h"
@@ -42,7 +43,7 @@ FlagTable DemoFlags() {
                                 0),
                     GltfFlag(),
                 },
-                MaterialFlags(), SolverFlags()});
+                MaterialFlags(), SolverFlags(), FilmStripFlags()});
 }
 
 int RunDemo() {
@@ -95,7 +96,7 @@ int RunDemo() {
     output.Outside().Add(FLAGS_gltf,
                          EncodeGltfMorphAnimation(frames, finger.faces));
   }
-  RenderOptions options;
+  RenderOptions options = FilmStripOptionsFromFlags();
   options.view = ParseView("front");  // the bend lies in the x-y plane
   options.max_per_row = 7;
   WriteFilmStrip(frames, finger.faces, options, output.File("film_strip.png"));

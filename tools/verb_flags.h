@@ -13,6 +13,7 @@
 #include <initializer_list>
 #include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace shellspace {
@@ -25,6 +26,10 @@ struct FlagSpec {
   std::function<bool(double)> valid;
   std::string verb_default;  // this verb's default; "" keeps the gflags one
   bool required = false;     // a string flag that must be non-empty
+  // String flags: throws InputError with a one-line message (without the
+  // flag's name) if the value is not valid; main runs it on the flag's value
+  // before the verb runs, so a bad value fails before any work.
+  std::function<void(const std::string&)> check;
 
   FlagSpec& Required() {
     required = true;
@@ -35,10 +40,14 @@ struct FlagSpec {
     return *this;
   }
   // What --help prints as the default, for a flag whose gflags default is a
-  // "not given" sentinel (e.g. --eta: NaN, "relative_eta x area").
+  // "not given" sentinel (e.g. --eta: -1, "relative_eta x area").
   std::string shown_default;
   FlagSpec& ShownDefault(const std::string& text) {
     shown_default = text;
+    return *this;
+  }
+  FlagSpec& Check(std::function<void(const std::string&)> test) {
+    check = std::move(test);
     return *this;
   }
 };

@@ -7,6 +7,7 @@
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/film_strip_flags.h"
 #include "shellspace/tools/geodesic_solve.h"
 #include "shellspace/tools/memory_limits.h"
 #include "shellspace/tools/path_summary.h"
@@ -38,7 +39,7 @@ FlagTable GeodesicFlags() {
            MultiresFlag(),
            LinearSolverFlag(),
        },
-       MaterialFlags(), SolverFlags(), JsonFlag()});
+       MaterialFlags(), SolverFlags(), JsonFlag(), FilmStripFlags()});
 }
 
 int RunGeodesic() {

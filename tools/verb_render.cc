@@ -11,6 +11,7 @@
 #include "shellspace/io/frame_sequence.h"
 #include "shellspace/render/view.h"
 #include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/film_strip_flags.h"
 #include "shellspace/tools/run_paths.h"
 #include "shellspace/tools/verb.h"
 
@@ -21,12 +22,12 @@ DEFINE_string(shading, "gouraud", "render: flat or gouraud");
 namespace shellspace {
 namespace {
 
-bool IsFrameSide(double value) {
-  return value == 0 || (value >= 1 && value <= 8192 && value == std::floor(value));
+bool IsWholeOrZero(double value, double max) {
+  return value == 0 ||
+         (value >= 1 && value <= max && value == std::floor(value));
 }
 
 FlagTable RenderFlags() {
-  const std::string side = "0 (the default) or a whole number in [1, 8192]";
   return Flags(
       {{
            TextFlag("input",
@@ -34,19 +35,29 @@ FlagTable RenderFlags() {
                     "order) or a comma-separated list of mesh files")
                .Required(),
            TextFlag("output", "the PNG film strip").Required(),
-           CheckedFlag("width", "frame width in pixels (0: 320)", side,
-                       IsFrameSide),
-           CheckedFlag("height", "frame height in pixels (0: 320)", side,
-                       IsFrameSide),
+           CheckedFlag("width",
+                       "width of the whole image in pixels (0: 320 per "
+                       "column); with C columns (up to 6 frames per row) "
+                       "each frame is floor(W / C) wide, the remainder "
+                       "background at the sides",
+                       "0 (the default) or a whole number in [1, 65536]",
+                       [](double v) { return IsWholeOrZero(v, 65536); }),
+           CheckedFlag("height",
+                       "height of each frame's picture in pixels, not "
+                       "counting its label (0: the frame's width)",
+                       "0 (the default) or a whole number in [1, 8192]",
+                       [](double v) { return IsWholeOrZero(v, 8192); }),
            TextFlag("view",
-                    "front (along -z, +y up), back, side (along -x), left, "
-                    "top (along -y), bottom, iso, or AZIMUTH,ELEVATION in "
-                    "degrees (e.g. --view=30,20; azimuth about +y from the "
-                    "front view, elevation towards +y)"),
+                    "front (along -z, +y up, for --up y), back, side "
+                    "(along -x), left, top (along -y), bottom, iso, or "
+                    "AZIMUTH,ELEVATION in degrees (e.g. --view=30,20; "
+                    "azimuth about the up axis from the front view, "
+                    "elevation towards it); other --up values turn the "
+                    "world first (--up z: front looks along +y, x right)"),
            TextFlag("shading", "flat or gouraud"),
            TextFlag("quiet", "no line on stdout"),
        },
-       JsonFlag()});
+       FilmStripFlags(), JsonFlag()});
 }
 
 std::string JsonString(const std::string& text) {
@@ -67,9 +78,9 @@ std::string JsonString(const std::string& text) {
 }
 
 int RunRender() {
-  RenderOptions options;
-  if (FLAGS_width > 0) options.width = static_cast<int>(FLAGS_width);
-  if (FLAGS_height > 0) options.height = static_cast<int>(FLAGS_height);
+  RenderOptions options = FilmStripOptionsFromFlags();
+  options.width = static_cast<int>(FLAGS_width);
+  options.height = static_cast<int>(FLAGS_height);
   try {
     options.view = ParseView(FLAGS_view);
     options.shading = ParseShading(FLAGS_shading);
@@ -86,14 +97,24 @@ int RunRender() {
   WritePng(image, FLAGS_output);
 
   if (FLAGS_json) {
+    const FilmStripLayout layout =
+        LayoutFilmStrip(static_cast<int>(sequence.frames.size()), options);
     std::cout << "{\"output\": " << JsonString(FLAGS_output)
               << ", \"frames\": " << sequence.frames.size()
-              << ", \"frame_width\": " << options.width
-              << ", \"frame_height\": " << options.height
+              << ", \"columns\": " << layout.columns
+              << ", \"rows\": " << layout.rows
+              << ", \"frame_width\": " << layout.frame_width
+              << ", \"frame_height\": " << layout.frame_height
+              << ", \"label_height\": " << layout.label_height
               << ", \"width\": " << image.width
               << ", \"height\": " << image.height
               << ", \"view\": {\"azimuth\": " << options.view.azimuth
               << ", \"elevation\": " << options.view.elevation << "}"
+              << ", \"up\": "
+              << JsonString(UpAxisName(
+                     ResolveUpAxis(options.up, sequence.frames[0])))
+              << ", \"color\": " << JsonString(SurfaceColorName(options.color))
+              << ", \"labels\": " << (options.labels ? "true" : "false")
               << ", \"shading\": " << JsonString(ShadingName(options.shading))
               << ", \"inputs\": [";
     for (size_t k = 0; k < sequence.paths.size(); ++k) {
@@ -113,7 +134,7 @@ int RunRender() {
 SHELLSPACE_REGISTER_VERB(
     "render",
     "render --input DIR|a.ply,b.ply --output strip.png [--width W --height H "
-    "--view V]",
+    "--view V --up auto|x|y|z|-x|-y|-z --labels=false --color displacement]",
     RenderFlags(), RunRender);
 
 }  // namespace shellspace

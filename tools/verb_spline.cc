@@ -9,6 +9,7 @@
 #include "shellspace/problems/splines/ltheta_spline.h"
 #include "shellspace/problems/splines/spline.h"
 #include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/film_strip_flags.h"
 #include "shellspace/tools/memory_limits.h"
 #include "shellspace/tools/path_summary.h"
 #include "shellspace/tools/run_paths.h"
@@ -61,7 +62,8 @@ FlagTable SplineFlags() {
                              "result for the report (one midpoint solve per "
                              "step; --energy=false skips it)"),
                 },
-                PathFlags(), MaterialFlags(), SolverFlags(), JsonFlag()});
+                PathFlags(), MaterialFlags(), SolverFlags(), JsonFlag(),
+                FilmStripFlags()});
 }
 
 FlagTable RegressFlags() {
@@ -73,7 +75,8 @@ FlagTable RegressFlags() {
            RealFlag("sigma", "weight of the spline energy F_K", 0,
                     End::kClosed),
        },
-       PathFlags(), MaterialFlags(), SolverFlags(), JsonFlag()});
+       PathFlags(), MaterialFlags(), SolverFlags(), JsonFlag(),
+                FilmStripFlags()});
 }
 
 double Seconds(std::chrono::steady_clock::time_point since) {

@@ -20,6 +20,7 @@
 #include "shellspace/problems/statistics/shell_pca.h"
 #include "shellspace/render/film_strip.h"
 #include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/film_strip_flags.h"
 #include "shellspace/io/json_writer.h"
 #include "shellspace/reports/shape_reports.h"
 #include "shellspace/tools/run_status.h"
@@ -98,7 +99,7 @@ FlagTable PcaFlags() {
                     "only checks it (no iterations if it meets the "
                     "tolerance)"),
        },
-       MaterialFlags(), SolverFlags(), JsonFlag()});
+       MaterialFlags(), SolverFlags(), JsonFlag(), FilmStripFlags()});
 }
 
 // Loads --inputs (at least `minimum` shells with one connectivity).
@@ -379,7 +380,7 @@ int RunPca() {
   }
   WriteFileAtomically(output.File("pca.json"), json.str() + "\n");
   if (!FLAGS_png.empty()) {
-    RenderOptions render;
+    const RenderOptions render = FilmStripOptionsFromFlags();
     output.Outside().Add(
         FLAGS_png,
         EncodePng(RenderFilmStrip(strip, inputs.first.mesh.faces, render)));

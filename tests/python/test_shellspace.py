@@ -477,6 +477,27 @@ def test_gltf_of_a_path_is_the_clis_export(tmp_path):
     assert not (tmp_path / "none").exists()
 
 
+def test_film_strip_is_the_clis_render(tmp_path):
+    V, F = mesh(DOUBLE)
+    W, _ = mesh(DOUBLE_BENT)
+    frames, _ = shellspace.geodesic(V, W, F, steps=3, quiet=True,
+                                    output=str(tmp_path / "frames"))
+    shellspace.write_film_strip(str(tmp_path / "py.png"), frames, F,
+                                width=400, up="z", color="displacement")
+    subprocess.run([CLI, "render", "--input", str(tmp_path / "frames"),
+                    "--output", str(tmp_path / "cli.png"), "--width", "400",
+                    "--up", "z", "--color", "displacement", "--quiet"],
+                   check=True)
+    py = (tmp_path / "py.png").read_bytes()
+    assert py[1:4] == b"PNG" and py == (tmp_path / "cli.png").read_bytes()
+    # IHDR: the whole image is 400 pixels wide.
+    assert int.from_bytes(py[16:20], "big") == 400
+    with pytest.raises(ValueError, match="bad up axis"):
+        shellspace.write_film_strip(str(tmp_path / "x.png"), frames, F,
+                                    up="sideways")
+    assert not (tmp_path / "x.png").exists()
+
+
 def test_compare_matches_cli_for_meshes_and_paths(tmp_path):
     V, F = mesh(DOUBLE)
     W, _ = mesh(DOUBLE_BENT)

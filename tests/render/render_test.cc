@@ -72,11 +72,17 @@ Mesh UvSphere(int rings, int segments, double radius) {
   return mesh;
 }
 
+// The options of the tests below: an image `width` pixels wide in total,
+// frames `height` high, +y up and no labels (the pictures of the camera
+// itself; labels, the up axis and the colour map are tested in
+// readable_strip_test.cc).
 RenderOptions Options(int width, int height, int supersample = 1) {
   RenderOptions options;
   options.width = width;
   options.height = height;
   options.supersample = supersample;
+  options.up = UpAxis::kPlusY;
+  options.labels = false;
   return options;
 }
 
@@ -387,7 +393,7 @@ TEST(RenderTest, GouraudIsSmootherThanFlat) {
 TEST(FilmStripTest, TwoPosesGiveDifferentFrames) {
   const Mesh straight = LoadData("finger/finger0.ply");
   const Mesh bent = LoadData("finger/finger1.ply");
-  const RenderOptions options = Options(160, 160, 2);
+  const RenderOptions options = Options(3 * 160, 160, 2);
   const RgbImage image =
       RenderFilmStrip({straight.positions, bent.positions, straight.positions},
                       straight.faces, options);
@@ -413,7 +419,7 @@ TEST(FilmStripTest, CameraIsFixedAcrossFrames) {
   const Mesh square = Square();
   Positions moved = square.positions;
   moved.col(0).array() += 2;
-  const RenderOptions options = Options(120, 120);
+  const RenderOptions options = Options(2 * 120, 120);
   const RgbImage image =
       RenderFilmStrip({square.positions, moved}, square.faces, options);
   const Eigen::Vector2d c0 = CoveredCentroid(image, options, 0, 120);
@@ -429,13 +435,14 @@ TEST(FilmStripTest, CameraIsFixedAcrossFrames) {
 
 TEST(FilmStripTest, LayoutWrapsIntoRows) {
   const Mesh square = Square();
-  const RenderOptions options = Options(40, 30);
+  RenderOptions options = Options(3 * 40, 30);
   RgbImage image =
       RenderFilmStrip({square.positions, square.positions, square.positions},
                       square.faces, options);
   EXPECT_EQ(image.width, 3 * 40);
   EXPECT_EQ(image.height, 30);
   const std::vector<Positions> eight(8, square.positions);
+  options = Options(6 * 40, 30);  // 6 columns of the 8 frames
   image = RenderFilmStrip(eight, square.faces, options);
   EXPECT_EQ(image.width, 6 * 40);
   EXPECT_EQ(image.height, 2 * 30);
@@ -473,11 +480,15 @@ TEST(FilmStripTest, RejectsBadInput) {
   Positions nan = square.positions;
   nan(0, 0) = std::nan("");
   EXPECT_THROW(RenderFilmStrip({nan}, square.faces, options), InputError);
-  for (auto [w, h] : {std::pair{0, 10}, {10, -1}, {100000, 10}}) {
+  for (auto [w, h] : {std::pair{-1, 10}, {10, -1}, {100000, 10}, {10, 9000}}) {
     options = Options(w, h);
     EXPECT_THROW(RenderFilmStrip({square.positions}, square.faces, options),
                  InputError);
   }
+  // Fewer pixels than columns.
+  EXPECT_THROW(RenderFilmStrip({square.positions, square.positions},
+                               square.faces, Options(1, 10)),
+               InputError);
   const Mesh other = UvSphere(4, 4, 1);
   EXPECT_THROW(
       WriteFilmStrip({square, other}, Options(10, 10), TempDir() + "/x.png"),
@@ -535,13 +546,17 @@ TEST(RenderCliTest, WritesAStrip) {
   std::string stdout_text, stderr_text;
   ASSERT_EQ(RunCli("render --input " + DataPath("finger/finger0.ply") + "," +
                        DataPath("finger/finger1.ply") + " --output " + out +
-                       " --width 96 --height 64 --view iso --json",
+                       " --width 192 --height 64 --view iso --json",
                    &stdout_text, &stderr_text),
             0)
       << stderr_text;
-  EXPECT_EQ(PngSize(out), std::make_pair(2 * 96, 64));
+  // --width is the whole image: two frames of 96 pixels, each 64 high plus
+  // a label strip of 12 rows (text scale 1 for 96-pixel frames).
+  EXPECT_EQ(PngSize(out), std::make_pair(2 * 96, 64 + 12));
   EXPECT_NE(stdout_text.find("\"frames\": 2"), std::string::npos)
       << stdout_text;
+  EXPECT_EQ(testing::Number(stdout_text, "frame_width"), 96);
+  EXPECT_EQ(testing::Number(stdout_text, "label_height"), 12);
 }
 
 TEST(RenderCliTest, DirectoryInputUsesDefaultSize) {
@@ -552,7 +567,8 @@ TEST(RenderCliTest, DirectoryInputUsesDefaultSize) {
                    nullptr, &err),
             0)
       << err;
-  EXPECT_EQ(PngSize(out), std::make_pair(4 * 320, 320));
+  // 320 pixels per column by default, square frames, labels at text scale 2.
+  EXPECT_EQ(PngSize(out), std::make_pair(4 * 320, 320 + 24));
 }
 
 TEST(RenderCliTest, ErrorsExitOneWithoutOutput) {

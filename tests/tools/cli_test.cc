@@ -296,11 +296,14 @@ TEST(CliTest, RenderWritesTheStripItReports) {
   const std::string dir = TempDir();
   const std::string out = dir + "/strip.png";
   const std::string json = RunOk("render --json --input " + kSquare + "," +
-                                 kBent + " --output " + out + " --width 40");
+                                 kBent + " --output " + out + " --width 80");
+  // --width is the whole image; frames are square unless --height, with a
+  // label strip of 12 rows under them.
   EXPECT_EQ(Number(json, "frames"), 2);
   EXPECT_EQ(Number(json, "frame_width"), 40);
-  EXPECT_EQ(Number(json, "frame_height"), 320);
+  EXPECT_EQ(Number(json, "frame_height"), 40);
   EXPECT_EQ(Number(json, "width"), 80);
+  EXPECT_EQ(Number(json, "height"), 40 + 12);
   const std::string png = Slurp(out);
   ASSERT_GT(png.size(), 24u);
   EXPECT_EQ(png.substr(1, 3), "PNG");
@@ -422,7 +425,10 @@ TEST(CliTest, HelpListsOnlyTheVerbsFlags) {
                                           "linear_solver",
                                           "time_limit",
                                           "minloglevel",
-                                          "allow_unconverged"};
+                                          "allow_unconverged",
+                                          "up",
+                                          "labels",
+                                          "color"};
   EXPECT_EQ(geodesic, expected) << text;
   // Default and valid range of a numeric flag.
   EXPECT_NE(text.find("default: 8; valid: an integer in [1, 100000]"),

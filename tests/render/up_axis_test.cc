@@ -1,0 +1,130 @@
+// Tests of the up axis (render/up_axis.h): parsing, the rotation that takes
+// each axis to +y, the camera frame it gives (camera.h ViewFrame) and the
+// automatic choice from the vertices.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <stdexcept>
+
+#include "shellspace/geometry/mesh.h"
+#include "shellspace/render/camera.h"
+#include "shellspace/render/up_axis.h"
+#include "shellspace/render/view.h"
+#include "shellspace/tests/testing/test_support.h"
+
+namespace shellspace {
+namespace {
+
+using ::shellspace::testing::LoadData;
+
+// The closed box [0, a] x [0, b] x [0, c], 8 vertices, 12 outward triangles.
+Mesh Box(double a, double b, double c) {
+  Mesh mesh;
+  mesh.positions.resize(8, 3);
+  for (int i = 0; i < 8; ++i) {
+    mesh.positions.row(i) << (i & 1 ? a : 0), (i & 2 ? b : 0), (i & 4 ? c : 0);
+  }
+  mesh.faces.resize(12, 3);
+  mesh.faces << 0, 2, 1, 1, 2, 3,  // z = 0
+      4, 5, 6, 5, 7, 6,            // z = c
+      0, 1, 4, 1, 5, 4,            // y = 0
+      2, 6, 3, 3, 6, 7,            // y = b
+      0, 4, 2, 2, 4, 6,            // x = 0
+      1, 3, 5, 3, 7, 5;            // x = a
+  return mesh;
+}
+
+
+// The square [-1, 1]^2 x {0}, two triangles, outward normal +z.
+Mesh Square() {
+  Mesh mesh;
+  mesh.positions.resize(4, 3);
+  mesh.positions << -1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0;
+  mesh.faces.resize(2, 3);
+  mesh.faces << 0, 1, 2, 0, 2, 3;
+  return mesh;
+}
+
+TEST(UpAxisTest, ParsesTheSignedAxesAndAuto) {
+  EXPECT_EQ(ParseUpAxis("auto"), UpAxis::kAuto);
+  EXPECT_EQ(ParseUpAxis("x"), UpAxis::kPlusX);
+  EXPECT_EQ(ParseUpAxis("+Y"), UpAxis::kPlusY);
+  EXPECT_EQ(ParseUpAxis(" -z "), UpAxis::kMinusZ);
+  EXPECT_EQ(ParseUpAxis("-x"), UpAxis::kMinusX);
+  for (UpAxis axis : {UpAxis::kAuto, UpAxis::kPlusX, UpAxis::kMinusX,
+                      UpAxis::kPlusY, UpAxis::kMinusY, UpAxis::kPlusZ,
+                      UpAxis::kMinusZ}) {
+    EXPECT_EQ(ParseUpAxis(UpAxisName(axis)), axis) << UpAxisName(axis);
+  }
+  for (const char* bad : {"", "w", "xy", "--x", "up", "+-y", "1"}) {
+    EXPECT_THROW(ParseUpAxis(bad), InputError) << bad;
+  }
+}
+
+TEST(UpAxisTest, RotationTakesTheAxisToPlusY) {
+  for (UpAxis axis : {UpAxis::kPlusX, UpAxis::kMinusX, UpAxis::kPlusY,
+                      UpAxis::kMinusY, UpAxis::kPlusZ, UpAxis::kMinusZ}) {
+    const Eigen::Matrix3d r = UpRotation(axis);
+    EXPECT_TRUE((r * UpDirection(axis)).isApprox(Eigen::Vector3d::UnitY()))
+        << UpAxisName(axis);
+    EXPECT_DOUBLE_EQ(r.determinant(), 1) << UpAxisName(axis);
+    EXPECT_TRUE((r * r.transpose()).isIdentity(0)) << UpAxisName(axis);
+  }
+  EXPECT_TRUE(UpRotation(UpAxis::kPlusY).isIdentity(0));
+  // +x and -x keep +z towards a front viewer.
+  EXPECT_EQ(UpRotation(UpAxis::kPlusX) * Eigen::Vector3d::UnitZ(),
+            Eigen::Vector3d::UnitZ());
+  EXPECT_THROW(UpRotation(UpAxis::kAuto), std::invalid_argument);
+}
+
+TEST(UpAxisTest, ViewFrameOfZUpLooksAlongPlusY) {
+  Eigen::Vector3d right, up, forward;
+  ViewFrame(ParseView("front"), UpAxis::kPlusZ, &right, &up, &forward);
+  EXPECT_EQ(forward, Eigen::Vector3d::UnitY());
+  EXPECT_EQ(up, Eigen::Vector3d::UnitZ());
+  EXPECT_EQ(right, Eigen::Vector3d::UnitX());
+  // The azimuth turns about the up axis: side looks along -x.
+  ViewFrame(ParseView("side"), UpAxis::kPlusZ, &right, &up, &forward);
+  EXPECT_TRUE(forward.isApprox(-Eigen::Vector3d::UnitX()));
+  EXPECT_TRUE(up.isApprox(Eigen::Vector3d::UnitZ()));
+  // And kPlusY is the plain view frame, bit for bit.
+  Eigen::Vector3d r0, u0, f0;
+  ViewFrame(ViewAngles{37, -21}, &r0, &u0, &f0);
+  ViewFrame(ViewAngles{37, -21}, UpAxis::kPlusY, &right, &up, &forward);
+  EXPECT_EQ(right, r0);
+  EXPECT_EQ(up, u0);
+  EXPECT_EQ(forward, f0);
+}
+
+TEST(UpAxisTest, AutoPicksTheLongAxisWithItsPlusEndUp) {
+  EXPECT_EQ(AutoUpAxis(Box(1, 1, 5).positions), UpAxis::kPlusZ);
+  EXPECT_EQ(AutoUpAxis(Box(1, 5, 1).positions), UpAxis::kPlusY);
+  EXPECT_EQ(AutoUpAxis(Box(5, 1, 1).positions), UpAxis::kPlusX);
+  // Moved and mirrored, the same axis (the sign is never chosen).
+  Positions mirrored = Box(1, 1, 5).positions;
+  mirrored.col(2) = -mirrored.col(2).array() - 100;
+  EXPECT_EQ(AutoUpAxis(mirrored), UpAxis::kPlusZ);
+  // No clear long axis: +y.
+  EXPECT_EQ(AutoUpAxis(Box(1, 1, 1).positions), UpAxis::kPlusY);
+  EXPECT_EQ(AutoUpAxis(Square().positions), UpAxis::kPlusY);
+  EXPECT_EQ(AutoUpAxis(Box(3, 3, 1).positions), UpAxis::kPlusY);
+  EXPECT_EQ(AutoUpAxis(Positions(0, 3)), UpAxis::kPlusY);
+  // A tilted long axis snaps to its nearest coordinate axis.
+  Positions tilted(2, 3);
+  tilted << 0, 0, 0, 0.3, 1, -0.2;
+  EXPECT_EQ(AutoUpAxis(tilted), UpAxis::kPlusY);
+  // The shared meshes: the cactus stands along z, the faces lie along x,
+  // the finger along x.
+  EXPECT_EQ(AutoUpAxis(LoadData("cactus/cactus0.ply").positions),
+            UpAxis::kPlusZ);
+  EXPECT_EQ(AutoUpAxis(LoadData("faces/neutral.ply").positions),
+            UpAxis::kPlusX);
+  EXPECT_EQ(AutoUpAxis(LoadData("finger/finger0.ply").positions),
+            UpAxis::kPlusX);
+  Positions bad = Box(1, 1, 5).positions;
+  bad(3, 1) = std::nan("");
+  EXPECT_THROW(AutoUpAxis(bad), InputError);
+}
+
+}  // namespace
+}  // namespace shellspace
