@@ -81,11 +81,11 @@ Camera FrameBox(const Eigen::Vector3d& lower, const Eigen::Vector3d& upper,
 
 Camera FrameVertices(const std::vector<Positions>& frames,
                      const ViewAngles& view, int width, int height,
-                     double margin, UpAxis up_axis) {
+                     double margin, UpAxis up_axis, const Faces* faces) {
   Eigen::Vector3d lower, upper;
   BoundingBox(frames, &lower, &upper);  // validates
   Camera camera;
-  ViewFrame(view, ResolveUpAxis(up_axis, frames[0]), &camera.right,
+  ViewFrame(view, ResolveUpAxis(up_axis, frames[0], faces), &camera.right,
             &camera.up, &camera.forward);
   camera.width = width;
   camera.height = height;

@@ -78,11 +78,12 @@ Camera FrameBox(const Eigen::Vector3d& lower, const Eigen::Vector3d& upper,
 // (zero ranges as in FrameBox), so the projected vertices touch the margins
 // on at least one side. One camera for all frames: motion stays visible.
 // The camera frame is ViewFrame(view, up_axis) with up_axis resolved by
-// ResolveUpAxis(up_axis, frames[0]) (kAuto: from the first frame). Throws
-// InputError as BoundingBox does.
+// ResolveUpAxis(up_axis, frames[0], faces) (kAuto: from the first frame and,
+// if given, the faces' boundary). Throws InputError as BoundingBox does.
 Camera FrameVertices(const std::vector<Positions>& frames,
                      const ViewAngles& view, int width, int height,
-                     double margin, UpAxis up_axis = UpAxis::kPlusY);
+                     double margin, UpAxis up_axis = UpAxis::kPlusY,
+                     const Faces* faces = nullptr);
 
 }  // namespace shellspace
 

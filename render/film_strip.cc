@@ -224,7 +224,7 @@ RgbImage RenderFilmStrip(const std::vector<Positions>& frames,
   const int factor = options.supersample;
   const Camera camera = FrameVertices(
       frames, options.view, layout.frame_width * factor,
-      layout.frame_height * factor, options.margin, options.up);
+      layout.frame_height * factor, options.margin, options.up, &faces);
 
   RgbImage image(layout.width, layout.height);
   const Eigen::Vector3d& background = options.lighting.background;

@@ -49,7 +49,8 @@ struct RenderOptions {
   int height = 0;
   ViewAngles view;  // front view by default (see view.h)
   // Which world axis points up on screen before the view angles apply
-  // (up_axis.h; camera.h ViewFrame); kAuto: AutoUpAxis of the first frame.
+  // (up_axis.h; camera.h ViewFrame); kAuto: AutoUpAxis of the first frame
+  // and the faces (an open surface stands on its boundary).
   UpAxis up = UpAxis::kAuto;
   Shading shading = Shading::kGouraud;
   SurfaceColor color = SurfaceColor::kPlain;

@@ -1,5 +1,10 @@
 #include "shellspace/render/up_axis.h"
 
+#include <algorithm>
+#include <map>
+#include <set>
+#include <utility>
+
 #include <cctype>
 #include <cmath>
 #include <stdexcept>
@@ -38,7 +43,40 @@ std::string UpAxisName(UpAxis axis) {
   return "auto";
 }
 
-UpAxis AutoUpAxis(const Positions& vertices) {
+namespace {
+
+// +1, or -1 if the boundary of the surface (edges of one face) lies on the
+// positive side of the vertices along `axis` (see AutoUpAxis).
+int SignAwayFromBoundary(const Positions& vertices, const Faces& faces,
+                         int axis) {
+  std::map<std::pair<int, int>, int> edge_faces;
+  for (int f = 0; f < faces.rows(); ++f) {
+    for (int i = 0; i < 3; ++i) {
+      const int a = faces(f, i), b = faces(f, (i + 1) % 3);
+      ++edge_faces[{std::min(a, b), std::max(a, b)}];
+    }
+  }
+  std::set<int> boundary;
+  for (const auto& [edge, count] : edge_faces) {
+    if (count == 1) boundary.insert({edge.first, edge.second});
+  }
+  const int n = static_cast<int>(vertices.rows());
+  if (boundary.empty()) return 1;
+  double boundary_mean = 0;
+  for (int v : boundary) {
+    if (v < 0 || v >= n) return 1;  // invalid faces: the renderer reports it
+    boundary_mean += vertices(v, axis);
+  }
+  boundary_mean /= boundary.size();
+  const double mean = vertices.col(axis).mean();
+  const double extent =
+      vertices.col(axis).maxCoeff() - vertices.col(axis).minCoeff();
+  return boundary_mean > mean + 1e-3 * extent ? -1 : 1;
+}
+
+}  // namespace
+
+UpAxis AutoUpAxis(const Positions& vertices, const Faces* faces) {
   if (!vertices.allFinite()) {
     throw InputError("frame 0 has a non-finite vertex coordinate");
   }
@@ -59,12 +97,16 @@ UpAxis AutoUpAxis(const Positions& vertices) {
   for (int k = 1; k < 3; ++k) {
     if (e(order[k]) > e(best) + 1e-9) best = order[k];
   }
-  return best == 0 ? UpAxis::kPlusX
-                   : best == 1 ? UpAxis::kPlusY : UpAxis::kPlusZ;
+  const bool down = faces && SignAwayFromBoundary(vertices, *faces, best) < 0;
+  if (best == 0) return down ? UpAxis::kMinusX : UpAxis::kPlusX;
+  if (best == 1) return down ? UpAxis::kMinusY : UpAxis::kPlusY;
+  return down ? UpAxis::kMinusZ : UpAxis::kPlusZ;
 }
 
-UpAxis ResolveUpAxis(UpAxis requested, const Positions& first_frame) {
-  return requested == UpAxis::kAuto ? AutoUpAxis(first_frame) : requested;
+UpAxis ResolveUpAxis(UpAxis requested, const Positions& first_frame,
+                     const Faces* faces) {
+  return requested == UpAxis::kAuto ? AutoUpAxis(first_frame, faces)
+                                    : requested;
 }
 
 Eigen::Vector3d UpDirection(UpAxis axis) {

@@ -26,18 +26,23 @@ std::string UpAxisName(UpAxis axis);
 // axis closest to the principal axis of largest extent, i.e. the
 // eigenvector e of the largest eigenvalue of the vertex covariance
 //   C = (1/n) sum_i (p_i - mean)(p_i - mean)^T
-// snapped to the coordinate axis of its largest |component|, always with the
-// positive sign (+x, +y or +z: the positive end of the long axis is up; pass
-// the negative axis explicitly to flip the picture). No clear long axis,
+// snapped to the coordinate axis of its largest |component|. Its sign: with
+// `faces` given and the surface open, the end away from the boundary is up
+// (scans and cut-outs are open where they were cut off the rest: the neck
+// of a face, the stem of a plant), i.e. the negative axis if the mean
+// boundary vertex lies more than 0.1 % of the axis' extent above the mean
+// vertex; otherwise (closed, no faces, or no clear side) the positive end
+// is up. Pass the axis explicitly to override. No clear long axis,
 // i.e. the two largest eigenvalues within 0.1 % of each other (a sphere, a
 // square plate) or fewer than two distinct vertices, gives +y, the default
 // of a fixed up axis. Ties between components (within 1e-9) prefer y, then
 // z, then x. Throws InputError if a coordinate is not finite. Never returns
 // kAuto.
-UpAxis AutoUpAxis(const Positions& vertices);
+UpAxis AutoUpAxis(const Positions& vertices, const Faces* faces = nullptr);
 
-// `requested`, or AutoUpAxis(first_frame) for kAuto.
-UpAxis ResolveUpAxis(UpAxis requested, const Positions& first_frame);
+// `requested`, or AutoUpAxis(first_frame, faces) for kAuto.
+UpAxis ResolveUpAxis(UpAxis requested, const Positions& first_frame,
+                     const Faces* faces = nullptr);
 
 // The unit world vector of a signed axis. Throws std::invalid_argument for
 // kAuto.

@@ -112,7 +112,7 @@ int RunRender() {
               << ", \"elevation\": " << options.view.elevation << "}"
               << ", \"up\": "
               << JsonString(UpAxisName(
-                     ResolveUpAxis(options.up, sequence.frames[0])))
+                     ResolveUpAxis(options.up, sequence.frames[0], &sequence.faces)))
               << ", \"color\": " << JsonString(SurfaceColorName(options.color))
               << ", \"labels\": " << (options.labels ? "true" : "false")
               << ", \"shading\": " << JsonString(ShadingName(options.shading))

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/render/camera.h"
@@ -100,7 +101,8 @@ TEST(UpAxisTest, AutoPicksTheLongAxisWithItsPlusEndUp) {
   EXPECT_EQ(AutoUpAxis(Box(1, 1, 5).positions), UpAxis::kPlusZ);
   EXPECT_EQ(AutoUpAxis(Box(1, 5, 1).positions), UpAxis::kPlusY);
   EXPECT_EQ(AutoUpAxis(Box(5, 1, 1).positions), UpAxis::kPlusX);
-  // Moved and mirrored, the same axis (the sign is never chosen).
+  // Moved and mirrored, the same axis (without faces the sign is never
+  // chosen).
   Positions mirrored = Box(1, 1, 5).positions;
   mirrored.col(2) = -mirrored.col(2).array() - 100;
   EXPECT_EQ(AutoUpAxis(mirrored), UpAxis::kPlusZ);
@@ -124,6 +126,61 @@ TEST(UpAxisTest, AutoPicksTheLongAxisWithItsPlusEndUp) {
   Positions bad = Box(1, 1, 5).positions;
   bad(3, 1) = std::nan("");
   EXPECT_THROW(AutoUpAxis(bad), InputError);
+}
+
+// An open surface stands on its boundary: the faces (open at the neck)
+// come out upright, -x, while their vertices alone give +x; the closed
+// cactus keeps +z.
+TEST(UpAxisTest, AutoStandsAnOpenSurfaceOnItsBoundary) {
+  for (const char* pose : {"faces/neutral.ply", "faces/smile.ply",
+                           "faces/disgust.ply", "faces/surprise.ply"}) {
+    const Mesh face = LoadData(pose);
+    EXPECT_EQ(AutoUpAxis(face.positions, &face.faces), UpAxis::kMinusX)
+        << pose;
+    // Mirrored along x, the boundary moves to the other end: +x.
+    Mesh mirrored = face;
+    mirrored.positions.col(0) *= -1;
+    mirrored.faces.col(1).swap(mirrored.faces.col(2));
+    EXPECT_EQ(AutoUpAxis(mirrored.positions, &mirrored.faces),
+              UpAxis::kPlusX)
+        << pose;
+  }
+  const Mesh cactus = LoadData("cactus/cactus0.ply");
+  EXPECT_EQ(AutoUpAxis(cactus.positions, &cactus.faces), UpAxis::kPlusZ);
+  // A tube along z, closed at the top by a fan and open at the bottom:
+  // +z; turned upside down: -z.
+  const int n = 8, rings = 6;
+  Mesh tube;
+  tube.positions.resize(n * rings, 3);
+  for (int r = 0; r < rings; ++r) {
+    for (int i = 0; i < n; ++i) {
+      const double a = 2 * M_PI * i / n;
+      tube.positions.row(r * n + i) << std::cos(a), std::sin(a), 2.0 * r;
+    }
+  }
+  std::vector<Eigen::Vector3i> faces;
+  for (int r = 0; r + 1 < rings; ++r) {
+    for (int i = 0; i < n; ++i) {
+      const int a = r * n + i, b = r * n + (i + 1) % n;
+      faces.emplace_back(a, b, b + n);
+      faces.emplace_back(a, b + n, a + n);
+    }
+  }
+  // Close the top with a fan around an apex: the only boundary is at z = 0.
+  tube.positions.conservativeResize(n * rings + 1, 3);
+  tube.positions.row(n * rings) << 0, 0, 2.0 * rings - 1;
+  for (int i = 0; i < n; ++i) {
+    faces.emplace_back((rings - 1) * n + i, (rings - 1) * n + (i + 1) % n,
+                       n * rings);
+  }
+  tube.faces.resize(static_cast<int>(faces.size()), 3);
+  for (size_t f = 0; f < faces.size(); ++f) {
+    tube.faces.row(static_cast<int>(f)) = faces[f].transpose();
+  }
+  EXPECT_EQ(AutoUpAxis(tube.positions, &tube.faces), UpAxis::kPlusZ);
+  Mesh flipped = tube;
+  flipped.positions.col(2) *= -1;
+  EXPECT_EQ(AutoUpAxis(flipped.positions, &flipped.faces), UpAxis::kMinusZ);
 }
 
 }  // namespace
