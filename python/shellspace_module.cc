@@ -195,16 +195,24 @@ struct ShellPair {
 
 // The material keywords of every verb: mu, lambda_, and eta (absolute) or,
 // when eta is None, relative_eta x the reference's area (the CLI's --eta /
-// --relative_eta, cost_functions/shell/relative_bending_weight.h).
+// --relative_eta, cost_functions/shell/relative_bending_weight.h), and the
+// bending model (the CLI's --bending).
 struct MaterialArgs {
   double mu = 1;
   double lambda = 1;
   std::optional<double> eta;
   double relative_eta = kDefaultRelativeEta;
+  std::string bending = "discrete-shells";  // the CLI's --bending
 };
 
 ShellMaterial Material(const MaterialArgs& args, const Mesh& reference) {
   ShellMaterial material;
+  if (!ParseBendingModel(args.bending, &material.bending_model)) {
+    throw InputError("bending: unknown bending model '" + args.bending +
+                     "' (discrete-shells or shape-operator; the edge-angle "
+                     "variant is evaluated only by the `energy` verb of the "
+                     "CLI)");
+  }
   material.mu = args.mu;
   material.lambda = args.lambda;
   material.eta = args.eta ? *args.eta
@@ -1078,7 +1086,8 @@ void WriteFilmStripPy(const std::string& path, const py::object& frames_object,
 // The keyword arguments shared by the verbs, with the CLI's defaults.
 #define SHELLSPACE_MATERIAL_ARGS \
   py::arg("mu") = 1.0, py::arg("lambda_") = 1.0, py::arg("eta") = py::none(), \
-      py::arg("relative_eta") = kDefaultRelativeEta
+      py::arg("relative_eta") = kDefaultRelativeEta,                          \
+      py::arg("bending") = "discrete-shells"
 #define SHELLSPACE_SOLVER_ARGS                                  \
   py::arg("tolerance") = 1e-8, py::arg("max_iterations") = 200, \
   py::arg("threads") = 2, py::arg("quiet") = false
@@ -1104,9 +1113,9 @@ PYBIND11_MODULE(shellspace, m) {
   m.def("compare",
         [](const py::object& a, const py::object& b, const IndexArray& F,
            double tolerance, double energy_tolerance, double mu,
-           double lambda, std::optional<double> eta, double relative_eta) {
+           double lambda, std::optional<double> eta, double relative_eta, const std::string& bending) {
           return ComparePy(a, b, F, tolerance, energy_tolerance,
-                           MaterialArgs{mu, lambda, eta, relative_eta});
+                           MaterialArgs{mu, lambda, eta, relative_eta, bending});
         },
         py::arg("a"), py::arg("b"), py::arg("F"),
         py::arg("tolerance") = 1e-6, py::arg("energy_tolerance") = 1e-6,
@@ -1134,8 +1143,8 @@ PYBIND11_MODULE(shellspace, m) {
   m.def(
       "energy",
       [](const DoubleArray& reference, const DoubleArray& deformed,
-         const IndexArray& F, double mu, double lambda, std::optional<double> eta, double relative_eta) {
-        return EnergyPy(reference, deformed, F, MaterialArgs{mu, lambda, eta, relative_eta});
+         const IndexArray& F, double mu, double lambda, std::optional<double> eta, double relative_eta, const std::string& bending) {
+        return EnergyPy(reference, deformed, F, MaterialArgs{mu, lambda, eta, relative_eta, bending});
       },
       py::arg("reference"), py::arg("deformed"), py::arg("F"),
       SHELLSPACE_MATERIAL_ARGS,
@@ -1144,9 +1153,9 @@ PYBIND11_MODULE(shellspace, m) {
   m.def("energy_gradient",
         [](const DoubleArray& reference, const DoubleArray& deformed,
            const IndexArray& F, const std::string& side, double mu,
-           double lambda, std::optional<double> eta, double relative_eta) {
+           double lambda, std::optional<double> eta, double relative_eta, const std::string& bending) {
           return GradientPy(reference, deformed, F, side,
-                            MaterialArgs{mu, lambda, eta, relative_eta});
+                            MaterialArgs{mu, lambda, eta, relative_eta, bending});
         },
         py::arg("reference"),
         py::arg("deformed"), py::arg("F"), py::arg("side") = "deformed",
@@ -1157,9 +1166,9 @@ PYBIND11_MODULE(shellspace, m) {
         [](const DoubleArray& reference, const DoubleArray& deformed,
            const IndexArray& F, const std::string& rows,
            const std::string& cols, double mu, double lambda,
-           std::optional<double> eta, double relative_eta) {
+           std::optional<double> eta, double relative_eta, const std::string& bending) {
           return HessianPy(reference, deformed, F, rows, cols,
-                           MaterialArgs{mu, lambda, eta, relative_eta});
+                           MaterialArgs{mu, lambda, eta, relative_eta, bending});
         },
         py::arg("reference"), py::arg("deformed"),
         py::arg("F"), py::arg("rows") = "deformed",
@@ -1177,10 +1186,10 @@ PYBIND11_MODULE(shellspace, m) {
          const std::optional<std::string>& output,
          const std::optional<std::string>& png,
          const std::optional<std::string>& gltf, double mu, double lambda,
-         std::optional<double> eta, double relative_eta, double tolerance, int max_iterations, int threads,
+         std::optional<double> eta, double relative_eta, const std::string& bending, double tolerance, int max_iterations, int threads,
          bool quiet) {
         return GeodesicPy(start, end, F, steps, mask, multires, linear_solver,
-                          report, output, png, gltf, MaterialArgs{mu, lambda, eta, relative_eta},
+                          report, output, png, gltf, MaterialArgs{mu, lambda, eta, relative_eta, bending},
                           {tolerance, max_iterations, threads, quiet});
       },
       py::arg("start"), py::arg("end"), py::arg("F"), py::arg("steps") = 8,
@@ -1199,10 +1208,10 @@ PYBIND11_MODULE(shellspace, m) {
          int steps, const py::object& mask, const std::string& multires,
          const std::string& linear_solver,
          const std::optional<std::string>& output, double mu, double lambda,
-         std::optional<double> eta, double relative_eta, double tolerance, int max_iterations, int threads,
+         std::optional<double> eta, double relative_eta, const std::string& bending, double tolerance, int max_iterations, int threads,
          bool quiet) {
         return LogPy(start, end, F, steps, mask, multires, linear_solver,
-                     output, MaterialArgs{mu, lambda, eta, relative_eta},
+                     output, MaterialArgs{mu, lambda, eta, relative_eta, bending},
                      {tolerance, max_iterations, threads, quiet});
       },
       py::arg("start"), py::arg("end"), py::arg("F"), py::arg("steps") = 8,
@@ -1218,10 +1227,10 @@ PYBIND11_MODULE(shellspace, m) {
          const std::optional<std::string>& output,
          const std::optional<std::string>& png,
          const std::optional<std::string>& gltf, double mu, double lambda,
-         std::optional<double> eta, double relative_eta, double tolerance, int max_iterations, int threads,
+         std::optional<double> eta, double relative_eta, const std::string& bending, double tolerance, int max_iterations, int threads,
          bool quiet) {
         return ShootPy(first, second, F, steps, backward, mask, output, png,
-                       gltf, MaterialArgs{mu, lambda, eta, relative_eta},
+                       gltf, MaterialArgs{mu, lambda, eta, relative_eta, bending},
                        {tolerance, max_iterations, threads, quiet});
       },
       py::arg("first"), py::arg("second"), py::arg("F"), py::arg("steps") = 8,
@@ -1238,10 +1247,10 @@ PYBIND11_MODULE(shellspace, m) {
          const std::optional<std::string>& output,
          const std::optional<std::string>& png,
          const std::optional<std::string>& gltf, double mu, double lambda,
-         std::optional<double> eta, double relative_eta, double tolerance, int max_iterations, int threads,
+         std::optional<double> eta, double relative_eta, const std::string& bending, double tolerance, int max_iterations, int threads,
          bool quiet) {
         return TransportPy(path, variation, F, epsilon, mask, output, png, gltf,
-                           MaterialArgs{mu, lambda, eta, relative_eta},
+                           MaterialArgs{mu, lambda, eta, relative_eta, bending},
                            {tolerance, max_iterations, threads, quiet});
       },
       py::arg("path"), py::arg("variation"), py::arg("F"),
@@ -1258,10 +1267,10 @@ PYBIND11_MODULE(shellspace, m) {
          bool periodic, const std::optional<std::string>& output,
          const std::optional<std::string>& png,
          const std::optional<std::string>& gltf, double mu, double lambda,
-         std::optional<double> eta, double relative_eta, double tolerance, int max_iterations, int threads,
+         std::optional<double> eta, double relative_eta, const std::string& bending, double tolerance, int max_iterations, int threads,
          bool quiet) {
         return SplinePy(keyframes, at, F, steps, method, periodic, output, png,
-                        gltf, MaterialArgs{mu, lambda, eta, relative_eta},
+                        gltf, MaterialArgs{mu, lambda, eta, relative_eta, bending},
                         {tolerance, max_iterations, threads, quiet});
       },
       py::arg("keyframes"), py::arg("at"), py::arg("F"), py::arg("steps") = 8,
@@ -1278,10 +1287,10 @@ PYBIND11_MODULE(shellspace, m) {
          const std::optional<std::string>& output,
          const std::optional<std::string>& png,
          const std::optional<std::string>& gltf, double mu, double lambda,
-         std::optional<double> eta, double relative_eta, double tolerance, int max_iterations, int threads,
+         std::optional<double> eta, double relative_eta, const std::string& bending, double tolerance, int max_iterations, int threads,
          bool quiet) {
         return RegressPy(inputs, at, F, steps, sigma, output, png, gltf, 
-                         MaterialArgs{mu, lambda, eta, relative_eta},
+                         MaterialArgs{mu, lambda, eta, relative_eta, bending},
                          {tolerance, max_iterations, threads, quiet});
       },
       py::arg("inputs"), py::arg("at"), py::arg("F"), py::arg("steps") = 8,
@@ -1297,11 +1306,11 @@ PYBIND11_MODULE(shellspace, m) {
          int exp_steps, int max_exp_steps, const std::string& displacement,
          const std::optional<std::string>& output,
          const std::optional<std::string>& png, double mu, double lambda,
-         std::optional<double> eta, double relative_eta, double tolerance, int max_iterations, int threads,
+         std::optional<double> eta, double relative_eta, const std::string& bending, double tolerance, int max_iterations, int threads,
          bool quiet) {
         return PcaPy(inputs, F, modes, baseline, loo, amplitude, log_steps,
                      exp_steps, max_exp_steps, displacement, output, png, 
-                     MaterialArgs{mu, lambda, eta, relative_eta}, {tolerance, max_iterations, threads, quiet});
+                     MaterialArgs{mu, lambda, eta, relative_eta, bending}, {tolerance, max_iterations, threads, quiet});
       },
       py::arg("inputs"), py::arg("F"), py::arg("modes") = 3,
       py::arg("baseline") = "", py::arg("loo") = false,
@@ -1334,9 +1343,9 @@ PYBIND11_MODULE(shellspace, m) {
       "mean",
       [](const py::object& inputs, const IndexArray& F, bool report,
          const std::optional<std::string>& output, double mu, double lambda,
-         std::optional<double> eta, double relative_eta, double tolerance, int max_iterations, int threads,
+         std::optional<double> eta, double relative_eta, const std::string& bending, double tolerance, int max_iterations, int threads,
          bool quiet) {
-        return MeanPy(inputs, F, report, output, MaterialArgs{mu, lambda, eta, relative_eta},
+        return MeanPy(inputs, F, report, output, MaterialArgs{mu, lambda, eta, relative_eta, bending},
                       {tolerance, max_iterations, threads, quiet});
       },
       py::arg("inputs"), py::arg("F"), py::arg("report") = false,

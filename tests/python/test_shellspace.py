@@ -128,6 +128,23 @@ def test_energy_matches_cli(double_square):
     assert abs(e["total"] - (e["membrane"] + 0.1 * e["bending"])) < 1e-14
 
 
+def test_bending_model_matches_cli(double_square):
+    V, W, F = double_square
+    for model in ("discrete-shells", "shape-operator"):
+        e = shellspace.energy(V, W, F, bending=model)
+        cli = cli_json(["energy", "--reference", DOUBLE, "--deformed",
+                        DOUBLE_BENT, "--bending", model], quiet=False)
+        material = cli.pop("material")
+        assert material["bending_model"] == model
+        assert e == cli
+    # The two models give different W_bend (the parameter reaches the
+    # library), and an unknown model is a Python exception with the message.
+    assert shellspace.energy(V, W, F, bending="shape-operator")["bending"] != \
+        shellspace.energy(V, W, F)["bending"]
+    with pytest.raises(shellspace.InputError, match="unknown bending model"):
+        shellspace.energy(V, W, F, bending="plates")
+
+
 @pytest.mark.parametrize("side", ["deformed", "reference"])
 def test_gradient_against_finite_differences(double_square, side):
     # Derivatives are at a fixed eta: with the default relative eta, moving
