@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "shellspace/cost_functions/shell/deformation_energy.h"
+#include "shellspace/reports/shape_reports.h"
 
 namespace shellspace {
 
@@ -28,12 +29,7 @@ std::string PathEnergySplitJson(const ShellSpace& space,
     membrane += steps * w.membrane;
     bending += steps * (w.total - w.membrane);
   }
-  const double total = membrane + bending;
-  return JsonObject()
-      .Add("membrane", membrane)
-      .Add("bending", bending)
-      .Add("bending_share", total > 0 ? bending / total : 0.0)
-      .str();
+  return EnergySplitJson(membrane, bending);
 }
 
 std::vector<std::string> GeodesicStages(const GeodesicResult& result) {

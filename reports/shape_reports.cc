@@ -30,6 +30,15 @@ JsonObject EdgeAngleBendingJson(const EdgeAngleBending& bending) {
   return json;
 }
 
+std::string EnergySplitJson(double membrane, double bending) {
+  const double total = membrane + bending;
+  return JsonObject()
+      .Add("membrane", membrane)
+      .Add("bending", bending)
+      .Add("bending_share", total > 0 ? bending / total : 0.0)
+      .str();
+}
+
 JsonObject MaterialJson(const ShellMaterial& material, const Mesh& reference,
                         bool eta_absolute) {
   const double area = SurfaceArea(reference);
@@ -53,12 +62,7 @@ std::string MeanEnergySplitJson(const ShellSpace& space,
     membrane += w.membrane;
     bending += w.total - w.membrane;
   }
-  const double total = membrane + bending;
-  return JsonObject()
-      .Add("membrane", membrane)
-      .Add("bending", bending)
-      .Add("bending_share", total > 0 ? bending / total : 0.0)
-      .str();
+  return EnergySplitJson(membrane, bending);
 }
 
 JsonObject MeanJson(const ElasticMeanResult& result, int inputs,

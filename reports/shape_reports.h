@@ -35,6 +35,11 @@ JsonObject EdgeAngleBendingJson(const EdgeAngleBending& bending);
 // lm_iterations, newton_iterations, stages {lm_iterations, newton_steps},
 // newton_fell_back, initial_gradient_norm, final_gradient_norm,
 // relative_gradient_norm, converged.
+// {"membrane", "bending", "bending_share": bending / (membrane + bending),
+// 0 when both are 0}: the split of an energy whose bending part includes
+// eta.
+std::string EnergySplitJson(double membrane, double bending);
+
 // The material of a run as resolved from its options: mu, lambda, eta,
 // relative_eta (eta / area of the reference), eta_from ("absolute" when eta
 // was given, else "relative"), reference_area, bending_model

@@ -10,25 +10,13 @@
 
 #include "shellspace/render/bitmap_font.h"
 #include "shellspace/render/plot_axes.h"
+#include "shellspace/tests/testing/render_fixtures.h"
 
 namespace shellspace {
 namespace {
 
-bool IsColor(const std::uint8_t* p, const std::array<std::uint8_t, 3>& c) {
-  return p[0] == c[0] && p[1] == c[1] && p[2] == c[2];
-}
-
-// Pixels of [left, left + width) x [top, top + height) unlike `color`.
-int CountUnlike(const RgbImage& image, const std::array<std::uint8_t, 3>& color,
-                int left, int top, int width, int height) {
-  int count = 0;
-  for (int y = top; y < top + height; ++y) {
-    for (int x = left; x < left + width; ++x) {
-      count += !IsColor(image.at(x, y), color);
-    }
-  }
-  return count;
-}
+using testing::IsColor;
+using testing::CountUnlike;
 
 TEST(PlotAxesTest, NiceTicksAndLabels) {
   const std::vector<double> unit = NiceTicks(0, 1);

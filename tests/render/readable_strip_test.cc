@@ -15,36 +15,15 @@
 #include "shellspace/render/film_strip.h"
 #include "shellspace/render/up_axis.h"
 #include "shellspace/render/view.h"
+#include "shellspace/tests/testing/render_fixtures.h"
 
 namespace shellspace {
 namespace {
 
-// The closed box [0, a] x [0, b] x [0, c], 8 vertices, 12 outward triangles.
-Mesh Box(double a, double b, double c) {
-  Mesh mesh;
-  mesh.positions.resize(8, 3);
-  for (int i = 0; i < 8; ++i) {
-    mesh.positions.row(i) << (i & 1 ? a : 0), (i & 2 ? b : 0), (i & 4 ? c : 0);
-  }
-  mesh.faces.resize(12, 3);
-  mesh.faces << 0, 2, 1, 1, 2, 3,  // z = 0
-      4, 5, 6, 5, 7, 6,            // z = c
-      0, 1, 4, 1, 5, 4,            // y = 0
-      2, 6, 3, 3, 6, 7,            // y = b
-      0, 4, 2, 2, 4, 6,            // x = 0
-      1, 3, 5, 3, 7, 5;            // x = a
-  return mesh;
-}
-
-// The square [-1, 1]^2 x {0}, two triangles, outward normal +z.
-Mesh Square() {
-  Mesh mesh;
-  mesh.positions.resize(4, 3);
-  mesh.positions << -1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0;
-  mesh.faces.resize(2, 3);
-  mesh.faces << 0, 1, 2, 0, 2, 3;
-  return mesh;
-}
+using testing::Box;
+using testing::UnitSquareMesh;
+using testing::IsColor;
+using testing::CountUnlike;
 
 RenderOptions Plain(int width, int height) {
   RenderOptions options;
@@ -62,22 +41,6 @@ std::array<std::uint8_t, 3> Background(const RenderOptions& options) {
         std::lround(255 * options.lighting.background[c]));
   }
   return bg;
-}
-
-bool IsColor(const std::uint8_t* p, const std::array<std::uint8_t, 3>& c) {
-  return p[0] == c[0] && p[1] == c[1] && p[2] == c[2];
-}
-
-// Pixels of [left, left + width) x [top, top + height) unlike `color`.
-int CountUnlike(const RgbImage& image, const std::array<std::uint8_t, 3>& color,
-                int left, int top, int width, int height) {
-  int count = 0;
-  for (int y = top; y < top + height; ++y) {
-    for (int x = left; x < left + width; ++x) {
-      count += !IsColor(image.at(x, y), color);
-    }
-  }
-  return count;
 }
 
 // Width and height of the bounding box of the pixels unlike the background.
@@ -136,7 +99,7 @@ TEST(FilmStripUpAxisTest, AutoOnAYLongMeshIsTheOldPicture) {
   EXPECT_GT(h, w);
   // -y turns the picture upside down: a marker at the +y end moves from
   // the top half to the bottom half.
-  Mesh marked = Square();
+  Mesh marked = UnitSquareMesh();
   marked.positions.col(1) *= 3;  // y-long
   marked.positions.conservativeResize(7, 3);
   marked.positions.bottomRows(3) << -0.2, 2.6, 0.5, 0.2, 2.6, 0.5, 0, 3, 0.5;
@@ -164,7 +127,7 @@ TEST(FilmStripUpAxisTest, AutoOnAYLongMeshIsTheOldPicture) {
 // ---------------------------------------------------------------- width
 
 TEST(FilmStripWidthTest, WidthIsTheWholeImage) {
-  const Mesh square = Square();
+  const Mesh square = UnitSquareMesh();
   for (int count : {1, 3, 7}) {
     for (int width : {500, 601, 64}) {
       RenderOptions options = Plain(width, 40);
@@ -208,7 +171,7 @@ TEST(FrameLabelTest, IndexAndTime) {
 }
 
 TEST(FrameLabelTest, EachFrameHasItsLabelStrip) {
-  const Mesh square = Square();
+  const Mesh square = UnitSquareMesh();
   RenderOptions options = Plain(3 * 200, 100);
   options.labels = true;
   const std::vector<Positions> frames(3, square.positions);
@@ -246,7 +209,7 @@ TEST(FrameLabelTest, EachFrameHasItsLabelStrip) {
 }
 
 TEST(FrameLabelTest, NarrowFramesShowTheIndexOnly) {
-  const Mesh square = Square();
+  const Mesh square = UnitSquareMesh();
   RenderOptions options = Plain(6 * 30, 30);
   options.labels = true;
   const std::vector<Positions> frames(6, square.positions);
@@ -288,7 +251,7 @@ Eigen::Vector3d UniformColor(const RgbImage& image, const RenderOptions& options
 TEST(DisplacementColorTest, FirstFrameHasTheFirstColourAndMovedTheLast) {
   // A flat square (one shade everywhere) and the same square moved towards
   // the viewer: every vertex moves by D = 0.5, the largest displacement.
-  const Mesh square = Square();
+  const Mesh square = UnitSquareMesh();
   Positions moved = square.positions;
   moved.col(2).array() += 0.5;
   RenderOptions options = Plain(2 * 100, 100);
@@ -310,7 +273,7 @@ TEST(DisplacementColorTest, FirstFrameHasTheFirstColourAndMovedTheLast) {
 TEST(DisplacementColorTest, AMovedVertexIsTheWarmCorner) {
   // Vertex 2, the (+x, +y) corner, moves out of the plane by 0.4 in the
   // last frame; vertex 0 at (-x, -y) stays.
-  const Mesh square = Square();
+  const Mesh square = UnitSquareMesh();
   Positions bent = square.positions;
   bent(2, 2) = 0.4;
   RenderOptions options = Plain(2 * 100, 100);
@@ -327,7 +290,7 @@ TEST(DisplacementColorTest, AMovedVertexIsTheWarmCorner) {
 }
 
 TEST(DisplacementColorTest, ColourBarUnderTheStrip) {
-  const Mesh square = Square();
+  const Mesh square = UnitSquareMesh();
   Positions moved = square.positions;
   moved.col(0).array() += 1;
   RenderOptions options = Plain(2 * 320, 200);

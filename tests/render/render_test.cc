@@ -18,10 +18,13 @@
 #include "shellspace/render/film_strip.h"
 #include "shellspace/render/view.h"
 #include "shellspace/tests/testing/cli_output.h"
+#include "shellspace/tests/testing/render_fixtures.h"
 #include "shellspace/tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {
+
+using testing::PngSize;
 
 using ::shellspace::testing::DataPath;
 using ::shellspace::testing::LoadData;
@@ -123,20 +126,6 @@ Eigen::Vector2d CoveredCentroid(const RgbImage& image,
     }
   }
   return count ? Eigen::Vector2d(sum / count) : Eigen::Vector2d(-1, -1);
-}
-
-// Width and height from a PNG file's IHDR chunk; (-1, -1) if not a PNG.
-std::pair<int, int> PngSize(const std::string& path) {
-  const std::string bytes = Slurp(path);
-  if (bytes.size() < 24 || bytes.compare(1, 3, "PNG") != 0) return {-1, -1};
-  auto word = [&](int at) {
-    int value = 0;
-    for (int k = 0; k < 4; ++k) {
-      value = value * 256 + static_cast<unsigned char>(bytes[at + k]);
-    }
-    return value;
-  };
-  return {word(16), word(20)};
 }
 
 // ---------------------------------------------------------------- views

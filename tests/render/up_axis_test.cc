@@ -11,40 +11,16 @@
 #include "shellspace/render/camera.h"
 #include "shellspace/render/up_axis.h"
 #include "shellspace/render/view.h"
+#include "shellspace/tests/testing/render_fixtures.h"
 #include "shellspace/tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {
 
+using testing::Box;
+using testing::UnitSquareMesh;
+
 using ::shellspace::testing::LoadData;
-
-// The closed box [0, a] x [0, b] x [0, c], 8 vertices, 12 outward triangles.
-Mesh Box(double a, double b, double c) {
-  Mesh mesh;
-  mesh.positions.resize(8, 3);
-  for (int i = 0; i < 8; ++i) {
-    mesh.positions.row(i) << (i & 1 ? a : 0), (i & 2 ? b : 0), (i & 4 ? c : 0);
-  }
-  mesh.faces.resize(12, 3);
-  mesh.faces << 0, 2, 1, 1, 2, 3,  // z = 0
-      4, 5, 6, 5, 7, 6,            // z = c
-      0, 1, 4, 1, 5, 4,            // y = 0
-      2, 6, 3, 3, 6, 7,            // y = b
-      0, 4, 2, 2, 4, 6,            // x = 0
-      1, 3, 5, 3, 7, 5;            // x = a
-  return mesh;
-}
-
-
-// The square [-1, 1]^2 x {0}, two triangles, outward normal +z.
-Mesh Square() {
-  Mesh mesh;
-  mesh.positions.resize(4, 3);
-  mesh.positions << -1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0;
-  mesh.faces.resize(2, 3);
-  mesh.faces << 0, 1, 2, 0, 2, 3;
-  return mesh;
-}
 
 TEST(UpAxisTest, ParsesTheSignedAxesAndAuto) {
   EXPECT_EQ(ParseUpAxis("auto"), UpAxis::kAuto);
@@ -108,7 +84,7 @@ TEST(UpAxisTest, AutoPicksTheLongAxisWithItsPlusEndUp) {
   EXPECT_EQ(AutoUpAxis(mirrored), UpAxis::kPlusZ);
   // No clear long axis: +y.
   EXPECT_EQ(AutoUpAxis(Box(1, 1, 1).positions), UpAxis::kPlusY);
-  EXPECT_EQ(AutoUpAxis(Square().positions), UpAxis::kPlusY);
+  EXPECT_EQ(AutoUpAxis(UnitSquareMesh().positions), UpAxis::kPlusY);
   EXPECT_EQ(AutoUpAxis(Box(3, 3, 1).positions), UpAxis::kPlusY);
   EXPECT_EQ(AutoUpAxis(Positions(0, 3)), UpAxis::kPlusY);
   // A tilted long axis snaps to its nearest coordinate axis.

@@ -10,30 +10,19 @@
 #include <vector>
 
 #include "shellspace/tests/testing/cli_output.h"
+#include "shellspace/tests/testing/render_fixtures.h"
 #include "shellspace/tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {
+
+using testing::PngSize;
 
 using testing::DataPath;
 using testing::Number;
 using testing::RunCli;
 using testing::Slurp;
 using testing::TempDir;
-
-// Width and height from a PNG file's IHDR chunk; (-1, -1) if not a PNG.
-std::pair<int, int> PngSize(const std::string& path) {
-  const std::string bytes = Slurp(path);
-  if (bytes.size() < 24 || bytes.compare(1, 3, "PNG") != 0) return {-1, -1};
-  auto word = [&](int at) {
-    int value = 0;
-    for (int k = 0; k < 4; ++k) {
-      value = value * 256 + static_cast<unsigned char>(bytes[at + k]);
-    }
-    return value;
-  };
-  return {word(16), word(20)};
-}
 
 const std::string kCactus =
     DataPath("cactus/cactus0.ply") + "," + DataPath("cactus/cactus9.ply");
