@@ -128,6 +128,7 @@ ShootTotals TotalsOf(const ShootResult& result) {
         std::max(totals.max_relative_residual, step.relative_residual);
     totals.converged &= step.solved;
   }
+  totals.converged &= !result.stopped;  // a stopped shot did not get there
   return totals;
 }
 

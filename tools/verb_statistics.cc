@@ -252,10 +252,9 @@ int RunPca() {
   const SolverSettings settings = SettingsFromFlags("pca");
   SolverSettings inner = settings;
   inner.progress = false;
-  // A stop ends the mean (written alone, partial); the LOG/EXP solves of
-  // the modes and leave-one-out are not cut short (a shot stopped midway
-  // would give a wrong mode shape): a second signal kills the run.
-  inner.stop = nullptr;
+  // A stop (--time_limit, SIGINT, SIGTERM) in any phase ends the run with the
+  // mean alone, marked partial: a LOG or EXP shot stopped midway would give a
+  // wrong mode, so modes are written only by a run that was not stopped.
 
   // Shell model.
   Positions given_mean;
@@ -272,8 +271,9 @@ int RunPca() {
   CheckSolve(mean.summary, "elastic mean");
   RunStatus status("pca");
   CheckMean(mean, "the elastic mean", &status);
-  if (ObservedStop() != StopCause::kNone) {
-    // Stopped during the mean: the mean so far, no modes.
+  // Stopped: the mean so far (or the converged mean, if the stop came
+  // later), no modes. The exit code is the stop's (main).
+  const auto write_mean_only = [&](const char* phase) {
     JsonObject json;
     json.Add("inputs", n)
         .Add("mean_energy", mean.energy)
@@ -281,6 +281,7 @@ int RunPca() {
         .Add("mean_newton_iterations", mean.newton_iterations)
         .Add("mean_gradient_norm", mean.gradient_norm)
         .Add("modes", 0)
+        .Add("stopped_in", phase)
         .Add("seconds", Seconds(clock))
         .Add("output", FLAGS_output);
     AddRunFields(json);
@@ -291,7 +292,8 @@ int RunPca() {
     output.CommitSummary(json.str());
     if (FLAGS_json) std::cout << json.str() << "\n";
     return 0;
-  }
+  };
+  if (ObservedStop() != StopCause::kNone) return write_mean_only("mean");
   const std::vector<std::string> far = WarnAboutFarInputs(inputs, mean, "pca");
   if (!FLAGS_quiet) {
     std::cerr << "pca: elastic mean done (" << mean.lm_iterations << " LM + "
@@ -301,6 +303,9 @@ int RunPca() {
   }
   const ShellPcaModel shell =
       ComputeShellPca(space, mean.mean, inputs.shapes, options, inner);
+  if (ObservedStop() != StopCause::kNone) {
+    return write_mean_only("displacements");
+  }
   const int shell_modes =
       std::min<int>(FLAGS_modes, static_cast<int>(shell.modes.size()));
   if (!FLAGS_quiet) {
@@ -331,6 +336,7 @@ int RunPca() {
       }
     }
   }
+  if (ObservedStop() != StopCause::kNone) return write_mean_only("mode shapes");
   if (!FLAGS_quiet) std::cerr << "pca: shell modes done\n";
 
   JsonObject json = PcaJson(n, mean, FLAGS_displacement, options, shell,
@@ -366,6 +372,9 @@ int RunPca() {
     }
     const LeaveOneOutTable table =
         EvaluateLeaveOneOut(space, inputs.shapes, loo, inner);
+    if (ObservedStop() != StopCause::kNone) {
+      return write_mean_only("leave-one-out");
+    }
     json.Raw("leave_one_out", LeaveOneOutJson(table));
     table_text = TableText(table);
   }

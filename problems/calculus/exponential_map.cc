@@ -146,10 +146,16 @@ ShootResult ShootSteps(const ShellSpace& space, const Positions& s0,
   ShellPath& path = result.path;
   path = forward ? ShellPath{s0, s1} : ShellPath{s1, s0};
   for (int k = 2; k <= steps; ++k) {
-    if (StopRequested(settings)) break;  // the steps done so far
+    if (StopRequested(settings)) {  // the steps done so far
+      result.stopped = true;
+      break;
+    }
     ExpStepResult step = ExpStep(space, path[k - 2], path[k - 1], direction,
                                  fixed_vertices, settings);
-    if (StoppedByRequest(step.summary)) break;  // an unfinished step
+    if (StoppedByRequest(step.summary)) {  // an unfinished step
+      result.stopped = true;
+      break;
+    }
     if (settings.progress) {
       std::fprintf(stderr, "%s step %d of %d  max |F| %.3e  %s\n",
                    settings.progress_label.c_str(), k, steps,

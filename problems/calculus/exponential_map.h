@@ -82,6 +82,7 @@ struct ShootResult {
   std::vector<ExpStepResult> exp_steps;
   double path_energy = 0;              // E_K of `path`, K = steps
   std::vector<double> step_energies;   // W[s_{k-1}, s_k], time order
+  bool stopped = false;  // settings.stop ended the shot before step K
 };
 ShootResult ShootWithReport(const ShellSpace& space, const Positions& s0,
                             const Positions& s1, int steps,

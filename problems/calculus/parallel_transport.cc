@@ -23,7 +23,10 @@ TransportResult ParallelTransport(const ShellSpace& space,
   Positions p = path[0] + epsilon * variation;
   result.shapes.push_back(p);
   for (size_t k = 1; k < path.size(); ++k) {
-    if (StopRequested(settings)) break;  // the rungs done so far
+    if (StopRequested(settings)) {  // the rungs done so far
+      result.all_solved = false;
+      break;
+    }
     TransportResult::Rung rung;
     Positions best;
     double best_scale = 1;
@@ -75,7 +78,10 @@ TransportResult ParallelTransport(const ShellSpace& space,
       }
       if (step.solved) break;
     }
-    if (stopped) break;  // an unfinished rung is not kept
+    if (stopped) {  // an unfinished rung is not kept, nor called solved
+      result.all_solved = false;
+      break;
+    }
     p = best;
     result.exp_residuals.push_back(best_residual /
                                    std::max(best_scale, 1e-300));

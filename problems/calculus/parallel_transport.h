@@ -30,7 +30,9 @@ struct TransportResult {
     int lm_iterations = 0;
   };
   std::vector<Rung> rungs;
-  bool all_solved = true;  // every rung solved
+  // Every rung of the path solved: false if a rung is unsolved or
+  // settings.stop ended the transport before the last rung.
+  bool all_solved = true;
 };
 
 // A rung whose EXP step has no root at epsilon is retried at epsilon / 2,

@@ -168,6 +168,8 @@ TEST(InterruptCliTest, SigintStopsAShotAfterCompleteSteps) {
   EXPECT_NE(json.find("\"partial\": true"), std::string::npos) << json;
   EXPECT_NE(json.find("\"stop_reason\": \"SIGINT\""), std::string::npos)
       << json;
+  // The steps done were solved, but the shot did not reach step K.
+  EXPECT_NE(json.find("\"converged\": false"), std::string::npos) << json;
   const int frames = static_cast<int>(Number(json, "frames"));
   EXPECT_GE(frames, 6);  // s_0, s_1 and at least steps 2..5
   EXPECT_LT(frames, 2001);
@@ -180,6 +182,56 @@ TEST(InterruptCliTest, SigintStopsAShotAfterCompleteSteps) {
   }
   EXPECT_EQ(DirectoryListing(base),
             (std::vector<std::string>{"g", "out", "shot"}));
+}
+
+TEST(InterruptCliTest, AStoppedTransportIsNotCalledSolved) {
+  // Transport of the rolled plate along a 200-step shot; SIGINT once rung 3
+  // is done: the rungs done are solved, the transport is not.
+  const std::string base = TempDir();
+  ASSERT_EQ(testing::RunCli("geodesic --quiet --multires off --steps 4 "
+                            "--start " +
+                            kPlate + " --end " + kRolled + " --output " + base +
+                            "/g"),
+            0);
+  ASSERT_EQ(testing::RunCli("shoot --quiet --steps 200 --first " + base +
+                            "/g/shape_000.ply --second " + base +
+                            "/g/shape_001.ply --output " + base + "/shot"),
+            0);
+  std::string err;
+  const int code = RunAndSignal(
+      "transport --json --path " + base + "/shot --variation " +
+          DataPath("plate/plate121_rolledB.ply") + " --output " + base +
+          "/moved",
+      base + "/out", "rung 3 of 200", SIGINT, 120, &err);
+  EXPECT_EQ(code, 130) << err;
+  const std::string json = Slurp(base + "/out");
+  EXPECT_NE(json.find("\"partial\": true"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"converged\": false"), std::string::npos) << json;
+  const int frames = static_cast<int>(Number(json, "frames"));
+  EXPECT_GE(frames, 4);  // p_0 and at least rungs 1..3
+  EXPECT_LT(frames, 201);
+}
+
+TEST(InterruptCliTest, AStopAfterThePcaMeanWritesTheMeanAlone) {
+  // Three faces (7,118 vertices): the mean takes seconds, each LOG of the
+  // displacements much longer; SIGINT once the mean is done.
+  const std::string base = TempDir();
+  const std::string faces = DataPath("faces");
+  std::string err;
+  const int code = RunAndSignal(
+      "pca --json --modes 1 --inputs " + faces + "/neutral.ply," + faces +
+          "/smile.ply," + faces + "/disgust.ply --output " + base + "/pca",
+      base + "/out", "pca: elastic mean done", SIGINT, 300, &err);
+  EXPECT_EQ(code, 130) << err;
+  const std::string json = Slurp(base + "/out");
+  EXPECT_NE(json.find("\"partial\": true"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"stopped_in\": \"displacements\""),
+            std::string::npos)
+      << json;
+  EXPECT_EQ(Number(json, "modes"), 0) << json;
+  EXPECT_EQ(DirectoryListing(base + "/pca"),
+            (std::vector<std::string>{"mean.ply", "pca.json", "summary.json"}));
+  EXPECT_EQ(ReadMesh(base + "/pca/mean.ply").num_vertices(), 7118);
 }
 
 TEST(InterruptCliTest, TimeLimitStopsTheGeodesic) {
