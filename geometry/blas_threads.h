@@ -4,7 +4,9 @@
 // `energy --bending shape-operator-edge-angles` on the faces subdivided once
 // (28k vertices; two edge-angle fits) took 15.2 s wall / 24.4 s CPU with 2
 // BLAS threads and 15.1 s / 15.0 s with 1; the finger geodesic pays for
-// them (16.0 s vs 19.8 s wall), so the calculus keeps the default. Deterministic: the count is fixed, not chosen by timing.
+// them (16.0 s vs 19.8 s wall), so the calculus keeps the default; the
+// spline and regression solves use 1 (problems/splines/spline.cc: faster
+// in wall time too). Deterministic: the count is fixed, not chosen by timing.
 #ifndef SHELLSPACE_GEOMETRY_BLAS_THREADS_H_
 #define SHELLSPACE_GEOMETRY_BLAS_THREADS_H_
 
