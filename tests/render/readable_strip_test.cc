@@ -34,6 +34,13 @@ RenderOptions Plain(int width, int height) {
   return options;
 }
 
+// Plain(width, height) coloured by displacement.
+RenderOptions DisplacementOptions(int width, int height) {
+  RenderOptions options = Plain(width, height);
+  options.color = SurfaceColor::kDisplacement;
+  return options;
+}
+
 std::array<std::uint8_t, 3> Background(const RenderOptions& options) {
   std::array<std::uint8_t, 3> bg;
   for (int c = 0; c < 3; ++c) {
@@ -254,8 +261,7 @@ TEST(DisplacementColorTest, FirstFrameHasTheFirstColourAndMovedTheLast) {
   const Mesh square = UnitSquareMesh();
   Positions moved = square.positions;
   moved.col(2).array() += 0.5;
-  RenderOptions options = Plain(2 * 100, 100);
-  options.color = SurfaceColor::kDisplacement;
+  const RenderOptions options = DisplacementOptions(2 * 100, 100);
   const RgbImage image =
       RenderFilmStrip({square.positions, moved}, square.faces, options);
   const Eigen::Vector3d first = UniformColor(image, options, 0, 0, 100, 100);
@@ -276,8 +282,7 @@ TEST(DisplacementColorTest, AMovedVertexIsTheWarmCorner) {
   const Mesh square = UnitSquareMesh();
   Positions bent = square.positions;
   bent(2, 2) = 0.4;
-  RenderOptions options = Plain(2 * 100, 100);
-  options.color = SurfaceColor::kDisplacement;
+  const RenderOptions options = DisplacementOptions(2 * 100, 100);
   const RgbImage image =
       RenderFilmStrip({square.positions, bent}, square.faces, options);
   // Pixels next to the corners of the square (90 x 90 at 5..95).
@@ -293,8 +298,7 @@ TEST(DisplacementColorTest, ColourBarUnderTheStrip) {
   const Mesh square = UnitSquareMesh();
   Positions moved = square.positions;
   moved.col(0).array() += 1;
-  RenderOptions options = Plain(2 * 320, 200);
-  options.color = SurfaceColor::kDisplacement;
+  RenderOptions options = DisplacementOptions(2 * 320, 200);
   const RgbImage image =
       RenderFilmStrip({square.positions, moved}, square.faces, options);
   const FilmStripLayout layout = LayoutFilmStrip(2, options);
