@@ -388,8 +388,8 @@ py::tuple HessianPy(const DoubleArray& reference, const DoubleArray& deformed,
 }
 
 void CheckGeodesic(const GeodesicResult& result) {
-  if (result.summary.termination_type == ceres::FAILURE) {
-    throw InputError("solver failed: " + result.summary.message);
+  if (!result.failure.empty()) {
+    throw InputError("solver failed: " + result.failure);
   }
 }
 

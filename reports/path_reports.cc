@@ -39,6 +39,7 @@ std::vector<std::string> GeodesicStages(const GeodesicResult& result) {
     stages.push_back(JsonObject()
                          .Add("method", newton ? "newton"
                                                : "levenberg-marquardt")
+                         .Add("solver", stage.solver)
                          .Add("iterations", stage.iterations)
                          .Add("final_gradient_norm", stage.final_gradient)
                          .Add("termination", stage.termination)

@@ -52,4 +52,12 @@ const char* PathLinearSolverName(PathLinearSolver solver) {
   return "auto";
 }
 
+GeodesicLm ParseGeodesicLm(const std::string& value, const std::string& name) {
+  if (value == "auto") return GeodesicLm::kAuto;
+  if (value == "ceres") return GeodesicLm::kCeres;
+  if (value == "engine") return GeodesicLm::kEngine;
+  throw InputError(name + " must be auto, ceres or engine, got '" + value +
+                   "'");
+}
+
 }  // namespace shellspace

@@ -1,12 +1,14 @@
 // The choices of a geodesic solve given as words (the CLI's flag values,
 // the Python module's keyword arguments): the multiresolution levels
 // ("auto", "off" or a number of levels) and the linear solver of the Newton
-// finish ("auto", "direct", "block-jacobi").
+// finish ("auto", "direct", "block-jacobi") and the solver of the LM stages
+// ("auto", "ceres", "engine").
 #ifndef SHELLSPACE_REPORTS_SOLVE_CHOICES_H_
 #define SHELLSPACE_REPORTS_SOLVE_CHOICES_H_
 
 #include <string>
 
+#include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/problems/calculus/multiresolution.h"
 #include "shellspace/problems/calculus/path_newton.h"
 
@@ -31,6 +33,10 @@ PathLinearSolver ParsePathLinearSolver(const std::string& value,
 
 // The word of a PathLinearSolver.
 const char* PathLinearSolverName(PathLinearSolver solver);
+
+// GeodesicLm of "auto", "ceres", "engine". Throws InputError starting with
+// `name` for anything else.
+GeodesicLm ParseGeodesicLm(const std::string& value, const std::string& name);
 
 }  // namespace shellspace
 

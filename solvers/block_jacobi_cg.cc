@@ -2,6 +2,10 @@
 
 #include <Eigen/CholmodSupport>
 
+#include <algorithm>
+
+#include "shellspace/geometry/parallel_for.h"
+
 namespace shellspace {
 
 using SparseMatrix = Eigen::SparseMatrix<double>;
@@ -39,28 +43,34 @@ bool BlockJacobiCg::Factorize(const SparseMatrix& lower,
                               const std::vector<int>& offsets) {
   offsets_ = offsets;
   factors_->blocks.clear();
-  for (size_t i = 0; i + 1 < offsets.size(); ++i) {
+  const int blocks = static_cast<int>(offsets.size()) - 1;
+  std::vector<std::unique_ptr<
+      Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>>>
+      factors(std::max(blocks, 0));
+  std::vector<char> positive(factors.size(), 0);
+  ParallelFor(blocks, threads_, [&](int i) {
     auto llt = std::make_unique<
         Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>>();
     llt->cholmod().print = 0;  // an indefinite block is an answer
     llt->compute(DiagonalBlock(lower, offsets[i], offsets[i + 1]));
-    ++stats_.factorizations;
-    if (llt->info() != Eigen::Success) {
-      factors_->blocks.clear();
-      return false;
-    }
-    factors_->blocks.push_back(std::move(llt));
+    positive[i] = llt->info() == Eigen::Success;
+    factors[i] = std::move(llt);
+  });
+  stats_.factorizations += blocks;
+  for (char p : positive) {
+    if (!p) return false;
   }
+  factors_->blocks = std::move(factors);
   return true;
 }
 
 Eigen::VectorXd BlockJacobiCg::ApplyPreconditioner(
     const Eigen::VectorXd& r) const {
   Eigen::VectorXd z(r.size());
-  for (size_t i = 0; i < factors_->blocks.size(); ++i) {
+  ParallelFor(static_cast<int>(factors_->blocks.size()), threads_, [&](int i) {
     const int begin = offsets_[i], m = offsets_[i + 1] - offsets_[i];
     z.segment(begin, m) = factors_->blocks[i]->solve(r.segment(begin, m));
-  }
+  });
   return z;
 }
 

@@ -56,6 +56,11 @@ class BlockJacobiCg {
 
   const Stats& stats() const { return stats_; }
 
+  // Threads over the blocks: the B factorisations of Factorize and the B
+  // solves of each preconditioner application run in parallel (each block
+  // alone, so the results do not depend on the count).
+  void set_threads(int threads) { threads_ = threads < 1 ? 1 : threads; }
+
  private:
   struct Factors;  // CHOLMOD stays out of the public headers
   Eigen::VectorXd ApplyPreconditioner(const Eigen::VectorXd& r) const;
@@ -63,6 +68,7 @@ class BlockJacobiCg {
   std::unique_ptr<Factors> factors_;
   std::vector<int> offsets_;
   Stats stats_;
+  int threads_ = 1;
 };
 
 }  // namespace shellspace

@@ -31,6 +31,7 @@ bool BlockJacobiSolver::Solve(const LinearSystem& system,
     return false;
   }
   ++stats_.cg_solves;
+  cg_.set_threads(threads);
   const auto run_cg = [&](int budget) {
     const auto start = std::chrono::steady_clock::now();
     int iterations = 0;

@@ -38,6 +38,7 @@ class BlockJacobiSolver : public LinearSolver {
 
   int stale_iteration_budget = 60;
   int max_iterations = 2000;
+  int threads = 1;  // over the blocks (BlockJacobiCg::set_threads)
 
  private:
   BlockJacobiCg cg_;

@@ -121,6 +121,11 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
   const double initial_two_norm = std::max(current.reduced.norm(), 1e-300);
   LinearSystem system;
   double shift = 0;  // lambda of the last accepted step's H + lambda I
+  const bool levenberg_marquardt =
+      minimize &&
+      settings.globalisation == NewtonSettings::Globalisation::kLevenbergMarquardt;
+  double lm_lambda = settings.lm_initial;  // kLevenbergMarquardt's lambda, nu
+  double lm_nu = 2;
   while (true) {
     if (report.final_gradient <= settings.tolerance * current.scale) {
       finish(NewtonStop::kConverged);
@@ -153,12 +158,95 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
       forcing = std::clamp(current.max_norm / current.scale,
                            settings.forcing_min, settings.forcing);
     }
-    // The Newton step, then (minimisation with max_shifts > 0) steps of
-    // H + lambda I while the step cannot be used.
     bool accepted = false;
     NewtonStop failure = NewtonStop::kLineSearchFailed;
     const double previous_norm = report.final_gradient;
-    const bool can_shift = minimize && settings.max_shifts > 0;
+    if (levenberg_marquardt) {
+      // Steps of (H + lambda D) p = -reduced until one decreases the merit
+      // by lm_min_ratio of the model's prediction.
+      const int n = static_cast<int>(system.matrix.rows());
+      Eigen::VectorXd diagonal = system.matrix.diagonal().cwiseAbs();
+      const double mean = n > 0 ? diagonal.sum() / n : 0.0;
+      diagonal = diagonal.cwiseMax(settings.lm_min_diagonal *
+                                   std::max(mean, 1e-300));
+      LinearSystem damped = system;
+      for (int rejected = 0; !accepted; ++rejected) {
+        if (rejected > settings.lm_max_rejections ||
+            (settings.stop && settings.stop())) {
+          break;
+        }
+        damped.matrix = system.matrix;
+        for (int i = 0; i < n; ++i) {
+          damped.matrix.coeffRef(i, i) += lm_lambda * diagonal(i);
+        }
+        report.max_shift = std::max(report.max_shift, lm_lambda);
+        Eigen::VectorXd p;
+        const bool solved =
+            linear_solver->Solve(damped, -current.reduced, forcing, &p) &&
+            p.allFinite();
+        double ratio = -1;
+        bool round_off = false;  // |merit change| below round-off
+        NewtonResidual trial;
+        double trial_merit = 0;
+        if (solved) {
+          const Eigen::VectorXd hp =
+              system.matrix.selfadjointView<Eigen::Lower>() * p;
+          const double predicted = -(current.reduced.dot(p) + 0.5 * p.dot(hp));
+          if (predicted > 0) {
+            problem->SetTrial(p);
+            if (problem->Merit(NewtonPoint::kTrial, &trial_merit) ==
+                    EvaluationStatus::kOk &&
+                std::isfinite(trial_merit) &&
+                trial_merit <=
+                    merit + settings.merit_round_off * std::abs(merit)) {
+              ratio = (merit - trial_merit) / predicted;
+              round_off = std::abs(trial_merit - merit) <=
+                          settings.merit_round_off * std::abs(merit);
+            }
+          }
+        } else {
+          failure = NewtonStop::kLinearSolveFailed;
+        }
+        // Accepted on the model's ratio, or (accept_smaller_max_norm) where
+        // the merit change is below round-off and the residual falls.
+        bool take = false;
+        if (ratio >= settings.lm_min_ratio ||
+            (settings.accept_smaller_max_norm && round_off)) {
+          take = problem->Residual(NewtonPoint::kTrial, &trial) ==
+                     EvaluationStatus::kOk &&
+                 (ratio >= settings.lm_min_ratio ||
+                  trial.max_norm < current.max_norm);
+        }
+        if (take) {
+          problem->AcceptTrial();
+          current = std::move(trial);
+          merit = trial_merit;
+          report.final_gradient = current.max_norm;
+          report.final_merit = merit;
+          ++report.steps;
+          ++report.shifted_steps;
+          accepted = true;
+          const double c = 2 * std::clamp(ratio, 0.0, 1.0) - 1;
+          lm_lambda *= std::max(1.0 / 3.0, 1 - c * c * c);
+          lm_nu = 2;
+        } else {
+          lm_lambda *= lm_nu;
+          lm_nu *= 2;
+          if (solved) failure = NewtonStop::kLineSearchFailed;
+        }
+        if (settings.progress) {
+          update_counters();
+          settings.progress(report, merit, accepted);
+        }
+      }
+      if (!accepted && settings.stop && settings.stop()) {
+        failure = NewtonStop::kStopped;
+      }
+    }
+    // The Newton step, then (minimisation with max_shifts > 0) steps of
+    // H + lambda I while the step cannot be used.
+    const bool can_shift =
+        minimize && settings.max_shifts > 0 && !levenberg_marquardt;
     double mean_diagonal = 0;
     if (can_shift && system.matrix.rows() > 0) {
       mean_diagonal =
@@ -167,7 +255,7 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
     const double min_shift =
         settings.shift_initial * std::max(mean_diagonal, 1e-300);
     if (shift < min_shift) shift = 0;
-    for (int tries = 0; !accepted; ++tries) {
+    for (int tries = 0; !accepted && !levenberg_marquardt; ++tries) {
       if (tries > 0) {
         if (!can_shift || tries > settings.max_shifts) break;
         shift = shift > 0 ? shift * settings.shift_factor : min_shift;
@@ -252,7 +340,7 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
       }
     }
     if (accepted && shift > 0) shift /= settings.shift_factor;
-    if (settings.progress) {
+    if (settings.progress && !levenberg_marquardt) {
       update_counters();
       settings.progress(report, merit, accepted);
     }

@@ -121,6 +121,33 @@ struct NewtonSettings {
   double shift_initial = 1e-3;
   double shift_factor = 10;
 
+  // How minimisation steps are globalised:
+  //  - kLineSearch: the Newton step with the line search and the shifts
+  //    above;
+  //  - kLevenbergMarquardt: every step from (H + lambda D) p = -reduced, a
+  //    trust region on the quadratic model q(p) = reduced . p + 1/2 p^T H p
+  //    of the merit (H e.g. a Gauss-Newton matrix, positive semidefinite):
+  //    D = diag |H| floored at lm_min_diagonal x its mean (Marquardt's
+  //    scaling: stiff and soft unknowns are damped alike); the step is
+  //    accepted when the merit falls by at least lm_min_ratio of the
+  //    decrease -q(p) the model predicts (rho = actual / predicted);
+  //    lambda starts at lm_initial, and after an accepted step becomes
+  //    lambda max(1/3, 1 - (2 rho - 1)^3) (nu = 2), after a rejected one
+  //    lambda nu (nu doubles) -- Nielsen's rule, as Ceres' LM. With
+  //    accept_smaller_max_norm, a step whose merit change is below
+  //    merit_round_off |merit| is also accepted if it lowers the residual's
+  //    max_norm (near the minimiser the ratio is round-off). A step whose
+  //    predicted decrease is not positive is rejected without a trial. At
+  //    most lm_max_rejections rejected steps in a row, then
+  //    kLineSearchFailed. The line-search and shift settings above are not
+  //    used.
+  enum class Globalisation { kLineSearch, kLevenbergMarquardt };
+  Globalisation globalisation = Globalisation::kLineSearch;
+  double lm_initial = 1e-4;
+  double lm_min_diagonal = 1e-6;
+  double lm_min_ratio = 1e-3;
+  int lm_max_rejections = 12;
+
   // Stall rules (0: off).
   // Round-off floor: stop after an accepted step that leaves max_norm <=
   // round_off_floor but has not reduced it by round_off_factor.

@@ -35,4 +35,5 @@ DEFINE_string(inputs, "", SHELLSPACE_PER_VERB);
 DEFINE_string(at, "", SHELLSPACE_PER_VERB);
 DEFINE_string(multires, "auto", SHELLSPACE_PER_VERB);
 DEFINE_string(linear_solver, "auto", SHELLSPACE_PER_VERB);
+DEFINE_string(lm, "auto", SHELLSPACE_PER_VERB);
 DEFINE_double(time_limit, 0, SHELLSPACE_PER_VERB);

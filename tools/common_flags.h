@@ -34,6 +34,7 @@ DECLARE_string(inputs);
 DECLARE_string(at);
 DECLARE_string(multires);
 DECLARE_string(linear_solver);
+DECLARE_string(lm);
 DECLARE_double(time_limit);
 
 #endif  // SHELLSPACE_TOOLS_COMMON_FLAGS_H_

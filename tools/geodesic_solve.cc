@@ -45,6 +45,17 @@ FlagSpec LinearSolverFlag() {
       .Default("auto");
 }
 
+FlagSpec GeodesicLmFlag() {
+  return TextFlag("lm",
+                  "auto|ceres|engine: the solver of the LM stages; ceres: "
+                  "Ceres' sparse LM (a Cholesky factorisation of the whole "
+                  "space-time J^T J per iteration); engine: the same "
+                  "Gauss-Newton model solved by --linear_solver (block-jacobi: "
+                  "memory O(K x one shape)); auto: engine where the linear "
+                  "solver is block-jacobi")
+      .Default("auto");
+}
+
 PathLinearSolver LinearSolverFromFlags() {
   return ParsePathLinearSolver(FLAGS_linear_solver, "--linear_solver");
 }
@@ -58,6 +69,7 @@ MultiresolutionResult SolveGeodesicFromFlags(const ShellSpace& space,
                                              const SolverSettings& settings) {
   GeodesicInput with_solver = input;
   with_solver.linear_solver = LinearSolverFromFlags();
+  with_solver.lm = ParseGeodesicLm(FLAGS_lm, "--lm");
   return SolveGeodesicMultiresolution(space, with_solver, settings,
                                       MultiresFromFlags(space.num_vertices));
 }

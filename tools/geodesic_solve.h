@@ -39,6 +39,9 @@ FlagSpec GeodesicStepsFlag(const std::string& what);
 // The --linear_solver flag: the linear solver of the Newton finish.
 FlagSpec LinearSolverFlag();
 
+// The --lm flag: who runs the LM stages (GeodesicLm).
+FlagSpec GeodesicLmFlag();
+
 // PathLinearSolver of --linear_solver: auto, direct, block-jacobi. Throws
 // InputError naming --linear_solver for anything else.
 PathLinearSolver LinearSolverFromFlags();

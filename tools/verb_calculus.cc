@@ -78,6 +78,7 @@ FlagTable LogFlags() {
                .Required(),
            MaskFlag(),
            LinearSolverFlag(),
+           GeodesicLmFlag(),
        },
        MaterialFlags(), SolverFlags(), JsonFlag()});
 }

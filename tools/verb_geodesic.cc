@@ -38,6 +38,7 @@ FlagTable GeodesicFlags() {
            TextFlag("report", "print Ceres' full report on stderr"),
            MultiresFlag(),
            LinearSolverFlag(),
+           GeodesicLmFlag(),
        },
        MaterialFlags(), SolverFlags(), JsonFlag(), FilmStripFlags()});
 }
@@ -53,11 +54,13 @@ int RunGeodesic() {
       .Check();
   const auto [start, space, multires] = SolveGeodesicOfFlags("geodesic");
   const GeodesicResult& result = multires.geodesic;
-  if (!result.stages.empty() &&  // K = 1: no solve
-      result.summary.termination_type == ceres::FAILURE) {
-    throw InputError("solver failed: " + result.summary.message);
+  if (!result.failure.empty()) {
+    throw InputError("solver failed: " + result.failure);
   }
-  if (FLAGS_report) std::cerr << result.summary.FullReport() << "\n";
+  const bool ceres_ran = !result.summary.iterations.empty();
+  if (FLAGS_report && ceres_ran) {
+    std::cerr << result.summary.FullReport() << "\n";
+  }
   RunStatus status("geodesic");
   CheckGeodesic(result, "geodesic", &status);
   RunDirectory output(FLAGS_output);
@@ -76,7 +79,7 @@ int RunGeodesic() {
   if (FLAGS_json) {
     std::cout << summary << "\n";
   } else if (!FLAGS_quiet) {
-    std::cerr << result.summary.BriefReport() << "\n";
+    if (ceres_ran) std::cerr << result.summary.BriefReport() << "\n";
     std::cout << "E_K = " << result.path_energy << " over " << FLAGS_steps
               << " steps (" << result.iterations << " iterations, |grad| "
               << result.final_gradient << "); wrote " << FLAGS_output

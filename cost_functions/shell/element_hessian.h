@@ -20,6 +20,14 @@ namespace shellspace {
 // Which argument of W the derivatives are taken with respect to.
 enum class ShellSide { kReference, kDeformed };
 
+// The second-derivative model of an element's e = 1/2 |r|^2 (r its
+// residuals, J = dr/dY):
+//   kExact:       the Hessian J^T J + sum_i r_i d^2 r_i;
+//   kGaussNewton: its Gauss-Newton part J^T J -- positive semidefinite, equal
+//                 to the Hessian at r = 0 (the rest state, shells.md), the
+//                 model Ceres' Levenberg-Marquardt minimises.
+enum class HessianModel { kExact, kGaussNewton };
+
 // For an element with kVertices vertices (3: membrane, 4: bending), with
 // n = 3 kVertices:
 //   grad_reference = d e / d Xbar   (n),  grad_deformed = d e / d X  (n),
@@ -83,6 +91,41 @@ struct ElementSecondDerivatives {
       return ComputeWithDualNumbers(element, reference, deformed, active,
                                     weight, rows);
     }
+  }
+
+  // Compute for `model`: kExact as Compute, kGaussNewton the same layout
+  // (energy and gradients exact) with every second-derivative block replaced
+  // by its Gauss-Newton part, d_grad_X = weight J_X^T J_active.
+  template <class Element>
+  bool ComputeModel(HessianModel model, const Element& element,
+                    const double* reference, const double* deformed,
+                    ShellSide active, double weight, Rows rows = Rows::kBoth) {
+    if (model == HessianModel::kExact) {
+      return Compute(element, reference, deformed, active, weight, rows);
+    }
+    static_assert(Element::kNumVertices == kVertices,
+                  "ElementSecondDerivatives: stencil size mismatch");
+    Vec3<double> ref[kVertices], def[kVertices];
+    for (int v = 0; v < kVertices; ++v) {
+      ref[v] = Eigen::Map<const Vec3<double>>(reference + 3 * v);
+      def[v] = Eigen::Map<const Vec3<double>>(deformed + 3 * v);
+    }
+    constexpr int m = Element::kNumResiduals;
+    Eigen::Matrix<double, m, 1> r;
+    typename Element::template Jacobian<double> jac_ref, jac_def;
+    if (!element.Evaluate(ref, def, r.data(), &jac_ref, &jac_def)) return false;
+    energy = 0.5 * weight * r.squaredNorm();
+    const auto& jac_active =
+        active == ShellSide::kReference ? jac_ref : jac_def;
+    if (rows != Rows::kDeformed) {
+      grad_reference = weight * jac_ref.transpose() * r;
+      d_grad_reference.noalias() = weight * jac_ref.transpose() * jac_active;
+    }
+    if (rows != Rows::kReference) {
+      grad_deformed = weight * jac_def.transpose() * r;
+      d_grad_deformed.noalias() = weight * jac_def.transpose() * jac_active;
+    }
+    return true;
   }
 
   // The dual-number path for any element (the reference the analytic

@@ -93,6 +93,30 @@ void BuildPathProblem(const ShellSpace& space, const GeodesicInput& input,
 
 }  // namespace
 
+GeodesicLm ChooseGeodesicLm(GeodesicLm choice, PathLinearSolver linear_solver,
+                            int unknowns) {
+  if (choice != GeodesicLm::kAuto) return choice;
+  return ChooseLinearSolver(linear_solver, unknowns) ==
+                 PathLinearSolver::kBlockJacobi
+             ? GeodesicLm::kEngine
+             : GeodesicLm::kCeres;
+}
+
+namespace {
+
+// The reduced unknowns of the path problem: (K - 1) x the free coordinates
+// of one inner shape (3 x unmasked vertices, or 3n - 6 with the gauge).
+int PathUnknowns(const ShellSpace& space, const GeodesicInput& input) {
+  const int per_shape =
+      input.fixed_vertices.empty()
+          ? 3 * space.num_vertices - 6
+          : 3 * (space.num_vertices -
+                 static_cast<int>(input.fixed_vertices.size()));
+  return (input.steps - 1) * per_shape;
+}
+
+}  // namespace
+
 double LinearPathGradient(const ShellSpace& space, const GeodesicInput& input) {
   if (input.steps < 2) return 0;
   ShellPath path = LinearPath(input.start, input.end, input.steps);
@@ -132,20 +156,52 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
     // Iterations left of settings.max_iterations (LM iterations and Newton
     // steps of all stages).
     int lm_left = settings.max_iterations;
+    const bool engine_lm =
+        ChooseGeodesicLm(input.lm, input.linear_solver,
+                         PathUnknowns(space, input)) == GeodesicLm::kEngine;
+    bool lm_failed = false, lm_stopped = false;
     // LM down to `relative` (or the tolerance), continuing from where it is.
     const auto run_lm = [&](double relative) {
-      SolverSettings lm = settings;
-      lm.gradient_tolerance = std::max(settings.gradient_tolerance, relative);
-      lm.max_iterations = std::max(0, lm_left);
-      result.summary = SolveWithSettings(&problem, lm, g0);
       GeodesicStage stage;
-      stage.termination =
-          ceres::TerminationTypeToString(result.summary.termination_type);
-      if (!result.summary.iterations.empty()) {
-        stage.iterations =
-            static_cast<int>(result.summary.iterations.size()) - 1;
-        result.final_gradient =
-            result.summary.iterations.back().gradient_max_norm;
+      const double lm_tolerance =
+          std::max(settings.gradient_tolerance, relative);
+      if (engine_lm) {
+        PathNewtonSettings lm;
+        lm.globalisation = NewtonSettings::Globalisation::kLevenbergMarquardt;
+        lm.linear_solver = input.linear_solver;
+        lm.gradient_tolerance = lm_tolerance * std::max(1.0, g0);
+        lm.max_steps = std::max(0, lm_left);
+        lm.num_threads = settings.num_threads;
+        lm.progress = settings.progress;
+        lm.progress_label = settings.progress_label + " lm";
+        lm.stop = settings.stop;
+        const PathNewtonReport report = PolishPathNewton(
+            space, input.fixed_vertices, lm, &result.path);
+        stage.termination = report.stop_reason;
+        stage.iterations = report.steps;
+        stage.solver = report.linear_solver;
+        result.final_gradient = report.final_gradient;
+        lm_failed = report.stop == NewtonStop::kInfeasibleStart ||
+                    report.stop == NewtonStop::kAssemblyFailed;
+        if (lm_failed) result.failure = report.stop_reason;
+        lm_stopped = report.stop == NewtonStop::kStopped;
+      } else {
+        SolverSettings lm = settings;
+        lm.gradient_tolerance = lm_tolerance;
+        lm.max_iterations = std::max(0, lm_left);
+        result.summary = SolveWithSettings(&problem, lm, g0);
+        stage.termination =
+            ceres::TerminationTypeToString(result.summary.termination_type);
+        stage.solver = "ceres";
+        if (!result.summary.iterations.empty()) {
+          stage.iterations =
+              static_cast<int>(result.summary.iterations.size()) - 1;
+          result.final_gradient =
+              result.summary.iterations.back().gradient_max_norm;
+        }
+        lm_failed = result.summary.termination_type == ceres::FAILURE;
+        if (lm_failed) result.failure = result.summary.message;
+        lm_stopped = StoppedByRequest(result.summary);
       }
       stage.final_gradient = result.final_gradient;
       result.iterations += stage.iterations;
@@ -157,9 +213,8 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
       const bool newton = threshold > settings.gradient_tolerance &&
                           attempt < GeodesicInput::kMaxNewtonAttempts;
       run_lm(newton ? threshold : settings.gradient_tolerance);
-      if (!newton || result.final_gradient <= tolerance ||
-          result.summary.termination_type == ceres::FAILURE ||
-          StoppedByRequest(result.summary)) {
+      if (!newton || result.final_gradient <= tolerance || lm_failed ||
+          lm_stopped) {
         break;
       }
       if (lm_left <= 0) break;  // the budget is spent
@@ -179,6 +234,7 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
       result.final_gradient = report.final_gradient;
       GeodesicStage stage;
       stage.method = GeodesicStage::Method::kNewton;
+      stage.solver = report.linear_solver;
       stage.iterations = report.steps;
       stage.final_gradient = report.final_gradient;
       stage.termination = report.stop_reason;

@@ -36,6 +36,23 @@ std::optional<double> TryPathEnergy(
 // Linear interpolation of vertex positions: K + 1 shapes from a to b.
 ShellPath LinearPath(const Positions& a, const Positions& b, int steps);
 
+// The solver of a geodesic's Levenberg-Marquardt stages:
+//  - kCeres: Ceres' sparse LM on the residuals (SPARSE_NORMAL_CHOLESKY: one
+//    factorisation of the whole space-time J^T J per iteration);
+//  - kEngine: the Newton engine's LM (NewtonSettings::Globalisation::
+//    kLevenbergMarquardt) on the same Gauss-Newton matrix J^T J, assembled
+//    as the path Hessian is, with the Newton finish's linear solver
+//    (GeodesicInput::linear_solver: block-Jacobi CG with memory
+//    O(K x one shape), or the direct space-time Cholesky);
+//  - kAuto: kEngine where the linear solver is block-Jacobi by size
+//    (ChooseLinearSolver), else kCeres.
+enum class GeodesicLm { kAuto, kCeres, kEngine };
+
+// The GeodesicLm that runs for `choice` on a problem with `unknowns` reduced
+// unknowns and linear solver `linear_solver` (kAuto resolved; never kAuto).
+GeodesicLm ChooseGeodesicLm(GeodesicLm choice, PathLinearSolver linear_solver,
+                            int unknowns);
+
 struct GeodesicInput {
   // The geodesic of `steps` steps from `start` to `end`, other fields at
   // their defaults.
@@ -66,6 +83,8 @@ struct GeodesicInput {
   // The linear solver of the Newton steps (path_newton.h; kAuto: by size).
   PathLinearSolver linear_solver = PathLinearSolver::kAuto;
   static constexpr int kMaxNewtonAttempts = 3;
+  // Who runs the LM stages (GeodesicLm).
+  GeodesicLm lm = GeodesicLm::kAuto;
   // The gradient max norm g_0 that the relative tolerance refers to
   // (stop at |grad| <= tolerance * max(1, g_0)); negative: the initial
   // path's. A solve started from a prolongated coarse solution passes the
@@ -88,6 +107,9 @@ struct GeodesicStage {
                               // accepted Newton steps
   double final_gradient = 0;  // max |grad E_K| at its end
   std::string termination;    // Ceres' termination type or Newton's reason
+  // What ran: "ceres" (Ceres' LM) or the engine's linear solver
+  // ("block-jacobi", "direct") for engine LM and Newton stages.
+  std::string solver;
 };
 
 // A discrete geodesic has (nearly) equal step energies W[s_{k-1}, s_k]
@@ -106,7 +128,10 @@ struct GeodesicResult {
   ShellPath path;                     // s_0 = start ... s_K = end
   double path_energy = 0;             // E_K
   std::vector<double> step_energies;  // W[s_{k-1}, s_k]
-  ceres::Solver::Summary summary;     // the last LM stage
+  ceres::Solver::Summary summary;     // the last Ceres LM stage (if any)
+  // Not empty if an LM stage could not run at all (Ceres' FAILURE, or the
+  // engine's degenerate start): what happened.
+  std::string failure;
   PathNewtonReport newton;            // the Newton stage(s), summed
   std::vector<GeodesicStage> stages;  // every stage, in order
   int iterations = 0;           // sum of stages[i].iterations (LM + Newton)

@@ -59,6 +59,7 @@ MultiresolutionResult SolveGeodesicMultiresolution(
     coarse_input.pin_gauge = input.pin_gauge;
     coarse_input.newton_from = input.newton_from;
     coarse_input.linear_solver = input.linear_solver;
+    coarse_input.lm = input.lm;
     std::vector<int> coarse_of(n, -1);
     for (int i = 0; i < level.num_vertices(); ++i) {
       coarse_of[level.survivors[i]] = i;

@@ -56,8 +56,9 @@ double ReducedEntry(const VertexColumns& v, int i, const double* b,
 
 }  // namespace
 
-PathHessianAssembler::PathHessianAssembler(const ShellSpace& space)
-    : space_(space) {
+PathHessianAssembler::PathHessianAssembler(const ShellSpace& space,
+                                           HessianModel model)
+    : space_(space), model_(model) {
   // The vertex pairs of the elements of space.elements(), in its
   // enumeration order.
   const ElementSet& set = space.elements();
@@ -136,8 +137,8 @@ bool PathHessianAssembler::AddElementBlocks(
         }
       };
       if (d22 != nullptr || mixed_transposed != nullptr || mixed != nullptr) {
-        if (!d.Compute(group.element, ref, def, ShellSide::kDeformed,
-                       weight)) {
+        if (!d.ComputeModel(model_, group.element, ref, def,
+                            ShellSide::kDeformed, weight)) {
           set.Fail(group.first_element + e, failure);
           ok = false;
           return;
@@ -149,8 +150,8 @@ bool PathHessianAssembler::AddElementBlocks(
         if (mixed != nullptr) scatter(d.d_grad_reference, mixed);
       }
       if (d11 != nullptr) {
-        if (!d.Compute(group.element, ref, def, ShellSide::kReference, weight,
-                       Rows::kReference)) {
+        if (!d.ComputeModel(model_, group.element, ref, def,
+                            ShellSide::kReference, weight, Rows::kReference)) {
           set.Fail(group.first_element + e, failure);
           ok = false;
           return;

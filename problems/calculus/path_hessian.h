@@ -36,7 +36,12 @@ namespace shellspace {
 // triplets, no sparse products.
 class PathHessianAssembler {
  public:
-  explicit PathHessianAssembler(const ShellSpace& space);
+  // model: every element's second derivatives by `model` (element_hessian.h;
+  // kGaussNewton: the Gauss-Newton matrix J^T J of the residuals, the
+  // Levenberg-Marquardt model, positive semidefinite).
+  explicit PathHessianAssembler(const ShellSpace& space,
+                                HessianModel model = HessianModel::kExact);
+  HessianModel model() const { return model_; }
 
   // `path` has K + 1 >= 3 shapes; `bases[k - 1]` is T_k. Elements of the
   // W[s_{k-1}, s_k] are processed in parallel over k. Throws InputError if an
@@ -111,6 +116,7 @@ class PathHessianAssembler {
       const std::vector<Eigen::SparseMatrix<double>>& bases) const;
 
   const ShellSpace& space_;
+  HessianModel model_ = HessianModel::kExact;
   std::vector<int> pair_start_;  // pairs with column vertex w: [start_w, start_w+1)
   std::vector<int> pair_row_;    // their row vertices, ascending
   std::vector<int> slots_;       // per element (set order), count^2 slots

@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
+#include "shellspace/geometry/blas_threads.h"
 #include "shellspace/geometry/parallel_for.h"
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/problems/calculus/path_hessian.h"
@@ -83,11 +84,11 @@ ShellPath StepPath(const ShellPath& path, const ReducedCoordinates& r,
 class PathEnergyProblem : public NewtonProblem {
  public:
   PathEnergyProblem(const ShellSpace& space, const std::vector<int>& fixed,
-                    int threads, ShellPath* path)
+                    int threads, HessianModel model, ShellPath* path)
       : space_(space),
         fixed_(fixed),
         threads_(threads),
-        assembler_(space),
+        assembler_(space, model),
         path_(path),
         reduced_(MakeReducedCoordinates(space, fixed, *path)) {}
 
@@ -167,8 +168,13 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
     report.stop_reason = "no inner shapes";
     return report;
   }
-  PathEnergyProblem problem(space, fixed_vertices,
-                            std::max(1, settings.num_threads), path);
+  const bool levenberg_marquardt =
+      settings.globalisation ==
+      NewtonSettings::Globalisation::kLevenbergMarquardt;
+  PathEnergyProblem problem(
+      space, fixed_vertices, std::max(1, settings.num_threads),
+      levenberg_marquardt ? HessianModel::kGaussNewton : HessianModel::kExact,
+      path);
   NewtonSettings newton;
   newton.mode = NewtonMode::kMinimize;
   newton.max_steps = settings.max_steps;
@@ -180,6 +186,11 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
   newton.merit_round_off = 1e-10;
   newton.max_shifts = settings.max_shifts;
   newton.stop = settings.stop;
+  newton.globalisation = settings.globalisation;
+  if (levenberg_marquardt) {
+    newton.forcing_rule = NewtonSettings::Forcing::kFixed;
+    newton.forcing = 1e-1;
+  }
   if (settings.progress) {
     newton.progress = [&](const NewtonReport& r, double energy,
                           bool accepted) {
@@ -197,7 +208,12 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
   }
   if (ChooseLinearSolver(settings.linear_solver, problem.unknowns()) ==
       PathLinearSolver::kBlockJacobi) {
+    // The blocks' factorisations and solves run in parallel over the
+    // slices; OpenBLAS inside each with one thread (two levels of threads
+    // would only spin).
+    const ScopedBlasThreads one_blas_thread(1);
     BlockJacobiSolver linear_solver;
+    linear_solver.threads = std::max(1, settings.num_threads);
     return SolveNewton(&problem, &linear_solver, newton);
   }
   ReusableCholesky linear_solver;

@@ -56,6 +56,13 @@ struct PathNewtonSettings {
   // Stop when max |G| <= gradient_tolerance (absolute, max norm over the
   // free coordinates; the same quantity as Ceres' gradient_max_norm).
   double gradient_tolerance = 0;
+  // kLevenbergMarquardt: instead of the Newton iteration below, the
+  // Levenberg-Marquardt iteration of the engine (NewtonSettings::
+  // Globalisation) on the Gauss-Newton matrix J^T J of the residuals
+  // (HessianModel::kGaussNewton) -- the model of Ceres' LM, with the same
+  // linear solvers (block-Jacobi CG: memory O(K x one shape)).
+  NewtonSettings::Globalisation globalisation =
+      NewtonSettings::Globalisation::kLineSearch;
   int num_threads = 2;  // Hessian blocks are assembled in parallel
   bool progress = false;
   std::string progress_label = "newton";

@@ -423,6 +423,7 @@ TEST(CliTest, HelpListsOnlyTheVerbsFlags) {
                                           "json",
                                           "multires",
                                           "linear_solver",
+                                          "lm",
                                           "time_limit",
                                           "minloglevel",
                                           "allow_unconverged",
@@ -521,6 +522,33 @@ std::string Text(const std::string& json, const std::string& key) {
   if (at == std::string::npos) return "";
   const auto begin = at + needle.size();
   return json.substr(begin, json.find('"', begin) - begin);
+}
+
+// --lm: Ceres' LM and the engine's give the same E_K (1e-8), the stages
+// name who ran them, auto is Ceres on the plate, a bad value is rejected by
+// name.
+TEST(CliTest, GeodesicLmFlag) {
+  const std::string dir = testing::TempDir();
+  const std::string common =
+      "geodesic --start " + testing::DataPath("plate/plate121.ply") +
+      " --end " + testing::DataPath("plate/plate121_rolledA.ply") +
+      " --steps 4 --quiet --json --tolerance 1e-10 --multires off --output " +
+      dir;
+  std::string ceres, engine, automatic, err;
+  ASSERT_EQ(RunCli(common + "/c --lm ceres", &ceres, &err), 0) << err;
+  ASSERT_EQ(RunCli(common + "/e --lm engine", &engine, &err), 0) << err;
+  ASSERT_EQ(RunCli(common + "/a", &automatic, &err), 0) << err;
+  EXPECT_NE(ceres.find("\"solver\": \"ceres\""), std::string::npos) << ceres;
+  EXPECT_EQ(engine.find("\"solver\": \"ceres\""), std::string::npos) << engine;
+  EXPECT_NE(engine.find("\"solver\": \"direct\""), std::string::npos) << engine;
+  EXPECT_NE(automatic.find("\"solver\": \"ceres\""), std::string::npos)
+      << automatic;
+  EXPECT_TRUE(Bool(engine, "converged")) << engine;
+  const double e = Number(ceres, "path_energy");
+  EXPECT_NEAR(Number(engine, "path_energy"), e, 1e-8 * e);
+  EXPECT_EQ(RunCli(common + "/bad --lm gauss", nullptr, &err), 1);
+  EXPECT_NE(err.find("--lm must be auto, ceres or engine"), std::string::npos)
+      << err;
 }
 
 // --linear_solver: direct and block-jacobi give the same E_K, --json names

@@ -401,6 +401,63 @@ TEST(ParallelForTest, RunsEveryIndexOnceAndRethrows) {
                InputError);
 }
 
+// The engine's LM (Gauss-Newton matrix, the Newton finish's linear solvers)
+// and Ceres' LM reach the same geodesic: E_K to 1e-10 relative and shapes to
+// 1e-6 up to rigid motion, with and without a mask, both linear solvers. The
+// LM stage of the engine is reported as such ("block-jacobi" / "direct"
+// solver) and monotone: E_K of the stage's result below the linear path's.
+TEST(PathNewtonTest, EngineLevenbergMarquardtAgreesWithCeres) {
+  const auto [a, b, space] =
+      testing::LoadPair("plate/plate121.ply", "plate/plate121_rolledA.ply");
+  const SolverSettings settings = testing::TightSettings(1e-10);
+  for (const bool masked : {false, true}) {
+    GeodesicInput input = GeodesicInput::Between(a.positions, b.positions, 4);
+    if (masked) input.fixed_vertices = {0, 1, 2, 11, 12};
+    input.lm = GeodesicLm::kCeres;
+    const GeodesicResult ceres = SolveGeodesic(space, input, settings);
+    ASSERT_TRUE(ceres.converged);
+    EXPECT_EQ(ceres.stages.front().solver, "ceres");
+    for (const PathLinearSolver solver :
+         {PathLinearSolver::kDirect, PathLinearSolver::kBlockJacobi}) {
+      input.lm = GeodesicLm::kEngine;
+      input.linear_solver = solver;
+      const GeodesicResult engine = SolveGeodesic(space, input, settings);
+      ASSERT_TRUE(engine.converged) << engine.stages.back().termination;
+      ASSERT_FALSE(engine.stages.empty());
+      EXPECT_EQ(engine.stages.front().method,
+                GeodesicStage::Method::kLevenbergMarquardt);
+      EXPECT_EQ(engine.stages.front().solver,
+                solver == PathLinearSolver::kDirect ? "direct" : "block-jacobi");
+      EXPECT_GT(engine.stages.front().iterations, 0);
+      EXPECT_TRUE(engine.failure.empty());
+      EXPECT_NEAR(engine.path_energy, ceres.path_energy,
+                  1e-10 * ceres.path_energy)
+          << masked;
+      for (int k = 1; k < 4; ++k) {
+        EXPECT_LT(RelativeDistanceUpToRigidMotion(engine.path[k], ceres.path[k]),
+                  1e-6)
+            << k << " masked " << masked;
+      }
+      int total = 0;
+      for (const GeodesicStage& stage : engine.stages) total += stage.iterations;
+      EXPECT_EQ(engine.iterations, total);
+    }
+  }
+  // kAuto picks the engine where the linear solver is block-Jacobi.
+  EXPECT_EQ(ChooseGeodesicLm(GeodesicLm::kAuto, PathLinearSolver::kAuto,
+                             kBlockJacobiFromUnknowns),
+            GeodesicLm::kEngine);
+  EXPECT_EQ(ChooseGeodesicLm(GeodesicLm::kAuto, PathLinearSolver::kAuto,
+                             kBlockJacobiFromUnknowns - 1),
+            GeodesicLm::kCeres);
+  EXPECT_EQ(ChooseGeodesicLm(GeodesicLm::kAuto, PathLinearSolver::kBlockJacobi,
+                             10),
+            GeodesicLm::kEngine);
+  EXPECT_EQ(ChooseGeodesicLm(GeodesicLm::kCeres, PathLinearSolver::kBlockJacobi,
+                             10),
+            GeodesicLm::kCeres);
+}
+
 // Newton-polished and pure-LM geodesics are the same critical point.
 TEST(PathNewtonTest, NewtonPolishAgreesWithPureLevenbergMarquardt) {
   const auto [a, b, space] =
