@@ -14,6 +14,8 @@
 //   cactus_x16    subdivided twice (84,152 vertices)
 //
 // Run one case at a time under /usr/bin/time -v for wall, CPU and peak RSS:
+// SHELLSPACE_LM=auto|ceres|engine chooses who runs the LM stages
+// (GeodesicLm; default auto).
 //   OPENBLAS_NUM_THREADS=1 /usr/bin/time -v build/bench/scale_bench \
 //       --benchmark_filter='Scale/cactus_ring/levels:1'
 // The environment variable SHELLSPACE_LINEAR_SOLVER=auto|direct|block-jacobi
@@ -107,6 +109,17 @@ PathLinearSolver LinearSolverFromEnvironment() {
       name + "'");
 }
 
+// SHELLSPACE_LM (auto|ceres|engine: who runs the LM stages), or kAuto.
+GeodesicLm LmFromEnvironment() {
+  const char* value = std::getenv("SHELLSPACE_LM");
+  const std::string name = value ? value : "auto";
+  if (name == "auto") return GeodesicLm::kAuto;
+  if (name == "ceres") return GeodesicLm::kCeres;
+  if (name == "engine") return GeodesicLm::kEngine;
+  throw std::invalid_argument(
+      "SHELLSPACE_LM must be auto, ceres or engine, got '" + name + "'");
+}
+
 const char* kCases[] = {"finger_ring", "cactus_ring", "cactus_bottom",
                         "faces",       "cactus_x4",   "cactus_x16"};
 
@@ -119,6 +132,7 @@ void BM_Scale(benchmark::State& state) {
   GeodesicInput input = GeodesicInput::Between(c.a.positions, c.b.positions, 8);
   input.fixed_vertices = c.mask;
   input.linear_solver = LinearSolverFromEnvironment();
+  input.lm = LmFromEnvironment();
   SolverSettings settings;
   settings.progress = true;
   settings.progress_label = name;
@@ -132,6 +146,8 @@ void BM_Scale(benchmark::State& state) {
     state.counters["fixed"] = static_cast<double>(c.mask.size());
     state.counters["E_K"] = g.path_energy;
     state.counters["iterations"] = g.iterations;
+    state.counters["engine_lm"] =
+        !g.stages.empty() && g.stages.front().solver != "ceres";
     state.counters["newton_steps"] = g.newton.steps;
     state.counters["factorizations"] = g.newton.factorizations;
     state.counters["cg_iterations"] = g.newton.cg_iterations;

@@ -168,6 +168,7 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
       if (engine_lm) {
         PathNewtonSettings lm;
         lm.globalisation = NewtonSettings::Globalisation::kLevenbergMarquardt;
+        lm.model = HessianModel::kGaussNewton;
         lm.linear_solver = input.linear_solver;
         lm.gradient_tolerance = lm_tolerance * std::max(1.0, g0);
         lm.max_steps = std::max(0, lm_left);
@@ -225,6 +226,16 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
       polish.progress = settings.progress;
       polish.progress_label = settings.progress_label + " newton";
       polish.max_steps = std::min(polish.max_steps, lm_left);
+      if (engine_lm) {
+        // The engine's finish: a trust region on the exact Hessian (LM
+        // with lambda from 1e-8, shrinking as steps succeed) instead of the
+        // line search with shifts, which restarts its shift every step.
+        polish.globalisation =
+            NewtonSettings::Globalisation::kLevenbergMarquardt;
+        polish.model = HessianModel::kExact;
+        polish.lm_initial = 1e-8;
+        polish.max_steps = std::min(4 * polish.max_steps, lm_left);
+      }
       polish.stop = settings.stop;
       const PathNewtonReport report =
           PolishPathNewton(space, input.fixed_vertices, polish, &result.path);

@@ -173,7 +173,7 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
       NewtonSettings::Globalisation::kLevenbergMarquardt;
   PathEnergyProblem problem(
       space, fixed_vertices, std::max(1, settings.num_threads),
-      levenberg_marquardt ? HessianModel::kGaussNewton : HessianModel::kExact,
+      levenberg_marquardt ? settings.model : HessianModel::kExact,
       path);
   NewtonSettings newton;
   newton.mode = NewtonMode::kMinimize;
@@ -188,8 +188,12 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
   newton.stop = settings.stop;
   newton.globalisation = settings.globalisation;
   if (levenberg_marquardt) {
-    newton.forcing_rule = NewtonSettings::Forcing::kFixed;
-    newton.forcing = 1e-1;
+    newton.lm_initial = settings.lm_initial;
+    if (settings.model == HessianModel::kGaussNewton) {
+      // Far from the geodesic: a rough step is enough.
+      newton.forcing_rule = NewtonSettings::Forcing::kFixed;
+      newton.forcing = 1e-1;
+    }
   }
   if (settings.progress) {
     newton.progress = [&](const NewtonReport& r, double energy,

@@ -27,16 +27,19 @@ using ShellPath = std::vector<Positions>;
 //    ChooseLinearSolver).
 enum class PathLinearSolver { kAuto, kDirect, kBlockJacobi };
 
-// The threshold of kAuto on the reduced unknowns of the whole path.
-// Measured (bench/scale_bench, cactus_ring levels:1, K = 8, 103,950
-// unknowns on the fine level): the Newton finish took 73.7 s direct (one
-// Cholesky 52.8 s, 1.9 s CG) against 39.0 s block-Jacobi (one block set
-// 4.3 s, 22 CG iterations 6.9 s), the same E_K to 12 digits; on its coarse
-// level (1,315 vertices) factorisation + CG 2.5 s against 0.6 s. The
-// threshold sits just below the cactus ring; the meshes of the tests
-// (plate, finger: at most 43k unknowns) stay direct, where the exact
-// solves often save a Newton step.
-inline constexpr int kBlockJacobiFromUnknowns = 100000;
+// The threshold of kAuto on the reduced unknowns of the whole path; from it
+// on the geodesic's LM stages also run on the engine (GeodesicLm::kAuto).
+// Measured (bench/scale_bench, K = 8, levels:0, engine LM then the engine's
+// trust-region Newton, 2 cores, idle): finger_ring (33k unknowns)
+// block-Jacobi 6.3 s wall / 9.6 s CPU / 220 MB against direct 11.4 s /
+// 21.1 s / 411 MB; cactus_ring (104k) 9.7 s / 14.9 s / 676 MB against
+// 19.7 s / 35.0 s / 1.58 GB; the same E_K to 1e-9. (Ceres' LM with the
+// direct Newton finish: finger_ring 94.4 s / 177 s / 441 MB.) Earlier, for
+// the Newton finish alone, the cactus ring's direct factorisation took
+// 52.8 s against 4.3 s for a block set. Below the threshold (the plates and
+// squares of most tests) both are fast and the direct solves save
+// iterations.
+inline constexpr int kBlockJacobiFromUnknowns = 20000;
 
 // kDirect or kBlockJacobi for a path Hessian with `unknowns` reduced
 // unknowns in all (the rule of kAuto; `choice` other than kAuto is
@@ -56,13 +59,18 @@ struct PathNewtonSettings {
   // Stop when max |G| <= gradient_tolerance (absolute, max norm over the
   // free coordinates; the same quantity as Ceres' gradient_max_norm).
   double gradient_tolerance = 0;
-  // kLevenbergMarquardt: instead of the Newton iteration below, the
-  // Levenberg-Marquardt iteration of the engine (NewtonSettings::
-  // Globalisation) on the Gauss-Newton matrix J^T J of the residuals
-  // (HessianModel::kGaussNewton) -- the model of Ceres' LM, with the same
-  // linear solvers (block-Jacobi CG: memory O(K x one shape)).
+  // kLevenbergMarquardt: instead of the line-search Newton iteration below,
+  // the Levenberg-Marquardt iteration of the engine (NewtonSettings::
+  // Globalisation), a trust region on the model `model`: the Gauss-Newton
+  // matrix J^T J of the residuals (HessianModel::kGaussNewton, the model of
+  // Ceres' LM) or the exact Hessian (kExact: a trust-region Newton, lambda
+  // -> 0 near a minimiser, so quadratic there), with the same linear
+  // solvers (block-Jacobi CG: memory O(K x one shape)) starting from lambda
+  // = lm_initial. The line-search iteration always uses the exact Hessian.
   NewtonSettings::Globalisation globalisation =
       NewtonSettings::Globalisation::kLineSearch;
+  HessianModel model = HessianModel::kExact;
+  double lm_initial = 1e-4;
   int num_threads = 2;  // Hessian blocks are assembled in parallel
   bool progress = false;
   std::string progress_label = "newton";

@@ -678,7 +678,7 @@ TEST(PathNewtonTest, BlockJacobiPolishIsDeterministicAcrossRunsAndThreads) {
 }
 
 // kAuto: the direct solver below kBlockJacobiFromUnknowns unknowns (the
-// plate and finger paths), block-Jacobi from it on; forced choices stay.
+// plate paths), block-Jacobi from it on; forced choices stay.
 TEST(PathNewtonTest, AutomaticChoicePicksDirectOnSmallMeshes) {
   EXPECT_EQ(ChooseLinearSolver(PathLinearSolver::kAuto, 3 * 3 * 121 - 18),
             PathLinearSolver::kDirect);
