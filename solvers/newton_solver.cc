@@ -161,6 +161,18 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
     bool accepted = false;
     NewtonStop failure = NewtonStop::kLineSearchFailed;
     const double previous_norm = report.final_gradient;
+    // x = the trial point (residual `trial`, merit `trial_merit`).
+    const auto accept = [&](NewtonResidual trial, double trial_merit,
+                            bool shifted) {
+      problem->AcceptTrial();
+      current = std::move(trial);
+      merit = trial_merit;
+      report.final_gradient = current.max_norm;
+      report.final_merit = merit;
+      ++report.steps;
+      if (shifted) ++report.shifted_steps;
+      accepted = true;
+    };
     if (levenberg_marquardt) {
       // Steps of (H + lambda D) p = -reduced until one decreases the merit
       // by lm_min_ratio of the model's prediction.
@@ -218,14 +230,7 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
                   trial.max_norm < current.max_norm);
         }
         if (take) {
-          problem->AcceptTrial();
-          current = std::move(trial);
-          merit = trial_merit;
-          report.final_gradient = current.max_norm;
-          report.final_merit = merit;
-          ++report.steps;
-          ++report.shifted_steps;
-          accepted = true;
+          accept(std::move(trial), trial_merit, true);
           const double c = 2 * std::clamp(ratio, 0.0, 1.0) - 1;
           lm_lambda *= std::max(1.0 / 3.0, 1 - c * c * c);
           lm_nu = 2;
@@ -329,14 +334,7 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
         if (!decrease && !smaller_max && !smaller_two && !reduced_max) {
           continue;
         }
-        problem->AcceptTrial();
-        current = std::move(trial);
-        merit = trial_merit;
-        report.final_gradient = current.max_norm;
-        report.final_merit = merit;
-        ++report.steps;
-        if (shift > 0) ++report.shifted_steps;
-        accepted = true;
+        accept(std::move(trial), trial_merit, shift > 0);
       }
     }
     if (accepted && shift > 0) shift /= settings.shift_factor;

@@ -524,16 +524,22 @@ std::string Text(const std::string& json, const std::string& key) {
   return json.substr(begin, json.find('"', begin) - begin);
 }
 
+// A geodesic on the plate (plate121 -> rolledA, K = 4, tolerance 1e-10,
+// --json, no multiresolution) into a fresh temporary directory: append
+// "/NAME" and the flags under test.
+std::string PlateGeodesicCommand() {
+  return "geodesic --start " + testing::DataPath("plate/plate121.ply") +
+         " --end " + testing::DataPath("plate/plate121_rolledA.ply") +
+         " --steps 4 --quiet --json --tolerance 1e-10 --multires off "
+         "--output " +
+         testing::TempDir();
+}
+
 // --lm: Ceres' LM and the engine's give the same E_K (1e-8), the stages
 // name who ran them, auto is Ceres on the plate, a bad value is rejected by
 // name.
 TEST(CliTest, GeodesicLmFlag) {
-  const std::string dir = testing::TempDir();
-  const std::string common =
-      "geodesic --start " + testing::DataPath("plate/plate121.ply") +
-      " --end " + testing::DataPath("plate/plate121_rolledA.ply") +
-      " --steps 4 --quiet --json --tolerance 1e-10 --multires off --output " +
-      dir;
+  const std::string common = PlateGeodesicCommand();
   std::string ceres, engine, automatic, err;
   ASSERT_EQ(RunCli(common + "/c --lm ceres", &ceres, &err), 0) << err;
   ASSERT_EQ(RunCli(common + "/e --lm engine", &engine, &err), 0) << err;
@@ -555,12 +561,7 @@ TEST(CliTest, GeodesicLmFlag) {
 // the solver used and its counts, auto is direct on the plate, and a bad
 // value is rejected by name (geodesic and log).
 TEST(CliTest, GeodesicLinearSolverFlag) {
-  const std::string dir = testing::TempDir();
-  const std::string common =
-      "geodesic --start " + testing::DataPath("plate/plate121.ply") +
-      " --end " + testing::DataPath("plate/plate121_rolledA.ply") +
-      " --steps 4 --quiet --json --tolerance 1e-10 --multires off --output " +
-      dir;
+  const std::string common = PlateGeodesicCommand();
   std::string direct, jacobi, automatic, err;
   ASSERT_EQ(RunCli(common + "/d --linear_solver direct", &direct, &err), 0)
       << err;
@@ -589,7 +590,7 @@ TEST(CliTest, GeodesicLinearSolverFlag) {
                  " --end " + testing::DataPath("plate/plate121_rolledA.ply") +
                  " --steps 4 --json --linear_solver block-jacobi "
                  "--output " +
-                 dir + "/log.ply",
+                 testing::TempDir() + "/log.ply",
              &log, &err),
       0)
       << err;
