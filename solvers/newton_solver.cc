@@ -182,9 +182,12 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
       diagonal = diagonal.cwiseMax(settings.lm_min_diagonal *
                                    std::max(mean, 1e-300));
       LinearSystem damped = system;
+      bool stop_requested = false;
       for (int rejected = 0; !accepted; ++rejected) {
-        if (rejected > settings.lm_max_rejections ||
-            (settings.stop && settings.stop())) {
+        if (rejected > settings.lm_max_rejections) break;
+        // Polled once per retry (the first try was polled above).
+        if (rejected > 0 && settings.stop && settings.stop()) {
+          stop_requested = true;
           break;
         }
         damped.matrix = system.matrix;
@@ -244,9 +247,7 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
           settings.progress(report, merit, accepted);
         }
       }
-      if (!accepted && settings.stop && settings.stop()) {
-        failure = NewtonStop::kStopped;
-      }
+      if (!accepted && stop_requested) failure = NewtonStop::kStopped;
     }
     // The Newton step, then (minimisation with max_shifts > 0) steps of
     // H + lambda I while the step cannot be used.

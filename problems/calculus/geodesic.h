@@ -152,7 +152,10 @@ struct GeodesicResult {
 };
 
 // Geodesic interpolation: minimises E_K over s_1..s_{K-1} by sparse LM
-// followed by Newton (see GeodesicInput::newton_from). settings.max_iterations
+// followed by Newton (see GeodesicInput::newton_from; the LM stages by Ceres
+// or by the Newton engine, GeodesicInput::lm; after the engine's LM the
+// Newton finish is the engine's trust region on the exact Hessian, at most
+// 4 PathNewtonSettings::max_steps steps per attempt). settings.max_iterations
 // caps the iterations of this solve: LM iterations plus Newton steps, summed
 // over all stages (each Newton attempt also at most
 // PathNewtonSettings::max_steps, at most GeodesicInput::kMaxNewtonAttempts
@@ -161,7 +164,8 @@ struct GeodesicResult {
 // the end shapes are data. With a mask the listed vertices stay at their
 // initial (linearly interpolated) positions in every shape; without one the
 // rigid motions of every inner shape are pinned (rigid_gauge.h) at three
-// vertices of the initial path.
+// vertices of the initial path (Ceres' LM) or removed by the rigid-gauge
+// basis of each shape (the engine's stages and the Newton finish).
 GeodesicResult SolveGeodesic(const ShellSpace& space,
                              const GeodesicInput& input,
                              const SolverSettings& settings);

@@ -670,6 +670,29 @@ TEST(NewtonSolverTest, LevenbergMarquardtGivesUpAfterTheRejectionLimit) {
   for (double m : problem.trial_merits) EXPECT_GT(m, c.merit(problem.x()));
 }
 
+// The stop hook ends an LM solve at the current point too: polled before
+// every iteration and every retry, the third poll stops after two accepted
+// steps, which are those of the same solve capped at two steps.
+TEST(NewtonSolverTest, LevenbergMarquardtStopsOnRequest) {
+  const Callbacks c = RosenbrockLeastSquares();
+  FunctionProblem capped(c, Eigen::Vector2d(-1.2, 1), true);
+  ReusableCholesky cholesky;
+  const NewtonReport two =
+      SolveNewton(&capped, &cholesky, LevenbergMarquardt(0, 2));
+  ASSERT_EQ(two.steps, 2);
+  FunctionProblem stopped(c, Eigen::Vector2d(-1.2, 1), true);
+  NewtonSettings s = LevenbergMarquardt(0, 100);
+  int polls = 0;
+  s.stop = [&polls] { return ++polls == 3; };
+  ReusableCholesky cholesky2;
+  const NewtonReport r = SolveNewton(&stopped, &cholesky2, s);
+  EXPECT_EQ(r.stop, NewtonStop::kStopped);
+  EXPECT_FALSE(r.converged);
+  EXPECT_LE(r.steps, 2);
+  EXPECT_EQ(stopped.iterates.back(),
+            capped.iterates[std::min<size_t>(r.steps, 2)]);
+}
+
 TEST(NewtonSolverTest, AppendSumsCountsAndKeepsTheFirstInitialGradient) {
   NewtonReport total, a, b;
   a.steps = 2;
