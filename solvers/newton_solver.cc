@@ -181,7 +181,11 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
       const double mean = n > 0 ? diagonal.sum() / n : 0.0;
       diagonal = diagonal.cwiseMax(settings.lm_min_diagonal *
                                    std::max(mean, 1e-300));
-      LinearSystem damped = system;
+      // The metadata of the system; the matrix is set per try.
+      LinearSystem damped;
+      damped.vertex_of = system.vertex_of;
+      damped.num_vertices = system.num_vertices;
+      damped.block_offsets = system.block_offsets;
       bool stop_requested = false;
       for (int rejected = 0; !accepted; ++rejected) {
         if (rejected > settings.lm_max_rejections) break;
