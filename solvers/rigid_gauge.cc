@@ -1,6 +1,8 @@
 #include "shellspace/solvers/rigid_gauge.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
 
 namespace shellspace {
 
@@ -58,21 +60,42 @@ std::array<int, 3> ChooseGaugeVertices(const Positions& shape) {
   return {a, b, c};
 }
 
-std::array<int, 3> PinRigidMotions(Positions* shape, ceres::Problem* problem) {
-  const auto [a, b, c] = ChooseGaugeVertices(*shape);
-  const Eigen::Vector3d pa = shape->row(a), pb = shape->row(b),
-                        pc = shape->row(c);
-  const Eigen::Vector3d u = (pb - pa).normalized();
-  Eigen::Vector3d w = (pc - pa) - (pc - pa).dot(u) * u;
+RigidGauge MakeRigidGauge(const Positions& shape) {
+  RigidGauge gauge;
+  gauge.vertices = ChooseGaugeVertices(shape);
+  const auto [a, b, c] = gauge.vertices;
+  const Eigen::Vector3d pa = shape.row(a), pb = shape.row(b),
+                        pc = shape.row(c);
+  gauge.line = (pb - pa).normalized();
+  Eigen::Vector3d w = (pc - pa) - (pc - pa).dot(gauge.line) * gauge.line;
   w.normalize();
-  Eigen::MatrixXd plane(3, 2);
-  plane << u, w;
+  gauge.plane << gauge.line, w;
+  return gauge;
+}
+
+double GaugeFreeMaxNorm(const RigidGauge& gauge, const Eigen::VectorXd& g) {
+  const auto [a, b, c] = gauge.vertices;
+  double norm = 0;
+  for (int v = 0; 3 * v < g.size(); ++v) {
+    if (v == a || v == b || v == c) continue;
+    norm = std::max(norm, g.segment<3>(3 * v).cwiseAbs().maxCoeff());
+  }
+  norm = std::max(norm, std::abs(gauge.line.dot(g.segment<3>(3 * b))));
+  norm = std::max(norm, (gauge.plane.transpose() * g.segment<3>(3 * c))
+                            .cwiseAbs()
+                            .maxCoeff());
+  return norm;
+}
+
+std::array<int, 3> PinRigidMotions(Positions* shape, ceres::Problem* problem) {
+  const RigidGauge gauge = MakeRigidGauge(*shape);
+  const auto [a, b, c] = gauge.vertices;
   problem->SetParameterBlockConstant(shape->data() + 3 * a);
   problem->SetManifold(shape->data() + 3 * b,
-                       new AffineSubspaceManifold(Eigen::MatrixXd(u)));
+                       new AffineSubspaceManifold(Eigen::MatrixXd(gauge.line)));
   problem->SetManifold(shape->data() + 3 * c,
-                       new AffineSubspaceManifold(plane));
-  return {a, b, c};
+                       new AffineSubspaceManifold(Eigen::MatrixXd(gauge.plane)));
+  return gauge.vertices;
 }
 
 }  // namespace shellspace

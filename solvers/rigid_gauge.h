@@ -36,6 +36,23 @@ class AffineSubspaceManifold : public ceres::Manifold {
 // vertex farthest from a, c = the vertex farthest from the line ab.
 std::array<int, 3> ChooseGaugeVertices(const Positions& shape);
 
+// The gauge of PinRigidMotions on a shape: vertex a held, b on the line
+// through it along `line` (unit a -> b), c in the plane through it spanned by
+// the orthonormal columns of `plane` (line, and the unit component of c - a
+// orthogonal to it).
+struct RigidGauge {
+  std::array<int, 3> vertices{};  // a, b, c
+  Eigen::Vector3d line;
+  Eigen::Matrix<double, 3, 2> plane;
+};
+RigidGauge MakeRigidGauge(const Positions& shape);
+
+// Max |component| of a gradient `g` (3n, vertex-major, of a function of the
+// shape's positions) over the coordinates `gauge` leaves free: every
+// coordinate of the other vertices, line^T g_b and plane^T g_c -- the
+// gradient_max_norm Ceres reports for a problem pinned by PinRigidMotions.
+double GaugeFreeMaxNorm(const RigidGauge& gauge, const Eigen::VectorXd& g);
+
 // Pins the rigid motions of `shape` (whose vertex blocks are in `problem`):
 // vertex a is held constant, b moves only along the line ab, c only in the
 // plane abc (at their current positions). Exactly 6 degrees of freedom are

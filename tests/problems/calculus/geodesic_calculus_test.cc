@@ -5,10 +5,12 @@
 #include <cmath>
 #include <iostream>
 
+#include "shellspace/cost_functions/deformation_energy_residuals.h"
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
 #include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/problems/calculus/exponential_map.h"
 #include "shellspace/problems/calculus/parallel_transport.h"
+#include "shellspace/solvers/rigid_gauge.h"
 #include "shellspace/tests/testing/test_support.h"
 
 namespace shellspace {
@@ -195,6 +197,87 @@ TEST_F(GeodesicCalculusTest, TransportOfZeroAndAlongConstantPath) {
   const double coarse = error(1.0), fine = error(0.1);
   EXPECT_LT(fine, 1e-3);
   EXPECT_LT(fine, 0.3 * coarse);
+}
+
+// g_0 without Ceres (LinearPathGradient) against the gradient_max_norm of
+// the Ceres problem of the same path, built here from the residuals: mask,
+// rigid gauge (PinRigidMotions' manifolds), and no gauge. The twin: the
+// gauge-pinned norm differs from the plain max norm on this path, so a
+// norm that ignored the gauge would fail the second comparison.
+TEST_F(GeodesicCalculusTest, LinearPathGradientIsCeresGradientMaxNorm) {
+  const int K = 4;
+  const auto ceres_norm = [&](const std::vector<int>& fixed, bool gauge) {
+    ShellPath path = LinearPath(start_.positions, end_.positions, K);
+    ceres::Problem problem;
+    for (int k = 1; k <= K; ++k) {
+      AddDeformationEnergy(
+          space_,
+          k == 1 ? ShellArgument::Fixed(path[0])
+                 : ShellArgument::Variable(&path[k - 1]),
+          k == K ? ShellArgument::Fixed(path[K])
+                 : ShellArgument::Variable(&path[k]),
+          K, &problem);
+    }
+    for (int k = 1; k < K; ++k) {
+      for (int v : fixed) {
+        problem.SetParameterBlockConstant(path[k].data() + 3 * v);
+      }
+      if (fixed.empty() && gauge) PinRigidMotions(&path[k], &problem);
+    }
+    return GradientMaxNorm(&problem);
+  };
+  GeodesicInput input =
+      GeodesicInput::Between(start_.positions, end_.positions, K);
+  const double gauge_norm = ceres_norm({}, true);
+  EXPECT_NEAR(LinearPathGradient(space_, input), gauge_norm,
+              1e-12 * gauge_norm);
+  input.pin_gauge = false;
+  const double free_norm = ceres_norm({}, false);
+  EXPECT_NEAR(LinearPathGradient(space_, input), free_norm, 1e-12 * free_norm);
+  input.pin_gauge = true;
+  // The mask holds every vertex whose gradient entries come within 1 % of
+  // the largest (the rolled plate is symmetric: several do), so its norm is
+  // smaller than the free one: a norm over all vertices would fail here.
+  const ShellPath linear = LinearPath(start_.positions, end_.positions, K);
+  std::vector<double> vertex_max(space_.num_vertices, 0.0);
+  for (int k = 1; k < K; ++k) {
+    const Eigen::VectorXd g =
+        double(K) * testing::InteriorPathGradient(space_, linear, k);
+    for (int v = 0; v < space_.num_vertices; ++v) {
+      vertex_max[v] =
+          std::max(vertex_max[v], g.segment<3>(3 * v).cwiseAbs().maxCoeff());
+    }
+  }
+  const double largest =
+      *std::max_element(vertex_max.begin(), vertex_max.end());
+  EXPECT_NEAR(largest, free_norm, 1e-12 * free_norm);
+  input.fixed_vertices.clear();
+  for (int v = 0; v < space_.num_vertices; ++v) {
+    if (vertex_max[v] >= 0.99 * largest) input.fixed_vertices.push_back(v);
+  }
+  const double mask_norm = ceres_norm(input.fixed_vertices, true);
+  EXPECT_NEAR(LinearPathGradient(space_, input), mask_norm, 1e-12 * mask_norm);
+  EXPECT_LT(mask_norm, (1 - 1e-3) * free_norm);
+}
+
+// The gauge's free coordinates: a spike on vertex a, on b across its line
+// and on c along the plane's normal is not seen; along the line and in the
+// plane it is.
+TEST(RigidGaugeTest, GaugeFreeMaxNormSkipsThePinnedDirections) {
+  const Mesh mesh = testing::LoadData("plate/plate121_rolledA.ply");
+  const RigidGauge gauge = MakeRigidGauge(mesh.positions);
+  const auto [a, b, c] = gauge.vertices;
+  const Eigen::Vector3d normal = gauge.plane.col(0).cross(gauge.plane.col(1));
+  const Eigen::Vector3d across = gauge.plane.col(1);  // orthogonal to line
+  Eigen::VectorXd g = Eigen::VectorXd::Constant(mesh.positions.size(), 0.5);
+  g.segment<3>(3 * a) << 10, -20, 30;
+  g.segment<3>(3 * b) = 0.25 * gauge.line + 40 * across;
+  g.segment<3>(3 * c) = 0.25 * gauge.plane.col(0) + 50 * normal;
+  EXPECT_NEAR(GaugeFreeMaxNorm(gauge, g), 0.5, 1e-14);
+  g.segment<3>(3 * b) += 7 * gauge.line;
+  EXPECT_NEAR(GaugeFreeMaxNorm(gauge, g), 7.25, 1e-12);
+  g.segment<3>(3 * c) += 9 * across;
+  EXPECT_NEAR(GaugeFreeMaxNorm(gauge, g), 9.0, 1e-12);
 }
 
 TEST(StepEnergyRatioTest, MaxOverMin) {
