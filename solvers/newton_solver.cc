@@ -181,11 +181,16 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
       const double mean = n > 0 ? diagonal.sum() / n : 0.0;
       diagonal = diagonal.cwiseMax(settings.lm_min_diagonal *
                                    std::max(mean, 1e-300));
-      // The metadata of the system; the matrix is set per try.
-      LinearSystem damped;
-      damped.vertex_of = system.vertex_of;
-      damped.num_vertices = system.num_vertices;
-      damped.block_offsets = system.block_offsets;
+      // H + lambda D is solved in place: the stored diagonal of H is shifted
+      // for the solve and restored (exactly, from `undamped`) before the
+      // model is evaluated -- no copy of H (on the cactus x4 one H is about
+      // 0.3 GB).
+      std::vector<double*> diagonal_entry(n);
+      std::vector<double> undamped(n);
+      for (int i = 0; i < n; ++i) {
+        diagonal_entry[i] = &system.matrix.coeffRef(i, i);
+        undamped[i] = *diagonal_entry[i];
+      }
       bool stop_requested = false;
       for (int rejected = 0; !accepted; ++rejected) {
         if (rejected > settings.lm_max_rejections) break;
@@ -194,15 +199,15 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
           stop_requested = true;
           break;
         }
-        damped.matrix = system.matrix;
         for (int i = 0; i < n; ++i) {
-          damped.matrix.coeffRef(i, i) += lm_lambda * diagonal(i);
+          *diagonal_entry[i] = undamped[i] + lm_lambda * diagonal(i);
         }
         report.max_shift = std::max(report.max_shift, lm_lambda);
         Eigen::VectorXd p;
         const bool solved =
-            linear_solver->Solve(damped, -current.reduced, forcing, &p) &&
+            linear_solver->Solve(system, -current.reduced, forcing, &p) &&
             p.allFinite();
+        for (int i = 0; i < n; ++i) *diagonal_entry[i] = undamped[i];
         double ratio = -1;
         bool round_off = false;  // |merit change| below round-off
         NewtonResidual trial;

@@ -4,6 +4,7 @@
 #define SHELLSPACE_PROBLEMS_CALCULUS_PATH_HESSIAN_H_
 
 #include <Eigen/SparseCore>
+#include <functional>
 #include <vector>
 
 #include "shellspace/cost_functions/shell/element_hessian.h"
@@ -107,13 +108,16 @@ class PathHessianAssembler {
                         BlockArray* mixed = nullptr,
                         ElementFailure* failure = nullptr) const;
 
-  // T^T H T (lower triangle) from the diagonal blocks of each slice (the sum
-  // of the arrays diagonal[i]) and the blocks below the diagonal (lower[i]:
-  // rows slice i + 1, columns slice i).
-  Eigen::SparseMatrix<double> Compress(
-      const std::vector<std::vector<const BlockArray*>>& diagonal,
-      const std::vector<const BlockArray*>& lower,
-      const std::vector<Eigen::SparseMatrix<double>>& bases) const;
+  // *out = T^T H T (lower triangle) from the diagonal blocks of each slice
+  // (the sum of the arrays diagonal[i]) and the blocks below the diagonal
+  // (lower[i]: rows slice i + 1, columns slice i), written in place (its old
+  // storage released first). slice_done(i), if given, is called once slice
+  // i's columns are written: its arrays are not read again.
+  void Compress(const std::vector<std::vector<const BlockArray*>>& diagonal,
+                const std::vector<const BlockArray*>& lower,
+                const std::vector<Eigen::SparseMatrix<double>>& bases,
+                Eigen::SparseMatrix<double>* out,
+                const std::function<void(int)>& slice_done = nullptr) const;
 
   const ShellSpace& space_;
   HessianModel model_ = HessianModel::kExact;

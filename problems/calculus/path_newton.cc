@@ -115,6 +115,9 @@ class PathEnergyProblem : public NewtonProblem {
     return EvaluationStatus::kOk;
   }
   EvaluationStatus Assemble(LinearSystem* system) override {
+    // The last H is not needed any more: release it before the element
+    // blocks of the new one are allocated (peak memory).
+    system->matrix = SparseMatrix();
     if (!assembler_.TryAssemble(*path_, reduced_.basis, threads_,
                                 &system->matrix)) {
       return EvaluationStatus::kInfeasible;
