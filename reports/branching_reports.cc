@@ -53,14 +53,47 @@ JsonObject SimulationJson(const SimulationSettings& s,
 
 JsonObject DeltaExtrapolationJson(const DeltaExtrapolation& ex) {
   JsonObject e;
-  std::vector<double> nys(ex.ny.begin(), ex.ny.end());
-  e.Add("delta", ex.deltas).Add("ny", nys).Add("constant", ex.constants)
+  std::vector<double> deltas, nys, nxs, constants;
+  std::string widths = "[";
+  for (size_t k = 0; k < ex.widths.size(); ++k) {
+    const DeltaWidth& w = ex.widths[k];
+    deltas.push_back(w.delta);
+    nys.push_back(w.ny);
+    nxs.push_back(w.nx);
+    constants.push_back(w.constant);
+    JsonObject o;
+    o.Add("delta", w.delta).Add("nx", w.nx).Add("ny", w.ny)
+        .Add("constant", w.constant).Add("elastic", w.elastic)
+        .Add("interfacial", w.interfacial).Add("iterations", w.iterations)
+        .Add("termination", w.termination).Add("converged", w.converged)
+        .Add("interfaces_far", w.interfaces_far)
+        .Add("interfaces_max", w.interfaces_max).Add("seconds", w.seconds);
+    widths += (k ? ", " : "") + o.str();
+  }
+  e.Add("delta", deltas).Add("ny", nys).Add("nx", nxs)
+      .Add("constant", constants);
+  e.Raw("widths", widths + "]");
+  e.Add("all_converged", ex.all_converged).Add("monotone", ex.monotone)
       .Add("linear_c0", ex.c0).Add("linear_c1", ex.c1)
       .Add("linear_rms", ex.linear_rms);
   if (ex.has_quadratic) {
     e.Add("quadratic_q0", ex.q0).Add("quadratic_q1", ex.q1)
-        .Add("quadratic_q2", ex.q2).Add("quadratic_rms", ex.quadratic_rms);
+        .Add("quadratic_q2", ex.q2).Add("quadratic_rms", ex.quadratic_rms)
+        .Add("root_s0", ex.s0).Add("root_s1", ex.s1).Add("root_s2", ex.s2)
+        .Add("root_rms", ex.root_rms);
   }
+  e.Add("extrapolated_constant", ex.extrapolated)
+      .Add("extrapolation_error", ex.error);
+  std::vector<double> counts(ex.interfaces.begin(), ex.interfaces.end());
+  e.Add("x", ex.x).Add("interfaces", counts);
+  std::string steps = "[";
+  for (size_t k = 0; k < ex.steps.size(); ++k) {
+    JsonObject o;
+    o.Add("x", ex.steps[k].x).Add("outer", ex.steps[k].outer)
+        .Add("inner", ex.steps[k].inner);
+    steps += (k ? ", " : "") + o.str();
+  }
+  e.Raw("count_steps", steps + "]");
   return e;
 }
 

@@ -23,8 +23,15 @@ JsonObject BranchingEnergyJson(double elastic, double interfacial);
 JsonObject SimulationJson(const branching::SimulationSettings& s,
                           const branching::SimulationResult& result);
 
-// The delta -> 0 extrapolation: delta, ny, constant, linear_c0, linear_c1,
-// linear_rms and, if fitted, quadratic_q0..q2, quadratic_rms.
+// The delta -> 0 extrapolation: delta, ny, nx, constant (per width), widths
+// (per width: delta, nx, ny, constant, elastic, interfacial, iterations,
+// termination, converged, interfaces_far, interfaces_max, seconds),
+// all_converged, monotone, linear_c0, linear_c1, linear_rms, (if fitted)
+// quadratic_q0..q2, quadratic_rms, root_s0..s2, root_rms,
+// extrapolated_constant (s0, else c0), extrapolation_error (the fits'
+// spread, max(|s0 - q0|, |s0 - c0|)), and of the narrowest width's field x,
+// interfaces (per node row) and count_steps [{x, outer, inner}] (x = L
+// toward 0).
 JsonObject DeltaExtrapolationJson(const branching::DeltaExtrapolation& ex);
 
 // A construction of the km, needle or lens family: command, family,

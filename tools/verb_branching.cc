@@ -295,11 +295,36 @@ int RunSimulate() {
     }
     SimulationSettings base = s;
     const DeltaExtrapolation ex =
-        ExtrapolateDelta(base, deltas, [](double delta, double c) {
+        ExtrapolateDelta(base, deltas, [](const DeltaWidth& w) {
           if (!FLAGS_quiet) {
-            std::cerr << "  extrapolation: delta " << delta << "  C " << c << "\n";
+            std::cerr << "  extrapolation: delta " << w.delta << "  grid "
+                      << w.nx << " x " << w.ny << "  C " << w.constant
+                      << "  iterations " << w.iterations << "  "
+                      << w.termination << "  interfaces x = L: "
+                      << w.interfaces_far << ", max " << w.interfaces_max
+                      << "\n";
           }
         });
+    if (!FLAGS_quiet) {
+      std::cerr << "  extrapolation: "
+                << (ex.all_converged ? "every width converged"
+                                     : "NOT every width converged")
+                << ", C(delta) " << (ex.monotone ? "" : "NOT ")
+                << "monotone; linear c0 " << ex.c0 << " (rms "
+                << ex.linear_rms << ")";
+      if (ex.has_quadratic) {
+        std::cerr << ", quadratic q0 " << ex.q0 << " (rms "
+                  << ex.quadratic_rms << "), root s0 " << ex.s0 << " (rms "
+                  << ex.root_rms << ")";
+      }
+      std::cerr << "; C(delta -> 0) = " << ex.extrapolated << " +- "
+                << ex.error << "\n  interface count steps (x = L -> 0):";
+      for (const CountStep& st : ex.steps) {
+        std::cerr << " " << st.outer << "->" << st.inner << " at x "
+                  << st.x << ";";
+      }
+      std::cerr << "\n";
+    }
     summary.Add("extrapolation", DeltaExtrapolationJson(ex));
   }
 

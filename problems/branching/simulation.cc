@@ -3,10 +3,12 @@
 #include <chrono>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <utility>
 
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/problems/branching/construction_optimizer.h"
+#include "shellspace/problems/branching/field_transfer.h"
 #include "shellspace/problems/branching/initial_guess.h"
 #include "shellspace/problems/branching/km_family.h"
 #include "shellspace/problems/branching/self_similar_series.h"
@@ -107,6 +109,32 @@ SimulationResult RunSimulation(const SimulationSettings& s) {
   return result;
 }
 
+SimulationResult ContinueSimulation(const SimulationSettings& s,
+                                    const RelaxedField& start, int periods) {
+  CheckSimulationSettings(s);
+  const auto begin = std::chrono::steady_clock::now();
+  SimulationResult result(RelaxedGrid(s.length, s.height, s.nx, s.ny, s.grading));
+  result.field = TransferField(start, result.field.grid);
+  result.delta = s.Delta();
+  result.periods = periods;
+  RelaxedSolveOptions options;
+  options.deltas = {result.delta};
+  options.max_iterations = s.max_iterations;
+  options.num_threads = s.num_threads;
+  options.progress = s.progress;
+  options.stop = s.stop;
+  result.stages = SolveRelaxed(&result.field, s.epsilon, options);
+  result.energy = result.stages.back().energy;
+  for (const RelaxedStage& stage : result.stages) {
+    result.iterations += stage.iterations;
+  }
+  result.interfaces = CountInterfaces(result.field);
+  result.seconds = std::chrono::duration<double>(
+                       std::chrono::steady_clock::now() - begin)
+                       .count();
+  return result;
+}
+
 std::vector<double> PolynomialFit(const std::vector<double>& x,
                                   const std::vector<double>& y, int degree,
                                   double* rms) {
@@ -154,39 +182,96 @@ std::vector<double> PolynomialFit(const std::vector<double>& x,
 
 DeltaExtrapolation ExtrapolateDelta(
     const SimulationSettings& base, const std::vector<double>& deltas,
-    const std::function<void(double, double)>& progress) {
+    const std::function<void(const DeltaWidth&)>& progress) {
   if (deltas.size() < 2) throw InputError("delta extrapolation needs at least 2 widths");
+  for (size_t k = 0; k < deltas.size(); ++k) {
+    if (!(deltas[k] > 0) || (k > 0 && !(deltas[k] < deltas[k - 1]))) {
+      throw InputError("delta extrapolation: the widths must be positive and decreasing");
+    }
+  }
   DeltaExtrapolation out;
   const double lambda = std::cbrt(base.epsilon) * std::pow(base.length, 2.0 / 3.0);
   const double scale = std::pow(base.epsilon, 2.0 / 3.0) * std::cbrt(base.length);
-  std::vector<double> d;
-  for (double delta : deltas) {
+  std::vector<double> d, constants;
+  std::optional<SimulationResult> previous;
+  out.all_converged = true;
+  for (size_t k = 0; k < deltas.size(); ++k) {
     SimulationSettings s = base;
-    s.delta = delta;
-    int ny = static_cast<int>(std::ceil(3.0 * s.height / delta));
+    s.delta = deltas[k];
+    int ny = static_cast<int>(std::ceil(3.0 * s.height / deltas[k] - 1e-9));
     ny += ny % 2;
     s.ny = ny;
+    s.nx = std::max(2, static_cast<int>(std::lround(base.nx * deltas[0] / deltas[k])));
     s.progress = nullptr;
-    const SimulationResult r = RunSimulation(s);
-    const double c = r.energy.total() / scale;
-    out.deltas.push_back(delta);
-    out.ny.push_back(ny);
-    out.constants.push_back(c);
-    d.push_back(delta / lambda);
-    if (progress) progress(delta, c);
+    SimulationResult r = k == 0 ? RunSimulation(s)
+                                : ContinueSimulation(s, previous->field,
+                                                     previous->periods);
+    DeltaWidth w;
+    w.delta = deltas[k];
+    w.nx = s.nx;
+    w.ny = s.ny;
+    w.constant = r.energy.total() / scale;
+    w.elastic = r.energy.elastic / scale;
+    w.interfacial = r.energy.interfacial() / scale;
+    w.iterations = r.iterations;
+    w.termination = r.stages.back().termination;
+    w.converged = w.termination == "CONVERGENCE";
+    w.interfaces_far = r.interfaces.back();
+    w.interfaces_max = *std::max_element(r.interfaces.begin(), r.interfaces.end());
+    w.seconds = r.seconds;
+    out.all_converged = out.all_converged && w.converged;
+    out.widths.push_back(w);
+    d.push_back(deltas[k] / lambda);
+    constants.push_back(w.constant);
+    if (progress) progress(w);
+    const bool collapsed = w.termination == "COLLAPSED";
+    previous.emplace(std::move(r));
+    if (collapsed || (base.stop && base.stop())) break;
   }
-  const std::vector<double> lin = PolynomialFit(d, out.constants, 1, &out.linear_rms);
+  out.monotone = constants.size() >= 2;
+  for (size_t k = 1; k < constants.size(); ++k) {
+    out.monotone = out.monotone && constants[k] > constants[k - 1];
+  }
+  const RelaxedField& last = previous->field;
+  out.interfaces = previous->interfaces;
+  for (int i = 1; i <= last.grid.nx; ++i) out.x.push_back(last.grid.x(i));
+  out.steps = CountSteps(last, out.interfaces);
+  if (d.size() < 2) return out;  // stopped or collapsed after one width
+  const std::vector<double> lin = PolynomialFit(d, constants, 1, &out.linear_rms);
   out.c0 = lin[0];
   out.c1 = lin[1];
+  out.extrapolated = out.c0;
   if (d.size() >= 4) {
-    const std::vector<double> q =
-        PolynomialFit(d, out.constants, 2, &out.quadratic_rms);
+    const std::vector<double> q = PolynomialFit(d, constants, 2, &out.quadratic_rms);
     out.q0 = q[0];
     out.q1 = q[1];
     out.q2 = q[2];
+    std::vector<double> root;
+    for (double v : d) root.push_back(std::sqrt(v));
+    const std::vector<double> s = PolynomialFit(root, constants, 2, &out.root_rms);
+    out.s0 = s[0];
+    out.s1 = s[1];
+    out.s2 = s[2];
     out.has_quadratic = true;
+    out.extrapolated = out.s0;
+    out.error = std::max(std::fabs(out.s0 - out.q0), std::fabs(out.s0 - out.c0));
   }
   return out;
+}
+
+std::vector<CountStep> CountSteps(const RelaxedField& field,
+                                  const std::vector<int>& counts) {
+  const RelaxedGrid& g = field.grid;
+  if (static_cast<int>(counts.size()) != g.nx) {
+    throw InputError("branching count steps: one count per node row i = 1..nx");
+  }
+  std::vector<CountStep> steps;
+  for (int i = g.nx - 1; i >= 1; --i) {  // rows i (inner) and i + 1 (outer)
+    if (counts[i - 1] != counts[i]) {
+      steps.push_back({0.5 * (g.x(i) + g.x(i + 1)), counts[i], counts[i - 1]});
+    }
+  }
+  return steps;
 }
 
 std::vector<int> CountInterfaces(const RelaxedField& field) {
