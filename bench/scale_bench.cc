@@ -150,6 +150,7 @@ void BM_Scale(benchmark::State& state) {
         !g.stages.empty() && g.stages.front().solver != "ceres";
     state.counters["newton_steps"] = g.newton.steps;
     state.counters["factorizations"] = g.newton.factorizations;
+    state.counters["time_coupled"] = g.newton.time_coupled_factorizations;
     state.counters["cg_iterations"] = g.newton.cg_iterations;
     state.counters["block_jacobi"] = g.newton.linear_solver == "block-jacobi";
     state.counters["newton_seconds"] = g.newton.seconds;

@@ -92,6 +92,8 @@ JsonObject GeodesicJson(const GeodesicResult& result) {
       .Add("newton_steps", result.newton.steps)
       .Add("newton_seconds", result.newton.seconds)
       .Add("factorizations", result.newton.factorizations)
+      .Add("time_coupled_factorizations",
+           result.newton.time_coupled_factorizations)
       .Add("cg_iterations", result.newton.cg_iterations)
       .Add("linear_solver", result.newton.linear_solver.empty()
                                 ? std::string("none")

@@ -43,7 +43,22 @@ bool BlockJacobiCg::Factorize(const SparseMatrix& lower,
                               const std::vector<int>& offsets) {
   offsets_ = offsets;
   factors_->blocks.clear();
+  time_coupled_ = false;
   const int blocks = static_cast<int>(offsets.size()) - 1;
+  if (time_coupling_ && blocks > 0) {
+    std::vector<SparseMatrix> diagonal(blocks);
+    ParallelFor(blocks, threads_, [&](int i) {
+      diagonal[i] = DiagonalBlock(lower, offsets[i], offsets[i + 1]);
+    });
+    const TimeCoupledPreconditioner::Status status =
+        coupled_.Factorize(diagonal, threads_);
+    if (status != TimeCoupledPreconditioner::Status::kDifferentPatterns) {
+      stats_.factorizations += blocks;
+      time_coupled_ = status == TimeCoupledPreconditioner::Status::kFactorized;
+      if (time_coupled_) coupled_.FitCouplings(lower, threads_);
+      return time_coupled_;
+    }
+  }
   std::vector<std::unique_ptr<
       Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Lower>>>
       factors(std::max(blocks, 0));
@@ -66,6 +81,7 @@ bool BlockJacobiCg::Factorize(const SparseMatrix& lower,
 
 Eigen::VectorXd BlockJacobiCg::ApplyPreconditioner(
     const Eigen::VectorXd& r) const {
+  if (time_coupled_) return coupled_.Apply(r, threads_);
   Eigen::VectorXd z(r.size());
   ParallelFor(static_cast<int>(factors_->blocks.size()), threads_, [&](int i) {
     const int begin = offsets_[i], m = offsets_[i + 1] - offsets_[i];
@@ -83,7 +99,7 @@ BlockJacobiCg::Status BlockJacobiCg::Solve(const SparseMatrix& lower,
   ++stats_.solves;
   int count = 0;
   if (iterations) *iterations = 0;
-  if (factors_->blocks.empty() || offsets_.empty() ||
+  if ((factors_->blocks.empty() && !time_coupled_) || offsets_.empty() ||
       offsets_.back() != lower.rows()) {
     return Status::kNotPositive;
   }

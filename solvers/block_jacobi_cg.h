@@ -9,6 +9,8 @@
 #include <memory>
 #include <vector>
 
+#include "shellspace/solvers/time_coupled_preconditioner.h"
+
 namespace shellspace {
 
 // For H = [H_ij] with diagonal blocks H_ii (rows and columns
@@ -61,11 +63,24 @@ class BlockJacobiCg {
   // alone, so the results do not depend on the count).
   void set_threads(int threads) { threads_ = threads < 1 ? 1 : threads; }
 
+  // With time coupling on, Factorize builds the TimeCoupledPreconditioner
+  // of the same diagonal blocks (time_coupled_preconditioner.h: the
+  // couplings of the Kronecker model kept, the same solves per
+  // application) where the blocks share one sparsity pattern, and block
+  // Jacobi otherwise; the coupling strengths are fitted to H
+  // (TimeCoupledPreconditioner::FitCouplings). time_coupled() says which
+  // the last Factorize built, couplings() its theta_i.
+  void set_time_coupling(bool on) { time_coupling_ = on; }
+  bool time_coupled() const { return time_coupled_; }
+  const std::vector<double>& couplings() const { return coupled_.couplings(); }
+
  private:
   struct Factors;  // CHOLMOD stays out of the public headers
   Eigen::VectorXd ApplyPreconditioner(const Eigen::VectorXd& r) const;
 
   std::unique_ptr<Factors> factors_;
+  TimeCoupledPreconditioner coupled_;
+  bool time_coupling_ = false, time_coupled_ = false;
   std::vector<int> offsets_;
   Stats stats_;
   int threads_ = 1;

@@ -32,6 +32,7 @@ bool BlockJacobiSolver::Solve(const LinearSystem& system,
   }
   ++stats_.cg_solves;
   cg_.set_threads(threads);
+  cg_.set_time_coupling(time_coupling);
   const auto run_cg = [&](int budget) {
     const auto start = std::chrono::steady_clock::now();
     int iterations = 0;
@@ -50,6 +51,7 @@ bool BlockJacobiSolver::Solve(const LinearSystem& system,
   factored_offsets_.clear();
   const bool positive = cg_.Factorize(h, system.block_offsets);
   ++stats_.factorizations;
+  if (cg_.time_coupled()) ++stats_.time_coupled_factorizations;
   stats_.factorization_seconds += Since(start);
   if (!positive) return false;
   factored_offsets_ = system.block_offsets;

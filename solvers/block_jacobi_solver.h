@@ -39,6 +39,10 @@ class BlockJacobiSolver : public LinearSolver {
   int stale_iteration_budget = 60;
   int max_iterations = 2000;
   int threads = 1;  // over the blocks (BlockJacobiCg::set_threads)
+  // The time-coupled preconditioner where the blocks share a pattern
+  // (BlockJacobiCg::set_time_coupling); stats().time_coupled_factorizations
+  // counts the factorisations that built it.
+  bool time_coupling = true;
 
  private:
   BlockJacobiCg cg_;

@@ -28,6 +28,9 @@ struct LinearSystem {
 // wall clock, for reports only: no decision of any solver depends on them.
 struct LinearSolverStats {
   int factorizations = 0;
+  // of which the preconditioner coupled the time slices
+  // (time_coupled_preconditioner.h)
+  int time_coupled_factorizations = 0;
   int cg_solves = 0;      // solves finished by CG on a reused factor
   int cg_iterations = 0;  // in all
   int cg_not_converged = 0;  // iterative solves that returned their last

@@ -51,6 +51,7 @@ void NewtonReport::Append(const NewtonReport& later) {
   seconds += later.seconds;
   assembly_seconds += later.assembly_seconds;
   factorizations += later.factorizations;
+  time_coupled_factorizations += later.time_coupled_factorizations;
   factorization_seconds += later.factorization_seconds;
   cg_iterations += later.cg_iterations;
   cg_seconds += later.cg_seconds;
@@ -99,6 +100,9 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
     const LinearSolverStats& s = linear_solver->stats();
     report.seconds = timer.Seconds();
     report.factorizations = s.factorizations - stats_before.factorizations;
+    report.time_coupled_factorizations =
+        s.time_coupled_factorizations -
+        stats_before.time_coupled_factorizations;
     report.factorization_seconds =
         s.factorization_seconds - stats_before.factorization_seconds;
     report.cg_iterations = s.cg_iterations - stats_before.cg_iterations;

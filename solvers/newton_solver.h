@@ -197,6 +197,7 @@ struct NewtonReport {
   double seconds = 0;
   double assembly_seconds = 0;       // of which: Hessian / Jacobian assembly
   int factorizations = 0;            // of the linear solver, this solve
+  int time_coupled_factorizations = 0;  // of which time-coupled (block CG)
   double factorization_seconds = 0;  // of which: factorisations
   int cg_iterations = 0;             // CG iterations on a reused factor
   double cg_seconds = 0;             // of which: CG

@@ -221,6 +221,7 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
     const ScopedBlasThreads one_blas_thread(1);
     BlockJacobiSolver linear_solver;
     linear_solver.threads = std::max(1, settings.num_threads);
+    linear_solver.time_coupling = settings.time_coupled_preconditioner;
     return SolveNewton(&problem, &linear_solver, newton);
   }
   ReusableCholesky linear_solver;

@@ -71,6 +71,11 @@ struct PathNewtonSettings {
       NewtonSettings::Globalisation::kLineSearch;
   HessianModel model = HessianModel::kExact;
   double lm_initial = 1e-4;
+  // Block-Jacobi CG only: precondition with the time-coupled Kronecker
+  // model (time_coupled_preconditioner.h) where every slice has the same
+  // free coordinates (a mask), plain block Jacobi otherwise. On the finger
+  // and cactus ring masks it needs 2-4x fewer CG iterations.
+  bool time_coupled_preconditioner = true;
   int num_threads = 2;  // Hessian blocks are assembled in parallel
   bool progress = false;
   std::string progress_label = "newton";

@@ -50,6 +50,7 @@ TEST(BlockJacobiSolverTest, AgreesWithADirectSolveThroughTheInterface) {
       Eigen::VectorXd::LinSpaced(system.matrix.rows(), -1, 2);
   const Eigen::VectorXd expected = DirectSolve(system, b);
   BlockJacobiSolver solver;
+  solver.time_coupling = false;  // plain block Jacobi
   LinearSolver& interface = solver;
   Eigen::VectorXd x;
   ASSERT_TRUE(interface.Solve(system, b, 1e-12, &x));
@@ -57,11 +58,19 @@ TEST(BlockJacobiSolverTest, AgreesWithADirectSolveThroughTheInterface) {
   EXPECT_LT((x - expected).norm(), 1e-9 * expected.norm());
   EXPECT_STREQ(interface.name(), "block-jacobi");
   EXPECT_EQ(interface.stats().factorizations, 1);
+  EXPECT_EQ(interface.stats().time_coupled_factorizations, 0);
   EXPECT_EQ(interface.stats().cg_solves, 1);
   // T preconditioned by 2I: K - 1 = 7 distinct eigenvalues.
   EXPECT_GE(interface.stats().cg_iterations, 1);
   EXPECT_LE(interface.stats().cg_iterations, 10);
   EXPECT_EQ(interface.stats().cg_not_converged, 0);
+  // The default, time-coupled: the model's own inverse, no CG iteration.
+  BlockJacobiSolver coupled;
+  Eigen::VectorXd y;
+  ASSERT_TRUE(coupled.Solve(system, b, 1e-12, &y));
+  EXPECT_LT((y - expected).norm(), 1e-9 * expected.norm());
+  EXPECT_EQ(coupled.stats().time_coupled_factorizations, 1);
+  EXPECT_EQ(coupled.stats().cg_iterations, 0);
 }
 
 // Stale factors are kept while CG on them meets the budget; a matrix whose

@@ -1,0 +1,262 @@
+#include "shellspace/solvers/time_coupled_preconditioner.h"
+
+#include <cholmod.h>
+
+#include <algorithm>
+#include <cstring>
+#include <random>
+
+#include <Eigen/Cholesky>
+
+#include "shellspace/geometry/parallel_for.h"
+
+namespace shellspace {
+
+using SparseMatrix = Eigen::SparseMatrix<double>;
+
+// One CHOLMOD workspace per slice: the slices are factorised and solved in
+// parallel, and a cholmod_common is not shared between threads.
+struct TimeCoupledPreconditioner::Factors {
+  struct Slice {
+    cholmod_common common;
+    cholmod_factor* factor = nullptr;
+  };
+  std::vector<std::unique_ptr<Slice>> slices;
+
+  static std::unique_ptr<Slice> Start() {
+    auto slice = std::make_unique<Slice>();
+    cholmod_start(&slice->common);
+    slice->common.print = 0;       // an indefinite block is an answer
+    slice->common.supernodal = CHOLMOD_SUPERNODAL;
+    slice->common.final_asis = 1;  // keep the supernodal L L^T
+    return slice;
+  }
+  void Clear() {
+    for (auto& slice : slices) {
+      if (slice->factor) cholmod_free_factor(&slice->factor, &slice->common);
+      cholmod_finish(&slice->common);
+    }
+    slices.clear();
+  }
+  ~Factors() { Clear(); }
+};
+
+namespace {
+
+// CHOLMOD's view of the lower triangle of a compressed, sorted block.
+cholmod_sparse LowerView(const SparseMatrix& block) {
+  cholmod_sparse view;
+  std::memset(&view, 0, sizeof(view));
+  view.nrow = block.rows();
+  view.ncol = block.cols();
+  view.nzmax = block.nonZeros();
+  view.p = const_cast<int*>(block.outerIndexPtr());
+  view.i = const_cast<int*>(block.innerIndexPtr());
+  view.x = const_cast<double*>(block.valuePtr());
+  view.stype = -1;  // symmetric, lower triangle stored
+  view.itype = CHOLMOD_INT;
+  view.xtype = CHOLMOD_REAL;
+  view.dtype = CHOLMOD_DOUBLE;
+  view.sorted = 1;
+  view.packed = 1;
+  return view;
+}
+
+cholmod_dense DenseView(double* data, int rows) {
+  cholmod_dense view;
+  std::memset(&view, 0, sizeof(view));
+  view.nrow = rows;
+  view.ncol = 1;
+  view.nzmax = rows;
+  view.d = rows;
+  view.x = data;
+  view.xtype = CHOLMOD_REAL;
+  view.dtype = CHOLMOD_DOUBLE;
+  return view;
+}
+
+bool SamePattern(const SparseMatrix& a, const SparseMatrix& b) {
+  return a.rows() == b.rows() && a.cols() == b.cols() &&
+         a.nonZeros() == b.nonZeros() &&
+         std::equal(a.outerIndexPtr(), a.outerIndexPtr() + a.cols() + 1,
+                    b.outerIndexPtr()) &&
+         std::equal(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros(),
+                    b.innerIndexPtr());
+}
+
+// 2 T_theta^-1 for T_theta = tridiag(-theta, 2, -theta).
+Eigen::MatrixXd TwiceInverseTimeMatrix(const std::vector<double>& theta) {
+  const int slices = static_cast<int>(theta.size()) + 1;
+  Eigen::MatrixXd t = 2 * Eigen::MatrixXd::Identity(slices, slices);
+  for (int i = 0; i + 1 < slices; ++i) t(i, i + 1) = t(i + 1, i) = -theta[i];
+  return 2 * t.ldlt().solve(Eigen::MatrixXd::Identity(slices, slices));
+}
+
+}  // namespace
+
+TimeCoupledPreconditioner::TimeCoupledPreconditioner()
+    : factors_(std::make_unique<Factors>()) {}
+TimeCoupledPreconditioner::~TimeCoupledPreconditioner() = default;
+
+TimeCoupledPreconditioner::Status TimeCoupledPreconditioner::Factorize(
+    const std::vector<SparseMatrix>& blocks, int threads) {
+  factors_->Clear();
+  mixing_.resize(0, 0);
+  block_size_ = 0;
+  const int count = static_cast<int>(blocks.size());
+  if (count == 0) return Status::kDifferentPatterns;
+  for (const SparseMatrix& block : blocks) {
+    if (!SamePattern(block, blocks.front())) return Status::kDifferentPatterns;
+  }
+  std::vector<std::unique_ptr<Factors::Slice>> slices(count);
+  for (auto& slice : slices) slice = Factors::Start();
+  // The ordering and the supernodes of the common pattern, once.
+  cholmod_sparse first = LowerView(blocks.front());
+  cholmod_factor* symbolic = cholmod_analyze(&first, &slices[0]->common);
+  if (symbolic == nullptr) {
+    for (auto& slice : slices) cholmod_finish(&slice->common);
+    return Status::kNotPositive;
+  }
+  // Every slice gets its copy of the symbolic factor before any is
+  // factorised (a factorisation rewrites the factor it is given).
+  slices[0]->factor = symbolic;
+  bool copied = true;
+  for (int i = 1; i < count; ++i) {
+    slices[i]->factor = cholmod_copy_factor(symbolic, &slices[i]->common);
+    copied = copied && slices[i]->factor != nullptr;
+  }
+  std::vector<char> positive(count, 0);
+  if (copied) {
+    ParallelFor(count, threads, [&](int i) {
+      Factors::Slice& slice = *slices[i];
+      cholmod_sparse view = LowerView(blocks[i]);
+      positive[i] = cholmod_factorize(&view, slice.factor, &slice.common) &&
+                    slice.common.status == CHOLMOD_OK &&
+                    slice.factor->minor == slice.factor->n;
+    });
+  }
+  factors_->slices = std::move(slices);
+  if (!std::all_of(positive.begin(), positive.end(),
+                   [](char p) { return p != 0; })) {
+    factors_->Clear();
+    return Status::kNotPositive;
+  }
+  block_size_ = static_cast<int>(blocks.front().rows());
+  SetCouplings(std::vector<double>(count - 1, 1.0));
+  return Status::kFactorized;
+}
+
+void TimeCoupledPreconditioner::SetCouplings(const std::vector<double>& theta) {
+  theta_ = theta;
+  mixing_ = TwiceInverseTimeMatrix(theta_);
+}
+
+Eigen::VectorXd TimeCoupledPreconditioner::Whiten(
+    int slice, const Eigen::VectorXd& r) const {
+  Factors::Slice& s = *factors_->slices[slice];
+  Eigen::VectorXd in = r;
+  cholmod_dense view = DenseView(in.data(), block_size_);
+  cholmod_dense* permuted = cholmod_solve(CHOLMOD_P, s.factor, &view, &s.common);
+  cholmod_dense* whitened =
+      cholmod_solve(CHOLMOD_L, s.factor, permuted, &s.common);
+  Eigen::VectorXd out = Eigen::Map<const Eigen::VectorXd>(
+      static_cast<const double*>(whitened->x), block_size_);
+  cholmod_free_dense(&permuted, &s.common);
+  cholmod_free_dense(&whitened, &s.common);
+  return out;
+}
+
+Eigen::VectorXd TimeCoupledPreconditioner::Colour(
+    int slice, const Eigen::VectorXd& z) const {
+  Factors::Slice& s = *factors_->slices[slice];
+  Eigen::VectorXd in = z;
+  cholmod_dense view = DenseView(in.data(), block_size_);
+  cholmod_dense* back = cholmod_solve(CHOLMOD_Lt, s.factor, &view, &s.common);
+  cholmod_dense* out = cholmod_solve(CHOLMOD_Pt, s.factor, back, &s.common);
+  Eigen::VectorXd result = Eigen::Map<const Eigen::VectorXd>(
+      static_cast<const double*>(out->x), block_size_);
+  cholmod_free_dense(&back, &s.common);
+  cholmod_free_dense(&out, &s.common);
+  return result;
+}
+
+void TimeCoupledPreconditioner::FitCouplings(const SparseMatrix& lower,
+                                             int threads, int probes) {
+  const int count = slices();
+  const int m = block_size_;
+  if (count < 2 || lower.rows() != static_cast<Eigen::Index>(count) * m) {
+    return;
+  }
+  // Each probe z is used in three colourings: w = C^-T z on the slices
+  // i = c (mod 3), zero elsewhere. A slice next to a coloured one has only
+  // that neighbour coloured, so z^T C_j^-1 (H w)_j is the probe of the
+  // single coupling between j and its coloured neighbour.
+  std::vector<double> trace(count - 1, 0.0);
+  std::vector<int> samples(count - 1, 0);
+  std::vector<double> frobenius(count - 1, 0.0);
+  std::mt19937 generator(20261202u);
+  for (int probe = 0; probe < probes; ++probe) {
+    Eigen::VectorXd z(m);
+    for (int k = 0; k < m; ++k) z(k) = (generator() & 1u) ? 1.0 : -1.0;
+    for (int colour = 0; colour < 3 && colour < count; ++colour) {
+      Eigen::VectorXd w = Eigen::VectorXd::Zero(lower.rows());
+      std::vector<int> coloured;
+      for (int i = colour; i < count; i += 3) coloured.push_back(i);
+      ParallelFor(static_cast<int>(coloured.size()), threads, [&](int c) {
+        const int i = coloured[c];
+        w.segment(static_cast<Eigen::Index>(i) * m, m) = Colour(i, z);
+      });
+      const Eigen::VectorXd hw = lower.selfadjointView<Eigen::Lower>() * w;
+      std::vector<double> value(count, 0.0), square(count, 0.0);
+      std::vector<int> pair(count, -1);  // coupling index of slice j's probe
+      for (int j = 0; j < count; ++j) {
+        if (j % 3 == colour) continue;
+        if (j > 0 && (j - 1) % 3 == colour) pair[j] = j - 1;
+        if (j + 1 < count && (j + 1) % 3 == colour) pair[j] = j;
+      }
+      ParallelFor(count, threads, [&](int j) {
+        if (pair[j] < 0) return;
+        const Eigen::VectorXd ez =
+            Whiten(j, hw.segment(static_cast<Eigen::Index>(j) * m, m));
+        value[j] = z.dot(ez);
+        square[j] = ez.squaredNorm();
+      });
+      for (int j = 0; j < count; ++j) {
+        if (pair[j] < 0) continue;
+        trace[pair[j]] += value[j];
+        frobenius[pair[j]] += square[j];
+        ++samples[pair[j]];
+      }
+    }
+  }
+  std::vector<double> theta(count - 1, 1.0);
+  for (int i = 0; i + 1 < count; ++i) {
+    if (samples[i] == 0) continue;
+    const double mean_trace = trace[i] / samples[i];
+    theta[i] = std::clamp(-2.0 * mean_trace / m, 0.0, 1.0);
+    // The part of the coupling the model does not explain, relative to
+    // the model: |E_i + theta_i I / 2|_F^2 / |theta_i I / 2|_F^2.
+    const double model = theta[i] * theta[i] / 4;
+    const double misfit = frobenius[i] / samples[i] / m - model;
+    if (!(misfit <= kMaxCouplingMisfit * model)) theta[i] = 0;
+  }
+  SetCouplings(theta);
+}
+
+Eigen::VectorXd TimeCoupledPreconditioner::Apply(const Eigen::VectorXd& r,
+                                                 int threads) const {
+  const int count = slices();
+  const int m = block_size_;
+  Eigen::MatrixXd y(m, count);  // column i: L_i^-1 P r_i
+  ParallelFor(count, threads, [&](int i) {
+    y.col(i) = Whiten(i, r.segment(static_cast<Eigen::Index>(i) * m, m));
+  });
+  const Eigen::MatrixXd z = y * mixing_;  // z_i = sum_j (2 T^-1)_ji y_j
+  Eigen::VectorXd x(r.size());
+  ParallelFor(count, threads, [&](int i) {
+    x.segment(static_cast<Eigen::Index>(i) * m, m) = Colour(i, z.col(i));
+  });
+  return x;
+}
+
+}  // namespace shellspace
