@@ -8,11 +8,16 @@
 namespace shellspace {
 
 Eigen::SparseMatrix<double> RigidGaugeBasis(const Positions& shape) {
+  return RigidGaugeBasis(shape, ChooseGaugeVertices(shape));
+}
+
+Eigen::SparseMatrix<double> RigidGaugeBasis(
+    const Positions& shape, const std::array<int, 3>& vertices) {
   const int n = static_cast<int>(shape.rows());
-  const auto [a, b, c] = ChooseGaugeVertices(shape);
-  const Eigen::Vector3d pa = shape.row(a), pb = shape.row(b), pc = shape.row(c);
-  const Eigen::Vector3d u = (pb - pa).normalized();
-  const Eigen::Vector3d w = ((pc - pa) - (pc - pa).dot(u) * u).normalized();
+  const RigidGauge gauge = MakeRigidGauge(shape, vertices);
+  const auto [a, b, c] = vertices;
+  const Eigen::Vector3d u = gauge.line;
+  const Eigen::Vector3d w = gauge.plane.col(1);
   std::vector<Eigen::Triplet<double>> t;
   int column = 0;
   for (int v = 0; v < n; ++v) {

@@ -7,6 +7,8 @@
 #include <Eigen/SparseCore>
 #include <vector>
 
+#include <array>
+
 #include "shellspace/geometry/mesh.h"
 
 namespace shellspace {
@@ -17,6 +19,11 @@ namespace shellspace {
 // every other coordinate, zero on a, u on b and [u w] on c. A rigidly
 // invariant energy restricted to x + T q has no rigid null space.
 Eigen::SparseMatrix<double> RigidGaugeBasis(const Positions& shape);
+// The same with given gauge vertices (a, b, c), not collinear in `shape`:
+// the bases of several shapes with one choice have the same sparsity
+// pattern (the time-coupled preconditioner of a path needs that).
+Eigen::SparseMatrix<double> RigidGaugeBasis(
+    const Positions& shape, const std::array<int, 3>& vertices);
 
 // The mesh vertex of each column of such a basis (columns are supported on
 // the three coordinates of one vertex).

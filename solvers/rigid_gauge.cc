@@ -61,8 +61,13 @@ std::array<int, 3> ChooseGaugeVertices(const Positions& shape) {
 }
 
 RigidGauge MakeRigidGauge(const Positions& shape) {
+  return MakeRigidGauge(shape, ChooseGaugeVertices(shape));
+}
+
+RigidGauge MakeRigidGauge(const Positions& shape,
+                          const std::array<int, 3>& vertices) {
   RigidGauge gauge;
-  gauge.vertices = ChooseGaugeVertices(shape);
+  gauge.vertices = vertices;
   const auto [a, b, c] = gauge.vertices;
   const Eigen::Vector3d pa = shape.row(a), pb = shape.row(b),
                         pc = shape.row(c);

@@ -46,6 +46,10 @@ struct RigidGauge {
   Eigen::Matrix<double, 3, 2> plane;
 };
 RigidGauge MakeRigidGauge(const Positions& shape);
+// The same frame for given vertices a, b, c (which must not be collinear in
+// `shape`: line and plane are then not finite).
+RigidGauge MakeRigidGauge(const Positions& shape,
+                          const std::array<int, 3>& vertices);
 
 // Max |component| of a gradient `g` (3n, vertex-major, of a function of the
 // shape's positions) over the coordinates `gauge` leaves free: every

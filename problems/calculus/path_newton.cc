@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <optional>
+#include <array>
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
 #include "shellspace/geometry/blas_threads.h"
@@ -12,6 +14,7 @@
 #include "shellspace/solvers/gauge_reduced_solve.h"
 #include "shellspace/solvers/block_jacobi_solver.h"
 #include "shellspace/solvers/reusable_cholesky.h"
+#include "shellspace/solvers/rigid_gauge.h"
 
 namespace shellspace {
 
@@ -26,15 +29,36 @@ struct ReducedCoordinates {
   int size = 0;
 };
 
-ReducedCoordinates MakeReducedCoordinates(const ShellSpace& space,
-                                          const std::vector<int>& fixed,
-                                          const ShellPath& path) {
+// Without a mask: one choice of gauge vertices for every inner shape (those
+// of the middle one), so that all slices have the same free coordinates and
+// their Hessian blocks one pattern (the time-coupled preconditioner needs
+// it); none if a, b, c are nearly collinear in some inner shape (c closer
+// than 1e-3 |ab| to the line ab), and each shape then gets its own.
+std::optional<std::array<int, 3>> SharedGaugeVertices(const ShellPath& path) {
+  const int K = static_cast<int>(path.size()) - 1;
+  if (K < 2) return std::nullopt;
+  const std::array<int, 3> vertices = ChooseGaugeVertices(path[K / 2]);
+  const auto [a, b, c] = vertices;
+  for (int k = 1; k < K; ++k) {
+    const Eigen::Vector3d ab = (path[k].row(b) - path[k].row(a)).transpose();
+    const Eigen::Vector3d ac = (path[k].row(c) - path[k].row(a)).transpose();
+    if (!(ab.norm() > 0) || !(ab.cross(ac).norm() >= 1e-3 * ab.squaredNorm())) {
+      return std::nullopt;
+    }
+  }
+  return vertices;
+}
+
+ReducedCoordinates MakeReducedCoordinates(
+    const ShellSpace& space, const std::vector<int>& fixed,
+    const ShellPath& path, const std::optional<std::array<int, 3>>& gauge) {
   ReducedCoordinates r;
   const int K = static_cast<int>(path.size()) - 1;
   for (int k = 1; k < K; ++k) {
-    r.basis.push_back(fixed.empty()
-                          ? RigidGaugeBasis(path[k])
-                          : FreeVertexBasis(space.num_vertices, fixed));
+    r.basis.push_back(
+        !fixed.empty() ? FreeVertexBasis(space.num_vertices, fixed)
+        : gauge       ? RigidGaugeBasis(path[k], *gauge)
+                      : RigidGaugeBasis(path[k]));
     r.offset.push_back(r.size);
     const std::vector<int> vertices = BasisColumnVertices(r.basis.back());
     r.vertex_of.insert(r.vertex_of.end(), vertices.begin(), vertices.end());
@@ -90,7 +114,8 @@ class PathEnergyProblem : public NewtonProblem {
         threads_(threads),
         assembler_(space, model),
         path_(path),
-        reduced_(MakeReducedCoordinates(space, fixed, *path)) {}
+        gauge_(fixed.empty() ? SharedGaugeVertices(*path) : std::nullopt),
+        reduced_(MakeReducedCoordinates(space, fixed, *path, gauge_)) {}
 
   EvaluationStatus Merit(NewtonPoint point, double* merit) override {
     const ShellPath& path = point == NewtonPoint::kCurrent ? *path_ : trial_;
@@ -102,7 +127,7 @@ class PathEnergyProblem : public NewtonProblem {
   EvaluationStatus Residual(NewtonPoint point,
                             NewtonResidual* residual) override {
     if (point == NewtonPoint::kTrial) {
-      trial_reduced_ = MakeReducedCoordinates(space_, fixed_, trial_);
+      trial_reduced_ = MakeReducedCoordinates(space_, fixed_, trial_, gauge_);
     }
     const ShellPath& path = point == NewtonPoint::kCurrent ? *path_ : trial_;
     const ReducedCoordinates& r =
@@ -146,6 +171,8 @@ class PathEnergyProblem : public NewtonProblem {
   const int threads_;
   const PathHessianAssembler assembler_;
   ShellPath* path_;
+  // The gauge vertices of every inner shape (no mask), chosen once.
+  const std::optional<std::array<int, 3>> gauge_;
   ReducedCoordinates reduced_;
   ShellPath trial_;
   ReducedCoordinates trial_reduced_;
