@@ -406,6 +406,7 @@ GeodesicPySolve SolveGeodesicPy(const DoubleArray& start_v,
                                 int steps, const py::object& mask,
                                 const std::string& multires,
                                 const std::string& linear_solver,
+                                const std::string& lm,
                                 const MaterialArgs& material_args,
                                 const SolverSettings& settings) {
   CheckAtLeast("steps", steps, 1);
@@ -417,6 +418,7 @@ GeodesicPySolve SolveGeodesicPy(const DoubleArray& start_v,
   input.steps = steps;
   input.fixed_vertices = Mask(mask, pair.first.mesh.num_vertices());
   input.linear_solver = ParsePathLinearSolver(linear_solver, "linear_solver");
+  input.lm = ParseGeodesicLm(lm, "lm");
   const MultiresolutionSettings levels = ParseMultiresolution(
       multires, pair.first.mesh.num_vertices(), "multires");
   GeodesicPySolve solve;
@@ -433,13 +435,13 @@ GeodesicPySolve SolveGeodesicPy(const DoubleArray& start_v,
 py::tuple GeodesicPy(const DoubleArray& start_v, const DoubleArray& end_v,
                      const IndexArray& F, int steps, const py::object& mask,
                      const std::string& multires,
-                     const std::string& linear_solver, bool report,
-                     const std::optional<std::string>& output,
+                     const std::string& linear_solver, const std::string& lm,
+                     bool report, const std::optional<std::string>& output,
                      const std::optional<std::string>& png,
                      const std::optional<std::string>& gltf, const MaterialArgs& material_args, const SolverOptions& solver) {
   const auto clock = Clock::now();
   const auto [start, space, multi] = SolveGeodesicPy(
-      start_v, end_v, F, steps, mask, multires, linear_solver,
+      start_v, end_v, F, steps, mask, multires, linear_solver, lm,
       material_args, solver.Settings("geodesic"));
   const GeodesicResult& result = multi.geodesic;
   CheckGeodesic(result);
@@ -458,10 +460,11 @@ py::tuple GeodesicPy(const DoubleArray& start_v, const DoubleArray& end_v,
 py::tuple LogPy(const DoubleArray& start_v, const DoubleArray& end_v,
                 const IndexArray& F, int steps, const py::object& mask,
                 const std::string& multires, const std::string& linear_solver,
-                const std::optional<std::string>& output, const MaterialArgs& material_args, const SolverOptions& solver) {
+                const std::string& lm, const std::optional<std::string>& output,
+                const MaterialArgs& material_args, const SolverOptions& solver) {
   const auto clock = Clock::now();
   const auto [start, space, multi] = SolveGeodesicPy(
-      start_v, end_v, F, steps, mask, multires, linear_solver,
+      start_v, end_v, F, steps, mask, multires, linear_solver, lm,
       material_args, solver.Settings("log"));
   const GeodesicResult& geodesic = multi.geodesic;
   const Positions log = LogOfGeodesic(geodesic.path);
@@ -1182,41 +1185,44 @@ PYBIND11_MODULE(shellspace, m) {
       "geodesic",
       [](const DoubleArray& start, const DoubleArray& end, const IndexArray& F,
          int steps, const py::object& mask, const std::string& multires,
-         const std::string& linear_solver, bool report,
+         const std::string& linear_solver, const std::string& lm, bool report,
          const std::optional<std::string>& output,
          const std::optional<std::string>& png,
          const std::optional<std::string>& gltf, double mu, double lambda,
          std::optional<double> eta, double relative_eta, const std::string& bending, double tolerance, int max_iterations, int threads,
          bool quiet) {
         return GeodesicPy(start, end, F, steps, mask, multires, linear_solver,
-                          report, output, png, gltf, MaterialArgs{mu, lambda, eta, relative_eta, bending},
+                          lm, report, output, png, gltf, MaterialArgs{mu, lambda, eta, relative_eta, bending},
                           {tolerance, max_iterations, threads, quiet});
       },
       py::arg("start"), py::arg("end"), py::arg("F"), py::arg("steps") = 8,
       py::arg("mask") = py::none(), py::arg("multires") = "auto",
-      py::arg("linear_solver") = "auto", py::arg("report") = false,
+      py::arg("linear_solver") = "auto", py::arg("lm") = "auto",
+      py::arg("report") = false,
       py::arg("output") = py::none(), py::arg("png") = py::none(),
       py::arg("gltf") = py::none(), SHELLSPACE_MATERIAL_ARGS,
       SHELLSPACE_SOLVER_ARGS,
       "Discrete geodesic from start to end in `steps` steps: returns (path, "
       "summary). mask: vertex indices or a mask file held at their linear "
-      "positions. output: also write DIR/shape_000.ply ...; png: a film "
-      "strip.");
+      "positions. lm: who runs the LM stages, 'auto' | 'ceres' | 'engine' "
+      "(as the CLI's --lm). output: also write DIR/shape_000.ply ...; png: a "
+      "film strip.");
   m.def(
       "log",
       [](const DoubleArray& start, const DoubleArray& end, const IndexArray& F,
          int steps, const py::object& mask, const std::string& multires,
-         const std::string& linear_solver,
+         const std::string& linear_solver, const std::string& lm,
          const std::optional<std::string>& output, double mu, double lambda,
          std::optional<double> eta, double relative_eta, const std::string& bending, double tolerance, int max_iterations, int threads,
          bool quiet) {
-        return LogPy(start, end, F, steps, mask, multires, linear_solver,
+        return LogPy(start, end, F, steps, mask, multires, linear_solver, lm,
                      output, MaterialArgs{mu, lambda, eta, relative_eta, bending},
                      {tolerance, max_iterations, threads, quiet});
       },
       py::arg("start"), py::arg("end"), py::arg("F"), py::arg("steps") = 8,
       py::arg("mask") = py::none(), py::arg("multires") = "auto",
-      py::arg("linear_solver") = "auto", py::arg("output") = py::none(),
+      py::arg("linear_solver") = "auto", py::arg("lm") = "auto",
+      py::arg("output") = py::none(),
       SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
       "LOG_K(start -> end) = K (s_1 - s_0) of the discrete geodesic: returns "
       "(log #V x 3, summary). output: write start + log (as the CLI).");

@@ -102,6 +102,10 @@ JsonObject GeodesicJson(const GeodesicResult& result) {
       .Add("newton_shifted_steps", result.newton.shifted_steps)
       .Add("step_energy_ratio", result.step_energy_ratio)
       .Add("uneven_steps", result.uneven_steps)
+      .Add("smallest_face_area_ratio", result.smallest_face_area.ratio)
+      .Add("smallest_face_area_shape", result.smallest_face_area.shape)
+      .Add("smallest_face_area_face", result.smallest_face_area.face)
+      .Add("collapsing_faces", result.collapsing_faces)
       .Add("frames", static_cast<int>(result.path.size()));
   return json;
 }

@@ -66,10 +66,13 @@ ShootTotals TotalsOf(const ShootResult& result);
 // final_gradient_norm (after the last stage, max norm over the free
 // coordinates), relative_gradient_norm (final / initial), converged (the
 // stopping criterion was met), termination (of the last stage), stages,
-// newton_steps, newton_seconds, factorizations, cg_iterations,
-// linear_solver, cg_not_converged, newton_shifted_steps (Newton steps from
-// H + lambda I), step_energy_ratio (max / min step energy), uneven_steps
-// (ratio > kUnevenStepEnergyRatio), frames.
+// newton_steps, newton_seconds, factorizations,
+// time_coupled_factorizations (of them with the time-coupled
+// preconditioner), cg_iterations, linear_solver, cg_not_converged,
+// newton_shifted_steps (Newton steps from H + lambda I), step_energy_ratio
+// (max / min step energy), uneven_steps (ratio > kUnevenStepEnergyRatio),
+// smallest_face_area_ratio / _shape / _face (SmallestFaceAreaRatio),
+// collapsing_faces (ratio < kCollapsingFaceAreaRatio), frames.
 JsonObject GeodesicJson(const GeodesicResult& result);
 
 // The levels of a multiresolution solve as a JSON array (coarsest first; the

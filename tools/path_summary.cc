@@ -39,6 +39,13 @@ void CheckGeodesic(const GeodesicResult& result, const std::string& what,
                  std::to_string(lo - result.step_energies.begin() + 1) +
                  " = " + Short(*lo) + "; a geodesic has equal steps)");
   }
+  if (result.collapsing_faces) {
+    const FaceAreaRatio& f = result.smallest_face_area;
+    status->Warn(what + ": face " + std::to_string(f.face) + " of shape " +
+                 std::to_string(f.shape) + " has " + Short(f.ratio) +
+                 " of its start area: the path passes near a degenerate "
+                 "triangle (a sliver of the mesh?)");
+  }
 }
 
 void CheckShoot(const ShootResult& result, RunStatus* status) {

@@ -2,6 +2,7 @@
 #include "shellspace/cost_functions/deformation_energy_residuals.h"
 #include "shellspace/problems/calculus/geodesic.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -319,7 +320,29 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
   result.path_energy = PathEnergy(space, result.path, &result.step_energies);
   result.step_energy_ratio = StepEnergyRatio(result.step_energies);
   result.uneven_steps = result.step_energy_ratio > kUnevenStepEnergyRatio;
+  result.smallest_face_area = SmallestFaceAreaRatio(space.faces, result.path);
+  result.collapsing_faces =
+      result.smallest_face_area.ratio < kCollapsingFaceAreaRatio;
   return result;
+}
+
+FaceAreaRatio SmallestFaceAreaRatio(const Faces& faces, const ShellPath& path) {
+  FaceAreaRatio smallest;
+  const int K = static_cast<int>(path.size()) - 1;
+  const auto area = [&](const Positions& x, int f) {
+    const Eigen::Vector3d a = x.row(faces(f, 0)), b = x.row(faces(f, 1)),
+                          c = x.row(faces(f, 2));
+    return 0.5 * (b - a).cross(c - a).norm();
+  };
+  for (int f = 0; f < faces.rows(); ++f) {
+    const double reference = area(path[0], f);
+    if (!(reference > 0)) continue;
+    for (int k = 1; k < K; ++k) {
+      const double ratio = area(path[k], f) / reference;
+      if (ratio < smallest.ratio) smallest = {ratio, k, f};
+    }
+  }
+  return smallest;
 }
 
 Positions SolveWeightedMidpoint(const ShellSpace& space, const Positions& a,

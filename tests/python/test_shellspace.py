@@ -214,6 +214,22 @@ def test_mixed_hessian_is_the_transpose_of_its_twin(double_square):
 
 # ---- Paths --------------------------------------------------------------
 
+def test_geodesic_lm_choice():
+    # lm= as the CLI's --lm: the engine's LM stages and Ceres' reach the
+    # same geodesic; the stages name who ran; a bad value is an InputError.
+    V, F = mesh(DOUBLE)
+    W, _ = mesh(DOUBLE_BENT)
+    _, engine = shellspace.geodesic(V, W, F, steps=4, quiet=True, lm="engine")
+    _, ceres = shellspace.geodesic(V, W, F, steps=4, quiet=True, lm="ceres")
+    assert engine["converged"] and ceres["converged"]
+    assert engine["path_energy"] == pytest.approx(ceres["path_energy"],
+                                                  rel=1e-8)
+    assert engine["stages"][0]["solver"] in ("direct", "block-jacobi")
+    assert ceres["stages"][0]["solver"] == "ceres"
+    with pytest.raises(shellspace.InputError):
+        shellspace.geodesic(V, W, F, steps=4, quiet=True, lm="newton")
+
+
 def test_geodesic_round_trip_against_cli(tmp_path):
     V, F = mesh(DOUBLE)
     W, _ = mesh(DOUBLE_BENT)

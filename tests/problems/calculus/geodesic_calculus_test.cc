@@ -280,6 +280,35 @@ TEST(RigidGaugeTest, GaugeFreeMaxNormSkipsThePinnedDirections) {
   EXPECT_NEAR(GaugeFreeMaxNorm(gauge, g), 9.0, 1e-12);
 }
 
+// Closed forms: a middle shape scaled by 1/2 in x (the plate lies in a
+// plane containing x, so every face keeps half its area) and one vertex
+// moved onto a neighbour (its faces lose all area). The geodesic of the
+// plate pair has no collapsing face.
+TEST_F(GeodesicCalculusTest, SmallestFaceAreaRatioFindsTheCollapse) {
+  ShellPath path = {start_.positions, start_.positions, start_.positions};
+  path[1].col(0) *= 0.5;
+  Positions flat = start_.positions;
+  // The plate's normal: scale the two in-plane axes (x and the other one).
+  const Eigen::RowVector3d extent =
+      flat.colwise().maxCoeff() - flat.colwise().minCoeff();
+  Eigen::Index thin = 0;
+  extent.minCoeff(&thin);
+  ASSERT_NE(thin, 0);
+  FaceAreaRatio half = SmallestFaceAreaRatio(start_.faces, path);
+  EXPECT_NEAR(half.ratio, 0.5, 1e-12);
+  EXPECT_EQ(half.shape, 1);
+  const int f = 17;
+  path[1] = start_.positions;
+  path[1].row(start_.faces(f, 0)) = path[1].row(start_.faces(f, 1));
+  const FaceAreaRatio collapsed = SmallestFaceAreaRatio(start_.faces, path);
+  EXPECT_EQ(collapsed.ratio, 0.0);
+  EXPECT_EQ(collapsed.shape, 1);
+  const GeodesicResult g = Geodesic(4);
+  EXPECT_FALSE(g.collapsing_faces);
+  EXPECT_GT(g.smallest_face_area.ratio, 0.1);
+  EXPECT_LT(g.smallest_face_area.ratio, 1.5);
+}
+
 TEST(StepEnergyRatioTest, MaxOverMin) {
   EXPECT_EQ(StepEnergyRatio({}), 1.0);
   EXPECT_EQ(StepEnergyRatio({3.0}), 1.0);
