@@ -11,7 +11,7 @@
 //   faces         neutral -> smile, no mask (rigid gauge), eta = 0.01
 //   cactus_x4     the cactus pair midpoint-subdivided once (21,038
 //                 vertices), bottom mask carried to the new vertices
-//   cactus_x16    subdivided twice (84,152 vertices)
+//   cactus_x16    subdivided twice (84,146 vertices)
 //
 // Run one case at a time under /usr/bin/time -v for wall, CPU and peak RSS:
 // SHELLSPACE_LM=auto|ceres|engine chooses who runs the LM stages
