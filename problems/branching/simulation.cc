@@ -88,24 +88,38 @@ SimulationResult InitialSimulation(const SimulationSettings& s) {
   return result;
 }
 
-SimulationResult RunSimulation(const SimulationSettings& s) {
-  const auto start = std::chrono::steady_clock::now();
-  SimulationResult result = InitialSimulation(s);
+namespace {
+
+// Solves result->field at the widths `deltas` (the settings' limits) and
+// fills the stages, energy, iterations, interfaces and seconds since
+// `start`.
+void SolveSimulation(const SimulationSettings& s, std::vector<double> deltas,
+                     std::chrono::steady_clock::time_point start,
+                     SimulationResult* result) {
   RelaxedSolveOptions options;
-  options.deltas = ContinuationDeltas(result.delta, s.continuation);
+  options.deltas = std::move(deltas);
   options.max_iterations = s.max_iterations;
   options.num_threads = s.num_threads;
   options.progress = s.progress;
   options.stop = s.stop;
-  result.stages = SolveRelaxed(&result.field, s.epsilon, options);
-  result.energy = result.stages.back().energy;
-  for (const RelaxedStage& stage : result.stages) {
-    result.iterations += stage.iterations;
+  result->stages = SolveRelaxed(&result->field, s.epsilon, options);
+  result->energy = result->stages.back().energy;
+  for (const RelaxedStage& stage : result->stages) {
+    result->iterations += stage.iterations;
   }
-  result.interfaces = CountInterfaces(result.field);
-  result.seconds = std::chrono::duration<double>(
-                       std::chrono::steady_clock::now() - start)
-                       .count();
+  result->interfaces = CountInterfaces(result->field);
+  result->seconds = std::chrono::duration<double>(
+                        std::chrono::steady_clock::now() - start)
+                        .count();
+}
+
+}  // namespace
+
+SimulationResult RunSimulation(const SimulationSettings& s) {
+  const auto start = std::chrono::steady_clock::now();
+  SimulationResult result = InitialSimulation(s);
+  SolveSimulation(s, ContinuationDeltas(result.delta, s.continuation), start,
+                  &result);
   return result;
 }
 
@@ -117,21 +131,7 @@ SimulationResult ContinueSimulation(const SimulationSettings& s,
   result.field = TransferField(start, result.field.grid);
   result.delta = s.Delta();
   result.periods = periods;
-  RelaxedSolveOptions options;
-  options.deltas = {result.delta};
-  options.max_iterations = s.max_iterations;
-  options.num_threads = s.num_threads;
-  options.progress = s.progress;
-  options.stop = s.stop;
-  result.stages = SolveRelaxed(&result.field, s.epsilon, options);
-  result.energy = result.stages.back().energy;
-  for (const RelaxedStage& stage : result.stages) {
-    result.iterations += stage.iterations;
-  }
-  result.interfaces = CountInterfaces(result.field);
-  result.seconds = std::chrono::duration<double>(
-                       std::chrono::steady_clock::now() - begin)
-                       .count();
+  SolveSimulation(s, {result.delta}, begin, &result);
   return result;
 }
 

@@ -138,16 +138,11 @@ double PathGradientMaxNorm(const ShellSpace& space, const GeodesicInput& input,
   std::vector<double> norm(K - 1, 0.0);
   std::vector<char> ok(K - 1, 1);
   ParallelFor(K - 1, threads, [&](int i) {
-    const int k = i + 1;
-    Eigen::VectorXd incoming, outgoing;
-    if (!TryEnergyGradient(space, path[k - 1], path[k], ShellSide::kDeformed,
-                           &incoming) ||
-        !TryEnergyGradient(space, path[k], path[k + 1], ShellSide::kReference,
-                           &outgoing)) {
+    Eigen::VectorXd g;
+    if (!TryInnerShapeGradient(space, path, i + 1, &g)) {
       ok[i] = 0;
       return;
     }
-    const Eigen::VectorXd g = double(K) * (incoming + outgoing);
     if (!input.fixed_vertices.empty()) {
       for (int v = 0; v < space.num_vertices; ++v) {
         if (!is_fixed[v]) {
@@ -155,7 +150,7 @@ double PathGradientMaxNorm(const ShellSpace& space, const GeodesicInput& input,
         }
       }
     } else if (input.pin_gauge) {
-      norm[i] = GaugeFreeMaxNorm(MakeRigidGauge(path[k]), g);
+      norm[i] = GaugeFreeMaxNorm(MakeRigidGauge(path[i + 1]), g);
     } else {
       norm[i] = g.cwiseAbs().maxCoeff();
     }
@@ -167,6 +162,20 @@ double PathGradientMaxNorm(const ShellSpace& space, const GeodesicInput& input,
 }
 
 }  // namespace
+
+bool TryInnerShapeGradient(const ShellSpace& space, const ShellPath& path,
+                           int k, Eigen::VectorXd* gradient) {
+  const int K = static_cast<int>(path.size()) - 1;
+  Eigen::VectorXd incoming, outgoing;
+  if (!TryEnergyGradient(space, path[k - 1], path[k], ShellSide::kDeformed,
+                         &incoming) ||
+      !TryEnergyGradient(space, path[k], path[k + 1], ShellSide::kReference,
+                         &outgoing)) {
+    return false;
+  }
+  *gradient = double(K) * (incoming + outgoing);
+  return true;
+}
 
 double LinearPathGradient(const ShellSpace& space, const GeodesicInput& input) {
   if (input.steps < 2) return 0;

@@ -33,6 +33,12 @@ std::optional<double> TryPathEnergy(
     std::vector<double>* step_energies = nullptr,
     ElementFailure* failure = nullptr);
 
+// The gradient of E_K with respect to the inner shape k (1 <= k < K; all 3n
+// coordinates, vertex-major): G_k = K (D_2 W[s_{k-1}, s_k] +
+// D_1 W[s_k, s_{k+1}]). False if either W has a degenerate element.
+bool TryInnerShapeGradient(const ShellSpace& space, const ShellPath& path,
+                           int k, Eigen::VectorXd* gradient);
+
 // Linear interpolation of vertex positions: K + 1 shapes from a to b.
 ShellPath LinearPath(const Positions& a, const Positions& b, int steps);
 

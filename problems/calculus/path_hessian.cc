@@ -98,6 +98,17 @@ void BuildCompressed(int rows, int cols, const Walk& walk,
   walk(fill);
 }
 
+// Starts column `column` of a BuildCompressed walk: the jw-th column of
+// vertex w (its layout cw); the bases' columns must come in vertex order.
+template <typename Sink>
+void StartColumn(const VertexColumns& cw, int jw, int column, Sink& sink) {
+  if (cw.first + jw != column) {
+    throw std::logic_error(
+        "PathHessianAssembler: basis columns not in vertex order");
+  }
+  sink.Column();
+}
+
 [[noreturn]] void ThrowDegenerate(const ElementFailure& failure) {
   throw InputError("degenerate element while assembling a Hessian of W: " +
                    failure.description);
@@ -353,11 +364,7 @@ bool PathHessianAssembler::TryAssembleMixed(
     for (int w = 0; w < n; ++w) {
       const VertexColumns& cw = col_layout[w];
       for (int jw = 0; jw < cw.count; ++jw, ++column) {
-        if (cw.first + jw != column) {
-          throw std::logic_error(
-              "PathHessianAssembler: basis columns not in vertex order");
-        }
-        sink.Column();
+        StartColumn(cw, jw, column, sink);
         for (int p = pair_start_[w]; p < pair_start_[w + 1]; ++p) {
           const VertexColumns& cv = row_layout[pair_row_[p]];
           for (int iv = 0; iv < cv.count; ++iv) {
@@ -399,11 +406,7 @@ void PathHessianAssembler::Compress(
       for (int w = 0; w < n; ++w) {
         const VertexColumns& cw = layout[i][w];
         for (int jw = 0; jw < cw.count; ++jw, ++column) {
-          if (cw.first + jw != column) {
-            throw std::logic_error(
-                "PathHessianAssembler: basis columns not in vertex order");
-          }
-          sink.Column();
+          StartColumn(cw, jw, column, sink);
           for (int p = pair_start_[w]; p < pair_start_[w + 1]; ++p) {
             const VertexColumns& cv = layout[i][pair_row_[p]];
             if (cv.count == 0 || cv.first + cv.count <= column) continue;

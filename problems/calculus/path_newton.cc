@@ -75,17 +75,12 @@ bool TryReducedGradient(const ShellSpace& space, const ShellPath& path,
   g->resize(r.size);
   std::vector<char> ok(K - 1, 1);
   ParallelFor(K - 1, threads, [&](int i) {
-    const int k = i + 1;
-    Eigen::VectorXd incoming, outgoing;
-    if (!TryEnergyGradient(space, path[k - 1], path[k], ShellSide::kDeformed,
-                           &incoming) ||
-        !TryEnergyGradient(space, path[k], path[k + 1], ShellSide::kReference,
-                           &outgoing)) {
+    Eigen::VectorXd gk;
+    if (!TryInnerShapeGradient(space, path, i + 1, &gk)) {
       ok[i] = 0;
       return;
     }
-    g->segment(r.offset[i], r.basis[i].cols()) =
-        r.basis[i].transpose() * (double(K) * (incoming + outgoing));
+    g->segment(r.offset[i], r.basis[i].cols()) = r.basis[i].transpose() * gk;
   });
   return std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; });
 }
