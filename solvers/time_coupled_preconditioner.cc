@@ -151,33 +151,28 @@ void TimeCoupledPreconditioner::SetCouplings(const std::vector<double>& theta) {
   mixing_ = TwiceInverseTimeMatrix(theta_);
 }
 
+Eigen::VectorXd TimeCoupledPreconditioner::SolveTwice(
+    int slice, int first, int second, const Eigen::VectorXd& v) const {
+  Factors::Slice& s = *factors_->slices[slice];
+  Eigen::VectorXd in = v;
+  cholmod_dense view = DenseView(in.data(), block_size_);
+  cholmod_dense* middle = cholmod_solve(first, s.factor, &view, &s.common);
+  cholmod_dense* out = cholmod_solve(second, s.factor, middle, &s.common);
+  Eigen::VectorXd result = Eigen::Map<const Eigen::VectorXd>(
+      static_cast<const double*>(out->x), block_size_);
+  cholmod_free_dense(&middle, &s.common);
+  cholmod_free_dense(&out, &s.common);
+  return result;
+}
+
 Eigen::VectorXd TimeCoupledPreconditioner::Whiten(
     int slice, const Eigen::VectorXd& r) const {
-  Factors::Slice& s = *factors_->slices[slice];
-  Eigen::VectorXd in = r;
-  cholmod_dense view = DenseView(in.data(), block_size_);
-  cholmod_dense* permuted = cholmod_solve(CHOLMOD_P, s.factor, &view, &s.common);
-  cholmod_dense* whitened =
-      cholmod_solve(CHOLMOD_L, s.factor, permuted, &s.common);
-  Eigen::VectorXd out = Eigen::Map<const Eigen::VectorXd>(
-      static_cast<const double*>(whitened->x), block_size_);
-  cholmod_free_dense(&permuted, &s.common);
-  cholmod_free_dense(&whitened, &s.common);
-  return out;
+  return SolveTwice(slice, CHOLMOD_P, CHOLMOD_L, r);
 }
 
 Eigen::VectorXd TimeCoupledPreconditioner::Colour(
     int slice, const Eigen::VectorXd& z) const {
-  Factors::Slice& s = *factors_->slices[slice];
-  Eigen::VectorXd in = z;
-  cholmod_dense view = DenseView(in.data(), block_size_);
-  cholmod_dense* back = cholmod_solve(CHOLMOD_Lt, s.factor, &view, &s.common);
-  cholmod_dense* out = cholmod_solve(CHOLMOD_Pt, s.factor, back, &s.common);
-  Eigen::VectorXd result = Eigen::Map<const Eigen::VectorXd>(
-      static_cast<const double*>(out->x), block_size_);
-  cholmod_free_dense(&back, &s.common);
-  cholmod_free_dense(&out, &s.common);
-  return result;
+  return SolveTwice(slice, CHOLMOD_Lt, CHOLMOD_Pt, z);
 }
 
 void TimeCoupledPreconditioner::FitCouplings(const SparseMatrix& lower,

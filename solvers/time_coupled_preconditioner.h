@@ -84,6 +84,9 @@ class TimeCoupledPreconditioner {
   // y_i = L_i^-1 P r_i (whiten) and x_i = P^T L_i^-T z_i (colour).
   Eigen::VectorXd Whiten(int slice, const Eigen::VectorXd& r) const;
   Eigen::VectorXd Colour(int slice, const Eigen::VectorXd& z) const;
+  // Two CHOLMOD solves with slice's factor (cholmod_solve's sys codes).
+  Eigen::VectorXd SolveTwice(int slice, int first, int second,
+                             const Eigen::VectorXd& v) const;
   void SetCouplings(const std::vector<double>& theta);
 
   Eigen::MatrixXd mixing_;  // 2 T_theta^-1
