@@ -5,6 +5,7 @@
 #include <algorithm>
 
 #include "shellspace/geometry/parallel_for.h"
+#include "shellspace/solvers/block_tridiagonal_product.h"
 
 namespace shellspace {
 
@@ -103,17 +104,20 @@ BlockJacobiCg::Status BlockJacobiCg::Solve(const SparseMatrix& lower,
       offsets_.back() != lower.rows()) {
     return Status::kNotPositive;
   }
-  const auto h = lower.selfadjointView<Eigen::Lower>();
+  // H d: in parallel over the slices (H couples neighbouring slices only).
+  const auto h = [&](const Eigen::VectorXd& d) {
+    return SymmetricProduct(lower, offsets_, d, threads_);
+  };
   const double target = tolerance * b.norm();
   *x = ApplyPreconditioner(b);
-  Eigen::VectorXd r = b - h * *x;
+  Eigen::VectorXd r = b - h(*x);
   Eigen::VectorXd z = ApplyPreconditioner(r);
   Eigen::VectorXd d = z;
   double rz = r.dot(z);
   Status status = r.norm() <= target ? Status::kSolved : Status::kNotConverged;
   while (status != Status::kSolved && count < max_iterations) {
     ++count;
-    const Eigen::VectorXd hd = h * d;
+    const Eigen::VectorXd hd = h(d);
     const double curvature = d.dot(hd);
     if (!(curvature > 0)) {
       status = Status::kNotPositive;

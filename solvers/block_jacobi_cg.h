@@ -71,6 +71,11 @@ class BlockJacobiCg {
   // (TimeCoupledPreconditioner::FitCouplings). time_coupled() says which
   // the last Factorize built, couplings() its theta_i.
   void set_time_coupling(bool on) { time_coupling_ = on; }
+  // How the time-coupled preconditioner keeps its factors (default single
+  // precision: TimeCoupledPreconditioner::FactorPrecision).
+  void set_factor_precision(TimeCoupledPreconditioner::FactorPrecision p) {
+    coupled_.set_factor_precision(p);
+  }
   bool time_coupled() const { return time_coupled_; }
   const std::vector<double>& couplings() const { return coupled_.couplings(); }
 

@@ -33,6 +33,10 @@ bool BlockJacobiSolver::Solve(const LinearSystem& system,
   ++stats_.cg_solves;
   cg_.set_threads(threads);
   cg_.set_time_coupling(time_coupling);
+  cg_.set_factor_precision(
+      single_precision_factors
+          ? TimeCoupledPreconditioner::FactorPrecision::kSingle
+          : TimeCoupledPreconditioner::FactorPrecision::kDouble);
   const auto run_cg = [&](int budget) {
     const auto start = std::chrono::steady_clock::now();
     int iterations = 0;

@@ -43,6 +43,9 @@ class BlockJacobiSolver : public LinearSolver {
   // (BlockJacobiCg::set_time_coupling); stats().time_coupled_factorizations
   // counts the factorisations that built it.
   bool time_coupling = true;
+  // Its factors in single precision (half the memory and time of its
+  // solves; CG's answer is the same to its tolerance), or double.
+  bool single_precision_factors = true;
 
  private:
   BlockJacobiCg cg_;

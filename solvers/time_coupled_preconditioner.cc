@@ -9,36 +9,24 @@
 #include <Eigen/Cholesky>
 
 #include "shellspace/geometry/parallel_for.h"
+#include "shellspace/solvers/block_tridiagonal_product.h"
+#include "shellspace/solvers/supernodal_factor.h"
 
 namespace shellspace {
 
 using SparseMatrix = Eigen::SparseMatrix<double>;
 
-// One CHOLMOD workspace per slice: the slices are factorised and solved in
-// parallel, and a cholmod_common is not shared between threads.
+// The slices' factors, sharing one pattern, in the chosen precision (the
+// CHOLMOD factors are released as soon as they are copied).
 struct TimeCoupledPreconditioner::Factors {
-  struct Slice {
-    cholmod_common common;
-    cholmod_factor* factor = nullptr;
-  };
-  std::vector<std::unique_ptr<Slice>> slices;
-
-  static std::unique_ptr<Slice> Start() {
-    auto slice = std::make_unique<Slice>();
-    cholmod_start(&slice->common);
-    slice->common.print = 0;       // an indefinite block is an answer
-    slice->common.supernodal = CHOLMOD_SUPERNODAL;
-    slice->common.final_asis = 1;  // keep the supernodal L L^T
-    return slice;
-  }
+  std::shared_ptr<const SupernodalPattern> pattern;
+  std::vector<SupernodalFactor<float>> single;
+  std::vector<SupernodalFactor<double>> full;
   void Clear() {
-    for (auto& slice : slices) {
-      if (slice->factor) cholmod_free_factor(&slice->factor, &slice->common);
-      cholmod_finish(&slice->common);
-    }
-    slices.clear();
+    single.clear();
+    full.clear();
+    pattern.reset();
   }
-  ~Factors() { Clear(); }
 };
 
 namespace {
@@ -59,19 +47,6 @@ cholmod_sparse LowerView(const SparseMatrix& block) {
   view.dtype = CHOLMOD_DOUBLE;
   view.sorted = 1;
   view.packed = 1;
-  return view;
-}
-
-cholmod_dense DenseView(double* data, int rows) {
-  cholmod_dense view;
-  std::memset(&view, 0, sizeof(view));
-  view.nrow = rows;
-  view.ncol = 1;
-  view.nzmax = rows;
-  view.d = rows;
-  view.x = data;
-  view.xtype = CHOLMOD_REAL;
-  view.dtype = CHOLMOD_DOUBLE;
   return view;
 }
 
@@ -108,39 +83,56 @@ TimeCoupledPreconditioner::Status TimeCoupledPreconditioner::Factorize(
   for (const SparseMatrix& block : blocks) {
     if (!SamePattern(block, blocks.front())) return Status::kDifferentPatterns;
   }
-  std::vector<std::unique_ptr<Factors::Slice>> slices(count);
-  for (auto& slice : slices) slice = Factors::Start();
   // The ordering and the supernodes of the common pattern, once.
+  cholmod_common common;
+  cholmod_start(&common);
+  common.print = 0;
+  common.supernodal = CHOLMOD_SUPERNODAL;
   cholmod_sparse first = LowerView(blocks.front());
-  cholmod_factor* symbolic = cholmod_analyze(&first, &slices[0]->common);
-  if (symbolic == nullptr) {
-    for (auto& slice : slices) cholmod_finish(&slice->common);
+  cholmod_factor* symbolic = cholmod_analyze(&first, &common);
+  auto pattern = std::make_shared<const SupernodalPattern>(
+      symbolic ? SupernodalPattern::Of(*symbolic) : SupernodalPattern());
+  if (pattern->size != static_cast<int>(first.nrow)) {
+    if (symbolic) cholmod_free_factor(&symbolic, &common);
+    cholmod_finish(&common);
     return Status::kNotPositive;
   }
-  // Every slice gets its copy of the symbolic factor before any is
-  // factorised (a factorisation rewrites the factor it is given).
-  slices[0]->factor = symbolic;
-  bool copied = true;
-  for (int i = 1; i < count; ++i) {
-    slices[i]->factor = cholmod_copy_factor(symbolic, &slices[i]->common);
-    copied = copied && slices[i]->factor != nullptr;
-  }
-  std::vector<char> positive(count, 0);
-  if (copied) {
-    ParallelFor(count, threads, [&](int i) {
-      Factors::Slice& slice = *slices[i];
-      cholmod_sparse view = LowerView(blocks[i]);
-      positive[i] = cholmod_factorize(&view, slice.factor, &slice.common) &&
-                    slice.common.status == CHOLMOD_OK &&
-                    slice.factor->minor == slice.factor->n;
-    });
-  }
-  factors_->slices = std::move(slices);
-  if (!std::all_of(positive.begin(), positive.end(),
-                   [](char p) { return p != 0; })) {
-    factors_->Clear();
+  // Each slice: a copy of the symbolic factor, factorised, converted, freed
+  // (at most `threads` double-precision factors at a time). A
+  // cholmod_common is not shared between threads.
+  const bool single = precision_ == FactorPrecision::kSingle;
+  std::vector<SupernodalFactor<float>> single_slices(single ? count : 0);
+  std::vector<SupernodalFactor<double>> full_slices(single ? 0 : count);
+  std::vector<char> valid(count, 0);
+  ParallelFor(count, threads, [&](int i) {
+    cholmod_common own;
+    cholmod_start(&own);
+    own.print = 0;  // an indefinite block is an answer
+    own.supernodal = CHOLMOD_SUPERNODAL;
+    own.final_asis = 1;  // keep the supernodal L L^T
+    cholmod_factor* factor = cholmod_copy_factor(symbolic, &own);
+    cholmod_sparse view = LowerView(blocks[i]);
+    if (factor && cholmod_factorize(&view, factor, &own) &&
+        own.status == CHOLMOD_OK && factor->minor == factor->n) {
+      if (single) {
+        single_slices[i] = SupernodalFactor<float>(pattern, *factor);
+        valid[i] = single_slices[i].valid();
+      } else {
+        full_slices[i] = SupernodalFactor<double>(pattern, *factor);
+        valid[i] = full_slices[i].valid();
+      }
+    }
+    if (factor) cholmod_free_factor(&factor, &own);
+    cholmod_finish(&own);
+  });
+  cholmod_free_factor(&symbolic, &common);
+  cholmod_finish(&common);
+  if (!std::all_of(valid.begin(), valid.end(), [](char v) { return v; })) {
     return Status::kNotPositive;
   }
+  factors_->pattern = std::move(pattern);
+  factors_->single = std::move(single_slices);
+  factors_->full = std::move(full_slices);
   block_size_ = static_cast<int>(blocks.front().rows());
   SetCouplings(std::vector<double>(count - 1, 1.0));
   return Status::kFactorized;
@@ -151,28 +143,16 @@ void TimeCoupledPreconditioner::SetCouplings(const std::vector<double>& theta) {
   mixing_ = TwiceInverseTimeMatrix(theta_);
 }
 
-Eigen::VectorXd TimeCoupledPreconditioner::SolveTwice(
-    int slice, int first, int second, const Eigen::VectorXd& v) const {
-  Factors::Slice& s = *factors_->slices[slice];
-  Eigen::VectorXd in = v;
-  cholmod_dense view = DenseView(in.data(), block_size_);
-  cholmod_dense* middle = cholmod_solve(first, s.factor, &view, &s.common);
-  cholmod_dense* out = cholmod_solve(second, s.factor, middle, &s.common);
-  Eigen::VectorXd result = Eigen::Map<const Eigen::VectorXd>(
-      static_cast<const double*>(out->x), block_size_);
-  cholmod_free_dense(&middle, &s.common);
-  cholmod_free_dense(&out, &s.common);
-  return result;
-}
-
 Eigen::VectorXd TimeCoupledPreconditioner::Whiten(
     int slice, const Eigen::VectorXd& r) const {
-  return SolveTwice(slice, CHOLMOD_P, CHOLMOD_L, r);
+  return factors_->single.empty() ? factors_->full[slice].Whiten(r)
+                                  : factors_->single[slice].Whiten(r);
 }
 
 Eigen::VectorXd TimeCoupledPreconditioner::Colour(
     int slice, const Eigen::VectorXd& z) const {
-  return SolveTwice(slice, CHOLMOD_Lt, CHOLMOD_Pt, z);
+  return factors_->single.empty() ? factors_->full[slice].Colour(z)
+                                  : factors_->single[slice].Colour(z);
 }
 
 void TimeCoupledPreconditioner::FitCouplings(const SparseMatrix& lower,
@@ -189,6 +169,8 @@ void TimeCoupledPreconditioner::FitCouplings(const SparseMatrix& lower,
   std::vector<double> trace(count - 1, 0.0);
   std::vector<int> samples(count - 1, 0);
   std::vector<double> frobenius(count - 1, 0.0);
+  std::vector<int> offsets(count + 1);
+  for (int i = 0; i <= count; ++i) offsets[i] = i * m;
   std::mt19937 generator(20261202u);
   for (int probe = 0; probe < probes; ++probe) {
     Eigen::VectorXd z(m);
@@ -201,7 +183,7 @@ void TimeCoupledPreconditioner::FitCouplings(const SparseMatrix& lower,
         const int i = coloured[c];
         w.segment(static_cast<Eigen::Index>(i) * m, m) = Colour(i, z);
       });
-      const Eigen::VectorXd hw = lower.selfadjointView<Eigen::Lower>() * w;
+      const Eigen::VectorXd hw = SymmetricProduct(lower, offsets, w, threads);
       std::vector<double> value(count, 0.0), square(count, 0.0);
       std::vector<int> pair(count, -1);  // coupling index of slice j's probe
       for (int j = 0; j < count; ++j) {

@@ -56,6 +56,14 @@ inline constexpr double kMaxCouplingMisfit = 0.2;
 class TimeCoupledPreconditioner {
  public:
   enum class Status { kFactorized, kNotPositive, kDifferentPatterns };
+  // How the slices' factors L_i are kept (SupernodalFactor): kSingle halves
+  // their memory and the time of Apply (bound by reading the factors), and
+  // M is then the model of the rounded factors -- still symmetric positive
+  // definite, its diagonal blocks within about 1e-7 relative of H_ii's.
+  enum class FactorPrecision { kDouble, kSingle };
+  void set_factor_precision(FactorPrecision precision) {
+    precision_ = precision;
+  }
 
   TimeCoupledPreconditioner();
   ~TimeCoupledPreconditioner();
@@ -79,16 +87,14 @@ class TimeCoupledPreconditioner {
   const std::vector<double>& couplings() const { return theta_; }
 
  private:
-  struct Factors;  // CHOLMOD stays out of the public headers
+  struct Factors;
   std::unique_ptr<Factors> factors_;
   // y_i = L_i^-1 P r_i (whiten) and x_i = P^T L_i^-T z_i (colour).
   Eigen::VectorXd Whiten(int slice, const Eigen::VectorXd& r) const;
   Eigen::VectorXd Colour(int slice, const Eigen::VectorXd& z) const;
-  // Two CHOLMOD solves with slice's factor (cholmod_solve's sys codes).
-  Eigen::VectorXd SolveTwice(int slice, int first, int second,
-                             const Eigen::VectorXd& v) const;
   void SetCouplings(const std::vector<double>& theta);
 
+  FactorPrecision precision_ = FactorPrecision::kSingle;
   Eigen::MatrixXd mixing_;  // 2 T_theta^-1
   std::vector<double> theta_;
   int block_size_ = 0;

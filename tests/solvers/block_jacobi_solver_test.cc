@@ -64,13 +64,23 @@ TEST(BlockJacobiSolverTest, AgreesWithADirectSolveThroughTheInterface) {
   EXPECT_GE(interface.stats().cg_iterations, 1);
   EXPECT_LE(interface.stats().cg_iterations, 10);
   EXPECT_EQ(interface.stats().cg_not_converged, 0);
-  // The default, time-coupled: the model's own inverse, no CG iteration.
+  // Time-coupled with double-precision factors: the model's own inverse,
+  // no CG iteration.
   BlockJacobiSolver coupled;
+  coupled.single_precision_factors = false;
   Eigen::VectorXd y;
   ASSERT_TRUE(coupled.Solve(system, b, 1e-12, &y));
   EXPECT_LT((y - expected).norm(), 1e-9 * expected.norm());
   EXPECT_EQ(coupled.stats().time_coupled_factorizations, 1);
   EXPECT_EQ(coupled.stats().cg_iterations, 0);
+  // The default, single-precision factors: the inverse to float round-off,
+  // so CG needs one or two iterations to 1e-12 (and the same answer).
+  BlockJacobiSolver single;
+  ASSERT_TRUE(single.Solve(system, b, 1e-12, &y));
+  EXPECT_LT(RelativeResidual(system, y, b), 1e-12);
+  EXPECT_LT((y - expected).norm(), 1e-9 * expected.norm());
+  EXPECT_GE(single.stats().cg_iterations, 1);
+  EXPECT_LE(single.stats().cg_iterations, 2);
 }
 
 // Stale factors are kept while CG on them meets the budget; a matrix whose

@@ -41,10 +41,14 @@ Eigen::VectorXd TestVector(int size, double phase) {
   return v;
 }
 
+using Precision = TimeCoupledPreconditioner::FactorPrecision;
+
 // max |M^-1 H x - x| / |x| for the preconditioner of H's diagonal blocks,
-// its couplings fitted to H if `fit`.
-double ModelError(const SparseMatrix& lower, int m, bool fit = false) {
+// its couplings fitted to H if `fit`, its factors kept in `precision`.
+double ModelError(const SparseMatrix& lower, int m, bool fit = false,
+                  Precision precision = Precision::kDouble) {
   TimeCoupledPreconditioner p;
+  p.set_factor_precision(precision);
   EXPECT_EQ(p.Factorize(DiagonalBlocks(lower, m), 2),
             TimeCoupledPreconditioner::Status::kFactorized);
   if (fit) p.FitCouplings(lower, 2);
@@ -57,7 +61,20 @@ TEST(TimeCoupledPreconditionerTest, IsTheInverseOfTheKroneckerModel) {
   const SparseMatrix g = testing::PlateLaplacianMetric(0.1);
   const int m = static_cast<int>(g.rows());
   for (int K : {2, 3, 8, 16}) {
-    EXPECT_LT(ModelError(testing::KroneckerPathModel(g, K), m), 1e-10) << K;
+    const SparseMatrix lower = testing::KroneckerPathModel(g, K);
+    EXPECT_LT(ModelError(lower, m), 1e-10) << K;
+    // The default, factors in float: exact for the rounded factors, so
+    // within float round-off of the model (2^-24 = 6e-8 per entry, times
+    // the conditioning of the metric's factor), and not exact.
+    const double single = ModelError(lower, m, false, Precision::kSingle);
+    EXPECT_LT(single, 1e-5) << K;
+    EXPECT_GT(single, 1e-12) << K;
+  }
+  // Float factors of matrices far outside float's range (entries 1e-60 and
+  // 1e60): scaled by a power of two before rounding, they lose nothing more.
+  for (double size : {1e-60, 1e60}) {
+    const SparseMatrix lower = size * testing::KroneckerPathModel(g, 3);
+    EXPECT_LT(ModelError(lower, m, false, Precision::kSingle), 1e-5) << size;
   }
   // The twin: with the diagonal blocks scaled by 1.5 the couplings are not
   // -C_i C_i+1^T / 2 any more, and the same check sees it.
@@ -73,6 +90,7 @@ TEST(TimeCoupledPreconditionerTest, FittedCouplingsOfScaledKroneckerModels) {
   for (double scale : {1.0, 1.5, 4.0}) {
     const SparseMatrix lower = testing::KroneckerPathModel(g, 6, scale);
     TimeCoupledPreconditioner p;
+    p.set_factor_precision(Precision::kDouble);
     ASSERT_EQ(p.Factorize(DiagonalBlocks(lower, m), 2),
               TimeCoupledPreconditioner::Status::kFactorized);
     p.FitCouplings(lower, 2);

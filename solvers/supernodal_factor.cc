@@ -1,0 +1,198 @@
+#include "shellspace/solvers/supernodal_factor.h"
+
+#include <cholmod.h>
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+namespace shellspace {
+
+SupernodalPattern SupernodalPattern::Of(const cholmod_factor& factor) {
+  SupernodalPattern pattern;
+  if (!factor.is_super || factor.itype != CHOLMOD_INT) return pattern;
+  const int n = static_cast<int>(factor.n);
+  const int supernodes = static_cast<int>(factor.nsuper);
+  const int* perm = static_cast<const int*>(factor.Perm);
+  const int* super = static_cast<const int*>(factor.super);
+  const int* pi = static_cast<const int*>(factor.pi);
+  const int* px = static_cast<const int*>(factor.px);
+  const int* s = static_cast<const int*>(factor.s);
+  pattern.size = n;
+  pattern.perm.assign(perm, perm + n);
+  pattern.first_column.assign(super, super + supernodes + 1);
+  pattern.row_begin.assign(pi, pi + supernodes + 1);
+  pattern.value_begin.assign(px, px + supernodes + 1);
+  pattern.rows.assign(s, s + pi[supernodes]);
+  // The solves take a supernode's first rows to be its own columns.
+  for (int k = 0; k < supernodes; ++k) {
+    for (int j = 0; j < super[k + 1] - super[k]; ++j) {
+      if (s[pi[k] + j] != super[k] + j) return SupernodalPattern();
+    }
+  }
+  return pattern;
+}
+
+template <typename Stored>
+SupernodalFactor<Stored>::SupernodalFactor(
+    std::shared_ptr<const SupernodalPattern> pattern,
+    const cholmod_factor& factor)
+    : SupernodalFactor(
+          std::move(pattern),
+          factor.is_super && factor.is_ll && factor.xtype == CHOLMOD_REAL &&
+                  factor.itype == CHOLMOD_INT
+              ? static_cast<const double*>(factor.x)
+              : nullptr) {
+  if (valid_ && (static_cast<int>(factor.n) != pattern_->size ||
+                 static_cast<int>(factor.nsuper) != pattern_->supernodes() ||
+                 factor.minor != factor.n)) {
+    valid_ = false;
+  }
+}
+
+template <typename Stored>
+SupernodalFactor<Stored>::SupernodalFactor(
+    std::shared_ptr<const SupernodalPattern> pattern, const double* values)
+    : pattern_(std::move(pattern)) {
+  if (!pattern_ || pattern_->size == 0 || values == nullptr) return;
+  const SupernodalPattern& p = *pattern_;
+  // The scale: a power of two near the largest |L_ij| of the stored lower
+  // parts (the strict upper part of each diagonal triangle is not L).
+  double largest = 0;
+  bool finite = true;
+  for (int s = 0; s < p.supernodes(); ++s) {
+    const int columns = p.first_column[s + 1] - p.first_column[s];
+    const long rows = p.row_begin[s + 1] - p.row_begin[s];
+    const double* block = values + p.value_begin[s];
+    for (int j = 0; j < columns; ++j) {
+      for (long i = j; i < rows; ++i) {
+        const double v = block[i + j * rows];
+        finite = finite && std::isfinite(v);
+        largest = std::max(largest, std::abs(v));
+      }
+    }
+  }
+  if (!finite || !(largest > 0)) return;
+  int exponent = 0;
+  std::frexp(largest, &exponent);
+  scale_ = std::ldexp(1.0, exponent);
+  const double inverse_scale = 1 / scale_;  // exact: a power of two
+  values_.assign(static_cast<size_t>(p.values()), Stored(0));
+  bool positive = true;
+  for (int s = 0; s < p.supernodes(); ++s) {
+    const int columns = p.first_column[s + 1] - p.first_column[s];
+    const long rows = p.row_begin[s + 1] - p.row_begin[s];
+    const double* block = values + p.value_begin[s];
+    Stored* out = values_.data() + p.value_begin[s];
+    for (int j = 0; j < columns; ++j) {
+      for (long i = j; i < rows; ++i) {
+        out[i + j * rows] = static_cast<Stored>(block[i + j * rows] *
+                                               inverse_scale);
+      }
+      positive = positive && out[j + j * rows] > 0 &&
+                 std::isnormal(out[j + j * rows]);
+    }
+  }
+  valid_ = positive;
+}
+
+namespace {
+
+// The longest rectangle below a supernode's triangle.
+long LongestRectangle(const SupernodalPattern& p) {
+  long longest = 0;
+  for (int s = 0; s < p.supernodes(); ++s) {
+    const long rows = p.row_begin[s + 1] - p.row_begin[s];
+    longest = std::max(longest, rows - (p.first_column[s + 1] -
+                                        p.first_column[s]));
+  }
+  return longest;
+}
+
+}  // namespace
+
+// Forward substitution, supernode after supernode: the triangle gives the
+// supernode's x, then the rectangle below it t = R x_s (column after
+// column, contiguous: vectorised) is subtracted from the rows it names.
+template <typename Stored>
+void SupernodalFactor<Stored>::SolveLower(double* x) const {
+  const SupernodalPattern& p = *pattern_;
+  std::vector<double> t(static_cast<size_t>(LongestRectangle(p)));
+  for (int s = 0; s < p.supernodes(); ++s) {
+    const int first = p.first_column[s];
+    const int columns = p.first_column[s + 1] - first;
+    const long rows = p.row_begin[s + 1] - p.row_begin[s];
+    const long below = rows - columns;
+    const int* row = p.rows.data() + p.row_begin[s] + columns;
+    const Stored* block = values_.data() + p.value_begin[s];
+    double* xs = x + first;
+    for (int j = 0; j < columns; ++j) {
+      const Stored* column = block + j * rows;
+      const double xj = xs[j] / column[j];
+      xs[j] = xj;
+      for (int i = j + 1; i < columns; ++i) xs[i] -= column[i] * xj;
+    }
+    if (below == 0) continue;
+    std::fill(t.begin(), t.begin() + below, 0.0);
+    for (int j = 0; j < columns; ++j) {
+      const Stored* column = block + j * rows + columns;
+      const double xj = xs[j];
+      for (long i = 0; i < below; ++i) t[i] += column[i] * xj;
+    }
+    for (long i = 0; i < below; ++i) x[row[i]] -= t[i];
+  }
+}
+
+// Backward substitution in the reverse order: the rows below a supernode
+// are final, gathered once into t; each column's x_j is its right-hand
+// side minus the column's dot products with them and with the later
+// columns of the triangle, over the diagonal.
+template <typename Stored>
+void SupernodalFactor<Stored>::SolveLowerTransposed(double* x) const {
+  const SupernodalPattern& p = *pattern_;
+  std::vector<double> t(static_cast<size_t>(LongestRectangle(p)));
+  for (int s = p.supernodes() - 1; s >= 0; --s) {
+    const int first = p.first_column[s];
+    const int columns = p.first_column[s + 1] - first;
+    const long rows = p.row_begin[s + 1] - p.row_begin[s];
+    const long below = rows - columns;
+    const int* row = p.rows.data() + p.row_begin[s] + columns;
+    const Stored* block = values_.data() + p.value_begin[s];
+    double* xs = x + first;
+    for (long i = 0; i < below; ++i) t[i] = x[row[i]];
+    for (int j = columns - 1; j >= 0; --j) {
+      const Stored* column = block + j * rows;
+      double sum = 0;
+      for (long i = 0; i < below; ++i) sum += column[columns + i] * t[i];
+      for (int i = j + 1; i < columns; ++i) sum += column[i] * xs[i];
+      xs[j] = (xs[j] - sum) / column[j];
+    }
+  }
+}
+
+template <typename Stored>
+Eigen::VectorXd SupernodalFactor<Stored>::Whiten(
+    const Eigen::VectorXd& r) const {
+  const SupernodalPattern& p = *pattern_;
+  Eigen::VectorXd y(p.size);
+  for (int k = 0; k < p.size; ++k) y(k) = r(p.perm[k]);
+  SolveLower(y.data());
+  y /= scale_;  // L = scale L~: L^-1 = L~^-1 / scale
+  return y;
+}
+
+template <typename Stored>
+Eigen::VectorXd SupernodalFactor<Stored>::Colour(
+    const Eigen::VectorXd& z) const {
+  const SupernodalPattern& p = *pattern_;
+  Eigen::VectorXd w = z / scale_;
+  SolveLowerTransposed(w.data());
+  Eigen::VectorXd x(p.size);
+  for (int k = 0; k < p.size; ++k) x(p.perm[k]) = w(k);
+  return x;
+}
+
+template class SupernodalFactor<double>;
+template class SupernodalFactor<float>;
+
+}  // namespace shellspace
