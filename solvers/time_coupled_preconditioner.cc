@@ -88,6 +88,13 @@ TimeCoupledPreconditioner::Status TimeCoupledPreconditioner::Factorize(
   cholmod_start(&common);
   common.print = 0;
   common.supernodal = CHOLMOD_SUPERNODAL;
+  // The ordering with the least fill of AMD and METIS' nested dissection
+  // (on the cactus x4 slices, 59,508 unknowns: nnz(L) 14.9M AMD, 13.0M
+  // METIS, factorisation 1.12 s against 0.97 s; on small slices AMD wins).
+  // Both are deterministic; the analysis is done once for all slices.
+  common.nmethods = 2;
+  common.method[0].ordering = CHOLMOD_AMD;
+  common.method[1].ordering = CHOLMOD_METIS;
   cholmod_sparse first = LowerView(blocks.front());
   cholmod_factor* symbolic = cholmod_analyze(&first, &common);
   auto pattern = std::make_shared<const SupernodalPattern>(

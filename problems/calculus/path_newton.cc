@@ -205,7 +205,7 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
   newton.max_steps = settings.max_steps;
   newton.tolerance = settings.gradient_tolerance;
   newton.forcing_rule = NewtonSettings::Forcing::kInexactNewton;
-  newton.forcing = 1e-2;
+  newton.forcing = settings.forcing;
   newton.max_halvings = 2;
   newton.accept_smaller_max_norm = true;
   newton.merit_round_off = 1e-10;
