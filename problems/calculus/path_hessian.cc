@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <functional>
+#include <limits>
 #include <type_traits>
 #include <stdexcept>
 
@@ -51,14 +52,17 @@ double ReducedEntry(const VertexColumns& v, int i, const double* b,
   return sum;
 }
 
-// Builds a compressed column-major matrix from a traversal that visits its
-// columns in order and, in each, its entries: walk(sink) calls
-// sink.Column() at the start of every column and sink.Entry(row, value).
-// The walk runs twice -- counting (Sink::kValues false: values are not
-// needed, and `walk` may skip computing them), then filling storage
-// allocated to the exact count -- so the result is written in place, with
-// no growing buffers and no copy (on the cactus x4 one path Hessian is
-// about 0.3 GB).
+// Builds a compressed column-major matrix from traversals of its columns:
+// the columns come in parts, consecutive ranges [first_column[q],
+// first_column[q + 1]), and walk(q, sink) visits part q's columns in order,
+// calling sink.Column() at the start of every column and sink.Entry(row,
+// value) for each of its entries. Every part is walked twice -- counting
+// (Sink::kValues false: values are not needed, and `walk` may skip
+// computing them), then filling storage allocated to the exact count -- so
+// the result is written in place, with no growing buffers and no copy (on
+// the cactus x4 one path Hessian is about 0.3 GB). The parts are walked in
+// parallel (`threads` at a time), each into its own range of the storage:
+// the result does not depend on the thread count.
 struct CountingSink {
   static constexpr bool kValues = false;
   std::vector<int>* outer;
@@ -79,23 +83,46 @@ struct FillingSink {
   }
 };
 template <typename Walk>
-void BuildCompressed(int rows, int cols, const Walk& walk,
+void BuildCompressed(int rows, const std::vector<int>& first_column,
+                     int threads, const Walk& walk,
                      Eigen::SparseMatrix<double>* out) {
-  std::vector<int> outer;
-  outer.reserve(cols + 1);
-  CountingSink count{&outer};
-  walk(count);
-  if (static_cast<int>(outer.size()) != cols) {
-    throw std::logic_error("PathHessianAssembler: column count mismatch");
+  const int parts = static_cast<int>(first_column.size()) - 1;
+  const int cols = first_column.back();
+  std::vector<std::vector<int>> starts(parts);  // per part, per column
+  std::vector<long> counts(parts, 0);
+  ParallelFor(parts, threads, [&](int q) {
+    const int columns = first_column[q + 1] - first_column[q];
+    starts[q].reserve(columns);
+    CountingSink count{&starts[q]};
+    walk(q, count);
+    if (static_cast<int>(starts[q].size()) != columns) {
+      throw std::logic_error("PathHessianAssembler: column count mismatch");
+    }
+    counts[q] = count.nonzeros;
+  });
+  long total = 0;
+  for (long c : counts) total += c;
+  if (total > std::numeric_limits<int>::max()) {
+    throw std::length_error("PathHessianAssembler: more than 2^31 nonzeros");
   }
-  outer.push_back(count.nonzeros);
   *out = Eigen::SparseMatrix<double>();  // release the old storage first
   out->resize(rows, cols);
-  out->resizeNonZeros(count.nonzeros);
-  std::copy(outer.begin(), outer.end(), out->outerIndexPtr());
-  std::vector<int>().swap(outer);
-  FillingSink fill{out->innerIndexPtr(), out->valuePtr()};
-  walk(fill);
+  out->resizeNonZeros(static_cast<Eigen::Index>(total));
+  int* outer = out->outerIndexPtr();
+  int base = 0;
+  for (int q = 0; q < parts; ++q) {
+    for (size_t c = 0; c < starts[q].size(); ++c) {
+      outer[first_column[q] + c] = base + starts[q][c];
+    }
+    base += static_cast<int>(counts[q]);
+    std::vector<int>().swap(starts[q]);
+  }
+  outer[cols] = base;
+  ParallelFor(parts, threads, [&](int q) {
+    FillingSink fill{out->innerIndexPtr(), out->valuePtr(),
+                     outer[first_column[q]]};
+    walk(q, fill);
+  });
 }
 
 // Starts column `column` of a BuildCompressed walk: the jw-th column of
@@ -266,7 +293,7 @@ bool PathHessianAssembler::TryAssemble(
     if (i + 1 < inner) below[i] = &lower[i];
   }
   // Each slice's block arrays are released once its columns are written.
-  Compress(diagonal, below, bases, hessian, [&](int i) {
+  Compress(diagonal, below, bases, threads, hessian, [&](int i) {
     BlockArray().swap(d22[i]);
     BlockArray().swap(d11[i]);
     BlockArray().swap(lower[i]);
@@ -314,7 +341,7 @@ bool PathHessianAssembler::TryAssembleDeformedSum(
   }
   std::vector<std::vector<const BlockArray*>> diagonal(1);
   for (const BlockArray& sum : sums) diagonal[0].push_back(&sum);
-  Compress(diagonal, {nullptr}, {basis}, hessian);
+  Compress(diagonal, {nullptr}, {basis}, 1, hessian);
   return true;
 }
 
@@ -359,7 +386,7 @@ bool PathHessianAssembler::TryAssembleMixed(
   if (!ok) return false;
   const std::vector<VertexColumns> row_layout = VertexLayout(row_basis, n, 0);
   const std::vector<VertexColumns> col_layout = VertexLayout(col_basis, n, 0);
-  const auto walk = [&](auto& sink) {
+  const auto walk = [&](int /*part*/, auto& sink) {
     int column = 0;
     for (int w = 0; w < n; ++w) {
       const VertexColumns& cw = col_layout[w];
@@ -379,7 +406,7 @@ bool PathHessianAssembler::TryAssembleMixed(
     }
   };
   BuildCompressed(static_cast<int>(row_basis.cols()),
-                  static_cast<int>(col_basis.cols()), walk, out);
+                  {0, static_cast<int>(col_basis.cols())}, 1, walk, out);
   return true;
 }
 
@@ -387,7 +414,7 @@ void PathHessianAssembler::Compress(
     const std::vector<std::vector<const BlockArray*>>& diagonal,
     const std::vector<const BlockArray*>& lower,
     const std::vector<Eigen::SparseMatrix<double>>& bases,
-    Eigen::SparseMatrix<double>* out,
+    int threads, Eigen::SparseMatrix<double>* out,
     const std::function<void(int)>& slice_done) const {
   const int n = space_.num_vertices;
   const int inner = static_cast<int>(bases.size());
@@ -397,55 +424,52 @@ void PathHessianAssembler::Compress(
     layout[i] = VertexLayout(bases[i], n, offset[i]);
     offset[i + 1] = offset[i] + static_cast<int>(bases[i].cols());
   }
-  const int size = offset[inner];
-  const auto walk = [&](auto& sink) {
+  const auto walk = [&](int i, auto& sink) {
     constexpr bool kValues = std::decay_t<decltype(sink)>::kValues;
     double diagonal_block[9];
-    int column = 0;
-    for (int i = 0; i < inner; ++i) {
-      for (int w = 0; w < n; ++w) {
-        const VertexColumns& cw = layout[i][w];
-        for (int jw = 0; jw < cw.count; ++jw, ++column) {
-          StartColumn(cw, jw, column, sink);
-          for (int p = pair_start_[w]; p < pair_start_[w + 1]; ++p) {
-            const VertexColumns& cv = layout[i][pair_row_[p]];
-            if (cv.count == 0 || cv.first + cv.count <= column) continue;
-            if constexpr (kValues) {
-              for (int e = 0; e < 9; ++e) {
-                diagonal_block[e] = 0;
-                for (const BlockArray* part : diagonal[i]) {
-                  diagonal_block[e] += (*part)[9 * p + e];
-                }
+    int column = offset[i];
+    for (int w = 0; w < n; ++w) {
+      const VertexColumns& cw = layout[i][w];
+      for (int jw = 0; jw < cw.count; ++jw, ++column) {
+        StartColumn(cw, jw, column, sink);
+        for (int p = pair_start_[w]; p < pair_start_[w + 1]; ++p) {
+          const VertexColumns& cv = layout[i][pair_row_[p]];
+          if (cv.count == 0 || cv.first + cv.count <= column) continue;
+          if constexpr (kValues) {
+            for (int e = 0; e < 9; ++e) {
+              diagonal_block[e] = 0;
+              for (const BlockArray* part : diagonal[i]) {
+                diagonal_block[e] += (*part)[9 * p + e];
               }
-            }
-            for (int iv = 0; iv < cv.count; ++iv) {
-              if (cv.first + iv < column) continue;
-              double value = 0;
-              if constexpr (kValues) {
-                value = ReducedEntry(cv, iv, diagonal_block, cw, jw);
-              }
-              sink.Entry(cv.first + iv, value);
             }
           }
-          if (lower[i] == nullptr) continue;
-          for (int p = pair_start_[w]; p < pair_start_[w + 1]; ++p) {
-            const VertexColumns& cv = layout[i + 1][pair_row_[p]];
-            for (int iv = 0; iv < cv.count; ++iv) {
-              double value = 0;
-              if constexpr (kValues) {
-                value = ReducedEntry(cv, iv, lower[i]->data() + 9 * p, cw, jw);
-              }
-              sink.Entry(cv.first + iv, value);
+          for (int iv = 0; iv < cv.count; ++iv) {
+            if (cv.first + iv < column) continue;
+            double value = 0;
+            if constexpr (kValues) {
+              value = ReducedEntry(cv, iv, diagonal_block, cw, jw);
             }
+            sink.Entry(cv.first + iv, value);
+          }
+        }
+        if (lower[i] == nullptr) continue;
+        for (int p = pair_start_[w]; p < pair_start_[w + 1]; ++p) {
+          const VertexColumns& cv = layout[i + 1][pair_row_[p]];
+          for (int iv = 0; iv < cv.count; ++iv) {
+            double value = 0;
+            if constexpr (kValues) {
+              value = ReducedEntry(cv, iv, lower[i]->data() + 9 * p, cw, jw);
+            }
+            sink.Entry(cv.first + iv, value);
           }
         }
       }
-      if constexpr (kValues) {
-        if (slice_done) slice_done(i);
-      }
+    }
+    if constexpr (kValues) {
+      if (slice_done) slice_done(i);
     }
   };
-  BuildCompressed(size, size, walk, out);
+  BuildCompressed(offset[inner], offset, threads, walk, out);
 }
 
 }  // namespace shellspace

@@ -111,12 +111,13 @@ class PathHessianAssembler {
   // *out = T^T H T (lower triangle) from the diagonal blocks of each slice
   // (the sum of the arrays diagonal[i]) and the blocks below the diagonal
   // (lower[i]: rows slice i + 1, columns slice i), written in place (its old
-  // storage released first). slice_done(i), if given, is called once slice
-  // i's columns are written: its arrays are not read again.
+  // storage released first), the slices in parallel (`threads` at a time).
+  // slice_done(i), if given, is called (from the thread that wrote them)
+  // once slice i's columns are written: its arrays are not read again.
   void Compress(const std::vector<std::vector<const BlockArray*>>& diagonal,
                 const std::vector<const BlockArray*>& lower,
                 const std::vector<Eigen::SparseMatrix<double>>& bases,
-                Eigen::SparseMatrix<double>* out,
+                int threads, Eigen::SparseMatrix<double>* out,
                 const std::function<void(int)>& slice_done = nullptr) const;
 
   const ShellSpace& space_;
