@@ -96,7 +96,7 @@ BlockJacobiCg::Status BlockJacobiCg::Solve(const SparseMatrix& lower,
                                            double tolerance,
                                            int max_iterations,
                                            Eigen::VectorXd* x,
-                                           int* iterations) {
+                                           int* iterations, bool warm_start) {
   ++stats_.solves;
   int count = 0;
   if (iterations) *iterations = 0;
@@ -109,7 +109,7 @@ BlockJacobiCg::Status BlockJacobiCg::Solve(const SparseMatrix& lower,
     return SymmetricProduct(lower, offsets_, d, threads_);
   };
   const double target = tolerance * b.norm();
-  *x = ApplyPreconditioner(b);
+  if (!warm_start || x->size() != b.size()) *x = ApplyPreconditioner(b);
   Eigen::VectorXd r = b - h(*x);
   Eigen::VectorXd z = ApplyPreconditioner(r);
   Eigen::VectorXd d = z;

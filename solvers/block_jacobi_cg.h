@@ -48,13 +48,14 @@ class BlockJacobiCg {
   bool Factorize(const Eigen::SparseMatrix<double>& lower,
                  const std::vector<int>& offsets);
 
-  // Solves H x = b by CG from x = M^-1 b with the blocks of the last
-  // Factorize as preconditioner (H may have changed since: a stale
-  // preconditioner only costs iterations). `iterations` receives this
-  // solve's CG iterations if given.
+  // Solves H x = b by CG from x = M^-1 b -- or from *x if warm_start --
+  // with the blocks of the last Factorize as preconditioner (H may have
+  // changed since: a stale preconditioner only costs iterations).
+  // `iterations` receives this solve's CG iterations if given.
   Status Solve(const Eigen::SparseMatrix<double>& lower,
                const Eigen::VectorXd& b, double tolerance, int max_iterations,
-               Eigen::VectorXd* x, int* iterations = nullptr);
+               Eigen::VectorXd* x, int* iterations = nullptr,
+               bool warm_start = false);
 
   const Stats& stats() const { return stats_; }
 

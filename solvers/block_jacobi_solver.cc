@@ -37,19 +37,22 @@ bool BlockJacobiSolver::Solve(const LinearSystem& system,
       single_precision_factors
           ? TimeCoupledPreconditioner::FactorPrecision::kSingle
           : TimeCoupledPreconditioner::FactorPrecision::kDouble);
-  const auto run_cg = [&](int budget) {
+  const auto run_cg = [&](int budget, bool warm_start) {
     const auto start = std::chrono::steady_clock::now();
     int iterations = 0;
     const BlockJacobiCg::Status status =
-        cg_.Solve(h, b, tolerance, budget, x, &iterations);
+        cg_.Solve(h, b, tolerance, budget, x, &iterations, warm_start);
     stats_.cg_iterations += iterations;
     stats_.cg_seconds += Since(start);
     return status;
   };
+  // Whether CG on the fresh factors continues from the stale run's iterate.
+  bool continue_stale = false;
   if (factored_offsets_ == system.block_offsets) {
-    const BlockJacobiCg::Status status = run_cg(stale_iteration_budget);
+    const BlockJacobiCg::Status status = run_cg(stale_iteration_budget, false);
     if (status == BlockJacobiCg::Status::kSolved) return true;
     if (status == BlockJacobiCg::Status::kNotPositive) return false;
+    continue_stale = x->size() == b.size() && x->allFinite();
   }
   const auto start = std::chrono::steady_clock::now();
   factored_offsets_.clear();
@@ -59,7 +62,7 @@ bool BlockJacobiSolver::Solve(const LinearSystem& system,
   stats_.factorization_seconds += Since(start);
   if (!positive) return false;
   factored_offsets_ = system.block_offsets;
-  const BlockJacobiCg::Status status = run_cg(max_iterations);
+  const BlockJacobiCg::Status status = run_cg(max_iterations, continue_stale);
   if (status == BlockJacobiCg::Status::kNotPositive) return false;
   if (status == BlockJacobiCg::Status::kNotConverged) {
     ++stats_.cg_not_converged;

@@ -19,8 +19,9 @@ namespace shellspace {
 //  - with factors of an earlier H0 held (same block_offsets), CG runs on
 //    them for at most stale_iteration_budget iterations;
 //  - if that does not reach the tolerance (or nothing is held), the blocks
-//    of the current H are factorised and CG restarts from M^-1 b for at
-//    most max_iterations; if even that falls short, the last iterate is
+//    of the current H are factorised and CG restarts -- from the stale
+//    run's iterate if there was one, else from M^-1 b -- for at most
+//    max_iterations; if even that falls short, the last iterate is
 //    returned (true) and stats().cg_not_converged counts it -- a CG iterate
 //    of an SPD H still gives the Newton engine a direction to check.
 // Returns false -- "not positive definite", as ReusableCholesky -- if a
@@ -36,7 +37,9 @@ class BlockJacobiSolver : public LinearSolver {
   const LinearSolverStats& stats() const override { return stats_; }
   const char* name() const override { return "block-jacobi"; }
 
-  int stale_iteration_budget = 60;
+  // About the cost of one factorisation in CG iterations on the scale
+  // cases (25-32); the stale run's iterate is the fresh run's start.
+  int stale_iteration_budget = 30;
   int max_iterations = 2000;
   int threads = 1;  // over the blocks (BlockJacobiCg::set_threads)
   // The time-coupled preconditioner where the blocks share a pattern
