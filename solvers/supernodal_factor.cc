@@ -98,13 +98,27 @@ SupernodalFactor<Stored>::SupernodalFactor(
 
 namespace {
 
+// Supernode s of a pattern: its columns [first, first + columns), the
+// `below` rows under its triangle (row[0 .. below)), and its column-major
+// block of `rows` = columns + below rows starting at value_begin.
+struct Supernode {
+  int first, columns;
+  long rows, below, value_begin;
+  const int* row;
+  Supernode(const SupernodalPattern& p, int s)
+      : first(p.first_column[s]),
+        columns(p.first_column[s + 1] - p.first_column[s]),
+        rows(p.row_begin[s + 1] - p.row_begin[s]),
+        below(rows - columns),
+        value_begin(p.value_begin[s]),
+        row(p.rows.data() + p.row_begin[s] + columns) {}
+};
+
 // The longest rectangle below a supernode's triangle.
 long LongestRectangle(const SupernodalPattern& p) {
   long longest = 0;
   for (int s = 0; s < p.supernodes(); ++s) {
-    const long rows = p.row_begin[s + 1] - p.row_begin[s];
-    longest = std::max(longest, rows - (p.first_column[s + 1] -
-                                        p.first_column[s]));
+    longest = std::max(longest, Supernode(p, s).below);
   }
   return longest;
 }
@@ -135,12 +149,9 @@ void SupernodalFactor<Stored>::SolveLower(double* x) const {
   const SupernodalPattern& p = *pattern_;
   std::vector<double> t(static_cast<size_t>(LongestRectangle(p)));
   for (int s = 0; s < p.supernodes(); ++s) {
-    const int first = p.first_column[s];
-    const int columns = p.first_column[s + 1] - first;
-    const long rows = p.row_begin[s + 1] - p.row_begin[s];
-    const long below = rows - columns;
-    const int* row = p.rows.data() + p.row_begin[s] + columns;
-    const Stored* block = values_.data() + p.value_begin[s];
+    const auto [first, columns, rows, below, value_begin, row] =
+        Supernode(p, s);
+    const Stored* block = values_.data() + value_begin;
     double* xs = x + first;
     for (int j = 0; j < columns; ++j) {
       const Stored* column = block + j * rows;
@@ -168,12 +179,9 @@ void SupernodalFactor<Stored>::SolveLowerTransposed(double* x) const {
   const SupernodalPattern& p = *pattern_;
   std::vector<double> t(static_cast<size_t>(LongestRectangle(p)));
   for (int s = p.supernodes() - 1; s >= 0; --s) {
-    const int first = p.first_column[s];
-    const int columns = p.first_column[s + 1] - first;
-    const long rows = p.row_begin[s + 1] - p.row_begin[s];
-    const long below = rows - columns;
-    const int* row = p.rows.data() + p.row_begin[s] + columns;
-    const Stored* block = values_.data() + p.value_begin[s];
+    const auto [first, columns, rows, below, value_begin, row] =
+        Supernode(p, s);
+    const Stored* block = values_.data() + value_begin;
     double* xs = x + first;
     for (long i = 0; i < below; ++i) t[i] = x[row[i]];
     for (int j = 0; j < columns; ++j) {
