@@ -32,7 +32,7 @@ bool BlockTridiagonalProduct(const Eigen::SparseMatrix<double>& lower,
     const int next_end = c + 1 < slices ? offsets[c + 2] : end;
     spill[c] = Eigen::VectorXd::Zero(next_end - end);
     double* own = out.data();
-    double* next = spill[c].data() - end;  // indexed by row
+    double* next = spill[c].data();  // row i at next[i - end]
     for (int j = begin; j < end; ++j) {
       const double dj = d(j);
       double sum = 0;
@@ -49,7 +49,7 @@ bool BlockTridiagonalProduct(const Eigen::SparseMatrix<double>& lower,
         if (i < end) {
           own[i] += v * dj;
         } else if (i < next_end) {
-          next[i] += v * dj;
+          next[i - end] += v * dj;
         } else {
           coupled_further = true;
           return;

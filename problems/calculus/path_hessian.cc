@@ -260,26 +260,36 @@ bool PathHessianAssembler::TryAssemble(
     throw std::invalid_argument("PathHessianAssembler: need K >= 2 and K - 1 bases");
   }
   const size_t block_values = 9 * pair_row_.size();
-  std::vector<BlockArray> d22(inner), d11(inner), lower(inner);
-  std::vector<ElementFailure> failures(K);
-  std::vector<char> ok(K, 1);
-  ParallelFor(K, threads, [&](int task) {
-    const int k = task + 1;  // W[s_{k-1}, s_k]
-    BlockArray* a = nullptr;
-    BlockArray* b = nullptr;
-    BlockArray* c = nullptr;
-    if (k <= K - 1) (a = &d22[k - 1])->assign(block_values, 0.0);
-    if (k >= 2) (b = &d11[k - 2])->assign(block_values, 0.0);
-    if (k >= 2 && k <= K - 1) (c = &lower[k - 2])->assign(block_values, 0.0);
-    ok[task] = AddElementBlocks(path[k - 1], path[k], K, a, b, c, nullptr,
-                                &failures[task]);
+  // One task per inner shape s_k (slice i = k - 1) writes its diagonal
+  // block D_2^2 W[s_{k-1}, s_k] + D_1^2 W[s_k, s_{k+1}] into one array and,
+  // for k >= 2, the coupling D_1 D_2 W[s_{k-1}, s_k] into lower[i - 1]
+  // (rows slice i, columns slice i - 1): every array has one writer, and a
+  // slice holds two arrays, not three.
+  std::vector<BlockArray> diagonal_blocks(inner), lower(inner);
+  // Per term W[s_{k-1}, s_k] (index k - 1): its deformed and its reference
+  // side, each evaluated by one task.
+  std::vector<ElementFailure> deformed_failure(K), reference_failure(K);
+  std::vector<char> deformed_ok(K, 1), reference_ok(K, 1);
+  ParallelFor(inner, threads, [&](int i) {
+    const int k = i + 1;
+    BlockArray* diagonal = &diagonal_blocks[i];
+    diagonal->assign(block_values, 0.0);
+    BlockArray* coupling = nullptr;
+    if (k >= 2) (coupling = &lower[i - 1])->assign(block_values, 0.0);
+    deformed_ok[k - 1] =
+        AddElementBlocks(path[k - 1], path[k], K, diagonal, nullptr, coupling,
+                         nullptr, &deformed_failure[k - 1]);
+    reference_ok[k] = AddElementBlocks(path[k], path[k + 1], K, nullptr,
+                                       diagonal, nullptr, nullptr,
+                                       &reference_failure[k]);
   });
-  for (int task = 0; task < K; ++task) {
-    if (!ok[task]) {
+  for (int term = 0; term < K; ++term) {
+    const bool deformed = !deformed_ok[term];
+    if (deformed || !reference_ok[term]) {
       if (failure) {
-        *failure = failures[task];
-        failure->description = "W[s_" + std::to_string(task) + ", s_" +
-                               std::to_string(task + 1) + "]: " +
+        *failure = deformed ? deformed_failure[term] : reference_failure[term];
+        failure->description = "W[s_" + std::to_string(term) + ", s_" +
+                               std::to_string(term + 1) + "]: " +
                                failure->description;
       }
       return false;
@@ -289,13 +299,12 @@ bool PathHessianAssembler::TryAssemble(
   std::vector<std::vector<const BlockArray*>> diagonal(inner);
   std::vector<const BlockArray*> below(inner, nullptr);
   for (int i = 0; i < inner; ++i) {
-    diagonal[i] = {&d22[i], &d11[i]};
+    diagonal[i] = {&diagonal_blocks[i]};
     if (i + 1 < inner) below[i] = &lower[i];
   }
   // Each slice's block arrays are released once its columns are written.
   Compress(diagonal, below, bases, threads, hessian, [&](int i) {
-    BlockArray().swap(d22[i]);
-    BlockArray().swap(d11[i]);
+    BlockArray().swap(diagonal_blocks[i]);
     BlockArray().swap(lower[i]);
   });
   return true;
