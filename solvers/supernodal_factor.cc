@@ -8,6 +8,26 @@
 
 namespace shellspace {
 
+namespace {
+
+// Supernode s of a pattern: its columns [first, first + columns), the
+// `below` rows under its triangle (row[0 .. below)), and its column-major
+// block of `rows` = columns + below rows starting at value_begin.
+struct Supernode {
+  int first, columns;
+  long rows, below, value_begin;
+  const int* row;
+  Supernode(const SupernodalPattern& p, int s)
+      : first(p.first_column[s]),
+        columns(p.first_column[s + 1] - p.first_column[s]),
+        rows(p.row_begin[s + 1] - p.row_begin[s]),
+        below(rows - columns),
+        value_begin(p.value_begin[s]),
+        row(p.rows.data() + p.row_begin[s] + columns) {}
+};
+
+}  // namespace
+
 SupernodalPattern SupernodalPattern::Of(const cholmod_factor& factor) {
   SupernodalPattern pattern;
   if (!factor.is_super || factor.itype != CHOLMOD_INT) return pattern;
@@ -29,6 +49,8 @@ SupernodalPattern SupernodalPattern::Of(const cholmod_factor& factor) {
     for (int j = 0; j < super[k + 1] - super[k]; ++j) {
       if (s[pi[k] + j] != super[k] + j) return SupernodalPattern();
     }
+    pattern.longest_below =
+        std::max(pattern.longest_below, Supernode(pattern, k).below);
   }
   return pattern;
 }
@@ -61,9 +83,9 @@ SupernodalFactor<Stored>::SupernodalFactor(
   double largest = 0;
   bool finite = true;
   for (int s = 0; s < p.supernodes(); ++s) {
-    const int columns = p.first_column[s + 1] - p.first_column[s];
-    const long rows = p.row_begin[s + 1] - p.row_begin[s];
-    const double* block = values + p.value_begin[s];
+    const auto [first, columns, rows, below, value_begin, row] =
+        Supernode(p, s);
+    const double* block = values + value_begin;
     for (int j = 0; j < columns; ++j) {
       for (long i = j; i < rows; ++i) {
         const double v = block[i + j * rows];
@@ -80,10 +102,10 @@ SupernodalFactor<Stored>::SupernodalFactor(
   values_.assign(static_cast<size_t>(p.values()), Stored(0));
   bool positive = true;
   for (int s = 0; s < p.supernodes(); ++s) {
-    const int columns = p.first_column[s + 1] - p.first_column[s];
-    const long rows = p.row_begin[s + 1] - p.row_begin[s];
-    const double* block = values + p.value_begin[s];
-    Stored* out = values_.data() + p.value_begin[s];
+    const auto [first, columns, rows, below, value_begin, row] =
+        Supernode(p, s);
+    const double* block = values + value_begin;
+    Stored* out = values_.data() + value_begin;
     for (int j = 0; j < columns; ++j) {
       for (long i = j; i < rows; ++i) {
         out[i + j * rows] = static_cast<Stored>(block[i + j * rows] *
@@ -97,31 +119,6 @@ SupernodalFactor<Stored>::SupernodalFactor(
 }
 
 namespace {
-
-// Supernode s of a pattern: its columns [first, first + columns), the
-// `below` rows under its triangle (row[0 .. below)), and its column-major
-// block of `rows` = columns + below rows starting at value_begin.
-struct Supernode {
-  int first, columns;
-  long rows, below, value_begin;
-  const int* row;
-  Supernode(const SupernodalPattern& p, int s)
-      : first(p.first_column[s]),
-        columns(p.first_column[s + 1] - p.first_column[s]),
-        rows(p.row_begin[s + 1] - p.row_begin[s]),
-        below(rows - columns),
-        value_begin(p.value_begin[s]),
-        row(p.rows.data() + p.row_begin[s] + columns) {}
-};
-
-// The longest rectangle below a supernode's triangle.
-long LongestRectangle(const SupernodalPattern& p) {
-  long longest = 0;
-  for (int s = 0; s < p.supernodes(); ++s) {
-    longest = std::max(longest, Supernode(p, s).below);
-  }
-  return longest;
-}
 
 // sum_i a_i b_i in four interleaved partial sums (independent chains the
 // compiler can vectorise; a fixed order, so the same bits every time).
@@ -147,7 +144,7 @@ double Dot(const Stored* a, const double* b, long n) {
 template <typename Stored>
 void SupernodalFactor<Stored>::SolveLower(double* x) const {
   const SupernodalPattern& p = *pattern_;
-  std::vector<double> t(static_cast<size_t>(LongestRectangle(p)));
+  std::vector<double> t(static_cast<size_t>(p.longest_below));
   for (int s = 0; s < p.supernodes(); ++s) {
     const auto [first, columns, rows, below, value_begin, row] =
         Supernode(p, s);
@@ -177,7 +174,7 @@ void SupernodalFactor<Stored>::SolveLower(double* x) const {
 template <typename Stored>
 void SupernodalFactor<Stored>::SolveLowerTransposed(double* x) const {
   const SupernodalPattern& p = *pattern_;
-  std::vector<double> t(static_cast<size_t>(LongestRectangle(p)));
+  std::vector<double> t(static_cast<size_t>(p.longest_below));
   for (int s = p.supernodes() - 1; s >= 0; --s) {
     const auto [first, columns, rows, below, value_begin, row] =
         Supernode(p, s);

@@ -27,6 +27,7 @@ struct SupernodalPattern {
   std::vector<long> row_begin;    // supernodes + 1
   std::vector<long> value_begin;  // supernodes + 1
   std::vector<int> rows;
+  long longest_below = 0;  // the most rows under one supernode's triangle
 
   int supernodes() const { return static_cast<int>(first_column.size()) - 1; }
   long values() const { return value_begin.empty() ? 0 : value_begin.back(); }
