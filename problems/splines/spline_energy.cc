@@ -404,10 +404,13 @@ bool SplineObjective::SolveMidpoints(const ShellPath& path,
 double SplineObjective::SplineEnergyOf(const ShellPath& path) const {
   if (!SolveMidpoints(path, false)) return NAN;
   double sum = 0;
+  DeformationEnergy w;
   for (size_t t = 0; t < terms_.size(); ++t) {
-    sum += EvaluateDeformationEnergy(space_, path[terms_[t].center],
-                                     midpoints_[t]->m)
-               .total;
+    if (!TryEvaluateDeformationEnergy(space_, path[terms_[t].center],
+                                      midpoints_[t]->m, &w)) {
+      return NAN;
+    }
+    sum += w.total;
   }
   const double K = spec_.steps;
   return 4 * K * K * K * sum;
@@ -415,69 +418,81 @@ double SplineObjective::SplineEnergyOf(const ShellPath& path) const {
 
 bool SplineObjective::Evaluate(const double* parameters, double* cost,
                                double* gradient) const {
+  // A degenerate shape or midpoint rejects the point (false): every energy
+  // and derivative below is the non-throwing Try twin.
   const ShellPath path = PathFrom(parameters);
   const double K = spec_.steps;
   const double scale = spec_.sigma * 4 * K * K * K;
-  try {
-    if (!SolveMidpoints(path, gradient != nullptr)) return false;
-    double spline = 0;
-    for (size_t t = 0; t < terms_.size(); ++t) {
-      spline += EvaluateDeformationEnergy(space_, path[terms_[t].center],
-                                          midpoints_[t]->m)
-                    .total;
+  if (!SolveMidpoints(path, gradient != nullptr)) return false;
+  DeformationEnergy w;
+  double spline = 0;
+  for (size_t t = 0; t < terms_.size(); ++t) {
+    if (!TryEvaluateDeformationEnergy(space_, path[terms_[t].center],
+                                      midpoints_[t]->m, &w)) {
+      return false;
     }
-    spline *= 4 * K * K * K;
-    if (!std::isfinite(spline)) return false;
-    double data = 0;
-    for (const SplineDatum& d : spec_.data) {
-      data += EvaluateDeformationEnergy(space_, d.shape, path[d.index]).total;
+    spline += w.total;
+  }
+  spline *= 4 * K * K * K;
+  if (!std::isfinite(spline)) return false;
+  double data = 0;
+  for (const SplineDatum& d : spec_.data) {
+    if (!TryEvaluateDeformationEnergy(space_, d.shape, path[d.index], &w)) {
+      return false;
     }
-    *cost = data + spec_.sigma * spline;
-    if (gradient == nullptr) return true;
+    data += w.total;
+  }
+  *cost = data + spec_.sigma * spline;
+  if (gradient == nullptr) return true;
 
-    const auto clock = std::chrono::steady_clock::now();
-    const int n3 = 3 * space_.num_vertices;
-    std::vector<Eigen::VectorXd> grad(path.size(), Eigen::VectorXd::Zero(n3));
-    for (const SplineDatum& d : spec_.data) {
-      grad[d.index] +=
-          EnergyGradient(space_, d.shape, path[d.index], ShellSide::kDeformed);
+  const auto clock = std::chrono::steady_clock::now();
+  const int n3 = 3 * space_.num_vertices;
+  std::vector<Eigen::VectorXd> grad(path.size(), Eigen::VectorXd::Zero(n3));
+  Eigen::VectorXd part;
+  for (const SplineDatum& d : spec_.data) {
+    if (!TryEnergyGradient(space_, d.shape, path[d.index],
+                           ShellSide::kDeformed, &part)) {
+      return false;
     }
-    for (size_t t = 0; t < terms_.size(); ++t) {
-      const Term& term = terms_[t];
-      Midpoint& mid = *midpoints_[t];
-      const Positions& s = path[term.center];
-      grad[term.center] +=
-          scale * EnergyGradient(space_, s, mid.m, ShellSide::kReference);
-      if (!spec_.is_free[term.previous] && !spec_.is_free[term.next]) continue;
-      // H_k p_k = -D_2 W[s_k, m_k] modulo rigid motions; the mixed blocks
-      // applied to p_k as directional derivatives of the gradients.
-      Eigen::VectorXd p;
-      if (!mid.hessian.Solve(
-              -EnergyGradient(space_, s, mid.m, ShellSide::kDeformed),
-              kAdjointTolerance, &p)) {
+    grad[d.index] += part;
+  }
+  for (size_t t = 0; t < terms_.size(); ++t) {
+    const Term& term = terms_[t];
+    Midpoint& mid = *midpoints_[t];
+    const Positions& s = path[term.center];
+    if (!TryEnergyGradient(space_, s, mid.m, ShellSide::kReference, &part)) {
+      return false;
+    }
+    grad[term.center] += scale * part;
+    if (!spec_.is_free[term.previous] && !spec_.is_free[term.next]) continue;
+    // H_k p_k = -D_2 W[s_k, m_k] modulo rigid motions; the mixed blocks
+    // applied to p_k as directional derivatives of the gradients.
+    Eigen::VectorXd p;
+    if (!TryEnergyGradient(space_, s, mid.m, ShellSide::kDeformed, &part) ||
+        !mid.hessian.Solve(-part, kAdjointTolerance, &p)) {
+      return false;
+    }
+    if (spec_.is_free[term.previous]) {
+      if (!TryEnergyGradientDerivative(space_, path[term.previous], mid.m,
+                                       ShellSide::kReference,
+                                       ShellSide::kDeformed, p, &part)) {
         return false;
       }
-      if (spec_.is_free[term.previous]) {
-        grad[term.previous] +=
-            scale * EnergyGradientDerivative(space_, path[term.previous], mid.m,
-                                             ShellSide::kReference,
-                                             ShellSide::kDeformed, p);
-      }
-      if (spec_.is_free[term.next]) {
-        grad[term.next] +=
-            scale * EnergyGradientDerivative(space_, mid.m, path[term.next],
-                                             ShellSide::kDeformed,
-                                             ShellSide::kReference, p);
-      }
+      grad[term.previous] += scale * part;
     }
-    for (size_t i = 0; i < free_shapes_.size(); ++i) {
-      Eigen::Map<Eigen::VectorXd>(gradient + i * n3, n3) =
-          grad[free_shapes_[i]];
+    if (spec_.is_free[term.next]) {
+      if (!TryEnergyGradientDerivative(space_, mid.m, path[term.next],
+                                       ShellSide::kDeformed,
+                                       ShellSide::kReference, p, &part)) {
+        return false;
+      }
+      grad[term.next] += scale * part;
     }
-    timings_.gradient_seconds += SecondsSince(clock);
-  } catch (const InputError&) {
-    return false;  // a degenerate shape or midpoint: reject the point
   }
+  for (size_t i = 0; i < free_shapes_.size(); ++i) {
+    Eigen::Map<Eigen::VectorXd>(gradient + i * n3, n3) = grad[free_shapes_[i]];
+  }
+  timings_.gradient_seconds += SecondsSince(clock);
   return true;
 }
 

@@ -122,14 +122,14 @@ LeaveOneOutTable EvaluateLeaveOneOut(const ShellSpace& space,
     for (int m = 0; m < num_m; ++m) {
       const int ms = std::min<int>(m, static_cast<int>(shell.modes.size()));
       ExpShotReport shot;
-      try {
-        const Positions shell_reconstruction = ShellFromCoefficients(
-            space, shell, c.head(ms), options.pca, settings, &shot);
+      Positions shell_reconstruction;
+      if (TryShellFromCoefficients(space, shell, c.head(ms), options.pca,
+                                   settings, &shell_reconstruction, &shot)) {
         fold.shell_vertex_error.push_back(
             MeanVertexErrorUpToRigidMotion(shell_reconstruction, truth));
         fold.shell_energy.push_back(
             EnergyToTruth(space, truth, shell_reconstruction));
-      } catch (const InputError&) {
+      } else {
         shot.ok = false;
         fold.shell_vertex_error.push_back(
             std::numeric_limits<double>::quiet_NaN());

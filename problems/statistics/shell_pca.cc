@@ -48,6 +48,7 @@ struct ShotOutcome {
   bool ok = false;          // every step solved, drift within the bound
   int unsolved_step = 0;    // k of the first step without a solution, or 0
   double unsolved_residual = 0;  // its max |F| / max |D_2 W[s_{k-1}, s_k]|
+  std::string degenerate;   // the degenerate element met at unsolved_step
   double drift = 0;         // largest relative step-energy drift so far
 };
 
@@ -65,18 +66,35 @@ ShotOutcome ShootOnce(const ShellSpace& space, const Positions& s0,
   SolverSettings step_settings = settings;
   step_settings.max_iterations =
       std::min(settings.max_iterations, kMaxExpStepIterations);
+  ShotOutcome outcome;
+  // A degenerate element in W[previous, current] ends the shot at step k (a
+  // numerical status: the caller tries more steps).
+  const auto degenerate = [&](int k, const ElementFailure& failure) {
+    outcome.ok = false;
+    outcome.unsolved_step = k;
+    outcome.unsolved_residual = std::numeric_limits<double>::infinity();
+    outcome.degenerate = failure.description;
+    outcome.drift = std::numeric_limits<double>::infinity();
+    return outcome;
+  };
   Positions previous = s0;
   Positions current = s0 + variation / steps;
-  const double first = EvaluateDeformationEnergy(space, s0, current).total;
-  ShotOutcome outcome;
+  DeformationEnergy energy;
+  ElementFailure failure;
+  if (!TryEvaluateDeformationEnergy(space, s0, current, &energy, &failure)) {
+    return degenerate(1, failure);
+  }
+  const double first = energy.total;
   outcome.ok = true;
   for (int k = 2; k <= steps; ++k) {
     ExpStepResult step = ExpStep(space, previous, current,
                                  StepDirection::kForward, {}, step_settings);
-    const double scale =
-        EnergyGradient(space, previous, current, ShellSide::kDeformed)
-            .cwiseAbs()
-            .maxCoeff();
+    Eigen::VectorXd gradient;
+    if (!TryEnergyGradient(space, previous, current, ShellSide::kDeformed,
+                           &gradient, &failure)) {
+      return degenerate(k, failure);
+    }
+    const double scale = gradient.cwiseAbs().maxCoeff();
     const bool solved = step.summary.IsSolutionUsable() &&
                         (step.summary.termination_type == ceres::CONVERGENCE ||
                          step.residual_norm <= 1e-6 * scale);
@@ -87,8 +105,12 @@ ShotOutcome ShootOnce(const ShellSpace& space, const Positions& s0,
       outcome.drift = std::numeric_limits<double>::infinity();
       return outcome;
     }
-    const double w = EvaluateDeformationEnergy(space, current, step.shape).total;
-    outcome.drift = std::max(outcome.drift, std::abs(w - first) / first);
+    if (!TryEvaluateDeformationEnergy(space, current, step.shape, &energy,
+                                      &failure)) {
+      return degenerate(k, failure);
+    }
+    outcome.drift =
+        std::max(outcome.drift, std::abs(energy.total - first) / first);
     if (!(outcome.drift <= max_drift)) {
       outcome.ok = false;
       if (abort_on_drift) return outcome;
@@ -102,17 +124,19 @@ ShotOutcome ShootOnce(const ShellSpace& space, const Positions& s0,
 
 }  // namespace
 
-Positions ShootFromMean(const ShellSpace& space, const Positions& mean,
-                        const Positions& variation,
-                        const ShellPcaOptions& options,
-                        const SolverSettings& settings, ExpShotReport* report) {
+bool TryShootFromMean(const ShellSpace& space, const Positions& mean,
+                      const Positions& variation,
+                      const ShellPcaOptions& options,
+                      const SolverSettings& settings, Positions* shot,
+                      ExpShotReport* report) {
   CheckOptions(options);
   ExpShotReport local;
   ExpShotReport& r = report ? *report : local;
   r = ExpShotReport{};
   if (variation.cwiseAbs().maxCoeff() == 0) {
     r.ok = true;
-    return mean;
+    *shot = mean;
+    return true;
   }
   int steps = options.exp_steps > 0 ? options.exp_steps : options.steps;
   steps = std::min(steps, options.max_exp_steps);
@@ -121,30 +145,48 @@ Positions ShootFromMean(const ShellSpace& space, const Positions& mean,
     ++r.attempts;
     r.steps = steps;
     Positions end;
-    ShotOutcome outcome;
-    try {
-      outcome = ShootOnce(space, mean, variation, steps,
-                          options.max_energy_drift, !last, settings, &end);
-    } catch (const InputError&) {
-      if (last) throw;
-      outcome.unsolved_step = -1;  // a degenerate triangle: more steps
-    }
+    const ShotOutcome outcome =
+        ShootOnce(space, mean, variation, steps, options.max_energy_drift,
+                  !last, settings, &end);
     r.energy_drift = outcome.drift;
     if (last && outcome.unsolved_step > 0) {
-      char text[200];
-      std::snprintf(text, sizeof(text),
-                    "EXP shot: step %d of EXP_%d has no solution (max |F| = "
-                    "%.3g of |D_2 W|) after %d attempt(s) up to K = %d",
-                    outcome.unsolved_step, steps, outcome.unsolved_residual,
-                    r.attempts, steps);
-      throw InputError(text);
+      char text[300];
+      if (outcome.degenerate.empty()) {
+        std::snprintf(text, sizeof(text),
+                      "EXP shot: step %d of EXP_%d has no solution (max |F| "
+                      "= %.3g of |D_2 W|) after %d attempt(s) up to K = %d",
+                      outcome.unsolved_step, steps, outcome.unsolved_residual,
+                      r.attempts, steps);
+      } else {
+        std::snprintf(text, sizeof(text),
+                      "EXP shot: step %d of EXP_%d meets a degenerate %s "
+                      "after %d attempt(s) up to K = %d",
+                      outcome.unsolved_step, steps, outcome.degenerate.c_str(),
+                      r.attempts, steps);
+      }
+      r.failure = text;
+      return false;
     }
     if (outcome.ok || last) {
       r.ok = outcome.ok;
-      return end;
+      *shot = std::move(end);
+      return true;
     }
     steps *= 2;
   }
+}
+
+Positions ShootFromMean(const ShellSpace& space, const Positions& mean,
+                        const Positions& variation,
+                        const ShellPcaOptions& options,
+                        const SolverSettings& settings, ExpShotReport* report) {
+  ExpShotReport local;
+  ExpShotReport& r = report ? *report : local;
+  Positions shot;
+  if (!TryShootFromMean(space, mean, variation, options, settings, &shot, &r)) {
+    throw InputError(r.failure);
+  }
+  return shot;
 }
 
 ShellMetric::ShellMetric(const ShellSpace& space, const Positions& at)
@@ -298,12 +340,12 @@ Eigen::VectorXd ShellModeCoefficients(const ShellPcaModel& model,
   return c;
 }
 
-Positions ShellFromCoefficients(const ShellSpace& space,
-                                const ShellPcaModel& model,
-                                const Eigen::VectorXd& coefficients,
-                                const ShellPcaOptions& options,
-                                const SolverSettings& settings,
-                                ExpShotReport* report) {
+bool TryShellFromCoefficients(const ShellSpace& space,
+                              const ShellPcaModel& model,
+                              const Eigen::VectorXd& coefficients,
+                              const ShellPcaOptions& options,
+                              const SolverSettings& settings, Positions* shell,
+                              ExpShotReport* report) {
   CheckOptions(options);
   const int m = static_cast<int>(coefficients.size());
   if (m > static_cast<int>(model.modes.size())) {
@@ -311,9 +353,28 @@ Positions ShellFromCoefficients(const ShellSpace& space,
   }
   Positions variation = Positions::Zero(model.mean.rows(), 3);
   for (int j = 0; j < m; ++j) variation += coefficients(j) * model.modes[j];
-  return AlignRigidly(
-      ShootFromMean(space, model.mean, variation, options, settings, report),
-      model.mean);
+  if (!TryShootFromMean(space, model.mean, variation, options, settings,
+                        shell, report)) {
+    return false;
+  }
+  *shell = AlignRigidly(*shell, model.mean);
+  return true;
+}
+
+Positions ShellFromCoefficients(const ShellSpace& space,
+                                const ShellPcaModel& model,
+                                const Eigen::VectorXd& coefficients,
+                                const ShellPcaOptions& options,
+                                const SolverSettings& settings,
+                                ExpShotReport* report) {
+  ExpShotReport local;
+  ExpShotReport& r = report ? *report : local;
+  Positions shell;
+  if (!TryShellFromCoefficients(space, model, coefficients, options, settings,
+                                &shell, &r)) {
+    throw InputError(r.failure);
+  }
+  return shell;
 }
 
 }  // namespace shellspace

@@ -11,6 +11,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <string>
 #include <vector>
 
 #include "shellspace/cost_functions/shell/shell_space.h"
@@ -80,6 +81,9 @@ struct ExpShotReport {
   int attempts = 0;
   double energy_drift = 0;
   bool ok = false;
+  // Empty, or why the last attempt returned no shape: the step without a
+  // solution or the degenerate element it met (TryShootFromMean false).
+  std::string failure;
 };
 
 // EXP_K(s_bar, v) with a safeguard against the instability of shooting a
@@ -97,7 +101,17 @@ struct ExpShotReport {
 // every step, even if it fails the drift bound (report->ok = false); if it
 // has an unsolved step (no EXP solution near the extrapolation: e.g. a
 // variation that folds a patch of the mesh) or meets a degenerate triangle,
-// InputError is thrown, naming the step, and *report says what was tried.
+// the shot failed: a numerical status, false with report->failure naming the
+// step, *shot untouched, and *report saying what was tried. Throws
+// InputError only for invalid options.
+bool TryShootFromMean(const ShellSpace& space, const Positions& mean,
+                      const Positions& variation,
+                      const ShellPcaOptions& options,
+                      const SolverSettings& settings, Positions* shot,
+                      ExpShotReport* report = nullptr);
+
+// The same for a shot that must succeed (a mode shape the caller asked
+// for): throws InputError with report->failure if it failed.
 Positions ShootFromMean(const ShellSpace& space, const Positions& mean,
                         const Positions& variation,
                         const ShellPcaOptions& options,
@@ -160,9 +174,17 @@ Positions ShellModeShape(const ShellSpace& space, const ShellPcaModel& model,
 Eigen::VectorXd ShellModeCoefficients(const ShellPcaModel& model,
                                       const Positions& v, int m);
 
-// EXP_K(s_bar, sum_{j<m} c_j w_j) by ShootFromMean for the first m =
+// EXP_K(s_bar, sum_{j<m} c_j w_j) by TryShootFromMean for the first m =
 // coefficients.size() modes (s_bar itself for m = 0), aligned rigidly to
-// s_bar.
+// s_bar; false (report->failure) if the shot failed.
+bool TryShellFromCoefficients(const ShellSpace& space,
+                              const ShellPcaModel& model,
+                              const Eigen::VectorXd& coefficients,
+                              const ShellPcaOptions& options,
+                              const SolverSettings& settings, Positions* shell,
+                              ExpShotReport* report = nullptr);
+
+// The same; throws InputError with report->failure if the shot failed.
 Positions ShellFromCoefficients(const ShellSpace& space,
                                 const ShellPcaModel& model,
                                 const Eigen::VectorXd& coefficients,

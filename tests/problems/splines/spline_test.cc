@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <random>
 
@@ -95,6 +96,34 @@ TEST_F(SplineTest, RegressionAndPeriodicGradientsMatchCentralDifferences) {
   spec.data = {{a_.positions, 0}, {c_.positions, 2}};
   spec.sigma = 0.3;
   CheckGradient(SplineObjective(space_, spec, TightInner()), 2);
+}
+
+// A point with a collapsed free shape (every vertex of s_1 at one point) is
+// rejected by a false return, a numerical status for the line search, not
+// an exception; the objective still evaluates a good point afterwards.
+TEST_F(SplineTest, DegeneratePointIsRejectedWithoutAnException) {
+  SplineSpec spec;
+  spec.steps = 3;
+  spec.periodic = true;
+  spec.initial = {a_.positions, b_.positions, c_.positions};
+  spec.is_free = {1, 1, 1};
+  spec.data = {{a_.positions, 0}, {c_.positions, 2}};
+  spec.sigma = 0.3;
+  const SplineObjective objective(space_, spec, TightInner());
+  const std::vector<double> good = objective.InitialParameters();
+  std::vector<double> bad = good;
+  const int n3 = 3 * space_.num_vertices;
+  for (int i = n3; i < 2 * n3; ++i) bad[i] = 0.25;  // s_1 collapsed
+  double f = 0;
+  std::vector<double> g(good.size());
+  bool value_ok = true, gradient_ok = true;
+  EXPECT_NO_THROW(value_ok = objective.Evaluate(bad.data(), &f, nullptr));
+  EXPECT_NO_THROW(gradient_ok = objective.Evaluate(bad.data(), &f, g.data()));
+  EXPECT_FALSE(value_ok);
+  EXPECT_FALSE(gradient_ok);
+  ASSERT_TRUE(objective.Evaluate(good.data(), &f, g.data()));
+  EXPECT_TRUE(std::isfinite(f));
+  EXPECT_GT(f, 0);
 }
 
 // The warm-started evaluation (Newton from the previous midpoints, the last

@@ -356,6 +356,50 @@ TEST(ShellPcaTest, ExpShotWithoutSolutionStopsAndNamesTheStep) {
   EXPECT_FALSE(report.ok);
   EXPECT_EQ(report.attempts, 3);
   EXPECT_EQ(report.steps, 16);
+  // The status twin: false, the same message, no exception, no shape.
+  Positions shot;
+  ExpShotReport status;
+  bool solved = true;
+  EXPECT_NO_THROW(solved = TryShootFromMean(space, sphere, variation, options,
+                                            Tight(), &shot, &status));
+  EXPECT_FALSE(solved);
+  EXPECT_NE(status.failure.find("step 2 of EXP_16 has no solution"),
+            std::string::npos)
+      << status.failure;
+  EXPECT_EQ(status.attempts, 3);
+  EXPECT_EQ(shot.size(), 0);
+}
+
+TEST(ShellPcaTest, ExpShotThroughADegenerateTriangleIsAStatus) {
+  // A variation that takes every vertex of the sphere to its centroid in
+  // the first linear step s_1 = s_bar + v/4 (one attempt: max K = 4): the
+  // shot meets degenerate triangles at step 1 and says so by a false return
+  // naming the step and the element, not by an exception from the energy.
+  const Positions sphere = LoadData(kSpheres[0]).positions;
+  const ShellSpace space = MakeSpace(LoadData(kSpheres[0]));
+  const Eigen::RowVector3d centroid = sphere.colwise().mean();
+  const Positions variation = -4.0 * (sphere.rowwise() - centroid);
+  ShellPcaOptions options;
+  options.exp_steps = 4;
+  options.max_exp_steps = 4;
+  Positions shot;
+  ExpShotReport status;
+  bool solved = true;
+  EXPECT_NO_THROW(solved = TryShootFromMean(space, sphere, variation, options,
+                                            Tight(), &shot, &status));
+  EXPECT_FALSE(solved);
+  EXPECT_FALSE(status.ok);
+  EXPECT_EQ(status.attempts, 1);
+  EXPECT_NE(status.failure.find("step 1 of EXP_4 meets a degenerate"),
+            std::string::npos)
+      << status.failure;
+  // The throwing form carries the same message.
+  try {
+    ShootFromMean(space, sphere, variation, options, Tight());
+    ADD_FAILURE() << "the shot should have thrown";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()), status.failure);
+  }
 }
 
 TEST(ElasticMeanTest, FarInputsAreTheOutliersOfTheMeanEnergies) {
