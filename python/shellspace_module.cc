@@ -783,12 +783,12 @@ py::tuple PcaPy(const py::object& inputs_object, const IndexArray& F, int modes,
             "mode_" + std::to_string(j + 1) + (sign < 0 ? "_minus" : "_plus");
         // A mode shape whose EXP shot has no solution is not returned; it
         // is listed in the summary (as the CLI does).
-        try {
-          shapes.emplace_back(
-              name, ShellModeShape(space, shell, j, sign * amplitude, options,
-                                   inner));
-          strip.push_back(shapes.back().second);
-        } catch (const InputError&) {
+        Positions shape;
+        if (TryShellModeShape(space, shell, j, sign * amplitude, options,
+                              inner, &shape)) {
+          shapes.emplace_back(name, shape);
+          strip.push_back(std::move(shape));
+        } else {
           failed_shapes.push_back(name + ".ply");
         }
       }

@@ -315,23 +315,24 @@ int RunPca() {
   std::vector<std::pair<std::string, Positions>> files = {
       {"mean.ply", mean.mean}};  // written at the end, with pca.json
   std::vector<Positions> strip = {mean.mean};
-  // A mode shape whose EXP shot has no solution (ShootFromMean throws) is
-  // not written; it is listed in the JSON and warned about.
+  // A mode shape whose EXP shot has no solution (TryShellModeShape false)
+  // is not written; it is listed in the JSON and warned about.
   std::vector<std::string> failed_shapes;
   for (int j = 0; j < shell_modes; ++j) {
     for (const double sign : {-1.0, 1.0}) {
       const std::string name = "mode_" + std::to_string(j + 1) +
                                (sign < 0 ? "_minus.ply" : "_plus.ply");
-      try {
-        files.emplace_back(name, ShellModeShape(space, shell, j,
-                                                sign * FLAGS_amplitude,
-                                                options, inner));
-        strip.push_back(files.back().second);
-      } catch (const InputError& e) {
+      Positions shape;
+      ExpShotReport shot;
+      if (TryShellModeShape(space, shell, j, sign * FLAGS_amplitude, options,
+                            inner, &shape, &shot)) {
+        files.emplace_back(name, shape);
+        strip.push_back(std::move(shape));
+      } else {
         failed_shapes.push_back(name);
         if (!FLAGS_quiet) {
-          std::cerr << "pca: warning: " << name << " not written: " << e.what()
-                    << "\n";
+          std::cerr << "pca: warning: " << name
+                    << " not written: " << shot.failure << "\n";
         }
       }
     }

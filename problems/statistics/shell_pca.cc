@@ -312,9 +312,10 @@ ShellPcaModel ComputeShellPca(const ShellSpace& space, const Positions& mean,
   return model;
 }
 
-Positions ShellModeShape(const ShellSpace& space, const ShellPcaModel& model,
-                         int j, double t, const ShellPcaOptions& options,
-                         const SolverSettings& settings) {
+bool TryShellModeShape(const ShellSpace& space, const ShellPcaModel& model,
+                       int j, double t, const ShellPcaOptions& options,
+                       const SolverSettings& settings, Positions* shape,
+                       ExpShotReport* report) {
   CheckOptions(options);
   if (j < 0 || j >= static_cast<int>(model.modes.size())) {
     throw InputError("shell PCA: mode " + std::to_string(j + 1) +
@@ -323,9 +324,24 @@ Positions ShellModeShape(const ShellSpace& space, const ShellPcaModel& model,
   }
   const Positions variation =
       t * std::sqrt(model.eigenvalues(j)) * model.modes[j];
-  return AlignRigidly(
-      ShootFromMean(space, model.mean, variation, options, settings),
-      model.mean);
+  if (!TryShootFromMean(space, model.mean, variation, options, settings,
+                        shape, report)) {
+    return false;
+  }
+  *shape = AlignRigidly(*shape, model.mean);
+  return true;
+}
+
+Positions ShellModeShape(const ShellSpace& space, const ShellPcaModel& model,
+                         int j, double t, const ShellPcaOptions& options,
+                         const SolverSettings& settings) {
+  ExpShotReport report;
+  Positions shape;
+  if (!TryShellModeShape(space, model, j, t, options, settings, &shape,
+                         &report)) {
+    throw InputError(report.failure);
+  }
+  return shape;
 }
 
 Eigen::VectorXd ShellModeCoefficients(const ShellPcaModel& model,

@@ -164,7 +164,15 @@ ShellPcaModel ComputeShellPca(const ShellSpace& space, const Positions& mean,
                               const std::vector<ShellPath>* warm = nullptr);
 
 // The shape of mode j (0-based) at amplitude t: EXP_K(s_bar, t sqrt(lambda_j)
-// w_j) by ShootFromMean, aligned rigidly to s_bar.
+// w_j) by TryShootFromMean, aligned rigidly to s_bar; false
+// (report->failure) if the shot failed. Throws InputError for a mode the
+// model does not have.
+bool TryShellModeShape(const ShellSpace& space, const ShellPcaModel& model,
+                       int j, double t, const ShellPcaOptions& options,
+                       const SolverSettings& settings, Positions* shape,
+                       ExpShotReport* report = nullptr);
+
+// The same; throws InputError with the failure if the shot failed.
 Positions ShellModeShape(const ShellSpace& space, const ShellPcaModel& model,
                          int j, double t, const ShellPcaOptions& options,
                          const SolverSettings& settings);
