@@ -22,19 +22,35 @@ BlockJacobiCg::~BlockJacobiCg() = default;
 
 namespace {
 
-// The lower triangle of the diagonal block [begin, end) of `lower`.
+// The lower triangle of the diagonal block [begin, end) of `lower`
+// (compressed columns, sorted rows), copied column by column into storage
+// of the exact size (no triplets: on the cactus x16 a block has ~5M
+// entries).
 SparseMatrix DiagonalBlock(const SparseMatrix& lower, int begin, int end) {
   const int m = end - begin;
-  std::vector<Eigen::Triplet<double>> triplets;
+  const auto in_block = [&](int row, int c) { return row >= c && row < end; };
+  SparseMatrix block(m, m);
+  Eigen::Index count = 0;
   for (int c = begin; c < end; ++c) {
     for (SparseMatrix::InnerIterator it(lower, c); it; ++it) {
-      if (it.row() >= c && it.row() < end) {
-        triplets.emplace_back(it.row() - begin, c - begin, it.value());
-      }
+      count += in_block(static_cast<int>(it.row()), c);
     }
   }
-  SparseMatrix block(m, m);
-  block.setFromTriplets(triplets.begin(), triplets.end());
+  block.resizeNonZeros(count);
+  int* outer = block.outerIndexPtr();
+  int* inner = block.innerIndexPtr();
+  double* values = block.valuePtr();
+  int next = 0;
+  for (int c = begin; c < end; ++c) {
+    outer[c - begin] = next;
+    for (SparseMatrix::InnerIterator it(lower, c); it; ++it) {
+      if (!in_block(static_cast<int>(it.row()), c)) continue;
+      inner[next] = static_cast<int>(it.row()) - begin;
+      values[next] = it.value();
+      ++next;
+    }
+  }
+  outer[m] = next;
   return block;
 }
 
@@ -47,12 +63,14 @@ bool BlockJacobiCg::Factorize(const SparseMatrix& lower,
   time_coupled_ = false;
   const int blocks = static_cast<int>(offsets.size()) - 1;
   if (time_coupling_ && blocks > 0) {
-    std::vector<SparseMatrix> diagonal(blocks);
-    ParallelFor(blocks, threads_, [&](int i) {
-      diagonal[i] = DiagonalBlock(lower, offsets[i], offsets[i + 1]);
-    });
-    const TimeCoupledPreconditioner::Status status =
-        coupled_.Factorize(diagonal, threads_);
+    // Each block is copied out by the task that factorises it and freed
+    // with it: at most `threads` copies at a time.
+    const TimeCoupledPreconditioner::Status status = coupled_.Factorize(
+        blocks,
+        [&](int i, SparseMatrix* block) {
+          *block = DiagonalBlock(lower, offsets[i], offsets[i + 1]);
+        },
+        threads_);
     if (status != TimeCoupledPreconditioner::Status::kDifferentPatterns) {
       stats_.factorizations += blocks;
       time_coupled_ = status == TimeCoupledPreconditioner::Status::kFactorized;

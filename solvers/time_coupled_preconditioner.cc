@@ -75,14 +75,27 @@ TimeCoupledPreconditioner::~TimeCoupledPreconditioner() = default;
 
 TimeCoupledPreconditioner::Status TimeCoupledPreconditioner::Factorize(
     const std::vector<SparseMatrix>& blocks, int threads) {
+  for (const SparseMatrix& block : blocks) {
+    if (!SamePattern(block, blocks.front())) {
+      factors_->Clear();
+      mixing_.resize(0, 0);
+      block_size_ = 0;
+      return Status::kDifferentPatterns;
+    }
+  }
+  return Factorize(
+      static_cast<int>(blocks.size()),
+      [&](int i, SparseMatrix* block) { *block = blocks[i]; }, threads);
+}
+
+TimeCoupledPreconditioner::Status TimeCoupledPreconditioner::Factorize(
+    int count, const BlockSource& block_source, int threads) {
   factors_->Clear();
   mixing_.resize(0, 0);
   block_size_ = 0;
-  const int count = static_cast<int>(blocks.size());
-  if (count == 0) return Status::kDifferentPatterns;
-  for (const SparseMatrix& block : blocks) {
-    if (!SamePattern(block, blocks.front())) return Status::kDifferentPatterns;
-  }
+  if (count <= 0) return Status::kDifferentPatterns;
+  SparseMatrix front;
+  block_source(0, &front);
   // The ordering and the supernodes of the common pattern, once.
   cholmod_common common;
   cholmod_start(&common);
@@ -95,7 +108,7 @@ TimeCoupledPreconditioner::Status TimeCoupledPreconditioner::Factorize(
   common.nmethods = 2;
   common.method[0].ordering = CHOLMOD_AMD;
   common.method[1].ordering = CHOLMOD_METIS;
-  cholmod_sparse first = LowerView(blocks.front());
+  cholmod_sparse first = LowerView(front);
   cholmod_factor* symbolic = cholmod_analyze(&first, &common);
   auto pattern = std::make_shared<const SupernodalPattern>(
       symbolic ? SupernodalPattern::Of(*symbolic) : SupernodalPattern());
@@ -110,15 +123,24 @@ TimeCoupledPreconditioner::Status TimeCoupledPreconditioner::Factorize(
   const bool single = precision_ == FactorPrecision::kSingle;
   std::vector<SupernodalFactor<float>> single_slices(single ? count : 0);
   std::vector<SupernodalFactor<double>> full_slices(single ? 0 : count);
-  std::vector<char> valid(count, 0);
+  std::vector<char> valid(count, 0), same_pattern(count, 1);
   ParallelFor(count, threads, [&](int i) {
+    SparseMatrix own_block;
+    if (i > 0) {
+      block_source(i, &own_block);
+      if (!SamePattern(own_block, front)) {
+        same_pattern[i] = 0;
+        return;
+      }
+    }
+    const SparseMatrix& block = i == 0 ? front : own_block;
     cholmod_common own;
     cholmod_start(&own);
     own.print = 0;  // an indefinite block is an answer
     own.supernodal = CHOLMOD_SUPERNODAL;
     own.final_asis = 1;  // keep the supernodal L L^T
     cholmod_factor* factor = cholmod_copy_factor(symbolic, &own);
-    cholmod_sparse view = LowerView(blocks[i]);
+    cholmod_sparse view = LowerView(block);
     if (factor && cholmod_factorize(&view, factor, &own) &&
         own.status == CHOLMOD_OK && factor->minor == factor->n) {
       if (single) {
@@ -134,13 +156,15 @@ TimeCoupledPreconditioner::Status TimeCoupledPreconditioner::Factorize(
   });
   cholmod_free_factor(&symbolic, &common);
   cholmod_finish(&common);
-  if (!std::all_of(valid.begin(), valid.end(), [](char v) { return v; })) {
-    return Status::kNotPositive;
-  }
+  const auto all = [](const std::vector<char>& v) {
+    return std::all_of(v.begin(), v.end(), [](char c) { return c != 0; });
+  };
+  if (!all(same_pattern)) return Status::kDifferentPatterns;
+  if (!all(valid)) return Status::kNotPositive;
   factors_->pattern = std::move(pattern);
   factors_->single = std::move(single_slices);
   factors_->full = std::move(full_slices);
-  block_size_ = static_cast<int>(blocks.front().rows());
+  block_size_ = static_cast<int>(front.rows());
   SetCouplings(std::vector<double>(count - 1, 1.0));
   return Status::kFactorized;
 }

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -72,6 +73,13 @@ class TimeCoupledPreconditioner {
   // analysing the common pattern once; `threads` factorisations at a time.
   Status Factorize(const std::vector<Eigen::SparseMatrix<double>>& blocks,
                    int threads);
+  // The same for `count` blocks made on demand: block(i, &b) sets b to block
+  // i; it is called once for block 0 (the analysis) and once by the task
+  // that factorises each block, which frees it after (at most `threads`
+  // blocks plus block 0 exist at a time).
+  using BlockSource =
+      std::function<void(int, Eigen::SparseMatrix<double>*)>;
+  Status Factorize(int count, const BlockSource& block, int threads);
 
   // Fits theta (above) to the couplings of `lower` (the lower triangle of
   // the whole H whose diagonal blocks were factorised) with `probes`

@@ -183,7 +183,8 @@ PathHessianAssembler::PathHessianAssembler(const ShellSpace& space,
 bool PathHessianAssembler::AddElementBlocks(
     const Positions& reference, const Positions& deformed, double weight,
     BlockArray* d22, BlockArray* d11, BlockArray* mixed_transposed,
-    BlockArray* mixed, ElementFailure* failure) const {
+    BlockArray* mixed, ElementFailure* failure,
+    BlockArray* reference_mixed) const {
   const ElementSet& set = space_.elements();
   bool ok = true;
   size_t next_slot = 0;
@@ -236,14 +237,22 @@ bool PathHessianAssembler::AddElementBlocks(
         }
         if (mixed != nullptr) scatter(d.d_grad_reference, mixed);
       }
-      if (d11 != nullptr) {
+      if (d11 != nullptr || reference_mixed != nullptr) {
+        const Rows rows = reference_mixed == nullptr ? Rows::kReference
+                          : d11 == nullptr           ? Rows::kDeformed
+                                                     : Rows::kBoth;
         if (!d.ComputeModel(model_, group.element, ref, def,
-                            ShellSide::kReference, weight, Rows::kReference)) {
+                            ShellSide::kReference, weight, rows)) {
           set.Fail(group.first_element + e, failure);
           ok = false;
           return;
         }
-        scatter(d.d_grad_reference, d11);
+        if (d11 != nullptr) scatter(d.d_grad_reference, d11);
+        // d_grad_deformed with the reference active: rows deformed, columns
+        // reference, as the scatter's slot(a, b) = (row a, column b) wants.
+        if (reference_mixed != nullptr) {
+          scatter(d.d_grad_deformed, reference_mixed);
+        }
       }
     }
   });
@@ -260,29 +269,45 @@ bool PathHessianAssembler::TryAssemble(
     throw std::invalid_argument("PathHessianAssembler: need K >= 2 and K - 1 bases");
   }
   const size_t block_values = 9 * pair_row_.size();
-  // One task per inner shape s_k (slice i = k - 1) writes its diagonal
-  // block D_2^2 W[s_{k-1}, s_k] + D_1^2 W[s_k, s_{k+1}] into one array and,
-  // for k >= 2, the coupling D_1 D_2 W[s_{k-1}, s_k] into lower[i - 1]
-  // (rows slice i, columns slice i - 1): every array has one writer, and a
-  // slice holds two arrays, not three.
+  // One task per inner shape s_k (slice i = k - 1), inside the filling pass
+  // of Compress (slice_ready): it computes its diagonal block
+  // D_2^2 W[s_{k-1}, s_k] + D_1^2 W[s_k, s_{k+1}] into one array and, for
+  // k < K - 1, the coupling below it, D_2 D_1 W[s_k, s_{k+1}] (rows slice
+  // i + 1, columns slice i), from the same reference-active pass as
+  // D_1^2 W; then it writes the slice's columns and releases both arrays.
+  // Every array has one writer, and only `threads` slices' arrays exist at
+  // a time (on the cactus x16 a slice's two arrays are about 0.2 GB).
   std::vector<BlockArray> diagonal_blocks(inner), lower(inner);
   // Per term W[s_{k-1}, s_k] (index k - 1): its deformed and its reference
   // side, each evaluated by one task.
   std::vector<ElementFailure> deformed_failure(K), reference_failure(K);
   std::vector<char> deformed_ok(K, 1), reference_ok(K, 1);
-  ParallelFor(inner, threads, [&](int i) {
+  std::vector<std::vector<const BlockArray*>> diagonal(inner);
+  std::vector<const BlockArray*> below(inner, nullptr);
+  for (int i = 0; i < inner; ++i) {
+    diagonal[i] = {&diagonal_blocks[i]};
+    if (i + 1 < inner) below[i] = &lower[i];
+  }
+  const auto compute_slice = [&](int i) {
     const int k = i + 1;
-    BlockArray* diagonal = &diagonal_blocks[i];
-    diagonal->assign(block_values, 0.0);
+    diagonal_blocks[i].assign(block_values, 0.0);
     BlockArray* coupling = nullptr;
-    if (k >= 2) (coupling = &lower[i - 1])->assign(block_values, 0.0);
+    if (i + 1 < inner) (coupling = &lower[i])->assign(block_values, 0.0);
     deformed_ok[k - 1] =
-        AddElementBlocks(path[k - 1], path[k], K, diagonal, nullptr, coupling,
-                         nullptr, &deformed_failure[k - 1]);
-    reference_ok[k] = AddElementBlocks(path[k], path[k + 1], K, nullptr,
-                                       diagonal, nullptr, nullptr,
-                                       &reference_failure[k]);
-  });
+        AddElementBlocks(path[k - 1], path[k], K, &diagonal_blocks[i],
+                         nullptr, nullptr, nullptr, &deformed_failure[k - 1]);
+    reference_ok[k] =
+        deformed_ok[k - 1] &&
+        AddElementBlocks(path[k], path[k + 1], K, nullptr, &diagonal_blocks[i],
+                         nullptr, nullptr, &reference_failure[k], coupling);
+    return deformed_ok[k - 1] && reference_ok[k];
+  };
+  const auto release_slice = [&](int i) {
+    BlockArray().swap(diagonal_blocks[i]);
+    BlockArray().swap(lower[i]);
+  };
+  Compress(diagonal, below, bases, threads, hessian, release_slice,
+           compute_slice);
   for (int term = 0; term < K; ++term) {
     const bool deformed = !deformed_ok[term];
     if (deformed || !reference_ok[term]) {
@@ -292,21 +317,10 @@ bool PathHessianAssembler::TryAssemble(
                                std::to_string(term + 1) + "]: " +
                                failure->description;
       }
+      *hessian = Eigen::SparseMatrix<double>();  // values partly unwritten
       return false;
     }
   }
-
-  std::vector<std::vector<const BlockArray*>> diagonal(inner);
-  std::vector<const BlockArray*> below(inner, nullptr);
-  for (int i = 0; i < inner; ++i) {
-    diagonal[i] = {&diagonal_blocks[i]};
-    if (i + 1 < inner) below[i] = &lower[i];
-  }
-  // Each slice's block arrays are released once its columns are written.
-  Compress(diagonal, below, bases, threads, hessian, [&](int i) {
-    BlockArray().swap(diagonal_blocks[i]);
-    BlockArray().swap(lower[i]);
-  });
   return true;
 }
 
@@ -424,7 +438,8 @@ void PathHessianAssembler::Compress(
     const std::vector<const BlockArray*>& lower,
     const std::vector<Eigen::SparseMatrix<double>>& bases,
     int threads, Eigen::SparseMatrix<double>* out,
-    const std::function<void(int)>& slice_done) const {
+    const std::function<void(int)>& slice_done,
+    const std::function<bool(int)>& slice_ready) const {
   const int n = space_.num_vertices;
   const int inner = static_cast<int>(bases.size());
   std::vector<std::vector<VertexColumns>> layout(inner);
@@ -435,6 +450,12 @@ void PathHessianAssembler::Compress(
   }
   const auto walk = [&](int i, auto& sink) {
     constexpr bool kValues = std::decay_t<decltype(sink)>::kValues;
+    if constexpr (kValues) {
+      if (slice_ready && !slice_ready(i)) {
+        if (slice_done) slice_done(i);
+        return;
+      }
+    }
     double diagonal_block[9];
     int column = offset[i];
     for (int w = 0; w < n; ++w) {

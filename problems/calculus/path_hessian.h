@@ -99,26 +99,35 @@ class PathHessianAssembler {
   using BlockArray = std::vector<double>;
   // Adds weight times the blocks of W[reference, deformed] to the non-null
   // arrays: D_2^2 W, D_1^2 W, the mixed block with rows deformed
-  // (mixed_transposed) and with rows reference (mixed), element by element
-  // in the set's order. False (arrays partly filled) at the first degenerate
+  // (mixed_transposed, from the pass with the deformed side active;
+  // reference_mixed, from the reference-active pass that also gives
+  // D_1^2 W) and with rows reference (mixed), element by element in the
+  // set's order. False (arrays partly filled) at the first degenerate
   // element, named in *failure if given.
   bool AddElementBlocks(const Positions& reference, const Positions& deformed,
                         double weight, BlockArray* d22, BlockArray* d11,
                         BlockArray* mixed_transposed,
                         BlockArray* mixed = nullptr,
-                        ElementFailure* failure = nullptr) const;
+                        ElementFailure* failure = nullptr,
+                        BlockArray* reference_mixed = nullptr) const;
 
   // *out = T^T H T (lower triangle) from the diagonal blocks of each slice
   // (the sum of the arrays diagonal[i]) and the blocks below the diagonal
   // (lower[i]: rows slice i + 1, columns slice i), written in place (its old
   // storage released first), the slices in parallel (`threads` at a time).
-  // slice_done(i), if given, is called (from the thread that wrote them)
-  // once slice i's columns are written: its arrays are not read again.
+  // slice_ready(i), if given, is called (from the thread that will write
+  // them) before slice i's columns are filled: it may compute the slice's
+  // arrays there (the counting pass does not read them), so that only
+  // `threads` slices' arrays exist at a time; if it returns false the
+  // slice's values are left unwritten (the caller discards *out).
+  // slice_done(i), if given, is called (from the same thread) once slice
+  // i's columns are written: its arrays are not read again.
   void Compress(const std::vector<std::vector<const BlockArray*>>& diagonal,
                 const std::vector<const BlockArray*>& lower,
                 const std::vector<Eigen::SparseMatrix<double>>& bases,
                 int threads, Eigen::SparseMatrix<double>* out,
-                const std::function<void(int)>& slice_done = nullptr) const;
+                const std::function<void(int)>& slice_done = nullptr,
+                const std::function<bool(int)>& slice_ready = nullptr) const;
 
   const ShellSpace& space_;
   HessianModel model_ = HessianModel::kExact;

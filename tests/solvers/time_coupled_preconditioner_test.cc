@@ -156,6 +156,30 @@ TEST(TimeCoupledPreconditionerTest, ReportsDifferentPatternsAndIndefiniteBlocks)
   other[2] = -other[2];
   EXPECT_EQ(p.Factorize(other, 2),
             TimeCoupledPreconditioner::Status::kNotPositive);
+  // The same answers from blocks made on demand (each by the task that
+  // factorises it, the pattern checked there), and each block asked for
+  // once (block 0 for the analysis).
+  const int count = static_cast<int>(blocks.size());
+  other = blocks;
+  other[count - 1] = other[count - 1].block(0, 0, m - 3, m - 3);
+  std::vector<int> calls(count, 0);
+  const auto source = [&](const std::vector<SparseMatrix>& from) {
+    return [&calls, &from](int i, SparseMatrix* block) {
+      ++calls[i];
+      *block = from[i];
+    };
+  };
+  EXPECT_EQ(p.Factorize(count, source(other), 2),
+            TimeCoupledPreconditioner::Status::kDifferentPatterns);
+  std::fill(calls.begin(), calls.end(), 0);
+  ASSERT_EQ(p.Factorize(count, source(blocks), 2),
+            TimeCoupledPreconditioner::Status::kFactorized);
+  EXPECT_EQ(calls, std::vector<int>(count, 1));
+  TimeCoupledPreconditioner q;
+  ASSERT_EQ(q.Factorize(blocks, 2),
+            TimeCoupledPreconditioner::Status::kFactorized);
+  const Eigen::VectorXd u = TestVector(count * m, 0.3);
+  EXPECT_EQ(p.Apply(u, 2), q.Apply(u, 2));  // the same factors
 }
 
 // CG iterations to 1e-10 with block Jacobi [0] and the fitted time-coupled
