@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <cstring>
 #include <utility>
 
 namespace shellspace {
@@ -11,11 +13,14 @@ namespace shellspace {
 namespace {
 
 // Supernode s of a pattern: its columns [first, first + columns), the
-// `below` rows under its triangle (row[0 .. below)), and its column-major
-// block of `rows` = columns + below rows starting at value_begin.
+// `below` rows under its triangle (row[0 .. below)), its column-major
+// block of `rows` = columns + below rows starting at value_begin in
+// CHOLMOD's layout, and its packed columns starting at packed_begin:
+// column j (rows - j values, its diagonal first) at packed_begin +
+// Column(j).
 struct Supernode {
   int first, columns;
-  long rows, below, value_begin;
+  long rows, below, value_begin, packed_begin;
   const int* row;
   Supernode(const SupernodalPattern& p, int s)
       : first(p.first_column[s]),
@@ -23,7 +28,11 @@ struct Supernode {
         rows(p.row_begin[s + 1] - p.row_begin[s]),
         below(rows - columns),
         value_begin(p.value_begin[s]),
+        packed_begin(p.packed_begin.empty() ? 0 : p.packed_begin[s]),
         row(p.rows.data() + p.row_begin[s] + columns) {}
+  // Offset of packed column j: sum over i < j of (rows - i).
+  long Column(long j) const { return j * rows - j * (j - 1) / 2; }
+  long PackedValues() const { return Column(columns); }
 };
 
 }  // namespace
@@ -44,78 +53,119 @@ SupernodalPattern SupernodalPattern::Of(const cholmod_factor& factor) {
   pattern.row_begin.assign(pi, pi + supernodes + 1);
   pattern.value_begin.assign(px, px + supernodes + 1);
   pattern.rows.assign(s, s + pi[supernodes]);
+  pattern.packed_begin.assign(supernodes + 1, 0);
   // The solves take a supernode's first rows to be its own columns.
   for (int k = 0; k < supernodes; ++k) {
     for (int j = 0; j < super[k + 1] - super[k]; ++j) {
       if (s[pi[k] + j] != super[k] + j) return SupernodalPattern();
     }
-    pattern.longest_below =
-        std::max(pattern.longest_below, Supernode(pattern, k).below);
+    const Supernode node(pattern, k);
+    pattern.longest_below = std::max(pattern.longest_below, node.below);
+    pattern.packed_begin[k + 1] =
+        pattern.packed_begin[k] + node.PackedValues();
   }
   return pattern;
 }
 
 template <typename Stored>
-SupernodalFactor<Stored>::SupernodalFactor(
-    std::shared_ptr<const SupernodalPattern> pattern,
-    const cholmod_factor& factor)
-    : SupernodalFactor(
-          std::move(pattern),
-          factor.is_super && factor.is_ll && factor.xtype == CHOLMOD_REAL &&
-                  factor.itype == CHOLMOD_INT
-              ? static_cast<const double*>(factor.x)
-              : nullptr) {
-  if (valid_ && (static_cast<int>(factor.n) != pattern_->size ||
-                 static_cast<int>(factor.nsuper) != pattern_->supernodes() ||
-                 factor.minor != factor.n)) {
-    valid_ = false;
+void SupernodalFactor<Stored>::Free::operator()(Stored* p) const {
+  std::free(p);
+}
+
+template <typename Stored>
+bool SupernodalFactor<Stored>::ChooseScale(const double* values) {
+  const SupernodalPattern& p = *pattern_;
+  // A power of two near the largest |L_ij| of the stored lower parts (the
+  // strict upper part of each diagonal triangle is not L).
+  double largest = 0;
+  bool finite = true;
+  for (int s = 0; s < p.supernodes(); ++s) {
+    const Supernode node(p, s);
+    const double* block = values + node.value_begin;
+    for (int j = 0; j < node.columns; ++j) {
+      for (long i = j; i < node.rows; ++i) {
+        const double v = block[i + j * node.rows];
+        finite = finite && std::isfinite(v);
+        largest = std::max(largest, std::abs(v));
+      }
+    }
   }
+  if (!finite || !(largest > 0)) return false;
+  int exponent = 0;
+  std::frexp(largest, &exponent);
+  scale_ = std::ldexp(1.0, exponent);
+  return true;
+}
+
+template <typename Stored>
+bool SupernodalFactor<Stored>::Pack(const unsigned char* values,
+                                    Stored* out) const {
+  const SupernodalPattern& p = *pattern_;
+  const double inverse_scale = 1 / scale_;  // exact: a power of two
+  std::vector<double> column;
+  bool positive = true;
+  for (int s = 0; s < p.supernodes(); ++s) {
+    const Supernode node(p, s);
+    for (int j = 0; j < node.columns; ++j) {
+      // Rows j .. rows - 1 of column j, copied out first (memcpy: the
+      // bytes may be overwritten below when out aliases values).
+      const long length = node.rows - j;
+      column.resize(static_cast<size_t>(length));
+      std::memcpy(column.data(),
+                  values + sizeof(double) * static_cast<size_t>(
+                               node.value_begin + j + j * node.rows),
+                  sizeof(double) * static_cast<size_t>(length));
+      Stored* packed = out + node.packed_begin + node.Column(j);
+      for (long i = 0; i < length; ++i) {
+        packed[i] = static_cast<Stored>(column[i] * inverse_scale);
+      }
+      positive = positive && packed[0] > 0 && std::isnormal(packed[0]);
+    }
+  }
+  return positive;
+}
+
+template <typename Stored>
+SupernodalFactor<Stored>::SupernodalFactor(
+    std::shared_ptr<const SupernodalPattern> pattern, cholmod_factor* factor)
+    : pattern_(std::move(pattern)) {
+  if (!pattern_ || pattern_->size == 0 || factor == nullptr ||
+      !factor->is_super || !factor->is_ll || factor->xtype != CHOLMOD_REAL ||
+      factor->itype != CHOLMOD_INT || factor->x == nullptr ||
+      static_cast<int>(factor->n) != pattern_->size ||
+      static_cast<int>(factor->nsuper) != pattern_->supernodes() ||
+      factor->minor != factor->n ||
+      !ChooseScale(static_cast<const double*>(factor->x))) {
+    return;
+  }
+  // CHOLMOD's buffer comes from SuiteSparse's malloc (the C library's):
+  // ours to free with std::free once taken.
+  unsigned char* bytes = static_cast<unsigned char*>(factor->x);
+  factor->x = nullptr;
+  valid_ = Pack(bytes, reinterpret_cast<Stored*>(bytes));
+  value_count_ = pattern_->packed_values();
+  const size_t kept = sizeof(Stored) * static_cast<size_t>(value_count_);
+  void* shrunk = std::realloc(bytes, std::max<size_t>(kept, 1));
+  values_.reset(static_cast<Stored*>(shrunk ? shrunk : bytes));
 }
 
 template <typename Stored>
 SupernodalFactor<Stored>::SupernodalFactor(
     std::shared_ptr<const SupernodalPattern> pattern, const double* values)
     : pattern_(std::move(pattern)) {
-  if (!pattern_ || pattern_->size == 0 || values == nullptr) return;
-  const SupernodalPattern& p = *pattern_;
-  // The scale: a power of two near the largest |L_ij| of the stored lower
-  // parts (the strict upper part of each diagonal triangle is not L).
-  double largest = 0;
-  bool finite = true;
-  for (int s = 0; s < p.supernodes(); ++s) {
-    const auto [first, columns, rows, below, value_begin, row] =
-        Supernode(p, s);
-    const double* block = values + value_begin;
-    for (int j = 0; j < columns; ++j) {
-      for (long i = j; i < rows; ++i) {
-        const double v = block[i + j * rows];
-        finite = finite && std::isfinite(v);
-        largest = std::max(largest, std::abs(v));
-      }
-    }
+  if (!pattern_ || pattern_->size == 0 || values == nullptr ||
+      !ChooseScale(values)) {
+    return;
   }
-  if (!finite || !(largest > 0)) return;
-  int exponent = 0;
-  std::frexp(largest, &exponent);
-  scale_ = std::ldexp(1.0, exponent);
-  const double inverse_scale = 1 / scale_;  // exact: a power of two
-  values_.assign(static_cast<size_t>(p.values()), Stored(0));
-  bool positive = true;
-  for (int s = 0; s < p.supernodes(); ++s) {
-    const auto [first, columns, rows, below, value_begin, row] =
-        Supernode(p, s);
-    const double* block = values + value_begin;
-    Stored* out = values_.data() + value_begin;
-    for (int j = 0; j < columns; ++j) {
-      for (long i = j; i < rows; ++i) {
-        out[i + j * rows] = static_cast<Stored>(block[i + j * rows] *
-                                               inverse_scale);
-      }
-      positive = positive && out[j + j * rows] > 0 &&
-                 std::isnormal(out[j + j * rows]);
-    }
+  value_count_ = pattern_->packed_values();
+  values_.reset(static_cast<Stored*>(std::malloc(
+      std::max<size_t>(sizeof(Stored) * static_cast<size_t>(value_count_),
+                       1))));
+  if (!values_) {
+    value_count_ = 0;
+    return;
   }
-  valid_ = positive;
+  valid_ = Pack(reinterpret_cast<const unsigned char*>(values), values_.get());
 }
 
 namespace {
@@ -146,24 +196,25 @@ void SupernodalFactor<Stored>::SolveLower(double* x) const {
   const SupernodalPattern& p = *pattern_;
   std::vector<double> t(static_cast<size_t>(p.longest_below));
   for (int s = 0; s < p.supernodes(); ++s) {
-    const auto [first, columns, rows, below, value_begin, row] =
-        Supernode(p, s);
-    const Stored* block = values_.data() + value_begin;
-    double* xs = x + first;
+    const Supernode node(p, s);
+    const int columns = node.columns;
+    const long below = node.below;
+    const Stored* block = values_.get() + node.packed_begin;
+    double* xs = x + node.first;
     for (int j = 0; j < columns; ++j) {
-      const Stored* column = block + j * rows;
-      const double xj = xs[j] / column[j];
+      const Stored* column = block + node.Column(j);  // rows j, j + 1, ...
+      const double xj = xs[j] / column[0];
       xs[j] = xj;
-      for (int i = j + 1; i < columns; ++i) xs[i] -= column[i] * xj;
+      for (int i = j + 1; i < columns; ++i) xs[i] -= column[i - j] * xj;
     }
     if (below == 0) continue;
     std::fill(t.begin(), t.begin() + below, 0.0);
     for (int j = 0; j < columns; ++j) {
-      const Stored* column = block + j * rows + columns;
+      const Stored* column = block + node.Column(j) + (columns - j);
       const double xj = xs[j];
       for (long i = 0; i < below; ++i) t[i] += column[i] * xj;
     }
-    for (long i = 0; i < below; ++i) x[row[i]] -= t[i];
+    for (long i = 0; i < below; ++i) x[node.row[i]] -= t[i];
   }
 }
 
@@ -176,18 +227,19 @@ void SupernodalFactor<Stored>::SolveLowerTransposed(double* x) const {
   const SupernodalPattern& p = *pattern_;
   std::vector<double> t(static_cast<size_t>(p.longest_below));
   for (int s = p.supernodes() - 1; s >= 0; --s) {
-    const auto [first, columns, rows, below, value_begin, row] =
-        Supernode(p, s);
-    const Stored* block = values_.data() + value_begin;
-    double* xs = x + first;
-    for (long i = 0; i < below; ++i) t[i] = x[row[i]];
+    const Supernode node(p, s);
+    const int columns = node.columns;
+    const long below = node.below;
+    const Stored* block = values_.get() + node.packed_begin;
+    double* xs = x + node.first;
+    for (long i = 0; i < below; ++i) t[i] = x[node.row[i]];
     for (int j = 0; j < columns; ++j) {
-      xs[j] -= Dot(block + j * rows + columns, t.data(), below);
+      xs[j] -= Dot(block + node.Column(j) + (columns - j), t.data(), below);
     }
     for (int j = columns - 1; j >= 0; --j) {
-      const Stored* column = block + j * rows;
-      xs[j] = (xs[j] - Dot(column + j + 1, xs + j + 1, columns - j - 1)) /
-              column[j];
+      const Stored* column = block + node.Column(j);  // rows j, j + 1, ...
+      xs[j] = (xs[j] - Dot(column + 1, xs + j + 1, columns - j - 1)) /
+              column[0];
     }
   }
 }

@@ -50,14 +50,23 @@ cholmod_sparse LowerView(const SparseMatrix& block) {
   return view;
 }
 
-bool SamePattern(const SparseMatrix& a, const SparseMatrix& b) {
-  return a.rows() == b.rows() && a.cols() == b.cols() &&
-         a.nonZeros() == b.nonZeros() &&
-         std::equal(a.outerIndexPtr(), a.outerIndexPtr() + a.cols() + 1,
-                    b.outerIndexPtr()) &&
-         std::equal(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros(),
-                    b.innerIndexPtr());
-}
+// The sparsity pattern of a compressed block, without its values.
+struct BlockPattern {
+  Eigen::Index rows = 0;
+  std::vector<int> outer, inner;
+  explicit BlockPattern(const SparseMatrix& a)
+      : rows(a.rows()),
+        outer(a.outerIndexPtr(), a.outerIndexPtr() + a.cols() + 1),
+        inner(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros()) {}
+  bool Of(const SparseMatrix& a) const {
+    return a.rows() == rows &&
+           a.cols() + 1 == static_cast<Eigen::Index>(outer.size()) &&
+           a.nonZeros() == static_cast<Eigen::Index>(inner.size()) &&
+           std::equal(outer.begin(), outer.end(), a.outerIndexPtr()) &&
+           std::equal(inner.begin(), inner.end(), a.innerIndexPtr());
+  }
+};
+
 
 // 2 T_theta^-1 for T_theta = tridiag(-theta, 2, -theta).
 Eigen::MatrixXd TwiceInverseTimeMatrix(const std::vector<double>& theta) {
@@ -75,8 +84,9 @@ TimeCoupledPreconditioner::~TimeCoupledPreconditioner() = default;
 
 TimeCoupledPreconditioner::Status TimeCoupledPreconditioner::Factorize(
     const std::vector<SparseMatrix>& blocks, int threads) {
+  const BlockPattern first(blocks.empty() ? SparseMatrix() : blocks.front());
   for (const SparseMatrix& block : blocks) {
-    if (!SamePattern(block, blocks.front())) {
+    if (!first.Of(block)) {
       factors_->Clear();
       mixing_.resize(0, 0);
       block_size_ = 0;
@@ -96,6 +106,7 @@ TimeCoupledPreconditioner::Status TimeCoupledPreconditioner::Factorize(
   if (count <= 0) return Status::kDifferentPatterns;
   SparseMatrix front;
   block_source(0, &front);
+  const BlockPattern front_pattern(front);
   // The ordering and the supernodes of the common pattern, once.
   cholmod_common common;
   cholmod_start(&common);
@@ -117,23 +128,25 @@ TimeCoupledPreconditioner::Status TimeCoupledPreconditioner::Factorize(
     cholmod_finish(&common);
     return Status::kNotPositive;
   }
-  // Each slice: a copy of the symbolic factor, factorised, converted, freed
-  // (at most `threads` double-precision factors at a time). A
-  // cholmod_common is not shared between threads.
+  // Each slice: a copy of the symbolic factor, factorised, converted, freed.
+  // A cholmod_common is not shared between threads.
   const bool single = precision_ == FactorPrecision::kSingle;
   std::vector<SupernodalFactor<float>> single_slices(single ? count : 0);
   std::vector<SupernodalFactor<double>> full_slices(single ? 0 : count);
   std::vector<char> valid(count, 0), same_pattern(count, 1);
-  ParallelFor(count, threads, [&](int i) {
+  const auto factorize_slice = [&](int i) {
     SparseMatrix own_block;
     if (i > 0) {
       block_source(i, &own_block);
-      if (!SamePattern(own_block, front)) {
+      if (!front_pattern.Of(own_block)) {
         same_pattern[i] = 0;
         return;
       }
     }
-    const SparseMatrix& block = i == 0 ? front : own_block;
+    // Slice 0 takes the analysed block over (its values are not needed
+    // after its factorisation; the others compare with its pattern).
+    if (i == 0) own_block = std::move(front);
+    const SparseMatrix& block = own_block;
     cholmod_common own;
     cholmod_start(&own);
     own.print = 0;  // an indefinite block is an answer
@@ -141,19 +154,43 @@ TimeCoupledPreconditioner::Status TimeCoupledPreconditioner::Factorize(
     own.final_asis = 1;  // keep the supernodal L L^T
     cholmod_factor* factor = cholmod_copy_factor(symbolic, &own);
     cholmod_sparse view = LowerView(block);
-    if (factor && cholmod_factorize(&view, factor, &own) &&
-        own.status == CHOLMOD_OK && factor->minor == factor->n) {
+    const bool factorized = factor && cholmod_factorize(&view, factor, &own);
+    own_block = SparseMatrix();  // not needed for the copy
+    if (factorized && own.status == CHOLMOD_OK && factor->minor == factor->n) {
       if (single) {
-        single_slices[i] = SupernodalFactor<float>(pattern, *factor);
+        single_slices[i] = SupernodalFactor<float>(pattern, factor);
         valid[i] = single_slices[i].valid();
       } else {
-        full_slices[i] = SupernodalFactor<double>(pattern, *factor);
+        full_slices[i] = SupernodalFactor<double>(pattern, factor);
         valid[i] = full_slices[i].valid();
       }
     }
     if (factor) cholmod_free_factor(&factor, &own);
     cholmod_finish(&own);
-  });
+  };
+  // In waves of up to `threads` slices. A slice in flight holds CHOLMOD's
+  // factor (double, CHOLMOD's layout: `in_flight` bytes), which becomes its
+  // packed copy in place (SupernodalFactor), `kept` bytes, when done. A
+  // wave of width w starts after `done` slices only if done kept + w
+  // in_flight <= (count - 1) kept + in_flight: the factorisation never
+  // needs more memory than the last slice factorised alone (cactus x16, 7
+  // slices, 2 threads: waves of 2, 2, 1, 1, 1). The factors do not depend
+  // on the waves.
+  const double value_bytes = single ? sizeof(float) : sizeof(double);
+  const double kept =
+      value_bytes * static_cast<double>(pattern->packed_values());
+  const double in_flight =
+      sizeof(double) * static_cast<double>(pattern->values());
+  const double bound = (count - 1) * kept + in_flight;
+  for (int done = 0; done < count;) {
+    int width = 1;
+    while (width < threads && done + width < count &&
+           done * kept + (width + 1) * in_flight <= bound) {
+      ++width;
+    }
+    ParallelFor(width, width, [&](int t) { factorize_slice(done + t); });
+    done += width;
+  }
   cholmod_free_factor(&symbolic, &common);
   cholmod_finish(&common);
   const auto all = [](const std::vector<char>& v) {
@@ -164,7 +201,7 @@ TimeCoupledPreconditioner::Status TimeCoupledPreconditioner::Factorize(
   factors_->pattern = std::move(pattern);
   factors_->single = std::move(single_slices);
   factors_->full = std::move(full_slices);
-  block_size_ = static_cast<int>(front.rows());
+  block_size_ = static_cast<int>(front_pattern.rows);
   SetCouplings(std::vector<double>(count - 1, 1.0));
   return Status::kFactorized;
 }
