@@ -6,6 +6,7 @@
 
 #include "shellspace/cost_functions/gradient_field_residual.h"
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
+#include "shellspace/geometry/blas_threads.h"
 #include "shellspace/problems/calculus/exp_step_newton.h"
 #include "shellspace/solvers/rigid_gauge.h"
 
@@ -25,6 +26,11 @@ ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
                       const std::vector<int>& fixed_vertices,
                       const SolverSettings& settings,
                       const Positions* alternative_start) {
+  // One BLAS thread: the step's sparse LU (and the LM fallback's Cholesky)
+  // factorise one-shape systems whose dense fronts are small, where a second
+  // OpenBLAS thread mostly spins (the faces transport and PCA rows of
+  // bench/workflow_bench.sh spent 180 s of sys time in 240 s with two).
+  const ScopedBlasThreads blas(1);
   const bool forward = direction == StepDirection::kForward;
   // Constant part: forward D_2 W[a, b]; backward D_1 W[b, a].
   const Eigen::VectorXd constant =

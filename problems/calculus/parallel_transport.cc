@@ -5,6 +5,7 @@
 #include <cstdio>
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
+#include "shellspace/geometry/blas_threads.h"
 
 namespace shellspace {
 
@@ -18,6 +19,9 @@ TransportResult ParallelTransport(const ShellSpace& space,
         std::to_string(epsilon));
   if (path.size() < 2)
     throw InputError("transport needs a path of >= 2 shapes");
+  // One BLAS thread for the rungs' midpoints and EXP steps (as ExpStep):
+  // one-shape factorisations, where a second OpenBLAS thread spins.
+  const ScopedBlasThreads blas(1);
   TransportResult result;
   result.variations.push_back(variation);
   Positions p = path[0] + epsilon * variation;

@@ -33,6 +33,18 @@ class SplineTest : public ::testing::Test {
     c_ = testing::LoadData("plate/plate121_rolledB.ply");
     space_ = testing::MakeSpace(a_);
   }
+  // Regression on a periodic spline through the three plates, K = 3, data
+  // at 0 and 2, sigma = 0.3, every shape free.
+  SplineSpec PeriodicRegressionSpec() const {
+    SplineSpec spec;
+    spec.steps = 3;
+    spec.periodic = true;
+    spec.initial = {a_.positions, b_.positions, c_.positions};
+    spec.is_free = {1, 1, 1};
+    spec.data = {{a_.positions, 0}, {c_.positions, 2}};
+    spec.sigma = 0.3;
+    return spec;
+  }
   Mesh a_, b_, c_;
   ShellSpace space_;
 };
@@ -88,28 +100,16 @@ TEST_F(SplineTest, AdjointGradientMatchesCentralDifferences) {
 }
 
 TEST_F(SplineTest, RegressionAndPeriodicGradientsMatchCentralDifferences) {
-  SplineSpec spec;
-  spec.steps = 3;
-  spec.periodic = true;
-  spec.initial = {a_.positions, b_.positions, c_.positions};
-  spec.is_free = {1, 1, 1};
-  spec.data = {{a_.positions, 0}, {c_.positions, 2}};
-  spec.sigma = 0.3;
-  CheckGradient(SplineObjective(space_, spec, TightInner()), 2);
+  CheckGradient(SplineObjective(space_, PeriodicRegressionSpec(), TightInner()),
+                2);
 }
 
 // A point with a collapsed free shape (every vertex of s_1 at one point) is
 // rejected by a false return, a numerical status for the line search, not
 // an exception; the objective still evaluates a good point afterwards.
 TEST_F(SplineTest, DegeneratePointIsRejectedWithoutAnException) {
-  SplineSpec spec;
-  spec.steps = 3;
-  spec.periodic = true;
-  spec.initial = {a_.positions, b_.positions, c_.positions};
-  spec.is_free = {1, 1, 1};
-  spec.data = {{a_.positions, 0}, {c_.positions, 2}};
-  spec.sigma = 0.3;
-  const SplineObjective objective(space_, spec, TightInner());
+  const SplineObjective objective(space_, PeriodicRegressionSpec(),
+                                  TightInner());
   const std::vector<double> good = objective.InitialParameters();
   std::vector<double> bad = good;
   const int n3 = 3 * space_.num_vertices;

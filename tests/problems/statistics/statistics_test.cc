@@ -331,6 +331,21 @@ TEST(ShellPcaTest, ExpShotSafeguardDoublesTheSteps) {
                InputError);
 }
 
+// TryShootFromMean of a shot that must fail: it returns false without an
+// exception and leaves the shape empty; its report for further checks.
+ExpShotReport ExpectFailedShot(const ShellSpace& space, const Positions& mean,
+                               const Positions& variation,
+                               const ShellPcaOptions& options) {
+  ExpShotReport status;
+  Positions shot;
+  bool solved = true;
+  EXPECT_NO_THROW(solved = TryShootFromMean(space, mean, variation, options,
+                                            Tight(), &shot, &status));
+  EXPECT_FALSE(solved);
+  EXPECT_EQ(shot.size(), 0);
+  return status;
+}
+
 TEST(ShellPcaTest, ExpShotWithoutSolutionStopsAndNamesTheStep) {
   // A variation 8 (x^2, y^2, z^2) of the unit sphere (a stretch to ~8 times
   // its size, uneven): already the first EXP step has no solution near the
@@ -357,17 +372,12 @@ TEST(ShellPcaTest, ExpShotWithoutSolutionStopsAndNamesTheStep) {
   EXPECT_EQ(report.attempts, 3);
   EXPECT_EQ(report.steps, 16);
   // The status twin: false, the same message, no exception, no shape.
-  Positions shot;
-  ExpShotReport status;
-  bool solved = true;
-  EXPECT_NO_THROW(solved = TryShootFromMean(space, sphere, variation, options,
-                                            Tight(), &shot, &status));
-  EXPECT_FALSE(solved);
+  const ExpShotReport status =
+      ExpectFailedShot(space, sphere, variation, options);
   EXPECT_NE(status.failure.find("step 2 of EXP_16 has no solution"),
             std::string::npos)
       << status.failure;
   EXPECT_EQ(status.attempts, 3);
-  EXPECT_EQ(shot.size(), 0);
 }
 
 TEST(ShellPcaTest, ExpShotThroughADegenerateTriangleIsAStatus) {
@@ -382,12 +392,8 @@ TEST(ShellPcaTest, ExpShotThroughADegenerateTriangleIsAStatus) {
   ShellPcaOptions options;
   options.exp_steps = 4;
   options.max_exp_steps = 4;
-  Positions shot;
-  ExpShotReport status;
-  bool solved = true;
-  EXPECT_NO_THROW(solved = TryShootFromMean(space, sphere, variation, options,
-                                            Tight(), &shot, &status));
-  EXPECT_FALSE(solved);
+  const ExpShotReport status =
+      ExpectFailedShot(space, sphere, variation, options);
   EXPECT_FALSE(status.ok);
   EXPECT_EQ(status.attempts, 1);
   EXPECT_NE(status.failure.find("step 1 of EXP_4 meets a degenerate"),
