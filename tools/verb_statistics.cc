@@ -320,6 +320,8 @@ int RunPca() {
   std::vector<std::string> failed_shapes;
   for (int j = 0; j < shell_modes; ++j) {
     for (const double sign : {-1.0, 1.0}) {
+      // No new shot once a stop is requested (the mean is written alone).
+      if (ObservedStop() != StopCause::kNone) break;
       const std::string name = "mode_" + std::to_string(j + 1) +
                                (sign < 0 ? "_minus.ply" : "_plus.ply");
       Positions shape;

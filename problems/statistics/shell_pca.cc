@@ -50,6 +50,7 @@ struct ShotOutcome {
   double unsolved_residual = 0;  // its max |F| / max |D_2 W[s_{k-1}, s_k]|
   std::string degenerate;   // the degenerate element met at unsolved_step
   double drift = 0;         // largest relative step-energy drift so far
+  bool stopped = false;     // settings.stop was set: the shot ended early
 };
 
 // One EXP_K shot from (s0, s0 + v/K), step by step. A step is solved if its
@@ -87,6 +88,11 @@ ShotOutcome ShootOnce(const ShellSpace& space, const Positions& s0,
   const double first = energy.total;
   outcome.ok = true;
   for (int k = 2; k <= steps; ++k) {
+    if (StopRequested(settings)) {  // no further step: the caller stops
+      outcome.ok = false;
+      outcome.stopped = true;
+      return outcome;
+    }
     ExpStepResult step = ExpStep(space, previous, current,
                                  StepDirection::kForward, {}, step_settings);
     Eigen::VectorXd gradient;
@@ -149,6 +155,12 @@ bool TryShootFromMean(const ShellSpace& space, const Positions& mean,
         ShootOnce(space, mean, variation, steps, options.max_energy_drift,
                   !last, settings, &end);
     r.energy_drift = outcome.drift;
+    if (outcome.stopped) {
+      r.failure = "EXP shot: stopped on request at EXP_" +
+                  std::to_string(steps) + " (attempt " +
+                  std::to_string(r.attempts) + ")";
+      return false;
+    }
     if (last && outcome.unsolved_step > 0) {
       char text[300];
       if (outcome.degenerate.empty()) {

@@ -380,6 +380,31 @@ TEST(ShellPcaTest, ExpShotWithoutSolutionStopsAndNamesTheStep) {
   EXPECT_EQ(status.attempts, 3);
 }
 
+// A stop request (settings.stop, e.g. --time_limit) ends a shot before its
+// next EXP step: false, "stopped on request", one attempt, no retry with
+// more steps; without the request the same shot succeeds.
+TEST(ShellPcaTest, ExpShotStopsOnRequest) {
+  const Positions sphere = LoadData(kSpheres[0]).positions;
+  const ShellSpace space = MakeSpace(LoadData(kSpheres[0]));
+  const Positions variation = 0.05 * sphere.array().square().matrix();
+  ShellPcaOptions options;
+  options.exp_steps = 4;
+  options.max_exp_steps = 16;
+  SolverSettings settings = Tight();
+  Positions shot;
+  ExpShotReport status;
+  ASSERT_TRUE(TryShootFromMean(space, sphere, variation, options, settings,
+                               &shot, &status));
+  settings.stop = [] { return true; };
+  Positions stopped;
+  EXPECT_FALSE(TryShootFromMean(space, sphere, variation, options, settings,
+                                &stopped, &status));
+  EXPECT_NE(status.failure.find("stopped on request"), std::string::npos)
+      << status.failure;
+  EXPECT_EQ(status.attempts, 1);
+  EXPECT_EQ(stopped.size(), 0);
+}
+
 TEST(ShellPcaTest, ExpShotThroughADegenerateTriangleIsAStatus) {
   // A variation that takes every vertex of the sphere to its centroid in
   // the first linear step s_1 = s_bar + v/4 (one attempt: max K = 4): the
