@@ -346,6 +346,14 @@ ExpShotReport ExpectFailedShot(const ShellSpace& space, const Positions& mean,
   return status;
 }
 
+// Shot options starting at EXP_4 and doubling up to EXP_16.
+ShellPcaOptions ShotsFrom4To16() {
+  ShellPcaOptions options;
+  options.exp_steps = 4;
+  options.max_exp_steps = 16;
+  return options;
+}
+
 TEST(ShellPcaTest, ExpShotWithoutSolutionStopsAndNamesTheStep) {
   // A variation 8 (x^2, y^2, z^2) of the unit sphere (a stretch to ~8 times
   // its size, uneven): already the first EXP step has no solution near the
@@ -355,9 +363,7 @@ TEST(ShellPcaTest, ExpShotWithoutSolutionStopsAndNamesTheStep) {
   const Positions sphere = LoadData(kSpheres[0]).positions;
   const ShellSpace space = MakeSpace(LoadData(kSpheres[0]));
   const Positions variation = 8.0 * sphere.array().square().matrix();
-  ShellPcaOptions options;
-  options.exp_steps = 4;
-  options.max_exp_steps = 16;
+  const ShellPcaOptions options = ShotsFrom4To16();
   ExpShotReport report;
   try {
     ShootFromMean(space, sphere, variation, options, Tight(), &report);
@@ -387,9 +393,7 @@ TEST(ShellPcaTest, ExpShotStopsOnRequest) {
   const Positions sphere = LoadData(kSpheres[0]).positions;
   const ShellSpace space = MakeSpace(LoadData(kSpheres[0]));
   const Positions variation = 0.05 * sphere.array().square().matrix();
-  ShellPcaOptions options;
-  options.exp_steps = 4;
-  options.max_exp_steps = 16;
+  const ShellPcaOptions options = ShotsFrom4To16();
   SolverSettings settings = Tight();
   Positions shot;
   ExpShotReport status;
