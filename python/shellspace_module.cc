@@ -1108,6 +1108,9 @@ PYBIND11_MODULE(shellspace, m) {
       "options as keyword arguments (lambda as lambda_) and returns its\n"
       "results and the verb's --json summary as a dict.";
   py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+  // The default bending weight relative to the reference's area
+  // (cost_functions/shell/relative_bending_weight.h).
+  m.attr("DEFAULT_RELATIVE_ETA") = kDefaultRelativeEta;
 
   m.def("read_mesh", &ReadMeshPy, py::arg("path"),
         "Reads a PLY, OBJ or OFF mesh (strict readers): returns (V, F).");

@@ -162,7 +162,8 @@ JsonObject TransportJson(const TransportResult& result, double epsilon) {
   int iterations = 0;
   for (size_t k = 0; k < result.rungs.size(); ++k) {
     const TransportResult::Rung& rung = result.rungs[k];
-    iterations += rung.newton_steps + rung.lm_iterations;
+    iterations +=
+        rung.midpoint_iterations + rung.newton_steps + rung.lm_iterations;
     rungs.push_back(JsonObject()
                         .Add("rung", static_cast<int>(k + 1))
                         .Add("solved", rung.solved)
@@ -171,6 +172,7 @@ JsonObject TransportJson(const TransportResult& result, double epsilon) {
                         .Add("epsilon_divisor", rung.divisor)
                         .Add("newton_steps", rung.newton_steps)
                         .Add("lm_iterations", rung.lm_iterations)
+                        .Add("midpoint_iterations", rung.midpoint_iterations)
                         .str());
   }
   JsonObject json;

@@ -6,6 +6,7 @@
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
 #include "shellspace/geometry/blas_threads.h"
+#include "shellspace/problems/calculus/geodesic.h"
 
 namespace shellspace {
 
@@ -41,22 +42,31 @@ TransportResult ParallelTransport(const ShellSpace& space,
       // The rung from p' = s_{k-1} + (p - s_{k-1}) / divisor.
       const Positions start =
           divisor == 1 ? p : Positions(path[k - 1] + (p - path[k - 1]) / divisor);
-      const Positions initial = 0.5 * (start + path[k]);
-      ceres::Solver::Summary midpoint_summary;
-      const Positions midpoint =
-          SolveWeightedMidpoint(space, start, path[k], 1.0, 1.0, initial,
-                                fixed_vertices, settings, &midpoint_summary);
-      if (StoppedByRequest(midpoint_summary)) {
+      // The midpoint: the 2-step geodesic from `start` to s_k, from their
+      // average (masked vertices stay there).
+      GeodesicInput midpoint_input = GeodesicInput::Between(start, path[k], 2);
+      midpoint_input.fixed_vertices = fixed_vertices;
+      midpoint_input.initial = {start, 0.5 * (start + path[k]), path[k]};
+      GeodesicResult midpoint_solve =
+          SolveGeodesic(space, midpoint_input, settings);
+      rung.midpoint_iterations += midpoint_solve.iterations;
+      if (StopRequested(settings)) {
         stopped = true;
         break;
       }
+      const Positions midpoint = std::move(midpoint_solve.path[1]);
       // Besides 2 m_k - s_{k-1}, start from s_k + (p_{k-1} - s_{k-1}): the
       // previous rung's variation at the new base point (the same point in
       // Euclidean space; the better one of the two on curved paths).
       const Positions carried = path[k] + (start - path[k - 1]);
+      SolverSettings exp_settings = settings;
+      if (halvings < kMaxRungHalvings) {
+        exp_settings.max_iterations = std::min(exp_settings.max_iterations,
+                                               kRungFallbackLmIterations);
+      }
       const ExpStepResult step =
           ExpStep(space, path[k - 1], midpoint, StepDirection::kForward,
-                  fixed_vertices, settings, &carried);
+                  fixed_vertices, exp_settings, &carried);
       if (StoppedByRequest(step.summary)) {
         stopped = true;
         break;

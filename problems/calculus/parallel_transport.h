@@ -28,6 +28,9 @@ struct TransportResult {
     int divisor = 1;
     int newton_steps = 0;   // of the EXP solves of this rung, all tries
     int lm_iterations = 0;
+    // The midpoint solves' iterations (LM + Newton, GeodesicResult::
+    // iterations), all tries.
+    int midpoint_iterations = 0;
   };
   std::vector<Rung> rungs;
   // Every rung of the path solved: false if a rung is unsolved or
@@ -39,9 +42,19 @@ struct TransportResult {
 // epsilon / 4, ..., at most this many halvings.
 inline constexpr int kMaxRungHalvings = 4;
 
+// The LM fallback of a rung's EXP step (after Newton on F failed) is capped
+// at this many iterations on every try but the last one (epsilon /
+// 2^kMaxRungHalvings), which runs with the full settings: a root that Newton
+// misses is rarely found by a long LM run on |F|^2 (the faces transport's
+// fourth rung: 85 LM iterations, unsolved, then solved at epsilon / 2 by
+// Newton), so the next, smaller sub-step is the better use of the time.
+inline constexpr int kRungFallbackLmIterations = 20;
+
 // Transports the variation xi_0 at s_0 along path (s_0 .. s_K):
 // p_0 = s_0 + eps xi_0; for k = 1..K: m_k = geodesic midpoint of (p_{k-1},
-// s_k) (argmin W[p_{k-1}, m] + W[m, s_k]); p_k = forward EXP step from
+// s_k) (argmin W[p_{k-1}, m] + W[m, s_k], solved as the 2-step geodesic by
+// SolveGeodesic: LM, then Newton on the exact Hessian, to the relative
+// gradient settings.gradient_tolerance); p_k = forward EXP step from
 // (s_{k-1}, m_k); xi_k = (p_k - s_k) / eps. eps = 1 transports a finite
 // shape difference (detail transfer); small eps the tangent vector.
 // `fixed_vertices` are held in the midpoint and EXP problems.

@@ -107,12 +107,13 @@ def test_energy_of_a_mesh_against_itself_is_zero(double_square):
     assert abs(e["membrane"]) < 1e-14
     assert abs(e["bending"]) < 1e-14
     assert abs(e["total"]) < 1e-14
-    # The default bending weight is relative: eta = 0.01 x the reference's
+    # The default bending weight is relative: eta = 1e-4 x the reference's
     # area (here 1.98, from the triangles directly).
     a, b, c = (V[F[:, i]] for i in range(3))
     area = 0.5 * np.linalg.norm(np.cross(b - a, c - a), axis=1).sum()
     assert (e["mu"], e["lambda"]) == (1, 1)
-    assert e["eta"] == pytest.approx(0.01 * area, rel=1e-14)
+    assert shellspace.DEFAULT_RELATIVE_ETA == 1e-4
+    assert e["eta"] == pytest.approx(1e-4 * area, rel=1e-14)
     assert shellspace.energy(V, V, F, relative_eta=0.5)["eta"] == \
         pytest.approx(0.5 * area, rel=1e-14)
 
@@ -253,10 +254,10 @@ def test_geodesic_round_trip_against_cli(tmp_path):
         mine, _ = mesh(str(tmp_path / "py" / ("shape_%03d.ply" % k)))
         assert np.max(np.abs(mine - path[k])) == 0.0
     # E_K = K sum_k W[s_{k-1}, s_k], from the energy function itself, with
-    # the path's one material (eta resolved on s_0: 0.01 x its area).
+    # the path's one material (eta resolved on s_0: 1e-4 x its area).
     eta = summary["material"]["eta"]
     assert summary["material"]["eta_from"] == "relative"
-    assert eta == pytest.approx(0.01 * summary["material"]["reference_area"],
+    assert eta == pytest.approx(1e-4 * summary["material"]["reference_area"],
                                 rel=1e-14)
     parts = [shellspace.energy(path[k - 1], path[k], F, eta=eta)
              for k in range(1, 5)]

@@ -19,6 +19,17 @@ double Number(const std::string& json, const std::string& key) {
   return std::strtod(json.c_str() + at + needle.size(), nullptr);
 }
 
+std::vector<double> EveryNumber(const std::string& json,
+                                const std::string& key) {
+  const std::string needle = "\"" + key + "\": ";
+  std::vector<double> values;
+  for (auto at = json.find(needle); at != std::string::npos;
+       at = json.find(needle, at + 1)) {
+    values.push_back(std::strtod(json.c_str() + at + needle.size(), nullptr));
+  }
+  return values;
+}
+
 bool Bool(const std::string& json, const std::string& key) {
   return json.find("\"" + key + "\": true") != std::string::npos;
 }

@@ -11,6 +11,10 @@ namespace shellspace::testing {
 
 // The number after "KEY": in `json`; NaN if absent.
 double Number(const std::string& json, const std::string& key);
+// The numbers after every "KEY": in `json`, in order (e.g. one field of
+// each object of an array).
+std::vector<double> EveryNumber(const std::string& json,
+                                const std::string& key);
 // True if `json` holds "KEY": true.
 bool Bool(const std::string& json, const std::string& key);
 // The numbers of the array "KEY": [...] (empty if absent).

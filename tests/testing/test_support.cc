@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
+#include "shellspace/cost_functions/shell/relative_bending_weight.h"
 #include "shellspace/geometry/procedural_shapes.h"
 #include "shellspace/geometry/validation.h"
 #include "shellspace/io/mesh_io.h"
@@ -31,6 +32,13 @@ Mesh LoadData(const std::string& relative) {
 
 ShellSpace MakeSpace(const Mesh& mesh, const ShellMaterial& material) {
   return ShellSpace(mesh, Topology::Build(mesh), material);
+}
+
+ShellMaterial CliDefaultMaterial(const Mesh& reference, BendingModel bending) {
+  ShellMaterial material;
+  material.eta = EtaFromRelative(kDefaultRelativeEta, reference);
+  material.bending_model = bending;
+  return material;
 }
 
 ShellPair LoadPair(const std::string& start, const std::string& end,

@@ -22,6 +22,13 @@ Mesh LoadData(const std::string& relative);
 // ShellSpace of a mesh with the given material.
 ShellSpace MakeSpace(const Mesh& mesh, const ShellMaterial& material = {});
 
+// The material the CLI uses without material flags: mu = lambda = 1 and eta
+// = kDefaultRelativeEta x the surface area of `reference` (its first input;
+// cost_functions/shell/relative_bending_weight.h), with `bending`.
+ShellMaterial CliDefaultMaterial(
+    const Mesh& reference,
+    BendingModel bending = BendingModel::kDiscreteShells);
+
 // Two meshes of ../shared/data with one connectivity and the ShellSpace of
 // the first: the fixture of most calculus tests.
 struct ShellPair {

@@ -89,11 +89,11 @@ TEST(BendingModelCliTest, GeodesicWithTheShapeOperatorModel) {
     path.push_back(ReadMesh(dir + name).positions);
   }
   const double so = PathEnergy(
-      testing::MakeSpace(a, Material(BendingModel::kShapeOperator, 0.01)),
+      testing::MakeSpace(
+          a, testing::CliDefaultMaterial(a, BendingModel::kShapeOperator)),
       path);
-  const double ds = PathEnergy(
-      testing::MakeSpace(a, Material(BendingModel::kDiscreteShells, 0.01)),
-      path);
+  const double ds =
+      PathEnergy(testing::MakeSpace(a, testing::CliDefaultMaterial(a)), path);
   EXPECT_NEAR(energy, so, 1e-9 * so);
   EXPECT_GT(std::abs(so - ds), 1e-6 * so);  // the model made a difference
   const std::string ds_json =

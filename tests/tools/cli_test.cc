@@ -134,8 +134,9 @@ TEST(CliTest, GeodesicReportsTheLibraryNumbers) {
   EXPECT_LT(*hi / *lo - 1, 0.05) << json;
   // Below the energy of the linear path (the initial guess).
   const Mesh a = ReadMesh(kSquare), b = ReadMesh(kBent);
-  const double linear = PathEnergy(testing::MakeSpace(a),
-                                   LinearPath(a.positions, b.positions, 8));
+  const ShellSpace space = testing::MakeSpace(a, testing::CliDefaultMaterial(a));
+  const double linear =
+      PathEnergy(space, LinearPath(a.positions, b.positions, 8));
   EXPECT_LE(energy, linear);
   // iterations counts every stage; converged means the gradient criterion.
   EXPECT_EQ(Number(json, "iterations"), StageIterations(json)) << json;
@@ -160,7 +161,7 @@ TEST(CliTest, GeodesicReportsTheLibraryNumbers) {
   for (const std::string& name : Frames(9)) {
     path.push_back(ReadMesh(dir + "/" + name).positions);
   }
-  EXPECT_NEAR(PathEnergy(testing::MakeSpace(a), path), energy, 1e-9 * energy);
+  EXPECT_NEAR(PathEnergy(space, path), energy, 1e-9 * energy);
 }
 
 TEST(CliTest, ShootLogAndTransportAlongAGeodesic) {
@@ -210,6 +211,16 @@ TEST(CliTest, ShootLogAndTransportAlongAGeodesic) {
   ASSERT_EQ(norms.size(), 5u) << t_json;
   for (double n : norms) EXPECT_LT(n, 1e-6) << t_json;
   EXPECT_EQ(Number(t_json, "epsilon"), 1.0);
+  // iterations counts every rung's midpoint solves (LM + Newton of the
+  // 2-step geodesic) and EXP iterations.
+  double rung_iterations = 0;
+  for (const char* key : {"midpoint_iterations", "newton_steps", "lm_iterations"}) {
+    const std::vector<double> counts = testing::EveryNumber(t_json, key);
+    ASSERT_EQ(counts.size(), 4u) << key << t_json;
+    for (double c : counts) rung_iterations += c;
+  }
+  EXPECT_GT(Number(t_json, "midpoint_iterations"), 0) << t_json;
+  EXPECT_EQ(Number(t_json, "iterations"), rung_iterations) << t_json;
   EXPECT_EQ(Listing(moved), FramesAndSummary(5));
 }
 

@@ -32,8 +32,11 @@ TEST(CompareCliTest, TwoMeshes) {
   EXPECT_TRUE(testing::Bool(out, "equal")) << out;
   EXPECT_EQ(Number(out, "max_distance"), 0.0);
   EXPECT_EQ(RunCli("compare --json --a " + kSquare + " --b " + kBent, &out, &err), 1);
+  // W[a, b] with the CLI's default material.
+  const Mesh square = testing::LoadData("simple/square4.ply");
   const testing::ShellPair pair =
-      testing::LoadPair("simple/square4.ply", "simple/square4_bent.ply");
+      testing::LoadPair("simple/square4.ply", "simple/square4_bent.ply",
+                        testing::CliDefaultMaterial(square));
   const ShapeComparison c =
       CompareShapes(pair.space, {pair.start.positions}, {pair.end.positions});
   EXPECT_NEAR(Number(out, "max_distance"), c.max_distance, 1e-12) << out;

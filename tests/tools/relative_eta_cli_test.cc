@@ -86,10 +86,11 @@ TEST(RelativeEtaCliTest, ScaledMeshHasTheScaledGeodesic) {
   const double big_energy = Number(paths.big_json, "path_energy");
   EXPECT_NEAR(big_energy, kScale * kScale * small_energy,
               1e-6 * big_energy);
-  // eta = 0.01 x area: the area of the double square is 1.98.
-  EXPECT_NEAR(Number(paths.small_json, "eta"), 0.0198, 1e-15);
-  EXPECT_NEAR(Number(paths.big_json, "eta"), 0.0198 * kScale * kScale,
-              1e-9);
+  // eta = 1e-4 x area: the area of the double square is 1.98.
+  EXPECT_EQ(kDefaultRelativeEta, 1e-4);
+  EXPECT_NEAR(Number(paths.small_json, "eta"), 1.98e-4, 1e-17);
+  EXPECT_NEAR(Number(paths.big_json, "eta"), 1.98e-4 * kScale * kScale,
+              1e-11);
   EXPECT_NE(paths.small_json.find("\"eta_from\": \"relative\""),
             std::string::npos);
   // The bending share of E_K is the same at both scales.

@@ -196,12 +196,15 @@ TEST(RunStatusCliTest, LThetaSplineWithoutTheEnergy) {
 // A transport rung without an EXP solution even at epsilon / 16: along the
 // plate geodesic (rolledA, K = 4) the variation 6 (rolledB - plate). The
 // run writes its frames, reports the rung unsolved and exits 4 with one
-// line naming it; --allow_unsolved: exit 0, the line as a warning.
+// line naming it; --allow_unsolved: exit 0, the line as a warning. The
+// scenario is the thick plate of relative eta 0.01 (at the default 1e-4,
+// rung 2 already needs sub-stepping).
 TEST(RunStatusCliTest, TransportNamesTheUnsolvedRung) {
   const std::string dir = TempDir();
   const std::string plate = DataPath("plate/plate121.ply");
   std::string out, err;
-  ASSERT_EQ(RunCli("geodesic --quiet --steps 4 --start " + plate + " --end " +
+  ASSERT_EQ(RunCli("geodesic --quiet --steps 4 --relative_eta 0.01 --start " +
+                       plate + " --end " +
                        DataPath("plate/plate121_rolledA.ply") + " --output " +
                        dir + "/g",
                    &out, &err),
@@ -211,7 +214,8 @@ TEST(RunStatusCliTest, TransportNamesTheUnsolvedRung) {
   const Mesh b = ReadMesh(DataPath("plate/plate121_rolledB.ply"));
   varied.positions += 6.0 * (b.positions - varied.positions);
   WriteMesh(varied, dir + "/var6.ply");
-  const std::string args = "transport --quiet --json --path " + dir +
+  const std::string args = "transport --quiet --json --relative_eta 0.01 "
+                           "--path " + dir +
                            "/g --variation " + dir + "/var6.ply --output " +
                            dir + "/t";
   EXPECT_EQ(RunCli(args, &out, &err), 4) << err;

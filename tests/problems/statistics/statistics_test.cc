@@ -626,12 +626,12 @@ TEST(StatisticsCliTest, MeanWritesTheShapeAndJson) {
   EXPECT_TRUE(std::filesystem::exists(out));
   EXPECT_NE(stdout_text.find("\"energy\""), std::string::npos);
   // The written shape is the library's elastic mean, with the CLI's default
-  // material: eta = 0.01 x the area of the first input.
+  // material: eta = kDefaultRelativeEta (1e-4) x the area of the first input.
   std::vector<Positions> shapes = LoadSpheres();
   shapes.resize(3);
   const Mesh first = LoadData(kSpheres[0]);
   ShellMaterial material;
-  material.eta = 0.01 * SurfaceArea(first);
+  material.eta = kDefaultRelativeEta * SurfaceArea(first);
   EXPECT_NEAR(Number(stdout_text, "eta"), material.eta, 1e-15 * material.eta);
   const ElasticMeanResult mean =
       ComputeElasticMean(MakeSpace(first, material), shapes, SolverSettings{});
