@@ -411,6 +411,16 @@ TEST_F(GeodesicCalculusTest, TransportSubstepsARungWithoutSolution) {
   std::cout << "\n";
   EXPECT_GT(t.rungs.back().divisor, 1);
   EXPECT_LE(t.rungs.back().divisor, 1 << kMaxRungHalvings);
+  // Each try of a rung (one per halving up to its divisor) runs at most
+  // kRungFallbackLmIterations of EXP LM fallback while a smaller sub-step is
+  // left (the full settings' 200 otherwise), and its midpoint solve counts.
+  for (size_t k = 0; k < t.rungs.size(); ++k) {
+    int tries = 1;
+    while ((1 << (tries - 1)) < t.rungs[k].divisor) ++tries;
+    EXPECT_LE(t.rungs[k].lm_iterations, tries * kRungFallbackLmIterations)
+        << k;
+    EXPECT_GE(t.rungs[k].midpoint_iterations, tries) << k;
+  }
   for (size_t k = 0; k < t.shapes.size(); ++k) {
     EXPECT_LT((t.shapes[k] - (g.path[k] + t.variations[k])).cwiseAbs().maxCoeff(),
               1e-12)
