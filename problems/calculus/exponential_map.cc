@@ -86,6 +86,15 @@ ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
       return result;
     }
   }
+  if (settings.max_iterations <= 0) {  // Newton only: the LM fallback is off
+    result.residual_norm = residual_norm(result.shape);
+    result.relative_residual = result.residual_norm / scale;
+    result.solved = false;
+    result.method = ExpStepResult::Method::kNewton;
+    result.summary.termination_type = ceres::NO_CONVERGENCE;
+    result.summary.message = "Newton on F did not converge (no LM fallback)";
+    return result;
+  }
   GradientFieldCache cache(space, b, unknown_side, &result.shape);
   cache.PrepareForEvaluation(false, true);
   if (!cache.ok()) {

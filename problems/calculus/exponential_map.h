@@ -49,8 +49,9 @@ struct ExpStepResult {
 // steps), else as least squares of the per-vertex
 // residuals F_v (cost_functions/gradient_field_residual.h) by sparse LM,
 // from 2 b - a (or b if that has degenerate triangles), at most
-// settings.max_iterations LM iterations; `solved` says whether the result
-// reaches kExpStepAcceptance. Vertices in `fixed_vertices` are not
+// settings.max_iterations LM iterations (0: no LM fallback; the initial
+// guess is returned unsolved, method kNewton); `solved` says whether the
+// result reaches kExpStepAcceptance. Vertices in `fixed_vertices` are not
 // unknowns: they move on linearly, to 2 b - a (their positions in b if the
 // mask does not move), as geodesic interpolation moves them (linear
 // interpolation of the end shapes), so that shooting from (s_0, s_1) of a

@@ -42,13 +42,15 @@ struct TransportResult {
 // epsilon / 4, ..., at most this many halvings.
 inline constexpr int kMaxRungHalvings = 4;
 
-// The LM fallback of a rung's EXP step (after Newton on F failed) is capped
-// at this many iterations on every try but the last one (epsilon /
-// 2^kMaxRungHalvings), which runs with the full settings: a root that Newton
-// misses is rarely found by a long LM run on |F|^2 (the faces transport's
-// fourth rung: 85 LM iterations, unsolved, then solved at epsilon / 2 by
-// Newton), so the next, smaller sub-step is the better use of the time.
-inline constexpr int kRungFallbackLmIterations = 20;
+// The LM fallback of a rung's EXP step (after Newton on F failed) runs at
+// most this many iterations on every try but the last one (epsilon /
+// 2^kMaxRungHalvings), which runs with the full settings: 0, so a failed
+// Newton goes straight to the next, smaller sub-step. A root that Newton
+// misses is not found by LM on |F|^2 there: on the faces transport (disgust
+// - neutral along neutral -> smile) the fallback's 20 capped iterations
+// left max |F| where it was on each of rungs 4..8 (16 s a rung), which
+// Newton then solved at epsilon / 2.
+inline constexpr int kRungFallbackLmIterations = 0;
 
 // Transports the variation xi_0 at s_0 along path (s_0 .. s_K):
 // p_0 = s_0 + eps xi_0; for k = 1..K: m_k = geodesic midpoint of (p_{k-1},
