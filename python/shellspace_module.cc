@@ -19,7 +19,6 @@
 #include <cmath>
 #include <limits>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <vector>
 
@@ -34,6 +33,9 @@
 #include "shellspace/io/gltf_writer.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/io/png_writer.h"
+#include "shellspace/problems/branching/construction_optimizer.h"
+#include "shellspace/problems/branching/general_construction.h"
+#include "shellspace/problems/branching/simulation.h"
 #include "shellspace/problems/calculus/exponential_map.h"
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/problems/calculus/multiresolution.h"
@@ -895,12 +897,10 @@ py::tuple BranchingSimulatePy(double epsilon, double length, double height,
     }
     summary = SimulationJson(s, result);
     if (delta_extrapolation >= 2) {
-      std::vector<double> deltas;
-      for (int k = 0; k < delta_extrapolation; ++k) {
-        deltas.push_back(result.delta * std::pow(std::sqrt(0.5), k));
-      }
       summary.Add("extrapolation",
-                  DeltaExtrapolationJson(ExtrapolateDelta(s, deltas)));
+                  DeltaExtrapolationJson(ExtrapolateDelta(
+                      s, ExtrapolationWidths(result.delta,
+                                             delta_extrapolation))));
     }
   }
   const SimulationResult& result = *simulation;
@@ -935,80 +935,22 @@ py::object BranchingConstructPy(double epsilon, double length,
   }
   py::gil_scoped_release release;
   if (family == "general") {
-    if (subintervals < 1 || subintervals > 16) {
-      throw InputError("subintervals must lie in [1, 16]");
-    }
-    if (search_pairs < 1 || search_pairs > 2) {
-      throw InputError("search_pairs must be 1 or 2");
-    }
-    if (search_starts < 0 || search_threads < 1) {
-      throw InputError("search_starts must be >= 0, search_threads >= 1");
-    }
-    std::vector<int> ratios;
-    {
-      std::stringstream in(search_ratios);
-      std::string item;
-      while (std::getline(in, item, ',')) {
-        if (item != "2" && item != "3" && item != "4") {
-          throw InputError("search_ratios must be a list of 2, 3, 4");
-        }
-        ratios.push_back(std::stoi(item));
-      }
-      if (ratios.empty()) throw InputError("search_ratios is empty");
-    }
-    GeneralResult best;
-    int solves = 1;
-    const auto start = Clock::now();
-    if (search) {
-      GeneralSearchOptions o;
-      o.ratios = ratios;
-      o.max_pairs = search_pairs;
-      o.subintervals = subintervals;
-      o.starts_per_topology = search_starts;
-      o.num_threads = search_threads;
-      o.filter = search_filter;
-      const GeneralSearchResult r = SearchGeneral(o, nullptr);
-      best = r.best;
-      solves = r.solves;
-    } else {
-      // The lens topology (as the CLI): one group, needles in the middle of
-      // both lamellae, all interfaces free.
-      GeneralTopology t;
-      t.pairs = 1;
-      t.r = 3;
-      t.subintervals = subintervals;
-      t.name = "lens";
-      NucleationGroup group;
-      group.tau = 0.5;
-      group.needles = {{0, 0.5}, {1, 0.5}};
-      t.groups = {group};
-      best = SolveGeneral(t, 0.0, 0.0, 1);
-    }
-    const double seconds = Seconds(start);
-    if (!best.ok) throw InputError("general construct: no valid pattern found");
+    const GeneralSearchOptions options = MakeGeneralSearchOptions(
+        search_ratios, search_pairs, subintervals, search_starts,
+        search_threads, search_filter, "");
+    const GeneralConstruction construction = ConstructGeneral(options, search);
+    const GeneralResult& best = construction.best;
     const FreeLengthSeries series =
         OptimalFreeLengths(best.A, best.B, best.topology.r, epsilon, length);
-    const JsonObject summary = GeneralConstructionJson(
-        best, series, epsilon, length, search, solves, seconds);
+    const JsonObject summary =
+        GeneralConstructionJson(best, series, epsilon, length, search,
+                                construction.solves, construction.seconds);
     py::gil_scoped_acquire acquire;
     return ToDict(summary);
   }
   if (search) throw InputError("search needs family general");
-  ConstructionResult result;
-  if (family == "km" || family == "needle") {
-    const bool km = family == "km";
-    result = km ? DefaultKm(epsilon, length) : DefaultNeedle(epsilon, length);
-    if (optimize) {
-      result = km ? OptimizeKm(epsilon, length, 0.5 * result.h0, 0.3)
-                  : OptimizeNeedle(epsilon, length, 0.5 * result.h0, 0.3);
-    }
-  } else {
-    result = DefaultLens(epsilon, length);
-    if (optimize) {
-      result = OptimizeLens(epsilon, length, result.h0, result.theta,
-                            LensShape{0.2, 0.0, 0.0});
-    }
-  }
+  const ConstructionResult result =
+      ConstructFamily(family, epsilon, length, optimize);
   const JsonObject summary =
       ConstructionJson(result, epsilon, length, optimize);
   py::gil_scoped_acquire acquire;

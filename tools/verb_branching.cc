@@ -16,7 +16,6 @@
 #include <gflags/gflags.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -27,7 +26,7 @@
 
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/problems/branching/construction_optimizer.h"
-#include "shellspace/problems/branching/general_search.h"
+#include "shellspace/problems/branching/general_construction.h"
 #include "shellspace/problems/branching/self_similar_series.h"
 #include "shellspace/problems/branching/km_family.h"
 #include "shellspace/problems/branching/simulation.h"
@@ -289,13 +288,9 @@ int RunSimulate() {
 
   JsonObject summary = SimulationJson(s, result);
   if (FLAGS_delta_extrapolation >= 2 && ObservedStop() == StopCause::kNone) {
-    std::vector<double> deltas;
-    for (int k = 0; k < FLAGS_delta_extrapolation; ++k) {
-      deltas.push_back(result.delta * std::pow(std::sqrt(0.5), k));
-    }
-    SimulationSettings base = s;
-    const DeltaExtrapolation ex =
-        ExtrapolateDelta(base, deltas, [](const DeltaWidth& w) {
+    const DeltaExtrapolation ex = ExtrapolateDelta(
+        s, ExtrapolationWidths(result.delta, FLAGS_delta_extrapolation),
+        [](const DeltaWidth& w) {
           if (!FLAGS_quiet) {
             std::cerr << "  extrapolation: delta " << w.delta << "  grid "
                       << w.nx << " x " << w.ny << "  C " << w.constant
@@ -350,72 +345,20 @@ int RunSimulate() {
   return 0;
 }
 
-std::vector<int> ParseRatios(const std::string& text) {
-  std::vector<int> out;
-  std::stringstream in(text);
-  std::string item;
-  while (std::getline(in, item, ',')) {
-    if (item != "2" && item != "3" && item != "4") {
-      throw InputError("--search_ratios must be a list of 2, 3, 4");
-    }
-    out.push_back(std::stoi(item));
-  }
-  if (out.empty()) throw InputError("--search_ratios is empty");
-  return out;
-}
-
-// The lens topology in the general model: one group, needles in the
-// middle of both lamellae, all interfaces free.
-GeneralTopology LensTopology(int subintervals) {
-  GeneralTopology t;
-  t.pairs = 1;
-  t.r = 3;
-  t.subintervals = subintervals;
-  t.name = "lens";
-  NucleationGroup g;
-  g.tau = 0.5;
-  g.needles = {{0, 0.5}, {1, 0.5}};
-  t.groups = {g};
-  return t;
-}
-
 int RunGeneral(double epsilon, const std::string& dir) {
-  if (FLAGS_subintervals < 1 || FLAGS_subintervals > 16) {
-    throw InputError("--subintervals must lie in [1, 16]");
-  }
-  if (FLAGS_search_pairs < 1 || FLAGS_search_pairs > 2) {
-    throw InputError("--search_pairs must be 1 or 2");
-  }
-  if (FLAGS_search_starts < 0 || FLAGS_search_threads < 1) {
-    throw InputError("--search_starts must be >= 0, --search_threads >= 1");
-  }
-  const std::vector<int> ratios = ParseRatios(FLAGS_search_ratios);
-  GeneralResult best;
-  int solves = 1;
-  const auto start = std::chrono::steady_clock::now();
-  if (FLAGS_search) {
-    GeneralSearchOptions o;
-    o.ratios = ratios;
-    o.max_pairs = FLAGS_search_pairs;
-    o.subintervals = FLAGS_subintervals;
-    o.starts_per_topology = FLAGS_search_starts;
-    o.num_threads = FLAGS_search_threads;
-    o.filter = FLAGS_search_filter;
-    const GeneralSearchResult r = SearchGeneral(o, [](const GeneralResult& g) {
-      if (!FLAGS_quiet && g.ok) {
-        std::cerr << "  " << g.topology.name << ": C_free " << g.constant_free
-                  << "\n";
-      }
-    });
-    best = r.best;
-    solves = r.solves;
-  } else {
-    best = SolveGeneral(LensTopology(FLAGS_subintervals), 0.0, 0.0, 1);
-  }
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-          .count();
-  if (!best.ok) throw InputError("general construct: no valid pattern found");
+  const GeneralSearchOptions options = MakeGeneralSearchOptions(
+      FLAGS_search_ratios, FLAGS_search_pairs, FLAGS_subintervals,
+      FLAGS_search_starts, FLAGS_search_threads, FLAGS_search_filter, "--");
+  const GeneralConstruction construction =
+      ConstructGeneral(options, FLAGS_search, [](const GeneralResult& g) {
+        if (!FLAGS_quiet && g.ok) {
+          std::cerr << "  " << g.topology.name << ": C_free " << g.constant_free
+                    << "\n";
+        }
+      });
+  const GeneralResult& best = construction.best;
+  const int solves = construction.solves;
+  const double seconds = construction.seconds;
   const FreeLengthSeries series =
       OptimalFreeLengths(best.A, best.B, best.topology.r, epsilon, FLAGS_length);
   const JsonObject summary = GeneralConstructionJson(
@@ -459,22 +402,8 @@ int RunConstruct() {
   const std::string dir = PrepareOutput();
   if (FLAGS_family == "general") return RunGeneral(epsilon, dir);
   if (FLAGS_search) throw InputError("--search needs --family general");
-  ConstructionResult result;
-  if (FLAGS_family == "km" || FLAGS_family == "needle") {
-    const bool km = FLAGS_family == "km";
-    result = km ? DefaultKm(epsilon, FLAGS_length)
-                : DefaultNeedle(epsilon, FLAGS_length);
-    if (FLAGS_optimize) {
-      result = km ? OptimizeKm(epsilon, FLAGS_length, 0.5 * result.h0, 0.3)
-                  : OptimizeNeedle(epsilon, FLAGS_length, 0.5 * result.h0, 0.3);
-    }
-  } else {
-    result = DefaultLens(epsilon, FLAGS_length);
-    if (FLAGS_optimize) {
-      result = OptimizeLens(epsilon, FLAGS_length, result.h0, result.theta,
-                            LensShape{0.2, 0.0, 0.0});
-    }
-  }
+  const ConstructionResult result =
+      ConstructFamily(FLAGS_family, epsilon, FLAGS_length, FLAGS_optimize);
   if (!std::isfinite(result.constant) || !std::isfinite(result.h0)) {
     throw InputError("branching construct: the construction is not finite "
                      "(constant " + std::to_string(result.constant) + ", h0 " +

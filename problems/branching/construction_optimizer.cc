@@ -192,4 +192,24 @@ ConstructionResult OptimizeLens(double epsilon, double length, double h0,
   return result;
 }
 
+ConstructionResult ConstructFamily(const std::string& family, double epsilon,
+                                   double length, bool optimize) {
+  if (family == "km" || family == "needle") {
+    const bool km = family == "km";
+    const ConstructionResult result =
+        km ? DefaultKm(epsilon, length) : DefaultNeedle(epsilon, length);
+    if (!optimize) return result;
+    return km ? OptimizeKm(epsilon, length, 0.5 * result.h0, 0.3)
+              : OptimizeNeedle(epsilon, length, 0.5 * result.h0, 0.3);
+  }
+  if (family == "lens") {
+    const ConstructionResult result = DefaultLens(epsilon, length);
+    if (!optimize) return result;
+    return OptimizeLens(epsilon, length, result.h0, result.theta,
+                        LensShape{0.2, 0.0, 0.0});
+  }
+  throw InputError("branching construct: unknown family '" + family +
+                   "' (km, needle or lens)");
+}
+
 }  // namespace shellspace::branching

@@ -57,6 +57,14 @@ ConstructionResult OptimizeNeedle(double epsilon, double length, double h0,
 ConstructionResult OptimizeLens(double epsilon, double length, double h0,
                                 double theta, const LensShape& start);
 
+// The construction `family` ("km", "needle" or "lens") at its default, or,
+// with `optimize`, optimised from a start derived from it: KM and needle
+// from half the default h0 and theta 0.3, the lens from the default h0 and
+// theta with the shape (tau, a1, a2) = (0.2, 0, 0). Throws InputError for
+// any other family.
+ConstructionResult ConstructFamily(const std::string& family, double epsilon,
+                                   double length, bool optimize);
+
 }  // namespace shellspace::branching
 
 #endif  // SHELLSPACE_PROBLEMS_BRANCHING_CONSTRUCTION_OPTIMIZER_H_

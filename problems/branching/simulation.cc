@@ -180,6 +180,14 @@ std::vector<double> PolynomialFit(const std::vector<double>& x,
   return c;
 }
 
+std::vector<double> ExtrapolationWidths(double delta, int count) {
+  std::vector<double> deltas;
+  for (int k = 0; k < count; ++k) {
+    deltas.push_back(delta * std::pow(std::sqrt(0.5), k));
+  }
+  return deltas;
+}
+
 DeltaExtrapolation ExtrapolateDelta(
     const SimulationSettings& base, const std::vector<double>& deltas,
     const std::function<void(const DeltaWidth&)>& progress) {

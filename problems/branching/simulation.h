@@ -138,6 +138,10 @@ DeltaExtrapolation ExtrapolateDelta(
     const SimulationSettings& base, const std::vector<double>& deltas,
     const std::function<void(const DeltaWidth&)>& progress = nullptr);
 
+// The `count` widths delta_k = delta r^-k, r = 2^(1/2) (k = 0 .. count - 1),
+// for ExtrapolateDelta.
+std::vector<double> ExtrapolationWidths(double delta, int count);
+
 // Twin interfaces crossing each node row i = 1..nx: sign changes of the
 // staggered slope u_y around the periodic column.
 std::vector<int> CountInterfaces(const RelaxedField& field);
