@@ -105,6 +105,13 @@ void CheckFrames(const std::vector<Positions>& frames, const Faces& faces) {
 
 }  // namespace
 
+GltfAnimationOptions::Interpolation ParseGltfInterpolation(
+    const std::string& text, const std::string& name) {
+  if (text == "linear") return GltfAnimationOptions::Interpolation::kLinear;
+  if (text == "step") return GltfAnimationOptions::Interpolation::kStep;
+  throw InputError(name + " must be linear or step, got '" + text + "'");
+}
+
 std::string EncodeGltfMorphAnimation(const std::vector<Positions>& frames,
                                      const Faces& faces,
                                      const GltfAnimationOptions& options) {

@@ -20,6 +20,11 @@ struct GltfAnimationOptions {
       Interpolation::kLinear;
 };
 
+// "linear" -> kLinear, "step" -> kStep; anything else throws InputError
+// naming `name` (the caller's name of the option, e.g. "--interpolation").
+GltfAnimationOptions::Interpolation ParseGltfInterpolation(
+    const std::string& text, const std::string& name);
+
 // The .glb bytes of `frames` (K + 1 shapes, each #V x 3, sharing `faces`,
 // #F x 3): one mesh whose base POSITION is frames[0] and whose K morph
 // targets are the POSITION deltas frames[k] - frames[0] (k = 1..K; float32,

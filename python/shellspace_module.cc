@@ -996,14 +996,8 @@ void WriteGltfPy(const std::string& path, const py::object& frames_object,
                  const std::string& interpolation) {
   GltfAnimationOptions options;
   options.frames_per_second = fps;
-  if (interpolation == "linear") {
-    options.interpolation = GltfAnimationOptions::Interpolation::kLinear;
-  } else if (interpolation == "step") {
-    options.interpolation = GltfAnimationOptions::Interpolation::kStep;
-  } else {
-    throw InputError("interpolation must be linear or step, got '" +
-                     interpolation + "'");
-  }
+  options.interpolation =
+      ParseGltfInterpolation(interpolation, "interpolation");
   WriteGltfMorphAnimation(path, ToShapes(frames_object, "frames"), ToFaces(F),
                           options);
 }

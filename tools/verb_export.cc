@@ -41,14 +41,8 @@ FlagTable ExportFlags() {
 int RunExport() {
   GltfAnimationOptions options;
   options.frames_per_second = FLAGS_fps;
-  if (FLAGS_interpolation == "linear") {
-    options.interpolation = GltfAnimationOptions::Interpolation::kLinear;
-  } else if (FLAGS_interpolation == "step") {
-    options.interpolation = GltfAnimationOptions::Interpolation::kStep;
-  } else {
-    throw InputError("--interpolation must be linear or step, got '" +
-                     FLAGS_interpolation + "'");
-  }
+  options.interpolation =
+      ParseGltfInterpolation(FLAGS_interpolation, "--interpolation");
   const FrameSequence sequence = ReadFrameSequence(FLAGS_input);
   WriteGltfMorphAnimation(FLAGS_output, sequence.frames, sequence.faces,
                           options);
