@@ -724,18 +724,8 @@ py::tuple PcaPy(const py::object& inputs_object, const IndexArray& F, int modes,
   if (!(amplitude >= 0) || !std::isfinite(amplitude)) {
     throw InputError("amplitude must be >= 0");
   }
-  ShellPcaOptions options;
-  options.steps = log_steps;
-  options.exp_steps = exp_steps;
-  options.max_exp_steps = max_exp_steps;
-  if (displacement == "log") {
-    options.displacement = DisplacementKind::kLog;
-  } else if (displacement == "difference") {
-    options.displacement = DisplacementKind::kAlignedDifference;
-  } else {
-    throw InputError("displacement must be 'log' or 'difference', got '" +
-                     displacement + "'");
-  }
+  const ShellPcaOptions options = MakeShellPcaOptions(
+      log_steps, exp_steps, max_exp_steps, displacement, "");
   const auto clock = Clock::now();
   const ShapeSet set = MakeShapeSet(inputs_object, F, "inputs");
   const int n = static_cast<int>(set.shapes.size());
@@ -744,15 +734,7 @@ py::tuple PcaPy(const py::object& inputs_object, const IndexArray& F, int modes,
     throw InputError("inputs needs at least " + std::to_string(minimum) +
                      " shells, got " + std::to_string(n));
   }
-  if (modes > n - 1) {
-    throw InputError("modes " + std::to_string(modes) + " exceeds " +
-                     std::to_string(n - 1) + " (number of inputs - 1)");
-  }
-  if (loo && modes > n - 2) {
-    throw InputError("loo with modes " + std::to_string(modes) +
-                     " needs at least " + std::to_string(modes + 2) +
-                     " inputs");
-  }
+  CheckPcaModeCount(modes, n, loo, "");
   const ShellSpace space(set.first.mesh, set.first.topology,
                          Material(material_args, set.first.mesh));
   const SolverSettings settings = solver.Settings("pca");
@@ -799,18 +781,10 @@ py::tuple PcaPy(const py::object& inputs_object, const IndexArray& F, int modes,
                    failed_shapes, far, amplitude);
     json.Raw("material", MaterialRecord(space, set.first.mesh, material_args));
     if (baseline == "procrustes") {
-      const ProcrustesPcaModel procrustes = ComputeProcrustesPca(set.shapes);
-      shapes.emplace_back("procrustes_mean", procrustes.mean);
-      const int pm =
-          std::min<int>(modes, static_cast<int>(procrustes.modes.size()));
-      for (int j = 0; j < pm; ++j) {
-        const std::string stem = "procrustes_mode_" + std::to_string(j + 1);
-        shapes.emplace_back(stem + "_minus",
-                            ProcrustesModeShape(procrustes, j, -amplitude));
-        shapes.emplace_back(stem + "_plus",
-                            ProcrustesModeShape(procrustes, j, amplitude));
+      for (auto& shape : AddProcrustesBaseline(ComputeProcrustesPca(set.shapes),
+                                               modes, amplitude, &json)) {
+        shapes.push_back(std::move(shape));
       }
-      AddProcrustesJson(procrustes, pm, &json);
     }
     if (loo) {
       LeaveOneOutOptions loo_options;

@@ -1,5 +1,7 @@
 #include "shellspace/reports/shape_reports.h"
 
+#include <algorithm>
+
 #include "shellspace/cost_functions/shell/relative_bending_weight.h"
 
 namespace shellspace {
@@ -134,6 +136,23 @@ void AddProcrustesJson(const ProcrustesPcaModel& model, int modes,
                        JsonObject* json) {
   json->Add("procrustes_eigenvalues", ToVector(model.eigenvalues))
       .Add("procrustes_modes", modes);
+}
+
+std::vector<std::pair<std::string, Positions>> AddProcrustesBaseline(
+    const ProcrustesPcaModel& model, int modes, double amplitude,
+    JsonObject* json) {
+  const int pairs = std::min<int>(modes, static_cast<int>(model.modes.size()));
+  std::vector<std::pair<std::string, Positions>> shapes = {
+      {"procrustes_mean", model.mean}};
+  for (int j = 0; j < pairs; ++j) {
+    const std::string stem = "procrustes_mode_" + std::to_string(j + 1);
+    shapes.emplace_back(stem + "_minus",
+                        ProcrustesModeShape(model, j, -amplitude));
+    shapes.emplace_back(stem + "_plus",
+                        ProcrustesModeShape(model, j, amplitude));
+  }
+  AddProcrustesJson(model, pairs, json);
+  return shapes;
 }
 
 std::string LeaveOneOutJson(const LeaveOneOutTable& table) {

@@ -6,6 +6,7 @@
 #define SHELLSPACE_REPORTS_SHAPE_REPORTS_H_
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "shellspace/cost_functions/edge_angle_bending.h"
@@ -73,6 +74,16 @@ JsonObject PcaJson(int inputs, const ElasticMeanResult& mean,
 // procrustes_modes.
 void AddProcrustesJson(const ProcrustesPcaModel& model, int modes,
                        JsonObject* json);
+
+// The Procrustes baseline of a PCA: adds it to the summary
+// (AddProcrustesJson with the modes the model has, at most `modes`) and
+// returns its shapes by the names the pca verb gives them (the CLI's file
+// stems, the Python module's keys): procrustes_mean, then for J = 1, 2, ...
+// procrustes_mode_J_minus and procrustes_mode_J_plus, the mean -/+
+// `amplitude` standard deviations along mode J (ProcrustesModeShape).
+std::vector<std::pair<std::string, Positions>> AddProcrustesBaseline(
+    const ProcrustesPcaModel& model, int modes, double amplitude,
+    JsonObject* json);
 
 // The leave-one-out table as a JSON object: energy_order, vertex_error (the
 // definitions), rows (per number of modes m), folds (per held-out input),

@@ -219,18 +219,9 @@ int RunPca() {
   if (FLAGS_max_exp_steps < FLAGS_exp_steps) {
     throw InputError("--max_exp_steps must be at least --exp_steps");
   }
-  ShellPcaOptions options;
-  options.steps = FLAGS_log_steps;
-  options.exp_steps = FLAGS_exp_steps;
-  options.max_exp_steps = FLAGS_max_exp_steps;
-  if (FLAGS_displacement == "log") {
-    options.displacement = DisplacementKind::kLog;
-  } else if (FLAGS_displacement == "difference") {
-    options.displacement = DisplacementKind::kAlignedDifference;
-  } else {
-    throw InputError("--displacement must be 'log' or 'difference', got '" +
-                     FLAGS_displacement + "'");
-  }
+  const ShellPcaOptions options =
+      MakeShellPcaOptions(FLAGS_log_steps, FLAGS_exp_steps,
+                          FLAGS_max_exp_steps, FLAGS_displacement, "--");
   const auto clock = std::chrono::steady_clock::now();
   RunPaths()
       .InputList("inputs", FLAGS_inputs)
@@ -239,15 +230,7 @@ int RunPca() {
       .Check();
   const ShellSet inputs = LoadInputs(FLAGS_loo ? 3 : 2);
   const int n = static_cast<int>(inputs.shapes.size());
-  if (FLAGS_modes > n - 1) {
-    throw InputError("--modes " + std::to_string(FLAGS_modes) + " exceeds " +
-                     std::to_string(n - 1) + " (number of inputs - 1)");
-  }
-  if (FLAGS_loo && FLAGS_modes > n - 2) {
-    throw InputError("--loo with --modes " + std::to_string(FLAGS_modes) +
-                     " needs at least " + std::to_string(FLAGS_modes + 2) +
-                     " inputs");
-  }
+  CheckPcaModeCount(FLAGS_modes, n, FLAGS_loo, "--");
   const ShellSpace space = SpaceFromFlags(inputs.first);
   const SolverSettings settings = SettingsFromFlags("pca");
   SolverSettings inner = settings;
@@ -348,18 +331,11 @@ int RunPca() {
       .Add("converged", status.ok());  // the mean; mode shapes: warned
 
   if (FLAGS_baseline == "procrustes") {
-    const ProcrustesPcaModel procrustes = ComputeProcrustesPca(inputs.shapes);
-    files.emplace_back("procrustes_mean.ply", procrustes.mean);
-    const int pm =
-        std::min<int>(FLAGS_modes, static_cast<int>(procrustes.modes.size()));
-    for (int j = 0; j < pm; ++j) {
-      const std::string stem = "procrustes_mode_" + std::to_string(j + 1);
-      files.emplace_back(stem + "_minus.ply",
-                         ProcrustesModeShape(procrustes, j, -FLAGS_amplitude));
-      files.emplace_back(stem + "_plus.ply",
-                         ProcrustesModeShape(procrustes, j, FLAGS_amplitude));
+    for (auto& [name, shape] :
+         AddProcrustesBaseline(ComputeProcrustesPca(inputs.shapes), FLAGS_modes,
+                               FLAGS_amplitude, &json)) {
+      files.emplace_back(name + ".ply", std::move(shape));
     }
-    AddProcrustesJson(procrustes, pm, &json);
   }
 
   std::string table_text;

@@ -130,6 +130,38 @@ ShotOutcome ShootOnce(const ShellSpace& space, const Positions& s0,
 
 }  // namespace
 
+ShellPcaOptions MakeShellPcaOptions(int log_steps, int exp_steps,
+                                    int max_exp_steps,
+                                    const std::string& displacement,
+                                    const std::string& prefix) {
+  ShellPcaOptions options;
+  options.steps = log_steps;
+  options.exp_steps = exp_steps;
+  options.max_exp_steps = max_exp_steps;
+  if (displacement == "log") {
+    options.displacement = DisplacementKind::kLog;
+  } else if (displacement == "difference") {
+    options.displacement = DisplacementKind::kAlignedDifference;
+  } else {
+    throw InputError(prefix + "displacement must be 'log' or 'difference', "
+                     "got '" + displacement + "'");
+  }
+  return options;
+}
+
+void CheckPcaModeCount(int modes, int inputs, bool leave_one_out,
+                       const std::string& prefix) {
+  if (modes > inputs - 1) {
+    throw InputError(prefix + "modes " + std::to_string(modes) + " exceeds " +
+                     std::to_string(inputs - 1) + " (number of inputs - 1)");
+  }
+  if (leave_one_out && modes > inputs - 2) {
+    throw InputError(prefix + "loo with " + prefix + "modes " +
+                     std::to_string(modes) + " needs at least " +
+                     std::to_string(modes + 2) + " inputs");
+  }
+}
+
 bool TryShootFromMean(const ShellSpace& space, const Positions& mean,
                       const Positions& variation,
                       const ShellPcaOptions& options,

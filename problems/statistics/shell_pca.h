@@ -61,6 +61,14 @@ enum class DisplacementKind {
 // do not depend on it; it only gives LOG_K's linear initial path a good
 // start).
 
+// Throws InputError unless `modes` <= inputs - 1 (n shapes have at most
+// n - 1 modes) and, with `leave_one_out`, modes <= inputs - 2 (each fold
+// has one input less). The messages name the options as the caller does:
+// `prefix` + "modes", `prefix` + "loo" ("--" for the CLI's flags, "" for
+// the Python arguments).
+void CheckPcaModeCount(int modes, int inputs, bool leave_one_out,
+                       const std::string& prefix);
+
 struct ShellPcaOptions {
   DisplacementKind displacement = DisplacementKind::kLog;
   int steps = 2;  // K of LOG_K (>= 1)
@@ -71,6 +79,17 @@ struct ShellPcaOptions {
   double max_energy_drift = 0.5;   // allowed |W_k - W_1| / W_1 along EXP_K
   double relative_cutoff = 1e-10;  // of ModesFromGram
 };
+
+// The options of the front ends' values (the others keep their defaults):
+// log_steps (steps), exp_steps, max_exp_steps and displacement, "log"
+// (kLog) or "difference" (kAlignedDifference). Throws InputError for any
+// other displacement, naming it as the caller does: `prefix` +
+// "displacement" ("--" for the CLI's flags, "" for the Python arguments).
+// The step counts are checked by the functions that take the options.
+ShellPcaOptions MakeShellPcaOptions(int log_steps, int exp_steps,
+                                    int max_exp_steps,
+                                    const std::string& displacement,
+                                    const std::string& prefix);
 
 // How an EXP shot went: the K of the last attempt, the number of attempts,
 // the largest relative step-energy drift max_k |W[s_{k-1}, s_k] - W[s_0,
