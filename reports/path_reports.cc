@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "shellspace/cost_functions/shell/deformation_energy.h"
+#include "shellspace/reports/relative_gradient.h"
 #include "shellspace/reports/shape_reports.h"
 
 namespace shellspace {
@@ -74,9 +75,8 @@ std::vector<std::string> ExpStepStages(const ShootResult& result) {
 }
 
 JsonObject GeodesicJson(const GeodesicResult& result) {
-  const double relative = result.initial_gradient > 0
-                              ? result.final_gradient / result.initial_gradient
-                              : 0.0;
+  const double relative =
+      RelativeGradientNorm(result.final_gradient, result.initial_gradient);
   JsonObject json;
   json.Add("path_energy", result.path_energy)
       .Add("step_energies", result.step_energies)

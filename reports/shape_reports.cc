@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "shellspace/cost_functions/shell/relative_bending_weight.h"
+#include "shellspace/reports/relative_gradient.h"
 
 namespace shellspace {
 
@@ -70,9 +71,7 @@ std::string MeanEnergySplitJson(const ShellSpace& space,
 JsonObject MeanJson(const ElasticMeanResult& result, int inputs,
                     const std::vector<std::string>& far_inputs) {
   const double relative =
-      result.initial_gradient_norm > 0
-          ? result.gradient_norm / result.initial_gradient_norm
-          : 0.0;
+      RelativeGradientNorm(result.gradient_norm, result.initial_gradient_norm);
   JsonObject json;
   json.Add("energy", result.energy)
       .Add("energies", result.energies)
@@ -103,22 +102,25 @@ std::vector<double> ToVector(const Eigen::VectorXd& v) {
 
 }  // namespace
 
+JsonObject PcaMeanJson(int inputs, const ElasticMeanResult& mean) {
+  JsonObject json;
+  json.Add("inputs", inputs)
+      .Add("mean_energy", mean.energy)
+      .Add("mean_iterations", mean.lm_iterations)
+      .Add("mean_newton_iterations", mean.newton_iterations)
+      .Add("mean_gradient_norm", mean.gradient_norm);
+  return json;
+}
+
 JsonObject PcaJson(int inputs, const ElasticMeanResult& mean,
                    const std::string& displacement,
                    const ShellPcaOptions& options, const ShellPcaModel& shell,
                    int modes, const std::vector<std::string>& failed_shapes,
                    const std::vector<std::string>& far_inputs,
                    double amplitude) {
-  JsonObject json;
-  json.Add("inputs", inputs)
-      .Add("mean_energy", mean.energy)
-      .Add("mean_iterations", mean.lm_iterations)
-      .Add("mean_newton_iterations", mean.newton_iterations)
-      .Add("mean_gradient_norm", mean.gradient_norm)
-      .Add("mean_relative_gradient_norm",
-           mean.initial_gradient_norm > 0
-               ? mean.gradient_norm / mean.initial_gradient_norm
-               : 0.0)
+  JsonObject json = PcaMeanJson(inputs, mean);
+  json.Add("mean_relative_gradient_norm",
+           RelativeGradientNorm(mean.gradient_norm, mean.initial_gradient_norm))
       .Add("mean_converged", mean.converged)
       .Add("mean_termination", mean.termination)
       .Add("displacement", displacement)

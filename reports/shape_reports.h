@@ -58,8 +58,13 @@ std::string MeanEnergySplitJson(const ShellSpace& space,
 JsonObject MeanJson(const ElasticMeanResult& result, int inputs,
                     const std::vector<std::string>& far_inputs);
 
-// Shell PCA at an elastic mean of `inputs` shapes: inputs, mean_energy,
-// mean_iterations (LM), mean_newton_iterations, mean_gradient_norm,
+// The first keys of a PCA summary, those of its elastic mean of `inputs`
+// shapes: inputs, mean_energy, mean_iterations (LM), mean_newton_iterations,
+// mean_gradient_norm.
+JsonObject PcaMeanJson(int inputs, const ElasticMeanResult& mean);
+
+// Shell PCA at an elastic mean of `inputs` shapes: the keys of PcaMeanJson,
+// mean_relative_gradient_norm, mean_converged, mean_termination,
 // displacement (the word given), log_steps, exp_steps (of `options`),
 // eigenvalues, modes (mode pairs shot), failed_mode_shapes, far_inputs,
 // amplitude.

@@ -15,6 +15,7 @@
 #include "shellspace/geometry/procedural_shapes.h"
 #include "shellspace/problems/calculus/exponential_map.h"
 #include "shellspace/render/film_strip.h"
+#include "shellspace/reports/relative_gradient.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/film_strip_flags.h"
 #include "shellspace/tools/memory_limits.h"
@@ -113,9 +114,8 @@ int RunDemo() {
       .Add("initial_gradient_norm", geodesic.initial_gradient)
       .Add("final_gradient_norm", geodesic.final_gradient)
       .Add("relative_gradient_norm",
-           geodesic.initial_gradient > 0
-               ? geodesic.final_gradient / geodesic.initial_gradient
-               : 0.0)
+           RelativeGradientNorm(geodesic.final_gradient,
+                                geodesic.initial_gradient))
       .Add("converged", geodesic.converged && shot_converged)
       .Add("geodesic_converged", geodesic.converged)
       .Add("extrapolation_converged", shot_converged)

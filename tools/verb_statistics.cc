@@ -257,13 +257,8 @@ int RunPca() {
   // Stopped: the mean so far (or the converged mean, if the stop came
   // later), no modes. The exit code is the stop's (main).
   const auto write_mean_only = [&](const char* phase) {
-    JsonObject json;
-    json.Add("inputs", n)
-        .Add("mean_energy", mean.energy)
-        .Add("mean_iterations", mean.lm_iterations)
-        .Add("mean_newton_iterations", mean.newton_iterations)
-        .Add("mean_gradient_norm", mean.gradient_norm)
-        .Add("modes", 0)
+    JsonObject json = PcaMeanJson(n, mean);
+    json.Add("modes", 0)
         .Add("stopped_in", phase)
         .Add("seconds", Seconds(clock))
         .Add("output", FLAGS_output);
