@@ -1,6 +1,8 @@
 #include "shellspace/tools/path_summary.h"
 
 #include <algorithm>
+#include <iostream>
+#include <utility>
 
 #include "shellspace/io/atomic_file.h"
 #include "shellspace/io/gltf_writer.h"
@@ -74,6 +76,18 @@ void WritePathOutputs(RunDirectory* out, const Faces& faces,
                        EncodePng(RenderFilmStrip(path, faces, options)));
   }
   WriteFrames(out->staging(), faces, path);
+}
+
+std::string CommitPathRun(RunDirectory* out, JsonObject summary,
+                          const ShellSpace& space, const ShellPath& path,
+                          double seconds) {
+  summary.Raw("energy_split", PathEnergySplitJson(space, path))
+      .Add("bending_model", FLAGS_bending)
+      .Add("seconds", seconds)
+      .Add("output", FLAGS_output);
+  const std::string text = out->Commit(std::move(summary));
+  if (FLAGS_json) std::cout << text << "\n";
+  return text;
 }
 
 }  // namespace shellspace

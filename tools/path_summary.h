@@ -33,6 +33,15 @@ void CheckShoot(const ShootResult& result, RunStatus* status);
 void WritePathOutputs(RunDirectory* out, const Faces& faces,
                       const ShellPath& path);
 
+// Ends the report `summary` of a path verb with the keys they all end with
+// -- energy_split (PathEnergySplitJson of `path` in `space`), bending_model
+// (--bending), seconds, output (--output) -- commits the run directory with
+// it (RunDirectory::Commit) and, with --json, prints it on stdout. Returns
+// the report's text.
+std::string CommitPathRun(RunDirectory* out, JsonObject summary,
+                          const ShellSpace& space, const ShellPath& path,
+                          double seconds);
+
 }  // namespace shellspace
 
 #endif  // SHELLSPACE_TOOLS_PATH_SUMMARY_H_

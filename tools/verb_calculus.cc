@@ -131,14 +131,8 @@ int RunShoot() {
   CheckShoot(result, &status);
   RunDirectory output(FLAGS_output);
   WritePathOutputs(&output, first.mesh.faces, result.path);
-  const std::string summary =
-      output.Commit(ShootJson(result)
-                        .Raw("energy_split",
-                             PathEnergySplitJson(space, result.path))
-                        .Add("bending_model", FLAGS_bending)
-                        .Add("seconds", Seconds(clock))
-                        .Add("output", FLAGS_output));
-  if (FLAGS_json) std::cout << summary << "\n";
+  CommitPathRun(&output, ShootJson(result), space, result.path,
+                Seconds(clock));
   return status.Finish();
 }
 
@@ -209,14 +203,8 @@ int RunTransport() {
   }
   RunDirectory output(FLAGS_output);
   WritePathOutputs(&output, first.mesh.faces, result.shapes);
-  const std::string summary =
-      output.Commit(TransportJson(result, FLAGS_epsilon)
-                        .Raw("energy_split",
-                             PathEnergySplitJson(space, result.shapes))
-                        .Add("bending_model", FLAGS_bending)
-                        .Add("seconds", Seconds(clock))
-                        .Add("output", FLAGS_output));
-  if (FLAGS_json) std::cout << summary << "\n";
+  CommitPathRun(&output, TransportJson(result, FLAGS_epsilon), space,
+                result.shapes, Seconds(clock));
   return status.Finish();
 }
 

@@ -68,17 +68,11 @@ int RunGeodesic() {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock)
           .count();
-  const std::string summary =
-      output.Commit(GeodesicJson(result)
-                        .Raw("energy_split",
-                             PathEnergySplitJson(space, result.path))
-                        .Add("bending_model", FLAGS_bending)
-                        .Raw("multires_levels", MultiresolutionJson(multires))
-                        .Add("seconds", seconds)
-                        .Add("output", FLAGS_output));
-  if (FLAGS_json) {
-    std::cout << summary << "\n";
-  } else if (!FLAGS_quiet) {
+  CommitPathRun(&output,
+                GeodesicJson(result).Raw("multires_levels",
+                                         MultiresolutionJson(multires)),
+                space, result.path, seconds);
+  if (!FLAGS_json && !FLAGS_quiet) {
     if (ceres_ran) std::cerr << result.summary.BriefReport() << "\n";
     std::cout << "E_K = " << result.path_energy << " over " << FLAGS_steps
               << " steps (" << result.iterations << " iterations, |grad| "
