@@ -20,6 +20,9 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <tuple>
+#include <type_traits>
+#include <utility>
 #include <vector>
 
 #include "shellspace/cost_functions/shell/deformation_energy.h"
@@ -993,6 +996,52 @@ void WriteFilmStripPy(const std::string& path, const py::object& frames_object,
   WriteFilmStrip(ToShapes(frames_object, "frames"), ToFaces(F), options, path);
 }
 
+// The Python signatures of the verb functions. A function f(args...,
+// const MaterialArgs&) is bound as a function of args... followed by the
+// material's keyword arguments (mu, lambda_, eta, relative_eta, bending: in
+// the order of SHELLSPACE_MATERIAL_ARGS), gathered into a MaterialArgs; one
+// that also ends with const SolverOptions& takes the solver's (tolerance,
+// max_iterations, threads, quiet: SHELLSPACE_SOLVER_ARGS) after them.
+// The Gather functions take `Own`, the tuple of f's parameter types, and
+// the indices of f's own arguments (those before the structs).
+template <class Own, class Result, class... Params, size_t... I>
+auto GatherMaterialArgs(Result (*f)(Params...), std::index_sequence<I...>) {
+  return [f](std::tuple_element_t<I, Own>... args, double mu, double lambda,
+             std::optional<double> eta, double relative_eta,
+             const std::string& bending) {
+    return f(args..., MaterialArgs{mu, lambda, eta, relative_eta, bending});
+  };
+}
+template <class Own, class Result, class... Params, size_t... I>
+auto GatherMaterialAndSolverArgs(Result (*f)(Params...),
+                                 std::index_sequence<I...>) {
+  return [f](std::tuple_element_t<I, Own>... args, double mu, double lambda,
+             std::optional<double> eta, double relative_eta,
+             const std::string& bending, double tolerance, int max_iterations,
+             int threads, bool quiet) {
+    return f(args..., MaterialArgs{mu, lambda, eta, relative_eta, bending},
+             SolverOptions{tolerance, max_iterations, threads, quiet});
+  };
+}
+template <class Result, class... Params>
+auto WithMaterialArgs(Result (*f)(Params...)) {
+  using Own = std::tuple<Params...>;
+  static_assert(std::is_same_v<std::tuple_element_t<sizeof...(Params) - 1, Own>,
+                               const MaterialArgs&>);
+  return GatherMaterialArgs<Own>(
+      f, std::make_index_sequence<sizeof...(Params) - 1>());
+}
+template <class Result, class... Params>
+auto WithMaterialAndSolverArgs(Result (*f)(Params...)) {
+  using Own = std::tuple<Params...>;
+  static_assert(std::is_same_v<std::tuple_element_t<sizeof...(Params) - 2, Own>,
+                               const MaterialArgs&> &&
+                std::is_same_v<std::tuple_element_t<sizeof...(Params) - 1, Own>,
+                               const SolverOptions&>);
+  return GatherMaterialAndSolverArgs<Own>(
+      f, std::make_index_sequence<sizeof...(Params) - 2>());
+}
+
 }  // namespace
 }  // namespace shellspace
 
@@ -1027,12 +1076,7 @@ PYBIND11_MODULE(shellspace, m) {
   m.def("write_mesh", &WriteMeshPy, py::arg("path"), py::arg("V"), py::arg("F"),
         "Writes (V, F) as PLY, OBJ or OFF (by the extension), atomically.");
   m.def("compare",
-        [](const py::object& a, const py::object& b, const IndexArray& F,
-           double tolerance, double energy_tolerance, double mu,
-           double lambda, std::optional<double> eta, double relative_eta, const std::string& bending) {
-          return ComparePy(a, b, F, tolerance, energy_tolerance,
-                           MaterialArgs{mu, lambda, eta, relative_eta, bending});
-        },
+        WithMaterialArgs(&ComparePy),
         py::arg("a"), py::arg("b"), py::arg("F"),
         py::arg("tolerance") = 1e-6, py::arg("energy_tolerance") = 1e-6,
         SHELLSPACE_MATERIAL_ARGS,
@@ -1058,34 +1102,20 @@ PYBIND11_MODULE(shellspace, m) {
 
   m.def(
       "energy",
-      [](const DoubleArray& reference, const DoubleArray& deformed,
-         const IndexArray& F, double mu, double lambda, std::optional<double> eta, double relative_eta, const std::string& bending) {
-        return EnergyPy(reference, deformed, F, MaterialArgs{mu, lambda, eta, relative_eta, bending});
-      },
+      WithMaterialArgs(&EnergyPy),
       py::arg("reference"), py::arg("deformed"), py::arg("F"),
       SHELLSPACE_MATERIAL_ARGS,
       "W[reference, deformed] = W_mem + eta W_bend: the `energy` verb's "
       "summary {membrane, bending, total, mu, lambda, eta}.");
   m.def("energy_gradient",
-        [](const DoubleArray& reference, const DoubleArray& deformed,
-           const IndexArray& F, const std::string& side, double mu,
-           double lambda, std::optional<double> eta, double relative_eta, const std::string& bending) {
-          return GradientPy(reference, deformed, F, side,
-                            MaterialArgs{mu, lambda, eta, relative_eta, bending});
-        },
+        WithMaterialArgs(&GradientPy),
         py::arg("reference"),
         py::arg("deformed"), py::arg("F"), py::arg("side") = "deformed",
         SHELLSPACE_MATERIAL_ARGS,
         "D_2 W (side='deformed') or D_1 W (side='reference') as a #V x 3 "
         "array (the derivative by vertex v, coordinate c at [v, c]).");
   m.def("energy_hessian",
-        [](const DoubleArray& reference, const DoubleArray& deformed,
-           const IndexArray& F, const std::string& rows,
-           const std::string& cols, double mu, double lambda,
-           std::optional<double> eta, double relative_eta, const std::string& bending) {
-          return HessianPy(reference, deformed, F, rows, cols,
-                           MaterialArgs{mu, lambda, eta, relative_eta, bending});
-        },
+        WithMaterialArgs(&HessianPy),
         py::arg("reference"), py::arg("deformed"),
         py::arg("F"), py::arg("rows") = "deformed",
         py::arg("cols") = "deformed", SHELLSPACE_MATERIAL_ARGS,
@@ -1096,18 +1126,7 @@ PYBIND11_MODULE(shellspace, m) {
 
   m.def(
       "geodesic",
-      [](const DoubleArray& start, const DoubleArray& end, const IndexArray& F,
-         int steps, const py::object& mask, const std::string& multires,
-         const std::string& linear_solver, const std::string& lm, bool report,
-         const std::optional<std::string>& output,
-         const std::optional<std::string>& png,
-         const std::optional<std::string>& gltf, double mu, double lambda,
-         std::optional<double> eta, double relative_eta, const std::string& bending, double tolerance, int max_iterations, int threads,
-         bool quiet) {
-        return GeodesicPy(start, end, F, steps, mask, multires, linear_solver,
-                          lm, report, output, png, gltf, MaterialArgs{mu, lambda, eta, relative_eta, bending},
-                          {tolerance, max_iterations, threads, quiet});
-      },
+      WithMaterialAndSolverArgs(&GeodesicPy),
       py::arg("start"), py::arg("end"), py::arg("F"), py::arg("steps") = 8,
       py::arg("mask") = py::none(), py::arg("multires") = "auto",
       py::arg("linear_solver") = "auto", py::arg("lm") = "auto",
@@ -1122,16 +1141,7 @@ PYBIND11_MODULE(shellspace, m) {
       "film strip.");
   m.def(
       "log",
-      [](const DoubleArray& start, const DoubleArray& end, const IndexArray& F,
-         int steps, const py::object& mask, const std::string& multires,
-         const std::string& linear_solver, const std::string& lm,
-         const std::optional<std::string>& output, double mu, double lambda,
-         std::optional<double> eta, double relative_eta, const std::string& bending, double tolerance, int max_iterations, int threads,
-         bool quiet) {
-        return LogPy(start, end, F, steps, mask, multires, linear_solver, lm,
-                     output, MaterialArgs{mu, lambda, eta, relative_eta, bending},
-                     {tolerance, max_iterations, threads, quiet});
-      },
+      WithMaterialAndSolverArgs(&LogPy),
       py::arg("start"), py::arg("end"), py::arg("F"), py::arg("steps") = 8,
       py::arg("mask") = py::none(), py::arg("multires") = "auto",
       py::arg("linear_solver") = "auto", py::arg("lm") = "auto",
@@ -1141,17 +1151,7 @@ PYBIND11_MODULE(shellspace, m) {
       "(log #V x 3, summary). output: write start + log (as the CLI).");
   m.def(
       "shoot",
-      [](const DoubleArray& first, const DoubleArray& second,
-         const IndexArray& F, int steps, bool backward, const py::object& mask,
-         const std::optional<std::string>& output,
-         const std::optional<std::string>& png,
-         const std::optional<std::string>& gltf, double mu, double lambda,
-         std::optional<double> eta, double relative_eta, const std::string& bending, double tolerance, int max_iterations, int threads,
-         bool quiet) {
-        return ShootPy(first, second, F, steps, backward, mask, output, png,
-                       gltf, MaterialArgs{mu, lambda, eta, relative_eta, bending},
-                       {tolerance, max_iterations, threads, quiet});
-      },
+      WithMaterialAndSolverArgs(&ShootPy),
       py::arg("first"), py::arg("second"), py::arg("F"), py::arg("steps") = 8,
       py::arg("backward") = false, py::arg("mask") = py::none(),
       py::arg("output") = py::none(), py::arg("png") = py::none(),
@@ -1161,17 +1161,7 @@ PYBIND11_MODULE(shellspace, m) {
       "summary).");
   m.def(
       "transport",
-      [](const py::object& path, const DoubleArray& variation,
-         const IndexArray& F, double epsilon, const py::object& mask,
-         const std::optional<std::string>& output,
-         const std::optional<std::string>& png,
-         const std::optional<std::string>& gltf, double mu, double lambda,
-         std::optional<double> eta, double relative_eta, const std::string& bending, double tolerance, int max_iterations, int threads,
-         bool quiet) {
-        return TransportPy(path, variation, F, epsilon, mask, output, png, gltf,
-                           MaterialArgs{mu, lambda, eta, relative_eta, bending},
-                           {tolerance, max_iterations, threads, quiet});
-      },
+      WithMaterialAndSolverArgs(&TransportPy),
       py::arg("path"), py::arg("variation"), py::arg("F"),
       py::arg("epsilon") = 1.0, py::arg("mask") = py::none(),
       py::arg("output") = py::none(), py::arg("png") = py::none(),
@@ -1181,17 +1171,7 @@ PYBIND11_MODULE(shellspace, m) {
       "(shapes s_k + epsilon xi_k, summary).");
   m.def(
       "spline",
-      [](const py::object& keyframes, const std::vector<long long>& at,
-         const IndexArray& F, int steps, const std::string& method,
-         bool periodic, const std::optional<std::string>& output,
-         const std::optional<std::string>& png,
-         const std::optional<std::string>& gltf, double mu, double lambda,
-         std::optional<double> eta, double relative_eta, const std::string& bending, double tolerance, int max_iterations, int threads,
-         bool quiet) {
-        return SplinePy(keyframes, at, F, steps, method, periodic, output, png,
-                        gltf, MaterialArgs{mu, lambda, eta, relative_eta, bending},
-                        {tolerance, max_iterations, threads, quiet});
-      },
+      WithMaterialAndSolverArgs(&SplinePy),
       py::arg("keyframes"), py::arg("at"), py::arg("F"), py::arg("steps") = 8,
       py::arg("method") = "nonlinear", py::arg("periodic") = false,
       py::arg("output") = py::none(), py::arg("png") = py::none(),
@@ -1201,17 +1181,7 @@ PYBIND11_MODULE(shellspace, m) {
       "(path, summary).");
   m.def(
       "regress",
-      [](const py::object& inputs, const std::vector<long long>& at,
-         const IndexArray& F, int steps, double sigma,
-         const std::optional<std::string>& output,
-         const std::optional<std::string>& png,
-         const std::optional<std::string>& gltf, double mu, double lambda,
-         std::optional<double> eta, double relative_eta, const std::string& bending, double tolerance, int max_iterations, int threads,
-         bool quiet) {
-        return RegressPy(inputs, at, F, steps, sigma, output, png, gltf, 
-                         MaterialArgs{mu, lambda, eta, relative_eta, bending},
-                         {tolerance, max_iterations, threads, quiet});
-      },
+      WithMaterialAndSolverArgs(&RegressPy),
       py::arg("inputs"), py::arg("at"), py::arg("F"), py::arg("steps") = 8,
       py::arg("sigma") = 1.0, py::arg("output") = py::none(),
       py::arg("png") = py::none(), py::arg("gltf") = py::none(),
@@ -1220,17 +1190,7 @@ PYBIND11_MODULE(shellspace, m) {
       "summary).");
   m.def(
       "pca",
-      [](const py::object& inputs, const IndexArray& F, int modes,
-         const std::string& baseline, bool loo, double amplitude, int log_steps,
-         int exp_steps, int max_exp_steps, const std::string& displacement,
-         const std::optional<std::string>& output,
-         const std::optional<std::string>& png, double mu, double lambda,
-         std::optional<double> eta, double relative_eta, const std::string& bending, double tolerance, int max_iterations, int threads,
-         bool quiet) {
-        return PcaPy(inputs, F, modes, baseline, loo, amplitude, log_steps,
-                     exp_steps, max_exp_steps, displacement, output, png, 
-                     MaterialArgs{mu, lambda, eta, relative_eta, bending}, {tolerance, max_iterations, threads, quiet});
-      },
+      WithMaterialAndSolverArgs(&PcaPy),
       py::arg("inputs"), py::arg("F"), py::arg("modes") = 3,
       py::arg("baseline") = "", py::arg("loo") = false,
       py::arg("amplitude") = 1.0, py::arg("log_steps") = 2,
@@ -1260,13 +1220,7 @@ PYBIND11_MODULE(shellspace, m) {
         "summary. Writes no files.");
   m.def(
       "mean",
-      [](const py::object& inputs, const IndexArray& F, bool report,
-         const std::optional<std::string>& output, double mu, double lambda,
-         std::optional<double> eta, double relative_eta, const std::string& bending, double tolerance, int max_iterations, int threads,
-         bool quiet) {
-        return MeanPy(inputs, F, report, output, MaterialArgs{mu, lambda, eta, relative_eta, bending},
-                      {tolerance, max_iterations, threads, quiet});
-      },
+      WithMaterialAndSolverArgs(&MeanPy),
       py::arg("inputs"), py::arg("F"), py::arg("report") = false,
       py::arg("output") = py::none(), SHELLSPACE_MATERIAL_ARGS,
       SHELLSPACE_SOLVER_ARGS,
