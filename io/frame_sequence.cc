@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <system_error>
 
+#include "shellspace/io/ascii_lowercase.h"
 #include "shellspace/io/atomic_file.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/io/output_directory.h"
@@ -18,10 +19,7 @@ namespace fs = std::filesystem;
 bool IsDigit(char c) { return std::isdigit(static_cast<unsigned char>(c)); }
 
 bool HasMeshExtension(const fs::path& path) {
-  std::string ext = path.extension().string();
-  for (char& c : ext) {
-    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  }
+  const std::string ext = AsciiLowercase(path.extension().string());
   return ext == ".ply" || ext == ".obj" || ext == ".off";
 }
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
@@ -14,6 +13,7 @@
 #include <sstream>
 
 #include "shellspace/geometry/validation.h"
+#include "shellspace/io/ascii_lowercase.h"
 #include "shellspace/io/atomic_file.h"
 
 namespace shellspace {
@@ -22,10 +22,7 @@ namespace {
 std::string Extension(const std::string& path) {
   const auto dot = path.find_last_of('.');
   if (dot == std::string::npos) return "";
-  std::string ext = path.substr(dot + 1);
-  std::transform(ext.begin(), ext.end(), ext.begin(),
-                 [](unsigned char c) { return std::tolower(c); });
-  return ext;
+  return AsciiLowercase(path.substr(dot + 1));
 }
 
 // At most `max` characters of `text`, quoted, with every byte outside

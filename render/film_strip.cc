@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <array>
-#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
 
+#include "shellspace/io/ascii_lowercase.h"
 #include "shellspace/render/bitmap_font.h"
 #include "shellspace/render/camera.h"
 #include "shellspace/render/color_ramp.h"
@@ -117,10 +117,7 @@ void DrawLegend(double largest, const FilmStripLayout& layout, int top,
 }  // namespace
 
 SurfaceColor ParseSurfaceColor(const std::string& text) {
-  std::string name = text;
-  for (char& c : name) {
-    c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  }
+  const std::string name = AsciiLowercase(text);
   if (name == "plain") return SurfaceColor::kPlain;
   if (name == "displacement") return SurfaceColor::kDisplacement;
   throw InputError("bad colour '" + text +

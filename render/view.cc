@@ -1,10 +1,10 @@
 #include "shellspace/render/view.h"
 
-#include <cctype>
 #include <cmath>
 #include <cstdlib>
 
 #include "shellspace/geometry/mesh.h"
+#include "shellspace/io/ascii_lowercase.h"
 
 namespace shellspace {
 namespace {
@@ -20,15 +20,10 @@ bool ParseNumber(const std::string& text, double* value) {
   return stop == trimmed.c_str() + trimmed.size() && std::isfinite(*value);
 }
 
-std::string Lowercase(std::string text) {
-  for (char& c : text) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return text;
-}
-
 }  // namespace
 
 ViewAngles ParseView(const std::string& text) {
-  const std::string name = Lowercase(text);
+  const std::string name = AsciiLowercase(text);
   if (name == "front") return {0, 0};
   if (name == "back") return {180, 0};
   if (name == "side" || name == "right") return {90, 0};
