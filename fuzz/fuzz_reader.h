@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
 #include <exception>
 #include <fstream>
 #include <string>
@@ -99,6 +100,27 @@ inline int FuzzMesh(const uint8_t* data, size_t size, const char* ext) {
     Finding("non-standard exception");
   }
   return 0;
+}
+
+// FuzzMesh of a PLY file: `data` as it is if it starts with "ply", else
+// the fixed header of a 4-vertex, 2-face mesh in `format` ("ascii",
+// "binary_little_endian") with `coordinate` ("double", "float") vertex
+// coordinates and uchar/int face lists, followed by `data`, so that random
+// bytes exercise the data section.
+inline int FuzzPlyData(const uint8_t* data, size_t size, const char* format,
+                       const char* coordinate) {
+  if (size >= 3 && std::memcmp(data, "ply", 3) == 0) {
+    return FuzzMesh(data, size, "ply");
+  }
+  const std::string property = std::string("property ") + coordinate;
+  std::string bytes = std::string("ply\nformat ") + format +
+                      " 1.0\nelement vertex 4\n" + property + " x\n" +
+                      property + " y\n" + property +
+                      " z\nelement face 2\n"
+                      "property list uchar int vertex_indices\nend_header\n";
+  bytes.append(reinterpret_cast<const char*>(data), size);
+  return FuzzMesh(reinterpret_cast<const uint8_t*>(bytes.data()),
+                  bytes.size(), "ply");
 }
 
 }  // namespace shellspace::fuzz

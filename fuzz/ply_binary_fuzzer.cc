@@ -2,20 +2,9 @@
 // input that does not start with "ply" gets a fixed binary little-endian
 // header of a 4-vertex, 2-face mesh (float coordinates, uchar/int lists), so
 // that random bytes exercise the binary data section.
-#include <cstring>
-#include <string>
-
 #include "shellspace/fuzz/fuzz_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
-  if (size >= 3 && std::memcmp(data, "ply", 3) == 0) {
-    return shellspace::fuzz::FuzzMesh(data, size, "ply");
-  }
-  std::string bytes =
-      "ply\nformat binary_little_endian 1.0\nelement vertex 4\n"
-      "property float x\nproperty float y\nproperty float z\n"
-      "element face 2\nproperty list uchar int vertex_indices\nend_header\n";
-  bytes.append(reinterpret_cast<const char*>(data), size);
-  return shellspace::fuzz::FuzzMesh(
-      reinterpret_cast<const uint8_t*>(bytes.data()), bytes.size(), "ply");
+  return shellspace::fuzz::FuzzPlyData(data, size, "binary_little_endian",
+                                       "float");
 }
