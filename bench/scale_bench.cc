@@ -25,12 +25,12 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <stdexcept>
 #include <string>
 
 #include "shellspace/geometry/subdivision.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/multiresolution.h"
+#include "shellspace/reports/solve_choices.h"
 
 namespace shellspace {
 namespace {
@@ -96,28 +96,11 @@ Case MakeCase(const std::string& name) {
   return c;
 }
 
-// SHELLSPACE_LINEAR_SOLVER, or kAuto if unset.
-PathLinearSolver LinearSolverFromEnvironment() {
-  const char* value = std::getenv("SHELLSPACE_LINEAR_SOLVER");
-  const std::string name = value && *value ? value : "auto";
-  if (name == "auto") return PathLinearSolver::kAuto;
-  if (name == "direct") return PathLinearSolver::kDirect;
-  if (name == "block-jacobi") return PathLinearSolver::kBlockJacobi;
-  throw std::invalid_argument(
-      "SHELLSPACE_LINEAR_SOLVER must be auto, direct "
-      "or block-jacobi, got '" +
-      name + "'");
-}
-
-// SHELLSPACE_LM (auto|ceres|engine: who runs the LM stages), or kAuto.
-GeodesicLm LmFromEnvironment() {
-  const char* value = std::getenv("SHELLSPACE_LM");
-  const std::string name = value && *value ? value : "auto";
-  if (name == "auto") return GeodesicLm::kAuto;
-  if (name == "ceres") return GeodesicLm::kCeres;
-  if (name == "engine") return GeodesicLm::kEngine;
-  throw std::invalid_argument(
-      "SHELLSPACE_LM must be auto, ceres or engine, got '" + name + "'");
+// The word of the environment variable `variable`, "auto" if it is unset or
+// empty.
+std::string ChoiceFromEnvironment(const char* variable) {
+  const char* value = std::getenv(variable);
+  return value && *value ? value : "auto";
 }
 
 const char* kCases[] = {"finger_ring", "cactus_ring", "cactus_bottom",
@@ -131,10 +114,15 @@ void BM_Scale(benchmark::State& state) {
                          ShellMaterial{1.0, 1.0, c.eta});
   GeodesicInput input = GeodesicInput::Between(c.a.positions, c.b.positions, 8);
   input.fixed_vertices = c.mask;
+  // SHELLSPACE_LINEAR_SOLVER (auto|direct|block-jacobi) and SHELLSPACE_LM
+  // (auto|ceres|engine: who runs the LM stages), as the CLI's words.
   try {
-    input.linear_solver = LinearSolverFromEnvironment();
-    input.lm = LmFromEnvironment();
-  } catch (const std::invalid_argument& e) {
+    input.linear_solver = ParsePathLinearSolver(
+        ChoiceFromEnvironment("SHELLSPACE_LINEAR_SOLVER"),
+        "SHELLSPACE_LINEAR_SOLVER");
+    input.lm = ParseGeodesicLm(ChoiceFromEnvironment("SHELLSPACE_LM"),
+                               "SHELLSPACE_LM");
+  } catch (const InputError& e) {
     state.SkipWithError(e.what());  // one line, no abort
     return;
   }
