@@ -136,28 +136,22 @@ double PathGradientMaxNorm(const ShellSpace& space, const GeodesicInput& input,
   std::vector<char> is_fixed(space.num_vertices, 0);
   for (int v : input.fixed_vertices) is_fixed[v] = 1;
   std::vector<double> norm(K - 1, 0.0);
-  std::vector<char> ok(K - 1, 1);
-  ParallelFor(K - 1, threads, [&](int i) {
-    Eigen::VectorXd g;
-    if (!TryInnerShapeGradient(space, path, i + 1, &g)) {
-      ok[i] = 0;
-      return;
-    }
-    if (!input.fixed_vertices.empty()) {
-      for (int v = 0; v < space.num_vertices; ++v) {
-        if (!is_fixed[v]) {
-          norm[i] = std::max(norm[i], g.segment<3>(3 * v).cwiseAbs().maxCoeff());
+  const bool ok = ForEachInnerShapeGradient(
+      space, path, threads, [&](int i, const Eigen::VectorXd& g) {
+        if (!input.fixed_vertices.empty()) {
+          for (int v = 0; v < space.num_vertices; ++v) {
+            if (!is_fixed[v]) {
+              norm[i] =
+                  std::max(norm[i], g.segment<3>(3 * v).cwiseAbs().maxCoeff());
+            }
+          }
+        } else if (input.pin_gauge) {
+          norm[i] = GaugeFreeMaxNorm(MakeRigidGauge(path[i + 1]), g);
+        } else {
+          norm[i] = g.cwiseAbs().maxCoeff();
         }
-      }
-    } else if (input.pin_gauge) {
-      norm[i] = GaugeFreeMaxNorm(MakeRigidGauge(path[i + 1]), g);
-    } else {
-      norm[i] = g.cwiseAbs().maxCoeff();
-    }
-  });
-  if (!std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; })) {
-    return 0;
-  }
+      });
+  if (!ok) return 0;
   return *std::max_element(norm.begin(), norm.end());
 }
 
@@ -175,6 +169,22 @@ bool TryInnerShapeGradient(const ShellSpace& space, const ShellPath& path,
   }
   *gradient = double(K) * (incoming + outgoing);
   return true;
+}
+
+bool ForEachInnerShapeGradient(
+    const ShellSpace& space, const ShellPath& path, int threads,
+    const std::function<void(int, const Eigen::VectorXd&)>& use) {
+  const int K = static_cast<int>(path.size()) - 1;
+  std::vector<char> ok(K - 1, 1);
+  ParallelFor(K - 1, threads, [&](int i) {
+    Eigen::VectorXd gradient;
+    if (!TryInnerShapeGradient(space, path, i + 1, &gradient)) {
+      ok[i] = 0;
+      return;
+    }
+    use(i, gradient);
+  });
+  return std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; });
 }
 
 double LinearPathGradient(const ShellSpace& space, const GeodesicInput& input) {

@@ -6,6 +6,7 @@
 
 #include <ceres/solver.h>
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -38,6 +39,13 @@ std::optional<double> TryPathEnergy(
 // D_1 W[s_k, s_{k+1}]). False if either W has a degenerate element.
 bool TryInnerShapeGradient(const ShellSpace& space, const ShellPath& path,
                            int k, Eigen::VectorXd* gradient);
+
+// TryInnerShapeGradient for every inner shape k = 1 .. K - 1, in parallel
+// (ParallelFor over `threads`): calls use(k - 1, G_k) for each shape whose
+// gradient exists. False if an element of any W is degenerate.
+bool ForEachInnerShapeGradient(
+    const ShellSpace& space, const ShellPath& path, int threads,
+    const std::function<void(int, const Eigen::VectorXd&)>& use);
 
 // Linear interpolation of vertex positions: K + 1 shapes from a to b.
 ShellPath LinearPath(const Positions& a, const Positions& b, int steps);

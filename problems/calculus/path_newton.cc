@@ -8,7 +8,6 @@
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
 #include "shellspace/geometry/blas_threads.h"
-#include "shellspace/geometry/parallel_for.h"
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/problems/calculus/path_hessian.h"
 #include "shellspace/solvers/gauge_reduced_solve.h"
@@ -71,18 +70,12 @@ ReducedCoordinates MakeReducedCoordinates(
 bool TryReducedGradient(const ShellSpace& space, const ShellPath& path,
                         const ReducedCoordinates& r, int threads,
                         Eigen::VectorXd* g) {
-  const int K = static_cast<int>(path.size()) - 1;
   g->resize(r.size);
-  std::vector<char> ok(K - 1, 1);
-  ParallelFor(K - 1, threads, [&](int i) {
-    Eigen::VectorXd gk;
-    if (!TryInnerShapeGradient(space, path, i + 1, &gk)) {
-      ok[i] = 0;
-      return;
-    }
-    g->segment(r.offset[i], r.basis[i].cols()) = r.basis[i].transpose() * gk;
-  });
-  return std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; });
+  return ForEachInnerShapeGradient(
+      space, path, threads, [&](int i, const Eigen::VectorXd& gk) {
+        g->segment(r.offset[i], r.basis[i].cols()) =
+            r.basis[i].transpose() * gk;
+      });
 }
 
 // Applies s_k += T_k p_k to the inner shapes.
