@@ -272,6 +272,31 @@ TEST(NewtonSolverTest, FindsTheRootOfASmallNonlinearSystem) {
   EXPECT_EQ(report.cg_iterations, 0);
 }
 
+// One minimisation of the 1-D function `f` from x0 by ReusableCholesky with
+// at most `max_halvings` halvings of each step: the problem (its trial
+// points and iterates) and the report.
+struct OneDimensionalRun {
+  OneDimensionalRun(Callbacks f, double x0, double tolerance, int max_steps,
+                    int max_halvings)
+      : problem(std::move(f), Eigen::VectorXd::Constant(1, x0), true) {
+    ReusableCholesky cholesky;
+    NewtonSettings s = Minimize(tolerance, max_steps);
+    s.max_halvings = max_halvings;
+    report = SolveNewton(&problem, &cholesky, s);
+  }
+  FunctionProblem problem;
+  NewtonReport report;
+};
+
+// The line search of `problem` tried the points `expected` first (to 1e-12).
+void ExpectFirstTrialPoints(const FunctionProblem& problem,
+                            const std::vector<double>& expected) {
+  ASSERT_GE(problem.trial_points.size(), expected.size());
+  for (size_t i = 0; i < expected.size(); ++i) {
+    EXPECT_NEAR(problem.trial_points[i](0), expected[i], 1e-12) << i;
+  }
+}
+
 // f(x) = sqrt(1 + x^2): Newton's step from x is -x (1 + x^2); from 2 the
 // full step (to -8) and the half step (to -3) raise f, the quarter step (to
 // -1/2) lowers it.
@@ -289,31 +314,23 @@ Callbacks Hyperbola() {
 }
 
 TEST(NewtonSolverTest, LineSearchRejectsAnIncreasingStep) {
-  FunctionProblem problem(Hyperbola(), Eigen::VectorXd::Constant(1, 2.0),
-                          true);
-  ReusableCholesky cholesky;
-  NewtonSettings s = Minimize(1e-12, 1);
-  s.max_halvings = 2;
-  const NewtonReport report = SolveNewton(&problem, &cholesky, s);
-  ASSERT_EQ(problem.trial_points.size(), 3u);
-  EXPECT_NEAR(problem.trial_points[0](0), -8.0, 1e-12);
-  EXPECT_NEAR(problem.trial_points[1](0), -3.0, 1e-12);
-  EXPECT_NEAR(problem.trial_points[2](0), -0.5, 1e-12);
-  EXPECT_GT(problem.trial_merits[0], std::sqrt(5.0));
-  EXPECT_GT(problem.trial_merits[1], std::sqrt(5.0));
-  EXPECT_EQ(report.steps, 1);
-  EXPECT_NEAR(problem.x()(0), -0.5, 1e-12);
-  EXPECT_NEAR(report.final_merit, std::sqrt(1.25), 1e-12);
+  const OneDimensionalRun run(Hyperbola(), 2.0, 1e-12, 1, 2);
+  ASSERT_EQ(run.problem.trial_points.size(), 3u);
+  ExpectFirstTrialPoints(run.problem, {-8.0, -3.0, -0.5});
+  EXPECT_GT(run.problem.trial_merits[0], std::sqrt(5.0));
+  EXPECT_GT(run.problem.trial_merits[1], std::sqrt(5.0));
+  EXPECT_EQ(run.report.steps, 1);
+  EXPECT_NEAR(run.problem.x()(0), -0.5, 1e-12);
+  EXPECT_NEAR(run.report.final_merit, std::sqrt(1.25), 1e-12);
 
   // With one halving only, no step is accepted: the point stays.
-  FunctionProblem stuck(Hyperbola(), Eigen::VectorXd::Constant(1, 2.0), true);
-  s.max_halvings = 1;
-  const NewtonReport failed = SolveNewton(&stuck, &cholesky, s);
+  const OneDimensionalRun stuck(Hyperbola(), 2.0, 1e-12, 1, 1);
+  const NewtonReport& failed = stuck.report;
   EXPECT_FALSE(failed.converged);
   EXPECT_EQ(failed.stop, NewtonStop::kLineSearchFailed);
   EXPECT_EQ(failed.stop_reason, "no decrease along the Newton direction");
   EXPECT_EQ(failed.steps, 0);
-  EXPECT_EQ(stuck.x()(0), 2.0);
+  EXPECT_EQ(stuck.problem.x()(0), 2.0);
 }
 
 // f(x) = x - log x on x > 0 (minimiser 1): Newton's step x - x^2 from 3
@@ -333,19 +350,13 @@ Callbacks LogBarrier() {
 }
 
 TEST(NewtonSolverTest, InfeasibleTrialPointsAreBacktracked) {
-  FunctionProblem problem(LogBarrier(), Eigen::VectorXd::Constant(1, 3.0),
-                          true);
-  ReusableCholesky cholesky;
-  NewtonSettings s = Minimize(1e-14, 20);
-  s.max_halvings = 4;
-  const NewtonReport report = SolveNewton(&problem, &cholesky, s);
-  ASSERT_GE(problem.trial_points.size(), 3u);
-  EXPECT_NEAR(problem.trial_points[0](0), -3.0, 1e-12);
-  EXPECT_NEAR(problem.trial_points[1](0), 0.0, 1e-12);
-  EXPECT_NEAR(problem.iterates[1](0), 1.5, 1e-12);
-  EXPECT_EQ(problem.infeasible_evaluations, 2);
-  EXPECT_TRUE(report.converged) << report.stop_reason;
-  EXPECT_NEAR(problem.x()(0), 1.0, 1e-13);
+  const OneDimensionalRun run(LogBarrier(), 3.0, 1e-14, 20, 4);
+  ASSERT_GE(run.problem.trial_points.size(), 3u);
+  ExpectFirstTrialPoints(run.problem, {-3.0, 0.0});
+  EXPECT_NEAR(run.problem.iterates[1](0), 1.5, 1e-12);
+  EXPECT_EQ(run.problem.infeasible_evaluations, 2);
+  EXPECT_TRUE(run.report.converged) << run.report.stop_reason;
+  EXPECT_NEAR(run.problem.x()(0), 1.0, 1e-13);
 }
 
 TEST(NewtonSolverTest, StopReasons) {
