@@ -45,6 +45,19 @@ double Check(const ceres::CostFunction& cost,
   return relative;
 }
 
+// Check of the element's cost function at (ref, def) with every side
+// variable, the reference fixed and the deformed fixed.
+template <class Cost, int kVertices, class Element>
+void CheckEveryMode(const Element& element, std::vector<double>& ref,
+                    std::vector<double>& def, double tolerance) {
+  for (Mode mode :
+       {Mode::kBothVariable, Mode::kReferenceFixed, Mode::kDeformedFixed}) {
+    std::vector<double*> params;
+    auto cost = MakeCost<Cost, kVertices>(element, ref, def, mode, &params);
+    Check(*cost, params, tolerance);
+  }
+}
+
 // Coordinates of `vs`, translated so that the element's centroid sits at
 // (d, d, d), d its diameter. W is translation invariant, and Ceres' finite
 // differences step relative to |x|: this makes the steps relative to the
@@ -64,6 +77,20 @@ std::vector<double> Gather(const Positions& p, const std::vector<int>& vs) {
   return out;
 }
 
+// Check of the element's cost function on the vertices `vs` of the pair
+// (ref, def), gathered by Gather, both sides variable.
+template <class Cost, int kVertices, class Element>
+double CheckOnVertices(const Element& element, const Mesh& ref,
+                       const Mesh& def, const std::vector<int>& vs,
+                       double tolerance) {
+  std::vector<double> r = Gather(ref.positions, vs);
+  std::vector<double> d = Gather(def.positions, vs);
+  std::vector<double*> params;
+  auto cost = MakeCost<Cost, kVertices>(element, r, d, Mode::kBothVariable,
+                                        &params);
+  return Check(*cost, params, tolerance);
+}
+
 TEST(CostFunctionGradientTest, RandomTriangles) {
   std::mt19937 rng(42);
   std::uniform_real_distribution<double> u(-1, 1);
@@ -78,13 +105,7 @@ TEST(CostFunctionGradientTest, RandomTriangles) {
     if (trial % 5 == 0) {
       for (int i = 0; i < 9; ++i) def[i] = ref[i] + 1e-3 * u(rng);
     }
-    for (Mode mode :
-         {Mode::kBothVariable, Mode::kReferenceFixed, Mode::kDeformedFixed}) {
-      std::vector<double*> params;
-      auto cost =
-          MakeCost<MembraneCostFunction, 3>(membrane, ref, def, mode, &params);
-      Check(*cost, params, 1e-8);
-    }
+    CheckEveryMode<MembraneCostFunction, 3>(membrane, ref, def, 1e-8);
   }
 }
 
@@ -99,13 +120,7 @@ TEST(CostFunctionGradientTest, RandomEdgeFlaps) {
     std::vector<double> def(12);
     for (double& x : ref) x += 0.3 * u(rng);
     for (int i = 0; i < 12; ++i) def[i] = ref[i] + 0.4 * u(rng);
-    for (Mode mode :
-         {Mode::kBothVariable, Mode::kReferenceFixed, Mode::kDeformedFixed}) {
-      std::vector<double*> params;
-      auto cost =
-          MakeCost<BendingCostFunction, 4>(bending, ref, def, mode, &params);
-      Check(*cost, params, 1e-8);
-    }
+    CheckEveryMode<BendingCostFunction, 4>(bending, ref, def, 1e-8);
   }
 }
 
@@ -126,23 +141,17 @@ TEST(CostFunctionGradientTest, RealMeshes) {
     for (int f = 0; f < ref.num_faces(); f += stride) {
       const std::vector<int> vs = {ref.faces(f, 0), ref.faces(f, 1),
                                    ref.faces(f, 2)};
-      std::vector<double> r = Gather(ref.positions, vs);
-      std::vector<double> d = Gather(def.positions, vs);
-      std::vector<double*> params;
-      auto cost = MakeCost<MembraneCostFunction, 3>(
-          space.material.membrane(), r, d, Mode::kBothVariable, &params);
-      worst = std::max(worst, Check(*cost, params, 1e-8));
+      worst = std::max(worst, CheckOnVertices<MembraneCostFunction, 3>(
+                                  space.material.membrane(), ref, def, vs,
+                                  1e-8));
     }
     const auto& flaps = space.topology.interior_edges;
     for (size_t e = 0; e < flaps.size(); e += stride) {
       const auto& flap = flaps[e];
       const std::vector<int> vs = {flap.i, flap.j, flap.k, flap.l};
-      std::vector<double> r = Gather(ref.positions, vs);
-      std::vector<double> d = Gather(def.positions, vs);
-      std::vector<double*> params;
-      auto cost = MakeCost<BendingCostFunction, 4>(
-          space.material.bending(), r, d, Mode::kBothVariable, &params);
-      worst = std::max(worst, Check(*cost, params, 1e-8));
+      worst = std::max(worst, CheckOnVertices<BendingCostFunction, 4>(
+                                  space.material.bending(), ref, def, vs,
+                                  1e-8));
     }
   }
   std::cout << "largest relative Jacobian error on real meshes: " << worst
