@@ -20,8 +20,6 @@ struct Pair {
   const char* deformed;
 };
 
-class EnergyHessianTest : public ::testing::TestWithParam<Pair> {};
-
 // W[reference, deformed] and its derivatives as functions of the flattened
 // coordinates (vertex-major) of one side, the other side held.
 struct SideFunctions {
@@ -58,16 +56,21 @@ struct SideFunctions {
   }
 };
 
+// The mesh pair of the parameter, its shell space and W on it.
+class EnergyHessianTest : public ::testing::TestWithParam<Pair> {
+ protected:
+  const Mesh ref = testing::LoadData(GetParam().reference);
+  const Mesh def = testing::LoadData(GetParam().deformed);
+  const ShellSpace space = testing::MakeSpace(ref);
+  const SideFunctions w{space, ref.positions, def.positions};
+};
+
 // Gradient columns g_j as 1-vectors.
 testing::DerivativeColumn GradientColumns(const Eigen::VectorXd& g) {
   return [g](int j) { return Eigen::VectorXd::Constant(1, g(j)); };
 }
 
 TEST_P(EnergyHessianTest, GradientsMatchEnergyDifferences) {
-  const Mesh ref = testing::LoadData(GetParam().reference);
-  const Mesh def = testing::LoadData(GetParam().deformed);
-  const ShellSpace space = testing::MakeSpace(ref);
-  const SideFunctions w{space, ref.positions, def.positions};
   const std::vector<int> probes =
       testing::ProbeCoordinates(3 * ref.num_vertices(), 20, 3);
   for (ShellSide side : {ShellSide::kReference, ShellSide::kDeformed}) {
@@ -92,10 +95,6 @@ TEST_P(EnergyHessianTest, GradientsMatchEnergyDifferences) {
 }
 
 TEST_P(EnergyHessianTest, HessiansMatchGradientDifferences) {
-  const Mesh ref = testing::LoadData(GetParam().reference);
-  const Mesh def = testing::LoadData(GetParam().deformed);
-  const ShellSpace space = testing::MakeSpace(ref);
-  const SideFunctions w{space, ref.positions, def.positions};
   const std::vector<int> probes =
       testing::ProbeCoordinates(3 * ref.num_vertices(), 8, 5);
   const ShellSide sides[] = {ShellSide::kReference, ShellSide::kDeformed};
@@ -146,9 +145,6 @@ TEST_P(EnergyHessianTest, HessiansMatchGradientDifferences) {
 // The directional derivative of a gradient is the Hessian block times the
 // direction, for all four (gradient, moved) combinations.
 TEST_P(EnergyHessianTest, GradientDerivativeIsHessianTimesDirection) {
-  const Mesh ref = testing::LoadData(GetParam().reference);
-  const Mesh def = testing::LoadData(GetParam().deformed);
-  const ShellSpace space = testing::MakeSpace(ref);
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-1, 1);
   Eigen::VectorXd p(3 * ref.num_vertices());
