@@ -177,13 +177,30 @@ TEST(FrameLabelTest, IndexAndTime) {
   EXPECT_EQ(FrameLabel(0, 1), "0  t=0");
 }
 
-TEST(FrameLabelTest, EachFrameHasItsLabelStrip) {
+// A labelled film strip of `count` frames of the unit square in one row,
+// each frame_width x frame_height pixels: its options, image and layout.
+struct LabelledSquares {
+  LabelledSquares(int count, int frame_width, int frame_height)
+      : options(Labelled(Plain(count * frame_width, frame_height))),
+        frames(count, square.positions),
+        image(RenderFilmStrip(frames, square.faces, options)),
+        layout(LayoutFilmStrip(count, options)) {}
+  static RenderOptions Labelled(RenderOptions options) {
+    options.labels = true;
+    return options;
+  }
   const Mesh square = UnitSquareMesh();
-  RenderOptions options = Plain(3 * 200, 100);
-  options.labels = true;
-  const std::vector<Positions> frames(3, square.positions);
-  const RgbImage image = RenderFilmStrip(frames, square.faces, options);
-  const FilmStripLayout layout = LayoutFilmStrip(3, options);
+  const RenderOptions options;
+  const std::vector<Positions> frames;
+  const RgbImage image;
+  const FilmStripLayout layout;
+};
+
+TEST(FrameLabelTest, EachFrameHasItsLabelStrip) {
+  const LabelledSquares squares(3, 200, 100);
+  const RgbImage& image = squares.image;
+  const FilmStripLayout& layout = squares.layout;
+  RenderOptions options = squares.options;
   ASSERT_EQ(layout.text_scale, 1);  // (200 + 80) / 160
   ASSERT_EQ(layout.label_height, 12);
   EXPECT_EQ(image.height, 100 + 12);
@@ -209,20 +226,18 @@ TEST(FrameLabelTest, EachFrameHasItsLabelStrip) {
   EXPECT_NE(strips[1], strips[2]);
   // The pictures above are those of an unlabelled strip.
   options.labels = false;
-  const RgbImage plain = RenderFilmStrip(frames, square.faces, options);
+  const RgbImage plain =
+      RenderFilmStrip(squares.frames, squares.square.faces, options);
   EXPECT_EQ(plain.height, 100);
   EXPECT_TRUE(std::equal(plain.pixels.begin(), plain.pixels.end(),
                          image.pixels.begin()));
 }
 
 TEST(FrameLabelTest, NarrowFramesShowTheIndexOnly) {
-  const Mesh square = UnitSquareMesh();
-  RenderOptions options = Plain(6 * 30, 30);
-  options.labels = true;
-  const std::vector<Positions> frames(6, square.positions);
-  const RgbImage image = RenderFilmStrip(frames, square.faces, options);
-  const FilmStripLayout layout = LayoutFilmStrip(6, options);
-  const auto bg = Background(options);
+  const LabelledSquares squares(6, 30, 30);
+  const RgbImage& image = squares.image;
+  const FilmStripLayout& layout = squares.layout;
+  const auto bg = Background(squares.options);
   // "3" alone: 5 columns of ink, centred in the 30-pixel cell.
   const int top = layout.frame_height;
   const int left = layout.FrameLeft(3);
