@@ -338,11 +338,10 @@ TEST(ElementSetRegressionTest, FingerMatchesThePreElementSetCode) {
 }
 
 TEST(ElementSetRegressionTest, PlateWithoutBendingMatchesThePreElementSetCode) {
-  const Mesh ref = testing::LoadData("plate/plate121.ply");
-  const Mesh def = testing::LoadData("plate/plate121_rolledA.ply");
-  ShellMaterial material;
-  material.eta = 0;
-  const ShellSpace space = testing::MakeSpace(ref, material);
+  ShellMaterial without_bending;
+  without_bending.eta = 0;
+  const auto [ref, def, space] = testing::LoadPair(
+      "plate/plate121.ply", "plate/plate121_rolledA.ply", without_bending);
   const DeformationEnergy e =
       EvaluateDeformationEnergy(space, ref.positions, def.positions);
   EXPECT_REL(e.membrane, 0.0004041208844484317);

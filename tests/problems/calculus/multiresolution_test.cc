@@ -104,11 +104,9 @@ TEST(ProlongationTest, IdentityAndRigidMotionsAreReproducedExactly) {
 // single-level optimum: the same E_K to 1e-8 and the same shapes to 1e-6
 // (relative, up to a rigid motion), with the masked vertices in place.
 TEST(MultiresolutionGeodesicTest, EqualsTheSingleLevelOptimum) {
-  const Mesh a = testing::LoadData("plate/plate121.ply");
-  const Mesh b = testing::LoadData("plate/plate121_rolledA.ply");
-  ShellMaterial material;
-  material.eta = 0.01;
-  const ShellSpace space = testing::MakeSpace(a, material);
+  // The default material: eta = 0.01.
+  const auto [a, b, space] =
+      testing::LoadPair("plate/plate121.ply", "plate/plate121_rolledA.ply");
   for (bool masked : {false, true}) {
     GeodesicInput input = GeodesicInput::Between(a.positions, b.positions, 4);
     if (masked) {

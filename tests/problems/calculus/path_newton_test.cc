@@ -83,11 +83,10 @@ double RelativeDifference(const SparseMatrix& a, const SparseMatrix& b) {
 }
 
 TEST(PathHessianAssemblerTest, MatchesEnergyHessianBlocksWithMask) {
-  const Mesh a = testing::LoadData("finger/finger0.ply");
-  const Mesh b = testing::LoadData("finger/finger1.ply");
   ShellMaterial material;
   material.eta = 0.001;
-  const ShellSpace space = testing::MakeSpace(a, material);
+  const auto [a, b, space] =
+      testing::LoadPair("finger/finger0.ply", "finger/finger1.ply", material);
   const auto mask =
       ReadMask(testing::DataPath("finger/finger_mask.txt"), a.num_vertices());
   const int K = 4;
