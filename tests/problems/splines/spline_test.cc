@@ -45,6 +45,16 @@ class SplineTest : public ::testing::Test {
     spec.sigma = 0.3;
     return spec;
   }
+  // An interpolating spline, K = 4, through the three plates at 0, 2, 4
+  // (held), started from the piecewise-linear path; shapes 1 and 3 free.
+  SplineSpec InterpolatingSpec() const {
+    SplineSpec spec;
+    spec.steps = 4;
+    spec.initial = PiecewiseLinearPath(
+        {a_.positions, b_.positions, c_.positions}, {0, 2, 4}, 4, false);
+    spec.is_free = {0, 1, 0, 1, 0};
+    return spec;
+  }
   Mesh a_, b_, c_;
   ShellSpace space_;
 };
@@ -91,12 +101,7 @@ void CheckGradient(const SplineObjective& objective, unsigned seed) {
 }
 
 TEST_F(SplineTest, AdjointGradientMatchesCentralDifferences) {
-  SplineSpec spec;
-  spec.steps = 4;
-  spec.initial = PiecewiseLinearPath({a_.positions, b_.positions, c_.positions},
-                                     {0, 2, 4}, 4, false);
-  spec.is_free = {0, 1, 0, 1, 0};
-  CheckGradient(SplineObjective(space_, spec, TightInner()), 1);
+  CheckGradient(SplineObjective(space_, InterpolatingSpec(), TightInner()), 1);
 }
 
 TEST_F(SplineTest, RegressionAndPeriodicGradientsMatchCentralDifferences) {
@@ -132,11 +137,7 @@ TEST_F(SplineTest, DegeneratePointIsRejectedWithoutAnException) {
 // warm one where the two differed (a cold LM midpoint had been accepted at |G|
 // ~ 1e-2).
 TEST_F(SplineTest, WarmStartedEvaluationMatchesColdEvaluation) {
-  SplineSpec spec;
-  spec.steps = 4;
-  spec.initial = PiecewiseLinearPath({a_.positions, b_.positions, c_.positions},
-                                     {0, 2, 4}, 4, false);
-  spec.is_free = {0, 1, 0, 1, 0};
+  const SplineSpec spec = InterpolatingSpec();
   const SplineObjective warm(space_, spec, TightInner());
   std::vector<double> x = warm.InitialParameters();
   double f = 0;
