@@ -324,6 +324,28 @@ inline std::string WriteBadMesh(const std::string& dir, const BadMeshCase& c,
   return path;
 }
 
+// One written file of the table: its defect, format and path.
+struct BadMeshFile {
+  BadMeshCase defect;
+  MeshFormat format;
+  std::string path;
+};
+
+// Every defect of BadMeshCases() named `only` (all of them if empty) in
+// every format it applies to, written into `dir` (WriteBadMesh), in the
+// table's order.
+inline std::vector<BadMeshFile> WriteBadMeshFiles(
+    const std::string& dir, const std::string& only = "") {
+  std::vector<BadMeshFile> files;
+  for (const BadMeshCase& c : BadMeshCases()) {
+    if (!only.empty() && c.name != only) continue;
+    for (MeshFormat format : c.formats) {
+      files.push_back({c, format, WriteBadMesh(dir, c, format)});
+    }
+  }
+  return files;
+}
+
 }  // namespace shellspace::testing
 
 #endif  // SHELLSPACE_TESTS_IO_BAD_MESH_FILES_H_

@@ -40,23 +40,21 @@ std::string ReadError(const std::string& path, bool read_only = false) {
 TEST(MeshReaderTest, EveryDefectInEveryFormatIsOneLineNamingFileAndElement) {
   const std::string dir = testing::TempDir();
   int checked = 0;
-  for (const testing::BadMeshCase& c : testing::BadMeshCases()) {
-    for (MeshFormat format : c.formats) {
-      const std::string path = testing::WriteBadMesh(dir, c, format);
-      SCOPED_TRACE(path);
-      if (c.degenerate_only) {
-        EXPECT_EQ(ReadError(path, /*read_only=*/true), "");
-      }
-      const std::string message = ReadError(path);
-      ASSERT_FALSE(message.empty()) << "accepted";
-      EXPECT_EQ(message.rfind(path + ": ", 0), 0u) << message;
-      EXPECT_EQ(message.find('\n'), std::string::npos) << message;
-      for (const std::string& word : c.expected) {
-        EXPECT_NE(message.find(word), std::string::npos)
-            << "'" << word << "' not in: " << message;
-      }
-      ++checked;
+  for (const testing::BadMeshFile& file : testing::WriteBadMeshFiles(dir)) {
+    const std::string& path = file.path;
+    SCOPED_TRACE(path);
+    if (file.defect.degenerate_only) {
+      EXPECT_EQ(ReadError(path, /*read_only=*/true), "");
     }
+    const std::string message = ReadError(path);
+    ASSERT_FALSE(message.empty()) << "accepted";
+    EXPECT_EQ(message.rfind(path + ": ", 0), 0u) << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    for (const std::string& word : file.defect.expected) {
+      EXPECT_NE(message.find(word), std::string::npos)
+          << "'" << word << "' not in: " << message;
+    }
+    ++checked;
   }
   // 21 defects; the formats each applies to (bad_mesh_files.h).
   EXPECT_EQ(checked, 70);

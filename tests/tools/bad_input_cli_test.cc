@@ -18,7 +18,6 @@
 namespace shellspace {
 namespace {
 
-using testing::MeshFormat;
 
 // Every file and directory under `dir` (recursively, `dir` included):
 // type, size, modification time (ns) and, for a file, a hash of its
@@ -74,36 +73,32 @@ void ExpectRejected(const std::string& args, const std::string& name,
 TEST(BadInputCliTest, EveryBadMeshIsRejectedWithOneLine) {
   const std::string dir = testing::TempDir();
   int runs = 0;
-  for (const testing::BadMeshCase& c : testing::BadMeshCases()) {
-    for (MeshFormat format : c.formats) {
-      const std::string path = testing::WriteBadMesh(dir, c, format);
-      ExpectRejected("energy --reference " + path + " --deformed " + path, path,
-                     dir);
-      ++runs;
-    }
+  for (const testing::BadMeshFile& file : testing::WriteBadMeshFiles(dir)) {
+    ExpectRejected("energy --reference " + file.path + " --deformed " +
+                       file.path,
+                   file.path, dir);
+    ++runs;
   }
   // The isolated vertex (which used to abort the solvers with a CHECK) in
   // every format through the verbs that solve.
   std::ofstream(dir + "/mask.txt") << "0\n1\n";
-  for (const testing::BadMeshCase& c : testing::BadMeshCases()) {
-    if (c.name != "isolated_vertex") continue;
-    for (MeshFormat format : c.formats) {
-      const std::string path = testing::WriteBadMesh(dir, c, format);
-      ExpectRejected("geodesic --quiet --steps 2 --start " + path + " --end " +
-                         path + " --output " + dir + "/out",
-                     path, dir);
-      ExpectRejected("mean --quiet --inputs " + path + "," + path +
-                         " --output " + dir + "/mean.ply",
-                     path, dir);
-      ExpectRejected("shoot --quiet --steps 2 --first " + path + " --second " +
-                         path + " --output " + dir + "/out",
-                     path, dir);
-      ExpectRejected("deform --quiet --reference " + path + " --mask " + dir +
-                         "/mask.txt --targets " + path + " --output " + dir +
-                         "/deformed.ply",
-                     path, dir);
-      runs += 4;
-    }
+  for (const testing::BadMeshFile& file :
+       testing::WriteBadMeshFiles(dir, "isolated_vertex")) {
+    const std::string& path = file.path;
+    ExpectRejected("geodesic --quiet --steps 2 --start " + path + " --end " +
+                       path + " --output " + dir + "/out",
+                   path, dir);
+    ExpectRejected("mean --quiet --inputs " + path + "," + path +
+                       " --output " + dir + "/mean.ply",
+                   path, dir);
+    ExpectRejected("shoot --quiet --steps 2 --first " + path + " --second " +
+                       path + " --output " + dir + "/out",
+                   path, dir);
+    ExpectRejected("deform --quiet --reference " + path + " --mask " + dir +
+                       "/mask.txt --targets " + path + " --output " + dir +
+                       "/deformed.ply",
+                   path, dir);
+    runs += 4;
   }
   EXPECT_FALSE(std::filesystem::exists(dir + "/out"));
   // 70 energy runs on the table's files, 16 solver runs (geodesic, mean,
