@@ -383,18 +383,28 @@ void CheckSecondDerivatives() {
                                            1e-4 * gradient.norm()),
                   all, 1e-6),
               1e-6);
-    // Hessian: f = the active side's gradient, columns of d_grad.
-    const testing::VectorFunction grad_fn = [&](const Eigen::VectorXd& x) {
-      const ElementSecondDerivatives<kV> d = derivatives(x);
-      return active_ref ? Eigen::VectorXd(d.grad_reference)
+    // The gradient on the reference side (rows_ref) or the deformed side as
+    // a function of the active side's coordinates, and its derivative by
+    // them at x0: the block d_grad_reference or d_grad_deformed of d0.
+    auto gradient_of = [&](bool rows_ref) -> testing::VectorFunction {
+      return [&derivatives, rows_ref](const Eigen::VectorXd& x) {
+        const ElementSecondDerivatives<kV> d = derivatives(x);
+        return rows_ref ? Eigen::VectorXd(d.grad_reference)
                         : Eigen::VectorXd(d.grad_deformed);
+      };
     };
-    const Eigen::MatrixXd hessian =
-        active_ref ? Eigen::MatrixXd(d0.d_grad_reference)
-                   : Eigen::MatrixXd(d0.d_grad_deformed);
-    const testing::DerivativeColumn h_column = [&](int j) {
-      return Eigen::VectorXd(hessian.col(j));
+    auto derivative_block = [&](bool rows_ref) {
+      return rows_ref ? Eigen::MatrixXd(d0.d_grad_reference)
+                      : Eigen::MatrixXd(d0.d_grad_deformed);
     };
+    auto columns =
+        [](const Eigen::MatrixXd& block) -> testing::DerivativeColumn {
+      return [&block](int j) { return Eigen::VectorXd(block.col(j)); };
+    };
+    // Hessian: f = the active side's gradient, columns of d_grad.
+    const testing::VectorFunction grad_fn = gradient_of(active_ref);
+    const Eigen::MatrixXd hessian = derivative_block(active_ref);
+    const testing::DerivativeColumn h_column = columns(hessian);
     const double hessian_error =
         testing::CentralDifferenceError(grad_fn, x0, h_column, all, 1e-5);
     EXPECT_LT(hessian_error, 1e-6) << "interior edges " << kInterior;
@@ -407,17 +417,9 @@ void CheckSecondDerivatives() {
                   all, 1e-5),
               1e-5);
     // The mixed block (rows the other side's gradient, columns active).
-    const testing::VectorFunction other_grad = [&](const Eigen::VectorXd& x) {
-      const ElementSecondDerivatives<kV> d = derivatives(x);
-      return active_ref ? Eigen::VectorXd(d.grad_deformed)
-                        : Eigen::VectorXd(d.grad_reference);
-    };
-    const Eigen::MatrixXd mixed =
-        active_ref ? Eigen::MatrixXd(d0.d_grad_deformed)
-                   : Eigen::MatrixXd(d0.d_grad_reference);
-    const testing::DerivativeColumn m_column = [&](int j) {
-      return Eigen::VectorXd(mixed.col(j));
-    };
+    const testing::VectorFunction other_grad = gradient_of(!active_ref);
+    const Eigen::MatrixXd mixed = derivative_block(!active_ref);
+    const testing::DerivativeColumn m_column = columns(mixed);
     EXPECT_LT(
         testing::CentralDifferenceError(other_grad, x0, m_column, all, 1e-5),
         1e-6);
