@@ -1053,6 +1053,16 @@ auto WithMaterialAndSolverArgs(Result (*f)(Params...)) {
 #define SHELLSPACE_SOLVER_ARGS                                  \
   py::arg("tolerance") = 1e-8, py::arg("max_iterations") = 200, \
   py::arg("threads") = 2, py::arg("quiet") = false
+// The first arguments of the verbs that solve a geodesic (geodesic, log).
+#define SHELLSPACE_GEODESIC_ARGS                                        \
+  py::arg("start"), py::arg("end"), py::arg("F"), py::arg("steps") = 8, \
+      py::arg("mask") = py::none(), py::arg("multires") = "auto",       \
+      py::arg("linear_solver") = "auto", py::arg("lm") = "auto"
+// The files of the verbs that write a path's frames: the frames' directory,
+// a film strip (PNG), a glTF 2.0 animation (.glb); none by default.
+#define SHELLSPACE_FRAME_OUTPUT_ARGS                              \
+  py::arg("output") = py::none(), py::arg("png") = py::none(), \
+      py::arg("gltf") = py::none()
 
 PYBIND11_MODULE(shellspace, m) {
   using namespace shellspace;
@@ -1126,14 +1136,9 @@ PYBIND11_MODULE(shellspace, m) {
 
   m.def(
       "geodesic",
-      WithMaterialAndSolverArgs(&GeodesicPy),
-      py::arg("start"), py::arg("end"), py::arg("F"), py::arg("steps") = 8,
-      py::arg("mask") = py::none(), py::arg("multires") = "auto",
-      py::arg("linear_solver") = "auto", py::arg("lm") = "auto",
-      py::arg("report") = false,
-      py::arg("output") = py::none(), py::arg("png") = py::none(),
-      py::arg("gltf") = py::none(), SHELLSPACE_MATERIAL_ARGS,
-      SHELLSPACE_SOLVER_ARGS,
+      WithMaterialAndSolverArgs(&GeodesicPy), SHELLSPACE_GEODESIC_ARGS,
+      py::arg("report") = false, SHELLSPACE_FRAME_OUTPUT_ARGS,
+      SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
       "Discrete geodesic from start to end in `steps` steps: returns (path, "
       "summary). mask: vertex indices or a mask file held at their linear "
       "positions. lm: who runs the LM stages, 'auto' | 'ceres' | 'engine' "
@@ -1141,12 +1146,9 @@ PYBIND11_MODULE(shellspace, m) {
       "film strip.");
   m.def(
       "log",
-      WithMaterialAndSolverArgs(&LogPy),
-      py::arg("start"), py::arg("end"), py::arg("F"), py::arg("steps") = 8,
-      py::arg("mask") = py::none(), py::arg("multires") = "auto",
-      py::arg("linear_solver") = "auto", py::arg("lm") = "auto",
-      py::arg("output") = py::none(),
-      SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
+      WithMaterialAndSolverArgs(&LogPy), SHELLSPACE_GEODESIC_ARGS,
+      py::arg("output") = py::none(), SHELLSPACE_MATERIAL_ARGS,
+      SHELLSPACE_SOLVER_ARGS,
       "LOG_K(start -> end) = K (s_1 - s_0) of the discrete geodesic: returns "
       "(log #V x 3, summary). output: write start + log (as the CLI).");
   m.def(
@@ -1154,8 +1156,7 @@ PYBIND11_MODULE(shellspace, m) {
       WithMaterialAndSolverArgs(&ShootPy),
       py::arg("first"), py::arg("second"), py::arg("F"), py::arg("steps") = 8,
       py::arg("backward") = false, py::arg("mask") = py::none(),
-      py::arg("output") = py::none(), py::arg("png") = py::none(),
-      py::arg("gltf") = py::none(), SHELLSPACE_MATERIAL_ARGS,
+      SHELLSPACE_FRAME_OUTPUT_ARGS, SHELLSPACE_MATERIAL_ARGS,
       SHELLSPACE_SOLVER_ARGS,
       "Geodesic shooting (EXP steps) from (first, second): returns (path, "
       "summary).");
@@ -1164,8 +1165,7 @@ PYBIND11_MODULE(shellspace, m) {
       WithMaterialAndSolverArgs(&TransportPy),
       py::arg("path"), py::arg("variation"), py::arg("F"),
       py::arg("epsilon") = 1.0, py::arg("mask") = py::none(),
-      py::arg("output") = py::none(), py::arg("png") = py::none(),
-      py::arg("gltf") = py::none(), SHELLSPACE_MATERIAL_ARGS,
+      SHELLSPACE_FRAME_OUTPUT_ARGS, SHELLSPACE_MATERIAL_ARGS,
       SHELLSPACE_SOLVER_ARGS,
       "Schild's-ladder transport of variation - path[0] along path: returns "
       "(shapes s_k + epsilon xi_k, summary).");
@@ -1174,8 +1174,7 @@ PYBIND11_MODULE(shellspace, m) {
       WithMaterialAndSolverArgs(&SplinePy),
       py::arg("keyframes"), py::arg("at"), py::arg("F"), py::arg("steps") = 8,
       py::arg("method") = "nonlinear", py::arg("periodic") = false,
-      py::arg("output") = py::none(), py::arg("png") = py::none(),
-      py::arg("gltf") = py::none(), SHELLSPACE_MATERIAL_ARGS,
+      SHELLSPACE_FRAME_OUTPUT_ARGS, SHELLSPACE_MATERIAL_ARGS,
       SHELLSPACE_SOLVER_ARGS,
       "Riemannian spline through keyframes at path indices `at`: returns "
       "(path, summary).");
@@ -1183,8 +1182,7 @@ PYBIND11_MODULE(shellspace, m) {
       "regress",
       WithMaterialAndSolverArgs(&RegressPy),
       py::arg("inputs"), py::arg("at"), py::arg("F"), py::arg("steps") = 8,
-      py::arg("sigma") = 1.0, py::arg("output") = py::none(),
-      py::arg("png") = py::none(), py::arg("gltf") = py::none(),
+      py::arg("sigma") = 1.0, SHELLSPACE_FRAME_OUTPUT_ARGS,
       SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
       "Shape regression (data term + sigma spline energy): returns (path, "
       "summary).");
