@@ -74,6 +74,14 @@ MultiresolutionResult SolveGeodesicFromFlags(const ShellSpace& space,
                                       MultiresFromFlags(space.num_vertices));
 }
 
+RunPaths GeodesicInputPaths() {
+  RunPaths paths;
+  paths.InputFile("start", FLAGS_start)
+      .InputFile("end", FLAGS_end)
+      .InputFile("mask", FLAGS_mask);
+  return paths;
+}
+
 GeodesicOfFlags SolveGeodesicOfFlags(const std::string& verb) {
   const auto [start, end] = LoadStartEndFromFlags();
   CheckMemory(GeodesicBytes(start.mesh.num_vertices(), FLAGS_steps),

@@ -9,6 +9,7 @@
 #include "shellspace/problems/calculus/multiresolution.h"
 #include "shellspace/reports/path_reports.h"
 #include "shellspace/reports/solve_choices.h"
+#include "shellspace/tools/run_paths.h"
 #include "shellspace/tools/shell_inputs.h"
 #include "shellspace/tools/verb_flags.h"
 
@@ -54,6 +55,10 @@ const char* LinearSolverName(PathLinearSolver solver);
 MultiresolutionResult SolveGeodesicFromFlags(const ShellSpace& space,
                                              const GeodesicInput& input,
                                              const SolverSettings& settings);
+
+// The input files of the verbs that solve geodesics (--start, --end,
+// --mask), to which the verb adds its outputs before RunPaths::Check.
+RunPaths GeodesicInputPaths();
 
 // The geodesic of the flags of `verb` (geodesic, log): --start, --end,
 // --steps (checked against kGeodesicModel's memory estimate first), --mask,

@@ -138,12 +138,7 @@ int RunShoot() {
 
 int RunLog() {
   const auto clock = std::chrono::steady_clock::now();
-  RunPaths()
-      .InputFile("start", FLAGS_start)
-      .InputFile("end", FLAGS_end)
-      .InputFile("mask", FLAGS_mask)
-      .OutputFile("output", FLAGS_output)
-      .Check();
+  GeodesicInputPaths().OutputFile("output", FLAGS_output).Check();
   const auto [start, space, multires] = SolveGeodesicOfFlags("log");
   const GeodesicResult& geodesic = multires.geodesic;
   const Positions log = LogOfGeodesic(geodesic.path);

@@ -45,10 +45,7 @@ FlagTable GeodesicFlags() {
 
 int RunGeodesic() {
   const auto clock = std::chrono::steady_clock::now();
-  RunPaths()
-      .InputFile("start", FLAGS_start)
-      .InputFile("end", FLAGS_end)
-      .InputFile("mask", FLAGS_mask)
+  GeodesicInputPaths()
       .OutputDirectory("output", FLAGS_output)
       .OutputFile("png", FLAGS_png)
       .Check();
