@@ -16,19 +16,10 @@
 #include "shellspace/geometry/topology.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/geodesic.h"
-#include "shellspace/tests/testing/cli_output.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "shellspace/tests/tools/cli_test_support.h"
 
 namespace shellspace {
 namespace {
-
-using testing::DataPath;
-using testing::Number;
-using testing::RunCli;
-using testing::RunOk;
-
-const std::string kSquare = testing::Square4();
-const std::string kBent = testing::Square4Bent();
 
 ShellMaterial Material(BendingModel model, double eta) {
   ShellMaterial material;

@@ -16,25 +16,10 @@
 
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/geodesic.h"
-#include "shellspace/tests/testing/cli_output.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "shellspace/tests/tools/cli_test_support.h"
 
 namespace shellspace {
 namespace {
-
-using testing::Bool;
-using testing::DataPath;
-using testing::Frames;
-using testing::FramesAndSummary;
-using testing::Number;
-using testing::Numbers;
-using testing::RunCli;
-using testing::RunOk;
-using testing::Slurp;
-using testing::TempDir;
-
-const std::string kSquare = testing::Square4();
-const std::string kBent = testing::Square4Bent();
 
 // Sum of every "iterations" inside the "stages" array.
 int StageIterations(const std::string& json) {

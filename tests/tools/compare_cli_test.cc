@@ -9,17 +9,10 @@
 #include "shellspace/io/frame_sequence.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/shape_comparison.h"
-#include "shellspace/tests/testing/cli_output.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "shellspace/tests/tools/cli_test_support.h"
 
 namespace shellspace {
 namespace {
-
-using testing::Number;
-using testing::RunCli;
-
-const std::string kSquare = testing::Square4();
-const std::string kBent = testing::Square4Bent();
 
 int Lines(const std::string& text) {
   return static_cast<int>(std::count(text.begin(), text.end(), '\n'));

@@ -9,20 +9,13 @@
 #include <utility>
 #include <vector>
 
-#include "shellspace/tests/testing/cli_output.h"
 #include "shellspace/tests/testing/render_fixtures.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "shellspace/tests/tools/cli_test_support.h"
 
 namespace shellspace {
 namespace {
 
 using testing::PngSize;
-
-using testing::DataPath;
-using testing::Number;
-using testing::RunCli;
-using testing::Slurp;
-using testing::TempDir;
 
 const std::string kCactus =
     DataPath("cactus/cactus0.ply") + "," + DataPath("cactus/cactus9.ply");

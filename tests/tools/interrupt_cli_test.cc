@@ -19,18 +19,10 @@
 
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/geodesic.h"
-#include "shellspace/tests/testing/cli_output.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "shellspace/tests/tools/cli_test_support.h"
 
 namespace shellspace {
 namespace {
-
-using testing::DataPath;
-using testing::DirectoryListing;
-using testing::FramesAndSummary;
-using testing::Number;
-using testing::Slurp;
-using testing::TempDir;
 
 const std::string kPlate = DataPath("plate/plate121.ply");
 const std::string kRolled = DataPath("plate/plate121_rolledA.ply");

@@ -11,20 +11,10 @@
 #include <iostream>
 #include <sstream>
 
-#include "shellspace/tests/testing/cli_output.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "shellspace/tests/tools/cli_test_support.h"
 
 namespace shellspace {
 namespace {
-
-using testing::DirectoryListing;
-using testing::FramesAndSummary;
-using testing::RunCli;
-using testing::Slurp;
-using testing::TempDir;
-
-const std::string kSquare = testing::Square4();
-const std::string kBent = testing::Square4Bent();
 
 std::string Geodesic(int steps, const std::string& output) {
   return "geodesic --quiet --steps " + std::to_string(steps) + " --start " +

@@ -12,16 +12,10 @@
 #include "shellspace/cost_functions/shell/relative_bending_weight.h"
 #include "shellspace/io/frame_sequence.h"
 #include "shellspace/io/mesh_io.h"
-#include "shellspace/tests/testing/cli_output.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "shellspace/tests/tools/cli_test_support.h"
 
 namespace shellspace {
 namespace {
-
-using testing::DataPath;
-using testing::Number;
-using testing::RunOk;
-using testing::TempDir;
 
 constexpr double kScale = 1000;
 

@@ -13,20 +13,10 @@
 #include <vector>
 
 #include "shellspace/io/mesh_io.h"
-#include "shellspace/tests/testing/cli_output.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "shellspace/tests/tools/cli_test_support.h"
 
 namespace shellspace {
 namespace {
-
-using testing::DataPath;
-using testing::Number;
-using testing::Numbers;
-using testing::RunCli;
-using testing::TempDir;
-
-const std::string kSquare = testing::Square4();
-const std::string kBent = testing::Square4Bent();
 
 bool Has(const std::string& text, const std::string& part) {
   return text.find(part) != std::string::npos;
