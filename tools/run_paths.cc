@@ -76,10 +76,15 @@ void CheckParentWritable(const std::string& flag, const std::string& path) {
 
 }  // namespace
 
+RunPaths& RunPaths::Add(std::vector<Entry>* entries, const std::string& flag,
+                        const std::string& path) {
+  if (!path.empty()) entries->push_back({flag, path});
+  return *this;
+}
+
 RunPaths& RunPaths::InputFile(const std::string& flag,
                               const std::string& path) {
-  if (!path.empty()) input_files_.push_back({flag, path});
-  return *this;
+  return Add(&input_files_, flag, path);
 }
 
 RunPaths& RunPaths::InputList(const std::string& flag,
@@ -110,14 +115,12 @@ RunPaths& RunPaths::InputFrames(const std::string& flag,
 
 RunPaths& RunPaths::OutputFile(const std::string& flag,
                                const std::string& path) {
-  if (!path.empty()) output_files_.push_back({flag, path});
-  return *this;
+  return Add(&output_files_, flag, path);
 }
 
 RunPaths& RunPaths::OutputDirectory(const std::string& flag,
                                     const std::string& path) {
-  if (!path.empty()) output_dirs_.push_back({flag, path});
-  return *this;
+  return Add(&output_dirs_, flag, path);
 }
 
 void RunPaths::Check() const {

@@ -35,6 +35,11 @@ class RunPaths {
   struct Entry {
     std::string flag, path;
   };
+  // Appends (flag, path) to `entries` unless `path` is empty (the flag is
+  // not set).
+  RunPaths& Add(std::vector<Entry>* entries, const std::string& flag,
+                const std::string& path);
+
   std::vector<Entry> input_files_, input_dirs_, output_files_, output_dirs_;
 };
 
