@@ -199,6 +199,10 @@ bool IsIntegerType(PlyType t) {
   return t != PlyType::kFloat32 && t != PlyType::kFloat64;
 }
 
+bool IsSignedIntegerType(PlyType t) {
+  return t == PlyType::kInt8 || t == PlyType::kInt16 || t == PlyType::kInt32;
+}
+
 int TypeSize(PlyType t) {
   switch (t) {
     case PlyType::kInt8:
@@ -522,37 +526,21 @@ class BinaryCursor {
     pos_ += size;
     uint64_t u = 0;
     for (int i = size - 1; i >= 0; --i) u = (u << 8) | raw[i];
-    long long value = 0;
-    switch (type) {
-      case PlyType::kInt8:
-        value = static_cast<int8_t>(u);
-        break;
-      case PlyType::kUint8:
-        value = static_cast<uint8_t>(u);
-        break;
-      case PlyType::kInt16:
-        value = static_cast<int16_t>(u);
-        break;
-      case PlyType::kUint16:
-        value = static_cast<uint16_t>(u);
-        break;
-      case PlyType::kInt32:
-        value = static_cast<int32_t>(u);
-        break;
-      case PlyType::kUint32:
-        value = static_cast<uint32_t>(u);
-        break;
-      case PlyType::kFloat32: {
-        float f;
-        const uint32_t u32 = static_cast<uint32_t>(u);
-        std::memcpy(&f, &u32, 4);
-        return f;
-      }
-      case PlyType::kFloat64: {
-        double d;
-        std::memcpy(&d, &u, 8);
-        return d;
-      }
+    if (type == PlyType::kFloat32) {
+      float f;
+      const uint32_t u32 = static_cast<uint32_t>(u);
+      std::memcpy(&f, &u32, 4);
+      return f;
+    }
+    if (type == PlyType::kFloat64) {
+      double d;
+      std::memcpy(&d, &u, 8);
+      return d;
+    }
+    // An integer of `size` (at most 4) bytes, two's complement if signed.
+    long long value = static_cast<long long>(u);
+    if (IsSignedIntegerType(type) && (u >> (8 * size - 1)) != 0) {
+      value -= 1LL << (8 * size);
     }
     if (integer) *integer = value;
     return static_cast<double>(value);

@@ -130,6 +130,55 @@ TEST(MeshReaderTest, BinaryPlyBigEndianFloatAndExtraProperties) {
       << ReadError(short_path);
 }
 
+TEST(MeshReaderTest, BinaryPlyIntegerCoordinatesOfEverySize) {
+  // Little-endian coordinates as (u)char, (u)short and (u)int: the signed
+  // types two's complement, the unsigned ones as they are.
+  struct Case {
+    const char* types[3];
+    long long vertices[3][3];
+  };
+  const Case cases[] = {
+      {{"char", "short", "int"},
+       {{-1, -300, -70000},
+        {127, 32767, 2147483647},
+        {-128, -32768, -2147483647 - 1}}},
+      {{"uchar", "ushort", "uint"},
+       {{255, 65535, 4294967295}, {0, 0, 0}, {128, 32768, 2147483648}}},
+  };
+  for (const Case& c : cases) {
+    std::string bytes = "ply\nformat binary_little_endian 1.0\nelement vertex 3\n";
+    const char* axes[3] = {"x", "y", "z"};
+    for (int k = 0; k < 3; ++k) {
+      bytes += std::string("property ") + c.types[k] + " " + axes[k] + "\n";
+    }
+    bytes +=
+        "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+    const int sizes[3] = {1, 2, 4};
+    for (const auto& v : c.vertices) {
+      for (int k = 0; k < 3; ++k) {
+        for (int i = 0; i < sizes[k]; ++i) {
+          bytes += static_cast<char>((static_cast<unsigned long long>(v[k]) >>
+                                      (8 * i)) & 0xff);
+        }
+      }
+    }
+    bytes += '\x03';
+    for (int index = 0; index < 3; ++index) {
+      bytes += std::string(1, static_cast<char>(index)) + std::string(3, '\0');
+    }
+    const Mesh mesh = ReadMesh(
+        Write(testing::TempDir() + "/" + c.types[0] + ".ply", bytes));
+    ASSERT_EQ(mesh.num_vertices(), 3) << c.types[0];
+    for (int v = 0; v < 3; ++v) {
+      for (int k = 0; k < 3; ++k) {
+        EXPECT_EQ(mesh.positions(v, k),
+                  static_cast<double>(c.vertices[v][k]))
+            << c.types[k] << " at vertex " << v;
+      }
+    }
+  }
+}
+
 TEST(MeshReaderTest, ObjVariants) {
   const std::string dir = testing::TempDir();
   // v/vt/vn face tokens, negative indices, comments, ignored statements.
