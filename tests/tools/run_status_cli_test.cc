@@ -39,6 +39,15 @@ void ExpectOneNotConvergedLine(const std::string& err, const std::string& verb,
   EXPECT_TRUE(Has(lines[0], what)) << err;
 }
 
+// Runs `mean --quiet --json` of kSquare and kBent with the flags `extra`,
+// writing DIR/m.ply; returns the exit code, stdout in `out`, stderr in `err`.
+int RunMean(const std::string& dir, const std::string& extra, std::string* out,
+            std::string* err) {
+  return RunCli("mean --quiet --json --inputs " + kSquare + "," + kBent +
+                    extra + " --output " + dir + "/m.ply",
+                out, err);
+}
+
 TEST(RunStatusCliTest, GeodesicCappedAtOneIterationExitsFour) {
   const std::string dir = TempDir();
   const std::string args = "geodesic --quiet --json --steps 4 --start " +
@@ -68,11 +77,7 @@ TEST(RunStatusCliTest, GeodesicCappedAtOneIterationExitsFour) {
 TEST(RunStatusCliTest, MeanCappedAtOneIterationSaysMaxIterations) {
   const std::string dir = TempDir();
   std::string out, err;
-  EXPECT_EQ(RunCli("mean --quiet --json --inputs " + kSquare + "," + kBent +
-                       " --max_iterations 1 --output " + dir + "/m.ply",
-                   &out, &err),
-            4)
-      << err;
+  EXPECT_EQ(RunMean(dir, " --max_iterations 1", &out, &err), 4) << err;
   ExpectOneNotConvergedLine(err, "mean", "(max iterations)");
   EXPECT_TRUE(Has(out, "\"converged\": false")) << out;
   EXPECT_TRUE(Has(out, "\"termination\": \"max iterations\"")) << out;
@@ -87,11 +92,7 @@ TEST(RunStatusCliTest, MeanCappedAtOneIterationSaysMaxIterations) {
 TEST(RunStatusCliTest, ConvergedRunsExitZeroAndSayConverged) {
   const std::string dir = TempDir();
   std::string out, err;
-  EXPECT_EQ(RunCli("mean --quiet --json --inputs " + kSquare + "," + kBent +
-                       " --output " + dir + "/m.ply",
-                   &out, &err),
-            0)
-      << err;
+  EXPECT_EQ(RunMean(dir, "", &out, &err), 0) << err;
   EXPECT_TRUE(Has(out, "\"converged\": true")) << out;
   EXPECT_TRUE(Has(out, "\"termination\": \"converged\"")) << out;
   EXPECT_EQ(err, "");
