@@ -21,6 +21,13 @@
 namespace shellspace {
 namespace {
 
+// `geodesic --start kSquare --end kBent --output OUTPUT`, for the caller to
+// append further flags.
+std::string GeodesicInto(const std::string& output) {
+  return "geodesic --start " + kSquare + " --end " + kBent + " --output " +
+         output;
+}
+
 // Sum of every "iterations" inside the "stages" array.
 int StageIterations(const std::string& json) {
   const auto begin = json.find("\"stages\": [");
@@ -331,33 +338,42 @@ TEST(CliTest, BranchingConstructKmIsTheClosedForm) {
   EXPECT_EQ(Slurp(dir + "/summary.json"), json);
 }
 
-TEST(CliTest, AVerbRejectsAnotherVerbsFlag) {
-  const std::string dir = TempDir();
-  struct Case {
-    std::string args, flag;
-  };
-  const std::vector<Case> cases = {
-      {"geodesic --start " + kSquare + " --end " + kBent + " --output " + dir +
-           "/g --inputs " + kSquare,
-       "--inputs"},
-      {"geodesic --start " + kSquare + " --end " + kBent + " --output " + dir +
-           "/g --width 10",
-       "--width"},
-      {"energy --reference " + kSquare + " --deformed " + kSquare +
-           " --steps 3",
-       "--steps"},
-      {"branching construct --output " + dir + "/b --nx 16", "--nx"},
-      // Set to the default value: still not a flag of the verb.
-      {"render --input " + kSquare + " --output " + dir + "/r.png --epsilon 1",
-       "--epsilon"},
-  };
-  for (const Case& c : cases) {
-    std::string out, err;
-    EXPECT_EQ(RunCli(c.args, &out, &err), 2) << c.args;
+// A command line the CLI refuses, and a part of the one line it prints.
+struct Refusal {
+  std::string args, message;
+};
+
+// Runs every refusal's command line: each exits with `code` and prints one
+// line on stderr holding its message; nothing is left in `dir`.
+void ExpectRefusals(const std::vector<Refusal>& refusals, int code,
+                    const std::string& dir) {
+  for (const Refusal& r : refusals) {
+    std::string err;
+    EXPECT_EQ(RunCli(r.args, nullptr, &err), code) << r.args;
     EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
-    EXPECT_NE(err.find(c.flag + " is not a flag of"), std::string::npos) << err;
+    EXPECT_NE(err.find(r.message), std::string::npos) << err;
   }
   EXPECT_TRUE(Listing(dir).empty());
+}
+
+TEST(CliTest, AVerbRejectsAnotherVerbsFlag) {
+  const std::string dir = TempDir();
+  const std::string geodesic = GeodesicInto(dir + "/g");
+  ExpectRefusals(
+      {
+          {geodesic + " --inputs " + kSquare, "--inputs is not a flag of"},
+          {geodesic + " --width 10", "--width is not a flag of"},
+          {"energy --reference " + kSquare + " --deformed " + kSquare +
+               " --steps 3",
+           "--steps is not a flag of"},
+          {"branching construct --output " + dir + "/b --nx 16",
+           "--nx is not a flag of"},
+          // Set to the default value: still not a flag of the verb.
+          {"render --input " + kSquare + " --output " + dir +
+               "/r.png --epsilon 1",
+           "--epsilon is not a flag of"},
+      },
+      2, dir);
 }
 
 // --gltf and --png are written with the frames, together or not at all: a
@@ -453,32 +469,23 @@ TEST(CliTest, HelpListsOnlyTheVerbsFlags) {
 
 TEST(CliTest, OutOfRangeFlagsAreRejectedByName) {
   const std::string dir = TempDir();
-  struct Case {
-    std::string args, message;
-  };
-  const std::vector<Case> cases = {
-      {"geodesic --start " + kSquare + " --end " + kBent + " --output " + dir +
-           "/g --steps 0",
-       "--steps must be an integer in [1, 100000], got 0"},
-      {"geodesic --start " + kSquare + " --end " + kBent + " --output " + dir +
-           "/g --tolerance 2",
-       "--tolerance must be a number (0, 1), got 2"},
-      {"energy --reference " + kSquare + " --deformed " + kSquare +
-           " --eta nan",
-       "--eta must be a number >= 0, got nan"},
-      {"transport --path " + dir + " --variation " + kSquare + " --output " +
-           dir + "/t --epsilon 0",
-       "--epsilon must be a number > 0, got 0"},
-      {"geodesic --end " + kBent + " --output " + dir + "/g",
-       "--start is required"},
-  };
-  for (const Case& c : cases) {
-    std::string err;
-    EXPECT_EQ(RunCli(c.args, nullptr, &err), 1) << c.args;
-    EXPECT_NE(err.find(c.message), std::string::npos) << err;
-    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
-  }
-  EXPECT_TRUE(Listing(dir).empty());
+  const std::string geodesic = GeodesicInto(dir + "/g");
+  ExpectRefusals(
+      {
+          {geodesic + " --steps 0",
+           "--steps must be an integer in [1, 100000], got 0"},
+          {geodesic + " --tolerance 2",
+           "--tolerance must be a number (0, 1), got 2"},
+          {"energy --reference " + kSquare + " --deformed " + kSquare +
+               " --eta nan",
+           "--eta must be a number >= 0, got nan"},
+          {"transport --path " + dir + " --variation " + kSquare +
+               " --output " + dir + "/t --epsilon 0",
+           "--epsilon must be a number > 0, got 0"},
+          {"geodesic --end " + kBent + " --output " + dir + "/g",
+           "--start is required"},
+      },
+      1, dir);
 }
 
 // --multires on a small mesh: two levels (the coarse one decimated), the
