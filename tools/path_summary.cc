@@ -24,8 +24,9 @@ FlagSpec GltfFlag() {
 void CheckGeodesic(const GeodesicResult& result, const std::string& what,
                    RunStatus* status) {
   status->Require(result.converged,
-                  what + ": |grad| " + Short(result.final_gradient) +
-                      " above the target " + Short(result.gradient_target) +
+                  what + ": " +
+                      GradientAboveTarget(result.final_gradient,
+                                          result.gradient_target) +
                       " (tolerance x max(1, |grad_0|)) after " +
                       std::to_string(result.iterations) + " iterations (" +
                       (result.stages.empty() ? std::string("no stages")

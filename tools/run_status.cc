@@ -63,4 +63,8 @@ std::string Short(double value) {
   return text;
 }
 
+std::string GradientAboveTarget(double gradient, double target) {
+  return "|grad| " + Short(gradient) + " above the target " + Short(target);
+}
+
 }  // namespace shellspace

@@ -50,6 +50,10 @@ class RunStatus {
 // "%.3g" of a number, for the failure texts.
 std::string Short(double value);
 
+// "|grad| G above the target T" (both Short): how the failure text of a
+// solve that stopped above its gradient target begins.
+std::string GradientAboveTarget(double gradient, double target);
+
 }  // namespace shellspace
 
 #endif  // SHELLSPACE_TOOLS_RUN_STATUS_H_

@@ -69,8 +69,7 @@ int RunDeform() {
   const double target = FLAGS_tolerance * std::max(1.0, g0);
   const bool converged = g <= target;
   RunStatus status("deform");
-  status.Require(converged, "deform: |grad| " + Short(g) +
-                                " above the target " + Short(target) +
+  status.Require(converged, "deform: " + GradientAboveTarget(g, target) +
                                 " after " +
                                 std::to_string(LmIterations(result.summary)) +
                                 " LM iterations (" +

@@ -143,10 +143,11 @@ std::vector<std::string> WarnAboutFarInputs(const ShellSet& inputs,
 void CheckMean(const ElasticMeanResult& mean, const std::string& what,
                RunStatus* status) {
   status->Require(mean.converged,
-                  what + ": |grad| " + Short(mean.gradient_norm) +
-                      " above the target " + Short(mean.gradient_target) +
-                      " after " +
-                      std::to_string(mean.lm_iterations) + " LM + " +
+                  what + ": " +
+                      GradientAboveTarget(mean.gradient_norm,
+                                          mean.gradient_target) +
+                      " after " + std::to_string(mean.lm_iterations) +
+                      " LM + " +
                       std::to_string(mean.newton_iterations) +
                       " Newton iterations (" + mean.termination + ")");
 }
