@@ -21,6 +21,7 @@ namespace shellspace {
 namespace {
 
 using testing::Box;
+using testing::MeshAndMovedCopy;
 using testing::UnitSquareMesh;
 using testing::IsColor;
 using testing::CountUnlike;
@@ -274,11 +275,9 @@ TEST(DisplacementColorTest, FirstFrameHasTheFirstColourAndMovedTheLast) {
   // A flat square (one shade everywhere) and the same square moved towards
   // the viewer: every vertex moves by D = 0.5, the largest displacement.
   const Mesh square = UnitSquareMesh();
-  Positions moved = square.positions;
-  moved.col(2).array() += 0.5;
   const RenderOptions options = DisplacementOptions(2 * 100, 100);
   const RgbImage image =
-      RenderFilmStrip({square.positions, moved}, square.faces, options);
+      RenderFilmStrip(MeshAndMovedCopy(square, 2, 0.5), square.faces, options);
   const Eigen::Vector3d first = UniformColor(image, options, 0, 0, 100, 100);
   const Eigen::Vector3d last = UniformColor(image, options, 100, 0, 100, 100);
   ASSERT_GE(first.minCoeff(), 0) << "frame 0 is not one colour";
@@ -311,11 +310,9 @@ TEST(DisplacementColorTest, AMovedVertexIsTheWarmCorner) {
 
 TEST(DisplacementColorTest, ColourBarUnderTheStrip) {
   const Mesh square = UnitSquareMesh();
-  Positions moved = square.positions;
-  moved.col(0).array() += 1;
+  const std::vector<Positions> frames = MeshAndMovedCopy(square, 0, 1);
   RenderOptions options = DisplacementOptions(2 * 320, 200);
-  const RgbImage image =
-      RenderFilmStrip({square.positions, moved}, square.faces, options);
+  const RgbImage image = RenderFilmStrip(frames, square.faces, options);
   const FilmStripLayout layout = LayoutFilmStrip(2, options);
   ASSERT_EQ(layout.legend_height, 14 * 2);
   EXPECT_EQ(image.height, 200 + layout.legend_height);
@@ -339,9 +336,7 @@ TEST(DisplacementColorTest, ColourBarUnderTheStrip) {
   EXPECT_GT(last, 0);
   // Without the colour map there is no bar.
   options.color = SurfaceColor::kPlain;
-  EXPECT_EQ(RenderFilmStrip({square.positions, moved}, square.faces, options)
-                .height,
-            200);
+  EXPECT_EQ(RenderFilmStrip(frames, square.faces, options).height, 200);
   EXPECT_EQ(ParseSurfaceColor("Displacement"), SurfaceColor::kDisplacement);
   EXPECT_EQ(ParseSurfaceColor("plain"), SurfaceColor::kPlain);
   EXPECT_THROW(ParseSurfaceColor("rainbow"), InputError);

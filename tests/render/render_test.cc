@@ -24,6 +24,7 @@
 namespace shellspace {
 namespace {
 
+using testing::MeshAndMovedCopy;
 using testing::PngSize;
 
 using ::shellspace::testing::DataPath;
@@ -406,11 +407,9 @@ TEST(FilmStripTest, CameraIsFixedAcrossFrames) {
   // The same square moved right by 2: the second frame shows it further
   // right than the first, both at half the scale of a lone square.
   const Mesh square = Square();
-  Positions moved = square.positions;
-  moved.col(0).array() += 2;
   const RenderOptions options = Options(2 * 120, 120);
   const RgbImage image =
-      RenderFilmStrip({square.positions, moved}, square.faces, options);
+      RenderFilmStrip(MeshAndMovedCopy(square, 0, 2), square.faces, options);
   const Eigen::Vector2d c0 = CoveredCentroid(image, options, 0, 120);
   const Eigen::Vector2d c1 = CoveredCentroid(image, options, 120, 120);
   // Box [-1, 3] x [-1, 1] into 108 pixels: 27 px/unit, box centre x = 1 at

@@ -29,6 +29,13 @@ Mesh UnitSquareMesh() {
   return mesh;
 }
 
+std::vector<Positions> MeshAndMovedCopy(const Mesh& mesh, int axis,
+                                        double shift) {
+  Positions moved = mesh.positions;
+  moved.col(axis).array() += shift;
+  return {mesh.positions, moved};
+}
+
 bool IsColor(const std::uint8_t* p, const std::array<std::uint8_t, 3>& color) {
   return p[0] == color[0] && p[1] == color[1] && p[2] == color[2];
 }

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <string>
 #include <utility>
+#include <vector>
 
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/io/png_writer.h"
@@ -18,6 +19,11 @@ Mesh Box(double a, double b, double c);
 
 // The square [-1, 1]^2 x {0}, two triangles, outward normal +z.
 Mesh UnitSquareMesh();
+
+// Two frames of `mesh`: as it is, and moved by `shift` along the coordinate
+// `axis` (0: x, 1: y, 2: z).
+std::vector<Positions> MeshAndMovedCopy(const Mesh& mesh, int axis,
+                                        double shift);
 
 // True if the pixel p (3 bytes) is `color`.
 bool IsColor(const std::uint8_t* p, const std::array<std::uint8_t, 3>& color);
