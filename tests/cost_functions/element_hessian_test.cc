@@ -16,6 +16,7 @@
 
 #include <Eigen/Eigenvalues>
 #include <Eigen/Geometry>
+#include <array>
 #include <cmath>
 #include <random>
 #include <type_traits>
@@ -454,31 +455,30 @@ TEST_P(ElementHessianTest, EquivariantUnderRigidMotions) {
     }
     const auto& b = base;
     using M = Eigen::MatrixXd;
-    const double errors[] = {
-        // deformed moved
-        testing::NormwiseRelativeError(
-            moved_def[1].d_grad_deformed,
-            M(rb * b[1].d_grad_deformed * rb.transpose())),
-        testing::NormwiseRelativeError(moved_def[1].d_grad_reference,
-                                       M(b[1].d_grad_reference * rb.transpose())),
-        testing::NormwiseRelativeError(moved_def[0].d_grad_reference,
-                                       b[0].d_grad_reference),
-        testing::NormwiseRelativeError(moved_def[0].d_grad_deformed,
-                                       M(rb * b[0].d_grad_deformed)),
-        // reference moved
-        testing::NormwiseRelativeError(
-            moved_ref[0].d_grad_reference,
-            M(rb * b[0].d_grad_reference * rb.transpose())),
-        testing::NormwiseRelativeError(moved_ref[0].d_grad_deformed,
-                                       M(b[0].d_grad_deformed * rb.transpose())),
-        testing::NormwiseRelativeError(moved_ref[1].d_grad_deformed,
-                                       b[1].d_grad_deformed),
-        testing::NormwiseRelativeError(moved_ref[1].d_grad_reference,
-                                       M(rb * b[1].d_grad_reference)),
+    // d_grad of the gradient on side k (0: reference, 1: deformed).
+    auto d_grad = [](const Derivatives<kV>& d, int k) -> const auto& {
+      return k == 1 ? d.d_grad_deformed : d.d_grad_reference;
     };
-    for (double e : errors) {
-      worst = std::max(worst, e);
-      EXPECT_LT(e, 1e-10) << kV;
+    // The four statements with side m moved (o the other side): the blocks
+    // of the moved side's Hessian (active m) and of the other's (active o).
+    auto errors_moved = [&](const Derivatives<kV>* moved, int m) {
+      const int o = 1 - m;
+      return std::array<double, 4>{
+          testing::NormwiseRelativeError(
+              d_grad(moved[m], m), M(rb * d_grad(b[m], m) * rb.transpose())),
+          testing::NormwiseRelativeError(d_grad(moved[m], o),
+                                         M(d_grad(b[m], o) * rb.transpose())),
+          testing::NormwiseRelativeError(d_grad(moved[o], o), d_grad(b[o], o)),
+          testing::NormwiseRelativeError(d_grad(moved[o], m),
+                                         M(rb * d_grad(b[o], m))),
+      };
+    };
+    for (const std::array<double, 4>& errors :
+         {errors_moved(moved_def, 1), errors_moved(moved_ref, 0)}) {
+      for (double e : errors) {
+        worst = std::max(worst, e);
+        EXPECT_LT(e, 1e-10) << kV;
+      }
     }
     // Negative twin: a wrong D_2^2 is not equivariant.
     M wrong = b[1].d_grad_deformed;
