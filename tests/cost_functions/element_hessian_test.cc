@@ -43,6 +43,22 @@ template <int kV>
 struct Sample {
   Eigen::Matrix<double, 3 * kV, 1> ref, def;
   double edge = 0;  // the longest reference edge of the stencil (length scale)
+
+  // This sample with the coordinates of the `active` side replaced by x.
+  Sample With(ShellSide active, const Eigen::VectorXd& x) const {
+    Sample moved = *this;
+    (active == ShellSide::kReference ? moved.ref : moved.def) = x;
+    return moved;
+  }
+
+  // d->Compute of `element` at this sample (false if it is degenerate).
+  template <class Element>
+  bool Compute(const Element& element, ShellSide active, double weight,
+               ElementSecondDerivatives<kV>* d,
+               typename ElementSecondDerivatives<kV>::Rows rows =
+                   ElementSecondDerivatives<kV>::Rows::kBoth) const {
+    return d->Compute(element, ref.data(), def.data(), active, weight, rows);
+  }
 };
 
 template <int kV>
@@ -114,8 +130,7 @@ TEST_P(ElementHessianTest, AnalyticEqualsDualNumbers) {
     constexpr int kV = std::decay_t<decltype(element)>::kNumVertices;
     Derivatives<kV> analytic[2], dual[2];
     for (int a = 0; a < 2; ++a) {
-      ASSERT_TRUE(analytic[a].Compute(element, s.ref.data(), s.def.data(),
-                                      kSides[a], 1.0));
+      ASSERT_TRUE(s.Compute(element, kSides[a], 1.0, &analytic[a]));
       ASSERT_TRUE(dual[a].ComputeWithDualNumbers(element, s.ref.data(),
                                                  s.def.data(), kSides[a], 1.0));
     }
@@ -166,8 +181,7 @@ TEST_P(ElementHessianTest, WrongBlockIsCaughtByDualComparison) {
     constexpr int kV = std::decay_t<decltype(element)>::kNumVertices;
     for (ShellSide side : kSides) {
       Derivatives<kV> analytic, dual;
-      ASSERT_TRUE(analytic.Compute(element, s.ref.data(), s.def.data(), side,
-                                   1.0));
+      ASSERT_TRUE(s.Compute(element, side, 1.0, &analytic));
       ASSERT_TRUE(dual.ComputeWithDualNumbers(element, s.ref.data(),
                                               s.def.data(), side, 1.0));
       for (auto* block :
@@ -192,11 +206,9 @@ template <class E, int kV>
 testing::VectorFunction Gradients(const E& element, const Sample<kV>& s,
                                   ShellSide active) {
   return [&element, s, active](const Eigen::VectorXd& x) {
-    Eigen::Matrix<double, 3 * kV, 1> ref = s.ref, def = s.def;
-    (active == ShellSide::kReference ? ref : def) = x;
     Derivatives<kV> d;
     Eigen::VectorXd out(6 * kV);
-    if (!d.Compute(element, ref.data(), def.data(), active, 1.0)) {
+    if (!s.With(active, x).Compute(element, active, 1.0, &d)) {
       out.setConstant(NAN);
       return out;
     }
@@ -214,7 +226,7 @@ TEST_P(ElementHessianTest, MatchesCentralDifferencesOfTheGradient) {
     for (int j = 0; j < 3 * kV; ++j) probes[j] = j;
     for (ShellSide side : kSides) {
       Derivatives<kV> d;
-      ASSERT_TRUE(d.Compute(element, s.ref.data(), s.def.data(), side, 1.0));
+      ASSERT_TRUE(s.Compute(element, side, 1.0, &d));
       const testing::DerivativeColumn columns = [d](int j) {
         Eigen::VectorXd c(6 * kV);
         c << d.d_grad_reference.col(j), d.d_grad_deformed.col(j);
@@ -250,12 +262,11 @@ template <class E, int kV>
 testing::VectorFunction Residuals(const E& element, const Sample<kV>& s,
                                   ShellSide active) {
   return [&element, s, active](const Eigen::VectorXd& x) {
-    Eigen::Matrix<double, 3 * kV, 1> ref = s.ref, def = s.def;
-    (active == ShellSide::kReference ? ref : def) = x;
+    const Sample<kV> at = s.With(active, x);
     Vec3<double> r3[kV], d3[kV];
     for (int v = 0; v < kV; ++v) {
-      r3[v] = ref.template segment<3>(3 * v);
-      d3[v] = def.template segment<3>(3 * v);
+      r3[v] = at.ref.template segment<3>(3 * v);
+      d3[v] = at.def.template segment<3>(3 * v);
     }
     Eigen::VectorXd out(E::kNumResiduals);
     if (!element.Evaluate(r3, d3, out.data(),
@@ -380,10 +391,8 @@ TEST_P(ElementHessianTest, SymmetricPureAndTransposedMixedBlocks) {
   ForSampledElements(GetParam(), 60, [&](const auto& element, const auto& s) {
     constexpr int kV = std::decay_t<decltype(element)>::kNumVertices;
     Derivatives<kV> r, d;
-    ASSERT_TRUE(r.Compute(element, s.ref.data(), s.def.data(),
-                          ShellSide::kReference, 1.0));
-    ASSERT_TRUE(d.Compute(element, s.ref.data(), s.def.data(),
-                          ShellSide::kDeformed, 1.0));
+    ASSERT_TRUE(s.Compute(element, ShellSide::kReference, 1.0, &r));
+    ASSERT_TRUE(s.Compute(element, ShellSide::kDeformed, 1.0, &d));
     const double e11 = Asymmetry(r.d_grad_reference);
     const double e22 = Asymmetry(d.d_grad_deformed);
     // d_Xbar d_X (rows Xbar) from the deformed-active call, its transpose
@@ -446,8 +455,7 @@ TEST_P(ElementHessianTest, EquivariantUnderRigidMotions) {
     const auto ref_moved = Transform<kV>(s.ref, rot, t);
     const auto def_moved = Transform<kV>(s.def, rot, t);
     for (int a = 0; a < 2; ++a) {
-      ASSERT_TRUE(base[a].Compute(element, s.ref.data(), s.def.data(),
-                                  kSides[a], 1.0));
+      ASSERT_TRUE(s.Compute(element, kSides[a], 1.0, &base[a]));
       ASSERT_TRUE(moved_def[a].Compute(element, s.ref.data(),
                                        def_moved.data(), kSides[a], 1.0));
       ASSERT_TRUE(moved_ref[a].Compute(element, ref_moved.data(),
@@ -520,10 +528,8 @@ TEST_P(ElementHessianTest, InfinitesimalRigidMotions) {
     const Eigen::Vector3d w(n01(rng), n01(rng), n01(rng));
     const Eigen::Vector3d t(n01(rng), n01(rng), n01(rng));
     Derivatives<kV> r, d;
-    ASSERT_TRUE(r.Compute(element, s.ref.data(), s.def.data(),
-                          ShellSide::kReference, 1.0));
-    ASSERT_TRUE(d.Compute(element, s.ref.data(), s.def.data(),
-                          ShellSide::kDeformed, 1.0));
+    ASSERT_TRUE(s.Compute(element, ShellSide::kReference, 1.0, &r));
+    ASSERT_TRUE(s.Compute(element, ShellSide::kDeformed, 1.0, &d));
     const V zero = V::Zero();
     const V w_def = RigidField<kV>(s.def, w, t);
     const V w_ref = RigidField<kV>(s.ref, w, t);
@@ -556,15 +562,14 @@ TEST_P(ElementHessianTest, RowsComputeOnlyWhatIsAsked) {
     using Rows = typename Derivatives<kV>::Rows;
     for (ShellSide side : kSides) {
       Derivatives<kV> both;
-      ASSERT_TRUE(both.Compute(element, s.ref.data(), s.def.data(), side, 2.0));
+      ASSERT_TRUE(s.Compute(element, side, 2.0, &both));
       for (Rows rows : {Rows::kReference, Rows::kDeformed}) {
         Derivatives<kV> part;
         part.grad_reference.setConstant(7);
         part.grad_deformed.setConstant(7);
         part.d_grad_reference.setConstant(7);
         part.d_grad_deformed.setConstant(7);
-        ASSERT_TRUE(
-            part.Compute(element, s.ref.data(), s.def.data(), side, 2.0, rows));
+        ASSERT_TRUE(s.Compute(element, side, 2.0, &part, rows));
         const bool ref = rows == Rows::kReference;
         EXPECT_TRUE((ref ? part.grad_reference : part.grad_deformed) ==
                     (ref ? both.grad_reference : both.grad_deformed));
@@ -583,10 +588,8 @@ TEST_P(ElementHessianTest, WeightScalesLinearly) {
   ForSampledElements(GetParam(), 5, [&](const auto& element, const auto& s) {
     constexpr int kV = std::decay_t<decltype(element)>::kNumVertices;
     Derivatives<kV> one, eight;
-    ASSERT_TRUE(one.Compute(element, s.ref.data(), s.def.data(),
-                            ShellSide::kDeformed, 1.0));
-    ASSERT_TRUE(eight.Compute(element, s.ref.data(), s.def.data(),
-                              ShellSide::kDeformed, 8.0));
+    ASSERT_TRUE(s.Compute(element, ShellSide::kDeformed, 1.0, &one));
+    ASSERT_TRUE(s.Compute(element, ShellSide::kDeformed, 8.0, &eight));
     EXPECT_LT(testing::NormwiseRelativeError(eight.d_grad_deformed,
                                              8.0 * one.d_grad_deformed),
               1e-15);
