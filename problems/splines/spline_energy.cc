@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
+#include "shellspace/geometry/parallel_for.h"
 #include "shellspace/solvers/gauge_reduced_solve.h"
 #include "shellspace/problems/calculus/path_hessian.h"
 #include "shellspace/solvers/newton_solver.h"
@@ -178,6 +179,14 @@ struct SplineObjective::Midpoint {
   Positions m;
   bool has_adjoint = false;
   MidpointHessian hessian;  // H_k = D_2^2 W[s_{k-1}, m] + D_1^2 W[m, s_{k+1}]
+  // This term's share of SplineTimings (terms are solved in parallel, each
+  // counting its own; timings() sums them in term order).
+  int lm_solves = 0, lm_iterations = 0, newton_steps = 0;
+  double lm_seconds = 0, newton_seconds = 0;
+  // The adjoint's contributions of this term to the gradient (unscaled):
+  // D_1 W[s_k, m_k] on the centre, the mixed blocks times p_k on the
+  // neighbours (empty when that neighbour is fixed).
+  Eigen::VectorXd center_part, previous_part, next_part;
 };
 
 SplineObjective::~SplineObjective() = default;
@@ -185,6 +194,11 @@ SplineObjective::~SplineObjective() = default;
 SplineTimings SplineObjective::timings() const {
   SplineTimings t = timings_;
   for (const auto& mid : midpoints_) {
+    t.lm_solves += mid->lm_solves;
+    t.lm_iterations += mid->lm_iterations;
+    t.newton_steps += mid->newton_steps;
+    t.lm_seconds += mid->lm_seconds;
+    t.newton_seconds += mid->newton_seconds;
     t.factorizations += mid->hessian.stats().factorizations;
     t.cg_iterations += mid->hessian.stats().cg_iterations;
   }
@@ -263,6 +277,7 @@ bool SplineObjective::SolveMidpoint(const Positions& a, const Positions& b,
   int lm_runs = 0;
   const auto run_lm = [&]() {
     SolverSettings settings = inner_settings_;
+    settings.num_threads = 1;  // the terms run in parallel
     if (mid->m.size() == 0) {
       mid->m = cold_start;
       lm_done = true;
@@ -277,19 +292,19 @@ bool SplineObjective::SolveMidpoint(const Positions& a, const Positions& b,
     ceres::Solver::Summary summary;
     mid->m = SolveWeightedMidpoint(space_, a, b, 1.0, 1.0, mid->m, {}, settings,
                                    &summary);
-    timings_.lm_seconds += SecondsSince(clock);
-    ++timings_.lm_solves;
-    timings_.lm_iterations += static_cast<int>(summary.iterations.size());
+    mid->lm_seconds += SecondsSince(clock);
+    ++mid->lm_solves;
+    mid->lm_iterations += static_cast<int>(summary.iterations.size());
     mid->has_adjoint = false;
     return summary.IsSolutionUsable();
   };
   mid->has_adjoint = false;
   if (mid->m.size() == 0 && !run_lm()) return false;
   const auto clock = std::chrono::steady_clock::now();
-  const double lm_seconds_before = timings_.lm_seconds;
-  MidpointProblem problem(space_, *assembler_, a, b,
-                          inner_settings_.num_threads, &mid->m, &mid->hessian,
-                          &mid->has_adjoint, &timings_.newton_steps);
+  const double lm_seconds_before = mid->lm_seconds;
+  MidpointProblem problem(space_, *assembler_, a, b, /*threads=*/1, &mid->m,
+                          &mid->hessian, &mid->has_adjoint,
+                          &mid->newton_steps);
   NewtonResidual g;  // at mid->m
   bool converged = false;
   // Newton (SolveNewton) within kMaxNewtonSteps iterations (Hessian
@@ -370,8 +385,8 @@ bool SplineObjective::SolveMidpoint(const Positions& a, const Positions& b,
       (mid->has_adjoint || !adjoint)) {
     converged = true;
   }
-  timings_.newton_seconds +=
-      SecondsSince(clock) - (timings_.lm_seconds - lm_seconds_before);
+  mid->newton_seconds +=
+      SecondsSince(clock) - (mid->lm_seconds - lm_seconds_before);
   return converged;
 }
 
@@ -379,26 +394,35 @@ bool SplineObjective::SolveMidpoints(const ShellPath& path,
                                      bool adjoint) const {
   ++timings_.evaluations;
   if (adjoint) ++timings_.gradient_evaluations;
-  for (size_t t = 0; t < terms_.size(); ++t) {
-    const Term& term = terms_[t];
-    const bool needs_adjoint =
-        adjoint && (spec_.is_free[term.previous] || spec_.is_free[term.next]);
-    // Without a warm start: from the average of the neighbours, else (it
-    // can be crumpled, e.g. cactus9 and cactus15) from s_k.
-    const Positions& a = path[term.previous];
-    const Positions& b = path[term.next];
-    Midpoint* mid = midpoints_[t].get();
-    const bool cold = mid->m.size() == 0;
-    if (SolveMidpoint(a, b, Positions(0.5 * (a + b)), needs_adjoint, mid)) {
-      continue;
-    }
-    if (!cold) return false;
-    mid->m.resize(0, 3);
-    if (!SolveMidpoint(a, b, path[term.center], needs_adjoint, mid)) {
-      return false;
-    }
-  }
-  return true;
+  // The terms are independent given the path: each is solved on its own
+  // thread with one-thread assemblies, from its own warm start, so the
+  // result does not depend on the thread count or the order of completion.
+  std::vector<char> solved(terms_.size(), 0);
+  ParallelFor(static_cast<int>(terms_.size()), inner_settings_.num_threads,
+              [&](int t) {
+                const Term& term = terms_[t];
+                const bool needs_adjoint =
+                    adjoint &&
+                    (spec_.is_free[term.previous] || spec_.is_free[term.next]);
+                // Without a warm start: from the average of the neighbours,
+                // else (it can be crumpled, e.g. cactus9 and cactus15) from
+                // s_k.
+                const Positions& a = path[term.previous];
+                const Positions& b = path[term.next];
+                Midpoint* mid = midpoints_[t].get();
+                const bool cold = mid->m.size() == 0;
+                if (SolveMidpoint(a, b, Positions(0.5 * (a + b)),
+                                  needs_adjoint, mid)) {
+                  solved[t] = 1;
+                  return;
+                }
+                if (!cold) return;
+                mid->m.resize(0, 3);
+                solved[t] = SolveMidpoint(a, b, path[term.center],
+                                          needs_adjoint, mid);
+              });
+  return std::all_of(solved.begin(), solved.end(),
+                     [](char ok) { return ok != 0; });
 }
 
 double SplineObjective::SplineEnergyOf(const ShellPath& path) const {
@@ -456,38 +480,55 @@ bool SplineObjective::Evaluate(const double* parameters, double* cost,
     }
     grad[d.index] += part;
   }
+  // Per term, in parallel (each writes only its own Midpoint), then summed
+  // in term order.
+  std::vector<char> ok(terms_.size(), 0);
+  ParallelFor(
+      static_cast<int>(terms_.size()), inner_settings_.num_threads,
+      [&](int t) {
+        const Term& term = terms_[t];
+        Midpoint& mid = *midpoints_[t];
+        const Positions& s = path[term.center];
+        mid.previous_part.resize(0);
+        mid.next_part.resize(0);
+        if (!TryEnergyGradient(space_, s, mid.m, ShellSide::kReference,
+                               &mid.center_part)) {
+          return;
+        }
+        if (!spec_.is_free[term.previous] && !spec_.is_free[term.next]) {
+          ok[t] = 1;
+          return;
+        }
+        // H_k p_k = -D_2 W[s_k, m_k] modulo rigid motions; the mixed blocks
+        // applied to p_k as directional derivatives of the gradients.
+        Eigen::VectorXd rhs, p;
+        if (!TryEnergyGradient(space_, s, mid.m, ShellSide::kDeformed,
+                               &rhs) ||
+            !mid.hessian.Solve(-rhs, kAdjointTolerance, &p)) {
+          return;
+        }
+        if (spec_.is_free[term.previous] &&
+            !TryEnergyGradientDerivative(
+                space_, path[term.previous], mid.m, ShellSide::kReference,
+                ShellSide::kDeformed, p, &mid.previous_part)) {
+          return;
+        }
+        if (spec_.is_free[term.next] &&
+            !TryEnergyGradientDerivative(space_, mid.m, path[term.next],
+                                         ShellSide::kDeformed,
+                                         ShellSide::kReference, p,
+                                         &mid.next_part)) {
+          return;
+        }
+        ok[t] = 1;
+      });
   for (size_t t = 0; t < terms_.size(); ++t) {
+    if (!ok[t]) return false;
     const Term& term = terms_[t];
-    Midpoint& mid = *midpoints_[t];
-    const Positions& s = path[term.center];
-    if (!TryEnergyGradient(space_, s, mid.m, ShellSide::kReference, &part)) {
-      return false;
-    }
-    grad[term.center] += scale * part;
-    if (!spec_.is_free[term.previous] && !spec_.is_free[term.next]) continue;
-    // H_k p_k = -D_2 W[s_k, m_k] modulo rigid motions; the mixed blocks
-    // applied to p_k as directional derivatives of the gradients.
-    Eigen::VectorXd p;
-    if (!TryEnergyGradient(space_, s, mid.m, ShellSide::kDeformed, &part) ||
-        !mid.hessian.Solve(-part, kAdjointTolerance, &p)) {
-      return false;
-    }
-    if (spec_.is_free[term.previous]) {
-      if (!TryEnergyGradientDerivative(space_, path[term.previous], mid.m,
-                                       ShellSide::kReference,
-                                       ShellSide::kDeformed, p, &part)) {
-        return false;
-      }
-      grad[term.previous] += scale * part;
-    }
-    if (spec_.is_free[term.next]) {
-      if (!TryEnergyGradientDerivative(space_, mid.m, path[term.next],
-                                       ShellSide::kDeformed,
-                                       ShellSide::kReference, p, &part)) {
-        return false;
-      }
-      grad[term.next] += scale * part;
-    }
+    const Midpoint& mid = *midpoints_[t];
+    grad[term.center] += scale * mid.center_part;
+    if (mid.previous_part.size()) grad[term.previous] += scale * mid.previous_part;
+    if (mid.next_part.size()) grad[term.next] += scale * mid.next_part;
   }
   for (size_t i = 0; i < free_shapes_.size(); ++i) {
     Eigen::Map<Eigen::VectorXd>(gradient + i * n3, n3) = grad[free_shapes_[i]];

@@ -34,8 +34,10 @@ struct SplineSpec {
   double sigma = 1.0;  // weight of F_K
 };
 
-// Where the evaluations of a SplineObjective spend their time (wall clock,
-// accumulated over all Evaluate / SplineEnergyOf calls).
+// Where the evaluations of a SplineObjective spend their time (accumulated
+// over all Evaluate / SplineEnergyOf calls; the midpoint terms run in
+// parallel, so the LM and Newton seconds are summed over the threads and can
+// exceed the wall time).
 struct SplineTimings {
   int evaluations = 0;           // F_K evaluations (midpoint sweeps)
   int gradient_evaluations = 0;  // of which with the adjoint gradient

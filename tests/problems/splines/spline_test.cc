@@ -159,6 +159,32 @@ TEST_F(SplineTest, WarmStartedEvaluationMatchesColdEvaluation) {
   EXPECT_LT(difference, 1e-7 * scale);
 }
 
+// The midpoint terms are solved in parallel: one thread and three give the
+// same cost and gradient to the last bit, over a sequence of warm-started
+// evaluations (each term depends only on its own warm start and the path).
+TEST_F(SplineTest, ThreadCountDoesNotChangeADigit) {
+  const SplineSpec spec = PeriodicRegressionSpec();
+  SolverSettings one = TightInner(), three = TightInner();
+  one.num_threads = 1;
+  three.num_threads = 3;
+  const SplineObjective serial(space_, spec, one);
+  const SplineObjective parallel(space_, spec, three);
+  std::vector<double> x = serial.InitialParameters();
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  for (int evaluation = 0; evaluation < 3; ++evaluation) {
+    double f_serial = 0, f_parallel = 0;
+    std::vector<double> g_serial(x.size()), g_parallel(x.size());
+    ASSERT_TRUE(serial.Evaluate(x.data(), &f_serial, g_serial.data()));
+    ASSERT_TRUE(parallel.Evaluate(x.data(), &f_parallel, g_parallel.data()));
+    EXPECT_EQ(f_serial, f_parallel) << "evaluation " << evaluation;
+    EXPECT_EQ(g_serial, g_parallel) << "evaluation " << evaluation;
+    for (double& v : x) v += 1e-4 * u(rng);
+  }
+  EXPECT_EQ(serial.timings().newton_steps, parallel.timings().newton_steps);
+  EXPECT_EQ(serial.timings().lm_iterations, parallel.timings().lm_iterations);
+}
+
 TEST_F(SplineTest, KeyframesOnAGeodesicGiveTheGeodesic) {
   GeodesicInput input = GeodesicInput::Between(a_.positions, b_.positions, 4);
   SolverSettings tight = TightInner();
