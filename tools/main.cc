@@ -21,6 +21,7 @@
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/run_output.h"
+#include "shellspace/tools/run_status.h"
 #include "shellspace/tools/stop_request.h"
 #include "shellspace/tools/verb.h"
 
@@ -258,8 +259,10 @@ int main(int argc, char** argv) {
               << shellspace::StopCauseText(stop) << "): "
               << (shellspace::ObservedStop() != shellspace::StopCause::kNone
                       ? "wrote the best state so far, marked partial"
-                      : "after the solves; the output is complete")
-              << "\n";
+                      : "after the solves; the output is complete");
+    const std::string unmet = shellspace::StoppedRunFailures();
+    if (!unmet.empty()) std::cerr << "; not converged: " << unmet;
+    std::cerr << "\n";
     return shellspace::StopExitCode(stop);
   } catch (const shellspace::InputError& error) {
     std::cerr << "shellspace " << name << ": error: " << error.what() << "\n";

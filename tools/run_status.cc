@@ -14,6 +14,15 @@ DEFINE_bool(allow_unconverged, false,
 DEFINE_bool(allow_unsolved, false, "see `shellspace VERB --help`");
 
 namespace shellspace {
+namespace {
+
+// Written once, by the verb's thread, after its solves.
+std::string& StoppedFailures() {
+  static std::string failures;
+  return failures;
+}
+
+}  // namespace
 
 FlagSpec AllowUnconvergedFlag() {
   return TextFlag("allow_unconverged",
@@ -41,12 +50,15 @@ void RunStatus::Warn(const std::string& text) {
 
 int RunStatus::Finish() const {
   if (ok()) return 0;
-  // A run cut short by a time limit or a signal did not try to converge:
-  // main reports the stop ("stopped (...)", exit 124, 130 or 143).
-  if (ObservedStop() != StopCause::kNone) return 0;
   std::string line;
   for (size_t i = 0; i < failures_.size(); ++i) {
     line += (i ? "; " : "") + failures_[i];
+  }
+  // A run cut short by a time limit or a signal: main reports the stop and
+  // these failures in one line ("stopped (...)", exit 124, 130 or 143).
+  if (ObservedStop() != StopCause::kNone) {
+    StoppedFailures() = line;
+    return 0;
   }
   if (FLAGS_allow_unconverged || FLAGS_allow_unsolved) {
     std::cerr << "shellspace " << verb_ << ": warning: not converged: " << line
@@ -56,6 +68,8 @@ int RunStatus::Finish() const {
   std::cerr << "shellspace " << verb_ << ": not converged: " << line << "\n";
   return kExitNotConverged;
 }
+
+std::string StoppedRunFailures() { return StoppedFailures(); }
 
 std::string Short(double value) {
   char text[32];

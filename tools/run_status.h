@@ -38,7 +38,9 @@ class RunStatus {
   // After the outputs: 0 if ok; else one line "shellspace VERB: not
   // converged: A; B" on stderr and kExitNotConverged, or, with
   // --allow_unconverged / --allow_unsolved, the same line as a warning and
-  // 0.
+  // 0. A run cut short by a time limit or a signal returns 0 and leaves
+  // "A; B" to StoppedRunFailures(): main's one "stopped (...)" line names
+  // them.
   int Finish() const;
 
  private:
@@ -46,6 +48,10 @@ class RunStatus {
   std::vector<std::string> failures_;
   std::vector<std::string> warnings_;
 };
+
+// The failures ("A; B") of the last RunStatus that finished in a run cut
+// short by a time limit or a signal; "" if none.
+std::string StoppedRunFailures();
 
 // "%.3g" of a number, for the failure texts.
 std::string Short(double value);

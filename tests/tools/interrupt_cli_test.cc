@@ -238,6 +238,15 @@ TEST(InterruptCliTest, TimeLimitStopsTheGeodesic) {
   const int code = RunAndSignal(LongGeodesic(32, dir) + " --time_limit 1",
                                 base + "/out", "", 0, 60, &err);
   EXPECT_EQ(code, 124) << err;
+  // One line says the stop and what had not converged by then.
+  const std::string stopped =
+      "shellspace geodesic: stopped (time limit 1 s): wrote the best state so "
+      "far, marked partial; not converged: ";
+  const size_t line = err.find(stopped);
+  ASSERT_NE(line, std::string::npos) << err;
+  EXPECT_NE(err.find("above the target", line), std::string::npos) << err;
+  EXPECT_EQ(err.find("not converged"), line + stopped.find("not converged"))
+      << err;
   const std::string json = Slurp(base + "/out");
   ExpectCompletePartialGeodesic(dir, json.substr(0, json.find('\n')),
                                 "time limit 1 s", 32);
