@@ -16,11 +16,8 @@ DEFINE_bool(allow_unsolved, false, "see `shellspace VERB --help`");
 namespace shellspace {
 namespace {
 
-// Written once, by the verb's thread, after its solves.
-std::string& StoppedFailures() {
-  static std::string failures;
-  return failures;
-}
+// StoppedRunFailures(): written once, by the verb's thread, after its solves.
+std::string g_stopped_failures;  // NOLINT(runtime/string)
 
 }  // namespace
 
@@ -57,7 +54,7 @@ int RunStatus::Finish() const {
   // A run cut short by a time limit or a signal: main reports the stop and
   // these failures in one line ("stopped (...)", exit 124, 130 or 143).
   if (ObservedStop() != StopCause::kNone) {
-    StoppedFailures() = line;
+    g_stopped_failures = line;
     return 0;
   }
   if (FLAGS_allow_unconverged || FLAGS_allow_unsolved) {
@@ -69,7 +66,7 @@ int RunStatus::Finish() const {
   return kExitNotConverged;
 }
 
-std::string StoppedRunFailures() { return StoppedFailures(); }
+std::string StoppedRunFailures() { return g_stopped_failures; }
 
 std::string Short(double value) {
   char text[32];
