@@ -192,12 +192,13 @@ JsonObject SplineJson(JsonObject head, const SplineResult& result,
       .Add("data_energy", result.data_energy)
       .Add("objective", result.objective)
       .Add("iterations", result.iterations)
+      .Add("lbfgs_rounds", result.rounds)
       .Add("initial_gradient_norm", result.initial_gradient_norm)
       .Add("final_gradient_norm", result.final_gradient_norm)
       .Add("relative_gradient_norm", result.relative_gradient_norm)
       .Add("gradient_criterion_met", result.gradient_criterion_met)
       .Add("converged", optimised ? result.converged : true)
-      .Add("termination", result.summary.iterations.size() > 1
+      .Add("termination", result.iterations > 0
                               ? ceres::TerminationTypeToString(
                                     result.summary.termination_type)
                               : "not optimised")

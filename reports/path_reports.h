@@ -96,7 +96,7 @@ JsonObject TransportJson(const TransportResult& result, double epsilon);
 
 // A spline or regression solve, appended to `head` (the verb's own keys):
 // spline_energy (F_K), data_energy, objective, iterations (L-BFGS, without
-// Ceres' iteration 0), initial_gradient_norm, final_gradient_norm,
+// Ceres' iteration 0), lbfgs_rounds, initial_gradient_norm, final_gradient_norm,
 // relative_gradient_norm, gradient_criterion_met, converged (`optimised`:
 // the outer solver ran and met its criterion, SplineResult::converged;
 // otherwise true), termination ("not optimised" if no iteration ran), then

@@ -4,8 +4,11 @@
 #include <ceres/gradient_problem.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <memory>
+#include <string>
 
 #include "shellspace/geometry/blas_threads.h"
 #include "shellspace/problems/splines/spline_preconditioner.h"
@@ -37,18 +40,28 @@ void CheckIndices(const std::vector<int>& at, size_t count, int steps,
   }
 }
 
+double MaxNorm(const std::vector<double>& v) {
+  double norm = 0;
+  for (double g : v) norm = std::max(norm, std::abs(g));
+  return norm;
+}
+
 // L-BFGS works on y with x = x0 + T y (SplinePreconditioner; T = I
 // without preconditioning), on the objective divided by a constant `scale`
-// (see Run).
+// (see Run). Every gradient evaluation also records the gradient's max norm
+// in the reference variables (the first round's T0 and scale0), under the
+// objective value L-BFGS sees, for RoundCallback to look up.
 class PreconditionedObjective : public ceres::FirstOrderFunction {
  public:
+  struct Record {
+    double cost;                // as returned to L-BFGS
+    double reference_gradient;  // max |T0^T g_x| / scale0
+    double move;                // max |x - x0| (the round's start)
+  };
   PreconditionedObjective(const SplineObjective& inner,
                           const SplinePreconditioner* preconditioner,
-                          std::vector<double> x0, double scale)
-      : inner_(inner),
-        preconditioner_(preconditioner),
-        x0_(std::move(x0)),
-        inverse_scale_(1.0 / scale) {}
+                          std::vector<double> x0)
+      : inner_(inner), preconditioner_(preconditioner), x0_(std::move(x0)) {}
   int NumParameters() const override { return inner_.NumParameters(); }
   bool Evaluate(const double* y, double* cost,
                 double* gradient) const override {
@@ -59,12 +72,16 @@ class PreconditionedObjective : public ceres::FirstOrderFunction {
     }
     *cost *= inverse_scale_;
     if (gradient) {
-      if (preconditioner_) {
-        preconditioner_->ApplyTransposed(gx.data(), gradient);
-      } else {
-        std::copy(gx.begin(), gx.end(), gradient);
-      }
+      Transpose(preconditioner_, gx, gradient);
       for (int i = 0; i < NumParameters(); ++i) gradient[i] *= inverse_scale_;
+      std::vector<double> reference(gx.size());
+      Transpose(reference_, gx, reference.data());
+      double move = 0;
+      for (size_t i = 0; i < x.size(); ++i) {
+        move = std::max(move, std::abs(x[i] - x0_[i]));
+      }
+      records_.push_back(
+          {*cost, MaxNorm(reference) * reference_inverse_scale_, move});
     }
     return true;
   }
@@ -79,26 +96,100 @@ class PreconditionedObjective : public ceres::FirstOrderFunction {
     return x;
   }
   void set_scale(double scale) { inverse_scale_ = 1.0 / scale; }
+  void set_reference(const SplinePreconditioner* reference, double scale) {
+    reference_ = reference;
+    reference_inverse_scale_ = 1.0 / scale;
+  }
+  // The reference gradient recorded with objective value `cost` (the latest
+  // such record), NaN if none.
+  const Record* RecordAt(double cost) const {
+    for (auto r = records_.rbegin(); r != records_.rend(); ++r) {
+      if (r->cost == cost) return &*r;
+    }
+    return nullptr;
+  }
 
  private:
+  static void Transpose(const SplinePreconditioner* t,
+                        const std::vector<double>& gx, double* gy) {
+    if (t) {
+      t->ApplyTransposed(gx.data(), gy);
+    } else {
+      std::copy(gx.begin(), gx.end(), gy);
+    }
+  }
   const SplineObjective& inner_;
   const SplinePreconditioner* preconditioner_;
   std::vector<double> x0_;
-  double inverse_scale_;
+  double inverse_scale_ = 1.0;
+  const SplinePreconditioner* reference_ = nullptr;
+  double reference_inverse_scale_ = 1.0;
+  mutable std::vector<Record> records_;
 };
 
-double MaxNorm(const std::vector<double>& v) {
-  double norm = 0;
-  for (double g : v) norm = std::max(norm, std::abs(g));
-  return norm;
-}
+// Per iteration of a round: the accepted iterate's reference gradient; ends
+// the run once it is at most `target`; progress lines numbered over all
+// rounds (a later round's iteration 0 repeats the previous round's last
+// iterate and is not printed).
+class RoundCallback : public ceres::IterationCallback {
+ public:
+  using Clock = std::chrono::steady_clock;
+  RoundCallback(const PreconditionedObjective& objective, double target,
+                int refresh_iterations, double refresh_move,
+                int first_iteration, double cost_factor,
+                const std::string* label, Clock::time_point start,
+                double* last_gradient, bool* met, bool* refresh)
+      : objective_(objective), target_(target),
+        refresh_iterations_(refresh_iterations), refresh_move_(refresh_move),
+        first_(first_iteration), cost_factor_(cost_factor), label_(label),
+        start_(start), last_gradient_(last_gradient), met_(met),
+        refresh_(refresh) {}
+  ceres::CallbackReturnType operator()(
+      const ceres::IterationSummary& s) override {
+    const auto* record = objective_.RecordAt(s.cost);
+    const double g = record ? record->reference_gradient : NAN;
+    if (std::isfinite(g)) *last_gradient_ = g;
+    if (label_ && (first_ == 0 || s.iteration > 0)) {
+      std::fprintf(
+          stderr, "%s iter %3d  energy %.10e  |grad| %.3e  step %s  %.2f s\n",
+          label_->c_str(), first_ + s.iteration, cost_factor_ * s.cost,
+          *last_gradient_, s.step_is_successful ? "ok " : "rej",
+          std::chrono::duration<double>(Clock::now() - start_).count());
+    }
+    if (std::isfinite(g) && g <= target_) {
+      *met_ = true;
+      return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+    }
+    if (refresh_iterations_ > 0 && s.iteration >= refresh_iterations_ &&
+        record && record->move > refresh_move_) {
+      *refresh_ = true;  // the metrics are stale: a new round
+      return ceres::SOLVER_TERMINATE_SUCCESSFULLY;
+    }
+    return ceres::SOLVER_CONTINUE;
+  }
 
-// The first L-BFGS trial step is -gradient in y. The objective is divided by
-// `scale` so that this step moves no vertex by more than `max_first_move` of
-// the shape's size (a crumpled trial shape fails to evaluate and ends the
-// line search): with preconditioning scale = 1 unless the model step is
-// larger (the model Hessian is the identity, so the unit step is the model's
-// Newton step); without, the gradient step is scaled to max_first_move.
+ private:
+  const PreconditionedObjective& objective_;
+  double target_;
+  int refresh_iterations_;
+  double refresh_move_;  // absolute
+  int first_;
+  double cost_factor_;
+  const std::string* label_;
+  Clock::time_point start_;  // of the run
+  double* last_gradient_;
+  bool* met_;
+  bool* refresh_;
+};
+
+// One round's first L-BFGS trial step is -gradient in y. The objective is
+// divided by `scale` so that this step moves no vertex by more than
+// `max_first_move` of the shape's size (a crumpled trial shape fails to
+// evaluate and ends the line search): with preconditioning scale = 1 unless
+// the model step is larger (the model Hessian is the identity, so the unit
+// step is the model's Newton step); without, the gradient step is scaled to
+// max_first_move. Rounds: SplineSettings::preconditioner_refresh and
+// refresh_move.
 SplineResult Run(const ShellSpace& space, SplineSpec spec,
                  const SplineSettings& settings) {
   // One BLAS thread: the midpoint solves factorise many small systems, where
@@ -107,20 +198,36 @@ SplineResult Run(const ShellSpace& space, SplineSpec spec,
   // / 93.9 user + 76.4 sys with 2 threads, 79.0 s / 82.8 + 18.9 with 1.
   const ScopedBlasThreads blas(1);
   const SplineObjective objective(space, spec, settings.inner);
-  std::vector<double> x0 = objective.InitialParameters();
+  std::vector<double> x = objective.InitialParameters();
   SplineResult result;
-  std::vector<double> x = x0;
-  if (!x0.empty()) {
+  std::unique_ptr<SplinePreconditioner> reference;  // the first round's
+  double reference_scale = 1, target = 0;
+  const Positions& first_shape = spec.initial.front();
+  const double size =
+      (first_shape.colwise().maxCoeff() - first_shape.colwise().minCoeff())
+          .norm();
+  bool met = false;
+  const auto start = RoundCallback::Clock::now();
+  while (!x.empty()) {
+    const std::vector<double> x0 = x;
+    if (result.rounds > 0) {  // the metrics at the current free shapes
+      const ShellPath now = objective.PathFrom(x0.data());
+      for (size_t k = 0; k < now.size(); ++k) spec.initial[k] = now[k];
+    }
     std::unique_ptr<SplinePreconditioner> preconditioner;
     if (settings.precondition) {
       preconditioner = std::make_unique<SplinePreconditioner>(
-          space, spec, settings.preconditioner_regularization);
+          space, spec, settings.preconditioner_regularization,
+          settings.inner.num_threads);
     }
     // The problem owns the function; `scaled` stays valid while it lives.
     auto* function =
-        new PreconditionedObjective(objective, preconditioner.get(), x0, 1.0);
+        new PreconditionedObjective(objective, preconditioner.get(), x0);
     ceres::GradientProblem problem(function);
     PreconditionedObjective& scaled = *function;
+    scaled.set_reference(result.rounds == 0 ? preconditioner.get()
+                                            : reference.get(),
+                         reference_scale);
     std::vector<double> y(x0.size(), 0.0), gradient(x0.size());
     double cost = 0;
     if (!scaled.Evaluate(y.data(), &cost, gradient.data())) {
@@ -130,42 +237,55 @@ SplineResult Run(const ShellSpace& space, SplineSpec spec,
     for (double& g : gradient) g = -g;
     std::vector<double> first_move = scaled.ToX(gradient.data());
     for (size_t i = 0; i < x0.size(); ++i) first_move[i] -= x0[i];
-    const Positions& shape = spec.initial.front();
-    const double size =
-        (shape.colwise().maxCoeff() - shape.colwise().minCoeff()).norm();
     const double move = MaxNorm(first_move) / (settings.max_first_move * size);
     const double scale = std::max(preconditioner ? std::max(move, 1.0) : move,
                                   1e-300);
     scaled.set_scale(scale);
+    if (result.rounds == 0) {
+      reference_scale = scale;
+      scaled.set_reference(preconditioner.get(), scale);
+      result.initial_gradient_norm = result.final_gradient_norm = norm / scale;
+      target = settings.gradient_tolerance * std::max(norm, 1e-300) / scale;
+    }
     ceres::GradientProblemSolver::Options options;
     options.line_search_direction_type = ceres::LBFGS;
-    options.max_num_iterations = settings.max_iterations;
-    options.gradient_tolerance =
-        settings.gradient_tolerance * std::max(norm, 1e-300) / scale;
+    options.max_num_iterations = settings.max_iterations - result.iterations;
+    options.gradient_tolerance = 0;  // RoundCallback stops on the target
     options.function_tolerance = settings.function_tolerance;
     options.logging_type = ceres::SILENT;
-    ProgressPrinter printer(settings.progress_label, scale);
-    if (settings.progress) options.callbacks.push_back(&printer);
+    bool refresh = false;
+    RoundCallback round(scaled, target, settings.preconditioner_refresh,
+                        settings.refresh_move * size, result.iterations, scale,
+                        settings.progress ? &settings.progress_label : nullptr,
+                        start, &result.final_gradient_norm, &met, &refresh);
+    options.callbacks.push_back(&round);
     StopCallback stop(settings.stop);
     if (settings.stop) options.callbacks.push_back(&stop);
     ceres::Solve(options, problem, y.data(), &result.summary);
     x = scaled.ToX(y.data());
-    const auto& iterations = result.summary.iterations;
-    result.iterations = std::max(0, static_cast<int>(iterations.size()) - 1);
-    result.initial_gradient_norm = norm / scale;
-    result.final_gradient_norm = iterations.empty()
-                                     ? result.initial_gradient_norm
-                                     : iterations.back().gradient_max_norm;
+    if (preconditioner && result.rounds == 0) {
+      reference = std::move(preconditioner);
+    }
+    ++result.rounds;
+    result.iterations +=
+        std::max(0, static_cast<int>(result.summary.iterations.size()) - 1);
+    if (!refresh || result.iterations >= settings.max_iterations) break;
+  }
+  if (met) {  // RoundCallback's stop: what Ceres' own tolerance would say
+    result.summary.termination_type = ceres::CONVERGENCE;
+    result.summary.message =
+        "Gradient tolerance reached (in the first round's variables).";
+  }
+  if (x.empty()) {
+    result.gradient_criterion_met = result.converged = true;  // no free shapes
+  } else {
     result.relative_gradient_norm =
         result.initial_gradient_norm > 0
             ? result.final_gradient_norm / result.initial_gradient_norm
             : 0.0;
-    result.gradient_criterion_met =
-        result.final_gradient_norm <= options.gradient_tolerance;
+    result.gradient_criterion_met = result.final_gradient_norm <= target;
     result.converged = result.gradient_criterion_met ||
                        result.summary.termination_type == ceres::CONVERGENCE;
-  } else {
-    result.gradient_criterion_met = result.converged = true;  // no free shapes
   }
   result.path = objective.PathFrom(x.data());
   result.spline_energy = objective.SplineEnergyOf(result.path);

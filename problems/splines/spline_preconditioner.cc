@@ -4,6 +4,7 @@
 #include <Eigen/SparseCholesky>
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
+#include "shellspace/geometry/parallel_for.h"
 
 namespace shellspace {
 
@@ -13,7 +14,8 @@ struct SplinePreconditioner::SpaceFactor {
 
 SplinePreconditioner::SplinePreconditioner(const ShellSpace& space,
                                            const SplineSpec& spec,
-                                           double regularization) {
+                                           double regularization,
+                                           int threads) {
   const int K = spec.steps;
   const int shapes = static_cast<int>(spec.initial.size());
   std::vector<int> column(shapes, -1);  // free shape -> column of A
@@ -45,21 +47,30 @@ SplinePreconditioner::SplinePreconditioner(const ShellSpace& space,
   a_.diagonal().array() += std::max(a_ridge, 1e-300);
   l_a_ = Eigen::LLT<Eigen::MatrixXd>(a_).matrixL();
 
-  SparseMatrix identity(block_, block_);
-  identity.setIdentity();
+  // The free shapes' factors, independent of each other: in parallel.
+  std::vector<int> free_shapes;
   for (int k = 0; k < shapes; ++k) {
-    if (column[k] < 0) continue;
-    const Positions& s = spec.initial[k];
+    if (column[k] >= 0) free_shapes.push_back(k);
+  }
+  space_factors_.resize(free_shapes.size());
+  std::vector<char> positive(free_shapes.size(), 0);
+  ParallelFor(static_cast<int>(free_shapes.size()), threads, [&](int i) {
+    const Positions& s = spec.initial[free_shapes[i]];
     SparseMatrix g =
         EnergyHessian(space, s, s, ShellSide::kDeformed, ShellSide::kDeformed);
+    SparseMatrix identity(block_, block_);
+    identity.setIdentity();
     g += regularization * g.diagonal().mean() * identity;
-    auto factor = std::make_unique<SpaceFactor>();
-    factor->llt.compute(g);
-    if (factor->llt.info() != Eigen::Success) {
+    space_factors_[i] = std::make_unique<SpaceFactor>();
+    space_factors_[i]->llt.compute(g);
+    positive[i] = space_factors_[i]->llt.info() == Eigen::Success;
+  });
+  for (size_t i = 0; i < free_shapes.size(); ++i) {
+    if (!positive[i]) {
       throw InputError("spline preconditioner: the metric at shape " +
-                       std::to_string(k) + " is not positive definite");
+                       std::to_string(free_shapes[i]) +
+                       " is not positive definite");
     }
-    space_factors_.push_back(std::move(factor));
   }
 }
 

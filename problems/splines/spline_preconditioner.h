@@ -31,8 +31,9 @@ namespace shellspace {
 // sigma).
 class SplinePreconditioner {
  public:
+  // `threads`: the free shapes' factorisations run in parallel.
   SplinePreconditioner(const ShellSpace& space, const SplineSpec& spec,
-                       double regularization = 1e-6);
+                       double regularization = 1e-6, int threads = 1);
   ~SplinePreconditioner();
 
   int num_parameters() const { return size_; }
