@@ -112,5 +112,17 @@ run faces_pca_from_mean mean_energy pca --quiet --inputs "${inputs4}" --modes 2 
 run faces_geodesic_surprise_disgust_K8 path_energy geodesic --quiet \
   --start "${faces}/surprise.ply" --end "${faces}/disgust.ply" --steps 8 \
   --output "${out}/faces_geodesic_variant"
+# Variants nobody tuned to: another variation to transport, other keyframes,
+# other regression inputs.
+run faces_transport_surprise_eps1 rungs transport --quiet \
+  --path "${out}/faces_geodesic" --variation "${faces}/surprise.ply" \
+  --epsilon 1 --output "${out}/faces_transport_variant"
+run cactus_spline_2_10_17 spline_energy spline --quiet \
+  --keyframes "${cactus}/cactus2.ply,${cactus}/cactus10.ply,${cactus}/cactus17.ply" \
+  --at 0,4,8 --steps 8 --tolerance 1e-4 --output "${out}/cactus_spline_variant"
+cactus6="$(for i in 1 4 7 10 13 16; do printf '%s/cactus%d.ply,' "${cactus}" "$i"; done)"
+run cactus_regress_1_4_16_K5 spline_energy regress --quiet --inputs "${cactus6%,}" \
+  --at 0,1,2,3,4,5 --steps 5 --sigma 0.01 --tolerance 1e-4 \
+  --output "${out}/cactus_regress_variant"
 echo
 echo "outputs and logs: ${out}"
