@@ -38,15 +38,21 @@ ProgressPrinter::ProgressPrinter(std::string label, double cost_factor)
       cost_factor_(cost_factor),
       start_(std::chrono::steady_clock::now()) {}
 
+void PrintProgressLine(const std::string& label, int iteration, double energy,
+                       double gradient, bool step_ok, double seconds) {
+  std::fprintf(stderr,
+               "%s iter %3d  energy %.10e  |grad| %.3e  step %s  %.2f s\n",
+               label.c_str(), iteration, energy, gradient,
+               step_ok ? "ok " : "rej", seconds);
+}
+
 ceres::CallbackReturnType ProgressPrinter::operator()(
     const ceres::IterationSummary& s) {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - start_)
           .count();
-  std::fprintf(
-      stderr, "%s iter %3d  energy %.10e  |grad| %.3e  step %s  %.2f s\n",
-      label_.c_str(), s.iteration, cost_factor_ * s.cost, s.gradient_max_norm,
-      s.step_is_successful ? "ok " : "rej", seconds);
+  PrintProgressLine(label_, s.iteration, cost_factor_ * s.cost,
+                    s.gradient_max_norm, s.step_is_successful, seconds);
   return ceres::SOLVER_CONTINUE;
 }
 

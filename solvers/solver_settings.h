@@ -73,7 +73,15 @@ class StopCallback : public ceres::IterationCallback {
 ceres::Solver::Options MakeSolverOptions(const SolverSettings& settings,
                                          double initial_gradient_norm);
 
-// Prints "label iter N cost C |grad| G step S  T s" per iteration on stderr.
+// Prints one progress line on stderr,
+//   "label iter N  energy E  |grad| G  step ok|rej  T s",
+// the format of every iterative solve's progress (ProgressPrinter, the
+// spline's L-BFGS rounds).
+void PrintProgressLine(const std::string& label, int iteration, double energy,
+                       double gradient, bool step_ok, double seconds);
+
+// Prints PrintProgressLine per iteration: Ceres' iteration, energy and
+// gradient max-norm, seconds since construction.
 class ProgressPrinter : public ceres::IterationCallback {
  public:
   // The printed energy is cost_factor * Ceres' cost (1 for the shell

@@ -6,12 +6,12 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
-#include <cstdio>
 #include <memory>
 #include <string>
 
 #include "shellspace/geometry/blas_threads.h"
 #include "shellspace/problems/splines/spline_preconditioner.h"
+#include "shellspace/solvers/solver_settings.h"
 
 namespace shellspace {
 namespace {
@@ -150,10 +150,9 @@ class RoundCallback : public ceres::IterationCallback {
     const double g = record ? record->reference_gradient : NAN;
     if (std::isfinite(g)) *last_gradient_ = g;
     if (label_ && (first_ == 0 || s.iteration > 0)) {
-      std::fprintf(
-          stderr, "%s iter %3d  energy %.10e  |grad| %.3e  step %s  %.2f s\n",
-          label_->c_str(), first_ + s.iteration, cost_factor_ * s.cost,
-          *last_gradient_, s.step_is_successful ? "ok " : "rej",
+      PrintProgressLine(
+          *label_, first_ + s.iteration, cost_factor_ * s.cost,
+          *last_gradient_, s.step_is_successful,
           std::chrono::duration<double>(Clock::now() - start_).count());
     }
     if (std::isfinite(g) && g <= target_) {
