@@ -136,7 +136,8 @@ FlagTable SimulateFlags() {
            TextFlag("init",
                     "initial guess laminate|random|km|needle|lens (km: the "
                     "psi-junction cell; needle: the T2 cell)")
-               .Default("needle"),
+               .Default("needle")
+               .Check(CheckInitialGuessName),
            RealFlag("delta",
                     "interface width (0: 3 H/ny, the rule dy = delta/3); "
                     "a positive one needs H/ny <= delta/2",
@@ -152,11 +153,15 @@ FlagTable SimulateFlags() {
            IntegerFlag("init_seed", "seed of --init random", 0),
            IntegerFlag("lm_iterations", "LM iterations per continuation stage",
                        0),
-           IntegerFlag("delta_extrapolation",
+           CheckedFlag("delta_extrapolation",
                        "0, or >= 2: also run the widths delta, delta/r, ... "
                        "(this many, r = 2^(1/2)) and fit the constant as "
                        "delta -> 0",
-                       0, 16),
+                       "0 or an integer in [2, 16]",
+                       [](double v) {
+                         return v == 0 ||
+                                (v >= 2 && v <= 16 && v == std::floor(v));
+                       }),
            TimeLimitFlag(),
        }});
 }
@@ -226,14 +231,6 @@ std::string PrepareOutput() {
 }
 
 int RunSimulate() {
-  if (FLAGS_init != "laminate" && FLAGS_init != "random" &&
-      FLAGS_init != "km" && FLAGS_init != "needle" && FLAGS_init != "lens") {
-    throw InputError("--init must be laminate, random, km, needle or lens, "
-                     "got '" + FLAGS_init + "'");
-  }
-  if (FLAGS_delta_extrapolation == 1) {
-    throw InputError("--delta_extrapolation must be 0 or >= 2");
-  }
   if (FLAGS_delta > 0 && BranchingHeight() / FLAGS_ny > FLAGS_delta / 2.0) {
     throw InputError("--delta is not resolved: need --height / --ny <= "
                      "--delta / 2");
@@ -271,18 +268,9 @@ int RunSimulate() {
     };
   }
   const SimulationResult result = RunSimulation(s);
-  if (result.stages.back().termination == "COLLAPSED") {
-    throw InputError(
-        "branching simulate: the pattern collapsed to u = 0 at delta " +
-        std::to_string(result.stages.back().delta) +
-        " (max |u_y| < 0.5): the grid cannot hold it; use more y-nodes "
-        "(--ny) or a smaller --delta");
-  }
-  if (!std::isfinite(result.energy.total())) {
-    throw InputError("branching simulate: the energy is not finite (" +
-                     std::to_string(result.energy.total()) +
-                     "): epsilon, length and height this far apart leave "
-                     "the grid no resolution");
+  if (const std::string why = SimulationBreakdown(result); !why.empty()) {
+    throw InputError("branching simulate: " + why +
+                     " (--ny, --delta, --epsilon, --length, --height)");
   }
   const double scale = std::pow(s.epsilon, 2.0 / 3.0) * std::cbrt(s.length);
 

@@ -43,14 +43,39 @@ void CheckSimulationSettings(const SimulationSettings& s) {
   if (s.continuation < 1 || s.continuation > 8) {
     throw InputError("branching simulation: the number of continuation stages must lie in [1, 8]");
   }
-  if (s.init != "laminate" && s.init != "random" && s.init != "km" &&
-      s.init != "needle" && s.init != "lens") {
-    throw InputError(
-        "branching simulation: the initial guess must be laminate, random, "
-        "km, needle or lens");
+  try {
+    CheckInitialGuessName(s.init);
+  } catch (const InputError& e) {
+    throw InputError(std::string("branching simulation: the initial guess ") +
+                     e.what());
   }
   if (s.periods < 0) throw InputError("branching simulation: the number of periods must be >= 0");
   if (s.max_iterations < 0) throw InputError("branching simulation: the LM iterations per stage must be >= 0");
+}
+
+void CheckInitialGuessName(const std::string& init) {
+  if (init != "laminate" && init != "random" && init != "km" &&
+      init != "needle" && init != "lens") {
+    throw InputError("must be laminate, random, km, needle or lens, got '" +
+                     init + "'");
+  }
+}
+
+std::string SimulationBreakdown(const SimulationResult& result) {
+  if (!result.stages.empty() &&
+      result.stages.back().termination == "COLLAPSED") {
+    return "the pattern collapsed to u = 0 at delta " +
+           std::to_string(result.stages.back().delta) +
+           " (max |u_y| < 0.5): the grid cannot hold it; use more y-nodes "
+           "or a smaller delta";
+  }
+  if (!std::isfinite(result.energy.total())) {
+    return "the energy is not finite (" +
+           std::to_string(result.energy.total()) +
+           "): epsilon, length and height this far apart leave the grid no "
+           "resolution";
+  }
+  return "";
 }
 
 SimulationResult InitialSimulation(const SimulationSettings& s) {

@@ -49,6 +49,17 @@ struct SimulationResult {
 // Validates the settings (InputError with a one-line message).
 void CheckSimulationSettings(const SimulationSettings& settings);
 
+// Throws InputError "must be laminate, random, km, needle or lens, got 'x'"
+// unless `init` names an initial guess (SimulationSettings::init); the
+// message names no setting, so that a caller can prefix its own name.
+void CheckInitialGuessName(const std::string& init);
+
+// Why a finished simulation has no usable result, in one line without a
+// prefix, or "" if it has one: the pattern collapsed to u = 0 (the last
+// stage's termination "COLLAPSED": the grid cannot hold it) or the energy
+// is not finite (epsilon, length and height too far apart for the grid).
+std::string SimulationBreakdown(const SimulationResult& result);
+
 // Builds the initial field only (validated settings).
 SimulationResult InitialSimulation(const SimulationSettings& settings);
 

@@ -249,8 +249,16 @@ TEST(BadInputCliTest, OutputsThatWouldOverwriteOrCannotBeWrittenAreRejected) {
                    "--length must be a number [1e-12, 1e+12], got 1e-300"});
   cases.push_back({"branching construct --epsilon 1e20 --output " + d + "/br",
                    "--epsilon must be a number [1e-12, 1e+12], got 1e+20"});
+  // The simulation's own checks (problems/branching/simulation.h) under the
+  // flag's name, before any work.
+  cases.push_back({"branching simulate --init needles --output " + d + "/br",
+                   "--init: must be laminate, random, km, needle or lens, got "
+                   "'needles'"});
+  cases.push_back(
+      {"branching simulate --delta_extrapolation 1 --output " + d + "/br",
+       "--delta_extrapolation must be 0 or an integer in [2, 16], got 1"});
   for (const Case& c : cases) ExpectRejected(c.args, c.message, d);
-  EXPECT_EQ(cases.size(), 37u);
+  EXPECT_EQ(cases.size(), 39u);
 }
 
 }  // namespace
