@@ -83,7 +83,7 @@ RunPaths GeodesicInputPaths() {
 }
 
 GeodesicOfFlags SolveGeodesicOfFlags(const std::string& verb) {
-  const auto [start, end] = LoadStartEndFromFlags();
+  const auto [start, end] = LoadShellPair(FLAGS_start, FLAGS_end);
   CheckMemory(GeodesicBytes(start.mesh.num_vertices(), FLAGS_steps),
               "--steps " + std::to_string(FLAGS_steps) + " on " +
                   std::to_string(start.mesh.num_vertices()) + " vertices",

@@ -52,10 +52,10 @@ ShellSet LoadShellFiles(const std::vector<std::string>& paths, const Shell* like
   return set;
 }
 
-ShellPair LoadStartEndFromFlags() {
+ShellPair LoadShellPair(const std::string& first, const std::string& second) {
   ShellPair pair;
-  pair.start = LoadShell(FLAGS_start);
-  pair.end = LoadCompatibleShell(FLAGS_end, pair.start);
+  pair.first = LoadShell(first);
+  pair.second = LoadCompatibleShell(second, pair.first);
   return pair;
 }
 

@@ -45,13 +45,14 @@ ShellSet LoadShellList(const std::string& list, const std::string& flag);
 ShellSet LoadShellFiles(const std::vector<std::string>& paths,
                         const Shell* like = nullptr);
 
-// The shells of --start and --end, the second checked compatible with the
-// first.
+// Two shells, the second checked compatible with the first
+// (LoadCompatibleShell): --start and --end, --first and --second,
+// --reference and --deformed or --targets.
 struct ShellPair {
-  Shell start;
-  Mesh end;
+  Shell first;
+  Mesh second;
 };
-ShellPair LoadStartEndFromFlags();
+ShellPair LoadShellPair(const std::string& first, const std::string& second);
 
 // The bending model of --bending (InputError for an unknown name).
 BendingModel BendingModelFromFlags();

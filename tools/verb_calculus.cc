@@ -116,8 +116,7 @@ int RunShoot() {
       .OutputDirectory("output", FLAGS_output)
       .OutputFile("png", FLAGS_png)
       .Check();
-  const Shell first = LoadShell(FLAGS_first);
-  const Mesh second = LoadCompatibleShell(FLAGS_second, first);
+  const auto [first, second] = LoadShellPair(FLAGS_first, FLAGS_second);
   CheckMemory(PathBytes(first.mesh.num_vertices(), FLAGS_steps + 1),
               "--steps " + std::to_string(FLAGS_steps) + " on " +
                   std::to_string(first.mesh.num_vertices()) + " vertices",

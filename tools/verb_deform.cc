@@ -48,8 +48,8 @@ int RunDeform() {
       .InputFile("mask", FLAGS_mask)
       .OutputFile("output", FLAGS_output)
       .Check();
-  const Shell reference = LoadShell(FLAGS_reference);
-  const Mesh targets = LoadCompatibleShell(FLAGS_targets, reference);
+  const auto [reference, targets] =
+      LoadShellPair(FLAGS_reference, FLAGS_targets);
   const ShellSpace space = SpaceFromFlags(reference);
   ElasticDeformationInput input;
   input.reference = reference.mesh.positions;

@@ -64,8 +64,8 @@ DeformationEnergy EnergyWith(const Shell& reference, const Mesh& deformed,
 }
 
 int RunEnergy() {
-  const Shell reference = LoadShell(FLAGS_reference);
-  const Mesh deformed = LoadCompatibleShell(FLAGS_deformed, reference);
+  const auto [reference, deformed] =
+      LoadShellPair(FLAGS_reference, FLAGS_deformed);
   const std::string requested = FLAGS_bending;
   const bool both = requested == kBoth;
   const bool edge_angles = requested == kEdgeAngles;
