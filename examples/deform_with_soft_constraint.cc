@@ -41,11 +41,6 @@ struct PullToTarget {
 };
 
 int Run(int argc, char** argv) {
-  if (argc != 8) {
-    std::fprintf(stderr,
-                 "usage: %s MESH MASK VERTEX DX DY DZ OUT.ply\n", argv[0]);
-    return 2;
-  }
   const shellspace::Mesh reference = shellspace::ReadMesh(argv[1]);
   const shellspace::Topology topology = shellspace::ValidateShell(reference, argv[1]);
   const std::vector<int> mask =
@@ -100,4 +95,7 @@ int Run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) { return examples::Main(Run, argc, argv); }
+int main(int argc, char** argv) {
+  return examples::Main(Run, {7, 7, "MESH MASK VERTEX DX DY DZ OUT.ply"},
+                        argc, argv);
+}

@@ -33,11 +33,24 @@ inline TwoPoses ReadTwoPoses(const char* first_path, const char* second_path) {
   return poses;
 }
 
-// main's body for every example: Run(argc, argv), with a library error
+// The command line of an example: from min_args to max_args arguments
+// (the program's name not counted), described by `text`.
+struct Usage {
+  int min_args;
+  int max_args;
+  const char* text;
+};
+
+// main's body for every example: "usage: PROGRAM text" and exit 2 for a
+// wrong argument count, else Run(argc, argv), with a library error
 // (shellspace::InputError, one line naming the input) printed as that line
 // and exit 1.
 template <typename RunFunction>
-int Main(RunFunction run, int argc, char** argv) {
+int Main(RunFunction run, const Usage& usage, int argc, char** argv) {
+  if (argc - 1 < usage.min_args || argc - 1 > usage.max_args) {
+    std::fprintf(stderr, "usage: %s %s\n", argv[0], usage.text);
+    return 2;
+  }
   try {
     return run(argc, argv);
   } catch (const std::exception& e) {

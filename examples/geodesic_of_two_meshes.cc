@@ -19,10 +19,6 @@
 namespace {
 
 int Run(int argc, char** argv) {
-  if (argc != 5 && argc != 6) {
-    std::fprintf(stderr, "usage: %s START END STEPS OUT_DIR [MASK]\n", argv[0]);
-    return 2;
-  }
   const examples::TwoPoses poses = examples::ReadTwoPoses(argv[1], argv[2]);
   const shellspace::Mesh& start = poses.first;
   const shellspace::ShellSpace space(start, poses.topology,
@@ -48,4 +44,7 @@ int Run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) { return examples::Main(Run, argc, argv); }
+int main(int argc, char** argv) {
+  return examples::Main(Run, {4, 5, "START END STEPS OUT_DIR [MASK]"}, argc,
+                        argv);
+}

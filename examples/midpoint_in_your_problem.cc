@@ -45,10 +45,6 @@ class StayNear : public ceres::SizedCostFunction<3, 3> {
 };
 
 int Run(int argc, char** argv) {
-  if (argc != 3 && argc != 4) {
-    std::fprintf(stderr, "usage: %s A B [K_WEIGHT]\n", argv[0]);
-    return 2;
-  }
   const examples::TwoPoses poses = examples::ReadTwoPoses(argv[1], argv[2]);
   const shellspace::Mesh& a = poses.first;
   const shellspace::Mesh b{poses.second, a.faces};
@@ -101,4 +97,6 @@ int Run(int argc, char** argv) {
 
 }  // namespace
 
-int main(int argc, char** argv) { return examples::Main(Run, argc, argv); }
+int main(int argc, char** argv) {
+  return examples::Main(Run, {2, 3, "A B [K_WEIGHT]"}, argc, argv);
+}
