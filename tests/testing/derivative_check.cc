@@ -83,6 +83,16 @@ bool CostFunctionWithWrongJacobian::Evaluate(double const* const* parameters,
   return true;
 }
 
+ErrorAndTwin CentralDifferenceErrorAndTwin(
+    const VectorFunction& f, const Eigen::VectorXd& x,
+    const DerivativeColumn& analytic, const std::vector<int>& probes,
+    double h, const WrongEntry& wrong) {
+  const DerivativeColumn twin =
+      WrongInOneEntry(analytic, wrong.row, wrong.col, wrong.offset);
+  return {CentralDifferenceError(f, x, analytic, probes, h),
+          CentralDifferenceError(f, x, twin, probes, h)};
+}
+
 DerivativeColumn WrongInOneEntry(DerivativeColumn analytic, int row, int col,
                                  double offset) {
   return [analytic = std::move(analytic), row, col, offset](int j) {

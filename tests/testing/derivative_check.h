@@ -70,6 +70,27 @@ double NormwiseRelativeError(const Eigen::MatrixXd& a, const Eigen::MatrixXd& b,
 DerivativeColumn WrongInOneEntry(DerivativeColumn analytic, int row, int col,
                                  double offset);
 
+// Where a negative twin's derivative is wrong: entry `row` of column `col`,
+// off by `offset` (WrongInOneEntry).
+struct WrongEntry {
+  int row;
+  int col;
+  double offset;
+};
+
+// A derivative check and its negative twin through the same measurement:
+// `error` is CentralDifferenceError(f, x, analytic, probes, h) and
+// `twin_error` the same with the analytic derivative wrong at `wrong`. A
+// test asserts `error` below and `twin_error` above its tolerance.
+struct ErrorAndTwin {
+  double error;
+  double twin_error;
+};
+ErrorAndTwin CentralDifferenceErrorAndTwin(
+    const VectorFunction& f, const Eigen::VectorXd& x,
+    const DerivativeColumn& analytic, const std::vector<int>& probes,
+    double h, const WrongEntry& wrong);
+
 }  // namespace shellspace::testing
 
 #endif  // SHELLSPACE_TESTS_TESTING_DERIVATIVE_CHECK_H_

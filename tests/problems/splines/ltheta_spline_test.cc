@@ -357,10 +357,7 @@ class LThetaSplineTest : public ::testing::Test {
   }
 
   static SolverSettings Tight() {
-    SolverSettings settings;
-    settings.gradient_tolerance = 1e-12;
-    settings.function_tolerance = 1e-16;
-    settings.parameter_tolerance = 1e-16;
+    SolverSettings settings = testing::TightSettings(1e-12);
     settings.num_threads = 1;
     return settings;
   }

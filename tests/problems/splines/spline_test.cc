@@ -17,10 +17,7 @@ namespace shellspace {
 namespace {
 
 SolverSettings TightInner() {
-  SolverSettings s;
-  s.gradient_tolerance = 1e-13;
-  s.function_tolerance = 1e-16;
-  s.parameter_tolerance = 1e-16;
+  SolverSettings s = testing::TightSettings(1e-13);
   s.max_iterations = 200;
   return s;
 }
