@@ -624,18 +624,26 @@ py::tuple SplinePy(const py::object& keyframes_object,
   SplineSettings settings = SplineSettingsOf(solver, "spline");
   if (method == "ltheta") settings.max_iterations = 0;
   SplineResult result;
+  LThetaSplineReport ltheta_report;
   double ltheta_seconds = 0;
   {
     py::gil_scoped_release release;
-    const ShellPath ltheta =
-        LThetaSpline(space, set.shapes, at, steps, periodic, ltheta_settings);
+    const ShellPath ltheta = LThetaSpline(space, set.shapes, at, steps,
+                                          periodic, ltheta_settings,
+                                          &ltheta_report);
     ltheta_seconds = Seconds(clock);
     result =
         SolveSpline(space, set.shapes, at, steps, periodic, ltheta, settings);
   }
+  // The LΘA spline alone converged if every frame's reconstruction did.
+  if (method == "ltheta") {
+    result.converged = ltheta_report.unconverged_frames().empty();
+  }
   WritePath(output, png, gltf, set.first.mesh.faces, result.path);
   JsonObject head;
-  head.Add("method", method).Add("ltheta_seconds", ltheta_seconds);
+  head.Add("method", method)
+      .Add("ltheta_seconds", ltheta_seconds)
+      .Add("ltheta", LThetaSplineJson(ltheta_report));
   head.Raw("energy_split", PathEnergySplitJson(space, result.path))
       .Raw("material", MaterialRecord(space, set.first.mesh, material_args));
   JsonObject json = SplineJson(head, result, Seconds(clock));
@@ -832,13 +840,6 @@ py::tuple BranchingSimulatePy(double epsilon, double length, double height,
                               int periods, int init_seed, int lm_iterations,
                               int delta_extrapolation) {
   using namespace branching;
-  if (init != "laminate" && init != "random" && init != "km" &&
-      init != "needle" && init != "lens") {
-    throw InputError(
-        "init must be laminate, random, km, needle or lens, "
-        "got '" +
-        init + "'");
-  }
   if (delta_extrapolation == 1 || delta_extrapolation < 0) {
     throw InputError("delta_extrapolation must be 0 or >= 2");
   }
@@ -855,9 +856,6 @@ py::tuple BranchingSimulatePy(double epsilon, double length, double height,
   s.periods = periods;
   s.seed = static_cast<unsigned>(init_seed);
   s.max_iterations = lm_iterations;
-  if (delta > 0 && s.height / ny > delta / 2.0) {
-    throw InputError("delta is not resolved: need height / ny <= delta / 2");
-  }
   CheckSimulationSettings(s);
   std::optional<SimulationResult> simulation;
   JsonObject summary;
@@ -865,12 +863,8 @@ py::tuple BranchingSimulatePy(double epsilon, double length, double height,
     py::gil_scoped_release release;
     simulation.emplace(RunSimulation(s));
     const SimulationResult& result = *simulation;
-    if (result.stages.back().termination == "COLLAPSED") {
-      throw InputError(
-          "branching simulate: the pattern collapsed to u = 0 at delta " +
-          std::to_string(result.stages.back().delta) +
-          " (max |u_y| < 0.5): the grid cannot hold it; use more y-nodes "
-          "or a smaller delta");
+    if (const std::string why = SimulationBreakdown(result); !why.empty()) {
+      throw InputError("branching simulate: " + why);
     }
     summary = SimulationJson(s, result);
     if (delta_extrapolation >= 2) {

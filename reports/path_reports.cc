@@ -187,7 +187,7 @@ JsonObject TransportJson(const TransportResult& result, double epsilon) {
 }
 
 JsonObject SplineJson(JsonObject head, const SplineResult& result,
-                      double seconds, bool optimised) {
+                      double seconds) {
   head.Add("spline_energy", result.spline_energy)
       .Add("data_energy", result.data_energy)
       .Add("objective", result.objective)
@@ -197,7 +197,7 @@ JsonObject SplineJson(JsonObject head, const SplineResult& result,
       .Add("final_gradient_norm", result.final_gradient_norm)
       .Add("relative_gradient_norm", result.relative_gradient_norm)
       .Add("gradient_criterion_met", result.gradient_criterion_met)
-      .Add("converged", optimised ? result.converged : true)
+      .Add("converged", result.converged)
       .Add("termination", result.iterations > 0
                               ? ceres::TerminationTypeToString(
                                     result.summary.termination_type)
@@ -205,6 +205,18 @@ JsonObject SplineJson(JsonObject head, const SplineResult& result,
       .Add("seconds", seconds)
       .Add("frames", static_cast<int>(result.path.size()));
   return head;
+}
+
+JsonObject LThetaSplineJson(const LThetaSplineReport& report) {
+  const std::vector<int> unconverged = report.unconverged_frames();
+  JsonObject json;
+  json.Add("frames_solved", static_cast<int>(report.solved_frames.size()))
+      .Add("lm_iterations", report.lm_iterations())
+      .Add("unconverged_frames",  // indices, printed as integers
+           std::vector<double>(unconverged.begin(), unconverged.end()))
+      .Add("spline_seconds", report.spline_seconds)
+      .Add("solve_seconds", report.solve_seconds);
+  return json;
 }
 
 JsonObject ComparisonJson(const ShapeComparison& comparison, double tolerance,

@@ -17,6 +17,7 @@
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/problems/calculus/multiresolution.h"
 #include "shellspace/problems/calculus/parallel_transport.h"
+#include "shellspace/problems/splines/ltheta_spline.h"
 #include "shellspace/problems/splines/spline.h"
 
 namespace shellspace {
@@ -97,12 +98,18 @@ JsonObject TransportJson(const TransportResult& result, double epsilon);
 // A spline or regression solve, appended to `head` (the verb's own keys):
 // spline_energy (F_K), data_energy, objective, iterations (L-BFGS, without
 // Ceres' iteration 0), lbfgs_rounds, initial_gradient_norm, final_gradient_norm,
-// relative_gradient_norm, gradient_criterion_met, converged (`optimised`:
-// the outer solver ran and met its criterion, SplineResult::converged;
-// otherwise true), termination ("not optimised" if no iteration ran), then
-// `seconds` and frames.
+// relative_gradient_norm, gradient_criterion_met, converged
+// (SplineResult::converged: the outer solver met its criterion; for a path
+// that is the LΘA spline alone the caller sets it to "every frame's
+// reconstruction converged"), termination ("not optimised" if no iteration
+// ran), then `seconds` and frames.
 JsonObject SplineJson(JsonObject head, const SplineResult& result,
-                      double seconds, bool optimised = true);
+                      double seconds);
+
+// The LΘA spline's reconstructions (LThetaSplineReport): frames_solved,
+// lm_iterations (all frames), unconverged_frames (indices k), and the
+// seconds of the quantities' splines and of the reconstructions.
+JsonObject LThetaSplineJson(const LThetaSplineReport& report);
 
 // The summary of `compare` (CompareShapes and its verdict): frames,
 // max_distance, mean_distance, diameter, relative_max_distance,

@@ -122,12 +122,29 @@ SplineSettings SplineSettingsFromFlags(const std::string& label) {
   return settings;
 }
 
+// What a path that is the LΘA spline alone failed to reach, for the run's
+// status: "" if every frame's reconstruction converged.
+std::string LThetaFailure(const LThetaSplineReport& report) {
+  const std::vector<int> frames = report.unconverged_frames();
+  if (frames.empty()) return "";
+  std::string list;
+  for (size_t i = 0; i < frames.size(); ++i) {
+    list += (i ? ", " : "") + std::to_string(frames[i]);
+  }
+  return "spline: the LΘA reconstruction of frame(s) " + list +
+         " stopped short of the tolerance " + Short(FLAGS_tolerance) +
+         " (" + std::to_string(kInnerMaxIterations) +
+         " LM iterations each at most)";
+}
+
 // Writes the frames and the report; returns the exit code. `optimised`:
-// the outer solver ran (not --method ltheta).
+// the outer solver ran (not --method ltheta); `ltheta_failure`:
+// LThetaFailure of a path that is the LΘA spline alone.
 int Report(const std::string& verb, const ShellSpace& space, const Faces& faces,
            const SplineResult& result, double seconds, JsonObject extra,
-           bool optimised = true) {
+           bool optimised = true, const std::string& ltheta_failure = "") {
   RunStatus status(verb);
+  status.Require(ltheta_failure.empty(), ltheta_failure);
   if (optimised) {
     status.Require(result.converged,
                    verb + ": relative gradient " +
@@ -145,7 +162,7 @@ int Report(const std::string& verb, const ShellSpace& space, const Faces& faces,
   extra.Add("bending_model", FLAGS_bending)
       .Raw("energy_split", PathEnergySplitJson(space, result.path));
   const std::string summary = output.Commit(
-      SplineJson(std::move(extra), result, seconds, optimised)
+      SplineJson(std::move(extra), result, seconds)
           .Add("output", FLAGS_output));
   if (FLAGS_json) {
     std::cout << summary << "\n";
@@ -175,41 +192,49 @@ int RunSpline() {
   ltheta_settings.progress = false;
   ltheta_settings.max_iterations = kInnerMaxIterations;
   if (!FLAGS_quiet) std::cerr << "spline: LTheta spline\n";
-  const ShellPath ltheta = LThetaSpline(space, keyframes, at, FLAGS_steps,
-                                        FLAGS_periodic, ltheta_settings);
+  LThetaSplineReport ltheta_report;
+  const ShellPath ltheta =
+      LThetaSpline(space, keyframes, at, FLAGS_steps, FLAGS_periodic,
+                   ltheta_settings, &ltheta_report);
   const double ltheta_seconds = Seconds(clock);
   if (!FLAGS_quiet) {
-    std::cerr << "spline: LTheta spline done (" << ltheta_seconds << " s)\n";
+    std::cerr << "spline: LTheta spline done (" << ltheta_seconds << " s, "
+              << ltheta_report.lm_iterations() << " LM iterations over "
+              << ltheta_report.solved_frames.size() << " frames)\n";
   }
-  if (FLAGS_method == "ltheta" && !FLAGS_energy) {
-    SplineResult plain;
-    plain.path = ltheta;
-    plain.converged = plain.gradient_criterion_met = true;
+  const bool alone = FLAGS_method == "ltheta";
+  const std::string ltheta_failure = alone ? LThetaFailure(ltheta_report) : "";
+  if (alone && !FLAGS_energy) {
+    RunStatus status("spline");
+    status.Require(ltheta_failure.empty(), ltheta_failure);
     RunDirectory output(FLAGS_output);
-    WritePathOutputs(&output, set.first.mesh.faces, plain.path);
+    WritePathOutputs(&output, set.first.mesh.faces, ltheta);
     const std::string summary =
         output.Commit(JsonObject()
                           .Add("bending_model", FLAGS_bending)
                           .Add("method", FLAGS_method)
                           .Add("ltheta_seconds", ltheta_seconds)
+                          .Add("ltheta", LThetaSplineJson(ltheta_report))
                           .Add("iterations", 0)
-                          .Add("converged", true)
+                          .Add("converged", ltheta_failure.empty())
                           .Add("termination", "not optimised")
                           .Add("seconds", Seconds(clock))
-                          .Add("frames", static_cast<int>(plain.path.size()))
+                          .Add("frames", static_cast<int>(ltheta.size()))
                           .Add("output", FLAGS_output));
     if (FLAGS_json) std::cout << summary << "\n";
-    return 0;
+    return status.Finish();
   }
   SplineSettings settings = SplineSettingsFromFlags("spline");
-  if (FLAGS_method == "ltheta") settings.max_iterations = 0;
+  if (alone) settings.max_iterations = 0;
   SplineResult result = SolveSpline(space, keyframes, at, FLAGS_steps,
                                     FLAGS_periodic, ltheta, settings);
+  if (alone) result.converged = ltheta_failure.empty();
   return Report("spline", space, set.first.mesh.faces, result, Seconds(clock),
                 JsonObject()
                     .Add("method", FLAGS_method)
-                    .Add("ltheta_seconds", ltheta_seconds),
-                FLAGS_method != "ltheta");
+                    .Add("ltheta_seconds", ltheta_seconds)
+                    .Add("ltheta", LThetaSplineJson(ltheta_report)),
+                !alone, ltheta_failure);
 }
 
 int RunRegress() {

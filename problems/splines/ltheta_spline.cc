@@ -3,6 +3,7 @@
 #include <ceres/problem.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <string>
@@ -91,6 +92,25 @@ void CheckInputs(const ShellSpace& space,
 }
 
 }  // namespace
+
+int LThetaSplineReport::lm_iterations() const {
+  int total = 0;
+  for (const ceres::Solver::Summary& s : summaries) {
+    // Ceres records iteration 0 (the initial guess) too.
+    total += std::max(0, static_cast<int>(s.iterations.size()) - 1);
+  }
+  return total;
+}
+
+std::vector<int> LThetaSplineReport::unconverged_frames() const {
+  std::vector<int> frames;
+  for (size_t i = 0; i < summaries.size(); ++i) {
+    if (summaries[i].termination_type != ceres::CONVERGENCE) {
+      frames.push_back(solved_frames[i]);
+    }
+  }
+  return frames;
+}
 
 LThetaQuantities ComputeLThetaQuantities(const ShellSpace& space,
                                          const Positions& shape) {

@@ -71,6 +71,12 @@ struct LThetaSplineReport {
   std::vector<ceres::Solver::Summary> summaries;  // one per solved frame
   double spline_seconds = 0;  // quantities and their splines
   double solve_seconds = 0;   // all reconstructions
+
+  // LM iterations over all solved frames (Ceres' iteration 0 not counted).
+  int lm_iterations() const;
+  // The solved frames whose reconstruction stopped short of its tolerances
+  // (Ceres' termination not CONVERGENCE: the iteration cap, or a failure).
+  std::vector<int> unconverged_frames() const;
 };
 
 // The LΘA spline through `keyframes` at the strictly increasing indices `at`

@@ -172,6 +172,11 @@ TEST(RunStatusCliTest, LThetaSplineWithoutTheEnergy) {
       << err;
   EXPECT_FALSE(Has(out, "spline_energy")) << out;
   EXPECT_EQ(Number(out, "frames"), 5) << out;
+  // The reconstructions of frames 1 and 3, all converged.
+  EXPECT_EQ(Number(out, "frames_solved"), 2) << out;
+  EXPECT_GT(Number(out, "lm_iterations"), 1) << out;
+  EXPECT_TRUE(Has(out, "\"unconverged_frames\": []")) << out;
+  EXPECT_TRUE(Has(out, "\"converged\": true")) << out;
   EXPECT_TRUE(std::filesystem::exists(dir + "/s/shape_004.ply"));
   // With the F_K evaluation the same run fails: a midpoint of this LTheta
   // path is degenerate (the report, not the path, needs it).

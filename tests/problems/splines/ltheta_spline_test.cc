@@ -377,9 +377,21 @@ TEST_F(LThetaSplineTest, PassesThroughItsKeyframes) {
   EXPECT_TRUE(path[2] == keys[1]);
   EXPECT_TRUE(path[5] == keys[2]);
   EXPECT_EQ(report.solved_frames, (std::vector<int>{1, 3, 4, 6}));
+  int iterations = 0;  // Ceres' records, less each solve's iteration 0
   for (const auto& summary : report.summaries) {
     EXPECT_TRUE(summary.IsSolutionUsable()) << summary.BriefReport();
+    iterations += static_cast<int>(summary.iterations.size()) - 1;
   }
+  EXPECT_GT(iterations, 4);
+  EXPECT_EQ(report.lm_iterations(), iterations);
+  EXPECT_TRUE(report.unconverged_frames().empty());
+  // One LM iteration per frame: every solved frame is named unconverged.
+  SolverSettings one_iteration;
+  one_iteration.max_iterations = 1;
+  LThetaSplineReport capped;
+  LThetaSpline(space_, keys, {0, 2, 5}, 6, false, one_iteration, &capped);
+  EXPECT_EQ(capped.unconverged_frames(), (std::vector<int>{1, 3, 4, 6}));
+  EXPECT_EQ(capped.lm_iterations(), 4);
   // Inner frames are genuine shells between their neighbouring keyframes a,
   // b: a copy of neither, and nearer to one of them than they are apart.
   const std::vector<std::array<int, 3>> frames = {
