@@ -7,6 +7,8 @@
 #include <thread>
 #include <vector>
 
+#include "shellspace/geometry/openmp_threads.h"
+
 namespace shellspace {
 
 void ParallelFor(int count, int threads, const std::function<void(int)>& task) {
@@ -26,7 +28,12 @@ void ParallelFor(int count, int threads, const std::function<void(int)>& task) {
     }
   };
   std::vector<std::thread> pool;
-  for (int t = 1; t < std::min(threads, count); ++t) pool.emplace_back(worker);
+  for (int t = 1; t < std::min(threads, count); ++t) {
+    pool.emplace_back([&worker]() {
+      SerialOpenMpInThisThread();  // as the calling thread (the CLI, Python)
+      worker();
+    });
+  }
   worker();
   for (std::thread& t : pool) t.join();
   if (error) std::rethrow_exception(error);

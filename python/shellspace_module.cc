@@ -30,6 +30,7 @@
 #include "shellspace/cost_functions/shell/relative_bending_weight.h"
 #include "shellspace/cost_functions/shell/shell_space.h"
 #include "shellspace/geometry/mesh.h"
+#include "shellspace/geometry/openmp_threads.h"
 #include "shellspace/geometry/validation.h"
 #include "shellspace/io/atomic_file.h"
 #include "shellspace/io/frame_sequence.h"
@@ -1060,6 +1061,9 @@ auto WithMaterialAndSolverArgs(Result (*f)(Params...)) {
 
 PYBIND11_MODULE(shellspace, m) {
   using namespace shellspace;
+  // CHOLMOD's OpenMP regions on the importing thread alone, as in the CLI
+  // (geometry/openmp_threads.h).
+  SerialOpenMpInThisThread();
   // Ceres' routine warnings hidden, as in the CLI (its --minloglevel=0).
   FLAGS_minloglevel = google::GLOG_ERROR;
   FLAGS_logtostderr = true;

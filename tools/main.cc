@@ -19,6 +19,7 @@
 #include <vector>
 
 #include "shellspace/geometry/mesh.h"
+#include "shellspace/geometry/openmp_threads.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/run_output.h"
 #include "shellspace/tools/run_status.h"
@@ -172,6 +173,7 @@ void ApplyDefaultsAndValidate(const Verb& verb) {
 int main(int argc, char** argv) {
   using shellspace::VerbRegistry;
   shellspace::SetRunCommandLine(argc, argv);
+  shellspace::SerialOpenMpInThisThread();
   if (argc < 2 || shellspace::IsHelp(argv[1])) {
     shellspace::PrintUsage();
     return argc < 2 ? 1 : 0;

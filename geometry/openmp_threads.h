@@ -1,0 +1,29 @@
+// The OpenMP parallel regions of SuiteSparse, serialised per thread.
+// CHOLMOD 5 (Debian's SuiteSparse 5.12) opens OpenMP regions with a fixed
+// num_threads(4) clause inside every supernodal factorisation, whatever
+// OMP_NUM_THREADS says. On 2 cores those threads mostly wake each other:
+// the LΘA reconstruction of two cactus frames (cactus 2, 10, 17 at 0, 2, 4,
+// K = 4; 400 LM iterations) took 67.7 s wall / 55.2 s user + 67.6 s system
+// time (4.4 million context switches) with them, 29.1 s / 29.5 + 2.0 s
+// without (OMP_DYNAMIC=true OMP_NUM_THREADS=1). The heavy dense work of the
+// factorisation is the BLAS's (blas_threads.h), not these regions.
+#ifndef SHELLSPACE_GEOMETRY_OPENMP_THREADS_H_
+#define SHELLSPACE_GEOMETRY_OPENMP_THREADS_H_
+
+namespace shellspace {
+
+// Makes the OpenMP parallel regions that the calling thread opens run on
+// that thread alone: its nthreads-var becomes 1 and its dyn-var true, which
+// caps even an explicit num_threads clause at 1 (OpenMP's dynamic
+// adjustment, deterministic at nthreads-var 1). OpenMP keeps these settings
+// per thread, so every thread that factorises calls it: the CLI's main,
+// the Python module's import, ParallelFor's workers. Does nothing if the
+// user set OMP_NUM_THREADS, OMP_DYNAMIC or OMP_THREAD_LIMIT, or if no
+// OpenMP runtime is loaded (looked up at run time). The digits of a
+// factorisation may differ from those with CHOLMOD's 4 threads; with the
+// count fixed they repeat exactly.
+void SerialOpenMpInThisThread();
+
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_GEOMETRY_OPENMP_THREADS_H_
