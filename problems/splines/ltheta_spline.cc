@@ -10,7 +10,9 @@
 #include <utility>
 
 #include "shellspace/cost_functions/ltheta_cost_functions.h"
+#include "shellspace/geometry/blas_threads.h"
 #include "shellspace/geometry/element_geometry.h"
+#include "shellspace/geometry/parallel_for.h"
 #include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/problems/splines/cubic_spline.h"
 #include "shellspace/solvers/rigid_gauge.h"
@@ -251,6 +253,8 @@ ShellPath LThetaSpline(const ShellSpace& space,
   const auto solve_start = Clock::now();
   ShellPath path(steps + 1);
   const int last_frame = periodic ? steps - 1 : steps;
+  std::vector<int> frames;  // to reconstruct, with their guesses
+  std::vector<Positions> guesses;
   for (int k = 0; k <= last_frame; ++k) {
     // Neighbouring keyframes: the last at or before k, the first after it.
     int before = -1;
@@ -272,21 +276,36 @@ ShellPath LThetaSpline(const ShellSpace& space,
       guess = BlendKeyframes(
           *a, *b, static_cast<double>(k - index_a) / (index_b - index_a));
     }
-    LThetaQuantities target;
-    target.lengths = targets.row(k).head(num_edges).transpose();
-    target.areas = targets.row(k).segment(num_edges, num_faces).transpose();
-    target.dihedrals = targets.row(k).tail(num_flaps).transpose();
-    SolverSettings frame_settings = settings;
-    frame_settings.progress_label =
-        settings.progress_label + " ltheta frame " + std::to_string(k);
-    ceres::Solver::Summary summary;
-    const Positions solved = ReconstructFromLTheta(
-        space, target, weights, guess, frame_settings, &summary);
-    path[k] = AlignRigidly(solved, guess);
-    if (report != nullptr) {
-      report->solved_frames.push_back(k);
-      report->summaries.push_back(std::move(summary));
-    }
+    frames.push_back(k);
+    guesses.push_back(std::move(guess));
+  }
+  // The frames are independent: solved in parallel, each on one thread
+  // (Ceres' and the BLAS's), so that the digits do not depend on the thread
+  // count. Cactus 2, 10, 17 at 0, 2, 4, K = 4 (two frames): 25.3 s wall /
+  // 29.1 user + 21.0 s system serially with 2 Ceres and 2 BLAS threads.
+  std::vector<ceres::Solver::Summary> summaries(frames.size());
+  const ScopedBlasThreads one_blas_thread(1);
+  ParallelFor(static_cast<int>(frames.size()), settings.num_threads,
+              [&](int i) {
+                const int k = frames[i];
+                LThetaQuantities target;
+                target.lengths = targets.row(k).head(num_edges).transpose();
+                target.areas =
+                    targets.row(k).segment(num_edges, num_faces).transpose();
+                target.dihedrals = targets.row(k).tail(num_flaps).transpose();
+                SolverSettings frame_settings = settings;
+                frame_settings.num_threads = 1;
+                frame_settings.progress_label = settings.progress_label +
+                                                " ltheta frame " +
+                                                std::to_string(k);
+                const Positions solved =
+                    ReconstructFromLTheta(space, target, weights, guesses[i],
+                                          frame_settings, &summaries[i]);
+                path[k] = AlignRigidly(solved, guesses[i]);
+              });
+  if (report != nullptr) {
+    report->solved_frames = frames;
+    report->summaries = std::move(summaries);
   }
   if (periodic) path[steps] = path[0];
   if (report != nullptr) report->solve_seconds = SecondsSince(solve_start);

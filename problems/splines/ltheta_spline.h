@@ -99,7 +99,10 @@ struct LThetaSplineReport {
 // (natural ends) start from the nearest keyframe. The gauge of each solve is
 // pinned at three vertices of its guess (PinRigidMotions) and the solved
 // frame is finally rigidly aligned to its guess, so the output does not
-// depend on the pinned vertices and follows the keyframes' placement.
+// depend on the pinned vertices and follows the keyframes' placement. The
+// frames are solved in parallel on settings.num_threads threads, each solve
+// on one thread (Ceres and the BLAS): the result does not depend on the
+// thread count.
 // Throws InputError on bad indices, counts or vertex numbers.
 ShellPath LThetaSpline(const ShellSpace& space,
                        const std::vector<Positions>& keyframes,

@@ -367,6 +367,24 @@ class LThetaSplineTest : public ::testing::Test {
   ShellSpace space_;
 };
 
+// The frames are solved in parallel, each on one thread: 1 and 3 threads
+// give the same path to the bit and the same LM iterations.
+TEST_F(LThetaSplineTest, ThreadCountDoesNotChangeADigit) {
+  const std::vector<Positions> keys = {plate_.positions, rolled_a_, rolled_b_};
+  SolverSettings one = SolverSettings{}, three = SolverSettings{};
+  one.num_threads = 1;
+  three.num_threads = 3;
+  LThetaSplineReport report_one, report_three;
+  const ShellPath a =
+      LThetaSpline(space_, keys, {0, 2, 5}, 6, false, one, &report_one);
+  const ShellPath b =
+      LThetaSpline(space_, keys, {0, 2, 5}, 6, false, three, &report_three);
+  ASSERT_EQ(a.size(), b.size());
+  for (size_t k = 0; k < a.size(); ++k) EXPECT_TRUE(a[k] == b[k]) << k;
+  EXPECT_EQ(report_one.lm_iterations(), report_three.lm_iterations());
+  EXPECT_GT(report_one.lm_iterations(), 4);
+}
+
 TEST_F(LThetaSplineTest, PassesThroughItsKeyframes) {
   const std::vector<Positions> keys = {plate_.positions, rolled_a_, rolled_b_};
   LThetaSplineReport report;
