@@ -116,4 +116,3 @@ BENCHMARK(BM_ScalingLadder)->Unit(benchmark::kSecond)->Iterations(1);
 }  // namespace
 }  // namespace shellspace::branching
 
-BENCHMARK_MAIN();

@@ -79,4 +79,3 @@ BENCHMARK(BM_ElementSecondDerivatives)
 }  // namespace
 }  // namespace shellspace
 
-BENCHMARK_MAIN();

@@ -163,4 +163,3 @@ BENCHMARK(BM_FingerShootAndTransport)->Iterations(1)->Unit(benchmark::kSecond);
 }  // namespace
 }  // namespace shellspace
 
-BENCHMARK_MAIN();

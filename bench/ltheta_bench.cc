@@ -69,4 +69,3 @@ BENCHMARK(BM_CactusLThetaSpline)
 }  // namespace
 }  // namespace shellspace
 
-BENCHMARK_MAIN();

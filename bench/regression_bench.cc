@@ -91,4 +91,3 @@ BENCHMARK(BM_CactusRegression)
 }  // namespace
 }  // namespace shellspace
 
-BENCHMARK_MAIN();

@@ -167,4 +167,3 @@ BENCHMARK(BM_Scale)
 }  // namespace
 }  // namespace shellspace
 
-BENCHMARK_MAIN();

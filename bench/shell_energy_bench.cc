@@ -96,4 +96,3 @@ BENCHMARK(BM_PathHessianFinger)->Unit(benchmark::kMillisecond);
 }  // namespace
 }  // namespace shellspace
 
-BENCHMARK_MAIN();

@@ -86,4 +86,3 @@ BENCHMARK(BM_CactusSplines)->Arg(30)->Iterations(1)->Unit(benchmark::kSecond);
 }  // namespace
 }  // namespace shellspace
 
-BENCHMARK_MAIN();

@@ -176,4 +176,3 @@ BENCHMARK(BM_CactusLeaveOneOutPart)
 }  // namespace
 }  // namespace shellspace
 
-BENCHMARK_MAIN();
