@@ -18,8 +18,8 @@ declare -A allowed=(
   [problems/splines]="geometry cost_functions solvers problems/calculus"
   [problems/statistics]="geometry cost_functions solvers problems/calculus"
   [problems/branching]="geometry cost_functions solvers"
-  # problems/branching: the pictures of constructions and relaxed fields.
-  [render]="geometry io problems/branching"
+  # cost_functions: the branching data it draws (constructions, relaxed fields).
+  [render]="geometry io cost_functions"
   # The verbs' summaries (CLI --json and the Python module's dicts).
   [reports]="geometry cost_functions solvers io problems/calculus problems/splines problems/statistics problems/branching"
 )

@@ -8,7 +8,7 @@
 
 #include <string>
 
-#include "shellspace/problems/branching/construction.h"
+#include "shellspace/cost_functions/branching/construction.h"
 #include "shellspace/cost_functions/branching/lens_family.h"
 
 namespace shellspace::branching {

@@ -16,8 +16,8 @@
 #include <functional>
 #include <string>
 
-#include "shellspace/problems/branching/construction.h"
-#include "shellspace/problems/branching/relaxed_grid.h"
+#include "shellspace/cost_functions/branching/construction.h"
+#include "shellspace/cost_functions/branching/relaxed_grid.h"
 
 namespace shellspace::branching {
 

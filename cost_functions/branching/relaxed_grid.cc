@@ -1,4 +1,4 @@
-#include "shellspace/problems/branching/relaxed_grid.h"
+#include "shellspace/cost_functions/branching/relaxed_grid.h"
 
 #include <cmath>
 

@@ -1,4 +1,4 @@
-#include "shellspace/problems/branching/construction.h"
+#include "shellspace/cost_functions/branching/construction.h"
 
 #include <algorithm>
 #include <cmath>

@@ -1,11 +1,11 @@
 // A self-similar branching construction on (0, L) x [0, H): a cell pattern
-// (km_family.h / lens_family.h) repeated over generations k = 0, 1, ... with
-// period h_k = h0 r^-k on x in [x_{k+1}, x_k], x_0 = L, x_{k+1} = x_k - l_k,
-// l_k = L (1 - theta) theta^k (generation 0 farthest from the austenite at
-// x = 0). Generation k's period starts at y = offset_k, offset_0 = 0,
+// (problems/branching/km_family.h, lens_family.h) repeated over generations
+// k = 0, 1, ... with period h_k = h0 r^-k on x in [x_{k+1}, x_k], x_0 = L,
+// x_{k+1} = x_k - l_k, l_k = L (1 - theta) theta^k (generation 0 farthest
+// from the austenite at x = 0). Generation k's period starts at y = offset_k, offset_0 = 0,
 // offset_{k+1} = offset_k + next_offset h_{k+1}.
-#ifndef SHELLSPACE_PROBLEMS_BRANCHING_CONSTRUCTION_H_
-#define SHELLSPACE_PROBLEMS_BRANCHING_CONSTRUCTION_H_
+#ifndef SHELLSPACE_COST_FUNCTIONS_BRANCHING_CONSTRUCTION_H_
+#define SHELLSPACE_COST_FUNCTIONS_BRANCHING_CONSTRUCTION_H_
 
 #include <string>
 #include <vector>
@@ -20,8 +20,9 @@ struct Construction {
   double h0 = 0.25;     // first (coarsest) period
   double theta = 0.3;   // length ratio l_{k+1} / l_k
   int max_generations = 60;
-  // Free generation lengths l_0, l_1, ... (self_similar_series.h,
-  // OptimalFreeLengths); when non-empty they replace theta.
+  // Free generation lengths l_0, l_1, ... (OptimalFreeLengths,
+  // problems/branching/self_similar_series.h); when non-empty they replace
+  // theta.
   std::vector<double> lengths;
 
   // u_y (+-1) at (x, y), and optionally the y-distance to the nearest
@@ -35,4 +36,4 @@ struct Construction {
 
 }  // namespace shellspace::branching
 
-#endif  // SHELLSPACE_PROBLEMS_BRANCHING_CONSTRUCTION_H_
+#endif  // SHELLSPACE_COST_FUNCTIONS_BRANCHING_CONSTRUCTION_H_
