@@ -116,18 +116,14 @@ struct BendingElement {
                          ShellSide active, double weight,
                          ElementSecondDerivatives<4>::Rows rows,
                          ElementSecondDerivatives<4>* out) const {
-    using Rows = ElementSecondDerivatives<4>::Rows;
+    using D = ElementSecondDerivatives<4>;
     using Vec12 = Eigen::Matrix<double, 12, 1>;
     using Mat12 = Eigen::Matrix<double, 12, 12>;
-    Vec3<double> ref[4], def[4];
-    for (int v = 0; v < 4; ++v) {
-      ref[v] = Eigen::Map<const Eigen::Vector3d>(reference + 3 * v);
-      def[v] = Eigen::Map<const Eigen::Vector3d>(deformed + 3 * v);
-    }
-    const Stencil<double> s(ref, def, eta);
+    const StencilPositions<4> x(reference, deformed);
+    const Stencil<double> s(x.ref, x.def, eta);
     if (!s.ok) return false;
-    const bool want_ref = rows != Rows::kDeformed;
-    const bool want_def = rows != Rows::kReference;
+    const bool want_ref = D::WantsReference(rows);
+    const bool want_def = D::WantsDeformed(rows);
     const bool deformed_active = active == ShellSide::kDeformed;
     const double r = s.scale * s.delta;
     out->energy = 0.5 * weight * r * r;

@@ -56,6 +56,22 @@ enum class HessianModel { kExact, kGaussNewton };
 template <int kVertices>
 struct ElementSecondDerivatives;
 
+// The stencil's vertex positions Xbar_v = ref[v], X_v = def[v] (v <
+// kVertices), read from the flat coordinates `reference`, `deformed`
+// (3 kVertices doubles each, vertex after vertex): what every second-
+// derivative computation below and every element's analytic
+// SecondDerivatives starts from.
+template <int kVertices>
+struct StencilPositions {
+  StencilPositions(const double* reference, const double* deformed) {
+    for (int v = 0; v < kVertices; ++v) {
+      ref[v] = Eigen::Map<const Vec3<double>>(reference + 3 * v);
+      def[v] = Eigen::Map<const Vec3<double>>(deformed + 3 * v);
+    }
+  }
+  Vec3<double> ref[kVertices], def[kVertices];
+};
+
 template <class Element, class = void>
 struct HasAnalyticSecondDerivatives : std::false_type {};
 template <class Element>
@@ -77,6 +93,10 @@ struct ElementSecondDerivatives {
   double energy = 0;
 
   enum class Rows { kBoth, kReference, kDeformed };
+  // Whether `rows` asks for grad_reference / d_grad_reference
+  // (grad_deformed / d_grad_deformed).
+  static bool WantsReference(Rows rows) { return rows != Rows::kDeformed; }
+  static bool WantsDeformed(Rows rows) { return rows != Rows::kReference; }
 
   template <class Element>
   bool Compute(const Element& element, const double* reference,
@@ -105,23 +125,21 @@ struct ElementSecondDerivatives {
     }
     static_assert(Element::kNumVertices == kVertices,
                   "ElementSecondDerivatives: stencil size mismatch");
-    Vec3<double> ref[kVertices], def[kVertices];
-    for (int v = 0; v < kVertices; ++v) {
-      ref[v] = Eigen::Map<const Vec3<double>>(reference + 3 * v);
-      def[v] = Eigen::Map<const Vec3<double>>(deformed + 3 * v);
-    }
+    const StencilPositions<kVertices> x(reference, deformed);
     constexpr int m = Element::kNumResiduals;
     Eigen::Matrix<double, m, 1> r;
     typename Element::template Jacobian<double> jac_ref, jac_def;
-    if (!element.Evaluate(ref, def, r.data(), &jac_ref, &jac_def)) return false;
+    if (!element.Evaluate(x.ref, x.def, r.data(), &jac_ref, &jac_def)) {
+      return false;
+    }
     energy = 0.5 * weight * r.squaredNorm();
     const auto& jac_active =
         active == ShellSide::kReference ? jac_ref : jac_def;
-    if (rows != Rows::kDeformed) {
+    if (WantsReference(rows)) {
       grad_reference = weight * jac_ref.transpose() * r;
       d_grad_reference.noalias() = weight * jac_ref.transpose() * jac_active;
     }
-    if (rows != Rows::kReference) {
+    if (WantsDeformed(rows)) {
       grad_deformed = weight * jac_def.transpose() * r;
       d_grad_deformed.noalias() = weight * jac_def.transpose() * jac_active;
     }
@@ -150,8 +168,8 @@ struct ElementSecondDerivatives {
     constexpr int m = Element::kNumResiduals;
     J residuals[m];
     typename Element::template Jacobian<J> jac_ref, jac_def;
-    const bool want_ref = rows != Rows::kDeformed;
-    const bool want_def = rows != Rows::kReference;
+    const bool want_ref = WantsReference(rows);
+    const bool want_def = WantsDeformed(rows);
     if (!element.Evaluate(ref, def, residuals, want_ref ? &jac_ref : nullptr,
                           want_def ? &jac_def : nullptr)) {
       return false;

@@ -80,20 +80,16 @@ struct MembraneElement {
                          ShellSide active, double weight,
                          ElementSecondDerivatives<3>::Rows rows,
                          ElementSecondDerivatives<3>* out) const {
-    using Rows = ElementSecondDerivatives<3>::Rows;
+    using D = ElementSecondDerivatives<3>;
     using Mat39 = Eigen::Matrix<double, 3, 9>;
     using Mat9 = Eigen::Matrix<double, 9, 9>;
-    Vec3<double> ref[3], def[3];
-    for (int v = 0; v < 3; ++v) {
-      ref[v] = Eigen::Map<const Eigen::Vector3d>(reference + 3 * v);
-      def[v] = Eigen::Map<const Eigen::Vector3d>(deformed + 3 * v);
-    }
-    const FirstFundamentalForm<double> gbar(ref[0], ref[1], ref[2]);
-    const FirstFundamentalForm<double> g(def[0], def[1], def[2]);
+    const StencilPositions<3> x(reference, deformed);
+    const FirstFundamentalForm<double> gbar(x.ref[0], x.ref[1], x.ref[2]);
+    const FirstFundamentalForm<double> g(x.def[0], x.def[1], x.def[2]);
     const double p[3] = {gbar.g11, gbar.g12, gbar.g22};
     const double q[3] = {g.g11, g.g12, g.g22};
-    const bool want_ref = rows != Rows::kDeformed;
-    const bool want_def = rows != Rows::kReference;
+    const bool want_ref = D::WantsReference(rows);
+    const bool want_def = D::WantsDeformed(rows);
     const bool deformed_active = active == ShellSide::kDeformed;
     MembraneFormDerivatives f;
     if (!f.Compute(law.mu, law.lambda, p, q, want_ref && !deformed_active,

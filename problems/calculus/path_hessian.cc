@@ -199,27 +199,21 @@ bool PathHessianAssembler::AddElementBlocks(
       GatherCoordinates(deformed, group.stencils[e], def);
       const int* slot = &slots_[next_slot];
       next_slot += count * count;
-      // out[slot(a, b)](i, j) += m(3a + i, 3b + j)
-      auto scatter = [&](const auto& m, BlockArray* out) {
+      // out[slot(a, b)](i, j) += m(3a + i, 3b + j), or with `transposed`
+      // out[slot(b, a)](j, i) += m(3a + i, 3b + j) (rows deformed, columns
+      // reference).
+      auto scatter = [&](const auto& m, BlockArray* out,
+                         bool transposed = false) {
         for (int a = 0; a < count; ++a) {
           for (int b = 0; b < count; ++b) {
-            double* block = out->data() + 9 * slot[a * count + b];
+            double* block =
+                out->data() +
+                9 * slot[transposed ? b * count + a : a * count + b];
             for (int i = 0; i < 3; ++i) {
-              for (int j = 0; j < 3; ++j)
-                block[3 * i + j] += m(3 * a + i, 3 * b + j);
-            }
-          }
-        }
-      };
-      // out[slot(b, a)](j, i) += m(3a + i, 3b + j): rows deformed, columns
-      // reference.
-      auto scatter_transposed = [&](const auto& m, BlockArray* out) {
-        for (int a = 0; a < count; ++a) {
-          for (int b = 0; b < count; ++b) {
-            double* block = out->data() + 9 * slot[b * count + a];
-            for (int i = 0; i < 3; ++i) {
-              for (int j = 0; j < 3; ++j)
-                block[3 * j + i] += m(3 * a + i, 3 * b + j);
+              for (int j = 0; j < 3; ++j) {
+                block[transposed ? 3 * j + i : 3 * i + j] +=
+                    m(3 * a + i, 3 * b + j);
+              }
             }
           }
         }
@@ -233,7 +227,7 @@ bool PathHessianAssembler::AddElementBlocks(
         }
         if (d22 != nullptr) scatter(d.d_grad_deformed, d22);
         if (mixed_transposed != nullptr) {
-          scatter_transposed(d.d_grad_reference, mixed_transposed);
+          scatter(d.d_grad_reference, mixed_transposed, /*transposed=*/true);
         }
         if (mixed != nullptr) scatter(d.d_grad_reference, mixed);
       }
