@@ -266,7 +266,8 @@ std::vector<int> Mask(const py::object& mask, int num_vertices) {
   return indices;
 }
 
-// The CLI's solver options (SolverFlags: the same ranges).
+// The solver keywords of every call (the CLI's SolverFlags), checked by
+// UserSolverSettings.
 struct SolverOptions {
   double tolerance = 1e-8;
   int max_iterations = 200;
@@ -274,25 +275,8 @@ struct SolverOptions {
   bool quiet = false;
 
   SolverSettings Settings(const std::string& label) const {
-    if (!(tolerance > 0 && tolerance < 1)) {
-      throw InputError("tolerance must be in (0, 1), got " +
-                       std::to_string(tolerance));
-    }
-    if (max_iterations < 1) {
-      throw InputError("max_iterations must be >= 1, got " +
-                       std::to_string(max_iterations));
-    }
-    if (threads < 1 || threads > 1024) {
-      throw InputError("threads must be in [1, 1024], got " +
-                       std::to_string(threads));
-    }
-    SolverSettings settings;
-    settings.progress = !quiet;
-    settings.progress_label = label;
-    settings.gradient_tolerance = tolerance;
-    settings.max_iterations = max_iterations;
-    settings.num_threads = threads;
-    return settings;
+    return UserSolverSettings(tolerance, max_iterations, threads, quiet,
+                              label);
   }
 };
 
@@ -841,9 +825,7 @@ py::tuple BranchingSimulatePy(double epsilon, double length, double height,
                               int periods, int init_seed, int lm_iterations,
                               int delta_extrapolation) {
   using namespace branching;
-  if (delta_extrapolation == 1 || delta_extrapolation < 0) {
-    throw InputError("delta_extrapolation must be 0 or >= 2");
-  }
+  CheckExtrapolationCount(delta_extrapolation);
   SimulationSettings s;
   s.epsilon = epsilon;
   s.length = length;

@@ -1,5 +1,7 @@
 #include "shellspace/solvers/solver_settings.h"
 
+#include "shellspace/geometry/mesh.h"  // InputError
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -8,6 +10,31 @@
 #include <vector>
 
 namespace shellspace {
+
+SolverSettings UserSolverSettings(double tolerance, int max_iterations,
+                                  int threads, bool quiet,
+                                  const std::string& label) {
+  if (!(tolerance > 0 && tolerance < 1)) {
+    throw InputError("tolerance must be in (0, 1), got " +
+                     std::to_string(tolerance));
+  }
+  if (max_iterations < 1) {
+    throw InputError("max_iterations must be >= 1, got " +
+                     std::to_string(max_iterations));
+  }
+  if (threads < 1 || threads > kMaxSolverThreads) {
+    throw InputError("threads must be in [1, " +
+                     std::to_string(kMaxSolverThreads) + "], got " +
+                     std::to_string(threads));
+  }
+  SolverSettings settings;
+  settings.gradient_tolerance = tolerance;
+  settings.max_iterations = max_iterations;
+  settings.num_threads = threads;
+  settings.progress = !quiet;
+  settings.progress_label = label;
+  return settings;
+}
 
 ceres::Solver::Options MakeSolverOptions(const SolverSettings& settings,
                                          double initial_gradient_norm) {

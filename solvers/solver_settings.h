@@ -45,6 +45,18 @@ struct SolverSettings {
   StopPoll stop;  // see StopPoll; copied into inner solves with the settings
 };
 
+// The most threads a solve accepts (num_threads).
+constexpr int kMaxSolverThreads = 1024;
+
+// The settings a front end takes from its users (the CLI's flags, the
+// Python module's keywords): relative gradient tolerance, the outer
+// solver's iteration cap, threads, and progress lines under `label` unless
+// `quiet`; everything else default. Throws InputError unless tolerance is
+// in (0, 1), max_iterations >= 1 and threads in [1, kMaxSolverThreads].
+SolverSettings UserSolverSettings(double tolerance, int max_iterations,
+                                  int threads, bool quiet,
+                                  const std::string& label);
+
 // True if settings.stop is set and returns true.
 bool StopRequested(const SolverSettings& settings);
 

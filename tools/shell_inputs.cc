@@ -118,12 +118,9 @@ std::vector<int> MaskFromFlags(int num_vertices) {
 }
 
 SolverSettings SettingsFromFlags(const std::string& label) {
-  SolverSettings settings;
-  settings.progress = !FLAGS_quiet;
-  settings.progress_label = label;
-  settings.gradient_tolerance = FLAGS_tolerance;
-  settings.max_iterations = FLAGS_max_iterations;
-  settings.num_threads = FLAGS_threads;
+  SolverSettings settings =
+      UserSolverSettings(FLAGS_tolerance, FLAGS_max_iterations, FLAGS_threads,
+                         FLAGS_quiet, label);
   settings.stop = StopPollForRun();
   return settings;
 }

@@ -157,10 +157,12 @@ FlagTable SimulateFlags() {
                        "0, or >= 2: also run the widths delta, delta/r, ... "
                        "(this many, r = 2^(1/2)) and fit the constant as "
                        "delta -> 0",
-                       "0 or an integer in [2, 16]",
+                       "0 or an integer in [2, " +
+                           std::to_string(kMaxExtrapolationWidths) + "]",
                        [](double v) {
                          return v == 0 ||
-                                (v >= 2 && v <= 16 && v == std::floor(v));
+                                (v >= 2 && v <= kMaxExtrapolationWidths &&
+                                 v == std::floor(v));
                        }),
            TimeLimitFlag(),
        }});

@@ -1,5 +1,6 @@
 #include "shellspace/tools/verb_flags.h"
 
+#include "shellspace/solvers/solver_settings.h"
 #include "shellspace/tools/run_status.h"
 
 #include <cmath>
@@ -101,7 +102,7 @@ FlagTable SolverFlags() {
                   "iterations summed over its stages; spline: L-BFGS); inner "
                   "solves keep their own limits",
                   1),
-      IntegerFlag("threads", "threads of the solves", 1, 1024),
+      IntegerFlag("threads", "threads of the solves", 1, kMaxSolverThreads),
       TextFlag("quiet", "suppress progress output"),
       AllowUnconvergedFlag(),
       TimeLimitFlag(),

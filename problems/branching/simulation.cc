@@ -205,7 +205,17 @@ std::vector<double> PolynomialFit(const std::vector<double>& x,
   return c;
 }
 
+void CheckExtrapolationCount(int count) {
+  if (count != 0 && (count < 2 || count > kMaxExtrapolationWidths)) {
+    throw InputError(
+        "delta extrapolation: the number of widths must be 0 or in [2, " +
+        std::to_string(kMaxExtrapolationWidths) + "], got " +
+        std::to_string(count));
+  }
+}
+
 std::vector<double> ExtrapolationWidths(double delta, int count) {
+  CheckExtrapolationCount(count);
   std::vector<double> deltas;
   for (int k = 0; k < count; ++k) {
     deltas.push_back(delta * std::pow(std::sqrt(0.5), k));

@@ -149,8 +149,14 @@ DeltaExtrapolation ExtrapolateDelta(
     const SimulationSettings& base, const std::vector<double>& deltas,
     const std::function<void(const DeltaWidth&)>& progress = nullptr);
 
+// How many widths a delta extrapolation runs: 0 (none) or 2 ..
+// kMaxExtrapolationWidths.
+constexpr int kMaxExtrapolationWidths = 16;
+// Throws InputError unless `count` is 0 or in [2, kMaxExtrapolationWidths].
+void CheckExtrapolationCount(int count);
+
 // The `count` widths delta_k = delta r^-k, r = 2^(1/2) (k = 0 .. count - 1),
-// for ExtrapolateDelta.
+// for ExtrapolateDelta; CheckExtrapolationCount(count) first.
 std::vector<double> ExtrapolationWidths(double delta, int count);
 
 // Twin interfaces crossing each node row i = 1..nx: sign changes of the

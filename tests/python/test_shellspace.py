@@ -404,6 +404,14 @@ def test_errors_raise_with_the_library_message(tmp_path):
         shellspace.shoot(V, W, F, steps=2, mask=[7], quiet=True)
     with pytest.raises(ValueError, match="#V x 3"):
         shellspace.energy(V[:, :2], W, F)
+    # The solver keywords have the CLI flags' ranges (UserSolverSettings).
+    with pytest.raises(ValueError, match=r"tolerance must be in \(0, 1\)"):
+        shellspace.geodesic(V, W, F, tolerance=1.5, quiet=True)
+    with pytest.raises(ValueError, match=r"threads must be in \[1, 1024\]"):
+        shellspace.geodesic(V, W, F, threads=0, quiet=True)
+    # Refused before the simulation runs, as --delta_extrapolation is.
+    with pytest.raises(ValueError, match=r"must be 0 or in \[2, 16\], got 17"):
+        shellspace.branching_simulate(nx=8, ny=32, delta_extrapolation=17)
     assert not os.listdir(tmp_path)
 
 

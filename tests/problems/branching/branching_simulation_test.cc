@@ -168,6 +168,23 @@ TEST(BranchingRelaxed, PolynomialFitRecoversCoefficients) {
   EXPECT_EQ(l.size(), 2u);
 }
 
+// The widths delta r^-k, r = 2^(1/2), and the counts a front end may ask
+// for (0, or 2 .. kMaxExtrapolationWidths).
+TEST(BranchingRelaxed, ExtrapolationWidthsAndTheirCount) {
+  const std::vector<double> w = ExtrapolationWidths(0.04, 3);
+  ASSERT_EQ(w.size(), 3u);
+  EXPECT_DOUBLE_EQ(w[0], 0.04);
+  EXPECT_DOUBLE_EQ(w[1], 0.04 / std::sqrt(2.0));
+  EXPECT_DOUBLE_EQ(w[2], 0.02);
+  EXPECT_NO_THROW(CheckExtrapolationCount(0));
+  EXPECT_NO_THROW(CheckExtrapolationCount(2));
+  EXPECT_NO_THROW(CheckExtrapolationCount(kMaxExtrapolationWidths));
+  for (int bad : {-1, 1, kMaxExtrapolationWidths + 1}) {
+    EXPECT_THROW(CheckExtrapolationCount(bad), InputError) << bad;
+  }
+  EXPECT_THROW(ExtrapolationWidths(0.04, 1), InputError);
+}
+
 // TransferField is bilinear: u = x T(y), T the periodic triangle wave of
 // period 0.25 (kinks at source nodes), is linear in x and piecewise linear
 // in y between source nodes, so its transfer onto a finer graded grid is
