@@ -1,8 +1,6 @@
 #include "shellspace/problems/branching/general_search.h"
 
 #include <algorithm>
-#include <atomic>
-#include <thread>
 #include <cmath>
 #include <limits>
 #include <memory>
@@ -12,6 +10,7 @@
 #include <ceres/ceres.h>
 
 #include "shellspace/geometry/mesh.h"
+#include "shellspace/geometry/parallel_for.h"
 #include "shellspace/problems/branching/self_similar_series.h"
 
 namespace shellspace::branching {
@@ -473,14 +472,8 @@ GeneralSearchResult SearchGeneral(
     }
   } else {
     // Work items are independent; each writes only its own slot.
-    std::atomic<size_t> next{0};
-    std::vector<std::thread> pool;
-    for (int k = 0; k < threads; ++k) {
-      pool.emplace_back([&]() {
-        for (size_t i = next++; i < topologies.size(); i = next++) run(i);
-      });
-    }
-    for (std::thread& th : pool) th.join();
+    ParallelFor(static_cast<int>(topologies.size()), threads,
+                [&](int i) { run(static_cast<size_t>(i)); });
     if (progress) {
       for (const GeneralResult& r : out.per_topology) progress(r);
     }
@@ -508,16 +501,8 @@ GeneralSearchResult SearchGeneral(
       if (r.ok && r.AB2 <= refined[k].AB2) refined[k] = r;
     }
   };
-  {
-    std::atomic<size_t> next{0};
-    std::vector<std::thread> pool;
-    for (int k = 0; k < threads; ++k) {
-      pool.emplace_back([&]() {
-        for (size_t i = next++; i < refine; i = next++) refine_one(i);
-      });
-    }
-    for (std::thread& th : pool) th.join();
-  }
+  ParallelFor(static_cast<int>(refine), threads,
+              [&](int k) { refine_one(static_cast<size_t>(k)); });
   out.solves += static_cast<int>(refine);
   for (const GeneralResult& r : refined) {
     if (r.ok && (!out.best.ok || r.constant_free < out.best.constant_free)) {
