@@ -436,20 +436,35 @@ Eigen::Matrix<double, 3 * kV, 1> Transform(
   return out;
 }
 
+// n independent standard normal samples, drawn in order (not as arguments
+// of one call, whose evaluation order C++ leaves open).
+template <int n>
+Eigen::Matrix<double, n, 1> StandardNormal(std::mt19937& rng) {
+  std::normal_distribution<double> n01;
+  Eigen::Matrix<double, n, 1> x;
+  for (int i = 0; i < n; ++i) x(i) = n01(rng);
+  return x;
+}
+
+// A uniformly distributed rotation: a normalised Gaussian quaternion.
+Eigen::Matrix3d RandomRotation(std::mt19937& rng) {
+  const Eigen::Vector4d q = StandardNormal<4>(rng);
+  return Eigen::Quaterniond(q(0), q(1), q(2), q(3))
+      .normalized()
+      .toRotationMatrix();
+}
+
 // Rigid motions: with (R, t) applied to the deformed shape,
 //   D_2^2(Xbar, RX + t) = Rb D_2^2 Rb^T,  d_Xbar d_X(Xbar, RX + t) =
 //   (d_Xbar d_X) Rb^T,  D_1^2(Xbar, RX + t) = D_1^2,   Rb = I (x) R,
 // and with (R, t) applied to the reference, the mirror statements.
 TEST_P(ElementHessianTest, EquivariantUnderRigidMotions) {
   std::mt19937 rng(7);
-  std::normal_distribution<double> n01;
   double worst = 0;
   ForSampledElements(GetParam(), 40, [&](const auto& element, const auto& s) {
     constexpr int kV = std::decay_t<decltype(element)>::kNumVertices;
-    const Eigen::Quaterniond quat =
-        Eigen::Quaterniond(n01(rng), n01(rng), n01(rng), n01(rng)).normalized();
-    const Eigen::Matrix3d rot = quat.toRotationMatrix();
-    const Eigen::Vector3d t(n01(rng), n01(rng), n01(rng));
+    const Eigen::Matrix3d rot = RandomRotation(rng);
+    const Eigen::Vector3d t = StandardNormal<3>(rng);
     const auto rb = BlockRotation<kV>(rot);
     Derivatives<kV> base[2], moved_def[2], moved_ref[2];
     const auto ref_moved = Transform<kV>(s.ref, rot, t);
@@ -520,13 +535,12 @@ double InfinitesimalError(const Eigen::MatrixXd& h, const Eigen::VectorXd& v,
 
 TEST_P(ElementHessianTest, InfinitesimalRigidMotions) {
   std::mt19937 rng(9);
-  std::normal_distribution<double> n01;
   double worst = 0;
   ForSampledElements(GetParam(), 60, [&](const auto& element, const auto& s) {
     constexpr int kV = std::decay_t<decltype(element)>::kNumVertices;
     using V = Eigen::Matrix<double, 3 * kV, 1>;
-    const Eigen::Vector3d w(n01(rng), n01(rng), n01(rng));
-    const Eigen::Vector3d t(n01(rng), n01(rng), n01(rng));
+    const Eigen::Vector3d w = StandardNormal<3>(rng);
+    const Eigen::Vector3d t = StandardNormal<3>(rng);
     Derivatives<kV> r, d;
     ASSERT_TRUE(s.Compute(element, ShellSide::kReference, 1.0, &r));
     ASSERT_TRUE(s.Compute(element, ShellSide::kDeformed, 1.0, &d));

@@ -47,39 +47,38 @@ std::string ErrorOf(const std::string& path) {
 
 TEST(InputErrorsTest, LibraryErrors) {
   const std::string dir = testing::TempDir();
-  EXPECT_NE(ErrorOf(dir + "/missing.ply").find("cannot open"),
-            std::string::npos);
-  EXPECT_NE(
-      ErrorOf(Write(dir, "garbage.off", "not a mesh\n")).find("cannot read"),
-      std::string::npos);
-  EXPECT_NE(ErrorOf(Write(dir, "quad.ply",
-                          Ply(4, 1, "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n")))
-                .find("only triangle"),
-            std::string::npos);
-  // Three triangles on the edge (0, 1).
-  EXPECT_NE(ErrorOf(Write(dir, "nonmanifold.ply",
-                          Ply(5, 3,
-                              "0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n"
-                              "3 0 1 2\n3 1 0 3\n3 0 1 4\n")))
-                .find("non-manifold"),
-            std::string::npos);
-  EXPECT_NE(
-      ErrorOf(
-          Write(dir, "degenerate.ply",
-                Ply(4, 2, "0 0 0\n1 0 0\n2 0 0\n0 1 0\n3 0 1 2\n3 0 3 1\n")))
-          .find("degenerate"),
-      std::string::npos);
-  EXPECT_NE(ErrorOf(Write(dir, "nan.ply",
-                          Ply(3, 1, "0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n")))
-                .find("non-finite"),
-            std::string::npos);
-  EXPECT_NE(ErrorOf(Write(dir, "range.ply",
-                          Ply(3, 1, "0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n")))
-                .find("references vertex 7"),
-            std::string::npos);
-  EXPECT_NE(ErrorOf(Write(dir, "short.ply", Ply(3, 1, "0 0 0\n1 0 0\n")))
-                .find("ends early"),
-            std::string::npos);
+  struct Case {
+    const char* file;
+    std::string text;  // "": the file is not written
+    const char* expected;
+  };
+  const Case cases[] = {
+      {"missing.ply", "", "cannot open"},
+      {"garbage.off", "not a mesh\n", "cannot read"},
+      {"quad.ply", Ply(4, 1, "0 0 0\n1 0 0\n1 1 0\n0 1 0\n4 0 1 2 3\n"),
+       "only triangle"},
+      // Three triangles on the edge (0, 1).
+      {"nonmanifold.ply",
+       Ply(5, 3,
+           "0 0 0\n1 0 0\n0 1 0\n0 -1 0\n0 0 1\n3 0 1 2\n3 1 0 3\n"
+           "3 0 1 4\n"),
+       "non-manifold"},
+      {"degenerate.ply",
+       Ply(4, 2, "0 0 0\n1 0 0\n2 0 0\n0 1 0\n3 0 1 2\n3 0 3 1\n"),
+       "degenerate"},
+      {"nan.ply", Ply(3, 1, "0 0 0\nnan 0 0\n0 1 0\n3 0 1 2\n"),
+       "non-finite"},
+      {"range.ply", Ply(3, 1, "0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n"),
+       "references vertex 7"},
+      {"short.ply", Ply(3, 1, "0 0 0\n1 0 0\n"), "ends early"},
+  };
+  for (const Case& c : cases) {
+    const std::string path = c.text.empty() ? dir + "/" + c.file
+                                            : Write(dir, c.file, c.text);
+    const std::string error = ErrorOf(path);
+    EXPECT_NE(error.find(c.expected), std::string::npos)
+        << c.file << ": \"" << error << "\"";
+  }
 }
 
 TEST(InputErrorsTest, Compatibility) {

@@ -22,8 +22,10 @@ namespace {
 
 // Runs the checker at `trials` random points produced by `sample` (which
 // fills the parameter blocks); returns true if all points pass.
-bool CheckAt(const ceres::CostFunction* cost,
-             const std::function<void(std::mt19937&, std::vector<std::vector<double>>*)>& sample,
+using Sampler = std::function<void(std::mt19937&,
+                                   std::vector<std::vector<double>>*)>;
+
+bool CheckAt(const ceres::CostFunction* cost, const Sampler& sample,
              int trials, double precision, std::string* error) {
   ceres::NumericDiffOptions numeric;
   // The checker differentiates with Ridders extrapolation; keep its first
@@ -54,52 +56,51 @@ auto ScalarBlocks(int count, double low, double high) {
   };
 }
 
-TEST(BranchingCostGradient, Elastic) {
-  std::unique_ptr<ceres::CostFunction> cost(
-      ElasticCostFunction::Create(0.01, 0.005, 0.5));
+// Takes `cost` (as Create returns it) and expects it to pass the checker
+// at 20 points of `sample`.
+void ExpectPassesAt20Points(ceres::CostFunction* cost, const Sampler& sample,
+                            double precision) {
+  const std::unique_ptr<ceres::CostFunction> owned(cost);
   std::string error;
-  EXPECT_TRUE(CheckAt(cost.get(), ScalarBlocks(2, -0.1, 0.1), 20, 1e-7, &error))
-      << error;
+  EXPECT_TRUE(CheckAt(owned.get(), sample, 20, precision, &error)) << error;
+}
+
+TEST(BranchingCostGradient, Elastic) {
+  ExpectPassesAt20Points(ElasticCostFunction::Create(0.01, 0.005, 0.5),
+                         ScalarBlocks(2, -0.1, 0.1), 1e-7);
 }
 
 TEST(BranchingCostGradient, Gradient) {
-  std::unique_ptr<ceres::CostFunction> cost(
-      GradientCostFunction::Create(1e-3, 0.02, 0.01, 0.005, 0.5));
-  std::string error;
-  EXPECT_TRUE(CheckAt(cost.get(), ScalarBlocks(3, -0.1, 0.1), 20, 1e-7, &error))
-      << error;
+  ExpectPassesAt20Points(
+      GradientCostFunction::Create(1e-3, 0.02, 0.01, 0.005, 0.5),
+      ScalarBlocks(3, -0.1, 0.1), 1e-7);
 }
 
 TEST(BranchingCostGradient, DoubleWell) {
-  std::unique_ptr<ceres::CostFunction> cost(
-      DoubleWellCostFunction::Create(1e-3, 0.02, 0.01, 0.005, 0.5));
-  std::string error;
-  EXPECT_TRUE(
-      CheckAt(cost.get(), ScalarBlocks(2, -0.01, 0.01), 20, 1e-6, &error))
-      << error;
+  ExpectPassesAt20Points(
+      DoubleWellCostFunction::Create(1e-3, 0.02, 0.01, 0.005, 0.5),
+      ScalarBlocks(2, -0.01, 0.01), 1e-6);
 }
 
 TEST(BranchingCostGradient, KmEnergy) {
-  std::unique_ptr<ceres::CostFunction> cost(
-      KmEnergyCostFunction::Create(1.0 / 32.0, 8.0, 2, 1e-3, 1.0));
-  auto sample = [](std::mt19937& rng, std::vector<std::vector<double>>* b) {
-    std::uniform_real_distribution<double> h(0.05, 0.5), t(0.27, 0.48);
-    *b = {{h(rng), t(rng)}};
-  };
-  std::string error;
-  EXPECT_TRUE(CheckAt(cost.get(), sample, 20, 1e-6, &error)) << error;
+  ExpectPassesAt20Points(
+      KmEnergyCostFunction::Create(1.0 / 32.0, 8.0, 2, 1e-3, 1.0),
+      [](std::mt19937& rng, std::vector<std::vector<double>>* b) {
+        std::uniform_real_distribution<double> h(0.05, 0.5), t(0.27, 0.48);
+        *b = {{h(rng), t(rng)}};
+      },
+      1e-6);
 }
 
 TEST(BranchingCostGradient, LensEnergy) {
-  std::unique_ptr<ceres::CostFunction> cost(
-      LensEnergyCostFunction::Create(1e-3, 1.0));
-  auto sample = [](std::mt19937& rng, std::vector<std::vector<double>>* b) {
-    std::uniform_real_distribution<double> h(0.05, 0.5), t(0.13, 0.31),
-        tau(0.0, 0.8), a(-0.8, 0.8);
-    *b = {{h(rng), t(rng), tau(rng), a(rng), a(rng)}};
-  };
-  std::string error;
-  EXPECT_TRUE(CheckAt(cost.get(), sample, 20, 1e-6, &error)) << error;
+  ExpectPassesAt20Points(
+      LensEnergyCostFunction::Create(1e-3, 1.0),
+      [](std::mt19937& rng, std::vector<std::vector<double>>* b) {
+        std::uniform_real_distribution<double> h(0.05, 0.5), t(0.13, 0.31),
+            tau(0.0, 0.8), a(-0.8, 0.8);
+        *b = {{h(rng), t(rng), tau(rng), a(rng), a(rng)}};
+      },
+      1e-6);
 }
 
 // A double-well residual whose Jacobian misses the factor 2 (a plausible

@@ -639,12 +639,20 @@ TEST(StatisticsCliTest, MeanWritesTheShapeAndJson) {
             1e-6);
 }
 
+// Runs `pca` with two modes of the four spheres into `dir`, with `options`;
+// returns its exit status.
+int RunPcaOfSpheres(const std::string& dir, const std::string& options,
+                    std::string* stdout_text, std::string* stderr_text) {
+  return RunCli("pca --inputs " + SphereList(4) + " --modes 2 --output " + dir +
+                    " " + options,
+                stdout_text, stderr_text);
+}
+
 TEST(StatisticsCliTest, PcaWritesModesAndLeaveOneOutTable) {
   const std::string dir = TempDir() + "/pca";
   std::string stdout_text, stderr_text;
-  ASSERT_EQ(RunCli("pca --inputs " + SphereList(4) + " --modes 2 --output " +
-                       dir + " --baseline procrustes --loo --json --quiet",
-                   &stdout_text, &stderr_text),
+  ASSERT_EQ(RunPcaOfSpheres(dir, "--baseline procrustes --loo --json --quiet",
+                            &stdout_text, &stderr_text),
             0)
       << stderr_text;
   for (const char* name :
@@ -694,9 +702,8 @@ TEST(StatisticsCliTest, PcaSkipsModeShapesWithoutAnExpSolution) {
   // shapes are not written, listed in the JSON, and the rest is written.
   const std::string dir = TempDir() + "/pca_far";
   std::string stdout_text, stderr_text;
-  ASSERT_EQ(RunCli("pca --inputs " + SphereList(4) + " --modes 2 --output " +
-                       dir + " --amplitude 40 --eta 0.01 --json",
-                   &stdout_text, &stderr_text),
+  ASSERT_EQ(RunPcaOfSpheres(dir, "--amplitude 40 --eta 0.01 --json",
+                            &stdout_text, &stderr_text),
             0)
       << stderr_text;
   const auto begin = stdout_text.find("\"failed_mode_shapes\": [");
