@@ -13,11 +13,13 @@
 //                 vertices), bottom mask carried to the new vertices
 //   cactus_x16    subdivided twice (84,146 vertices)
 //
-// Run one case at a time under /usr/bin/time -v for wall, CPU and peak RSS:
+// Benchmarks are named Scale/case:C/levels:L, C the index in the list above
+// (0 finger_ring ... 5 cactus_x16). Run one case at a time under
+// /usr/bin/time -v for wall, CPU and peak RSS:
 // SHELLSPACE_LM=auto|ceres|engine chooses who runs the LM stages
 // (GeodesicLm; default auto).
 //   OPENBLAS_NUM_THREADS=1 /usr/bin/time -v build/bench/scale_bench \
-//       --benchmark_filter='Scale/cactus_ring/levels:1'
+//       --benchmark_filter='Scale/case:1/levels:1/'
 // The environment variable SHELLSPACE_LINEAR_SOLVER=auto|direct|block-jacobi
 // forces the linear solver of the Newton finish (default auto; see
 // PathLinearSolver); the counter block_jacobi is 1 if block-Jacobi CG ran.

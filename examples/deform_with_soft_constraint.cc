@@ -40,7 +40,7 @@ struct PullToTarget {
   double stiffness;
 };
 
-int Run(int argc, char** argv) {
+int Run(int /*argc: Main checked the 7 arguments*/, char** argv) {
   const shellspace::Mesh reference = shellspace::ReadMesh(argv[1]);
   const shellspace::Topology topology = shellspace::ValidateShell(reference, argv[1]);
   const std::vector<int> mask =
