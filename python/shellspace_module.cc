@@ -47,6 +47,7 @@
 #include "shellspace/problems/calculus/shape_comparison.h"
 #include "shellspace/problems/splines/ltheta_spline.h"
 #include "shellspace/problems/splines/spline.h"
+#include "shellspace/problems/splines/spline_initial_path.h"
 #include "shellspace/problems/statistics/elastic_mean.h"
 #include "shellspace/problems/statistics/leave_one_out.h"
 #include "shellspace/problems/statistics/procrustes_pca.h"
@@ -591,7 +592,8 @@ SplineSettings SplineSettingsOf(const SolverOptions& solver,
 
 py::tuple SplinePy(const py::object& keyframes_object,
                    const std::vector<long long>& at_list, const IndexArray& F,
-                   int steps, const std::string& method, bool periodic,
+                   int steps, const std::string& method,
+                   const std::string& init, bool periodic,
                    const std::optional<std::string>& output,
                    const std::optional<std::string>& png,
                    const std::optional<std::string>& gltf, const MaterialArgs& material_args, const SolverOptions& solver) {
@@ -604,31 +606,33 @@ py::tuple SplinePy(const py::object& keyframes_object,
   const std::vector<int> at = Indices(at_list, set.shapes.size(), "keyframes");
   const ShellSpace space(set.first.mesh, set.first.topology,
                          Material(material_args, set.first.mesh));
-  SolverSettings ltheta_settings = solver.Settings("ltheta");
-  ltheta_settings.progress = false;
+  const SplineInit initial_path = ParseSplineInit(init);
+  if (method == "ltheta" && initial_path != SplineInit::kLTheta) {
+    throw InputError("init " + init +
+                     " needs method nonlinear (method ltheta is the LΘA "
+                     "spline itself)");
+  }
+  SolverSettings init_settings = solver.Settings(init);
+  init_settings.progress = false;
   SplineSettings settings = SplineSettingsOf(solver, "spline");
   if (method == "ltheta") settings.max_iterations = 0;
   SplineResult result;
-  LThetaSplineReport ltheta_report;
-  double ltheta_seconds = 0;
+  SplineInitialPath initial;
   {
     py::gil_scoped_release release;
-    const ShellPath ltheta = LThetaSpline(space, set.shapes, at, steps,
-                                          periodic, ltheta_settings,
-                                          &ltheta_report);
-    ltheta_seconds = Seconds(clock);
-    result =
-        SolveSpline(space, set.shapes, at, steps, periodic, ltheta, settings);
+    initial = MakeSplineInitialPath(initial_path, space, set.shapes, at, steps,
+                                    periodic, init_settings);
+    result = SolveSpline(space, set.shapes, at, steps, periodic, initial.path,
+                         settings);
   }
   // The LΘA spline alone converged if every frame's reconstruction did.
   if (method == "ltheta") {
-    result.converged = ltheta_report.unconverged_frames().empty();
+    result.converged = initial.ltheta.unconverged_frames().empty();
   }
   WritePath(output, png, gltf, set.first.mesh.faces, result.path);
   JsonObject head;
-  head.Add("method", method)
-      .Add("ltheta_seconds", ltheta_seconds)
-      .Add("ltheta", LThetaSplineJson(ltheta_report));
+  head.Add("method", method);
+  AddSplineInitJson(head, initial);
   head.Raw("energy_split", PathEnergySplitJson(space, result.path))
       .Raw("material", MaterialRecord(space, set.first.mesh, material_args));
   JsonObject json = SplineJson(head, result, Seconds(clock));
@@ -1153,10 +1157,11 @@ PYBIND11_MODULE(shellspace, m) {
       "spline",
       WithMaterialAndSolverArgs(&SplinePy),
       py::arg("keyframes"), py::arg("at"), py::arg("F"), py::arg("steps") = 8,
-      py::arg("method") = "nonlinear", py::arg("periodic") = false,
-      SHELLSPACE_FRAME_OUTPUT_ARGS, SHELLSPACE_MATERIAL_ARGS,
-      SHELLSPACE_SOLVER_ARGS,
-      "Riemannian spline through keyframes at path indices `at`: returns "
+      py::arg("method") = "nonlinear", py::arg("init") = "ltheta",
+      py::arg("periodic") = false, SHELLSPACE_FRAME_OUTPUT_ARGS,
+      SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
+      "Riemannian spline through keyframes at path indices `at`, from the "
+      "initial path `init` (ltheta or geodesic, as the CLI's --init): returns "
       "(path, summary).");
   m.def(
       "regress",

@@ -111,19 +111,16 @@ JsonObject GeodesicJson(const GeodesicResult& result) {
 }
 
 std::string MultiresolutionJson(const MultiresolutionResult& result) {
-  std::vector<std::string> levels;
-  for (const MultiresolutionLevel& level : result.levels) {
-    levels.push_back(JsonObject()
-                         .Add("vertices", level.vertices)
-                         .Add("faces", level.faces)
-                         .Add("iterations", level.iterations)
-                         .Add("path_energy", level.path_energy)
-                         .Add("final_gradient_norm", level.final_gradient)
-                         .Add("converged", level.converged)
-                         .Add("seconds", level.seconds)
-                         .str());
-  }
-  return JsonArray(levels);
+  return JsonArrayOf(result.levels, [](const MultiresolutionLevel& level) {
+    return JsonObject()
+        .Add("vertices", level.vertices)
+        .Add("faces", level.faces)
+        .Add("iterations", level.iterations)
+        .Add("path_energy", level.path_energy)
+        .Add("final_gradient_norm", level.final_gradient)
+        .Add("converged", level.converged)
+        .Add("seconds", level.seconds);
+  });
 }
 
 ShootTotals TotalsOf(const ShootResult& result) {
@@ -217,6 +214,26 @@ JsonObject LThetaSplineJson(const LThetaSplineReport& report) {
       .Add("spline_seconds", report.spline_seconds)
       .Add("solve_seconds", report.solve_seconds);
   return json;
+}
+
+JsonObject& AddSplineInitJson(JsonObject& head,
+                              const SplineInitialPath& initial) {
+  if (initial.init == SplineInit::kLTheta) {
+    return head.Add("init", "ltheta")
+        .Add("ltheta_seconds", initial.seconds)
+        .Add("ltheta", LThetaSplineJson(initial.ltheta));
+  }
+  return head.Add("init", "geodesic")
+      .Add("init_seconds", initial.seconds)
+      .Raw("init_segments",
+           JsonArrayOf(initial.segments, [](const GeodesicSegment& g) {
+             return JsonObject()
+                 .Add("from", g.from)
+                 .Add("to", g.to)
+                 .Add("path_energy", g.path_energy)
+                 .Add("iterations", g.iterations)
+                 .Add("converged", g.converged);
+           }));
 }
 
 JsonObject ComparisonJson(const ShapeComparison& comparison, double tolerance,

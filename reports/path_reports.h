@@ -19,6 +19,7 @@
 #include "shellspace/problems/calculus/parallel_transport.h"
 #include "shellspace/problems/splines/ltheta_spline.h"
 #include "shellspace/problems/splines/spline.h"
+#include "shellspace/problems/splines/spline_initial_path.h"
 
 namespace shellspace {
 
@@ -36,6 +37,15 @@ std::string PathEnergySplitJson(const ShellSpace& space, const ShellPath& path);
 
 // A JSON array of already serialised objects.
 std::string JsonArray(const std::vector<std::string>& objects);
+
+// The JSON array of object(item).str() over `items` (object: item ->
+// JsonObject), in order.
+template <class T, class ToObject>
+std::string JsonArrayOf(const std::vector<T>& items, ToObject object) {
+  std::vector<std::string> objects;
+  for (const T& item : items) objects.push_back(object(item).str());
+  return JsonArray(objects);
+}
 
 // The stages of a geodesic solve, one object each: method
 // ("levenberg-marquardt" or "newton"), iterations, final_gradient_norm,
@@ -110,6 +120,14 @@ JsonObject SplineJson(JsonObject head, const SplineResult& result,
 // lm_iterations (all frames), unconverged_frames (indices k), and the
 // seconds of the quantities' splines and of the reconstructions.
 JsonObject LThetaSplineJson(const LThetaSplineReport& report);
+
+// What making a spline's initial path took, added to `head`: init
+// ("ltheta" or "geodesic"), then for the LΘA spline ltheta_seconds and ltheta
+// (LThetaSplineJson), for the piecewise geodesic init_seconds and
+// init_segments (an array: from, to, path_energy, iterations, converged per
+// segment).
+JsonObject& AddSplineInitJson(JsonObject& head,
+                              const SplineInitialPath& initial);
 
 // The summary of `compare` (CompareShapes and its verdict): frames,
 // max_distance, mean_distance, diameter, relative_max_distance,

@@ -33,6 +33,7 @@ DEFINE_string(start, "", SHELLSPACE_PER_VERB);
 DEFINE_string(end, "", SHELLSPACE_PER_VERB);
 DEFINE_string(inputs, "", SHELLSPACE_PER_VERB);
 DEFINE_string(at, "", SHELLSPACE_PER_VERB);
+DEFINE_string(init, "", SHELLSPACE_PER_VERB);  // each verb sets its default
 DEFINE_string(multires, "auto", SHELLSPACE_PER_VERB);
 DEFINE_string(linear_solver, "auto", SHELLSPACE_PER_VERB);
 DEFINE_string(lm, "auto", SHELLSPACE_PER_VERB);

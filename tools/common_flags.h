@@ -32,6 +32,7 @@ DECLARE_string(start);
 DECLARE_string(end);
 DECLARE_string(inputs);
 DECLARE_string(at);
+DECLARE_string(init);
 DECLARE_string(multires);
 DECLARE_string(linear_solver);
 DECLARE_string(lm);

@@ -45,9 +45,6 @@
 DEFINE_double(length, 1.0, "branching: domain length L");
 DEFINE_int32(nx, 64, "branching simulate: number of x-cells");
 DEFINE_int32(ny, 128, "branching simulate: number of y-nodes (periodic)");
-DEFINE_string(init, "needle",
-              "branching simulate: initial guess laminate|random|km|needle|lens "
-              "(km: the psi-junction cell; needle: the T2 cell)");
 DEFINE_double(delta, 0.0,
               "branching simulate: interface width (0: 3 H/ny, the rule "
               "dy = delta/3)");

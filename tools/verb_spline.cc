@@ -8,6 +8,7 @@
 
 #include "shellspace/problems/splines/ltheta_spline.h"
 #include "shellspace/problems/splines/spline.h"
+#include "shellspace/problems/splines/spline_initial_path.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/film_strip_flags.h"
 #include "shellspace/tools/memory_limits.h"
@@ -56,6 +57,18 @@ FlagTable SplineFlags() {
                              "nonlinear (L-BFGS on F_K from the LTheta "
                              "spline) or ltheta (the fast approximation "
                              "alone)"),
+                    TextFlag("init",
+                             "the initial path of --method nonlinear: ltheta "
+                             "(the LTheta spline) or geodesic (the piecewise "
+                             "geodesic through the keyframes: no LM "
+                             "reconstructions, zero acceleration between "
+                             "keyframes; try it when keyframes are far apart "
+                             "and the LTheta frames stop at their iteration "
+                             "cap)")
+                        .Default("ltheta")
+                        .Check([](const std::string& name) {
+                          ParseSplineInit(name);
+                        }),
                     TextFlag("periodic", "closed path (indices mod K)"),
                     TextFlag("energy",
                              "--method ltheta: also evaluate F_K of the "
@@ -188,38 +201,60 @@ int RunSpline() {
   const std::vector<int> at = ParseIndices(FLAGS_at);
   CheckIndexCount(at, keyframes.size(), "keyframes");
   const ShellSpace space = SpaceFromFlags(set.first);
-  SolverSettings ltheta_settings = SettingsFromFlags("ltheta");
-  ltheta_settings.progress = false;
-  ltheta_settings.max_iterations = kInnerMaxIterations;
-  if (!FLAGS_quiet) std::cerr << "spline: LTheta spline\n";
-  LThetaSplineReport ltheta_report;
-  const ShellPath ltheta =
-      LThetaSpline(space, keyframes, at, FLAGS_steps, FLAGS_periodic,
-                   ltheta_settings, &ltheta_report);
-  const double ltheta_seconds = Seconds(clock);
-  if (!FLAGS_quiet) {
-    std::cerr << "spline: LTheta spline done (" << ltheta_seconds << " s, "
-              << ltheta_report.lm_iterations() << " LM iterations over "
-              << ltheta_report.solved_frames.size() << " frames)\n";
-  }
   const bool alone = FLAGS_method == "ltheta";
-  const std::string ltheta_failure = alone ? LThetaFailure(ltheta_report) : "";
+  const SplineInit init = ParseSplineInit(FLAGS_init);
+  if (alone && init != SplineInit::kLTheta) {
+    throw InputError("--init " + FLAGS_init +
+                     " needs --method nonlinear (--method ltheta is the LΘA "
+                     "spline itself)");
+  }
+  SolverSettings init_settings = SettingsFromFlags(FLAGS_init);
+  init_settings.progress = false;
+  init_settings.max_iterations = kInnerMaxIterations;
+  if (!FLAGS_quiet) {
+    std::cerr << "spline: "
+              << (init == SplineInit::kLTheta ? "LTheta spline"
+                                              : "piecewise geodesic")
+              << "\n";
+  }
+  const SplineInitialPath initial =
+      MakeSplineInitialPath(init, space, keyframes, at, FLAGS_steps,
+                            FLAGS_periodic, init_settings);
+  if (!FLAGS_quiet) {
+    for (const GeodesicSegment& g : initial.segments) {
+      std::cerr << "spline: geodesic " << g.from << "-" << g.to << ": E "
+                << g.path_energy << ", " << g.iterations << " iterations"
+                << (g.converged ? "" : ", NOT converged (kept as the guess)")
+                << "\n";
+    }
+    if (init == SplineInit::kLTheta) {
+      std::cerr << "spline: LTheta spline done (" << initial.seconds << " s, "
+                << initial.ltheta.lm_iterations() << " LM iterations over "
+                << initial.ltheta.solved_frames.size() << " frames)\n";
+      if (!alone && !initial.ltheta.unconverged_frames().empty()) {
+        std::cerr << "spline: some LTheta frames stopped at their iteration "
+                     "cap, a far-off initial path (keyframes far apart?); "
+                     "--init geodesic starts from the piecewise geodesic\n";
+      }
+    }
+  }
+  const std::string ltheta_failure =
+      alone ? LThetaFailure(initial.ltheta) : "";
+  JsonObject head;
+  head.Add("method", FLAGS_method);
+  AddSplineInitJson(head, initial);
   if (alone && !FLAGS_energy) {
     RunStatus status("spline");
     status.Require(ltheta_failure.empty(), ltheta_failure);
     RunDirectory output(FLAGS_output);
-    WritePathOutputs(&output, set.first.mesh.faces, ltheta);
+    WritePathOutputs(&output, set.first.mesh.faces, initial.path);
     const std::string summary =
-        output.Commit(JsonObject()
-                          .Add("bending_model", FLAGS_bending)
-                          .Add("method", FLAGS_method)
-                          .Add("ltheta_seconds", ltheta_seconds)
-                          .Add("ltheta", LThetaSplineJson(ltheta_report))
+        output.Commit(head.Add("bending_model", FLAGS_bending)
                           .Add("iterations", 0)
                           .Add("converged", ltheta_failure.empty())
                           .Add("termination", "not optimised")
                           .Add("seconds", Seconds(clock))
-                          .Add("frames", static_cast<int>(ltheta.size()))
+                          .Add("frames", static_cast<int>(initial.path.size()))
                           .Add("output", FLAGS_output));
     if (FLAGS_json) std::cout << summary << "\n";
     return status.Finish();
@@ -227,14 +262,10 @@ int RunSpline() {
   SplineSettings settings = SplineSettingsFromFlags("spline");
   if (alone) settings.max_iterations = 0;
   SplineResult result = SolveSpline(space, keyframes, at, FLAGS_steps,
-                                    FLAGS_periodic, ltheta, settings);
+                                    FLAGS_periodic, initial.path, settings);
   if (alone) result.converged = ltheta_failure.empty();
   return Report("spline", space, set.first.mesh.faces, result, Seconds(clock),
-                JsonObject()
-                    .Add("method", FLAGS_method)
-                    .Add("ltheta_seconds", ltheta_seconds)
-                    .Add("ltheta", LThetaSplineJson(ltheta_report)),
-                !alone, ltheta_failure);
+                std::move(head), !alone, ltheta_failure);
 }
 
 int RunRegress() {
@@ -261,8 +292,8 @@ int RunRegress() {
 SHELLSPACE_REGISTER_VERB(
     "spline",
     "spline --keyframes a.ply,b.ply,c.ply --at 0,4,8 --steps 8 --output DIR "
-    "[--method nonlinear|ltheta] [--energy=false] [--periodic] [--json] "
-    "[--png strip.png] [--gltf path.glb]",
+    "[--method nonlinear|ltheta] [--init ltheta|geodesic] [--energy=false] "
+    "[--periodic] [--json] [--png strip.png] [--gltf path.glb]",
     shellspace::SplineFlags(), shellspace::RunSpline);
 SHELLSPACE_REGISTER_VERB(
     "regress",

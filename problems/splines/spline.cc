@@ -327,16 +327,21 @@ ShellPath PiecewiseLinearPath(const std::vector<Positions>& shapes,
   return path;
 }
 
+void CheckSplineKeyframes(size_t count, const std::vector<int>& at, int steps,
+                          bool periodic) {
+  if (steps < 2) {
+    throw InputError("spline: the number of steps K must be at least 2, got " +
+                     std::to_string(steps));
+  }
+  CheckIndices(at, count, steps, periodic, true);
+}
+
 SplineResult SolveSpline(const ShellSpace& space,
                          const std::vector<Positions>& keyframes,
                          const std::vector<int>& at, int steps, bool periodic,
                          const ShellPath& initial,
                          const SplineSettings& settings) {
-  if (steps < 2) {
-    throw InputError("spline: the number of steps K must be at least 2, got " +
-                     std::to_string(steps));
-  }
-  CheckIndices(at, keyframes.size(), steps, periodic, true);
+  CheckSplineKeyframes(keyframes.size(), at, steps, periodic);
   SplineSpec spec;
   spec.steps = steps;
   spec.periodic = periodic;

@@ -104,6 +104,12 @@ ShellPath PiecewiseLinearPath(const std::vector<Positions>& shapes,
                               const std::vector<int>& at, int steps,
                               bool periodic);
 
+// Throws InputError unless `at` holds one strictly increasing index per
+// keyframe (`count` of them, at least 2) in [0, K] (periodic: [0, K)), with
+// 0 and K among them unless periodic, and K >= 2: SolveSpline's checks.
+void CheckSplineKeyframes(size_t count, const std::vector<int>& at, int steps,
+                          bool periodic);
+
 }  // namespace shellspace
 
 #endif  // SHELLSPACE_PROBLEMS_SPLINES_SPLINE_H_

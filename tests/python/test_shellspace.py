@@ -373,6 +373,19 @@ def test_spline_and_regression_hit_their_data():
     for k, S in ((0, V), (2, M), (4, W)):
         assert np.array_equal(path[k], S)
     assert summary["method"] == "nonlinear" and summary["frames"] == 5
+    assert summary["init"] == "ltheta" and "ltheta" in summary
+    # From the piecewise geodesic: the keyframes exact, its two segments
+    # reported, no LΘA reconstruction.
+    geo_path, geo = shellspace.spline([V, M, W], [0, 2, 4], F, steps=4,
+                                      init="geodesic", quiet=True)
+    for k, S in ((0, V), (2, M), (4, W)):
+        assert np.array_equal(geo_path[k], S)
+    assert geo["init"] == "geodesic" and "ltheta" not in geo
+    assert [(s["from"], s["to"]) for s in geo["init_segments"]] == [(0, 2),
+                                                                    (2, 4)]
+    with pytest.raises(ValueError, match="needs method nonlinear"):
+        shellspace.spline([V, M, W], [0, 2, 4], F, steps=4, method="ltheta",
+                          init="geodesic", quiet=True)
     path, summary = shellspace.regress([V, W], [0, 4], F, steps=4,
                                        sigma=1e-6, quiet=True)
     assert summary["sigma"] == 1e-6

@@ -10,6 +10,7 @@
 #include <random>
 
 #include "shellspace/geometry/rigid_alignment.h"
+#include "shellspace/tests/testing/cli_output.h"
 #include "shellspace/tests/testing/derivative_check.h"
 #include "shellspace/tests/testing/test_support.h"
 
@@ -386,11 +387,51 @@ TEST(SplineCliTest, LThetaFramesAndErrors) {
             "/b",
         "spline --keyframes " + keys +
             " --at 0,2,4 --steps 4 --method cubic --output " + dir + "/b",
+        "spline --keyframes " + keys +
+            " --at 0,2,4 --steps 4 --init linear --output " + dir + "/b",
+        "spline --keyframes " + keys +
+            " --at 0,2,4 --steps 4 --method ltheta --init geodesic --output " +
+            dir + "/b",
         "regress --inputs " + keys +
             " --at 0,1,2 --steps 2 --sigma -1 --output " + dir + "/b"}) {
     EXPECT_EQ(testing::RunCli(bad, nullptr, &err), 1) << bad;
     EXPECT_FALSE(std::filesystem::exists(dir + "/b")) << bad;
   }
+}
+
+// --init geodesic: the JSON names the initial path and its segments (no
+// ltheta object), and the run ends converged; the written frames are the
+// spline's, whose energy is below the piecewise geodesic's.
+TEST(SplineCliTest, FromThePiecewiseGeodesic) {
+  const std::string dir = testing::TempDir();
+  const std::string keys = testing::DataPath("plate/plate121.ply") + "," +
+                           testing::DataPath("plate/plate121_rolledA.ply") +
+                           "," +
+                           testing::DataPath("plate/plate121_rolledB.ply");
+  const std::string common = "spline --quiet --json --keyframes " + keys +
+                             " --at 0,2,4 --steps 4 --eta 0.01 ";
+  std::string out, err;
+  ASSERT_EQ(testing::RunCli(common + "--init geodesic --output " + dir +
+                                "/geodesic_init",
+                            &out, &err),
+            0)
+      << err;
+  EXPECT_NE(out.find("\"init\": \"geodesic\""), std::string::npos) << out;
+  EXPECT_NE(out.find("\"init_segments\": [{\"from\": 0, \"to\": 2"),
+            std::string::npos)
+      << out;
+  EXPECT_EQ(out.find("\"ltheta\""), std::string::npos) << out;
+  EXPECT_NE(out.find("\"converged\": true"), std::string::npos) << out;
+  const double f_spline = testing::Number(out, "spline_energy");
+  // The same keyframes from the piecewise geodesic alone (no iterations).
+  ASSERT_EQ(testing::RunCli(common +
+                                "--init geodesic --max_iterations 1 "
+                                "--allow_unconverged --output " +
+                                dir + "/geodesic_one",
+                            &out, &err),
+            0)
+      << err;
+  EXPECT_LE(f_spline, testing::Number(out, "spline_energy"));
 }
 
 }  // namespace
