@@ -120,6 +120,23 @@ run faces_transport_surprise_eps1 rungs transport --quiet \
 run cactus_spline_2_10_17 spline_energy spline --quiet \
   --keyframes "${cactus}/cactus2.ply,${cactus}/cactus10.ply,${cactus}/cactus17.ply" \
   --at 0,4,8 --steps 8 --tolerance 1e-4 --output "${out}/cactus_spline_variant"
+# The same keyframes from the piecewise geodesic (--init geodesic), the
+# headline keyframes likewise, and keyframes nobody looked at with both.
+run cactus_spline_2_10_17_init_geodesic spline_energy spline --quiet \
+  --keyframes "${cactus}/cactus2.ply,${cactus}/cactus10.ply,${cactus}/cactus17.ply" \
+  --at 0,4,8 --steps 8 --tolerance 1e-4 --init geodesic \
+  --output "${out}/cactus_spline_variant_geodesic"
+run cactus_spline_0_9_18_init_geodesic spline_energy spline --quiet \
+  --keyframes "${cactus}/cactus0.ply,${cactus}/cactus9.ply,${cactus}/cactus18.ply" \
+  --at 0,4,8 --steps 8 --tolerance 1e-4 --init geodesic \
+  --output "${out}/cactus_spline_geodesic"
+run cactus_spline_5_11_18 spline_energy spline --quiet \
+  --keyframes "${cactus}/cactus5.ply,${cactus}/cactus11.ply,${cactus}/cactus18.ply" \
+  --at 0,4,8 --steps 8 --tolerance 1e-4 --output "${out}/cactus_spline_5_11_18"
+run cactus_spline_5_11_18_init_geodesic spline_energy spline --quiet \
+  --keyframes "${cactus}/cactus5.ply,${cactus}/cactus11.ply,${cactus}/cactus18.ply" \
+  --at 0,4,8 --steps 8 --tolerance 1e-4 --init geodesic \
+  --output "${out}/cactus_spline_5_11_18_geodesic"
 cactus6="$(for i in 1 4 7 10 13 16; do printf '%s/cactus%d.ply,' "${cactus}" "$i"; done)"
 run cactus_regress_1_4_16_K5 spline_energy regress --quiet --inputs "${cactus6%,}" \
   --at 0,1,2,3,4,5 --steps 5 --sigma 0.01 --tolerance 1e-4 \
