@@ -94,14 +94,21 @@ PY
 inputs4="${faces}/neutral.ply,${faces}/smile.ply,${faces}/disgust.ply,${faces}/surprise.ply"
 cactus7="$(for i in 0 3 6 9 12 15 18; do printf '%s/cactus%d.ply,' "${cactus}" "$i"; done)"
 cactus7="${cactus7%,}"
+# cactus_spline NAME A B C [ARGS...]: the spline through cactusA, B, C at
+# 0, 4, 8 (K = 8) to a relative gradient of 1e-4, frames in OUT_DIR/NAME.
+cactus_spline() {
+  local name="$1" a="$2" b="$3" c="$4"
+  shift 4
+  run "${name}" spline_energy spline --quiet --keyframes \
+    "${cactus}/cactus${a}.ply,${cactus}/cactus${b}.ply,${cactus}/cactus${c}.ply" \
+    --at 0,4,8 --steps 8 --tolerance 1e-4 --output "${out}/${name}" "$@"
+}
 
 run faces_geodesic_K8 path_energy geodesic --quiet --start "${faces}/neutral.ply" \
   --end "${faces}/smile.ply" --steps 8 --output "${out}/faces_geodesic"
 run faces_transport_eps1 rungs transport --quiet --path "${out}/faces_geodesic" \
   --variation "${faces}/disgust.ply" --epsilon 1 --output "${out}/faces_transport"
-run cactus_spline_0_9_18 spline_energy spline --quiet \
-  --keyframes "${cactus}/cactus0.ply,${cactus}/cactus9.ply,${cactus}/cactus18.ply" \
-  --at 0,4,8 --steps 8 --tolerance 1e-4 --output "${out}/cactus_spline"
+cactus_spline cactus_spline_0_9_18 0 9 18
 run cactus_regress_K6 spline_energy regress --quiet --inputs "${cactus7}" \
   --at 0,1,2,3,4,5,6 --steps 6 --sigma 0.01 --tolerance 1e-4 \
   --output "${out}/cactus_regress"
@@ -117,26 +124,13 @@ run faces_geodesic_surprise_disgust_K8 path_energy geodesic --quiet \
 run faces_transport_surprise_eps1 rungs transport --quiet \
   --path "${out}/faces_geodesic" --variation "${faces}/surprise.ply" \
   --epsilon 1 --output "${out}/faces_transport_variant"
-run cactus_spline_2_10_17 spline_energy spline --quiet \
-  --keyframes "${cactus}/cactus2.ply,${cactus}/cactus10.ply,${cactus}/cactus17.ply" \
-  --at 0,4,8 --steps 8 --tolerance 1e-4 --output "${out}/cactus_spline_variant"
+cactus_spline cactus_spline_2_10_17 2 10 17
 # The same keyframes from the piecewise geodesic (--init geodesic), the
 # headline keyframes likewise, and keyframes nobody looked at with both.
-run cactus_spline_2_10_17_init_geodesic spline_energy spline --quiet \
-  --keyframes "${cactus}/cactus2.ply,${cactus}/cactus10.ply,${cactus}/cactus17.ply" \
-  --at 0,4,8 --steps 8 --tolerance 1e-4 --init geodesic \
-  --output "${out}/cactus_spline_variant_geodesic"
-run cactus_spline_0_9_18_init_geodesic spline_energy spline --quiet \
-  --keyframes "${cactus}/cactus0.ply,${cactus}/cactus9.ply,${cactus}/cactus18.ply" \
-  --at 0,4,8 --steps 8 --tolerance 1e-4 --init geodesic \
-  --output "${out}/cactus_spline_geodesic"
-run cactus_spline_5_11_18 spline_energy spline --quiet \
-  --keyframes "${cactus}/cactus5.ply,${cactus}/cactus11.ply,${cactus}/cactus18.ply" \
-  --at 0,4,8 --steps 8 --tolerance 1e-4 --output "${out}/cactus_spline_5_11_18"
-run cactus_spline_5_11_18_init_geodesic spline_energy spline --quiet \
-  --keyframes "${cactus}/cactus5.ply,${cactus}/cactus11.ply,${cactus}/cactus18.ply" \
-  --at 0,4,8 --steps 8 --tolerance 1e-4 --init geodesic \
-  --output "${out}/cactus_spline_5_11_18_geodesic"
+cactus_spline cactus_spline_2_10_17_init_geodesic 2 10 17 --init geodesic
+cactus_spline cactus_spline_0_9_18_init_geodesic 0 9 18 --init geodesic
+cactus_spline cactus_spline_5_11_18 5 11 18
+cactus_spline cactus_spline_5_11_18_init_geodesic 5 11 18 --init geodesic
 cactus6="$(for i in 1 4 7 10 13 16; do printf '%s/cactus%d.ply,' "${cactus}" "$i"; done)"
 run cactus_regress_1_4_16_K5 spline_energy regress --quiet --inputs "${cactus6%,}" \
   --at 0,1,2,3,4,5 --steps 5 --sigma 0.01 --tolerance 1e-4 \

@@ -364,12 +364,19 @@ TEST(RegressionTest, GrowingSigmaLowersSplineEnergy) {
   }
 }
 
+// The flat and the two rolled plates, as --keyframes.
+std::string PlateKeyframes() {
+  std::string list;
+  for (const char* name : {"plate121", "plate121_rolledA", "plate121_rolledB"}) {
+    list += (list.empty() ? "" : ",") +
+            testing::DataPath(std::string("plate/") + name + ".ply");
+  }
+  return list;
+}
+
 TEST(SplineCliTest, LThetaFramesAndErrors) {
   const std::string dir = testing::TempDir();
-  const std::string keys = testing::DataPath("plate/plate121.ply") + "," +
-                           testing::DataPath("plate/plate121_rolledA.ply") +
-                           "," +
-                           testing::DataPath("plate/plate121_rolledB.ply");
+  const std::string keys = PlateKeyframes();
   std::string out, err;
   ASSERT_EQ(
       testing::RunCli("spline --quiet --json --method ltheta --keyframes " +
@@ -404,10 +411,7 @@ TEST(SplineCliTest, LThetaFramesAndErrors) {
 // spline's, whose energy is below the piecewise geodesic's.
 TEST(SplineCliTest, FromThePiecewiseGeodesic) {
   const std::string dir = testing::TempDir();
-  const std::string keys = testing::DataPath("plate/plate121.ply") + "," +
-                           testing::DataPath("plate/plate121_rolledA.ply") +
-                           "," +
-                           testing::DataPath("plate/plate121_rolledB.ply");
+  const std::string keys = PlateKeyframes();
   const std::string common = "spline --quiet --json --keyframes " + keys +
                              " --at 0,2,4 --steps 4 --eta 0.01 ";
   std::string out, err;
