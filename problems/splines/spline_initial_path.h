@@ -33,9 +33,10 @@ struct GeodesicSegment {
 // geodesic of at[i+1] - at[i] steps (SolveGeodesic with `settings`, no
 // mask, rigid gauge). Its keyframes are exact and it has no acceleration
 // inside a segment, so F_K comes only from the kinks at the inner
-// keyframes: through cactus 2, 10, 17 at 0, 4, 8 (relative eta 1e-4) its
-// F_K is 1.10 against 71.0 for the LThetaSpline, three of whose
-// reconstructions end at their iteration cap (14 s against 49 s to make).
+// keyframes: through cactus 2, 10, 17 at 0, 4, 8 (relative eta 1e-4, all
+// solves to a relative gradient of 1e-10) its F_K is 1.10 against 71.0 for
+// the LThetaSpline, three of whose reconstructions end at their iteration
+// cap (14 s against 49 s to make).
 // K + 1 shapes (K if periodic, as PiecewiseLinearPath). `segments`, if
 // given, receives one record per segment solved, in order. A stop request
 // (settings.stop) ends the loop after the current segment; the segments
