@@ -1,13 +1,13 @@
 #include "shellspace/solvers/solver_settings.h"
 
-#include "shellspace/geometry/mesh.h"  // InputError
-
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <string>
 #include <vector>
+
+#include "shellspace/geometry/mesh.h"  // InputError
 
 namespace shellspace {
 
