@@ -14,6 +14,7 @@
 #include <limits>
 #include <sstream>
 
+#include "shellspace/geometry/named_values.h"
 #include "shellspace/io/atomic_file.h"
 
 namespace shellspace {
@@ -107,9 +108,10 @@ void CheckFrames(const std::vector<Positions>& frames, const Faces& faces) {
 
 GltfAnimationOptions::Interpolation ParseGltfInterpolation(
     const std::string& text, const std::string& name) {
-  if (text == "linear") return GltfAnimationOptions::Interpolation::kLinear;
-  if (text == "step") return GltfAnimationOptions::Interpolation::kStep;
-  throw InputError(name + " must be linear or step, got '" + text + "'");
+  using Interpolation = GltfAnimationOptions::Interpolation;
+  static constexpr NamedValue<Interpolation> kNames[] = {
+      {Interpolation::kLinear, "linear"}, {Interpolation::kStep, "step"}};
+  return ParseNamedValue(kNames, text, name);
 }
 
 std::string EncodeGltfMorphAnimation(const std::vector<Positions>& frames,

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <cstdio>
 
+#include "shellspace/geometry/named_values.h"
 #include "shellspace/io/ascii_lowercase.h"
 #include "shellspace/render/bitmap_font.h"
 #include "shellspace/render/camera.h"
@@ -114,18 +115,19 @@ void DrawLegend(double largest, const FilmStripLayout& layout, int top,
   DrawText(high, x, text_top, s, kTextColor, image);
 }
 
+constexpr NamedValue<SurfaceColor> kSurfaceColorNames[] = {
+    {SurfaceColor::kPlain, "plain"},
+    {SurfaceColor::kDisplacement, "displacement"}};
+
 }  // namespace
 
 SurfaceColor ParseSurfaceColor(const std::string& text) {
-  const std::string name = AsciiLowercase(text);
-  if (name == "plain") return SurfaceColor::kPlain;
-  if (name == "displacement") return SurfaceColor::kDisplacement;
-  throw InputError("bad colour '" + text +
-                   "' (expected plain or displacement)");
+  return ParseNamedValue(kSurfaceColorNames, AsciiLowercase(text),
+                         "the colour");
 }
 
 std::string SurfaceColorName(SurfaceColor color) {
-  return color == SurfaceColor::kPlain ? "plain" : "displacement";
+  return NameOf(kSurfaceColorNames, color);
 }
 
 void ValidateRenderOptions(const RenderOptions& options) {

@@ -1,19 +1,24 @@
 #include "shellspace/render/shading.h"
 
 #include "shellspace/geometry/mesh.h"
+#include "shellspace/geometry/named_values.h"
 #include "shellspace/io/ascii_lowercase.h"
 
 namespace shellspace {
 
+namespace {
+
+constexpr NamedValue<Shading> kShadingNames[] = {
+    {Shading::kFlat, "flat"}, {Shading::kGouraud, "gouraud"}};
+
+}  // namespace
+
 Shading ParseShading(const std::string& text) {
-  const std::string name = AsciiLowercase(text);
-  if (name == "flat") return Shading::kFlat;
-  if (name == "gouraud") return Shading::kGouraud;
-  throw InputError("bad shading '" + text + "' (expected flat or gouraud)");
+  return ParseNamedValue(kShadingNames, AsciiLowercase(text), "the shading");
 }
 
 std::string ShadingName(Shading shading) {
-  return shading == Shading::kFlat ? "flat" : "gouraud";
+  return NameOf(kShadingNames, shading);
 }
 
 }  // namespace shellspace

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <map>
+#include <optional>
 #include <set>
 #include <utility>
 
@@ -11,7 +12,20 @@
 
 #include <Eigen/Eigenvalues>
 
+#include "shellspace/geometry/named_values.h"
+
 namespace shellspace {
+
+namespace {
+
+// Canonical names first, then the "+" aliases.
+constexpr NamedValue<UpAxis> kUpAxisNames[] = {
+    {UpAxis::kAuto, "auto"},   {UpAxis::kPlusX, "x"},   {UpAxis::kPlusY, "y"},
+    {UpAxis::kPlusZ, "z"},     {UpAxis::kMinusX, "-x"}, {UpAxis::kMinusY, "-y"},
+    {UpAxis::kMinusZ, "-z"},   {UpAxis::kPlusX, "+x"},  {UpAxis::kPlusY, "+y"},
+    {UpAxis::kPlusZ, "+z"}};
+
+}  // namespace
 
 UpAxis ParseUpAxis(const std::string& text) {
   std::string name;
@@ -19,29 +33,14 @@ UpAxis ParseUpAxis(const std::string& text) {
     if (c == ' ' || c == '\t') continue;
     name += static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   }
-  if (name == "auto") return UpAxis::kAuto;
-  if (name == "x" || name == "+x") return UpAxis::kPlusX;
-  if (name == "y" || name == "+y") return UpAxis::kPlusY;
-  if (name == "z" || name == "+z") return UpAxis::kPlusZ;
-  if (name == "-x") return UpAxis::kMinusX;
-  if (name == "-y") return UpAxis::kMinusY;
-  if (name == "-z") return UpAxis::kMinusZ;
-  throw InputError("bad up axis '" + text +
-                   "' (expected auto, x, y, z, -x, -y or -z)");
+  if (const std::optional<UpAxis> axis = ValueNamed(kUpAxisNames, name)) {
+    return *axis;
+  }
+  throw InputError("bad up axis '" + text + "' (expected " +
+                   NameChoices(kUpAxisNames) + ")");
 }
 
-std::string UpAxisName(UpAxis axis) {
-  switch (axis) {
-    case UpAxis::kAuto: return "auto";
-    case UpAxis::kPlusX: return "x";
-    case UpAxis::kMinusX: return "-x";
-    case UpAxis::kPlusY: return "y";
-    case UpAxis::kMinusY: return "-y";
-    case UpAxis::kPlusZ: return "z";
-    case UpAxis::kMinusZ: return "-z";
-  }
-  return "auto";
-}
+std::string UpAxisName(UpAxis axis) { return NameOf(kUpAxisNames, axis); }
 
 namespace {
 

@@ -3,6 +3,7 @@
 #include <algorithm>
 
 #include "shellspace/cost_functions/shell/deformation_energy.h"
+#include "shellspace/geometry/named_values.h"
 #include "shellspace/reports/relative_gradient.h"
 #include "shellspace/reports/shape_reports.h"
 
@@ -50,8 +51,11 @@ std::vector<std::string> GeodesicStages(const GeodesicResult& result) {
 }
 
 const char* ExpMethodName(ExpStepResult::Method method) {
-  return method == ExpStepResult::Method::kNewton ? "newton"
-                                                  : "levenberg-marquardt";
+  using Method = ExpStepResult::Method;
+  static constexpr NamedValue<Method> kNames[] = {
+      {Method::kNewton, "newton"},
+      {Method::kLevenbergMarquardt, "levenberg-marquardt"}};
+  return NameOf(kNames, method);
 }
 
 std::vector<std::string> ExpStepStages(const ShootResult& result) {

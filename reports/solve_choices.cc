@@ -3,6 +3,7 @@
 #include <cstdlib>
 
 #include "shellspace/geometry/mesh.h"
+#include "shellspace/geometry/named_values.h"
 
 namespace shellspace {
 
@@ -31,33 +32,30 @@ MultiresolutionSettings ParseMultiresolution(const std::string& value,
   return settings;
 }
 
+namespace {
+
+constexpr NamedValue<PathLinearSolver> kPathLinearSolverNames[] = {
+    {PathLinearSolver::kAuto, "auto"},
+    {PathLinearSolver::kDirect, "direct"},
+    {PathLinearSolver::kBlockJacobi, "block-jacobi"}};
+constexpr NamedValue<GeodesicLm> kGeodesicLmNames[] = {
+    {GeodesicLm::kAuto, "auto"},
+    {GeodesicLm::kCeres, "ceres"},
+    {GeodesicLm::kEngine, "engine"}};
+
+}  // namespace
+
 PathLinearSolver ParsePathLinearSolver(const std::string& value,
                                        const std::string& name) {
-  if (value == "auto") return PathLinearSolver::kAuto;
-  if (value == "direct") return PathLinearSolver::kDirect;
-  if (value == "block-jacobi") return PathLinearSolver::kBlockJacobi;
-  throw InputError(name + " must be auto, direct or block-jacobi, got '" +
-                   value + "'");
+  return ParseNamedValue(kPathLinearSolverNames, value, name);
 }
 
 const char* PathLinearSolverName(PathLinearSolver solver) {
-  switch (solver) {
-    case PathLinearSolver::kAuto:
-      return "auto";
-    case PathLinearSolver::kDirect:
-      return "direct";
-    case PathLinearSolver::kBlockJacobi:
-      return "block-jacobi";
-  }
-  return "auto";
+  return NameOf(kPathLinearSolverNames, solver);
 }
 
 GeodesicLm ParseGeodesicLm(const std::string& value, const std::string& name) {
-  if (value == "auto") return GeodesicLm::kAuto;
-  if (value == "ceres") return GeodesicLm::kCeres;
-  if (value == "engine") return GeodesicLm::kEngine;
-  throw InputError(name + " must be auto, ceres or engine, got '" + value +
-                   "'");
+  return ParseNamedValue(kGeodesicLmNames, value, name);
 }
 
 }  // namespace shellspace

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <utility>
 
+#include "shellspace/geometry/named_values.h"
+
 namespace shellspace {
 
 NewtonResidual NewtonResidual::OfReduced(Eigen::VectorXd reduced) {
@@ -15,32 +17,35 @@ NewtonResidual NewtonResidual::OfReduced(Eigen::VectorXd reduced) {
   return r;
 }
 
+namespace {
+
+// The stop texts; root finding words three of them differently.
+constexpr NamedValue<NewtonStop> kNewtonStopTexts[] = {
+    {NewtonStop::kConverged, "converged"},
+    {NewtonStop::kMaxSteps, "max steps"},
+    {NewtonStop::kInfeasibleStart, "degenerate initial guess"},
+    {NewtonStop::kAssemblyFailed, "Hessian not assembled"},
+    {NewtonStop::kLinearSolveFailed, "Hessian not positive definite"},
+    {NewtonStop::kNotDescent, "Newton direction not a descent direction"},
+    {NewtonStop::kLineSearchFailed, "no decrease along the Newton direction"},
+    {NewtonStop::kRoundOffFloor, "round-off floor"},
+    {NewtonStop::kNoProgress, "no progress"},
+    {NewtonStop::kStopped, "stopped on request"}};
+constexpr NamedValue<NewtonStop> kRootFindingStopTexts[] = {
+    {NewtonStop::kAssemblyFailed, "Jacobian not assembled"},
+    {NewtonStop::kLinearSolveFailed, "singular Jacobian"},
+    {NewtonStop::kLineSearchFailed,
+     "no decrease of |F| along the Newton step"}};
+
+}  // namespace
+
 std::string NewtonStopText(NewtonStop stop, NewtonMode mode) {
-  const bool minimize = mode == NewtonMode::kMinimize;
-  switch (stop) {
-    case NewtonStop::kConverged:
-      return "converged";
-    case NewtonStop::kMaxSteps:
-      return "max steps";
-    case NewtonStop::kInfeasibleStart:
-      return "degenerate initial guess";
-    case NewtonStop::kAssemblyFailed:
-      return minimize ? "Hessian not assembled" : "Jacobian not assembled";
-    case NewtonStop::kLinearSolveFailed:
-      return minimize ? "Hessian not positive definite" : "singular Jacobian";
-    case NewtonStop::kNotDescent:
-      return "Newton direction not a descent direction";
-    case NewtonStop::kLineSearchFailed:
-      return minimize ? "no decrease along the Newton direction"
-                      : "no decrease of |F| along the Newton step";
-    case NewtonStop::kRoundOffFloor:
-      return "round-off floor";
-    case NewtonStop::kNoProgress:
-      return "no progress";
-    case NewtonStop::kStopped:
-      return "stopped on request";
+  if (mode != NewtonMode::kMinimize) {
+    if (const char* text = NameOf(kRootFindingStopTexts, stop, nullptr)) {
+      return text;
+    }
   }
-  return "unknown";
+  return NameOf(kNewtonStopTexts, stop);
 }
 
 void NewtonReport::Append(const NewtonReport& later) {

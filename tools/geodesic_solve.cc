@@ -60,10 +60,6 @@ PathLinearSolver LinearSolverFromFlags() {
   return ParsePathLinearSolver(FLAGS_linear_solver, "--linear_solver");
 }
 
-const char* LinearSolverName(PathLinearSolver solver) {
-  return PathLinearSolverName(solver);
-}
-
 MultiresolutionResult SolveGeodesicFromFlags(const ShellSpace& space,
                                              const GeodesicInput& input,
                                              const SolverSettings& settings) {

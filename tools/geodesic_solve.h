@@ -47,9 +47,6 @@ FlagSpec GeodesicLmFlag();
 // InputError naming --linear_solver for anything else.
 PathLinearSolver LinearSolverFromFlags();
 
-// The name of a PathLinearSolver in --linear_solver's spelling.
-const char* LinearSolverName(PathLinearSolver solver);
-
 // SolveGeodesicMultiresolution with those settings (with 0 levels the
 // plain single-level solve) and input.linear_solver from --linear_solver.
 MultiresolutionResult SolveGeodesicFromFlags(const ShellSpace& space,

@@ -53,8 +53,10 @@ FlagTable RenderFlags() {
                     "AZIMUTH,ELEVATION in degrees (e.g. --view=30,20; "
                     "azimuth about the up axis from the front view, "
                     "elevation towards it); other --up values turn the "
-                    "world first (--up z: front looks along +y, x right)"),
-           TextFlag("shading", "flat or gouraud"),
+                    "world first (--up z: front looks along +y, x right)")
+               .Check([](const std::string& value) { ParseView(value); }),
+           TextFlag("shading", "flat or gouraud")
+               .Check([](const std::string& value) { ParseShading(value); }),
            TextFlag("quiet", "no line on stdout"),
        },
        FilmStripFlags(), JsonFlag()});
@@ -81,12 +83,8 @@ int RunRender() {
   RenderOptions options = FilmStripOptionsFromFlags();
   options.width = static_cast<int>(FLAGS_width);
   options.height = static_cast<int>(FLAGS_height);
-  try {
-    options.view = ParseView(FLAGS_view);
-    options.shading = ParseShading(FLAGS_shading);
-  } catch (const InputError& error) {
-    throw InputError(std::string("--") + error.what());
-  }
+  options.view = ParseView(FLAGS_view);
+  options.shading = ParseShading(FLAGS_shading);
   RunPaths()
       .InputFrames("input", FLAGS_input)
       .OutputFile("output", FLAGS_output)

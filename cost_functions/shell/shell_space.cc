@@ -1,11 +1,13 @@
 #include "shellspace/cost_functions/shell/shell_space.h"
 
 #include <cmath>
+#include <optional>
 #include <sstream>
 #include <stdexcept>
 #include <string>
 
 #include "shellspace/cost_functions/shell/element_set.h"
+#include "shellspace/geometry/named_values.h"
 
 namespace shellspace {
 
@@ -43,25 +45,23 @@ void ShellMaterial::Validate() const {
   }
 }
 
+namespace {
+
+constexpr NamedValue<BendingModel> kBendingModelNames[] = {
+    {BendingModel::kDiscreteShells, "discrete-shells"},
+    {BendingModel::kShapeOperator, "shape-operator"}};
+
+}  // namespace
+
 const char* BendingModelName(BendingModel model) {
-  switch (model) {
-    case BendingModel::kDiscreteShells:
-      return "discrete-shells";
-    case BendingModel::kShapeOperator:
-      return "shape-operator";
-  }
-  return "unknown";
+  return NameOf(kBendingModelNames, model);
 }
 
 bool ParseBendingModel(const std::string& name, BendingModel* model) {
-  for (BendingModel m :
-       {BendingModel::kDiscreteShells, BendingModel::kShapeOperator}) {
-    if (name == BendingModelName(m)) {
-      *model = m;
-      return true;
-    }
-  }
-  return false;
+  const std::optional<BendingModel> named =
+      ValueNamed(kBendingModelNames, name);
+  if (named) *model = *named;
+  return named.has_value();
 }
 
 ShellSpace::ShellSpace(const Mesh& mesh, const Topology& topo,

@@ -2,16 +2,20 @@
 
 #include <chrono>
 
-#include "shellspace/geometry/mesh.h"  // InputError
+#include "shellspace/geometry/named_values.h"
 #include "shellspace/problems/calculus/geodesic.h"
 
 namespace shellspace {
 
+namespace {
+
+constexpr NamedValue<SplineInit> kSplineInitNames[] = {
+    {SplineInit::kLTheta, "ltheta"}, {SplineInit::kGeodesic, "geodesic"}};
+
+}  // namespace
+
 SplineInit ParseSplineInit(const std::string& name) {
-  if (name == "ltheta") return SplineInit::kLTheta;
-  if (name == "geodesic") return SplineInit::kGeodesic;
-  throw InputError("the initial path must be ltheta or geodesic, got \"" +
-                   name + "\"");
+  return ParseNamedValue(kSplineInitNames, name, "the initial path");
 }
 
 ShellPath PiecewiseGeodesicPath(const ShellSpace& space,

@@ -585,5 +585,21 @@ TEST(RenderCliTest, ErrorsExitOneWithoutOutput) {
   }
 }
 
+// A bad --view or --shading is named as the flag, then the library's reason
+// (it once read "--bad shading 'phong' (expected flat or gouraud)").
+TEST(RenderCliTest, BadViewAndShadingNameTheirFlag) {
+  const std::string base = "render --input " + DataPath("finger/finger0.ply") +
+                           " --output " + TempDir() + "/strip.png";
+  std::string err;
+  EXPECT_EQ(RunCli(base + " --shading phong", nullptr, &err), 1);
+  EXPECT_NE(err.find("error: --shading: the shading must be flat or gouraud, "
+                     "got 'phong'"),
+            std::string::npos)
+      << err;
+  EXPECT_EQ(RunCli(base + " --view sideways", nullptr, &err), 1);
+  EXPECT_NE(err.find("error: --view: bad view 'sideways'"), std::string::npos)
+      << err;
+}
+
 }  // namespace
 }  // namespace shellspace
