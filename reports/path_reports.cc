@@ -199,6 +199,7 @@ JsonObject SplineJson(JsonObject head, const SplineResult& result,
       .Add("relative_gradient_norm", result.relative_gradient_norm)
       .Add("gradient_criterion_met", result.gradient_criterion_met)
       .Add("converged", result.converged)
+      .Add("evaluated", result.evaluated)
       .Add("termination", result.iterations > 0
                               ? ceres::TerminationTypeToString(
                                     result.summary.termination_type)
@@ -222,13 +223,12 @@ JsonObject LThetaSplineJson(const LThetaSplineReport& report) {
 
 JsonObject& AddSplineInitJson(JsonObject& head,
                               const SplineInitialPath& initial) {
+  head.Add("init", SplineInitName(initial.init));
   if (initial.init == SplineInit::kLTheta) {
-    return head.Add("init", "ltheta")
-        .Add("ltheta_seconds", initial.seconds)
+    return head.Add("ltheta_seconds", initial.seconds)
         .Add("ltheta", LThetaSplineJson(initial.ltheta));
   }
-  return head.Add("init", "geodesic")
-      .Add("init_seconds", initial.seconds)
+  return head.Add("init_seconds", initial.seconds)
       .Raw("init_segments",
            JsonArrayOf(initial.segments, [](const GeodesicSegment& g) {
              return JsonObject()

@@ -150,6 +150,19 @@ std::string LThetaFailure(const LThetaSplineReport& report) {
          " LM iterations each at most)";
 }
 
+// What an unconverged outer solve fell short of, for the run's status.
+std::string SplineShortfall(const std::string& verb,
+                            const SplineResult& result) {
+  if (!result.evaluated) {
+    return verb + ": stopped before the first evaluation of F_K";
+  }
+  return verb + ": relative gradient " + Short(result.relative_gradient_norm) +
+         " above the tolerance " + Short(FLAGS_tolerance) +
+         ", no function-tolerance stop, after " +
+         std::to_string(result.iterations) + " L-BFGS iterations (" +
+         ceres::TerminationTypeToString(result.summary.termination_type) + ")";
+}
+
 // Writes the frames and the report; returns the exit code. `optimised`:
 // the outer solver ran (not --method ltheta); `ltheta_failure`:
 // LThetaFailure of a path that is the LΘA spline alone.
@@ -159,16 +172,7 @@ int Report(const std::string& verb, const ShellSpace& space, const Faces& faces,
   RunStatus status(verb);
   status.Require(ltheta_failure.empty(), ltheta_failure);
   if (optimised) {
-    status.Require(result.converged,
-                   verb + ": relative gradient " +
-                       Short(result.relative_gradient_norm) +
-                       " above the tolerance " + Short(FLAGS_tolerance) +
-                       ", no function-tolerance stop, after " +
-                       std::to_string(result.iterations) +
-                       " L-BFGS iterations (" +
-                       ceres::TerminationTypeToString(
-                           result.summary.termination_type) +
-                       ")");
+    status.Require(result.converged, SplineShortfall(verb, result));
   }
   RunDirectory output(FLAGS_output);
   WritePathOutputs(&output, faces, result.path);
@@ -180,8 +184,12 @@ int Report(const std::string& verb, const ShellSpace& space, const Faces& faces,
   if (FLAGS_json) {
     std::cout << summary << "\n";
   } else if (!FLAGS_quiet) {
-    std::cout << "F_K = " << result.spline_energy << "; wrote " << FLAGS_output
-              << "/shape_*.ply\n";
+    if (result.evaluated) {
+      std::cout << "F_K = " << result.spline_energy;
+    } else {
+      std::cout << "F_K not evaluated (stopped before its first evaluation)";
+    }
+    std::cout << "; wrote " << FLAGS_output << "/shape_*.ply\n";
   }
   return status.Finish();
 }
@@ -231,7 +239,8 @@ int RunSpline() {
       std::cerr << "spline: LTheta spline done (" << initial.seconds << " s, "
                 << initial.ltheta.lm_iterations() << " LM iterations over "
                 << initial.ltheta.solved_frames.size() << " frames)\n";
-      if (!alone && !initial.ltheta.unconverged_frames().empty()) {
+      if (!alone && !initial.ltheta.unconverged_frames().empty() &&
+          !StopRequested(init_settings)) {  // not the cap: the stop
         std::cerr << "spline: some LTheta frames stopped at their iteration "
                      "cap, a far-off initial path (keyframes far apart?); "
                      "--init geodesic starts from the piecewise geodesic\n";

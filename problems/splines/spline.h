@@ -35,6 +35,9 @@ struct SplineResult {
   double relative_gradient_norm = 0;
   bool gradient_criterion_met = false;
   bool converged = false;
+  // False when SplineSettings::stop was already set on entry: the path is
+  // the initial path and the energies are NaN (never evaluated).
+  bool evaluated = true;
 };
 
 // Settings of the outer L-BFGS loop.
@@ -49,8 +52,10 @@ struct SplineSettings {
   bool progress = false;
   std::string progress_label = "spline";
   SolverSettings inner;  // the midpoint solves
-  // Polled by the outer L-BFGS loop (SolverSettings::stop); give the inner
-  // solves none, so that every evaluation of F_K stays exact.
+  // Polled on entry (set already: the initial path is returned unevaluated,
+  // SplineResult::evaluated) and by the outer L-BFGS loop
+  // (SolverSettings::stop); give the inner solves none, so that every
+  // evaluation of F_K stays exact.
   StopPoll stop;
   // L-BFGS in the variables of SplinePreconditioner (spline_preconditioner.h;
   // metrics of the initial free shapes); false: in the vertex coordinates.

@@ -18,6 +18,10 @@ SplineInit ParseSplineInit(const std::string& name) {
   return ParseNamedValue(kSplineInitNames, name, "the initial path");
 }
 
+const char* SplineInitName(SplineInit init) {
+  return NameOf(kSplineInitNames, init);
+}
+
 ShellPath PiecewiseGeodesicPath(const ShellSpace& space,
                                 const std::vector<Positions>& keyframes,
                                 const std::vector<int>& at, int steps,

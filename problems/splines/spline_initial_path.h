@@ -16,6 +16,8 @@ namespace shellspace {
 enum class SplineInit { kLTheta, kGeodesic };
 // "ltheta" or "geodesic"; throws InputError for any other name.
 SplineInit ParseSplineInit(const std::string& name);
+// The name ParseSplineInit reads: "ltheta" or "geodesic".
+const char* SplineInitName(SplineInit init);
 
 // One segment of PiecewiseGeodesicPath: the geodesic from path index `from`
 // to `to` (periodic: `to` may exceed K, indices taken mod K) and how its

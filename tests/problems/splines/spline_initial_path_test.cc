@@ -128,6 +128,9 @@ TEST_F(SplineInitialPathTest, NamesAndKeyframeChecks) {
   EXPECT_EQ(ParseSplineInit("ltheta"), SplineInit::kLTheta);
   EXPECT_EQ(ParseSplineInit("geodesic"), SplineInit::kGeodesic);
   EXPECT_THROW(ParseSplineInit("linear"), InputError);
+  for (SplineInit init : {SplineInit::kLTheta, SplineInit::kGeodesic}) {
+    EXPECT_EQ(ParseSplineInit(SplineInitName(init)), init);
+  }
   // Not ending at K, and K = 1: SolveSpline's refusals.
   EXPECT_THROW(Piecewise({0, 2}, 3, false, nullptr, tight_), InputError);
   EXPECT_THROW(Piecewise({0, 1}, 1, false, nullptr, tight_), InputError);

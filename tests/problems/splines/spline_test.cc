@@ -334,6 +334,38 @@ TEST_F(SplineTest, RegressionInRoundsBeatsOneRound) {
   EXPECT_GT(one.objective, rounds.objective * (1 + 1e-6));
 }
 
+// A stop already requested on entry returns the start as it is, with the
+// energies NaN (not evaluated) and 0 iterations; the twin, a stop that comes
+// only after the entry poll, evaluates F_K (finite) and counts as evaluated.
+TEST_F(SplineTest, AStopOnEntryReturnsTheStartUnevaluated) {
+  const std::vector<Positions> keys = {a_.positions, b_.positions,
+                                       c_.positions};
+  const ShellPath start = PiecewiseLinearPath(keys, {0, 2, 4}, 4, false);
+  SplineSettings settings;
+  settings.inner = TightInner();
+  settings.max_iterations = 5;
+  settings.stop = [] { return true; };
+  const SplineResult stopped =
+      SolveSpline(space_, keys, {0, 2, 4}, 4, false, start, settings);
+  EXPECT_FALSE(stopped.evaluated);
+  EXPECT_FALSE(stopped.converged);
+  EXPECT_EQ(stopped.iterations, 0);
+  EXPECT_TRUE(std::isnan(stopped.spline_energy));
+  EXPECT_TRUE(std::isnan(stopped.objective));
+  ASSERT_EQ(stopped.path.size(), start.size());
+  for (size_t k = 0; k < start.size(); ++k) {
+    EXPECT_EQ((stopped.path[k] - start[k]).cwiseAbs().maxCoeff(), 0.0) << k;
+  }
+  int polls = 0;
+  settings.stop = [&polls] { return ++polls > 1; };
+  const SplineResult later =
+      SolveSpline(space_, keys, {0, 2, 4}, 4, false, start, settings);
+  EXPECT_TRUE(later.evaluated);
+  EXPECT_TRUE(std::isfinite(later.spline_energy));
+  EXPECT_GT(later.spline_energy, 0.0);
+  EXPECT_GT(polls, 1);
+}
+
 // Growing sigma lowers F_K monotonically (and raises the data term): four
 // sphere poses at 0..3, K = 3, each solve warm-started from the previous.
 TEST(RegressionTest, GrowingSigmaLowersSplineEnergy) {
