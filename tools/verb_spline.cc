@@ -64,7 +64,11 @@ FlagTable SplineFlags() {
                              "reconstructions, zero acceleration between "
                              "keyframes; try it when keyframes are far apart "
                              "and the LTheta frames stop at their iteration "
-                             "cap)")
+                             "cap). Either start's solves (LM per LTheta "
+                             "frame, or per geodesic segment) stop at "
+                             "--tolerance, " +
+                                 std::to_string(kInnerMaxIterations) +
+                                 " iterations each at most")
                         .Default("ltheta")
                         .Check([](const std::string& name) {
                           ParseSplineInit(name);
@@ -216,7 +220,7 @@ int RunSpline() {
                      " needs --method nonlinear (--method ltheta is the LΘA "
                      "spline itself)");
   }
-  SolverSettings init_settings = SettingsFromFlags(FLAGS_init);
+  SolverSettings init_settings = SettingsFromFlags("spline " + FLAGS_init);
   init_settings.progress = false;
   init_settings.max_iterations = kInnerMaxIterations;
   if (!FLAGS_quiet) {
