@@ -35,12 +35,10 @@ MultiresolutionSettings ParseMultiresolution(const std::string& value,
 namespace {
 
 constexpr NamedValue<PathLinearSolver> kPathLinearSolverNames[] = {
-    {PathLinearSolver::kAuto, "auto"},
-    {PathLinearSolver::kDirect, "direct"},
+    {PathLinearSolver::kAuto, "auto"}, {PathLinearSolver::kDirect, "direct"},
     {PathLinearSolver::kBlockJacobi, "block-jacobi"}};
 constexpr NamedValue<GeodesicLm> kGeodesicLmNames[] = {
-    {GeodesicLm::kAuto, "auto"},
-    {GeodesicLm::kCeres, "ceres"},
+    {GeodesicLm::kAuto, "auto"}, {GeodesicLm::kCeres, "ceres"},
     {GeodesicLm::kEngine, "engine"}};
 
 }  // namespace
