@@ -60,6 +60,20 @@ ceres::Solver::Options LmOptions() {
   return MakeSolverOptions(settings, /*initial_gradient_norm=*/0);
 }
 
+// The LM solve that optimised `result`'s parameters: its iterations
+// (Ceres' iteration 0 not counted), termination and the seconds since
+// `start`.
+void RecordSolve(const ceres::Solver::Summary& summary,
+                 std::chrono::steady_clock::time_point start,
+                 ConstructionResult* result) {
+  result->iterations = static_cast<int>(summary.iterations.size()) - 1;
+  result->termination =
+      ceres::TerminationTypeToString(summary.termination_type);
+  result->seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+          .count();
+}
+
 }  // namespace
 
 Construction ConstructionResult::ToConstruction(double length) const {
@@ -141,11 +155,7 @@ ConstructionResult OptimizeR2(bool km, double epsilon, double length, double h0,
   ceres::Solve(LmOptions(), &problem, &summary);
   ConstructionResult result = km ? EvaluateKm(epsilon, length, p[0], p[1])
                                  : EvaluateNeedle(epsilon, length, p[0], p[1]);
-  result.iterations = static_cast<int>(summary.iterations.size()) - 1;
-  result.termination = ceres::TerminationTypeToString(summary.termination_type);
-  result.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-          .count();
+  RecordSolve(summary, start, &result);
   return result;
 }
 
@@ -184,11 +194,7 @@ ConstructionResult OptimizeLens(double epsilon, double length, double h0,
   ceres::Solve(LmOptions(), &problem, &summary);
   ConstructionResult result =
       EvaluateLens(epsilon, length, p[0], p[1], LensShape{p[2], p[3], p[4]});
-  result.iterations = static_cast<int>(summary.iterations.size()) - 1;
-  result.termination = ceres::TerminationTypeToString(summary.termination_type);
-  result.seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
-          .count();
+  RecordSolve(summary, start, &result);
   return result;
 }
 
