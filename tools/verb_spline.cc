@@ -158,7 +158,7 @@ std::string LThetaFailure(const LThetaSplineReport& report) {
 std::string SplineShortfall(const std::string& verb,
                             const SplineResult& result) {
   if (!result.evaluated) {
-    return verb + ": stopped before the first evaluation of F_K";
+    return verb + ": stopped before the first evaluation of F_K finished";
   }
   return verb + ": relative gradient " + Short(result.relative_gradient_norm) +
          " above the tolerance " + Short(FLAGS_tolerance) +
@@ -191,7 +191,8 @@ int Report(const std::string& verb, const ShellSpace& space, const Faces& faces,
     if (result.evaluated) {
       std::cout << "F_K = " << result.spline_energy;
     } else {
-      std::cout << "F_K not evaluated (stopped before its first evaluation)";
+      std::cout << "F_K not evaluated (stopped before its first evaluation "
+                   "finished)";
     }
     std::cout << "; wrote " << FLAGS_output << "/shape_*.ply\n";
   }

@@ -182,6 +182,24 @@ class RoundCallback : public ceres::IterationCallback {
   bool* refresh_;
 };
 
+// The result of a run stopped before (or during) its first evaluation: the
+// start, unevaluated. That evaluation solves every midpoint from its linear
+// guess (20 s on cactus 2, 10, 17 at 5.3k vertices), too long to keep a stop
+// request waiting.
+SplineResult UnevaluatedStart(const SplineObjective& objective,
+                              const std::vector<double>& x,
+                              const SplineSpec& spec) {
+  SplineResult result;
+  result.path = objective.PathFrom(x.data());
+  result.evaluated = false;
+  result.spline_energy = result.data_energy = result.objective =
+      std::numeric_limits<double>::quiet_NaN();
+  result.summary.termination_type = ceres::USER_SUCCESS;
+  result.summary.message = "stopped before the first evaluation finished";
+  if (spec.periodic) result.path.push_back(result.path.front());
+  return result;
+}
+
 // One round's first L-BFGS trial step is -gradient in y. The objective is
 // divided by `scale` so that this step moves no vertex by more than
 // `max_first_move` of the shape's size (a crumpled trial shape fails to
@@ -197,21 +215,11 @@ SplineResult Run(const ShellSpace& space, SplineSpec spec,
   // 18, K = 6, 60 s limit, 4 L-BFGS iterations either way) took 92.4 s wall
   // / 93.9 user + 76.4 sys with 2 threads, 79.0 s / 82.8 + 18.9 with 1.
   const ScopedBlasThreads blas(1);
-  const SplineObjective objective(space, spec, settings.inner);
+  SplineObjective objective(space, spec, settings.inner);
   std::vector<double> x = objective.InitialParameters();
   SplineResult result;
   if (!x.empty() && settings.stop && settings.stop()) {
-    // Stopped before the first evaluation: the start, unevaluated. That
-    // evaluation solves every midpoint from its linear guess (20 s on cactus
-    // 2, 10, 17 at 5.3k vertices), too long to keep a stop request waiting.
-    result.path = objective.PathFrom(x.data());
-    result.evaluated = false;
-    result.spline_energy = result.data_energy = result.objective =
-        std::numeric_limits<double>::quiet_NaN();
-    result.summary.termination_type = ceres::USER_SUCCESS;
-    result.summary.message = "stopped before the first evaluation";
-    if (spec.periodic) result.path.push_back(result.path.front());
-    return result;
+    return UnevaluatedStart(objective, x, spec);
   }
   std::unique_ptr<SplinePreconditioner> reference;  // the first round's
   double reference_scale = 1, target = 0;
@@ -243,7 +251,13 @@ SplineResult Run(const ShellSpace& space, SplineSpec spec,
                          reference_scale);
     std::vector<double> y(x0.size(), 0.0), gradient(x0.size());
     double cost = 0;
-    if (!scaled.Evaluate(y.data(), &cost, gradient.data())) {
+    // The first evaluation solves the midpoints from scratch: a stop
+    // request may end it (and the run) early; later ones stay exact.
+    if (result.rounds == 0) objective.set_cold_start_stop(settings.stop);
+    const bool evaluated = scaled.Evaluate(y.data(), &cost, gradient.data());
+    objective.set_cold_start_stop(nullptr);
+    if (objective.stopped()) return UnevaluatedStart(objective, x, spec);
+    if (!evaluated) {
       throw InputError("the initial path has degenerate shapes or midpoints");
     }
     const double norm = MaxNorm(gradient);

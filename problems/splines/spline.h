@@ -35,8 +35,9 @@ struct SplineResult {
   double relative_gradient_norm = 0;
   bool gradient_criterion_met = false;
   bool converged = false;
-  // False when SplineSettings::stop was already set on entry: the path is
-  // the initial path and the energies are NaN (never evaluated).
+  // False when SplineSettings::stop was set on entry or during the first
+  // evaluation of F_K: the path is the initial path and the energies are NaN
+  // (never evaluated).
   bool evaluated = true;
 };
 
@@ -52,10 +53,11 @@ struct SplineSettings {
   bool progress = false;
   std::string progress_label = "spline";
   SolverSettings inner;  // the midpoint solves
-  // Polled on entry (set already: the initial path is returned unevaluated,
-  // SplineResult::evaluated) and by the outer L-BFGS loop
+  // Polled on entry and by the midpoints' cold-start LM runs of the first
+  // evaluation (set: the initial path is returned unevaluated,
+  // SplineResult::evaluated), then by the outer L-BFGS loop
   // (SolverSettings::stop); give the inner solves none, so that every
-  // evaluation of F_K stays exact.
+  // evaluation of F_K that is used stays exact.
   StopPoll stop;
   // L-BFGS in the variables of SplinePreconditioner (spline_preconditioner.h;
   // metrics of the initial free shapes); false: in the vertex coordinates.

@@ -280,6 +280,7 @@ bool SplineObjective::SolveMidpoint(const Positions& a, const Positions& b,
     settings.num_threads = 1;  // the terms run in parallel
     if (mid->m.size() == 0) {
       mid->m = cold_start;
+      settings.stop = cold_start_stop_;
       lm_done = true;
     } else if (lm_runs == 0) {
       settings.max_iterations =
@@ -296,6 +297,10 @@ bool SplineObjective::SolveMidpoint(const Positions& a, const Positions& b,
     ++mid->lm_solves;
     mid->lm_iterations += static_cast<int>(summary.iterations.size());
     mid->has_adjoint = false;
+    if (settings.stop && settings.stop()) {
+      stopped_ = true;  // unfinished: not a midpoint
+      return false;
+    }
     return summary.IsSolutionUsable();
   };
   mid->has_adjoint = false;
@@ -416,7 +421,7 @@ bool SplineObjective::SolveMidpoints(const ShellPath& path,
                   solved[t] = 1;
                   return;
                 }
-                if (!cold) return;
+                if (!cold || stopped_) return;
                 mid->m.resize(0, 3);
                 solved[t] = SolveMidpoint(a, b, path[term.center],
                                           needs_adjoint, mid);

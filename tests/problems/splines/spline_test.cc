@@ -334,36 +334,51 @@ TEST_F(SplineTest, RegressionInRoundsBeatsOneRound) {
   EXPECT_GT(one.objective, rounds.objective * (1 + 1e-6));
 }
 
-// A stop already requested on entry returns the start as it is, with the
-// energies NaN (not evaluated) and 0 iterations; the twin, a stop that comes
-// only after the entry poll, evaluates F_K (finite) and counts as evaluated.
-TEST_F(SplineTest, AStopOnEntryReturnsTheStartUnevaluated) {
+// A stop requested on entry, or during the first evaluation (the second
+// poll: the first cold-start LM iteration of a midpoint), returns the start
+// as it is, with the energies NaN (not evaluated) and 0 iterations. The twin,
+// a poll that never fires, evaluates F_K and changes no digit of the run
+// without a poll.
+TEST_F(SplineTest, AStopBeforeTheFirstEvaluationReturnsTheStartUnevaluated) {
   const std::vector<Positions> keys = {a_.positions, b_.positions,
                                        c_.positions};
   const ShellPath start = PiecewiseLinearPath(keys, {0, 2, 4}, 4, false);
   SplineSettings settings;
   settings.inner = TightInner();
-  settings.max_iterations = 5;
-  settings.stop = [] { return true; };
-  const SplineResult stopped =
-      SolveSpline(space_, keys, {0, 2, 4}, 4, false, start, settings);
-  EXPECT_FALSE(stopped.evaluated);
-  EXPECT_FALSE(stopped.converged);
-  EXPECT_EQ(stopped.iterations, 0);
-  EXPECT_TRUE(std::isnan(stopped.spline_energy));
-  EXPECT_TRUE(std::isnan(stopped.objective));
-  ASSERT_EQ(stopped.path.size(), start.size());
-  for (size_t k = 0; k < start.size(); ++k) {
-    EXPECT_EQ((stopped.path[k] - start[k]).cwiseAbs().maxCoeff(), 0.0) << k;
+  settings.max_iterations = 3;
+  const auto solve = [&](int fire_at_poll, int* polls) {
+    SplineSettings s = settings;
+    if (polls != nullptr) {
+      s.stop = [polls, fire_at_poll] { return ++*polls >= fire_at_poll; };
+    }
+    return SolveSpline(space_, keys, {0, 2, 4}, 4, false, start, s);
+  };
+  for (const int fire_at : {1, 2}) {
+    int polls = 0;
+    const SplineResult stopped = solve(fire_at, &polls);
+    EXPECT_GE(polls, fire_at);
+    EXPECT_FALSE(stopped.evaluated) << fire_at;
+    EXPECT_FALSE(stopped.converged);
+    EXPECT_EQ(stopped.iterations, 0);
+    EXPECT_TRUE(std::isnan(stopped.spline_energy));
+    EXPECT_TRUE(std::isnan(stopped.objective));
+    ASSERT_EQ(stopped.path.size(), start.size());
+    for (size_t k = 0; k < start.size(); ++k) {
+      EXPECT_EQ((stopped.path[k] - start[k]).cwiseAbs().maxCoeff(), 0.0) << k;
+    }
   }
   int polls = 0;
-  settings.stop = [&polls] { return ++polls > 1; };
-  const SplineResult later =
-      SolveSpline(space_, keys, {0, 2, 4}, 4, false, start, settings);
-  EXPECT_TRUE(later.evaluated);
-  EXPECT_TRUE(std::isfinite(later.spline_energy));
-  EXPECT_GT(later.spline_energy, 0.0);
-  EXPECT_GT(polls, 1);
+  const SplineResult polled = solve(1 << 30, &polls);
+  const SplineResult plain = solve(0, nullptr);
+  EXPECT_GT(polls, 2);
+  EXPECT_TRUE(polled.evaluated);
+  EXPECT_TRUE(std::isfinite(polled.spline_energy));
+  EXPECT_GT(polled.spline_energy, 0.0);
+  EXPECT_EQ(polled.spline_energy, plain.spline_energy);
+  EXPECT_EQ(polled.iterations, plain.iterations);
+  for (size_t k = 0; k < start.size(); ++k) {
+    EXPECT_EQ((polled.path[k] - plain.path[k]).cwiseAbs().maxCoeff(), 0.0);
+  }
 }
 
 // Growing sigma lowers F_K monotonically (and raises the data term): four
