@@ -1184,12 +1184,19 @@ PYBIND11_MODULE(shellspace, m) {
       "Shell PCA at the elastic mean (and the Procrustes baseline, "
       "leave-one-out): returns ({'mean': ..., 'mode_1_minus': ..., ...}, "
       "summary). output: the CLI's directory (PLY files and pca.json).");
-  m.def("branching_simulate", &BranchingSimulatePy, py::arg("epsilon") = 0.001,
-        py::arg("length") = 1.0, py::arg("height") = 0.0, py::arg("nx") = 64,
-        py::arg("ny") = 128, py::arg("init") = "needle", py::arg("delta") = 0.0,
-        py::arg("grading") = 2.0, py::arg("continuation") = 3,
-        py::arg("periods") = 0, py::arg("init_seed") = 1,
-        py::arg("lm_iterations") = 200, py::arg("delta_extrapolation") = 0,
+  // The defaults are the library's SimulationSettings (height 0: its 0.5).
+  const branching::SimulationSettings simulation;
+  m.def("branching_simulate", &BranchingSimulatePy,
+        py::arg("epsilon") = simulation.epsilon,
+        py::arg("length") = simulation.length, py::arg("height") = 0.0,
+        py::arg("nx") = simulation.nx, py::arg("ny") = simulation.ny,
+        py::arg("init") = simulation.init, py::arg("delta") = simulation.delta,
+        py::arg("grading") = simulation.grading,
+        py::arg("continuation") = simulation.continuation,
+        py::arg("periods") = simulation.periods,
+        py::arg("init_seed") = static_cast<int>(simulation.seed),
+        py::arg("lm_iterations") = simulation.max_iterations,
+        py::arg("delta_extrapolation") = 0,
         "The relaxed Kohn-Mueller simulation (`branching simulate`): "
         "returns (u (nx + 1) x ny, summary). Writes no files.");
   m.def("branching_construct", &BranchingConstructPy,
