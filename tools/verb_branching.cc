@@ -42,28 +42,21 @@
 #include "shellspace/reports/branching_reports.h"
 #include "shellspace/tools/verb.h"
 
-// The simulation's flags default to the library's SimulationSettings.
-static const shellspace::branching::SimulationSettings kSimulationDefaults;
-
-DEFINE_double(length, kSimulationDefaults.length,
-              "branching: domain length L");
-DEFINE_int32(nx, kSimulationDefaults.nx,
-             "branching simulate: number of x-cells");
-DEFINE_int32(ny, kSimulationDefaults.ny,
-             "branching simulate: number of y-nodes (periodic)");
-DEFINE_double(delta, kSimulationDefaults.delta,
+DEFINE_double(length, 1.0, "branching: domain length L");
+DEFINE_int32(nx, 64, "branching simulate: number of x-cells");
+DEFINE_int32(ny, 128, "branching simulate: number of y-nodes (periodic)");
+DEFINE_double(delta, 0.0,
               "branching simulate: interface width (0: 3 H/ny, the rule "
               "dy = delta/3)");
-DEFINE_double(grading, kSimulationDefaults.grading,
+DEFINE_double(grading, 2.0,
               "branching simulate: x-grading exponent, x_i = L (i/nx)^g");
-DEFINE_int32(continuation, kSimulationDefaults.continuation,
+DEFINE_int32(continuation, 3,
              "branching simulate: continuation stages in delta (factor 2)");
-DEFINE_int32(periods, kSimulationDefaults.periods,
+DEFINE_int32(periods, 0,
              "branching simulate: periods of the initial pattern in H (0: "
              "nearest to the optimal KM period)");
-DEFINE_int32(init_seed, static_cast<int>(kSimulationDefaults.seed),
-             "branching simulate: seed of --init random");
-DEFINE_int32(lm_iterations, kSimulationDefaults.max_iterations,
+DEFINE_int32(init_seed, 1, "branching simulate: seed of --init random");
+DEFINE_int32(lm_iterations, 200,
              "branching simulate: LM iterations per continuation stage");
 DEFINE_int32(delta_extrapolation, 0,
              "branching simulate: >= 2: also run widths delta, delta/r, .. "
