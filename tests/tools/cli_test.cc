@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "shellspace/io/mesh_io.h"
+#include "shellspace/problems/branching/simulation.h"
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/tests/tools/cli_test_support.h"
 
@@ -467,6 +468,46 @@ TEST(CliTest, HelpListsOnlyTheVerbsFlags) {
     EXPECT_TRUE(flags.count("json") || flags.count("output")) << verb;
     EXPECT_FALSE(flags.count("inputs") && flags.count("start")) << verb;
   }
+}
+
+// The default `--help` prints for `flag` ("" if none is printed).
+std::string HelpDefault(const std::string& text, const std::string& flag) {
+  const size_t line = text.find("\n  --" + flag + " (");
+  if (line == std::string::npos) return "";
+  const size_t begin = text.find("default: ", line);
+  if (begin == std::string::npos) return "";
+  const size_t end = text.find_first_of(";\n", begin);
+  return text.substr(begin + 9, end - begin - 9);
+}
+
+// `branching simulate`'s flag defaults are the library's SimulationSettings
+// (the Python keywords take theirs from it; --height 0 stands for its 0.5).
+TEST(CliTest, BranchingSimulateDefaultsAreTheLibrarys) {
+  std::string text;
+  HelpFlags("branching simulate", &text);
+  const branching::SimulationSettings library;
+  const auto str = [](auto value) {
+    std::ostringstream out;
+    out << value;
+    return out.str();
+  };
+  const std::vector<std::pair<std::string, std::string>> expected = {
+      {"epsilon", str(library.epsilon)},
+      {"length", str(library.length)},
+      {"nx", str(library.nx)},
+      {"ny", str(library.ny)},
+      {"init", library.init},
+      {"delta", str(library.delta)},
+      {"grading", str(library.grading)},
+      {"continuation", str(library.continuation)},
+      {"periods", str(library.periods)},
+      {"init_seed", str(library.seed)},
+      {"lm_iterations", str(library.max_iterations)}};
+  for (const auto& [flag, value] : expected) {
+    EXPECT_EQ(HelpDefault(text, flag), value) << flag;
+  }
+  EXPECT_EQ(HelpDefault(text, "no_such_flag"), "");
+  EXPECT_EQ(library.height, 0.5);
 }
 
 TEST(CliTest, OutOfRangeFlagsAreRejectedByName) {
