@@ -177,6 +177,37 @@ TEST(InterruptCliTest, SigintStopsAShotAfterCompleteSteps) {
             (std::vector<std::string>{"g", "out", "shot"}));
 }
 
+// The spline through cactus 2, 10, 17 (K = 8), SIGTERM as its LΘA frames
+// start (seconds of LM each): the run stops before F_K is ever evaluated and
+// writes its start, the LΘA path, whole: "evaluated": false, null energies,
+// the keyframes exact, exit 143 with the reason in one line.
+TEST(InterruptCliTest, ASplineStoppedBeforeItsFirstEvaluationWritesItsStart) {
+  const std::string base = TempDir();
+  const std::string dir = base + "/spline";
+  const std::string cactus = DataPath("cactus/cactus");
+  std::string err;
+  const int code = RunAndSignal(
+      "spline --json --steps 8 --at 0,4,8 --keyframes " + cactus + "2.ply," +
+          cactus + "10.ply," + cactus + "17.ply --output " + dir,
+      base + "/out", "spline: LTheta spline\n", SIGTERM, 120, &err);
+  EXPECT_EQ(code, 143) << err;
+  EXPECT_NE(err.find("not converged: spline: stopped before the first "
+                     "evaluation of F_K finished"),
+            std::string::npos)
+      << err;
+  const std::string json = Slurp(base + "/out");
+  EXPECT_NE(json.find("\"evaluated\": false"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"spline_energy\": null"), std::string::npos) << json;
+  EXPECT_NE(json.find("\"stop_reason\": \"SIGTERM\""), std::string::npos)
+      << json;
+  EXPECT_EQ(Slurp(dir + "/summary.json"), json);
+  ASSERT_EQ(DirectoryListing(dir), FramesAndSummary(9));
+  EXPECT_EQ(ReadMesh(dir + "/shape_004.ply").positions,
+            ReadMesh(cactus + "10.ply").positions);
+  EXPECT_EQ(ReadMesh(dir + "/shape_008.ply").positions,
+            ReadMesh(cactus + "17.ply").positions);
+}
+
 TEST(InterruptCliTest, AStoppedTransportIsNotCalledSolved) {
   // Transport of the rolled plate along a 200-step shot; SIGINT once rung 3
   // is done: the rungs done are solved, the transport is not. The material
