@@ -91,7 +91,17 @@ std::string ReplaceableDirectoryProblem(const std::string& dir) {
       return dir + " holds " + name + ", which no run writes: not replacing it";
     }
   }
-  if (error) return "cannot list directory " + dir;
+  if (error) {
+    // Gone while listed: a concurrent run moved it aside (Commit, step 1),
+    // so there is nothing left here to protect.
+    std::error_code gone;
+    const fs::file_status now = fs::symlink_status(dir, gone);
+    if (!fs::exists(now) &&
+        (!gone || gone == std::errc::no_such_file_or_directory)) {
+      return "";
+    }
+    return "cannot list directory " + dir;
+  }
   return "";
 }
 

@@ -51,7 +51,8 @@ class StagedDirectory {
 };
 
 // Why `dir` may not be replaced by a run's output, or "" if it may: it
-// does not exist, or is an empty directory, or every entry is a name a run
+// does not exist (also when it vanishes while listed: a concurrent run
+// moved it aside), or is an empty directory, or every entry is a name a run
 // writes (shape_NNN.ply, summary.json, pca.json, mean.ply,
 // mode_J_{minus,plus}.ply, procrustes_*.ply, u.csv, uy.png,
 // interfaces.csv, pattern.png, pattern.txt, film_strip.png, and a frames/
