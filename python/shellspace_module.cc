@@ -8,7 +8,12 @@
 // calls, and returns its results and the verb's --json summary as a dict
 // (reports/: the same objects the CLI prints; `output` and `seconds` as the
 // CLI has them). Bad input raises shellspace.InputError (a ValueError) with
-// the library's message; other library errors RuntimeError.
+// the library's message; other library errors RuntimeError. Every array
+// argument is checked by python/array_arguments.h. The functions that
+// solve take time_limit and allow_unconverged, stop at KeyboardInterrupt,
+// and raise shellspace.NotConvergedError for a result that missed its
+// stopping criterion (python/solve_control.h); their steps are bounded up
+// front by the CLI's memory estimates (tools/memory_limits.h).
 #include <glog/logging.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -57,6 +62,11 @@
 #include "shellspace/reports/path_reports.h"
 #include "shellspace/reports/shape_reports.h"
 #include "shellspace/reports/solve_choices.h"
+#include "shellspace/python/array_arguments.h"
+#include "shellspace/python/solve_control.h"
+// The CLI's memory bounds of --steps (compiled into the module,
+// python/CMakeLists.txt).
+#include "shellspace/tools/memory_limits.h"
 
 namespace py = pybind11;
 
@@ -64,42 +74,14 @@ namespace shellspace {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-using DoubleArray =
-    py::array_t<double, py::array::c_style | py::array::forcecast>;
-using IndexArray =
-    py::array_t<long long, py::array::c_style | py::array::forcecast>;
 
 double Seconds(Clock::time_point since) {
   return std::chrono::duration<double>(Clock::now() - since).count();
 }
 
 // ---- Arrays -------------------------------------------------------------
-
-Positions ToPositions(const DoubleArray& array, const std::string& name) {
-  if (array.ndim() != 2 || array.shape(1) != 3) {
-    throw InputError(name + " must be a #V x 3 array, got " +
-                     std::to_string(array.ndim()) + " dimensions");
-  }
-  Positions positions(array.shape(0), 3);
-  std::copy(array.data(), array.data() + array.size(), positions.data());
-  return positions;
-}
-
-Faces ToFaces(const IndexArray& array) {
-  if (array.ndim() != 2 || array.shape(1) != 3) {
-    throw InputError("F must be a #F x 3 array of vertex indices");
-  }
-  Faces faces(array.shape(0), 3);
-  for (py::ssize_t i = 0; i < array.size(); ++i) {
-    const long long v = array.data()[i];
-    if (v < 0 || v > std::numeric_limits<int>::max()) {
-      throw InputError("F: face " + std::to_string(i / 3) +
-                       " has the vertex index " + std::to_string(v));
-    }
-    faces.data()[i] = static_cast<int>(v);
-  }
-  return faces;
-}
+// Every array argument is read by python/array_arguments.h (dtype, shape,
+// finite values, indices in range, any strides); results are new arrays.
 
 py::array_t<double> FromPositions(const Positions& positions) {
   py::array_t<double> out({static_cast<py::ssize_t>(positions.rows()),
@@ -131,30 +113,6 @@ py::array_t<double> FromPath(const std::vector<Positions>& path) {
   return out;
 }
 
-// A list of shapes: a K x #V x 3 array or a sequence of #V x 3 arrays.
-std::vector<Positions> ToShapes(const py::object& object,
-                                const std::string& name) {
-  std::vector<Positions> shapes;
-  if (py::isinstance<py::array>(object) &&
-      object.cast<py::array>().ndim() == 3) {
-    const DoubleArray array = object.cast<DoubleArray>();
-    for (py::ssize_t k = 0; k < array.shape(0); ++k) {
-      Positions shape(array.shape(1), 3);
-      std::copy(array.data(k, 0, 0), array.data(k, 0, 0) + shape.size(),
-                shape.data());
-      shapes.push_back(shape);
-    }
-  } else {
-    int k = 0;
-    for (const py::handle item : object) {
-      shapes.push_back(ToPositions(item.cast<DoubleArray>(),
-                                   name + "[" + std::to_string(k++) + "]"));
-    }
-  }
-  if (shapes.empty()) throw InputError(name + " is empty");
-  return shapes;
-}
-
 py::object ToDict(const JsonObject& json) {
   return py::module_::import("json").attr("loads")(json.str());
 }
@@ -167,12 +125,19 @@ struct Shell {
   Topology topology;
 };
 
-Shell MakeShell(const DoubleArray& V, const IndexArray& F,
+// The shell of checked positions and the faces F (indices in [0, #V)).
+Shell MakeShell(Positions positions, const py::object& F,
                 const std::string& name) {
   Shell shell;
-  shell.mesh = Mesh{ToPositions(V, name), ToFaces(F)};
+  const int num_vertices = static_cast<int>(positions.rows());
+  shell.mesh = Mesh{std::move(positions), FacesArgument(F, "F", num_vertices)};
   shell.topology = ValidateShell(shell.mesh, name);
   return shell;
+}
+
+Shell MakeShell(const py::object& V, const py::object& F,
+                const std::string& name) {
+  return MakeShell(PositionsArgument(V, name), F, name);
 }
 
 // Positions of a pose of `like` (same vertex count), validated.
@@ -187,9 +152,9 @@ Positions CompatiblePositions(const Positions& positions, const Shell& like,
   return positions;
 }
 
-Positions CompatiblePositions(const DoubleArray& V, const Shell& like,
+Positions CompatiblePositions(const py::object& V, const Shell& like,
                               const std::string& name) {
-  return CompatiblePositions(ToPositions(V, name), like, name);
+  return CompatiblePositions(PositionsArgument(V, name), like, name);
 }
 
 // Two poses of one shell and the shell space of the first: the input of
@@ -234,8 +199,8 @@ std::string MaterialRecord(const ShellSpace& space, const Mesh& reference,
   return MaterialJson(space.material, reference, args.eta.has_value()).str();
 }
 
-ShellPair MakeShellPair(const DoubleArray& first, const DoubleArray& second,
-                        const IndexArray& F, const std::string& first_name,
+ShellPair MakeShellPair(const py::object& first, const py::object& second,
+                        const py::object& F, const std::string& first_name,
                         const std::string& second_name,
                         const MaterialArgs& material_args) {
   ShellPair pair;
@@ -246,40 +211,40 @@ ShellPair MakeShellPair(const DoubleArray& first, const DoubleArray& second,
   return pair;
 }
 
-// The vertex mask: None, a mask file's path, or a sequence of 0-based
-// vertex indices (sorted and made unique, as ReadMask returns them).
-std::vector<int> Mask(const py::object& mask, int num_vertices) {
-  if (mask.is_none()) return {};
-  if (py::isinstance<py::str>(mask)) {
-    return ReadMask(mask.cast<std::string>(), num_vertices);
-  }
-  std::vector<int> indices;
-  for (const py::handle item : mask) {
-    const long long v = item.cast<long long>();
-    if (v < 0 || v >= num_vertices) {
-      throw InputError("mask: vertex index " + std::to_string(v) +
-                       " outside [0, " + std::to_string(num_vertices) + ")");
-    }
-    indices.push_back(static_cast<int>(v));
-  }
-  std::sort(indices.begin(), indices.end());
-  indices.erase(std::unique(indices.begin(), indices.end()), indices.end());
-  return indices;
-}
-
 // The solver keywords of every call (the CLI's SolverFlags), checked by
-// UserSolverSettings.
+// UserSolverSettings, and how the call stops and says unconverged
+// (time_limit, allow_unconverged; python/solve_control.h).
 struct SolverOptions {
   double tolerance = 1e-8;
   int max_iterations = 200;
   int threads = 2;
   bool quiet = false;
+  bool allow_unconverged = false;
+  std::shared_ptr<SolveControl> control;
 
+  // The settings of the call's solves, polling its stop.
   SolverSettings Settings(const std::string& label) const {
-    return UserSolverSettings(tolerance, max_iterations, threads, quiet,
-                              label);
+    SolverSettings settings =
+        UserSolverSettings(tolerance, max_iterations, threads, quiet, label);
+    settings.stop = control->Poll();
+    return settings;
+  }
+  // `result` (a tuple whose summary is `summary`), or raised as
+  // SolveControl::Finish says.
+  py::object Finish(py::object result, py::object summary,
+                    const std::string& verb,
+                    std::vector<std::string> failures) const {
+    return control->Finish(std::move(result), std::move(summary), verb,
+                           std::move(failures), allow_unconverged);
   }
 };
+
+// The stop state of a call's summary, as the CLI's: "partial" (a poll
+// stopped the solves: the best state so far) and "stop_reason".
+JsonObject& AddStopFields(JsonObject& json, const SolveControl& control) {
+  return json.Add("partial", control.stopped())
+      .Add("stop_reason", control.stop_reason());
+}
 
 void CheckAtLeast(const std::string& name, long value, long min) {
   if (value < min) {
@@ -287,6 +252,26 @@ void CheckAtLeast(const std::string& name, long value, long min) {
                      std::to_string(value));
   }
 }
+
+// `steps` of a solve the CLI bounds up front: in [min, kMaxSteps] and its
+// memory estimate `bytes` (tools/memory_limits.h, the model `model`)
+// within half the physical memory.
+void CheckSteps(const std::string& name, long steps, long min, double bytes,
+                int vertices, const std::string& model) {
+  CheckAtLeast(name, steps, min);
+  if (steps > kMaxSteps) {
+    throw InputError(name + " must be <= " + std::to_string(kMaxSteps) +
+                     ", got " + std::to_string(steps));
+  }
+  CheckMemory(bytes,
+              name + " " + std::to_string(steps) + " on " +
+                  std::to_string(vertices) + " vertices",
+              model);
+}
+
+// The memory models of tools/memory_limits.h, as the CLI words them.
+const char* const kGeodesicModel = "64 MB + 1500 B x #V x K^2";
+const char* const kPathModel = "64 MB + 200 B x #V x (K + 1)";
 
 // ---- Outputs ------------------------------------------------------------
 
@@ -326,15 +311,17 @@ py::tuple ReadMeshPy(const std::string& path) {
   return py::make_tuple(FromPositions(mesh.positions), FromFaces(mesh.faces));
 }
 
-void WriteMeshPy(const std::string& path, const DoubleArray& V,
-                 const IndexArray& F) {
-  const Mesh mesh{ToPositions(V, "V"), ToFaces(F)};
+void WriteMeshPy(const std::string& path, const py::object& V,
+                 const py::object& F) {
+  Positions positions = PositionsArgument(V, "V");
+  const int num_vertices = static_cast<int>(positions.rows());
+  const Mesh mesh{std::move(positions), FacesArgument(F, "F", num_vertices)};
   ValidateMeshStructure(mesh, path);
   WriteMesh(mesh, path);
 }
 
-py::object EnergyPy(const DoubleArray& reference, const DoubleArray& deformed,
-                    const IndexArray& F, const MaterialArgs& material_args) {
+py::object EnergyPy(const py::object& reference, const py::object& deformed,
+                    const py::object& F, const MaterialArgs& material_args) {
   const auto [shell, d, space] =
       MakeShellPair(reference, deformed, F, "reference", "deformed",
                     material_args);
@@ -343,8 +330,8 @@ py::object EnergyPy(const DoubleArray& reference, const DoubleArray& deformed,
   return ToDict(EnergyJson(e, space.material));
 }
 
-py::array_t<double> GradientPy(const DoubleArray& reference,
-                               const DoubleArray& deformed, const IndexArray& F,
+py::array_t<double> GradientPy(const py::object& reference,
+                               const py::object& deformed, const py::object& F,
                                const std::string& side, const MaterialArgs& material_args) {
   const auto [shell, d, space] =
       MakeShellPair(reference, deformed, F, "reference", "deformed",
@@ -356,8 +343,8 @@ py::array_t<double> GradientPy(const DoubleArray& reference,
   return FromPositions(out);
 }
 
-py::tuple HessianPy(const DoubleArray& reference, const DoubleArray& deformed,
-                    const IndexArray& F, const std::string& rows,
+py::tuple HessianPy(const py::object& reference, const py::object& deformed,
+                    const py::object& F, const std::string& rows,
                     const std::string& cols, const MaterialArgs& material_args) {
   const auto [shell, d, space] =
       MakeShellPair(reference, deformed, F, "reference", "deformed",
@@ -392,29 +379,33 @@ struct GeodesicPySolve {
   MultiresolutionResult multi;
 };
 
-GeodesicPySolve SolveGeodesicPy(const DoubleArray& start_v,
-                                const DoubleArray& end_v, const IndexArray& F,
+GeodesicPySolve SolveGeodesicPy(const py::object& start_v,
+                                const py::object& end_v, const py::object& F,
                                 int steps, const py::object& mask,
                                 const std::string& multires,
                                 const std::string& linear_solver,
                                 const std::string& lm,
                                 const MaterialArgs& material_args,
-                                const SolverSettings& settings) {
+                                const SolverSettings& settings,
+                                SolveControl& control) {
   CheckAtLeast("steps", steps, 1);
   ShellPair pair =
       MakeShellPair(start_v, end_v, F, "start", "end", material_args);
+  const int vertices = pair.first.mesh.num_vertices();
+  CheckSteps("steps", steps, 1, GeodesicBytes(vertices, steps), vertices,
+             kGeodesicModel);
   GeodesicInput input;
   input.start = pair.first.mesh.positions;
   input.end = pair.second;
   input.steps = steps;
-  input.fixed_vertices = Mask(mask, pair.first.mesh.num_vertices());
+  input.fixed_vertices = MaskArgument(mask, vertices);
   input.linear_solver = ParsePathLinearSolver(linear_solver, "linear_solver");
   input.lm = ParseGeodesicLm(lm, "lm");
-  const MultiresolutionSettings levels = ParseMultiresolution(
-      multires, pair.first.mesh.num_vertices(), "multires");
+  const MultiresolutionSettings levels =
+      ParseMultiresolution(multires, vertices, "multires");
   GeodesicPySolve solve;
   {
-    py::gil_scoped_release release;
+    SolveControl::Solving solving(control);
     solve.multi =
         SolveGeodesicMultiresolution(pair.space, input, settings, levels);
   }
@@ -423,17 +414,32 @@ GeodesicPySolve SolveGeodesicPy(const DoubleArray& start_v,
   return solve;
 }
 
-py::tuple GeodesicPy(const DoubleArray& start_v, const DoubleArray& end_v,
-                     const IndexArray& F, int steps, const py::object& mask,
-                     const std::string& multires,
-                     const std::string& linear_solver, const std::string& lm,
-                     bool report, const std::optional<std::string>& output,
-                     const std::optional<std::string>& png,
-                     const std::optional<std::string>& gltf, const MaterialArgs& material_args, const SolverOptions& solver) {
+// What an unconverged geodesic missed (the CLI's text).
+std::vector<std::string> GeodesicFailures(const GeodesicResult& result,
+                                          const std::string& what) {
+  if (result.converged) return {};
+  return {what + ": |grad| " + Short(result.final_gradient) +
+          " above the target " + Short(result.gradient_target) +
+          " (tolerance x max(1, |grad_0|)) after " +
+          std::to_string(result.iterations) + " iterations (" +
+          (result.stages.empty() ? std::string("no stages")
+                                 : result.stages.back().termination) +
+          ")"};
+}
+
+py::object GeodesicPy(const py::object& start_v, const py::object& end_v,
+                      const py::object& F, int steps, const py::object& mask,
+                      const std::string& multires,
+                      const std::string& linear_solver, const std::string& lm,
+                      bool report, const std::optional<std::string>& output,
+                      const std::optional<std::string>& png,
+                      const std::optional<std::string>& gltf,
+                      const MaterialArgs& material_args,
+                      const SolverOptions& solver) {
   const auto clock = Clock::now();
   const auto [start, space, multi] = SolveGeodesicPy(
       start_v, end_v, F, steps, mask, multires, linear_solver, lm,
-      material_args, solver.Settings("geodesic"));
+      material_args, solver.Settings("geodesic"), *solver.control);
   const GeodesicResult& result = multi.geodesic;
   CheckGeodesic(result);
   if (report)
@@ -445,18 +451,22 @@ py::tuple GeodesicPy(const DoubleArray& start_v, const DoubleArray& end_v,
       .Raw("energy_split", PathEnergySplitJson(space, result.path))
       .Raw("material", MaterialRecord(space, start.mesh, material_args))
       .Add("seconds", Seconds(clock));
-  return py::make_tuple(FromPath(result.path), ToDict(AddOutput(json, output)));
+  AddStopFields(json, *solver.control);
+  const py::object summary = ToDict(AddOutput(json, output));
+  return solver.Finish(py::make_tuple(FromPath(result.path), summary), summary,
+                       "geodesic", GeodesicFailures(result, "geodesic"));
 }
 
-py::tuple LogPy(const DoubleArray& start_v, const DoubleArray& end_v,
-                const IndexArray& F, int steps, const py::object& mask,
-                const std::string& multires, const std::string& linear_solver,
-                const std::string& lm, const std::optional<std::string>& output,
-                const MaterialArgs& material_args, const SolverOptions& solver) {
+py::object LogPy(const py::object& start_v, const py::object& end_v,
+                 const py::object& F, int steps, const py::object& mask,
+                 const std::string& multires, const std::string& linear_solver,
+                 const std::string& lm, const std::optional<std::string>& output,
+                 const MaterialArgs& material_args,
+                 const SolverOptions& solver) {
   const auto clock = Clock::now();
   const auto [start, space, multi] = SolveGeodesicPy(
       start_v, end_v, F, steps, mask, multires, linear_solver, lm,
-      material_args, solver.Settings("log"));
+      material_args, solver.Settings("log"), *solver.control);
   const GeodesicResult& geodesic = multi.geodesic;
   const Positions log = LogOfGeodesic(geodesic.path);
   if (output) {
@@ -468,56 +478,73 @@ py::tuple LogPy(const DoubleArray& start_v, const DoubleArray& end_v,
       .Raw("material", MaterialRecord(space, start.mesh, material_args))
       .Add("log_max_norm", log.cwiseAbs().maxCoeff())
       .Add("seconds", Seconds(clock));
-  return py::make_tuple(FromPositions(log), ToDict(AddOutput(json, output)));
+  AddStopFields(json, *solver.control);
+  const py::object summary = ToDict(AddOutput(json, output));
+  return solver.Finish(py::make_tuple(FromPositions(log), summary), summary,
+                       "log", GeodesicFailures(geodesic, "log: the geodesic"));
 }
 
-py::tuple ShootPy(const DoubleArray& first_v, const DoubleArray& second_v,
-                  const IndexArray& F, int steps, bool backward,
-                  const py::object& mask,
-                  const std::optional<std::string>& output,
-                  const std::optional<std::string>& png,
-                  const std::optional<std::string>& gltf, const MaterialArgs& material_args, const SolverOptions& solver) {
+py::object ShootPy(const py::object& first_v, const py::object& second_v,
+                   const py::object& F, int steps, bool backward,
+                   const py::object& mask,
+                   const std::optional<std::string>& output,
+                   const std::optional<std::string>& png,
+                   const std::optional<std::string>& gltf,
+                   const MaterialArgs& material_args,
+                   const SolverOptions& solver) {
   const auto clock = Clock::now();
   CheckAtLeast("steps", steps, 1);
   const auto [first, second, space] = MakeShellPair(
       first_v, second_v, F, "first", "second", material_args);
-  const std::vector<int> fixed = Mask(mask, first.mesh.num_vertices());
+  const int vertices = first.mesh.num_vertices();
+  CheckSteps("steps", steps, 1, PathBytes(vertices, steps + 1), vertices,
+             kPathModel);
+  const std::vector<int> fixed = MaskArgument(mask, vertices);
   const SolverSettings settings = solver.Settings("shoot");
   ShootResult result;
   {
-    py::gil_scoped_release release;
+    SolveControl::Solving solving(*solver.control);
     result = ShootWithReport(
         space, first.mesh.positions, second, steps,
         backward ? StepDirection::kBackward : StepDirection::kForward, fixed,
         settings);
   }
-  for (const ExpStepResult& step : result.exp_steps) {
-    if (step.summary.termination_type == ceres::FAILURE) {
-      throw InputError("EXP step failed: " + step.summary.message);
-    }
+  // An EXP step without a root is the CLI's unsolved step (exit 4).
+  std::vector<std::string> failures;
+  for (size_t i = 0; i < result.exp_steps.size(); ++i) {
+    const ExpStepResult& step = result.exp_steps[i];
+    if (step.solved) continue;
+    failures.push_back("EXP step " + std::to_string(i + 1) +
+                       " not solved: relative residual " +
+                       Short(step.relative_residual) + " > " +
+                       Short(kExpStepAcceptance));
   }
   WritePath(output, png, gltf, first.mesh.faces, result.path);
   JsonObject json = ShootJson(result);
   json.Raw("energy_split", PathEnergySplitJson(space, result.path))
       .Raw("material", MaterialRecord(space, first.mesh, material_args))
       .Add("seconds", Seconds(clock));
-  return py::make_tuple(FromPath(result.path), ToDict(AddOutput(json, output)));
+  AddStopFields(json, *solver.control);
+  const py::object summary = ToDict(AddOutput(json, output));
+  return solver.Finish(py::make_tuple(FromPath(result.path), summary), summary,
+                       "shoot", std::move(failures));
 }
 
-py::tuple TransportPy(const py::object& path_object,
-                      const DoubleArray& variation_v, const IndexArray& F,
-                      double epsilon, const py::object& mask,
-                      const std::optional<std::string>& output,
-                      const std::optional<std::string>& png,
-                      const std::optional<std::string>& gltf, const MaterialArgs& material_args, const SolverOptions& solver) {
+py::object TransportPy(const py::object& path_object,
+                       const py::object& variation_v, const py::object& F,
+                       double epsilon, const py::object& mask,
+                       const std::optional<std::string>& output,
+                       const std::optional<std::string>& png,
+                       const std::optional<std::string>& gltf,
+                       const MaterialArgs& material_args,
+                       const SolverOptions& solver) {
   const auto clock = Clock::now();
   if (!(epsilon > 0) || !std::isfinite(epsilon)) {
     throw InputError("epsilon must be > 0, got " + std::to_string(epsilon));
   }
-  const std::vector<Positions> frames = ToShapes(path_object, "path");
+  const std::vector<Positions> frames = ShapeListArgument(path_object, "path");
   if (frames.size() < 2) throw InputError("path: need at least 2 frames");
-  const Shell first =
-      MakeShell(DoubleArray(FromPositions(frames[0])), F, "path[0]");
+  const Shell first = MakeShell(frames[0], F, "path[0]");
   ShellPath path = {first.mesh.positions};
   for (size_t k = 1; k < frames.size(); ++k) {
     path.push_back(CompatiblePositions(frames[k], first,
@@ -525,21 +552,33 @@ py::tuple TransportPy(const py::object& path_object,
   }
   const Positions varied = CompatiblePositions(variation_v, first, "variation");
   const ShellSpace space(first.mesh, first.topology, Material(material_args, first.mesh));
-  const std::vector<int> fixed = Mask(mask, first.mesh.num_vertices());
+  const std::vector<int> fixed = MaskArgument(mask, first.mesh.num_vertices());
   const SolverSettings settings = solver.Settings("transport");
   TransportResult result;
   {
-    py::gil_scoped_release release;
+    SolveControl::Solving solving(*solver.control);
     result = ParallelTransport(space, path, varied - first.mesh.positions,
                                epsilon, fixed, settings);
+  }
+  std::vector<std::string> failures;
+  for (size_t k = 0; k < result.rungs.size(); ++k) {
+    const TransportResult::Rung& rung = result.rungs[k];
+    if (rung.solved) continue;
+    failures.push_back("rung " + std::to_string(k + 1) +
+                       " not solved: EXP residual " +
+                       Short(rung.relative_residual) + " > " +
+                       Short(kExpStepAcceptance) + " (also at epsilon / " +
+                       std::to_string(rung.divisor) + ")");
   }
   WritePath(output, png, gltf, first.mesh.faces, result.shapes);
   JsonObject json = TransportJson(result, epsilon);
   json.Raw("energy_split", PathEnergySplitJson(space, result.shapes))
       .Raw("material", MaterialRecord(space, first.mesh, material_args))
       .Add("seconds", Seconds(clock));
-  return py::make_tuple(FromPath(result.shapes),
-                        ToDict(AddOutput(json, output)));
+  AddStopFields(json, *solver.control);
+  const py::object summary = ToDict(AddOutput(json, output));
+  return solver.Finish(py::make_tuple(FromPath(result.shapes), summary),
+                       summary, "transport", std::move(failures));
 }
 
 // The shapes of a list (keyframes, inputs) with the connectivity F.
@@ -548,11 +587,11 @@ struct ShapeSet {
   std::vector<Positions> shapes;
 };
 
-ShapeSet MakeShapeSet(const py::object& list, const IndexArray& F,
+ShapeSet MakeShapeSet(const py::object& list, const py::object& F,
                       const std::string& name) {
-  const std::vector<Positions> shapes = ToShapes(list, name);
+  const std::vector<Positions> shapes = ShapeListArgument(list, name);
   ShapeSet set;
-  set.first = MakeShell(DoubleArray(FromPositions(shapes[0])), F, name + "[0]");
+  set.first = MakeShell(shapes[0], F, name + "[0]");
   set.shapes.push_back(set.first.mesh.positions);
   for (size_t i = 1; i < shapes.size(); ++i) {
     set.shapes.push_back(CompatiblePositions(
@@ -561,28 +600,31 @@ ShapeSet MakeShapeSet(const py::object& list, const IndexArray& F,
   return set;
 }
 
-std::vector<int> Indices(const std::vector<long long>& at, size_t shapes,
+// The keyframe indices `at` (integers in [0, steps], strictly increasing;
+// the library checks them against steps and periodicity), one per shape.
+std::vector<int> Indices(const py::object& at_object, int steps, size_t shapes,
                          const std::string& name) {
-  std::vector<int> out;
-  for (long long v : at) {
-    if (!out.empty() && v <= out.back()) {
-      throw InputError("at must be strictly increasing");
-    }
-    out.push_back(static_cast<int>(v));
+  const std::vector<int> at = IndexListArgument(at_object, "at", 0, steps);
+  for (size_t i = 1; i < at.size(); ++i) {
+    if (at[i] <= at[i - 1]) throw InputError("at must be strictly increasing");
   }
-  if (out.size() != shapes) {
-    throw InputError("at gives " + std::to_string(out.size()) +
+  if (at.size() != shapes) {
+    throw InputError("at gives " + std::to_string(at.size()) +
                      " indices for " + std::to_string(shapes) + " " + name);
   }
-  return out;
+  return at;
 }
 
+// The outer L-BFGS polls the call's stop; the midpoint solves do not, so
+// that every evaluation of F_K used stays exact (as the CLI).
 SplineSettings SplineSettingsOf(const SolverOptions& solver,
                                 const std::string& label) {
   SplineSettings settings;
   settings.inner = solver.Settings(label + " midpoint");
   settings.inner.progress = false;
   settings.inner.gradient_tolerance = 1e-10;
+  settings.stop = settings.inner.stop;
+  settings.inner.stop = nullptr;
   settings.max_iterations = solver.max_iterations;
   settings.gradient_tolerance = solver.tolerance;
   settings.progress = !solver.quiet;
@@ -590,20 +632,46 @@ SplineSettings SplineSettingsOf(const SolverOptions& solver,
   return settings;
 }
 
-py::tuple SplinePy(const py::object& keyframes_object,
-                   const std::vector<long long>& at_list, const IndexArray& F,
-                   int steps, const std::string& method,
-                   const std::string& init, bool periodic,
-                   const std::optional<std::string>& output,
-                   const std::optional<std::string>& png,
-                   const std::optional<std::string>& gltf, const MaterialArgs& material_args, const SolverOptions& solver) {
+// What an unconverged spline or regression missed (the CLI's text).
+std::vector<std::string> SplineFailures(const SplineResult& result,
+                                        const std::string& verb,
+                                        double tolerance) {
+  if (result.converged) return {};
+  if (!result.evaluated) {
+    return {verb + ": stopped before the first evaluation of F_K finished"};
+  }
+  return {verb + ": relative gradient " + Short(result.relative_gradient_norm) +
+          " above the tolerance " + Short(tolerance) + " after " +
+          std::to_string(result.iterations) + " L-BFGS iterations (" +
+          ceres::TerminationTypeToString(result.summary.termination_type) +
+          ")"};
+}
+
+// The path verbs' (spline, regress) bound of steps: kMaxSteps and the
+// path's memory (tools/memory_limits.h's PathBytes).
+void CheckPathSteps(int steps, int min, int vertices) {
+  CheckSteps("steps", steps, min, PathBytes(vertices, steps + 1), vertices,
+             kPathModel);
+}
+
+py::object SplinePy(const py::object& keyframes_object,
+                    const py::object& at_object, const py::object& F,
+                    int steps, const std::string& method,
+                    const std::string& init, bool periodic,
+                    const std::optional<std::string>& output,
+                    const std::optional<std::string>& png,
+                    const std::optional<std::string>& gltf,
+                    const MaterialArgs& material_args,
+                    const SolverOptions& solver) {
   if (method != "nonlinear" && method != "ltheta") {
     throw InputError("method must be nonlinear or ltheta");
   }
   CheckAtLeast("steps", steps, 2);
   const auto clock = Clock::now();
   const ShapeSet set = MakeShapeSet(keyframes_object, F, "keyframes");
-  const std::vector<int> at = Indices(at_list, set.shapes.size(), "keyframes");
+  CheckPathSteps(steps, 2, set.first.mesh.num_vertices());
+  const std::vector<int> at =
+      Indices(at_object, steps, set.shapes.size(), "keyframes");
   const ShellSpace space(set.first.mesh, set.first.topology,
                          Material(material_args, set.first.mesh));
   const SplineInit initial_path = ParseSplineInit(init);
@@ -619,15 +687,28 @@ py::tuple SplinePy(const py::object& keyframes_object,
   SplineResult result;
   SplineInitialPath initial;
   {
-    py::gil_scoped_release release;
+    SolveControl::Solving solving(*solver.control);
     initial = MakeSplineInitialPath(initial_path, space, set.shapes, at, steps,
                                     periodic, init_settings);
     result = SolveSpline(space, set.shapes, at, steps, periodic, initial.path,
                          settings);
   }
-  // The LΘA spline alone converged if every frame's reconstruction did.
+  std::vector<std::string> failures;
   if (method == "ltheta") {
-    result.converged = initial.ltheta.unconverged_frames().empty();
+    // The LΘA spline alone converged if every frame's reconstruction did.
+    const std::vector<int> frames = initial.ltheta.unconverged_frames();
+    result.converged = frames.empty();
+    std::string list;
+    for (size_t i = 0; i < frames.size(); ++i) {
+      list += (i ? ", " : "") + std::to_string(frames[i]);
+    }
+    if (!frames.empty()) {
+      failures.push_back("spline: the LΘA reconstruction of frame(s) " + list +
+                         " stopped short of the tolerance " +
+                         Short(solver.tolerance));
+    }
+  } else {
+    failures = SplineFailures(result, "spline", solver.tolerance);
   }
   WritePath(output, png, gltf, set.first.mesh.faces, result.path);
   JsonObject head;
@@ -636,28 +717,35 @@ py::tuple SplinePy(const py::object& keyframes_object,
   head.Raw("energy_split", PathEnergySplitJson(space, result.path))
       .Raw("material", MaterialRecord(space, set.first.mesh, material_args));
   JsonObject json = SplineJson(head, result, Seconds(clock));
-  return py::make_tuple(FromPath(result.path), ToDict(AddOutput(json, output)));
+  AddStopFields(json, *solver.control);
+  const py::object summary = ToDict(AddOutput(json, output));
+  return solver.Finish(py::make_tuple(FromPath(result.path), summary), summary,
+                       "spline", std::move(failures));
 }
 
-py::tuple RegressPy(const py::object& inputs_object,
-                    const std::vector<long long>& at_list, const IndexArray& F,
-                    int steps, double sigma,
-                    const std::optional<std::string>& output,
-                    const std::optional<std::string>& png,
-                    const std::optional<std::string>& gltf, const MaterialArgs& material_args, const SolverOptions& solver) {
+py::object RegressPy(const py::object& inputs_object,
+                     const py::object& at_object, const py::object& F,
+                     int steps, double sigma,
+                     const std::optional<std::string>& output,
+                     const std::optional<std::string>& png,
+                     const std::optional<std::string>& gltf,
+                     const MaterialArgs& material_args,
+                     const SolverOptions& solver) {
   CheckAtLeast("steps", steps, 2);
   if (!(sigma >= 0) || !std::isfinite(sigma)) {
     throw InputError("sigma must be >= 0, got " + std::to_string(sigma));
   }
   const auto clock = Clock::now();
   const ShapeSet set = MakeShapeSet(inputs_object, F, "inputs");
-  const std::vector<int> at = Indices(at_list, set.shapes.size(), "inputs");
+  CheckPathSteps(steps, 2, set.first.mesh.num_vertices());
+  const std::vector<int> at =
+      Indices(at_object, steps, set.shapes.size(), "inputs");
   const ShellSpace space(set.first.mesh, set.first.topology,
                          Material(material_args, set.first.mesh));
   const SplineSettings settings = SplineSettingsOf(solver, "regress");
   SplineResult result;
   {
-    py::gil_scoped_release release;
+    SolveControl::Solving solving(*solver.control);
     result = SolveRegression(space, set.shapes, at, steps, sigma, {}, settings);
   }
   WritePath(output, png, gltf, set.first.mesh.faces, result.path);
@@ -666,13 +754,28 @@ py::tuple RegressPy(const py::object& inputs_object,
   head.Raw("energy_split", PathEnergySplitJson(space, result.path))
       .Raw("material", MaterialRecord(space, set.first.mesh, material_args));
   JsonObject json = SplineJson(head, result, Seconds(clock));
-  return py::make_tuple(FromPath(result.path), ToDict(AddOutput(json, output)));
+  AddStopFields(json, *solver.control);
+  const py::object summary = ToDict(AddOutput(json, output));
+  return solver.Finish(py::make_tuple(FromPath(result.path), summary), summary,
+                       "regress",
+                       SplineFailures(result, "regress", solver.tolerance));
 }
 
-py::tuple MeanPy(const py::object& inputs_object, const IndexArray& F,
-                 bool report, const std::optional<std::string>& output,
-                 const MaterialArgs& material_args,
-                 const SolverOptions& solver) {
+// What an unconverged elastic mean missed (the CLI's text).
+std::vector<std::string> MeanFailures(const ElasticMeanResult& mean,
+                                      const std::string& what) {
+  if (mean.converged) return {};
+  return {what + ": |grad| " + Short(mean.gradient_norm) +
+          " above the target " + Short(mean.gradient_target) + " after " +
+          std::to_string(mean.lm_iterations) + " LM + " +
+          std::to_string(mean.newton_iterations) + " Newton iterations (" +
+          mean.termination + ")"};
+}
+
+py::object MeanPy(const py::object& inputs_object, const py::object& F,
+                  bool report, const std::optional<std::string>& output,
+                  const MaterialArgs& material_args,
+                  const SolverOptions& solver) {
   const auto clock = Clock::now();
   const ShapeSet set = MakeShapeSet(inputs_object, F, "inputs");
   const ShellSpace space(set.first.mesh, set.first.topology,
@@ -680,7 +783,7 @@ py::tuple MeanPy(const py::object& inputs_object, const IndexArray& F,
   const SolverSettings settings = solver.Settings("mean");
   ElasticMeanResult result;
   {
-    py::gil_scoped_release release;
+    SolveControl::Solving solving(*solver.control);
     result = ComputeElasticMean(space, set.shapes, settings);
   }
   if (result.summary.termination_type == ceres::FAILURE) {
@@ -698,19 +801,25 @@ py::tuple MeanPy(const py::object& inputs_object, const IndexArray& F,
   json.Raw("energy_split", MeanEnergySplitJson(space, result.mean, set.shapes))
       .Raw("material", MaterialRecord(space, set.first.mesh, material_args))
       .Add("seconds", Seconds(clock));
-  return py::make_tuple(FromPositions(result.mean),
-                        ToDict(AddOutput(json, output)));
+  AddStopFields(json, *solver.control);
+  const py::object summary = ToDict(AddOutput(json, output));
+  return solver.Finish(py::make_tuple(FromPositions(result.mean), summary),
+                       summary, "mean", MeanFailures(result, "elastic mean"));
 }
 
 // The `pca` verb: elastic mean, shell PCA modes shot by EXP_K, optionally
 // the Procrustes baseline and the leave-one-out table. Returns ({name:
-// shape} with the names of the CLI's files without ".ply", summary).
-py::tuple PcaPy(const py::object& inputs_object, const IndexArray& F, int modes,
-                const std::string& baseline, bool loo, double amplitude,
-                int log_steps, int exp_steps, int max_exp_steps,
-                const std::string& displacement,
-                const std::optional<std::string>& output,
-                const std::optional<std::string>& png, const MaterialArgs& material_args, const SolverOptions& solver) {
+// shape} with the names of the CLI's files without ".ply", summary). A stop
+// (time_limit, SIGINT) in any phase ends it with the mean alone, as the
+// CLI: {'mean': ...} and "stopped_in" the phase, "modes": 0.
+py::object PcaPy(const py::object& inputs_object, const py::object& F,
+                 int modes, const std::string& baseline, bool loo,
+                 double amplitude, int log_steps, int exp_steps,
+                 int max_exp_steps, const std::string& displacement,
+                 const std::optional<std::string>& output,
+                 const std::optional<std::string>& png,
+                 const MaterialArgs& material_args,
+                 const SolverOptions& solver) {
   if (baseline != "" && baseline != "procrustes") {
     throw InputError("baseline must be 'procrustes' (or empty), got '" +
                      baseline + "'");
@@ -735,40 +844,57 @@ py::tuple PcaPy(const py::object& inputs_object, const IndexArray& F, int modes,
                      " shells, got " + std::to_string(n));
   }
   CheckPcaModeCount(modes, n, loo, "");
+  const int vertices = set.first.mesh.num_vertices();
+  CheckSteps("log_steps", log_steps, 1, GeodesicBytes(vertices, log_steps),
+             vertices, kGeodesicModel);
+  CheckSteps("max_exp_steps", max_exp_steps, 1,
+             PathBytes(vertices, max_exp_steps + 1), vertices, kPathModel);
   const ShellSpace space(set.first.mesh, set.first.topology,
                          Material(material_args, set.first.mesh));
   const SolverSettings settings = solver.Settings("pca");
   SolverSettings inner = settings;
   inner.progress = false;
+  SolveControl& control = *solver.control;
 
   std::vector<std::pair<std::string, Positions>> shapes;
   std::vector<Positions> strip;
   std::vector<std::string> failed_shapes, far;
   JsonObject json;
+  ElasticMeanResult mean;
+  std::string stopped_in;  // the phase a stop ended, or ""
   {
-    py::gil_scoped_release release;
-    const ElasticMeanResult mean =
-        ComputeElasticMean(space, set.shapes, settings);
+    SolveControl::Solving solving(control);
+    mean = ComputeElasticMean(space, set.shapes, settings);
     if (mean.summary.termination_type == ceres::FAILURE) {
       throw InputError("elastic mean failed: " + mean.summary.message);
     }
     for (int i : FarInputs(mean.energies)) {
       far.push_back("inputs[" + std::to_string(i) + "]");
     }
-    const ShellPcaModel shell =
-        ComputeShellPca(space, mean.mean, set.shapes, options, inner);
-    const int shell_modes =
-        std::min<int>(modes, static_cast<int>(shell.modes.size()));
     shapes.emplace_back("mean", mean.mean);
     strip.push_back(mean.mean);
+    std::optional<ShellPcaModel> model;
+    if (control.stopped()) {
+      stopped_in = "mean";
+    } else {
+      model = ComputeShellPca(space, mean.mean, set.shapes, options, inner);
+      if (control.stopped()) {
+        stopped_in = "displacements";
+        model.reset();
+      }
+    }
+    const int shell_modes =
+        model ? std::min<int>(modes, static_cast<int>(model->modes.size()))
+              : 0;
     for (int j = 0; j < shell_modes; ++j) {
       for (const double sign : {-1.0, 1.0}) {
+        if (control.stopped()) break;  // no new shot once stopped
         const std::string name =
             "mode_" + std::to_string(j + 1) + (sign < 0 ? "_minus" : "_plus");
         // A mode shape whose EXP shot has no solution is not returned; it
         // is listed in the summary (as the CLI does).
         Positions shape;
-        if (TryShellModeShape(space, shell, j, sign * amplitude, options,
+        if (TryShellModeShape(space, *model, j, sign * amplitude, options,
                               inner, &shape)) {
           shapes.emplace_back(name, shape);
           strip.push_back(std::move(shape));
@@ -777,26 +903,42 @@ py::tuple PcaPy(const py::object& inputs_object, const IndexArray& F, int modes,
         }
       }
     }
-    json = PcaJson(n, mean, displacement, options, shell, shell_modes,
-                   failed_shapes, far, amplitude);
-    json.Raw("material", MaterialRecord(space, set.first.mesh, material_args));
-    if (baseline == "procrustes") {
-      for (auto& shape : AddProcrustesBaseline(ComputeProcrustesPca(set.shapes),
-                                               modes, amplitude, &json)) {
-        shapes.push_back(std::move(shape));
+    if (model && control.stopped()) stopped_in = "mode shapes";
+    if (stopped_in.empty()) {
+      json = PcaJson(n, mean, displacement, options, *model, shell_modes,
+                     failed_shapes, far, amplitude);
+      json.Raw("material",
+               MaterialRecord(space, set.first.mesh, material_args));
+      if (baseline == "procrustes") {
+        for (auto& shape : AddProcrustesBaseline(
+                 ComputeProcrustesPca(set.shapes), modes, amplitude, &json)) {
+          shapes.push_back(std::move(shape));
+        }
+      }
+      if (loo) {
+        LeaveOneOutOptions loo_options;
+        loo_options.max_modes = modes;
+        loo_options.pca = options;
+        loo_options.initial_mean = mean.mean;
+        const LeaveOneOutTable table =
+            EvaluateLeaveOneOut(space, set.shapes, loo_options, inner);
+        if (control.stopped()) {
+          stopped_in = "leave-one-out";
+        } else {
+          json.Raw("leave_one_out", LeaveOneOutJson(table));
+        }
       }
     }
-    if (loo) {
-      LeaveOneOutOptions loo_options;
-      loo_options.max_modes = modes;
-      loo_options.pca = options;
-      loo_options.initial_mean = mean.mean;
-      const LeaveOneOutTable table =
-          EvaluateLeaveOneOut(space, set.shapes, loo_options, inner);
-      json.Raw("leave_one_out", LeaveOneOutJson(table));
-    }
+  }
+  if (!stopped_in.empty()) {  // the mean alone
+    shapes.resize(1);
+    strip.resize(1);
+    json = PcaMeanJson(n, mean);
+    json.Add("modes", 0).Add("stopped_in", stopped_in);
+    json.Raw("material", MaterialRecord(space, set.first.mesh, material_args));
   }
   json.Add("seconds", Seconds(clock));
+  AddStopFields(json, control);
   AddOutput(json, output);
   if (output) {  // the CLI's files: the PLY set and pca.json, together
     MakeDirectory(*output);
@@ -811,24 +953,29 @@ py::tuple PcaPy(const py::object& inputs_object, const IndexArray& F, int modes,
     files.Add(*output + "/pca.json", json.str() + "\n");
     files.Commit();
   }
-  if (png) {
+  if (png && stopped_in.empty()) {
     WriteFilmStrip(strip, set.first.mesh.faces, RenderOptions(), *png);
   }
   py::dict out;
   for (const auto& [name, positions] : shapes) {
     out[py::str(name)] = FromPositions(positions);
   }
-  return py::make_tuple(out, ToDict(json));
+  const py::object summary = ToDict(json);
+  return solver.Finish(py::make_tuple(out, summary), summary, "pca",
+                       MeanFailures(mean, "the elastic mean"));
 }
 
 // `branching simulate`: the relaxed Kohn-Mueller simulation. Returns (u as
 // an (nx + 1) x ny array, u[i, j] at node x_i, y_j; summary).
-py::tuple BranchingSimulatePy(double epsilon, double length, double height,
-                              int nx, int ny, const std::string& init,
-                              double delta, double grading, int continuation,
-                              int periods, int init_seed, int lm_iterations,
-                              int delta_extrapolation) {
+py::object BranchingSimulatePy(double epsilon, double length, double height,
+                               int nx, int ny, const std::string& init,
+                               double delta, double grading, int continuation,
+                               int periods, int init_seed, int lm_iterations,
+                               int delta_extrapolation,
+                               std::optional<double> time_limit,
+                               bool allow_unconverged) {
   using namespace branching;
+  SolveControl control(time_limit);
   CheckExtrapolationCount(delta_extrapolation);
   SimulationSettings s;
   s.epsilon = epsilon;
@@ -843,24 +990,31 @@ py::tuple BranchingSimulatePy(double epsilon, double length, double height,
   s.periods = periods;
   s.seed = static_cast<unsigned>(init_seed);
   s.max_iterations = lm_iterations;
+  s.stop = control.Poll();
   CheckSimulationSettings(s);
+  const double nodes = (static_cast<double>(s.nx) + 1) * s.ny;
+  CheckMemory(BranchingBytes(nodes),
+              "nx " + std::to_string(s.nx) + ", ny " + std::to_string(s.ny) +
+                  " (" + std::to_string(static_cast<long>(nodes)) + " nodes)",
+              "16 MB + 3 KB x (nx + 1) x ny");
   std::optional<SimulationResult> simulation;
   JsonObject summary;
   {
-    py::gil_scoped_release release;
+    SolveControl::Solving solving(control);
     simulation.emplace(RunSimulation(s));
     const SimulationResult& result = *simulation;
     if (const std::string why = SimulationBreakdown(result); !why.empty()) {
       throw InputError("branching simulate: " + why);
     }
     summary = SimulationJson(s, result);
-    if (delta_extrapolation >= 2) {
+    if (delta_extrapolation >= 2 && !control.stopped()) {
       summary.Add("extrapolation",
                   DeltaExtrapolationJson(ExtrapolateDelta(
                       s, ExtrapolationWidths(result.delta,
                                              delta_extrapolation))));
     }
   }
+  AddStopFields(summary, control);
   const SimulationResult& result = *simulation;
   const RelaxedGrid& g = result.field.grid;
   py::array_t<double> u(
@@ -870,7 +1024,10 @@ py::tuple BranchingSimulatePy(double epsilon, double length, double height,
       u.mutable_at(i, j) = result.field.at(i, j);
     }
   }
-  return py::make_tuple(u, ToDict(summary));
+  const py::object dict = ToDict(summary);
+  // The CLI judges no convergence here: only a time limit raises.
+  return control.Finish(py::make_tuple(u, dict), dict, "branching simulate",
+                        {}, allow_unconverged);
 }
 
 // `branching construct`: the self-similar constructions. Returns the
@@ -918,7 +1075,7 @@ py::object BranchingConstructPy(double epsilon, double length,
 // `compare`: a and b each one #V x 3 array (a shell) or a sequence / #frames
 // x #V x 3 array (a path), with the connectivity F.
 py::object ComparePy(const py::object& a_object, const py::object& b_object,
-                     const IndexArray& F, double tolerance,
+                     const py::object& F, double tolerance,
                      double energy_tolerance, const MaterialArgs& material_args) {
   for (const auto& [name, value] :
        {std::pair{"tolerance", tolerance}, {"energy_tolerance", energy_tolerance}}) {
@@ -927,16 +1084,9 @@ py::object ComparePy(const py::object& a_object, const py::object& b_object,
                        std::to_string(value));
     }
   }
-  auto side = [](const py::object& object, const std::string& name) {
-    if (py::isinstance<py::array>(object) &&
-        object.cast<py::array>().ndim() == 2) {
-      return std::vector<Positions>{ToPositions(object.cast<DoubleArray>(), name)};
-    }
-    return ToShapes(object, name);
-  };
-  const std::vector<Positions> a_shapes = side(a_object, "a");
-  const std::vector<Positions> b_shapes = side(b_object, "b");
-  const Shell first = MakeShell(DoubleArray(FromPositions(a_shapes[0])), F, "a[0]");
+  const std::vector<Positions> a_shapes = ShapeOrListArgument(a_object, "a");
+  const std::vector<Positions> b_shapes = ShapeOrListArgument(b_object, "b");
+  const Shell first = MakeShell(a_shapes[0], F, "a[0]");
   ShellPath a, b;
   for (size_t k = 0; k < a_shapes.size(); ++k) {
     a.push_back(CompatiblePositions(a_shapes[k], first, "a[" + std::to_string(k) + "]"));
@@ -949,20 +1099,42 @@ py::object ComparePy(const py::object& a_object, const py::object& b_object,
                                energy_tolerance));
 }
 
+// The frames of a path to draw (write_gltf, write_film_strip) and their
+// faces: every frame with the first one's vertex count.
+struct Frames {
+  std::vector<Positions> shapes;
+  Faces faces;
+};
+
+Frames FramesArgument(const py::object& frames_object, const py::object& F) {
+  Frames frames;
+  frames.shapes = ShapeListArgument(frames_object, "frames");
+  const Eigen::Index vertices = frames.shapes[0].rows();
+  for (size_t k = 1; k < frames.shapes.size(); ++k) {
+    if (frames.shapes[k].rows() != vertices) {
+      throw InputError("frames[" + std::to_string(k) + "] has " +
+                       std::to_string(frames.shapes[k].rows()) +
+                       " vertices, expected " + std::to_string(vertices));
+    }
+  }
+  frames.faces = FacesArgument(F, "F", static_cast<int>(vertices));
+  return frames;
+}
+
 void WriteGltfPy(const std::string& path, const py::object& frames_object,
-                 const IndexArray& F, double fps,
+                 const py::object& F, double fps,
                  const std::string& interpolation) {
   GltfAnimationOptions options;
   options.frames_per_second = fps;
   options.interpolation =
       ParseGltfInterpolation(interpolation, "interpolation");
-  WriteGltfMorphAnimation(path, ToShapes(frames_object, "frames"), ToFaces(F),
-                          options);
+  const Frames frames = FramesArgument(frames_object, F);
+  WriteGltfMorphAnimation(path, frames.shapes, frames.faces, options);
 }
 
 // `shellspace render` on frames in memory: the same options, the same file.
 void WriteFilmStripPy(const std::string& path, const py::object& frames_object,
-                      const IndexArray& F, int width, int height,
+                      const py::object& F, int width, int height,
                       const std::string& view, const std::string& up,
                       bool labels, const std::string& color,
                       const std::string& shading) {
@@ -974,7 +1146,8 @@ void WriteFilmStripPy(const std::string& path, const py::object& frames_object,
   options.labels = labels;
   options.color = ParseSurfaceColor(color);
   options.shading = ParseShading(shading);
-  WriteFilmStrip(ToShapes(frames_object, "frames"), ToFaces(F), options, path);
+  const Frames frames = FramesArgument(frames_object, F);
+  WriteFilmStrip(frames.shapes, frames.faces, options, path);
 }
 
 // The Python signatures of the verb functions. A function f(args...,
@@ -982,7 +1155,8 @@ void WriteFilmStripPy(const std::string& path, const py::object& frames_object,
 // material's keyword arguments (mu, lambda_, eta, relative_eta, bending: in
 // the order of SHELLSPACE_MATERIAL_ARGS), gathered into a MaterialArgs; one
 // that also ends with const SolverOptions& takes the solver's (tolerance,
-// max_iterations, threads, quiet: SHELLSPACE_SOLVER_ARGS) after them.
+// max_iterations, threads, quiet, time_limit, allow_unconverged:
+// SHELLSPACE_SOLVER_ARGS) after them.
 // The Gather functions take `Own`, the tuple of f's parameter types, and
 // the indices of f's own arguments (those before the structs).
 template <class Own, class Result, class... Params, size_t... I>
@@ -999,9 +1173,13 @@ auto GatherMaterialAndSolverArgs(Result (*f)(Params...),
   return [f](std::tuple_element_t<I, Own>... args, double mu, double lambda,
              std::optional<double> eta, double relative_eta,
              const std::string& bending, double tolerance, int max_iterations,
-             int threads, bool quiet) {
+             int threads, bool quiet, std::optional<double> time_limit,
+             bool allow_unconverged) {
+    // The time limit counts from the call.
+    auto control = std::make_shared<SolveControl>(time_limit);
     return f(args..., MaterialArgs{mu, lambda, eta, relative_eta, bending},
-             SolverOptions{tolerance, max_iterations, threads, quiet});
+             SolverOptions{tolerance, max_iterations, threads, quiet,
+                           allow_unconverged, std::move(control)});
   };
 }
 template <class Result, class... Params>
@@ -1033,7 +1211,8 @@ auto WithMaterialAndSolverArgs(Result (*f)(Params...)) {
       py::arg("bending") = "discrete-shells"
 #define SHELLSPACE_SOLVER_ARGS                                  \
   py::arg("tolerance") = 1e-8, py::arg("max_iterations") = 200, \
-  py::arg("threads") = 2, py::arg("quiet") = false
+  py::arg("threads") = 2, py::arg("quiet") = false,             \
+  py::arg("time_limit") = py::none(), py::arg("allow_unconverged") = false
 // The first arguments of the verbs that solve a geodesic (geodesic, log).
 #define SHELLSPACE_GEODESIC_ARGS                                        \
   py::arg("start"), py::arg("end"), py::arg("F"), py::arg("steps") = 8, \
@@ -1061,6 +1240,7 @@ PYBIND11_MODULE(shellspace, m) {
       "options as keyword arguments (lambda as lambda_) and returns its\n"
       "results and the verb's --json summary as a dict.";
   py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
+  RegisterNotConvergedError(m);
   // The default bending weight relative to the reference's area
   // (cost_functions/shell/relative_bending_weight.h).
   m.attr("DEFAULT_RELATIVE_ETA") = kDefaultRelativeEta;
@@ -1197,8 +1377,12 @@ PYBIND11_MODULE(shellspace, m) {
         py::arg("init_seed") = static_cast<int>(simulation.seed),
         py::arg("lm_iterations") = simulation.max_iterations,
         py::arg("delta_extrapolation") = 0,
+        py::arg("time_limit") = py::none(),
+        py::arg("allow_unconverged") = false,
         "The relaxed Kohn-Mueller simulation (`branching simulate`): "
-        "returns (u (nx + 1) x ny, summary). Writes no files.");
+        "returns (u (nx + 1) x ny, summary). Writes no files. time_limit: "
+        "seconds, then the field so far, partial (NotConvergedError unless "
+        "allow_unconverged).");
   m.def("branching_construct", &BranchingConstructPy,
         py::arg("epsilon") = 0.001, py::arg("length") = 1.0,
         py::arg("family") = "km", py::arg("optimize") = false,
