@@ -5,23 +5,23 @@ shellspace.InputError or TypeError: never another exception, a crash, or a
 read outside an array. Some arrays end flush against a PROT_NONE page, so
 that a read past their end is a SIGSEGV even without a sanitizer.
 
-In CI (python_tests): seed SHELLSPACE_FUZZ_SEED (34), at most
-SHELLSPACE_FUZZ_CASES calls (600) and SHELLSPACE_FUZZ_SECONDS of them (20;
-0: no bound).
+In CI (ctest python_array_fuzz): seed SHELLSPACE_FUZZ_SEED (34), at most
+SHELLSPACE_FUZZ_CASES calls (6000, about 6 s) and SHELLSPACE_FUZZ_SECONDS
+of them (20; 0: no bound).
 
-Under AddressSanitizer, the module alone instrumented (python/CMakeLists.txt,
-SHELLSPACE_PYTHON_ASAN; the interpreter and the library rooms are not, so
-the run needs the ASan runtime preloaded and leak detection off for
-Python's own allocations), from the checkout:
+Under AddressSanitizer: the module alone instrumented, in its own folder
+build/python-asan (python/CMakeLists.txt, SHELLSPACE_PYTHON_ASAN; the
+library rooms are the normal build's). The interpreter is not instrumented,
+so the ASan runtime is preloaded and leak detection is off (Python's own
+allocations). From the checkout, after the normal build:
 
-  cmake -S . -B build-pyasan -DCMAKE_BUILD_TYPE=Release \\
-    -DPython_EXECUTABLE=/usr/bin/python3 -DSHELLSPACE_BUILD_BENCHMARKS=OFF \\
-    -DSHELLSPACE_BUILD_EXAMPLES=OFF -DSHELLSPACE_PYTHON_ASAN=ON
-  cmake --build build-pyasan -j2 --target shellspace_python
-  ASAN_OPTIONS=detect_leaks=0 LD_PRELOAD=$(gcc -print-file-name=libasan.so) \\
-    PYTHONPATH=build-pyasan/python SHELLSPACE_FUZZ_CASES=5000 \\
-    SHELLSPACE_FUZZ_SECONDS=0 python3 -m pytest -q -s -p no:cacheprovider \\
-    tests/python/test_array_fuzz.py
+  cmake -S . -B build -DSHELLSPACE_PYTHON_ASAN=ON
+  cmake --build build -j2 --target shellspace_python_asan
+  ASAN_OPTIONS=detect_leaks=0 \\
+    LD_PRELOAD="$(gcc -print-file-name=libasan.so) $(gcc -print-file-name=libstdc++.so)" \\
+    PYTHONPATH=build/python-asan SHELLSPACE_DATA_DIR=../shared/data \\
+    SHELLSPACE_FUZZ_CASES=20000 SHELLSPACE_FUZZ_SECONDS=0 \\
+    python3 -m pytest -q -s -p no:cacheprovider tests/python/test_array_fuzz.py
 """
 import os
 import time
