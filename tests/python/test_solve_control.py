@@ -213,6 +213,42 @@ def test_a_sigint_stops_a_solve_in_another_thread():
     assert_prefix_of_a_full_shot(path)
 
 
+# Long solves of other kinds, stopped inside their iterations: the LM and
+# Newton iterations of a 400-step geodesic (its full solve: 20+ s), the
+# L-BFGS of a 200-step spline; the result is the whole path, its ends the
+# given shapes.
+LONG = {
+    "geodesic": (lambda **k: shellspace.geodesic(
+        V, W, F, steps=400, quiet=True, tolerance=1e-12, **k), 401),
+    "spline": (lambda **k: shellspace.spline(
+        [V, M, W], [0, 100, 200], F, steps=200, quiet=True, tolerance=1e-12,
+        **k), 201),
+}
+
+
+@pytest.mark.parametrize("name", sorted(LONG))
+@pytest.mark.parametrize("stop", ["SIGINT", "time limit"])
+def test_long_solves_stop_inside_their_iterations(name, stop):
+    call, frames = LONG[name]
+    start = time.monotonic()
+    if stop == "SIGINT":
+        with SigintAfter(0.3), pytest.raises(KeyboardInterrupt) as error:
+            call()
+        path, summary = error.value.result
+    else:
+        with pytest.raises(shellspace.NotConvergedError) as error:
+            call(time_limit=0.3)
+        path, summary = error.value.result
+        assert error.value.stop_reason == "time limit 0.3 s"
+    assert time.monotonic() - start < 10
+    assert summary["partial"] is True
+    assert summary["stop_reason"] == ("SIGINT" if stop == "SIGINT"
+                                      else "time limit 0.3 s")
+    assert summary["converged"] is False
+    assert path.shape == (frames,) + V.shape
+    assert np.array_equal(path[0], V) and np.array_equal(path[-1], W)
+
+
 # ---- Bounds of steps -------------------------------------------------------
 
 STEPS_BOUNDS = [
