@@ -1238,7 +1238,12 @@ PYBIND11_MODULE(shellspace, m) {
       "Meshes are (V, F): V #V x 3 float64, F #F x 3 int; paths are\n"
       "(K + 1) x #V x 3 arrays. Each verb function takes the CLI verb's\n"
       "options as keyword arguments (lambda as lambda_) and returns its\n"
-      "results and the verb's --json summary as a dict.";
+      "results and the verb's --json summary as a dict. Bad arrays and\n"
+      "options raise InputError. The solving functions take time_limit\n"
+      "(seconds) and allow_unconverged: an unconverged or time-limited\n"
+      "result raises NotConvergedError (its .result attached) unless\n"
+      "allow_unconverged=True; Ctrl-C stops the solves and raises\n"
+      "KeyboardInterrupt with the partial result as .result.";
   py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
   RegisterNotConvergedError(m);
   // The default bending weight relative to the reference's area
