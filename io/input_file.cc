@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
+#include <limits>
 #include <utility>
 
 namespace shellspace {
@@ -120,45 +121,67 @@ void CheckReadStop(const std::string& path) {
 
 std::int64_t CheckInputFile(const std::string& path, const std::string& what,
                             std::int64_t max_bytes) {
-  std::int64_t size = 0;
-  Descriptor fd(OpenInputFile(path, what, max_bytes, &size));
-  return size;
+  return InputFile(path, what, max_bytes).size();
+}
+
+InputFile::InputFile(const std::string& path, const std::string& what,
+                     std::int64_t max_bytes)
+    : path_(path), what_(what), max_bytes_(max_bytes) {
+  fd_ = OpenInputFile(path, what, max_bytes, &size_);
+}
+
+InputFile::~InputFile() {
+  if (fd_ >= 0) ::close(fd_);
+}
+
+const std::string& InputFile::Read(size_t limit) {
+  CheckReadStop(path_);
+  constexpr size_t kChunk = size_t{1} << 20;
+  // One allocation of the size and a spare byte that sees the end; more
+  // only if more comes (files of /proc report size 0, a file may grow), but
+  // never more than max_bytes.
+  if (bytes_.empty() && !at_end_) {
+    bytes_.reserve(static_cast<size_t>(size_) + 1);
+  }
+  while (!at_end_ && bytes_.size() < limit) {
+    const size_t got = bytes_.size();
+    const size_t room =
+        bytes_.capacity() > got ? bytes_.capacity() : got + kChunk;
+    const size_t most = static_cast<size_t>(max_bytes_) + 1;  // to refuse
+    const size_t want = std::min(
+        {kChunk, room - got, limit - got, most > got ? most - got : size_t{1}});
+    bytes_.resize(got + want);
+    const ssize_t n = ::read(fd_, &bytes_[got], want);
+    if (n < 0) {
+      const int error = errno;
+      bytes_.resize(got);
+      if (error == EINTR) {
+        CheckReadStop(path_);
+        continue;
+      }
+      throw InputError("cannot read " + what_ + " " + path_ + " (" +
+                       std::strerror(error) + ")");
+    }
+    bytes_.resize(got + static_cast<size_t>(n));
+    if (n == 0) {
+      at_end_ = true;
+      break;
+    }
+    CheckSize(path_, what_, static_cast<std::int64_t>(bytes_.size()),
+              max_bytes_);
+    CheckReadStop(path_);
+  }
+  return bytes_;
+}
+
+std::string InputFile::ReadAll() {
+  Read(std::numeric_limits<size_t>::max());
+  return std::move(bytes_);
 }
 
 std::string ReadInputFile(const std::string& path, const std::string& what,
                           std::int64_t max_bytes) {
-  std::int64_t size = 0;
-  Descriptor fd(OpenInputFile(path, what, max_bytes, &size));
-  CheckReadStop(path);
-  // Read to the end, not only the size fstat gave (files of /proc report
-  // 0, a file may grow), but never more than max_bytes: one allocation of
-  // the size and a spare byte that sees the end, more only if more comes.
-  constexpr size_t kChunk = size_t{1} << 20;
-  std::string bytes(static_cast<size_t>(size) + 1, '\0');
-  size_t got = 0;
-  while (true) {
-    if (got == bytes.size()) {
-      bytes.resize(static_cast<size_t>(std::min<std::int64_t>(
-          static_cast<std::int64_t>(got + kChunk), max_bytes + 1)));
-    }
-    const size_t want = std::min(kChunk, bytes.size() - got);
-    const ssize_t n = ::read(fd.get(), &bytes[got], want);
-    if (n < 0) {
-      const int error = errno;
-      if (error == EINTR) {
-        CheckReadStop(path);
-        continue;
-      }
-      throw InputError("cannot read " + what + " " + path + " (" +
-                       std::strerror(error) + ")");
-    }
-    if (n == 0) break;
-    got += static_cast<size_t>(n);
-    CheckSize(path, what, static_cast<std::int64_t>(got), max_bytes);
-    CheckReadStop(path);
-  }
-  bytes.resize(got);
-  return bytes;
+  return InputFile(path, what, max_bytes).ReadAll();
 }
 
 }  // namespace shellspace

@@ -73,12 +73,39 @@ class ReadStopTicker {
 std::int64_t CheckInputFile(const std::string& path, const std::string& what,
                             std::int64_t max_bytes);
 
-// The whole content of the regular file `path` checked as by CheckInputFile
+// A regular file being read: opened and checked as by CheckInputFile
 // (the descriptor checked is the one read: a file replaced after the check
-// is not read). Reads to the end of the file but refuses it once more than
-// `max_bytes` arrived (a file that grows, or reports size 0 as those of
-// /proc do), polling the stop request (CheckReadStop) between chunks of
-// 1 MiB.
+// is not read), then read in chunks of 1 MiB, polling the stop request
+// (CheckReadStop) between them. Reads to the end of the file, not to the
+// size fstat gave, but refuses it once more than `max_bytes` arrived (a
+// file that grows, or reports size 0 as those of /proc do).
+class InputFile {
+ public:
+  InputFile(const std::string& path, const std::string& what,
+            std::int64_t max_bytes);
+  ~InputFile();
+  InputFile(const InputFile&) = delete;
+  InputFile& operator=(const InputFile&) = delete;
+
+  // The size fstat gave.
+  std::int64_t size() const { return size_; }
+  // Reads until `limit` bytes were read or the file ended; returns all
+  // bytes read so far (a prefix to check a header on before the rest is
+  // read).
+  const std::string& Read(size_t limit);
+  // Reads the rest and returns the whole content (moved out).
+  std::string ReadAll();
+
+ private:
+  std::string path_, what_;
+  std::int64_t max_bytes_;
+  std::int64_t size_ = 0;
+  int fd_ = -1;
+  std::string bytes_;
+  bool at_end_ = false;
+};
+
+// The whole content of the regular file `path` (InputFile::ReadAll).
 std::string ReadInputFile(const std::string& path, const std::string& what,
                           std::int64_t max_bytes);
 

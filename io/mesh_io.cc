@@ -70,6 +70,8 @@ class LineCursor {
   }
   // The 1-based file line number of the line Next returned last.
   size_t number() const { return number_; }
+  // Bytes returned so far (with their line breaks).
+  size_t consumed() const { return std::min(pos_, text_.size()); }
   // Bytes not yet returned.
   size_t remaining() const {
     return pos_ >= text_.size() ? 0 : text_.size() - pos_;
@@ -143,6 +145,12 @@ std::string LineTag(size_t line) {
 
 // The largest element count a file may declare (indices are int).
 constexpr long long kMaxCount = 2147483647;
+
+// The longest header read (PLY: up to end_header; OFF: up to the counts,
+// comments included): 1 MiB. Real headers take a few hundred bytes; a
+// header of millions of comment or element lines is refused after its
+// first MiB instead of being scanned whole.
+constexpr size_t kMaxHeaderBytes = size_t{1} << 20;
 
 // Collects vertices and triangles read from a file and checks each face's
 // indices against the vertex count on the raw data.
@@ -321,7 +329,11 @@ uint64_t MinRowBytes(const PlyElement& element, bool is_face, int face_list,
   return bytes;
 }
 
-PlyHeader ParsePlyHeader(const std::string& bytes, const MeshBuilder& b) {
+// The header of a PLY file whose first bytes are `bytes` (the whole file, or
+// a prefix of at least kMaxHeaderBytes + 1 bytes: the same result, as no
+// line past that is parsed) and whose size is `file_size`.
+PlyHeader ParsePlyHeader(const std::string& bytes, uint64_t file_size,
+                         const MeshBuilder& b) {
   PlyHeader header;
   LineCursor lines(bytes, 1, b.path);
   std::string_view line;
@@ -329,6 +341,11 @@ PlyHeader ParsePlyHeader(const std::string& bytes, const MeshBuilder& b) {
   std::set<std::string, std::less<>> element_names;
   bool have_format = false, ended = false;
   while (lines.Next(&line)) {
+    if (lines.consumed() > kMaxHeaderBytes) {
+      b.Fail("PLY header longer than " + std::to_string(kMaxHeaderBytes) +
+             " bytes (no end_header before line " +
+             std::to_string(lines.number()) + ")");
+    }
     Tokenize(line, &t);
     const auto where = [&lines] { return LineTag(lines.number()); };
     if (lines.number() == 1) {
@@ -447,7 +464,7 @@ PlyHeader ParsePlyHeader(const std::string& bytes, const MeshBuilder& b) {
   // any row is read or stored: a header cannot make the reader loop over,
   // or allocate, rows the file does not hold.
   const bool binary = header.format != PlyFormat::kAscii;
-  const uint64_t data_bytes = bytes.size() - header.data_offset;
+  const uint64_t data_bytes = file_size - header.data_offset;
   uint64_t available = data_bytes + (binary ? 0 : 1);  // last line break
   for (size_t e = 0; e < header.elements.size(); ++e) {
     const PlyElement& element = header.elements[e];
@@ -707,7 +724,7 @@ void ReadBinaryPlyData(const std::string& bytes, const PlyHeader& header,
 }
 
 Mesh ReadPly(const std::string& bytes, MeshBuilder* b) {
-  const PlyHeader header = ParsePlyHeader(bytes, *b);
+  const PlyHeader header = ParsePlyHeader(bytes, bytes.size(), *b);
   if (header.vertex_element >= 0 && header.face_element >= 0) {
     b->Reserve(header.elements[header.vertex_element].count,
                header.elements[header.face_element].count);
@@ -822,11 +839,18 @@ bool ParseOffKeyword(std::string_view word, OffKeyword* k) {
 // skipped): Next fills `t` with the tokens of the next one.
 class OffRows {
  public:
-  OffRows(const std::string& bytes, const std::string& path)
-      : lines_(bytes, 1, path) {}
+  OffRows(const std::string& bytes, const MeshBuilder& b)
+      : lines_(bytes, 1, b.path), b_(b) {}
+  // The header (keyword and counts) was read: no limit from here on.
+  void EndHeader() { in_header_ = false; }
   bool Next() {
     std::string_view text;
     while (lines_.Next(&text)) {
+      if (in_header_ && lines_.consumed() > kMaxHeaderBytes) {
+        b_.Fail("OFF header longer than " + std::to_string(kMaxHeaderBytes) +
+                " bytes (no vertex and face counts before line " +
+                std::to_string(lines_.number()) + ")");
+      }
       Tokenize(WithoutComment(text), &t);
       if (!t.empty()) {
         raw = text;
@@ -836,25 +860,38 @@ class OffRows {
     return false;
   }
   size_t line() const { return lines_.number(); }
-  size_t remaining() const { return lines_.remaining(); }
+  size_t consumed() const { return lines_.consumed(); }
 
   std::vector<std::string_view> t;  // tokens of the current line
   std::string_view raw;             // the current line as it is
 
  private:
   LineCursor lines_;
+  const MeshBuilder& b_;
+  bool in_header_ = true;
 };
 
-Mesh ReadOff(const std::string& bytes, MeshBuilder* b) {
-  OffRows rows(bytes, b->path);
+// What the header of an OFF file declares.
+struct OffHeader {
   OffKeyword kind;
+  std::string keyword;
+  long long nv = 0, nf = 0;
+};
+
+// Reads the header (keyword and counts) of `rows`, an OFF file of
+// `file_size` bytes (`rows` may hold a prefix of at least kMaxHeaderBytes + 1
+// bytes: the same result), and checks the counts against the file size.
+OffHeader ParseOffHeader(OffRows& rows, uint64_t file_size,
+                         const MeshBuilder* b) {
+  OffHeader header;
+  OffKeyword& kind = header.kind;
   if (!rows.Next() || !ParseOffKeyword(rows.t[0], &kind)) {
     b->Fail("cannot read: not an OFF file (no OFF header" +
             std::string(rows.t.empty()
                             ? ")"
                             : ", first line " + Excerpt(rows.raw) + ")"));
   }
-  const std::string keyword(rows.t[0]);
+  const std::string& keyword = header.keyword = std::string(rows.t[0]);
   if (kind.dimension) {
     b->Fail("cannot read " + keyword +
             ": OFF with a declared vertex dimension is not read (a shell's "
@@ -874,13 +911,35 @@ Mesh ReadOff(const std::string& bytes, MeshBuilder* b) {
     counts = rows.t;
     counts_line = rows.line();
   }
-  long long nv = 0, nf = 0, ne = 0;
+  long long& nv = header.nv;
+  long long& nf = header.nf;
+  long long ne = 0;
   if (counts.size() != 3 || !ParseInteger(counts[0], &nv) ||
       !ParseInteger(counts[1], &nf) || !ParseInteger(counts[2], &ne) ||
       nv < 0 || nf < 0 || ne < 0 || nv > kMaxCount || nf > kMaxCount) {
     b->Fail("malformed OFF counts line (expected 'vertices faces edges')" +
             LineTag(counts_line));
   }
+  rows.EndHeader();
+  // Every declared vertex and face must fit in the rest of the file, checked
+  // before any is read or stored: a vertex line takes 6 bytes at least (x y
+  // z: two bytes a value; the variant's columns are not counted, so that a
+  // line without them is reported as such), a face line 8 (3 i j k).
+  const uint64_t data_bytes = file_size - rows.consumed();
+  uint64_t available = data_bytes + 1;  // the last line break
+  CheckRowsFit(*b, "OFF file ends early", nv, "vertices", 2 * 3, &available,
+               data_bytes);
+  CheckRowsFit(*b, "OFF file ends early", nf, "faces", 2 * 4, &available,
+               data_bytes);
+  return header;
+}
+
+Mesh ReadOff(const std::string& bytes, MeshBuilder* b) {
+  OffRows rows(bytes, *b);
+  const OffHeader header = ParseOffHeader(rows, bytes.size(), b);
+  const OffKeyword& kind = header.kind;
+  const std::string& keyword = header.keyword;
+  const long long nv = header.nv, nf = header.nf;
   // The values of a vertex line: x y z [w] [nx ny nz] [r g b [a]] [s t].
   const size_t coordinates = kind.homogeneous ? 4 : 3;
   const size_t before_colour = coordinates + (kind.normal ? 3 : 0);
@@ -891,16 +950,6 @@ Mesh ReadOff(const std::string& bytes, MeshBuilder* b) {
       std::to_string(min_values) +
       (max_values > min_values ? " or " + std::to_string(max_values) : "") +
       (keyword == "OFF" ? "" : " (" + keyword + ")");
-  // Every declared vertex and face must fit in the rest of the file, checked
-  // before any is read or stored: a vertex line takes 6 bytes at least (x y
-  // z: two bytes a value; the variant's columns are not counted, so that a
-  // line without them is reported as such), a face line 8 (3 i j k).
-  const uint64_t data_bytes = rows.remaining();
-  uint64_t available = data_bytes + 1;  // the last line break
-  CheckRowsFit(*b, "OFF file ends early", nv, "vertices", 2 * 3, &available,
-               data_bytes);
-  CheckRowsFit(*b, "OFF file ends early", nf, "faces", 2 * 4, &available,
-               data_bytes);
   b->Reserve(nv, nf);
   for (long long i = 0; i < nv; ++i) {
     if (!rows.Next()) {
@@ -991,9 +1040,23 @@ Mesh ReadMesh(const std::string& path) {
     throw InputError("unsupported mesh format '" + ext + "' of " + path +
                      " (use .ply, .obj or .off)");
   }
-  const std::string bytes = ReadInputFile(path, "mesh file", kMaxMeshFileBytes);
+  InputFile file(path, "mesh file", kMaxMeshFileBytes);
   MeshBuilder builder;
   builder.path = path;
+  if (ext != "obj") {
+    // The header first, from the first MiB: one whose counts the file size
+    // cannot hold is refused before the rest of the file is read.
+    const std::string& prefix = file.Read(kMaxHeaderBytes + 1);
+    const uint64_t size =
+        std::max<uint64_t>(static_cast<uint64_t>(file.size()), prefix.size());
+    if (ext == "ply") {
+      ParsePlyHeader(prefix, size, builder);
+    } else {
+      OffRows rows(prefix, builder);
+      ParseOffHeader(rows, size, &builder);
+    }
+  }
+  const std::string bytes = file.ReadAll();
   const Mesh mesh = ext == "ply"   ? ReadPly(bytes, &builder)
                     : ext == "obj" ? ReadObj(bytes, &builder)
                                    : ReadOff(bytes, &builder);

@@ -22,7 +22,9 @@ namespace shellspace {
 // read as x/w, y/w, z/w; optional r g b [a] face colours ignored; nOFF and
 // binary OFF refused). The file must be a regular file of at most
 // kMaxMeshFileBytes (io/input_file.h: FIFOs, devices, directories and
-// sockets are refused without blocking or reading), and every element count
+// sockets are refused without blocking or reading), a PLY or OFF header
+// (up to end_header, or the counts) must end within its first MiB, and
+// every element count
 // a header declares must fit in the file's size (at least two bytes per
 // ASCII value, the type sizes in binary PLY; an element of no properties
 // with rows is refused) before a row is read or stored: the memory of a

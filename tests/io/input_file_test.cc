@@ -352,16 +352,35 @@ TEST(InputFileTest, LyingHeadersAreRefusedFromTheirCountsAndTheFileSize) {
     SCOPED_TRACE(path);
     CountingStopPoll polls;
     EXPECT_EQ(ErrorOf([&path] { ReadMesh(path); }), path + ": " + c.expected);
-    // One poll after the open, one after the only chunk: no line or row
-    // loop reached its first poll (every 4096 lines or values).
-    EXPECT_LE(polls.polls(), 2);
+    // The polls of reading the file (at the start and after its only
+    // chunk; once more when the rest is read after a header that passed):
+    // no line or row loop reached its first poll (every 4096 lines or
+    // values).
+    EXPECT_LE(polls.polls(), 3);
   }
+  // A lying header on a 1 GiB (sparse) file: refused from the first MiB,
+  // the rest never read (polls at the start, after the first MiB and after
+  // one more byte; 1024 more for the whole file).
+  const std::string header = ply(
+      binary, "element vertex " + big + "\n" + xyz + "element face 2\n" + list);
+  const std::string sparse = Write(dir + "/sparse_lying.ply", header);
+  ASSERT_EQ(truncate(sparse.c_str(), kMaxMeshFileBytes), 0);
+  CountingStopPoll polls;
+  EXPECT_EQ(
+      ErrorOf([&sparse] { ReadMesh(sparse); }),
+      sparse +
+          ": PLY file ends early in element 'vertex': the header "
+          "declares 2147483647 rows of at least 12 bytes, more than the " +
+          std::to_string(kMaxMeshFileBytes - header.size()) +
+          " bytes of data hold");
+  EXPECT_EQ(polls.polls(), 3);
   EXPECT_EQ(issue_file.size(), 321u);
   EXPECT_EQ(std::size(cases), 14u);
 }
 
 // 20 MB of blank lines (and of '#' comments): read line by line, never
-// materialised (the readers used to hold every line as a string: 1.1 GB).
+// materialised (the readers used to hold every line as a string: 1.1 GB);
+// in a PLY or OFF header, refused after its first MiB.
 TEST(InputFileTest, BlankLinesCostNoMemoryPerLine) {
   const std::string dir = testing::TempDir();
   const std::string blank(20 << 20, '\n');
@@ -375,14 +394,23 @@ TEST(InputFileTest, BlankLinesCostNoMemoryPerLine) {
       {"blank_square.obj", blank + square_obj + blank, ""},
       {"comments.obj", std::string(10 << 20, '#') + "\n" + blank + square_obj,
        ""},
-      {"blank_header.ply", "ply\n" + blank, "PLY header has no end_header"},
+      {"blank_header.ply", "ply\n" + blank,
+       "PLY header longer than 1048576 bytes (no end_header before line "
+       "1048574)"},
       {"blank_data.ply",
        "ply\nformat ascii 1.0\nelement vertex 4\nproperty float x\nproperty "
        "float y\nproperty float z\nelement face 2\nproperty list uchar int "
        "vertex_indices\nend_header\n" +
            blank + "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 3\n" + blank,
        ""},
-      {"blank.off", "OFF\n" + blank, "OFF file has no vertex and face counts"},
+      {"blank.off", "OFF\n" + blank,
+       "OFF header longer than 1048576 bytes (no vertex and face counts "
+       "before line 1048574)"},
+      {"blank_counts.off",
+       "OFF\n\n\n4 2 0\n" + blank +
+           "0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2\n3 0 2 "
+           "3\n",
+       ""},
       {"blank_mask.txt", blank + "3\n" + blank, ""},
   };
   for (const Case& c : cases) {
