@@ -2,7 +2,8 @@
 // file and given to the real reader (io/mesh_io.h), which must either return
 // a validated mesh or throw InputError. Anything else (another exception, a
 // crash, a sanitizer report, a leak, a returned mesh that breaks the
-// invariants ReadMesh promises) is a finding.
+// invariants ReadMesh promises, a read whose work is not proportional to
+// the input's size) is a finding.
 #ifndef SHELLSPACE_FUZZ_FUZZ_READER_H_
 #define SHELLSPACE_FUZZ_FUZZ_READER_H_
 
@@ -18,6 +19,7 @@
 
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/geometry/validation.h"
+#include "shellspace/io/input_file.h"
 #include "shellspace/io/mesh_io.h"
 
 namespace shellspace::fuzz {
@@ -53,6 +55,32 @@ inline void WriteScratch(const std::string& path, const uint8_t* data,
   std::abort();
 }
 
+// Installs a stop poll (io/input_file.h) that never stops but counts its
+// calls during one read of `size` bytes: the readers poll once per chunk
+// and once per 4096 lines or binary values, and a file of `size` bytes has
+// at most size + 1 lines and size values, so more than 4 + 2 (size / 4096
+// + 1) polls means a loop over rows the file does not hold (a header's
+// counts trusted) -- a finding, reported at once instead of after minutes.
+class ProportionalWork {
+ public:
+  explicit ProportionalWork(size_t size)
+      : bound_(4 + 2 * (static_cast<long>(size) / 4096 + 1)) {
+    SetReadStopPoll([this] {
+      if (++polls_ > bound_) {
+        Finding("read work not proportional to the file size (" +
+                std::to_string(polls_) + " stop polls for a file of at most " +
+                std::to_string((bound_ - 4) / 2 * 4096) + " bytes)");
+      }
+      return false;
+    });
+  }
+  ~ProportionalWork() { SetReadStopPoll(nullptr); }
+
+ private:
+  long bound_;
+  long polls_ = 0;
+};
+
 // The invariants of a mesh ReadMesh returned (ValidateMeshStructure).
 inline void CheckReadMesh(const Mesh& mesh) {
   if (mesh.num_vertices() <= 0 || mesh.num_faces() <= 0) {
@@ -79,6 +107,7 @@ inline void CheckReadMesh(const Mesh& mesh) {
 inline int FuzzMesh(const uint8_t* data, size_t size, const char* ext) {
   const std::string& path = ScratchPath(ext);
   WriteScratch(path, data, size);
+  const ProportionalWork work(size);
   try {
     const Mesh mesh = ReadMesh(path);
     CheckReadMesh(mesh);

@@ -5,7 +5,10 @@
 # OUT_DIR/<target>/: the meshes of DATA_DIR/simple and DATA_DIR/plate
 # (default: ../shared/data next to the checkout) converted to ASCII PLY,
 # binary PLY (little endian, double; big endian, float), OBJ and OFF, plus
-# hand-written edge cases of each format and masks. Deterministic: the same
+# hand-written edge cases of each format and masks: the OFF header variants
+# ([ST][C][N][4][n]OFF, binary OFF) and headers declaring huge counts
+# (2^31 - 1 vertices, faces, rows of an extra element with and without
+# properties, list counts of 2^32 - 1), blank lines. Deterministic: the same
 # files every time. Needs python3.
 set -euo pipefail
 out="${1:?usage: $0 OUT_DIR [DATA_DIR]}"
@@ -89,6 +92,28 @@ edge_ply = {
 for name, body in sorted(edge_ply.items()):
     put("ply_ascii_fuzzer", "edge_" + name + ".ply",
         ply_header("ascii", 4, 2, "double", "int") + body)
+# Headers declaring more rows than the file holds.
+BIG = 2147483647
+def huge_ply(fmt, nv, nf, extra, body):
+    return (ply_header(fmt, nv, nf, "double", "int") .replace(
+        "end_header\n", extra + "end_header\n")).encode() + body
+ascii_body = (V + "3 0 1 2\n3 0 2 3\n").encode()
+for name, nv, nf, extra in [
+        ("vertices", BIG, 2, ""), ("faces", 4, BIG, ""),
+        ("extra_no_properties", 4, 2, "element junk %d\n" % BIG),
+        ("extra_uchar", 4, 2, "element junk %d\nproperty uchar a\n" % BIG),
+        ("extra_list", 4, 2, "element junk 1\nproperty list uint uchar a\n")]:
+    put("ply_ascii_fuzzer", "huge_" + name + ".ply",
+        huge_ply("ascii", nv, nf, extra, ascii_body +
+                 (b"4294967295\n" if name == "extra_list" else b"")))
+    body = binary_ply(sq_v, sq_f, False)
+    body = body[body.index(b"end_header\n") + 11:]
+    put("ply_binary_fuzzer", "huge_" + name + ".ply",
+        huge_ply("binary_little_endian", nv, nf, extra, body +
+                 (b"\xff\xff\xff\xff" if name == "extra_list" else b"")))
+put("ply_ascii_fuzzer", "blank_lines.ply",
+    ply_header("ascii", 4, 2, "double", "int") + "\n" * 4000 + V +
+    "\n" * 2000 + "3 0 1 2\n3 0 2 3\n")
 put("ply_ascii_fuzzer", "edge_comments.ply",
     "ply\r\nformat ascii 1.0\r\ncomment c\r\nobj_info o\r\nelement vertex 4\r\n"
     "property float x\r\nproperty float y\r\nproperty float z\r\n"
@@ -122,6 +147,7 @@ edge_obj = {
     "quad": OV + "f 1 2 3 4\n",
     "crlf": (OV + "f 1 2 3\nf 1 3 4\n").replace("\n", "\r\n"),
 }
+edge_obj["blank_lines"] = "\n" * 6000 + OV + "\n\r\n" * 500 + "f 1 2 3\nf 1 3 4\n"
 for name, text in sorted(edge_obj.items()):
     put("obj_fuzzer", "edge_" + name + ".obj", text)
 edge_off = {
@@ -132,13 +158,37 @@ edge_off = {
     "short": "OFF\n4 3 0\n" + V + "3 0 1 2\n3 0 2 3\n",
     "float_index": "OFF\n4 2 0\n" + V + "3 0 1 2\n3 0 2.7 3\n",
 }
+F = "3 0 1 2\n3 0 2 3\n"
+def off_variant(keyword, vertex_suffix, face_suffix=""):
+    return (keyword + "\n4 2 0\n" +
+            "".join(v + vertex_suffix + "\n" for v in V.splitlines()) +
+            "".join(f + face_suffix + "\n" for f in F.splitlines()))
+edge_off.update({
+    "coff": off_variant("COFF", " 192 192 192 255"),
+    "coff_rgb": off_variant("COFF", " 0.1 0.2 0.3", " 1 0 0"),
+    "noff": off_variant("NOFF", " 0 0 1"),
+    "cnoff": off_variant("CNOFF", " 0 0 1 1 1 1 1", " 0 0 0 0"),
+    "stoff": off_variant("STOFF", " 0.5 0.5"),
+    "stcnoff": off_variant("STCNOFF", " 0 0 1 1 1 1 0.5 0.5"),
+    "4off": off_variant("4OFF", " 2"),
+    "4off_w0": off_variant("4OFF", " 0"),
+    "ndim": "nOFF\n3\n4 2 0\n" + V + F,
+    "binary": "OFF BINARY\n4 2 0\n",
+    "huge_vertices": "OFF\n2147483647 2 0\n" + V + F,
+    "huge_faces": "OFF\n4 2147483647 0\n" + V + F,
+    "huge_coff": "COFF 2147483647 2147483647 2147483647\n0 0 0 1 1 1 1\n",
+    "above_int": "OFF\n4294967296 2 0\n" + V + F,
+    "blank_lines": "OFF\n" + "\n" * 4000 + "4 2 0\n" + V + "\n" * 2000 + F,
+})
 for name, text in sorted(edge_off.items()):
     put("off_fuzzer", "edge_" + name + ".off", text)
 for path in sorted(glob.glob(os.path.join(data, "*", "*mask*.txt"))):
     put("mask_fuzzer", os.path.basename(path), open(path).read())
 for name, text in [("simple", "0\n5\n99\n"), ("comments", "# c\n1 2 3 # x\r\n\n4\n"),
                    ("range", "100\n"), ("negative", "-1\n"), ("float", "2.5\n"),
-                   ("huge", "99999999999999999999999\n"), ("binary", "0\n\x00\x01\n")]:
+                   ("huge", "99999999999999999999999\n"), ("binary", "0\n\x00\x01\n"),
+                   ("blank_lines", "\n" * 6000 + "7\n"),
+                   ("repeated", "1 " * 3000 + "\n")]:
     put("mask_fuzzer", "edge_" + name + ".txt", text)
 PY
 for t in "$out"/*/; do

@@ -7,6 +7,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace shellspace;
   const std::string& path = fuzz::ScratchPath("txt");
   fuzz::WriteScratch(path, data, size);
+  const fuzz::ProportionalWork work(size);
   try {
     const std::vector<int> mask = ReadMask(path, 100);
     for (size_t i = 0; i < mask.size(); ++i) {

@@ -7,9 +7,11 @@
 # (fuzz/make_corpus.sh into BUILD_DIR/fuzz-work/corpus). Fails on the first
 # finding (crash, sanitizer report, leak, timeout, an exception other than
 # InputError); the input is kept as BUILD_DIR/fuzz-work/artifacts/<target>-*.
-# Prints executions per second of each target. -use_cmp=0 -use_memmem=0:
-# libFuzzer's comparison-operand dictionaries contain heap addresses (which
-# vary from run to run), so without them a -seed=1 run is reproducible.
+# Prints executions per second of each target. The PLY and OFF targets get
+# a dictionary of their header keywords and limit counts (fuzz/*.dict).
+# -use_cmp=0 -use_memmem=0: libFuzzer's comparison-operand dictionaries
+# contain heap addresses (which vary from run to run), so without them a
+# -seed=1 run is reproducible.
 set -euo pipefail
 build="${1:?usage: $0 BUILD_DIR EXECUTIONS}"
 runs="${2:?usage: $0 BUILD_DIR EXECUTIONS}"
@@ -25,9 +27,14 @@ for t in "${targets[@]}"; do
   exe="$build/fuzz/$t"
   [ -x "$exe" ] || { echo "fuzz: $exe missing (build target 'fuzzers')"; exit 2; }
   log="$work/$t.log"
+  dict=()
+  case "$t" in
+    ply_*) dict=(-dict="$here/ply.dict") ;;
+    off_*) dict=(-dict="$here/off.dict") ;;
+  esac
   start=$(date +%s.%N)
   if TMPDIR="$work/tmp" "$exe" -runs="$runs" -seed=1 -use_cmp=0 -use_memmem=0 -max_len=8192 \
-      -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
+      -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 "${dict[@]}" \
       -artifact_prefix="$work/artifacts/$t-" "$work/corpus/$t" >"$log" 2>&1; then
     end=$(date +%s.%N)
     execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log")

@@ -2,19 +2,22 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
+#include <limits>
 #include <map>
-#include <sstream>
+#include <set>
+#include <string_view>
 
 #include "shellspace/geometry/validation.h"
 #include "shellspace/io/ascii_lowercase.h"
 #include "shellspace/io/atomic_file.h"
+#include "shellspace/io/input_file.h"
 
 namespace shellspace {
 namespace {
@@ -28,7 +31,7 @@ std::string Extension(const std::string& path) {
 // At most `max` characters of `text`, quoted, with every byte outside
 // printable ASCII written as \xNN, and "..." if cut: what an error message
 // may echo of a file's content.
-std::string Excerpt(const std::string& text, size_t max = 24) {
+std::string Excerpt(std::string_view text, size_t max = 24) {
   std::string out = "'";
   for (size_t i = 0; i < text.size() && i < max; ++i) {
     const unsigned char c = static_cast<unsigned char>(text[i]);
@@ -44,76 +47,110 @@ std::string Excerpt(const std::string& text, size_t max = 24) {
   return out + "'";
 }
 
-// The whole file; InputError if it is missing, a directory or unreadable.
-std::string ReadFileBytes(const std::string& path, const std::string& what) {
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error)) {
-    throw InputError(path + ": is a directory, not a " + what);
+// The lines of a text, one at a time, split at '\n' with a trailing '\r'
+// removed, without copying them (a file of blank lines costs no memory per
+// line); polls the stop request every 4096 lines.
+class LineCursor {
+ public:
+  // `text` starts at line `first_line` (1-based) of the file `path`.
+  LineCursor(std::string_view text, size_t first_line, const std::string& path)
+      : text_(text), number_(first_line - 1), ticker_(path) {}
+
+  // The next line, or false at the end of the text.
+  bool Next(std::string_view* line) {
+    if (pos_ >= text_.size()) return false;
+    ticker_.Tick();
+    size_t end = text_.find('\n', pos_);
+    if (end == std::string_view::npos) end = text_.size();
+    *line = text_.substr(pos_, end - pos_);
+    if (!line->empty() && line->back() == '\r') line->remove_suffix(1);
+    pos_ = end + 1;
+    ++number_;
+    return true;
   }
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError("cannot open " + what + " " + path);
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  if (in.bad()) throw InputError("cannot read " + what + " " + path);
-  return bytes.str();
+  // The 1-based file line number of the line Next returned last.
+  size_t number() const { return number_; }
+  // Bytes returned so far (with their line breaks).
+  size_t consumed() const { return std::min(pos_, text_.size()); }
+  // Bytes not yet returned.
+  size_t remaining() const {
+    return pos_ >= text_.size() ? 0 : text_.size() - pos_;
+  }
+
+ private:
+  std::string_view text_;
+  size_t pos_ = 0;
+  size_t number_;
+  ReadStopTicker ticker_;
+};
+
+bool IsSpace(char c) {
+  return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
 }
 
-// Lines of a text, split at '\n', with a trailing '\r' removed.
-std::vector<std::string> SplitLines(const std::string& text) {
-  std::vector<std::string> lines;
-  size_t begin = 0;
-  while (begin < text.size()) {
-    size_t end = text.find('\n', begin);
-    if (end == std::string::npos) end = text.size();
-    std::string line = text.substr(begin, end - begin);
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    lines.push_back(std::move(line));
-    begin = end + 1;
-  }
-  return lines;
-}
-
-// Whitespace-separated tokens of a line (space, tab, \r, \v, \f).
-std::vector<std::string> Tokens(const std::string& line) {
-  std::vector<std::string> tokens;
+// Whitespace-separated tokens of a line (space, tab, \r, \v, \f) into
+// `tokens` (views into `line`).
+void Tokenize(std::string_view line, std::vector<std::string_view>* tokens) {
+  tokens->clear();
   size_t i = 0;
-  const auto space = [](char c) {
-    return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f';
-  };
   while (i < line.size()) {
-    while (i < line.size() && space(line[i])) ++i;
+    while (i < line.size() && IsSpace(line[i])) ++i;
     size_t j = i;
-    while (j < line.size() && !space(line[j])) ++j;
-    if (j > i) tokens.push_back(line.substr(i, j - i));
+    while (j < line.size() && !IsSpace(line[j])) ++j;
+    if (j > i) tokens->push_back(line.substr(i, j - i));
     i = j;
   }
-  return tokens;
 }
 
-bool ParseDouble(const std::string& token, double* value) {
+// `line` up to its first '#'.
+std::string_view WithoutComment(std::string_view line) {
+  const size_t hash = line.find('#');
+  return hash == std::string_view::npos ? line : line.substr(0, hash);
+}
+
+bool ParseDouble(std::string_view token, double* value) {
   if (token.empty()) return false;
+  const std::string text(token);  // strtod needs a terminated string
   char* end = nullptr;
   // strtod, unlike operator>>, parses "nan" and "inf": they are reported as
   // non-finite coordinates by the validation.
-  *value = std::strtod(token.c_str(), &end);
-  return end == token.c_str() + token.size();
+  *value = std::strtod(text.c_str(), &end);
+  return end == text.c_str() + text.size();
 }
 
 // A decimal integer (optional sign, digits only).
-bool ParseInteger(const std::string& token, long long* value) {
+bool ParseInteger(std::string_view token, long long* value) {
   if (token.empty()) return false;
   size_t i = token[0] == '-' || token[0] == '+' ? 1 : 0;
   if (i == token.size() || token.size() > 19) return false;
+  long long magnitude = 0;
   for (size_t k = i; k < token.size(); ++k) {
     if (token[k] < '0' || token[k] > '9') return false;
+    // At most 18 digits (19 characters with the sign) or 19 digits below
+    // 10^19: checked against overflow of the 63-bit magnitude.
+    const int digit = token[k] - '0';
+    if (magnitude > (std::numeric_limits<long long>::max() - digit) / 10) {
+      magnitude = std::numeric_limits<long long>::max();
+      break;
+    }
+    magnitude = magnitude * 10 + digit;
   }
-  *value = std::strtoll(token.c_str(), nullptr, 10);
+  *value = token[0] == '-' ? -magnitude : magnitude;
   return true;
 }
 
 std::string LineTag(size_t line) {
   return " (line " + std::to_string(line) + ")";
 }
+
+// The largest element count a file may declare (indices are int).
+constexpr long long kMaxCount = 2147483647;
+
+// The longest header read (PLY: up to end_header; OFF: up to the counts,
+// comments included): 1 MiB. Real headers take a few hundred bytes; a
+// header of millions of comment or element lines is refused after its
+// first MiB instead of being scanned whole.
+constexpr size_t kMaxHeaderBytes = size_t{1} << 20;
 
 // Collects vertices and triangles read from a file and checks each face's
 // indices against the vertex count on the raw data.
@@ -125,6 +162,14 @@ struct MeshBuilder {
 
   [[noreturn]] void Fail(const std::string& message) const {
     throw InputError(path + ": " + message);
+  }
+
+  // Reserves room for counts a header declared, once they were checked
+  // against the file size.
+  void Reserve(long long num_points, long long num_faces) {
+    points.reserve(static_cast<size_t>(num_points));
+    faces.reserve(static_cast<size_t>(num_faces));
+    face_lines.reserve(static_cast<size_t>(num_faces));
   }
 
   // Checks the 0-based indices of every face against `num_vertices`;
@@ -147,6 +192,9 @@ struct MeshBuilder {
   Mesh Build() const {
     if (points.empty()) Fail("mesh has no vertices");
     if (faces.empty()) Fail("mesh has no faces");
+    if (points.size() > static_cast<size_t>(kMaxCount)) {
+      Fail("more than " + std::to_string(kMaxCount) + " vertices");
+    }
     CheckIndices(static_cast<long long>(points.size()), 0);
     Mesh mesh;
     mesh.positions.resize(static_cast<Eigen::Index>(points.size()), 3);
@@ -163,8 +211,22 @@ struct MeshBuilder {
   }
 };
 
-// The largest element count a file may declare (indices are int).
-constexpr long long kMaxCount = 2147483647;
+// Checks that `rows` rows of at least `row_bytes` bytes each fit in the
+// `*available` bytes left of the file's `data_bytes` bytes of data, before
+// any of them is read or stored, and takes them off `*available`. The error
+// is "`prefix`: the header declares `rows` `noun` of at least ...".
+void CheckRowsFit(const MeshBuilder& b, const std::string& prefix,
+                  long long rows, const std::string& noun, uint64_t row_bytes,
+                  uint64_t* available, uint64_t data_bytes) {
+  if (rows <= 0) return;
+  if (row_bytes == 0 || static_cast<uint64_t>(rows) > *available / row_bytes) {
+    b.Fail(prefix + ": the header declares " + std::to_string(rows) + " " +
+           noun + " of at least " + std::to_string(row_bytes) +
+           " bytes, more than the " + std::to_string(data_bytes) +
+           " bytes of data hold");
+  }
+  *available -= static_cast<uint64_t>(rows) * row_bytes;
+}
 
 // ---------------------------------------------------------------- PLY ----
 
@@ -246,21 +308,47 @@ struct PlyHeader {
   int x = -1, y = -1, z = -1;  // property indices in the vertex element
   int face_list = -1;          // the vertex-index list of the face element
 };
+// The fewest bytes a row of `element` takes: binary, the sizes of its
+// scalars, list counts and the three indices of the face list; ASCII, two
+// bytes (a digit and a separator) per such value.
+uint64_t MinRowBytes(const PlyElement& element, bool is_face, int face_list,
+                     bool binary) {
+  uint64_t bytes = 0;
+  for (size_t p = 0; p < element.properties.size(); ++p) {
+    const PlyProperty& property = element.properties[p];
+    const bool triangle = is_face && static_cast<int>(p) == face_list;
+    if (binary) {
+      bytes += property.is_list
+                   ? TypeSize(property.count_type) +
+                         (triangle ? 3 * TypeSize(property.type) : 0)
+                   : TypeSize(property.type);
+    } else {
+      bytes += 2 * (property.is_list && triangle ? 4 : 1);
+    }
+  }
+  return bytes;
+}
 
-PlyHeader ParsePlyHeader(const std::string& bytes, const MeshBuilder& b) {
+// The header of a PLY file whose first bytes are `bytes` (the whole file, or
+// a prefix of at least kMaxHeaderBytes + 1 bytes: the same result, as no
+// line past that is parsed) and whose size is `file_size`.
+PlyHeader ParsePlyHeader(const std::string& bytes, uint64_t file_size,
+                         const MeshBuilder& b) {
   PlyHeader header;
-  size_t pos = 0, line_number = 0;
+  LineCursor lines(bytes, 1, b.path);
+  std::string_view line;
+  std::vector<std::string_view> t;
+  std::set<std::string, std::less<>> element_names;
   bool have_format = false, ended = false;
-  while (pos < bytes.size()) {
-    size_t end = bytes.find('\n', pos);
-    if (end == std::string::npos) end = bytes.size();
-    std::string line = bytes.substr(pos, end - pos);
-    pos = end + 1;
-    ++line_number;
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    const std::vector<std::string> t = Tokens(line);
-    const std::string where = LineTag(line_number);
-    if (line_number == 1) {
+  while (lines.Next(&line)) {
+    if (lines.consumed() > kMaxHeaderBytes) {
+      b.Fail("PLY header longer than " + std::to_string(kMaxHeaderBytes) +
+             " bytes (no end_header before line " +
+             std::to_string(lines.number()) + ")");
+    }
+    Tokenize(line, &t);
+    const auto where = [&lines] { return LineTag(lines.number()); };
+    if (lines.number() == 1) {
       if (t.size() != 1 || t[0] != "ply") {
         b.Fail("cannot read: not a PLY file (first line " + Excerpt(line) +
                ")");
@@ -268,11 +356,11 @@ PlyHeader ParsePlyHeader(const std::string& bytes, const MeshBuilder& b) {
       continue;
     }
     if (t.empty()) continue;
-    const std::string& keyword = t[0];
+    const std::string_view keyword = t[0];
     if (keyword == "comment" || keyword == "obj_info") continue;
     if (keyword == "format") {
       if (t.size() != 3 || t[2] != "1.0") {
-        b.Fail("malformed PLY format line " + Excerpt(line) + where);
+        b.Fail("malformed PLY format line " + Excerpt(line) + where());
       }
       if (t[1] == "ascii")
         header.format = PlyFormat::kAscii;
@@ -281,51 +369,49 @@ PlyHeader ParsePlyHeader(const std::string& bytes, const MeshBuilder& b) {
       else if (t[1] == "binary_big_endian")
         header.format = PlyFormat::kBigEndian;
       else
-        b.Fail("unknown PLY format " + Excerpt(t[1]) + where);
+        b.Fail("unknown PLY format " + Excerpt(t[1]) + where());
       have_format = true;
     } else if (keyword == "element") {
       PlyElement element;
       if (t.size() != 3 || !ParseInteger(t[2], &element.count) ||
           element.count < 0 || element.count > kMaxCount) {
-        b.Fail("malformed PLY element line " + Excerpt(line) + where);
+        b.Fail("malformed PLY element line " + Excerpt(line) + where());
       }
-      element.name = t[1];
-      for (const PlyElement& other : header.elements) {
-        if (other.name == element.name) {
-          b.Fail("PLY element " + Excerpt(element.name) + " declared twice" +
-                 where);
-        }
+      element.name = std::string(t[1]);
+      if (!element_names.insert(element.name).second) {
+        b.Fail("PLY element " + Excerpt(element.name) + " declared twice" +
+               where());
       }
       header.elements.push_back(element);
     } else if (keyword == "property") {
       if (header.elements.empty())
-        b.Fail("PLY property before element" + where);
+        b.Fail("PLY property before element" + where());
       PlyProperty property;
       bool ok = false;
       if (t.size() == 5 && t[1] == "list") {
         property.is_list = true;
-        ok = ParsePlyType(t[2], &property.count_type) &&
-             ParsePlyType(t[3], &property.type) &&
+        ok = ParsePlyType(std::string(t[2]), &property.count_type) &&
+             ParsePlyType(std::string(t[3]), &property.type) &&
              IsIntegerType(property.count_type);
-        property.name = t[4];
+        property.name = std::string(t[4]);
       } else if (t.size() == 3) {
-        ok = ParsePlyType(t[1], &property.type);
-        property.name = t[2];
+        ok = ParsePlyType(std::string(t[1]), &property.type);
+        property.name = std::string(t[2]);
       }
-      if (!ok) b.Fail("malformed PLY property line " + Excerpt(line) + where);
+      if (!ok) b.Fail("malformed PLY property line " + Excerpt(line) + where());
       header.elements.back().properties.push_back(property);
     } else if (keyword == "end_header") {
-      if (t.size() != 1) b.Fail("malformed PLY end_header line" + where);
+      if (t.size() != 1) b.Fail("malformed PLY end_header line" + where());
       ended = true;
       break;
     } else {
-      b.Fail("unknown PLY header line " + Excerpt(line) + where);
+      b.Fail("unknown PLY header line " + Excerpt(line) + where());
     }
   }
   if (!ended) b.Fail("PLY header has no end_header");
   if (!have_format) b.Fail("PLY header has no format line");
-  header.data_offset = std::min(pos, bytes.size());
-  header.data_line = line_number + 1;
+  header.data_offset = bytes.size() - lines.remaining();
+  header.data_line = lines.number() + 1;
   for (size_t e = 0; e < header.elements.size(); ++e) {
     const PlyElement& element = header.elements[e];
     if (element.name == "vertex") {
@@ -374,6 +460,25 @@ PlyHeader ParsePlyHeader(const std::string& bytes, const MeshBuilder& b) {
   }
   if (header.face_element == -1)
     b.Fail("mesh has no faces (no PLY face element)");
+  // Every declared row must fit in the data after the header, checked before
+  // any row is read or stored: a header cannot make the reader loop over,
+  // or allocate, rows the file does not hold.
+  const bool binary = header.format != PlyFormat::kAscii;
+  const uint64_t data_bytes = file_size - header.data_offset;
+  uint64_t available = data_bytes + (binary ? 0 : 1);  // last line break
+  for (size_t e = 0; e < header.elements.size(); ++e) {
+    const PlyElement& element = header.elements[e];
+    if (element.count > 0 && element.properties.empty()) {
+      b.Fail("PLY element " + Excerpt(element.name) + " declares " +
+             std::to_string(element.count) + " rows but has no properties");
+    }
+    CheckRowsFit(
+        b, "PLY file ends early in element " + Excerpt(element.name),
+        element.count, element.count == 1 ? "row" : "rows",
+        MinRowBytes(element, static_cast<int>(e) == header.face_element,
+                    header.face_list, binary),
+        &available, data_bytes);
+  }
   return header;
 }
 
@@ -434,90 +539,110 @@ void CheckTriangleCount(const MeshBuilder& b, long long r, long long n,
   }
 }
 
+// The name of row `r` of element `e` in errors: "vertex 3", "face 7",
+// "element 'edge' 0".
+std::string RowName(const PlyElement& element, long long r) {
+  return element.name == "vertex" || element.name == "face"
+             ? element.name + " " + std::to_string(r)
+             : "element " + Excerpt(element.name) + " " + std::to_string(r);
+}
+
 void ReadAsciiPlyData(const std::string& bytes, const PlyHeader& header,
                       MeshBuilder* b) {
-  const std::vector<std::string> lines =
-      SplitLines(bytes.substr(header.data_offset));
-  size_t next = 0;  // index into lines
+  LineCursor lines(std::string_view(bytes).substr(header.data_offset),
+                   header.data_line, b->path);
+  std::string_view text;
+  std::vector<std::string_view> t;
+  // The next line with a value, in `t`; false at the end of the file.
+  const auto next_row = [&] {
+    while (lines.Next(&text)) {
+      Tokenize(text, &t);
+      if (!t.empty()) return true;
+    }
+    return false;
+  };
   for (size_t e = 0; e < header.elements.size(); ++e) {
     const PlyElement& element = header.elements[e];
     PlyRow row(header, e);
     for (long long r = 0; r < element.count; ++r) {
-      while (next < lines.size() && Tokens(lines[next]).empty()) ++next;
-      if (next >= lines.size()) {
+      if (!next_row()) {
         b->Fail("PLY file ends early in element " + Excerpt(element.name) +
                 " (" + std::to_string(r) + " of " +
                 std::to_string(element.count) + " read)");
       }
-      const size_t line = header.data_line + next;
-      const std::vector<std::string> t = Tokens(lines[next++]);
-      const std::string what =
-          element.name == "vertex" || element.name == "face"
-              ? element.name + " " + std::to_string(r)
-              : "element " + Excerpt(element.name) + " " + std::to_string(r);
+      const size_t line = lines.number();
       size_t k = 0;
       for (size_t p = 0; p < element.properties.size(); ++p) {
         const PlyProperty& property = element.properties[p];
         long long n = 1;
         if (property.is_list) {
-          if (k >= t.size())
-            b->Fail(what + " has too few values" + LineTag(line));
-          if (!ParseInteger(t[k], &n) || n < 0) {
-            b->Fail(what + " has a malformed list count " + Excerpt(t[k]) +
+          if (k >= t.size()) {
+            b->Fail(RowName(element, r) + " has too few values" +
                     LineTag(line));
+          }
+          if (!ParseInteger(t[k], &n) || n < 0) {
+            b->Fail(RowName(element, r) + " has a malformed list count " +
+                    Excerpt(t[k]) + LineTag(line));
           }
           ++k;
           if (row.IsFaceList(p)) CheckTriangleCount(*b, r, n, line);
+          if (static_cast<unsigned long long>(n) > t.size() - k) {
+            b->Fail(RowName(element, r) + " has too few values" +
+                    LineTag(line));
+          }
         }
         for (long long i = 0; i < n; ++i, ++k) {
-          if (k >= t.size())
-            b->Fail(what + " has too few values" + LineTag(line));
+          if (k >= t.size()) {
+            b->Fail(RowName(element, r) + " has too few values" +
+                    LineTag(line));
+          }
           if (IsIntegerType(property.type)) {
             long long value = 0;
             if (!ParseInteger(t[k], &value)) {
-              b->Fail(what + " has a non-integer value " + Excerpt(t[k]) +
-                      " for " + Excerpt(property.name) + LineTag(line));
+              b->Fail(RowName(element, r) + " has a non-integer value " +
+                      Excerpt(t[k]) + " for " + Excerpt(property.name) +
+                      LineTag(line));
             }
             row.Store(p, i, value, static_cast<double>(value));
           } else {
             double value = 0;
             if (!ParseDouble(t[k], &value)) {
-              b->Fail(what + " has a malformed number " + Excerpt(t[k]) +
-                      LineTag(line));
+              b->Fail(RowName(element, r) + " has a malformed number " +
+                      Excerpt(t[k]) + LineTag(line));
             }
             row.StoreCoordinate(p, value);
           }
         }
       }
       if (k != t.size()) {
-        b->Fail(what + " has " + std::to_string(t.size() - k) +
+        b->Fail(RowName(element, r) + " has " + std::to_string(t.size() - k) +
                 " extra values" + LineTag(line));
       }
       row.Finish(b, line);
     }
   }
-  while (next < lines.size() && Tokens(lines[next]).empty()) ++next;
-  if (next < lines.size()) {
-    b->Fail("extra data after the last PLY element: " + Excerpt(lines[next]) +
-            LineTag(header.data_line + next));
+  if (next_row()) {
+    b->Fail("extra data after the last PLY element: " + Excerpt(text) +
+            LineTag(lines.number()));
   }
 }
 
-// Reads binary scalars of one byte order.
+// Reads binary scalars of one byte order; polls the stop request every
+// 4096 values.
 class BinaryCursor {
  public:
   BinaryCursor(const std::string& bytes, size_t pos, bool big_endian,
-               const MeshBuilder& b)
-      : bytes_(bytes), pos_(pos), big_endian_(big_endian), b_(b) {}
+               const std::string& path)
+      : bytes_(bytes), pos_(pos), big_endian_(big_endian), ticker_(path) {}
 
   size_t remaining() const { return bytes_.size() - pos_; }
 
-  // Reads a scalar of `type`; `integer` is set if it is an integer type.
-  double Read(PlyType type, const std::string& what, long long* integer) {
+  // Reads a scalar of `type`, false if the data ends first; `integer` is
+  // set if it is an integer type.
+  bool Read(PlyType type, double* value, long long* integer) {
+    ticker_.Tick();
     const int size = TypeSize(type);
-    if (remaining() < static_cast<size_t>(size)) {
-      b_.Fail("PLY file ends early in " + what);
-    }
+    if (remaining() < static_cast<size_t>(size)) return false;
     unsigned char raw[8];
     for (int i = 0; i < size; ++i) {
       raw[big_endian_ ? size - 1 - i : i] =
@@ -530,45 +655,49 @@ class BinaryCursor {
       float f;
       const uint32_t u32 = static_cast<uint32_t>(u);
       std::memcpy(&f, &u32, 4);
-      return f;
+      *value = f;
+      return true;
     }
     if (type == PlyType::kFloat64) {
-      double d;
-      std::memcpy(&d, &u, 8);
-      return d;
+      std::memcpy(value, &u, 8);
+      return true;
     }
     // An integer of `size` (at most 4) bytes, two's complement if signed.
-    long long value = static_cast<long long>(u);
+    long long v = static_cast<long long>(u);
     if (IsSignedIntegerType(type) && (u >> (8 * size - 1)) != 0) {
-      value -= 1LL << (8 * size);
+      v -= 1LL << (8 * size);
     }
-    if (integer) *integer = value;
-    return static_cast<double>(value);
+    *integer = v;
+    *value = static_cast<double>(v);
+    return true;
   }
 
  private:
   const std::string& bytes_;
   size_t pos_;
   bool big_endian_;
-  const MeshBuilder& b_;
+  ReadStopTicker ticker_;
 };
 
 void ReadBinaryPlyData(const std::string& bytes, const PlyHeader& header,
                        MeshBuilder* b) {
   BinaryCursor in(bytes, header.data_offset,
-                  header.format == PlyFormat::kBigEndian, *b);
+                  header.format == PlyFormat::kBigEndian, b->path);
   for (size_t e = 0; e < header.elements.size(); ++e) {
     const PlyElement& element = header.elements[e];
     PlyRow row(header, e);
+    const auto ends_early = [&](long long r) {
+      b->Fail("PLY file ends early in element " + Excerpt(element.name) + " (" +
+              std::to_string(r) + " of " + std::to_string(element.count) +
+              " read)");
+    };
     for (long long r = 0; r < element.count; ++r) {
-      const std::string what = "element " + Excerpt(element.name) + " (" +
-                               std::to_string(r) + " of " +
-                               std::to_string(element.count) + " read)";
       for (size_t p = 0; p < element.properties.size(); ++p) {
         const PlyProperty& property = element.properties[p];
         long long n = 1;
+        double value = 0;
         if (property.is_list) {
-          in.Read(property.count_type, what, &n);
+          if (!in.Read(property.count_type, &value, &n)) ends_early(r);
           if (n < 0) {
             b->Fail(element.name + " " + std::to_string(r) +
                     " has a negative list count");
@@ -576,12 +705,12 @@ void ReadBinaryPlyData(const std::string& bytes, const PlyHeader& header,
           if (row.IsFaceList(p)) CheckTriangleCount(*b, r, n, 0);
           if (static_cast<size_t>(n) * TypeSize(property.type) >
               in.remaining()) {
-            b->Fail("PLY file ends early in " + what);
+            ends_early(r);
           }
         }
         for (long long i = 0; i < n; ++i) {
           long long integer = 0;
-          const double value = in.Read(property.type, what, &integer);
+          if (!in.Read(property.type, &value, &integer)) ends_early(r);
           row.Store(p, i, integer, value);
         }
       }
@@ -595,7 +724,11 @@ void ReadBinaryPlyData(const std::string& bytes, const PlyHeader& header,
 }
 
 Mesh ReadPly(const std::string& bytes, MeshBuilder* b) {
-  const PlyHeader header = ParsePlyHeader(bytes, *b);
+  const PlyHeader header = ParsePlyHeader(bytes, bytes.size(), *b);
+  if (header.vertex_element >= 0 && header.face_element >= 0) {
+    b->Reserve(header.elements[header.vertex_element].count,
+               header.elements[header.face_element].count);
+  }
   if (header.format == PlyFormat::kAscii) {
     ReadAsciiPlyData(bytes, header, b);
   } else {
@@ -608,48 +741,49 @@ Mesh ReadPly(const std::string& bytes, MeshBuilder* b) {
 // ---------------------------------------------------------------- OBJ ----
 
 Mesh ReadObj(const std::string& bytes, MeshBuilder* b) {
-  const std::vector<std::string> lines = SplitLines(bytes);
-  for (size_t l = 0; l < lines.size(); ++l) {
-    std::string line = lines[l];
-    const auto hash = line.find('#');
-    if (hash != std::string::npos) line.resize(hash);
-    const std::vector<std::string> t = Tokens(line);
+  LineCursor lines(bytes, 1, b->path);
+  std::string_view text;
+  std::vector<std::string_view> t;
+  while (lines.Next(&text)) {
+    Tokenize(WithoutComment(text), &t);
     if (t.empty()) continue;
-    const std::string where = LineTag(l + 1);
-    const std::string& keyword = t[0];
+    const size_t l = lines.number();
+    const auto where = [l] { return LineTag(l); };
+    const std::string_view keyword = t[0];
     if (keyword == "v") {
       // x y z, optionally w or an r g b colour.
       if (t.size() != 4 && t.size() != 5 && t.size() != 7) {
         b->Fail("vertex " + std::to_string(b->points.size()) + " has " +
                 std::to_string(t.size() - 1) +
-                " values (expected x y z [w | r g b])" + where);
+                " values (expected x y z [w | r g b])" + where());
       }
       std::array<double, 3> p{0, 0, 0};
       for (size_t k = 1; k < t.size(); ++k) {
         double value = 0;
         if (!ParseDouble(t[k], &value)) {
           b->Fail("vertex " + std::to_string(b->points.size()) +
-                  " has a malformed number " + Excerpt(t[k]) + where);
+                  " has a malformed number " + Excerpt(t[k]) + where());
         }
         if (k <= 3) p[k - 1] = value;
       }
       b->points.push_back(p);
     } else if (keyword == "f") {
       const long long r = static_cast<long long>(b->faces.size());
-      CheckTriangleCount(*b, r, static_cast<long long>(t.size()) - 1, l + 1);
+      CheckTriangleCount(*b, r, static_cast<long long>(t.size()) - 1, l);
       std::array<long long, 3> f{0, 0, 0};
       for (int c = 0; c < 3; ++c) {
         // v, v/vt, v//vn or v/vt/vn: the vertex index is the first part.
-        const std::string& token = t[c + 1];
-        const std::string index = token.substr(0, token.find('/'));
+        const std::string_view token = t[c + 1];
+        const std::string_view index = token.substr(0, token.find('/'));
         long long value = 0;
         if (!ParseInteger(index, &value)) {
           b->Fail("face " + std::to_string(r) +
-                  " has a non-integer vertex index " + Excerpt(token) + where);
+                  " has a non-integer vertex index " + Excerpt(token) +
+                  where());
         }
         if (value == 0) {
           b->Fail("face " + std::to_string(r) +
-                  " has vertex index 0 (OBJ indices start at 1)" + where);
+                  " has vertex index 0 (OBJ indices start at 1)" + where());
         }
         // Negative indices count back from the last vertex read so far.
         f[c] = value > 0 ? value - 1
@@ -657,18 +791,18 @@ Mesh ReadObj(const std::string& bytes, MeshBuilder* b) {
         if (value < 0 && f[c] < 0) {
           b->Fail("face " + std::to_string(r) + " has vertex index " +
                   std::to_string(value) + " before vertex " +
-                  std::to_string(-value) + " is defined" + where);
+                  std::to_string(-value) + " is defined" + where());
         }
       }
       b->faces.push_back(f);
-      b->face_lines.push_back(l + 1);
+      b->face_lines.push_back(l);
     } else if (keyword == "vt" || keyword == "vn" || keyword == "vp" ||
                keyword == "g" || keyword == "o" || keyword == "s" ||
                keyword == "usemtl" || keyword == "mtllib") {
       continue;  // texture, normals, groups, materials: not used
     } else {
       b->Fail("unsupported OBJ statement " + Excerpt(keyword) +
-              " (a mesh has only v and f lines)" + where);
+              " (a mesh has only v and f lines)" + where());
     }
   }
   b->CheckIndices(static_cast<long long>(b->points.size()), 1);
@@ -677,67 +811,184 @@ Mesh ReadObj(const std::string& bytes, MeshBuilder* b) {
 
 // ---------------------------------------------------------------- OFF ----
 
-Mesh ReadOff(const std::string& bytes, MeshBuilder* b) {
-  const std::vector<std::string> lines = SplitLines(bytes);
-  // Non-empty lines without comments, with their line numbers.
-  std::vector<std::pair<std::vector<std::string>, size_t>> rows;
-  for (size_t l = 0; l < lines.size(); ++l) {
-    std::string line = lines[l];
-    const auto hash = line.find('#');
-    if (hash != std::string::npos) line.resize(hash);
-    std::vector<std::string> t = Tokens(line);
-    if (!t.empty()) rows.emplace_back(std::move(t), l + 1);
+// The header keyword of an OFF file, [ST][C][N][4][n]OFF (Geomview's OFF
+// format): which optional columns each vertex line has after x y z.
+struct OffKeyword {
+  bool texture = false;      // ST: s t
+  bool colour = false;       // C: r g b [a]
+  bool normal = false;       // N: nx ny nz
+  bool homogeneous = false;  // 4: x y z w
+  bool dimension = false;    // n: the vertex dimension is declared (refused)
+};
+
+bool ParseOffKeyword(std::string_view word, OffKeyword* k) {
+  const auto take = [&word](std::string_view prefix) {
+    if (word.substr(0, prefix.size()) != prefix) return false;
+    word.remove_prefix(prefix.size());
+    return true;
+  };
+  k->texture = take("ST");
+  k->colour = take("C");
+  k->normal = take("N");
+  k->homogeneous = take("4");
+  k->dimension = take("n");
+  return word == "OFF";
+}
+
+// Reads the lines of an OFF file that hold values (comments and blank lines
+// skipped): Next fills `t` with the tokens of the next one.
+class OffRows {
+ public:
+  OffRows(const std::string& bytes, const MeshBuilder& b)
+      : lines_(bytes, 1, b.path), b_(b) {}
+  // The header (keyword and counts) was read: no limit from here on.
+  void EndHeader() { in_header_ = false; }
+  bool Next() {
+    std::string_view text;
+    while (lines_.Next(&text)) {
+      if (in_header_ && lines_.consumed() > kMaxHeaderBytes) {
+        b_.Fail("OFF header longer than " + std::to_string(kMaxHeaderBytes) +
+                " bytes (no vertex and face counts before line " +
+                std::to_string(lines_.number()) + ")");
+      }
+      Tokenize(WithoutComment(text), &t);
+      if (!t.empty()) {
+        raw = text;
+        return true;
+      }
+    }
+    return false;
   }
-  size_t next = 0;
-  if (rows.empty() || rows[0].first[0] != "OFF") {
+  size_t line() const { return lines_.number(); }
+  size_t consumed() const { return lines_.consumed(); }
+
+  std::vector<std::string_view> t;  // tokens of the current line
+  std::string_view raw;             // the current line as it is
+
+ private:
+  LineCursor lines_;
+  const MeshBuilder& b_;
+  bool in_header_ = true;
+};
+
+// What the header of an OFF file declares.
+struct OffHeader {
+  OffKeyword kind;
+  std::string keyword;
+  long long nv = 0, nf = 0;
+};
+
+// Reads the header (keyword and counts) of `rows`, an OFF file of
+// `file_size` bytes (`rows` may hold a prefix of at least kMaxHeaderBytes + 1
+// bytes: the same result), and checks the counts against the file size.
+OffHeader ParseOffHeader(OffRows& rows, uint64_t file_size,
+                         const MeshBuilder* b) {
+  OffHeader header;
+  OffKeyword& kind = header.kind;
+  if (!rows.Next() || !ParseOffKeyword(rows.t[0], &kind)) {
     b->Fail("cannot read: not an OFF file (no OFF header" +
-            std::string(rows.empty()
+            std::string(rows.t.empty()
                             ? ")"
-                            : ", first line " +
-                                  Excerpt(lines[rows[0].second - 1]) + ")"));
+                            : ", first line " + Excerpt(rows.raw) + ")"));
   }
-  std::vector<std::string> counts(rows[0].first.begin() + 1,
-                                  rows[0].first.end());
-  size_t counts_line = rows[0].second;
-  ++next;
+  const std::string& keyword = header.keyword = std::string(rows.t[0]);
+  if (kind.dimension) {
+    b->Fail("cannot read " + keyword +
+            ": OFF with a declared vertex dimension is not read (a shell's "
+            "vertices are 3-D: write OFF)" +
+            LineTag(rows.line()));
+  }
+  std::vector<std::string_view> counts(rows.t.begin() + 1, rows.t.end());
+  if (!counts.empty() && counts[0] == "BINARY") {
+    b->Fail("cannot read " + keyword +
+            " BINARY: binary OFF is not read "
+            "(write ASCII OFF or binary PLY)" +
+            LineTag(rows.line()));
+  }
+  size_t counts_line = rows.line();
   if (counts.empty()) {
-    if (next >= rows.size()) b->Fail("OFF file has no vertex and face counts");
-    counts = rows[next].first;
-    counts_line = rows[next].second;
-    ++next;
+    if (!rows.Next()) b->Fail("OFF file has no vertex and face counts");
+    counts = rows.t;
+    counts_line = rows.line();
   }
-  long long nv = 0, nf = 0, ne = 0;
+  long long& nv = header.nv;
+  long long& nf = header.nf;
+  long long ne = 0;
   if (counts.size() != 3 || !ParseInteger(counts[0], &nv) ||
       !ParseInteger(counts[1], &nf) || !ParseInteger(counts[2], &ne) ||
       nv < 0 || nf < 0 || ne < 0 || nv > kMaxCount || nf > kMaxCount) {
     b->Fail("malformed OFF counts line (expected 'vertices faces edges')" +
             LineTag(counts_line));
   }
-  for (long long i = 0; i < nv; ++i, ++next) {
-    if (next >= rows.size()) {
+  rows.EndHeader();
+  // Every declared vertex and face must fit in the rest of the file, checked
+  // before any is read or stored: a vertex line takes 6 bytes at least (x y
+  // z: two bytes a value; the variant's columns are not counted, so that a
+  // line without them is reported as such), a face line 8 (3 i j k).
+  const uint64_t data_bytes = file_size - rows.consumed();
+  uint64_t available = data_bytes + 1;  // the last line break
+  CheckRowsFit(*b, "OFF file ends early", nv, "vertices", 2 * 3, &available,
+               data_bytes);
+  CheckRowsFit(*b, "OFF file ends early", nf, "faces", 2 * 4, &available,
+               data_bytes);
+  return header;
+}
+
+Mesh ReadOff(const std::string& bytes, MeshBuilder* b) {
+  OffRows rows(bytes, *b);
+  const OffHeader header = ParseOffHeader(rows, bytes.size(), b);
+  const OffKeyword& kind = header.kind;
+  const std::string& keyword = header.keyword;
+  const long long nv = header.nv, nf = header.nf;
+  // The values of a vertex line: x y z [w] [nx ny nz] [r g b [a]] [s t].
+  const size_t coordinates = kind.homogeneous ? 4 : 3;
+  const size_t before_colour = coordinates + (kind.normal ? 3 : 0);
+  const size_t min_values =
+      before_colour + (kind.colour ? 3 : 0) + (kind.texture ? 2 : 0);
+  const size_t max_values = min_values + (kind.colour ? 1 : 0);
+  const std::string expected =
+      std::to_string(min_values) +
+      (max_values > min_values ? " or " + std::to_string(max_values) : "") +
+      (keyword == "OFF" ? "" : " (" + keyword + ")");
+  b->Reserve(nv, nf);
+  for (long long i = 0; i < nv; ++i) {
+    if (!rows.Next()) {
       b->Fail("OFF file ends early at vertex " + std::to_string(i) + " of " +
               std::to_string(nv));
     }
-    const auto& [t, line] = rows[next];
-    if (t.size() != 3) {
+    const std::vector<std::string_view>& t = rows.t;
+    if (t.size() != min_values && t.size() != max_values) {
       b->Fail("vertex " + std::to_string(i) + " has " +
-              std::to_string(t.size()) + " values, expected 3" + LineTag(line));
+              std::to_string(t.size()) + " values, expected " + expected +
+              LineTag(rows.line()));
     }
-    std::array<double, 3> p{0, 0, 0};
-    for (int c = 0; c < 3; ++c) {
-      if (!ParseDouble(t[c], &p[c])) {
+    double values[4] = {0, 0, 0, 1};
+    for (size_t c = 0; c < t.size(); ++c) {
+      double value = 0;
+      if (!ParseDouble(t[c], &value)) {
         b->Fail("vertex " + std::to_string(i) + " has a malformed number " +
-                Excerpt(t[c]) + LineTag(line));
+                Excerpt(t[c]) + LineTag(rows.line()));
       }
+      if (c < coordinates) values[c] = value;
     }
-    b->points.push_back(p);
+    if (kind.homogeneous) {
+      // x y z w is the point (x/w, y/w, z/w).
+      if (values[3] == 0 || !std::isfinite(values[3])) {
+        b->Fail("vertex " + std::to_string(i) +
+                " has the homogeneous coordinate w = " + Excerpt(t[3]) +
+                " (a point at infinity)" + LineTag(rows.line()));
+      }
+      for (int c = 0; c < 3; ++c) values[c] /= values[3];
+    }
+    b->points.push_back({values[0], values[1], values[2]});
   }
-  for (long long r = 0; r < nf; ++r, ++next) {
-    if (next >= rows.size()) {
+  for (long long r = 0; r < nf; ++r) {
+    if (!rows.Next()) {
       b->Fail("OFF file ends early at face " + std::to_string(r) + " of " +
               std::to_string(nf));
     }
-    const auto& [t, line] = rows[next];
+    const std::vector<std::string_view>& t = rows.t;
+    const size_t line = rows.line();
     long long n = 0;
     if (!ParseInteger(t[0], &n)) {
       b->Fail("face " + std::to_string(r) + " has a malformed vertex count " +
@@ -769,9 +1020,9 @@ Mesh ReadOff(const std::string& bytes, MeshBuilder* b) {
     b->faces.push_back(f);
     b->face_lines.push_back(line);
   }
-  if (next < rows.size()) {
-    b->Fail("extra data after the " + std::to_string(nf) + " faces: " +
-            Excerpt(lines[rows[next].second - 1]) + LineTag(rows[next].second));
+  if (rows.Next()) {
+    b->Fail("extra data after the " + std::to_string(nf) +
+            " faces: " + Excerpt(rows.raw) + LineTag(rows.line()));
   }
   b->CheckIndices(nv, 0);
   return b->Build();
@@ -789,12 +1040,27 @@ Mesh ReadMesh(const std::string& path) {
     throw InputError("unsupported mesh format '" + ext + "' of " + path +
                      " (use .ply, .obj or .off)");
   }
-  const std::string bytes = ReadFileBytes(path, "mesh file");
+  InputFile file(path, "mesh file", kMaxMeshFileBytes);
   MeshBuilder builder;
   builder.path = path;
+  if (ext != "obj") {
+    // The header first, from the first MiB: one whose counts the file size
+    // cannot hold is refused before the rest of the file is read.
+    const std::string& prefix = file.Read(kMaxHeaderBytes + 1);
+    const uint64_t size =
+        std::max<uint64_t>(static_cast<uint64_t>(file.size()), prefix.size());
+    if (ext == "ply") {
+      ParsePlyHeader(prefix, size, builder);
+    } else {
+      OffRows rows(prefix, builder);
+      ParseOffHeader(rows, size, &builder);
+    }
+  }
+  const std::string bytes = file.ReadAll();
   const Mesh mesh = ext == "ply"   ? ReadPly(bytes, &builder)
                     : ext == "obj" ? ReadObj(bytes, &builder)
                                    : ReadOff(bytes, &builder);
+  CheckReadStop(path);
   ValidateMeshStructure(mesh, path);
   return mesh;
 }
@@ -835,32 +1101,38 @@ void WriteMesh(const Mesh& mesh, const std::string& path) {
 }
 
 std::vector<int> ReadMask(const std::string& path, int num_vertices) {
-  const std::string bytes = ReadFileBytes(path, "mask file");
+  const std::string bytes = ReadInputFile(path, "mask file", kMaxMaskFileBytes);
   if (bytes.find('\0') != std::string::npos) {
     throw InputError(path + ": not a text file (it contains NUL bytes)");
   }
-  const std::vector<std::string> lines = SplitLines(bytes);
-  std::vector<int> mask;
-  for (size_t l = 0; l < lines.size(); ++l) {
-    std::string line = lines[l];
-    const auto hash = line.find('#');
-    if (hash != std::string::npos) line.resize(hash);
-    const std::string where = path + ":" + std::to_string(l + 1) + ": ";
-    for (const std::string& token : Tokens(line)) {
+  // One flag per vertex: the mask's memory is bounded by the mesh, however
+  // often the file repeats an index.
+  std::vector<char> in_mask(static_cast<size_t>(std::max(num_vertices, 0)), 0);
+  LineCursor lines(bytes, 1, path);
+  std::string_view text;
+  std::vector<std::string_view> tokens;
+  while (lines.Next(&text)) {
+    Tokenize(WithoutComment(text), &tokens);
+    for (const std::string_view token : tokens) {
+      const auto where = [&] {
+        return path + ":" + std::to_string(lines.number()) + ": ";
+      };
       long long value = 0;
       if (!ParseInteger(token, &value)) {
-        throw InputError(where + "not a vertex index: " + Excerpt(token));
+        throw InputError(where() + "not a vertex index: " + Excerpt(token));
       }
       if (value < 0 || value >= num_vertices) {
-        throw InputError(where + "vertex index " + Excerpt(token) +
+        throw InputError(where() + "vertex index " + Excerpt(token) +
                          " out of range for a mesh with " +
                          std::to_string(num_vertices) + " vertices");
       }
-      mask.push_back(static_cast<int>(value));
+      in_mask[static_cast<size_t>(value)] = 1;
     }
   }
-  std::sort(mask.begin(), mask.end());
-  mask.erase(std::unique(mask.begin(), mask.end()), mask.end());
+  std::vector<int> mask;
+  for (size_t v = 0; v < in_mask.size(); ++v) {
+    if (in_mask[v]) mask.push_back(static_cast<int>(v));
+  }
   return mask;
 }
 

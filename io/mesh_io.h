@@ -16,8 +16,21 @@ namespace shellspace {
 // binary_little_endian, binary_big_endian; a vertex element with x, y, z and
 // a face element with a vertex_indices list, other elements and properties
 // read and ignored), .obj (v and f lines; vt, vn, vp, g, o, s, usemtl, mtllib
-// ignored; f v/vt/vn and negative indices accepted), .off (optional r g b [a]
-// face colours). All formats go through the same checks, on the raw file
+// ignored; f v/vt/vn and negative indices accepted), .off (the header OFF or
+// a variant [ST][C][N][4]OFF: per-vertex normals N, colours C (r g b [a])
+// and texture coordinates ST read and ignored, 4OFF's homogeneous x y z w
+// read as x/w, y/w, z/w; optional r g b [a] face colours ignored; nOFF and
+// binary OFF refused). The file must be a regular file of at most
+// kMaxMeshFileBytes (io/input_file.h: FIFOs, devices, directories and
+// sockets are refused without blocking or reading), a PLY or OFF header
+// (up to end_header, or the counts) must end within its first MiB, and
+// every element count
+// a header declares must fit in the file's size (at least two bytes per
+// ASCII value, the type sizes in binary PLY; an element of no properties
+// with rows is refused) before a row is read or stored: the memory of a
+// read is bounded by a few times the file size, and a stop request
+// (SetReadStopPoll) ends it within a few thousand lines or rows. All formats
+// go through the same checks, on the raw file
 // data: every face a triangle of integer indices in range, no missing,
 // extra or malformed values, nothing after the declared elements (PLY, OFF),
 // then ValidateMeshStructure (geometry/validation.h: finite coordinates,
@@ -41,9 +54,10 @@ StreamWriter MeshWriter(const Mesh& mesh, const std::string& path);
 // Reads a vertex mask: 0-based vertex indices separated by white space, '#'
 // starts a comment. Throws InputError (naming the file, and the line for a
 // bad entry, with at most a short escaped excerpt of it) for a missing or
-// unreadable file, a directory, a binary file (NUL bytes), a token that is
-// not a decimal integer, or an index outside [0, num_vertices). Returns
-// sorted unique indices.
+// unreadable file, anything but a regular file of at most kMaxMaskFileBytes
+// (io/input_file.h), a binary file (NUL bytes), a token that is not a
+// decimal integer, or an index outside [0, num_vertices). Returns sorted
+// unique indices (memory: one byte per vertex, however long the file).
 std::vector<int> ReadMask(const std::string& path, int num_vertices);
 
 }  // namespace shellspace

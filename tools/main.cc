@@ -20,6 +20,7 @@
 
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/geometry/openmp_threads.h"
+#include "shellspace/io/input_file.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/run_output.h"
 #include "shellspace/tools/run_status.h"
@@ -167,6 +168,40 @@ void ApplyDefaultsAndValidate(const Verb& verb) {
   }
 }
 
+// Checks the files gflags' --flagfile would read (on the command line and,
+// recursively, in those files; a value is a comma-separated list) before
+// gflags reads them: a regular file of at most 1 MiB, opened without
+// blocking, so a FIFO or /dev/zero is one line (InputError), not a hang or
+// a read until memory runs out.
+void CheckFlagFiles(const std::vector<std::string>& args, int depth = 0) {
+  for (size_t i = 0; i < args.size(); ++i) {
+    std::string arg = args[i];
+    while (!arg.empty() && (arg[0] == ' ' || arg[0] == '\t')) arg.erase(0, 1);
+    const size_t name = arg.rfind("--", 0) == 0  ? 2
+                        : arg.rfind("-", 0) == 0 ? 1
+                                                 : 0;
+    if (name == 0 || arg.compare(name, 8, "flagfile") != 0) continue;
+    std::string value;
+    if (arg.size() > name + 8 && arg[name + 8] == '=') {
+      value = arg.substr(name + 9);
+    } else if (arg.size() == name + 8 && i + 1 < args.size()) {
+      value = args[++i];
+    } else {
+      continue;  // another flag, or no value (gflags' error)
+    }
+    if (depth > 8) throw InputError("flag files nested more than 8 deep");
+    std::stringstream list(value);
+    for (std::string file; std::getline(list, file, ',');) {
+      if (file.empty()) continue;
+      std::stringstream lines(
+          ReadInputFile(file, "flag file", kMaxFlagFileBytes));
+      std::vector<std::string> nested;
+      for (std::string line; std::getline(lines, line);) nested.push_back(line);
+      CheckFlagFiles(nested, depth + 1);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace shellspace
 
@@ -218,6 +253,13 @@ int main(int argc, char** argv) {
       return 0;
     }
   }
+  try {
+    shellspace::CheckFlagFiles(
+        std::vector<std::string>(argv + first_flag, argv + argc));
+  } catch (const shellspace::InputError& error) {
+    std::cerr << "shellspace " << name << ": error: " << error.what() << "\n";
+    return 1;
+  }
   // Let gflags parse everything after the verb.
   std::vector<char*> args;
   std::string program = std::string(argv[0]) + " " + name;
@@ -254,6 +296,11 @@ int main(int argc, char** argv) {
     shellspace::ApplyDefaultsAndValidate(verb);
     shellspace::InstallStopHandlers(
         shellspace::FindFlag(verb.flags, "time_limit") ? FLAGS_time_limit : 0);
+    // SIGINT and SIGTERM end a long read of an input (io/input_file.h); the
+    // time limit stops solves only.
+    shellspace::SetReadStopPoll([] {
+      return shellspace::RequestedStop() != shellspace::StopCause::kNone;
+    });
     const int code = verb.run();
     const shellspace::StopCause stop = shellspace::RequestedStop();
     if (code != 0 || stop == shellspace::StopCause::kNone) return code;
@@ -266,6 +313,15 @@ int main(int argc, char** argv) {
     if (!unmet.empty()) std::cerr << "; not converged: " << unmet;
     std::cerr << "\n";
     return shellspace::StopExitCode(stop);
+  } catch (const shellspace::ReadStopped& error) {
+    // A signal while an input was read: nothing to write.
+    const shellspace::StopCause stop = shellspace::RequestedStop();
+    std::cerr << "shellspace " << name << ": stopped ("
+              << shellspace::StopCauseText(stop) << ") while reading "
+              << error.path() << "\n";
+    return stop == shellspace::StopCause::kNone
+               ? 1
+               : shellspace::StopExitCode(stop);
   } catch (const shellspace::InputError& error) {
     std::cerr << "shellspace " << name << ": error: " << error.what() << "\n";
     return 1;

@@ -224,6 +224,113 @@ TEST(MeshReaderTest, DirectoryIsNotAMesh) {
             dir + "/d.ply: is a directory, not a mesh file");
 }
 
+// The OFF header variants [ST][C][N][4]OFF: the unit square with each
+// variant's extra vertex columns (normals, colours with and without alpha,
+// texture coordinates) and face colours reads as the plain square; 4OFF's
+// homogeneous coordinates are divided by w.
+TEST(MeshReaderTest, OffHeaderVariantsReadTheSquare) {
+  const std::string dir = testing::TempDir();
+  const char* xyz[4] = {"0 0 0", "1 0 0", "1 1 0", "0 1 0"};
+  struct Case {
+    const char* keyword;
+    const char* vertex_suffix;  // appended to every vertex line
+    const char* face_suffix;    // appended to every face line
+  };
+  const Case cases[] = {
+      {"OFF", "", ""},
+      {"OFF", "", " 255 0 0"},
+      {"OFF", "", " 0.5 0.5 0.5 1"},
+      {"COFF", " 192 192 192 255", ""},
+      {"COFF", " 0.2 0.4 0.6", " 1 0 0"},
+      {"NOFF", " 0 0 1", ""},
+      {"CNOFF", " 0 0 -1 1 1 1 1", ""},
+      {"CNOFF", " 0 0 -1 1 1 1", " 0 0 0 0"},
+      {"STOFF", " 0.25 0.75", ""},
+      {"STCOFF", " 10 20 30 0.25 0.75", ""},
+      {"STNOFF", " 0 0 1 0.25 0.75", ""},
+      {"STCNOFF", " 0 0 1 10 20 30 40 0.25 0.75", ""},
+      {"4OFF", " 1", ""},
+      {"C4OFF", " 1 255 255 255", ""},
+  };
+  int read = 0;
+  for (const Case& c : cases) {
+    std::string text = std::string(c.keyword) + "\n# a comment\n4 2 0\n";
+    for (const char* v : xyz) text += std::string(v) + c.vertex_suffix + "\n";
+    text += std::string("3 0 1 2") + c.face_suffix + "\n3 0 2 3" +
+            c.face_suffix + "\n";
+    const std::string path =
+        Write(dir + "/" + c.keyword + std::to_string(read) + ".off", text);
+    SCOPED_TRACE(text);
+    const Mesh mesh = ReadMesh(path);
+    ASSERT_EQ(mesh.num_vertices(), 4);
+    ASSERT_EQ(mesh.num_faces(), 2);
+    EXPECT_EQ(mesh.positions.row(2), Eigen::RowVector3d(1, 1, 0));
+    EXPECT_EQ(mesh.faces.row(1), Eigen::RowVector3i(0, 2, 3));
+    ++read;
+  }
+  EXPECT_EQ(read, 14);
+  // 4OFF: x y z w is (x/w, y/w, z/w).
+  const Mesh halved = ReadMesh(
+      Write(dir + "/w2.off", "4OFF 3 1 0\n0 0 0 2\n1 0 0 2\n0 4 1 2\n3 0 1 2\n"));
+  EXPECT_EQ(halved.positions.row(1), Eigen::RowVector3d(0.5, 0, 0));
+  EXPECT_EQ(halved.positions.row(2), Eigen::RowVector3d(0, 2, 0.5));
+}
+
+TEST(MeshReaderTest, OffVariantDefectsAreOneLine) {
+  const std::string dir = testing::TempDir();
+  // The square in an OFF variant with `suffix` after every vertex's x y z.
+  const auto off = [](const std::string& keyword, const std::string& suffix) {
+    std::string text = keyword + "\n4 2 0\n";
+    for (const char* v : {"0 0 0", "1 0 0", "1 1 0", "0 1 0"}) {
+      text += v + suffix + "\n";
+    }
+    return text + "3 0 1 2\n3 0 2 3\n";
+  };
+  struct Case {
+    std::string text, expected;
+  };
+  const Case cases[] = {
+      {off("COFF", ""),
+       "vertex 0 has 3 values, expected 6 or 7 (COFF) (line 3)"},
+      {off("NOFF", " 0 0 1 1"),
+       "vertex 0 has 7 values, expected 6 (NOFF) (line 3)"},
+      {off("OFF", " 192 192 192"),
+       "vertex 0 has 6 values, expected 3 (line 3)"},
+      {off("CNOFF", " 0 0 1 r g b"),
+       "vertex 0 has a malformed number 'r' (line 3)"},
+      {off("4OFF", " 0"),
+       "vertex 0 has the homogeneous coordinate w = '0' (a point at "
+       "infinity) (line 3)"},
+      {"nOFF\n3\n4 2 0\n",
+       "cannot read nOFF: OFF with a declared vertex dimension is not read (a "
+       "shell's vertices are 3-D: write OFF) (line 1)"},
+      {"CnOFF 3 4 2 0\n",
+       "cannot read CnOFF: OFF with a declared vertex dimension is not read (a "
+       "shell's vertices are 3-D: write OFF) (line 1)"},
+      {"OFF BINARY\n",
+       "cannot read OFF BINARY: binary OFF is not read (write ASCII OFF or "
+       "binary PLY) (line 1)"},
+      {"CONF\n4 2 0\n",
+       "cannot read: not an OFF file (no OFF header, first line 'CONF')"},
+      {"NCOFF\n4 2 0\n",
+       "cannot read: not an OFF file (no OFF header, first line 'NCOFF')"},
+      {"OFF\n4 2 0\n0 0 0\n1 0 0\n1 1 0\n0 1 0\n3 0 1 2 0.5\n3 0 2 3\n",
+       "face 0 has 4 values after the count (expected 3 indices [and a "
+       "colour]) (line 7)"},
+      {"COFF\n4 2 0\n0 0 0 1 1 1\n1 0 0 1 1 1\n1 1 0 1 1 1\n0 1 0 1 1 1\n"
+       "3 0 1 2 red 0 0\n3 0 2 3\n",
+       "face 0 has a malformed colour 'red' (line 7)"},
+  };
+  int n = 0;
+  for (const Case& c : cases) {
+    const std::string path =
+        Write(dir + "/defect" + std::to_string(n++) + ".off", c.text);
+    EXPECT_EQ(ReadError(path, /*read_only=*/true), path + ": " + c.expected)
+        << c.text;
+  }
+  EXPECT_EQ(n, 12);
+}
+
 // Mask reader: each defect names the file (and the line of a bad entry).
 TEST(MeshReaderTest, MaskDefects) {
   const std::string dir = testing::TempDir();
@@ -233,7 +340,8 @@ TEST(MeshReaderTest, MaskDefects) {
   };
   const Case cases[] = {
       {dir + "/mask_dir", dir + "/mask_dir: is a directory, not a mask file"},
-      {dir + "/missing.txt", "cannot open mask file " + dir + "/missing.txt"},
+      {dir + "/missing.txt", "cannot open mask file " + dir +
+                                 "/missing.txt (No such file or directory)"},
       {Write(dir + "/binary.txt", std::string("0\n\x00\x01\xfe", 5)),
        dir + "/binary.txt: not a text file (it contains NUL bytes)"},
       {Write(dir + "/high.txt", "0\n1 \xff\xfe\n"),
@@ -260,6 +368,17 @@ TEST(MeshReaderTest, MaskDefects) {
   }
   EXPECT_EQ(ReadMask(Write(dir + "/ok.txt", "3 1\n# c\n1\r\n0 # x\n"), 4),
             (std::vector<int>{0, 1, 3}));
+}
+
+// A real COFF file: CGAL's dino.off (per-vertex colours r g b a), read with
+// its colours ignored; its first and last vertex and face as printed.
+TEST(MeshReaderDataTest, CgalDinoCoffReads) {
+  const Mesh dino = testing::LoadData("cgal/dino.off");
+  ASSERT_EQ(dino.num_vertices(), 3916);
+  ASSERT_EQ(dino.num_faces(), 7828);
+  EXPECT_EQ(dino.positions.row(0),
+            Eigen::RowVector3d(0.991441, -0.544272, -0.555859));
+  EXPECT_EQ(dino.faces.row(7827), Eigen::RowVector3i(1859, 2191, 1904));
 }
 
 }  // namespace
