@@ -49,7 +49,10 @@ FlagTable DemoFlags() {
 
 int RunDemo() {
   const std::string dir = FLAGS_output;
-  RunPaths().OutputDirectory("output", dir).Check();
+  RunPaths()
+      .OutputDirectory("output", dir)
+      .OutputFile("gltf", FLAGS_gltf)
+      .Check();
   const auto clock = std::chrono::steady_clock::now();
   const Mesh finger = MakeFinger();
   const double pi = std::acos(-1.0);
@@ -94,8 +97,8 @@ int RunDemo() {
   RunDirectory output(dir);
   WriteFrames(output.File("frames"), finger.faces, frames);
   if (!FLAGS_gltf.empty()) {
-    output.Outside().Add(FLAGS_gltf,
-                         EncodeGltfMorphAnimation(frames, finger.faces));
+    output.AddOutside(FLAGS_gltf,
+                      EncodeGltfMorphAnimation(frames, finger.faces));
   }
   RenderOptions options = FilmStripOptionsFromFlags();
   options.view = ParseView("front");  // the bend lies in the x-y plane

@@ -208,6 +208,7 @@ int RunSpline() {
       .InputList("keyframes", FLAGS_keyframes)
       .OutputDirectory("output", FLAGS_output)
       .OutputFile("png", FLAGS_png)
+      .OutputFile("gltf", FLAGS_gltf)
       .Check();
   const ShellSet set = LoadShellList(FLAGS_keyframes, "keyframes");
   const std::vector<Positions>& keyframes = set.shapes;
@@ -288,6 +289,7 @@ int RunRegress() {
       .InputList("inputs", FLAGS_inputs)
       .OutputDirectory("output", FLAGS_output)
       .OutputFile("png", FLAGS_png)
+      .OutputFile("gltf", FLAGS_gltf)
       .Check();
   const ShellSet set = LoadShellList(FLAGS_inputs, "inputs");
   const std::vector<int> at = ParseIndices(FLAGS_at);
