@@ -1,6 +1,7 @@
 // Atomic file writing: every file the library and the CLI write goes through
 // here. The content is written to a temporary sibling of the target, unique
-// to the process and the call ("<path>.tmp-<pid>-<n>": it never ends in a
+// to the process and the call ("<path>.tmp-<pid>-<start>-<n>", <start> the
+// process's start time, ProcessTag below: it never ends in a
 // mesh or image extension, so a directory listing of frames does not pick
 // it up), then renamed into place (no fsync). A failure removes the
 // temporary and leaves any earlier file at the target untouched.
@@ -47,6 +48,17 @@ class AtomicFileSet {
 
 // The temporary sibling name for `path` (unique per process and call).
 std::string TemporarySibling(const std::string& path);
+
+// "<pid>-<start>": this process in the names of its temporaries, <start>
+// its start time in clock ticks after boot (/proc/self/stat; 0 if
+// unknown), so that a later run can tell the temporaries of a process that
+// has ended from those of one that runs (a pid alone may be reused).
+std::string ProcessTag();
+
+// True if the process `pid` that started at `start` (0: unknown) has
+// ended: no process has that pid, or the one that has it started at
+// another time. False while it may run (also when it cannot be told).
+bool ProcessEnded(long pid, unsigned long long start);
 
 }  // namespace shellspace
 

@@ -7,25 +7,61 @@
 #include <cstdio>
 #include <cstring>
 #include <filesystem>
+#include <initializer_list>
 #include <regex>
 #include <system_error>
 
 #include "shellspace/geometry/mesh.h"
+#include "shellspace/io/atomic_file.h"
 
 namespace shellspace {
 namespace {
 
 namespace fs = std::filesystem;
 
-// "<parent>/.<name>.<kind>-<pid>-<n>".
+// "<parent>/.<name>.<kind>-<pid>-<start>-<n>" (ProcessTag).
 std::string Sibling(const std::string& dir, const std::string& kind) {
   static std::atomic<unsigned long> counter{0};
   const fs::path path(dir);
   const fs::path parent = path.parent_path();
   const std::string name = "." + path.filename().string() + "." + kind + "-" +
-                           std::to_string(static_cast<long>(::getpid())) +
-                           "-" + std::to_string(counter++);
+                           ProcessTag() + "-" + std::to_string(counter++);
   return (parent.empty() ? fs::path(name) : parent / name).string();
+}
+
+// The owner of a temporary's tag "<pid>-<start>-<n>" (or "<pid>-<n>", the
+// names before the start time was added: start 0, unknown); false if
+// `tag` is not one.
+bool ParseTag(const std::string& tag, long* pid, unsigned long long* start) {
+  static const std::regex three(R"(([0-9]{1,18})-([0-9]{1,19})-[0-9]+)");
+  static const std::regex two(R"(([0-9]{1,18})-[0-9]+)");
+  std::smatch match;
+  if (std::regex_match(tag, match, three)) {
+    *pid = std::stol(match[1]);
+    *start = std::stoull(match[2]);
+    return true;
+  }
+  if (std::regex_match(tag, match, two)) {
+    *pid = std::stol(match[1]);
+    *start = 0;
+    return true;
+  }
+  return false;
+}
+
+// The tag of `entry` if it is a temporary of `name` of one of `kinds`
+// (".<name>.tmp-TAG", ...; "<name>.tmp-TAG" for kind "file"), else "".
+std::string TagOf(const std::string& entry, const std::string& name,
+                  std::initializer_list<const char*> kinds) {
+  for (const char* kind : kinds) {
+    const std::string prefix = std::string(kind) == "file"
+                                   ? name + ".tmp-"
+                                   : "." + name + "." + kind + "-";
+    if (entry.size() > prefix.size() && entry.compare(0, prefix.size(), prefix) == 0) {
+      return entry.substr(prefix.size());
+    }
+  }
+  return "";
 }
 
 bool IsFrameName(const std::string& name) {
@@ -48,6 +84,46 @@ void RemoveAll(const std::string& path) {
 }
 
 }  // namespace
+
+std::string NormalOutputPath(const std::string& path) {
+  if (path.empty()) return path;
+  std::error_code error;
+  const fs::path absolute = fs::absolute(WithoutTrailingSlash(path), error);
+  if (error) return WithoutTrailingSlash(path);
+  const std::string name = absolute.filename().string();
+  if (name.empty() || name == "." || name == "..") {
+    // "DIR/.." or "/": the directory it names, resolved whole.
+    const fs::path whole = fs::canonical(absolute, error);
+    return (error ? absolute.lexically_normal() : whole).string();
+  }
+  const fs::path parent = fs::canonical(absolute.parent_path(), error);
+  if (error) return absolute.lexically_normal().string();
+  return (parent / name).string();
+}
+
+int RemoveLeftoversOfEndedRuns(const std::string& path, bool old_directories) {
+  const fs::path target(NormalOutputPath(path));
+  const std::string name = target.filename().string();
+  if (name.empty()) return 0;
+  int removed = 0;
+  std::error_code error;
+  for (fs::directory_iterator it(target.parent_path(), error), end;
+       !error && it != end; it.increment(error)) {
+    const std::string entry = it->path().filename().string();
+    const std::string tag =
+        old_directories ? TagOf(entry, name, {"tmp", "old", "file"})
+                        : TagOf(entry, name, {"tmp", "file"});
+    long pid = 0;
+    unsigned long long start = 0;
+    if (tag.empty() || !ParseTag(tag, &pid, &start) ||
+        !ProcessEnded(pid, start)) {
+      continue;
+    }
+    std::error_code gone;
+    if (fs::remove_all(it->path(), gone) > 0 && !gone) ++removed;
+  }
+  return removed;
+}
 
 std::string WithoutTrailingSlash(const std::string& path) {
   std::string out = path;
@@ -106,9 +182,10 @@ std::string ReplaceableDirectoryProblem(const std::string& dir) {
 }
 
 StagedDirectory::StagedDirectory(const std::string& dir)
-    : target_(WithoutTrailingSlash(dir)) {
+    : target_(NormalOutputPath(dir)), shown_(WithoutTrailingSlash(dir)) {
   const std::string problem = ReplaceableDirectoryProblem(target_);
-  if (!problem.empty()) throw InputError(problem);
+  if (!problem.empty()) throw InputError(Shown(problem));
+  RemoveLeftoversOfEndedRuns(target_, false);
   for (int attempt = 0; attempt < 100; ++attempt) {
     const std::string candidate = Sibling(target_, "tmp");
     std::error_code error;
@@ -118,7 +195,15 @@ StagedDirectory::StagedDirectory(const std::string& dir)
     }
     if (error && error != std::errc::file_exists) break;
   }
-  throw InputError("cannot create a directory beside " + target_);
+  throw InputError("cannot create a directory beside " + shown_);
+}
+
+std::string StagedDirectory::Shown(const std::string& problem) const {
+  // The problem names the normalised path; the user knows their spelling.
+  if (problem.compare(0, target_.size(), target_) == 0) {
+    return shown_ + problem.substr(target_.size());
+  }
+  return problem;
 }
 
 StagedDirectory::~StagedDirectory() {
@@ -135,11 +220,11 @@ void StagedDirectory::Commit() {
   std::error_code error;
   if (fs::exists(fs::symlink_status(target_, error))) {
     const std::string problem = ReplaceableDirectoryProblem(target_);
-    if (!problem.empty()) throw InputError(problem);
+    if (!problem.empty()) throw InputError(Shown(problem));
     aside = Sibling(target_, "old");
     if (std::rename(target_.c_str(), aside.c_str()) != 0) {
       if (errno != ENOENT) {
-        throw InputError("cannot replace " + target_ + ": " +
+        throw InputError("cannot replace " + shown_ + ": " +
                          std::strerror(errno));
       }
       aside.clear();
@@ -149,17 +234,22 @@ void StagedDirectory::Commit() {
   // another run committed between steps 1 and 2.
   if (std::rename(staging_.c_str(), target_.c_str()) != 0) {
     const int code = errno;
-    if (!aside.empty()) RemoveAll(aside);  // its place is taken either way
     if (code == ENOTEMPTY || code == EEXIST) {
-      throw InputError("another run wrote " + target_ +
+      if (!aside.empty()) RemoveAll(aside);  // its place is taken
+      throw InputError("another run wrote " + shown_ +
                        " at the same time; it holds that run's output, this "
                        "run's was discarded");
     }
-    throw InputError("cannot write " + target_ + ": " + std::strerror(code));
+    // The previous output back in its place (never lost for a failure of
+    // this run's rename); if that fails too, it stays whole under `aside`.
+    if (!aside.empty()) std::rename(aside.c_str(), target_.c_str());
+    throw InputError("cannot write " + shown_ + ": " + std::strerror(code));
   }
   committed_ = true;
-  // 3. The old one removed.
+  // 3. The old one removed, and the previous outputs left aside by runs
+  // killed between steps 1 and 2 (this run's output replaces them).
   if (!aside.empty()) RemoveAll(aside);
+  RemoveLeftoversOfEndedRuns(target_, true);
 }
 
 }  // namespace shellspace

@@ -1,15 +1,20 @@
 // An output directory written whole: every file of a run goes into a
-// temporary sibling of the target, unique to the run
-// ("<parent>/.<name>.tmp-<pid>-<n>": hidden, and never named like a frame),
-// which Commit() then moves into place:
+// temporary sibling of the target (DIR is NormalOutputPath of the path
+// given), unique to the run ("<parent>/.<name>.tmp-<pid>-<start>-<n>":
+// hidden, and never named like a frame), which Commit() then moves into
+// place:
 //
-//   1. if DIR exists, rename it aside to "<parent>/.<name>.old-<pid>-<n>";
+//   1. if DIR exists, rename it aside to
+//      "<parent>/.<name>.old-<pid>-<start>-<n>";
 //   2. rename the staging directory to DIR;
 //   3. remove the old directory (recursively).
 //
 // So a finished DIR holds exactly one run; a run that fails or is killed
 // before step 2 leaves the previous DIR untouched (a kill between steps 1
-// and 2 leaves DIR missing and the previous run whole under its .old name);
+// and 2 leaves DIR missing and the previous run whole under its .old name;
+// a step 2 that fails otherwise renames it back); the staging directories
+// of killed runs are removed by the next run into DIR
+// (RemoveLeftoversOfEndedRuns);
 // no step leaves a file under a frame's name in DIR. Two runs committing to
 // one DIR at once never mix: each step is one rename, a directory is never
 // renamed onto a non-empty one, so the last run to reach step 2 wins whole;
@@ -38,7 +43,7 @@ class StagedDirectory {
   // The staging directory (write the run's files here) and a file in it.
   const std::string& staging() const { return staging_; }
   std::string File(const std::string& name) const;
-  // The target directory.
+  // The target directory (NormalOutputPath).
   const std::string& target() const { return target_; }
 
   // Steps 1-3 above. Throws InputError if DIR cannot be renamed aside, or
@@ -46,7 +51,12 @@ class StagedDirectory {
   void Commit();
 
  private:
-  std::string target_, staging_;
+  // `problem` with the normalised target replaced by the user's spelling.
+  std::string Shown(const std::string& problem) const;
+
+  std::string target_;  // NormalOutputPath(dir): what is renamed
+  std::string shown_;   // dir as given (without trailing slashes)
+  std::string staging_;
   bool committed_ = false;
 };
 
@@ -67,6 +77,26 @@ bool IsTemporaryName(const std::string& name);
 
 // `path` without trailing slashes ("out/" -> "out"; "/" stays).
 std::string WithoutTrailingSlash(const std::string& path);
+
+// The absolute path an output `path` is written at: its parent directory
+// resolved (symbolic links, ".", ".."; std::filesystem::canonical) and its
+// last name kept, not followed if it is a symbolic link; a last name "."
+// or ".." (and "/") resolved whole; trailing slashes dropped. If the parent
+// does not exist, the lexically normal absolute path. So "out/../out",
+// "./out", "out/" and "LINK/out" (LINK -> the current directory) all name
+// "$PWD/out", and a rename of "out" never makes the path unresolvable
+// (the staging and the moves use it; "out/../out" used to lose "out").
+std::string NormalOutputPath(const std::string& path);
+
+// Removes what runs that have ended (ProcessEnded: killed) left beside the
+// output `path`: staging directories ".<name>.tmp-TAG" and file
+// temporaries "<name>.tmp-TAG" and, with `old_directories` (only once a
+// new output is in place), previous outputs ".<name>.old-TAG" renamed aside
+// by a run killed between steps 1 and 2. TAG is "<pid>-<start>-<n>"
+// (ProcessTag) or "<pid>-<n>" (earlier names: the pid alone). A temporary
+// of a process that runs (this one, a concurrent run) is never removed.
+// Returns how many were removed.
+int RemoveLeftoversOfEndedRuns(const std::string& path, bool old_directories);
 
 }  // namespace shellspace
 

@@ -45,6 +45,10 @@ while read -r name; do
     failed+=("$name")
   fi
 done <"$list"
+if [ "$count" -eq 0 ]; then
+  echo "sanitized: $list lists no executable: nothing was tested" >&2
+  exit 1
+fi
 if [ ${#failed[@]} -gt 0 ]; then
   echo "sanitized: ${#failed[@]} of $count executables failed: ${failed[*]}" >&2
   exit 1

@@ -1,7 +1,8 @@
 // `shellspace VERB [SUBCOMMAND] [--flags]`: dispatches to the verbs
 // registered in tools/verb_*.cc. Before a verb runs, main checks its flags
 // against the verb's table (tools/verb_flags.h): a flag the verb does not
-// take is rejected (exit 2), the verb's own defaults are applied, and
+// take or a flag given twice (tools/flag_repeats.h) is rejected (exit 2),
+// the verb's own defaults are applied, and
 // required flags, numeric ranges and the values of string flags with a check
 // are checked (exit 1). Input errors are
 // printed as one line and exit with 1.
@@ -22,6 +23,7 @@
 #include "shellspace/geometry/openmp_threads.h"
 #include "shellspace/io/input_file.h"
 #include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/flag_repeats.h"
 #include "shellspace/tools/run_output.h"
 #include "shellspace/tools/run_status.h"
 #include "shellspace/tools/stop_request.h"
@@ -272,6 +274,12 @@ int main(int argc, char** argv) {
   if (new_argc > 1) {
     std::cerr << "shellspace " << name << ": unexpected argument '"
               << new_argv[1] << "'\n";
+    return 2;
+  }
+  const std::string repeated = shellspace::RepeatedFlagProblem(
+      std::vector<std::string>(argv + first_flag, argv + argc));
+  if (!repeated.empty()) {
+    std::cerr << "shellspace " << name << ": " << repeated << "\n";
     return 2;
   }
   const std::string foreign = shellspace::ForeignFlag(verb);

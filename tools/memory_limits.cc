@@ -33,6 +33,11 @@ double PathBytes(int vertices, int frames) {
   return 64e6 + 200.0 * static_cast<double>(vertices) * frames;
 }
 
+double SplineBytes(int vertices, int steps) {
+  const double v = vertices, shapes = static_cast<double>(steps) + 1;
+  return 64e6 + 24.0 * shapes * shapes + 20e3 * v * shapes;
+}
+
 double BranchingBytes(double nodes) { return 16e6 + 3000.0 * nodes; }
 
 void CheckMemory(double estimate, const std::string& what,

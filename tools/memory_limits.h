@@ -26,6 +26,15 @@ double GeodesicBytes(int vertices, int steps);
 // 64 MB + 200 B x V x frames.
 double PathBytes(int vertices, int frames);
 
+// A spline or regression of K steps on V vertices (spline, regress):
+// 64 MB + 24 B x (K + 1)^2 + 20 KB x V x (K + 1): the preconditioner's
+// dense (K + 1) x (K + 1) time matrix, its Cholesky factor and the
+// factorisation's copy (`--steps 100000` asked for 80 GB of it and ended in
+// std::bad_alloc), and per shape the path, its gradient, midpoints and
+// one-shape factors (measured 27, 123, 420 MB at V = 5, K = 500, 2000,
+// 4000; 146 MB at V = 121, K = 200; 1.27 GB at V = 5261, K = 16).
+double SplineBytes(int vertices, int steps);
+
 // The branching simulation on `nodes` grid nodes: 16 MB + 3 KB x nodes
 // (measured 18 MB at 2,112 nodes, 101 MB at 33,024).
 double BranchingBytes(double nodes);

@@ -70,11 +70,11 @@ void WritePathOutputs(RunDirectory* out, const Faces& faces,
   // The film strip and the .glb are files outside the directory: they are
   // renamed into place with it at Commit (or not at all).
   if (!FLAGS_gltf.empty()) {
-    out->Outside().Add(FLAGS_gltf, EncodeGltfMorphAnimation(path, faces));
+    out->AddOutside(FLAGS_gltf, EncodeGltfMorphAnimation(path, faces));
   }
   if (!FLAGS_png.empty()) {
-    out->Outside().Add(FLAGS_png,
-                       EncodePng(RenderFilmStrip(path, faces, options)));
+    out->AddOutside(FLAGS_png,
+                    EncodePng(RenderFilmStrip(path, faces, options)));
   }
   WriteFrames(out->staging(), faces, path);
 }

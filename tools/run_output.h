@@ -29,7 +29,8 @@ JsonObject& AddRunFields(JsonObject& json);
 
 // An output directory of one run: files go into File(name) (the staging
 // directory, created by the constructor: construct it after the solves);
-// files outside it (a --png film strip) into Outside(); Commit writes
+// files outside it (a --png film strip, a --gltf file) by AddOutside, at
+// their NormalOutputPath (io/output_directory.h); Commit writes
 // summary.json, moves the directory into place and then renames the outside
 // files into place. Destroyed without Commit, nothing is left behind.
 class RunDirectory {
@@ -37,7 +38,9 @@ class RunDirectory {
   explicit RunDirectory(const std::string& dir) : staged_(dir) {}
   std::string File(const std::string& name) const { return staged_.File(name); }
   const std::string& staging() const { return staged_.staging(); }
-  AtomicFileSet& Outside() { return outside_; }
+  void AddOutside(const std::string& path, const std::string& content) {
+    outside_.Add(NormalOutputPath(path), content);
+  }
   // AddRunFields(summary), then CommitSummary. Returns the summary's text.
   std::string Commit(JsonObject summary);
   // `text` (a JSON object with the run fields) as summary.json, then the

@@ -53,9 +53,10 @@ bool Inside(const std::string& child, const std::string& dir) {
 
 std::string Flag(const std::string& name) { return "--" + name; }
 
-// The parent directory of `path` exists and can be written.
+// The parent directory of `path` (as written: NormalOutputPath) exists and
+// can be written.
 void CheckParentWritable(const std::string& flag, const std::string& path) {
-  const fs::path parent = Canonical(path).parent_path();
+  const fs::path parent = fs::path(NormalOutputPath(path)).parent_path();
   std::error_code error;
   if (!fs::exists(parent, error)) {
     throw InputError(Flag(flag) + " " + path + ": directory " +
@@ -198,6 +199,11 @@ void RunPaths::Check() const {
         ::access(out.path.c_str(), W_OK | X_OK) != 0) {
       throw InputError(Flag(out.flag) + " " + out.path + " is not writable");
     }
+  }
+  // Every output can be written: what killed runs left beside it goes
+  // before the solves (a staging directory can be large).
+  for (const std::vector<Entry>* outputs : {&output_files_, &output_dirs_}) {
+    for (const Entry& out : *outputs) RemoveLeftoversOfEndedRuns(out.path, false);
   }
 }
 

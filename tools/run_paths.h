@@ -5,7 +5,11 @@
 // whole), an existing output directory is replaceable (the output of an
 // earlier run, io/output_directory.h), and every output can be written
 // (its parent directory exists and is writable; an existing output file is
-// writable). Each failure is one InputError naming the flags.
+// writable). Each failure is one InputError naming the flags. Paths are
+// compared as written (io/output_directory.h NormalOutputPath: "out/../out",
+// "./out" and "out/" are "out"), so two spellings of one file are one
+// file. Once every check passed, the temporaries of killed runs beside each
+// output are removed (RemoveLeftoversOfEndedRuns).
 #ifndef SHELLSPACE_TOOLS_RUN_PATHS_H_
 #define SHELLSPACE_TOOLS_RUN_PATHS_H_
 

@@ -1,4 +1,7 @@
-// Stopping a run early: --time_limit SECONDS and SIGINT / SIGTERM.
+// Stopping a run early: --time_limit SECONDS and SIGINT / SIGTERM / SIGHUP
+// (a closed terminal: handled as SIGTERM is). A signal the starting
+// process ignored (`nohup`: SIGHUP; a script's background job: SIGINT)
+// stays ignored.
 //
 // The signal handler only records the signal in a std::atomic; the solvers
 // poll StopPollForRun() between iterations (SolverSettings::stop), end at
@@ -9,11 +12,12 @@
 // readers skip them).
 //
 // Exit codes of a stopped run: 124 after --time_limit (as timeout(1)),
-// 130 after SIGINT, 143 after SIGTERM (128 + the signal, as a shell
-// reports a killed command).
+// 129 after SIGHUP, 130 after SIGINT, 143 after SIGTERM (128 + the signal,
+// as a shell reports a killed command).
 //
 // The time limit is a stopping rule of the user: a run it does not stop
-// computes the same numbers as without it.
+// computes the same numbers as without it. A limit beyond the steady
+// clock's range (more than about 146 years, e.g. 1e10 s) is no limit.
 #ifndef SHELLSPACE_TOOLS_STOP_REQUEST_H_
 #define SHELLSPACE_TOOLS_STOP_REQUEST_H_
 
@@ -23,9 +27,9 @@
 
 namespace shellspace {
 
-enum class StopCause { kNone, kTimeLimit, kInterrupt, kTerminate };
+enum class StopCause { kNone, kTimeLimit, kInterrupt, kTerminate, kHangup };
 
-// Installs the SIGINT / SIGTERM handlers and starts the clock of
+// Installs the SIGINT / SIGTERM / SIGHUP handlers and starts the clock of
 // `time_limit_seconds` (<= 0: no limit). Called once by main.
 void InstallStopHandlers(double time_limit_seconds);
 
@@ -40,9 +44,9 @@ StopCause ObservedStop();
 // limit only counts once observed).
 StopCause RequestedStop();
 
-// "time limit 10 s", "SIGINT", "SIGTERM", or "" for kNone.
+// "time limit 10 s", "SIGINT", "SIGTERM", "SIGHUP", or "" for kNone.
 std::string StopCauseText(StopCause cause);
-// 124, 130, 143, or 0 for kNone.
+// 124, 130, 143, 129, or 0 for kNone.
 int StopExitCode(StopCause cause);
 
 }  // namespace shellspace

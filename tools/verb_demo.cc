@@ -18,6 +18,7 @@
 #include "shellspace/reports/relative_gradient.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/film_strip_flags.h"
+#include "shellspace/tools/geodesic_solve.h"
 #include "shellspace/tools/memory_limits.h"
 #include "shellspace/tools/path_summary.h"
 #include "shellspace/tools/run_status.h"
@@ -31,6 +32,8 @@ DEFINE_int32(extrapolate, 4, "demo: EXP steps beyond the end shape");
 namespace shellspace {
 namespace {
 
+const char* const kDemoPathModel = "64 MB + 200 B x #V x (K + E + 1)";
+
 FlagTable DemoFlags() {
   return Flags({{
                     TextFlag("output",
@@ -38,10 +41,13 @@ FlagTable DemoFlags() {
                              "summary.json")
                         .Default("demo-output"),
                     IntegerFlag("steps",
-                                "time steps K of the geodesic (K + 1 shapes)",
+                                "time steps K of the geodesic (K + 1 shapes)" +
+                                    StepsBoundText(kGeodesicModel),
                                 2, kMaxSteps),
-                    IntegerFlag("extrapolate", "EXP steps beyond the end shape",
-                                0),
+                    IntegerFlag("extrapolate",
+                                "EXP steps E beyond the end shape" +
+                                    StepsBoundText(kDemoPathModel),
+                                0, kMaxSteps),
                     GltfFlag(),
                 },
                 MaterialFlags(), SolverFlags(), FilmStripFlags()});
@@ -49,9 +55,21 @@ FlagTable DemoFlags() {
 
 int RunDemo() {
   const std::string dir = FLAGS_output;
-  RunPaths().OutputDirectory("output", dir).Check();
+  RunPaths()
+      .OutputDirectory("output", dir)
+      .OutputFile("gltf", FLAGS_gltf)
+      .Check();
   const auto clock = std::chrono::steady_clock::now();
   const Mesh finger = MakeFinger();
+  const std::string size = " on " + std::to_string(finger.num_vertices()) +
+                           " vertices";
+  CheckMemory(GeodesicBytes(finger.num_vertices(), FLAGS_steps),
+              "--steps " + std::to_string(FLAGS_steps) + size, kGeodesicModel);
+  CheckMemory(PathBytes(finger.num_vertices(),
+                        FLAGS_steps + FLAGS_extrapolate + 1),
+              "--steps " + std::to_string(FLAGS_steps) + " --extrapolate " +
+                  std::to_string(FLAGS_extrapolate) + size,
+              kDemoPathModel);
   const double pi = std::acos(-1.0);
   const Positions bent = BendAlongY(finger.positions, 4.0, 0.5 * pi);
   const ShellSpace space(finger, ValidateShell(finger, "procedural finger"),
@@ -94,8 +112,8 @@ int RunDemo() {
   RunDirectory output(dir);
   WriteFrames(output.File("frames"), finger.faces, frames);
   if (!FLAGS_gltf.empty()) {
-    output.Outside().Add(FLAGS_gltf,
-                         EncodeGltfMorphAnimation(frames, finger.faces));
+    output.AddOutside(FLAGS_gltf,
+                      EncodeGltfMorphAnimation(frames, finger.faces));
   }
   RenderOptions options = FilmStripOptionsFromFlags();
   options.view = ParseView("front");  // the bend lies in the x-y plane

@@ -9,6 +9,7 @@
 #include "shellspace/io/gltf_writer.h"
 #include "shellspace/io/json_writer.h"
 #include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/run_paths.h"
 #include "shellspace/tools/verb.h"
 
 DECLARE_string(input);
@@ -43,6 +44,10 @@ int RunExport() {
   options.frames_per_second = FLAGS_fps;
   options.interpolation =
       ParseGltfInterpolation(FLAGS_interpolation, "--interpolation");
+  RunPaths()
+      .InputFrames("input", FLAGS_input)
+      .OutputFile("output", FLAGS_output)
+      .Check();
   const FrameSequence sequence = ReadFrameSequence(FLAGS_input);
   WriteGltfMorphAnimation(FLAGS_output, sequence.frames, sequence.faces,
                           options);

@@ -112,9 +112,10 @@ FlagTable SolverFlags() {
 FlagSpec TimeLimitFlag() {
   return RealFlag("time_limit",
                   "stop the solves after this many seconds of wall clock (or "
-                  "at SIGINT/SIGTERM), write the best state so far marked "
-                  "\"partial\": true, exit 124 (130 SIGINT, 143 SIGTERM); 0: "
-                  "no limit",
+                  "at SIGINT/SIGTERM/SIGHUP), write the best state so far "
+                  "marked \"partial\": true, exit 124 (130 SIGINT, 143 "
+                  "SIGTERM, 129 SIGHUP); 0 (or above about 146 years): no "
+                  "limit",
                   0, End::kClosed);
 }
 

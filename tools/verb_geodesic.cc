@@ -48,6 +48,7 @@ int RunGeodesic() {
   GeodesicInputPaths()
       .OutputDirectory("output", FLAGS_output)
       .OutputFile("png", FLAGS_png)
+      .OutputFile("gltf", FLAGS_gltf)
       .Check();
   const auto [start, space, multires] = SolveGeodesicOfFlags("geodesic");
   const GeodesicResult& result = multires.geodesic;

@@ -11,6 +11,7 @@
 #include "shellspace/problems/splines/spline_initial_path.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/film_strip_flags.h"
+#include "shellspace/tools/geodesic_solve.h"
 #include "shellspace/tools/memory_limits.h"
 #include "shellspace/tools/path_summary.h"
 #include "shellspace/tools/run_paths.h"
@@ -34,10 +35,15 @@ constexpr int kInnerMaxIterations = 200;
 namespace shellspace {
 namespace {
 
+const char* const kSplineModel =
+    "64 MB + 24 B x (K + 1)^2 + 20 KB x #V x (K + 1)";
+
 FlagTable PathFlags() {
   return {
-      IntegerFlag("steps", "number of time steps K (K + 1 shapes)", 2,
-                  kMaxSteps),
+      IntegerFlag("steps",
+                  "number of time steps K (K + 1 shapes)" +
+                      StepsBoundText(kSplineModel),
+                  2, kMaxSteps),
       TextFlag("output", "directory of the frames shape_000.ply ...")
           .Required(),
       TextFlag("png", "also write a PNG film strip of the frames here"),
@@ -94,6 +100,24 @@ FlagTable RegressFlags() {
        },
        PathFlags(), MaterialFlags(), SolverFlags(), JsonFlag(),
                 FilmStripFlags()});
+}
+
+// --steps within the memory estimate of the spline (and, for
+// --init geodesic, of its longest geodesic segment), before any solve.
+void CheckSplineMemory(int vertices, const std::vector<int>& at,
+                       bool geodesic_init) {
+  const std::string size = "--steps " + std::to_string(FLAGS_steps) + " on " +
+                           std::to_string(vertices) + " vertices";
+  CheckMemory(SplineBytes(vertices, FLAGS_steps), size, kSplineModel);
+  if (!geodesic_init || at.empty()) return;
+  int longest = FLAGS_periodic ? at.front() + FLAGS_steps - at.back() : 0;
+  for (size_t i = 1; i < at.size(); ++i) {
+    longest = std::max(longest, at[i] - at[i - 1]);
+  }
+  CheckMemory(GeodesicBytes(vertices, longest),
+              "--init geodesic: a segment of " + std::to_string(longest) +
+                  " steps on " + std::to_string(vertices) + " vertices",
+              kGeodesicModel);
 }
 
 double Seconds(std::chrono::steady_clock::time_point since) {
@@ -208,14 +232,17 @@ int RunSpline() {
       .InputList("keyframes", FLAGS_keyframes)
       .OutputDirectory("output", FLAGS_output)
       .OutputFile("png", FLAGS_png)
+      .OutputFile("gltf", FLAGS_gltf)
       .Check();
   const ShellSet set = LoadShellList(FLAGS_keyframes, "keyframes");
   const std::vector<Positions>& keyframes = set.shapes;
   const std::vector<int> at = ParseIndices(FLAGS_at);
   CheckIndexCount(at, keyframes.size(), "keyframes");
-  const ShellSpace space = SpaceFromFlags(set.first);
   const bool alone = FLAGS_method == "ltheta";
   const SplineInit init = ParseSplineInit(FLAGS_init);
+  CheckSplineMemory(set.first.mesh.num_vertices(), at,
+                    init == SplineInit::kGeodesic);
+  const ShellSpace space = SpaceFromFlags(set.first);
   if (alone && init != SplineInit::kLTheta) {
     throw InputError("--init " + FLAGS_init +
                      " needs --method nonlinear (--method ltheta is the LΘA "
@@ -288,10 +315,12 @@ int RunRegress() {
       .InputList("inputs", FLAGS_inputs)
       .OutputDirectory("output", FLAGS_output)
       .OutputFile("png", FLAGS_png)
+      .OutputFile("gltf", FLAGS_gltf)
       .Check();
   const ShellSet set = LoadShellList(FLAGS_inputs, "inputs");
   const std::vector<int> at = ParseIndices(FLAGS_at);
   CheckIndexCount(at, set.shapes.size(), "inputs");
+  CheckSplineMemory(set.first.mesh.num_vertices(), at, false);
   const ShellSpace space = SpaceFromFlags(set.first);
   const SplineResult result =
       SolveRegression(space, set.shapes, at, FLAGS_steps, FLAGS_sigma, {},

@@ -365,7 +365,7 @@ int RunPca() {
   WriteFileAtomically(output.File("pca.json"), json.str() + "\n");
   if (!FLAGS_png.empty()) {
     const RenderOptions render = FilmStripOptionsFromFlags();
-    output.Outside().Add(
+    output.AddOutside(
         FLAGS_png,
         EncodePng(RenderFilmStrip(strip, inputs.first.mesh.faces, render)));
   }

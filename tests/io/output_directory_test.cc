@@ -78,6 +78,40 @@ TEST(OutputDirectoryTest, NeverReplacesOtherFiles) {
   EXPECT_EQ(ReplaceableDirectoryProblem(base + "/missing"), "");
 }
 
+// Every spelling names the path that is renamed: the parent resolved
+// physically (a symbolic link's "..", the link's target's parent), the last
+// name kept unless it is "." or "..".
+TEST(OutputDirectoryTest, NormalOutputPathResolvesTheParent) {
+  const std::string base =
+      std::filesystem::canonical(testing::TempDir()).string();
+  std::filesystem::create_directories(base + "/sub/deep");
+  std::filesystem::create_directory_symlink(base + "/sub/deep", base + "/link");
+  std::filesystem::create_directory(base + "/out");
+  const struct {
+    std::string spelling, path;
+  } cases[] = {
+      {base + "/out", base + "/out"},
+      {base + "/out/", base + "/out"},
+      {base + "//out//", base + "/out"},
+      {base + "/./out", base + "/out"},
+      {base + "/out/.", base + "/out"},
+      {base + "/out/../out", base + "/out"},
+      {base + "/sub/../out/", base + "/out"},
+      {base + "/link/../../out", base + "/out"},  // link/.. is sub
+      {base + "/link/x.glb", base + "/sub/deep/x.glb"},
+      {base + "/link", base + "/link"},  // the link itself, not followed
+      {base + "/link/..", base + "/sub"},
+      {base + "/out/..", base},
+      {base + "/missing/../x", base + "/x"},  // lexical: no parent to resolve
+  };
+  for (const auto& c : cases) {
+    EXPECT_EQ(NormalOutputPath(c.spelling), c.path) << c.spelling;
+  }
+  const std::string here = std::filesystem::current_path().string();
+  EXPECT_EQ(NormalOutputPath("x.ply"),
+            std::filesystem::canonical(here).string() + "/x.ply");
+}
+
 TEST(OutputDirectoryTest, TemporaryNames) {
   EXPECT_TRUE(IsTemporaryName(".g.tmp-12-0"));
   EXPECT_TRUE(IsTemporaryName(".g.old-12-3"));

@@ -40,14 +40,16 @@ std::string LongGeodesic(int steps, const std::string& output) {
 // line contains `wait_for`, sends `signal_number` (0: none); returns the
 // exit code (-1 if it did not exit normally) and the stderr text. Gives up
 // (killing the child) after `timeout_seconds`.
+// `shell_prefix` runs in the shell before the exec (e.g. "trap '' HUP;").
 int RunAndSignal(const std::string& args, const std::string& out_path,
                  const std::string& wait_for, int signal_number,
                  double timeout_seconds, std::string* err,
-                 double* signal_after = nullptr) {
+                 double* signal_after = nullptr,
+                 const std::string& shell_prefix = "") {
   int fds[2];
   if (pipe(fds) != 0) return -2;
-  const std::string command =
-      std::string("exec ") + SHELLSPACE_CLI + " " + args + " > " + out_path;
+  const std::string command = shell_prefix + " exec " + SHELLSPACE_CLI + " " +
+                              args + " > " + out_path;
   const auto start = std::chrono::steady_clock::now();
   const pid_t pid = fork();
   if (pid == 0) {
@@ -138,6 +140,45 @@ TEST(InterruptCliTest, SigtermAfterTheFirstIterationWritesThePartialPath) {
   EXPECT_EQ(DirectoryListing(base), (std::vector<std::string>{"g", "out"}));
   std::cout << "SIGTERM sent " << after << " s after the start, run ended "
             << seconds << " s after the start\n";
+}
+
+// SIGHUP (the terminal closed) is handled as SIGTERM: the partial path
+// written whole, exit 129 = 128 + SIGHUP; under `nohup` (SIGHUP ignored by
+// the starting shell) it stays ignored and the run ends normally.
+TEST(InterruptCliTest, SighupWritesThePartialPathUnlessIgnored) {
+  const struct {
+    std::string prefix;
+    int code;
+  } cases[] = {{"", 129}, {"trap '' HUP;", 0}};
+  int tried = 0, held = 0;
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.prefix);
+    const std::string base = TempDir();
+    const std::string dir = base + "/g";
+    std::string err;
+    ++tried;
+    const int code = RunAndSignal(LongGeodesic(8, dir), base + "/out",
+                                  "geodesic iter   1", SIGHUP, 120, &err,
+                                  nullptr, c.prefix);
+    EXPECT_EQ(code, c.code) << err;
+    const std::string out = Slurp(base + "/out");
+    const std::string json = out.substr(0, out.find('\n'));
+    if (c.code == 129) {
+      EXPECT_NE(err.find("stopped (SIGHUP): wrote the best state so far"),
+                std::string::npos)
+          << err;
+      ExpectCompletePartialGeodesic(dir, json, "SIGHUP", 8);
+    } else {
+      EXPECT_NE(json.find("\"partial\": false"), std::string::npos) << json;
+      EXPECT_TRUE(Bool(json, "converged")) << json;
+      EXPECT_EQ(DirectoryListing(dir), FramesAndSummary(9));
+    }
+    EXPECT_EQ(DirectoryListing(base), (std::vector<std::string>{"g", "out"}));
+    const bool stopped = json.find("\"partial\": true") != std::string::npos;
+    held += code == c.code && stopped == (c.code == 129) &&
+            Slurp(dir + "/summary.json") == json + "\n";
+  }
+  std::cout << "SIGHUP: " << tried << " tried, " << held << " held\n";
 }
 
 TEST(InterruptCliTest, SigintStopsAShotAfterCompleteSteps) {
