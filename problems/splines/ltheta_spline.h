@@ -24,46 +24,10 @@
 
 #include "shellspace/cost_functions/shell/shell_space.h"
 #include "shellspace/problems/calculus/geodesic.h"
+#include "shellspace/problems/calculus/ltheta_reconstruction.h"
 #include "shellspace/solvers/solver_settings.h"
 
 namespace shellspace {
-
-// The L, Θ, A coordinates of a shell: lengths of space.topology.edges, areas
-// of space.faces, signed dihedral angles (DihedralAngle, in (-pi, pi]) of
-// space.topology.interior_edges.
-struct LThetaQuantities {
-  Eigen::VectorXd lengths;
-  Eigen::VectorXd areas;
-  Eigen::VectorXd dihedrals;
-};
-
-// Residual weights of the reconstruction, from a reference shell (L, A):
-// edge 1/L_e, area 1/sqrt(A_f), dihedral sqrt(3 eta L_e^2 / (A_f1 + A_f2)).
-struct LThetaWeights {
-  Eigen::VectorXd edge;
-  Eigen::VectorXd area;
-  Eigen::VectorXd dihedral;
-};
-
-LThetaQuantities ComputeLThetaQuantities(const ShellSpace& space,
-                                         const Positions& shape);
-
-// Throws InputError if the reference has a zero-length edge or a zero-area
-// triangle.
-LThetaWeights LThetaResidualWeights(const ShellSpace& space,
-                                    const Positions& reference);
-
-// Reconstructs a shell with the prescribed quantities: minimises the LΘA
-// sum of squares above (dihedral terms skipped if eta = 0) by sparse LM from
-// `initial`, with the rigid motions pinned at three vertices of `initial`
-// (PinRigidMotions). The result is in the gauge of that pin; it is not
-// re-aligned.
-Positions ReconstructFromLTheta(const ShellSpace& space,
-                                const LThetaQuantities& target,
-                                const LThetaWeights& weights,
-                                const Positions& initial,
-                                const SolverSettings& settings,
-                                ceres::Solver::Summary* summary = nullptr);
 
 // Per-frame record of an LΘA spline solve.
 struct LThetaSplineReport {
