@@ -59,6 +59,11 @@ class BlockJacobiCg {
 
   const Stats& stats() const { return stats_; }
 
+  // M^-1 r with the factors of the last successful Factorize.
+  Eigen::VectorXd Precondition(const Eigen::VectorXd& r) const {
+    return ApplyPreconditioner(r);
+  }
+
   // Threads over the blocks: the B factorisations of Factorize and the B
   // solves of each preconditioner application run in parallel (each block
   // alone, so the results do not depend on the count).

@@ -22,6 +22,36 @@ bool PartitionsMatrix(const std::vector<int>& offsets, int n) {
 }
 }  // namespace
 
+void BlockJacobiSolver::Configure() {
+  cg_.set_threads(threads);
+  cg_.set_time_coupling(time_coupling);
+  cg_.set_factor_precision(
+      single_precision_factors
+          ? TimeCoupledPreconditioner::FactorPrecision::kSingle
+          : TimeCoupledPreconditioner::FactorPrecision::kDouble);
+}
+
+bool BlockJacobiSolver::Factorize(const LinearSystem& system) {
+  const Eigen::SparseMatrix<double>& h = system.matrix;
+  if (!PartitionsMatrix(system.block_offsets, static_cast<int>(h.rows())) ||
+      h.cols() != h.rows()) {
+    return false;
+  }
+  Configure();
+  const auto start = std::chrono::steady_clock::now();
+  factored_offsets_.clear();
+  const bool positive = cg_.Factorize(h, system.block_offsets);
+  ++stats_.factorizations;
+  if (cg_.time_coupled()) ++stats_.time_coupled_factorizations;
+  stats_.factorization_seconds += Since(start);
+  if (positive) factored_offsets_ = system.block_offsets;
+  return positive;
+}
+
+Eigen::VectorXd BlockJacobiSolver::Apply(const Eigen::VectorXd& r) const {
+  return cg_.Precondition(r);
+}
+
 bool BlockJacobiSolver::Solve(const LinearSystem& system,
                               const Eigen::VectorXd& b, double tolerance,
                               Eigen::VectorXd* x) {
@@ -31,12 +61,7 @@ bool BlockJacobiSolver::Solve(const LinearSystem& system,
     return false;
   }
   ++stats_.cg_solves;
-  cg_.set_threads(threads);
-  cg_.set_time_coupling(time_coupling);
-  cg_.set_factor_precision(
-      single_precision_factors
-          ? TimeCoupledPreconditioner::FactorPrecision::kSingle
-          : TimeCoupledPreconditioner::FactorPrecision::kDouble);
+  Configure();
   const auto run_cg = [&](int budget, bool warm_start) {
     const auto start = std::chrono::steady_clock::now();
     int iterations = 0;

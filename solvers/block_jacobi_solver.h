@@ -30,8 +30,20 @@ namespace shellspace {
 // factors precondition), or if block_offsets does not partition H.
 // stats(): factorizations counts block-set factorisations (all B blocks
 // once), cg_iterations all CG iterations, cg_solves the solves.
-class BlockJacobiSolver : public LinearSolver {
+class BlockJacobiSolver : public LinearSolver, public Preconditioner {
  public:
+  // Preconditioner: the factors of the diagonal blocks (the time-coupled
+  // model where the blocks share a pattern) of system.matrix; false if a
+  // block is not positive definite or block_offsets does not partition it.
+  // A later Solve on the same blocks reuses them as its stale factors.
+  bool Factorize(const LinearSystem& system) override;
+  Eigen::VectorXd Apply(const Eigen::VectorXd& r) const override;
+  Preconditioner* preconditioner() override { return this; }
+  void CountCg(int iterations, double seconds) override {
+    stats_.cg_iterations += iterations;
+    stats_.cg_seconds += seconds;
+  }
+
   bool Solve(const LinearSystem& system, const Eigen::VectorXd& b,
              double tolerance, Eigen::VectorXd* x) override;
   const LinearSolverStats& stats() const override { return stats_; }
@@ -51,6 +63,7 @@ class BlockJacobiSolver : public LinearSolver {
   bool single_precision_factors = true;
 
  private:
+  void Configure();
   BlockJacobiCg cg_;
   std::vector<int> factored_offsets_;  // empty: nothing held
   LinearSolverStats stats_;

@@ -39,6 +39,21 @@ struct LinearSolverStats {
   double cg_seconds = 0;
 };
 
+// An SPD approximation M of a system's matrix A, applied as M^-1: the
+// preconditioner of the engine's own conjugate gradients (the trust-region
+// subproblem, steihaug_cg.h). A linear solver that factorises offers its
+// factorisation as one (LinearSolver::preconditioner).
+class Preconditioner {
+ public:
+  virtual ~Preconditioner() = default;
+  // Factorises M from `system` (the whole matrix, or its diagonal blocks).
+  // False if that factorisation is not positive definite; the caller may
+  // then shift the matrix's diagonal and try again.
+  virtual bool Factorize(const LinearSystem& system) = 0;
+  // M^-1 r with the last successful Factorize.
+  virtual Eigen::VectorXd Apply(const Eigen::VectorXd& r) const = 0;
+};
+
 // Solves A x = b. `tolerance` is the relative residual |A x - b|_2 <=
 // tolerance |b|_2 an iterative solver may stop at; a direct solver solves to
 // round-off and ignores it. Returns false (x unspecified) if A is singular
@@ -53,6 +68,14 @@ class LinearSolver {
   // What runs, for reports: "direct" (space-time Cholesky), "block-jacobi",
   // "lu".
   virtual const char* name() const = 0;
+  // The solver's factorisation as a Preconditioner of the same systems, or
+  // nullptr. Its factorisations count in stats().
+  virtual Preconditioner* preconditioner() { return nullptr; }
+  // Adds CG work done by the caller on preconditioner() to stats().
+  virtual void CountCg(int iterations, double seconds) {
+    (void)iterations;
+    (void)seconds;
+  }
 };
 
 }  // namespace shellspace

@@ -4,8 +4,10 @@
 #include <chrono>
 #include <cmath>
 #include <utility>
+#include <vector>
 
 #include "shellspace/geometry/named_values.h"
+#include "shellspace/solvers/steihaug_cg.h"
 
 namespace shellspace {
 
@@ -62,6 +64,10 @@ void NewtonReport::Append(const NewtonReport& later) {
   cg_seconds += later.cg_seconds;
   cg_not_converged += later.cg_not_converged;
   shifted_steps += later.shifted_steps;
+  boundary_steps += later.boundary_steps;
+  negative_curvature_steps += later.negative_curvature_steps;
+  rejected_trials += later.rejected_trials;
+  shifted_preconditioners += later.shifted_preconditioners;
   max_shift = std::max(max_shift, later.max_shift);
   linear_solver = later.linear_solver;
   final_gradient = later.final_gradient;
@@ -86,6 +92,145 @@ class Timer {
   std::chrono::steady_clock::time_point start_ =
       std::chrono::steady_clock::now();
 };
+
+// One iteration of NewtonSettings::Globalisation::kTrustRegion at the
+// current point (H assembled in *system): the preconditioner factorised
+// (shifted where needed), then Steihaug-Toint steps for the radius until
+// one is accepted or tr_max_rejections trials in a row are rejected.
+struct TrustRegionOutcome {
+  bool accepted = false;
+  NewtonResidual residual;  // at the accepted trial
+  double merit = 0;
+  NewtonStop failure = NewtonStop::kLineSearchFailed;
+};
+
+// Factorises M from H, or from H + sigma I where H's factorisation is not
+// positive definite (the diagonal shifted in place and restored exactly).
+bool FactorizePreconditioner(Preconditioner* preconditioner,
+                             const NewtonSettings& settings,
+                             LinearSystem* system, NewtonReport* report) {
+  // M from H, or from H + sigma I where H's factorisation is not positive
+  // definite: the diagonal is shifted in place and restored exactly.
+  const int n = static_cast<int>(system->matrix.rows());
+  std::vector<double*> diagonal_entry(n);
+  std::vector<double> unshifted(n);
+  double mean_diagonal = 0;
+  for (int i = 0; i < n; ++i) {
+    diagonal_entry[i] = &system->matrix.coeffRef(i, i);
+    unshifted[i] = *diagonal_entry[i];
+    mean_diagonal += std::abs(unshifted[i]) / n;
+  }
+  bool factorized = preconditioner->Factorize(*system);
+  double sigma = settings.tr_shift_initial * std::max(mean_diagonal, 1e-300);
+  for (int shift = 0; !factorized && shift < settings.tr_max_shifts;
+       ++shift, sigma *= 10) {
+    for (int i = 0; i < n; ++i) *diagonal_entry[i] = unshifted[i] + sigma;
+    factorized = preconditioner->Factorize(*system);
+    for (int i = 0; i < n; ++i) *diagonal_entry[i] = unshifted[i];
+    if (factorized) ++report->shifted_preconditioners;
+  }
+  return factorized;
+}
+
+// The preconditioner held across iterations: M of an earlier H is kept
+// while the subproblems it preconditions take at most
+// tr_refactor_cg_iterations CG iterations (a deterministic count, no
+// clock); near a minimiser successive Hessians differ little.
+struct HeldPreconditioner {
+  bool held = false;
+  int last_cg_iterations = 0;
+};
+
+TrustRegionOutcome TrustRegionIteration(
+    NewtonProblem* problem, LinearSolver* linear_solver,
+    Preconditioner* preconditioner, const NewtonSettings& settings,
+    double forcing, double merit, const NewtonResidual& current,
+    LinearSystem* system, double* radius, HeldPreconditioner* held,
+    NewtonReport* report) {
+  TrustRegionOutcome outcome;
+  if (preconditioner == nullptr) {
+    outcome.failure = NewtonStop::kLinearSolveFailed;
+    return outcome;
+  }
+  if (!held->held ||
+      held->last_cg_iterations > settings.tr_refactor_cg_iterations) {
+    held->held = FactorizePreconditioner(preconditioner, settings, system,
+                                         report);
+  }
+  if (!held->held) {
+    outcome.failure = NewtonStop::kLinearSolveFailed;
+    return outcome;
+  }
+  const Eigen::VectorXd& g = current.reduced;
+  for (int rejected = 0; rejected <= settings.tr_max_rejections; ++rejected) {
+    if (rejected > 0 && settings.stop && settings.stop()) {
+      outcome.failure = NewtonStop::kStopped;
+      return outcome;
+    }
+    const auto cg_start = std::chrono::steady_clock::now();
+    const SteihaugResult step =
+        SolveSteihaugCg(system->matrix, g, *preconditioner, *radius, forcing,
+                        settings.tr_max_cg_iterations);
+    held->last_cg_iterations = step.iterations;
+    linear_solver->CountCg(
+        step.iterations,
+        std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                      cg_start)
+            .count());
+    const bool on_boundary =
+        step.stop == SteihaugResult::Stop::kBoundary ||
+        (step.stop == SteihaugResult::Stop::kNegativeCurvature &&
+         std::isfinite(*radius));
+    double ratio = -1;
+    bool round_off = false;
+    double trial_merit = 0;
+    if (step.model_decrease > 0 && step.step.allFinite()) {
+      problem->SetTrial(step.step);
+      if (problem->Merit(NewtonPoint::kTrial, &trial_merit) ==
+              EvaluationStatus::kOk &&
+          std::isfinite(trial_merit)) {
+        ratio = (merit - trial_merit) / step.model_decrease;
+        round_off = std::abs(trial_merit - merit) <=
+                    settings.merit_round_off * std::abs(merit);
+      }
+    }
+    // Where the predicted decrease itself is below the merit's round-off,
+    // rho is noise: the residual decides (as with accept_smaller_max_norm).
+    const bool model_at_round_off =
+        step.model_decrease <= settings.merit_round_off * std::abs(merit);
+    const bool residual_decides =
+        round_off && (settings.accept_smaller_max_norm || model_at_round_off);
+    bool take = false;
+    NewtonResidual trial;
+    if (ratio >= settings.tr_accept || residual_decides) {
+      take = problem->Residual(NewtonPoint::kTrial, &trial) ==
+                 EvaluationStatus::kOk &&
+             (ratio >= settings.tr_accept ||
+              trial.max_norm < current.max_norm);
+    }
+    // The radius: shrink to a quarter of the step on a poor model (or a
+    // trial that cannot be evaluated), double it after a good step that the
+    // boundary cut short.
+    if (!(ratio >= 0.25) && !(take && round_off)) {
+      *radius = 0.25 * step.step_norm;
+    } else if (ratio > 0.75 && on_boundary) {
+      *radius = 2 * *radius;
+    }
+    if (take) {
+      if (on_boundary) ++report->boundary_steps;
+      if (step.stop == SteihaugResult::Stop::kNegativeCurvature) {
+        ++report->negative_curvature_steps;
+      }
+      outcome.accepted = true;
+      outcome.residual = std::move(trial);
+      outcome.merit = trial_merit;
+      return outcome;
+    }
+    ++report->rejected_trials;
+    if (!(step.step_norm > 0)) break;  // no step left to shrink
+  }
+  return outcome;
+}
 
 }  // namespace
 
@@ -135,6 +280,13 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
       settings.globalisation == NewtonSettings::Globalisation::kLevenbergMarquardt;
   double lm_lambda = settings.lm_initial;  // kLevenbergMarquardt's lambda, nu
   double lm_nu = 2;
+  const bool trust_region =
+      minimize &&
+      settings.globalisation == NewtonSettings::Globalisation::kTrustRegion;
+  Preconditioner* const preconditioner =
+      trust_region ? linear_solver->preconditioner() : nullptr;
+  double radius = settings.tr_initial_radius;  // kTrustRegion's, in |.|_M
+  HeldPreconditioner held_preconditioner;
   while (true) {
     if (report.final_gradient <= settings.tolerance * current.scale) {
       finish(NewtonStop::kConverged);
@@ -267,10 +419,25 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
       }
       if (!accepted && stop_requested) failure = NewtonStop::kStopped;
     }
+    if (trust_region) {
+      const TrustRegionOutcome outcome = TrustRegionIteration(
+          problem, linear_solver, preconditioner, settings, forcing, merit,
+          current, &system, &radius, &held_preconditioner, &report);
+      if (outcome.accepted) {
+        accept(outcome.residual, outcome.merit, false);
+      } else {
+        failure = outcome.failure;
+      }
+      if (settings.progress) {
+        update_counters();
+        settings.progress(report, merit, accepted);
+      }
+    }
     // The Newton step, then (minimisation with max_shifts > 0) steps of
     // H + lambda I while the step cannot be used.
     const bool can_shift =
-        minimize && settings.max_shifts > 0 && !levenberg_marquardt;
+        minimize && settings.max_shifts > 0 && !levenberg_marquardt &&
+        !trust_region;
     double mean_diagonal = 0;
     if (can_shift && system.matrix.rows() > 0) {
       mean_diagonal =
@@ -279,7 +446,8 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
     const double min_shift =
         settings.shift_initial * std::max(mean_diagonal, 1e-300);
     if (shift < min_shift) shift = 0;
-    for (int tries = 0; !accepted && !levenberg_marquardt; ++tries) {
+    for (int tries = 0; !accepted && !levenberg_marquardt && !trust_region;
+         ++tries) {
       if (tries > 0) {
         if (!can_shift || tries > settings.max_shifts) break;
         shift = shift > 0 ? shift * settings.shift_factor : min_shift;
@@ -357,7 +525,7 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
       }
     }
     if (accepted && shift > 0) shift /= settings.shift_factor;
-    if (settings.progress && !levenberg_marquardt) {
+    if (settings.progress && !levenberg_marquardt && !trust_region) {
       update_counters();
       settings.progress(report, merit, accepted);
     }

@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <limits>
 #include <string>
 
 #include "shellspace/solvers/linear_solver.h"
@@ -141,12 +142,42 @@ struct NewtonSettings {
   //    most lm_max_rejections rejected steps in a row, then
   //    kLineSearchFailed. The line-search and shift settings above are not
   //    used.
-  enum class Globalisation { kLineSearch, kLevenbergMarquardt };
+  //  - kTrustRegion: a trust region on the model q(p) above with the exact
+  //    H (possibly indefinite), in the norm |p|_M of the linear solver's
+  //    preconditioner M (LinearSolver::preconditioner: the Cholesky factor
+  //    of H or of its diagonal blocks, factorised at most once per
+  //    iteration and kept while the last subproblem took at most
+  //    tr_refactor_cg_iterations CG iterations; where
+  //    that factorisation is not positive definite, of H + sigma I with
+  //    sigma = tr_shift_initial x mean |diag H|, ten times larger per
+  //    failure, at most tr_max_shifts times). The step solves the
+  //    subproblem by Steihaug-Toint CG (steihaug_cg.h) to the forcing
+  //    tolerance: the inexact Newton step whenever CG stays inside the
+  //    region and meets no negative curvature, else a step to the boundary
+  //    (along a direction of negative curvature where H has one). The
+  //    radius starts at tr_initial_radius (+inf: the first step is the
+  //    Newton step); rho = actual / predicted decrease; rho >= tr_accept
+  //    accepts (or, with accept_smaller_max_norm, a merit change below
+  //    round-off with a smaller residual max_norm); rho < 1/4 or a trial
+  //    that cannot be evaluated sets the radius to |p|_M / 4; rho > 3/4 on a
+  //    step at the boundary doubles it. At most tr_max_rejections rejected
+  //    trials in a row, then kLineSearchFailed. The line-search, shift and
+  //    LM settings are not used.
+  enum class Globalisation { kLineSearch, kLevenbergMarquardt, kTrustRegion };
   Globalisation globalisation = Globalisation::kLineSearch;
   double lm_initial = 1e-4;
   double lm_min_diagonal = 1e-6;
   double lm_min_ratio = 1e-3;
   int lm_max_rejections = 12;
+  double tr_initial_radius = std::numeric_limits<double>::infinity();
+  double tr_accept = 1e-4;
+  int tr_max_rejections = 12;
+  int tr_max_cg_iterations = 2000;
+  int tr_max_shifts = 8;
+  double tr_shift_initial = 1e-6;
+  // The preconditioner of an earlier iteration is reused while its
+  // subproblems need at most this many CG iterations.
+  int tr_refactor_cg_iterations = 25;
 
   // Stall rules (0: off).
   // Round-off floor: stop after an accepted step that leaves max_norm <=
@@ -205,6 +236,13 @@ struct NewtonReport {
   std::string linear_solver;         // LinearSolver::name() of the last solve
   int cg_not_converged = 0;          // iterative solves short of tolerance
   int shifted_steps = 0;             // accepted steps from H + lambda I
+  // kTrustRegion: accepted steps that ended on the trust region's boundary
+  // (CG truncated), of which along negative curvature; rejected trials;
+  // iterations whose preconditioner needed a diagonal shift.
+  int boundary_steps = 0;
+  int negative_curvature_steps = 0;
+  int rejected_trials = 0;
+  int shifted_preconditioners = 0;
   double max_shift = 0;              // largest lambda tried (0: none)
 
   // Adds a later solve: counts and times summed, the rest from `later`

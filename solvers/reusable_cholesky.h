@@ -50,6 +50,29 @@ class ReusableCholesky : public LinearSolver {
              const std::vector<int>& vertex_of, int num_vertices,
              const Eigen::VectorXd& b, double tolerance, Eigen::VectorXd* x);
 
+  // Preconditioner: the Cholesky factor of the whole system.matrix; false
+  // if it is not positive definite. A later Solve reuses it (as after its
+  // own factorisations).
+  class AsPreconditioner : public Preconditioner {
+   public:
+    explicit AsPreconditioner(ReusableCholesky* owner) : owner_(owner) {}
+    bool Factorize(const LinearSystem& system) override {
+      return owner_->Factorize(system.matrix, system.vertex_of,
+                               system.num_vertices);
+    }
+    Eigen::VectorXd Apply(const Eigen::VectorXd& r) const override {
+      return owner_->ApplyInverse(r);
+    }
+
+   private:
+    ReusableCholesky* owner_;
+  };
+  Preconditioner* preconditioner() override { return &as_preconditioner_; }
+  void CountCg(int iterations, double seconds) override {
+    stats_.cg_iterations += iterations;
+    stats_.cg_seconds += seconds;
+  }
+
   int max_cg_iterations = 25;
   const Stats& stats() const override { return stats_; }
   const char* name() const override { return "direct"; }
@@ -65,6 +88,7 @@ class ReusableCholesky : public LinearSolver {
   Stats stats_;
   double last_factorization_flops_ = 0;  // work estimate, see above
   double factor_nonzeros_ = 0;           // nnz(L) of the held factor
+  AsPreconditioner as_preconditioner_{this};
 };
 
 }  // namespace shellspace
