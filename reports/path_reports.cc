@@ -78,6 +78,35 @@ std::vector<std::string> ExpStepStages(const ShootResult& result) {
   return stages;
 }
 
+JsonObject InitialPathJson(const InitialPathReport& init) {
+  JsonObject json;
+  json.Add("requested", std::string(GeodesicInitName(init.requested)))
+      .Add("used", std::string(GeodesicInitName(init.used)))
+      .Add("reason", init.reason)
+      .Add("rotation_degrees", init.rotation_degrees)
+      .Add("rigid_motion_removed", init.rigid_motion_removed)
+      .Add("linear_smallest_area_ratio", init.linear.smallest_area_ratio)
+      .Add("linear_turned_faces", init.linear.turned_faces)
+      .Add("ltheta_iterations", init.ltheta_iterations)
+      .Add("ltheta_unconverged_frames",
+           std::vector<double>(init.ltheta_unconverged.begin(),
+                               init.ltheta_unconverged.end()))
+      .Add("seconds", init.seconds);
+  return json;
+}
+
+JsonObject ProlongationJson(const ProlongationCheck& check) {
+  JsonObject json;
+  json.Add("checked", check.checked)
+      .Add("used", check.used)
+      .Add("prolongated_energy", check.prolongated_energy)
+      .Add("initial_energy", check.initial_energy)
+      .Add("turned_faces", check.turned_faces)
+      .Add("smallest_face_area_ratio", check.smallest_face_area.ratio)
+      .Add("reason", check.reason);
+  return json;
+}
+
 JsonObject GeodesicJson(const GeodesicResult& result) {
   const double relative =
       RelativeGradientNorm(result.final_gradient, result.initial_gradient);
@@ -104,6 +133,13 @@ JsonObject GeodesicJson(const GeodesicResult& result) {
                                 : result.newton.linear_solver)
       .Add("cg_not_converged", result.newton.cg_not_converged)
       .Add("newton_shifted_steps", result.newton.shifted_steps)
+      .Add("newton_boundary_steps", result.newton.boundary_steps)
+      .Add("newton_negative_curvature_steps",
+           result.newton.negative_curvature_steps)
+      .Add("newton_rejected_trials", result.newton.rejected_trials)
+      .Add("newton_shifted_preconditioners",
+           result.newton.shifted_preconditioners)
+      .Add("init", InitialPathJson(result.init))
       .Add("step_energy_ratio", result.step_energy_ratio)
       .Add("uneven_steps", result.uneven_steps)
       .Add("smallest_face_area_ratio", result.smallest_face_area.ratio)

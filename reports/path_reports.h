@@ -86,6 +86,11 @@ ShootTotals TotalsOf(const ShootResult& result);
 // collapsing_faces (ratio < kCollapsingFaceAreaRatio), frames.
 JsonObject GeodesicJson(const GeodesicResult& result);
 
+// How a geodesic's initial path was made (InitialPathReport) and the check
+// of a prolongated path (ProlongationCheck), as JSON objects.
+JsonObject InitialPathJson(const InitialPathReport& init);
+JsonObject ProlongationJson(const ProlongationCheck& check);
+
 // The levels of a multiresolution solve as a JSON array (coarsest first; the
 // last is the input mesh), one object each: vertices, faces, iterations,
 // path_energy, final_gradient_norm, converged, seconds.

@@ -56,4 +56,9 @@ GeodesicLm ParseGeodesicLm(const std::string& value, const std::string& name) {
   return ParseNamedValue(kGeodesicLmNames, value, name);
 }
 
+GeodesicInit ParseGeodesicInit(const std::string& value,
+                               const std::string& name) {
+  return ParseNamedValue(kGeodesicInitNames, value, name);
+}
+
 }  // namespace shellspace

@@ -38,6 +38,11 @@ const char* PathLinearSolverName(PathLinearSolver solver);
 // `name` for anything else.
 GeodesicLm ParseGeodesicLm(const std::string& value, const std::string& name);
 
+// GeodesicInit of "auto", "linear", "ltheta". Throws InputError starting
+// with `name` for anything else.
+GeodesicInit ParseGeodesicInit(const std::string& value,
+                               const std::string& name);
+
 }  // namespace shellspace
 
 #endif  // SHELLSPACE_REPORTS_SOLVE_CHOICES_H_

@@ -1,5 +1,6 @@
 #include "shellspace/tools/geodesic_solve.h"
 
+#include <cstdio>
 #include <string>
 #include <vector>
 
@@ -56,6 +57,26 @@ FlagSpec GeodesicLmFlag() {
       .Default("auto");
 }
 
+FlagSpec GeodesicInitFlag() {
+  char ratio[16];
+  std::snprintf(ratio, sizeof ratio, "%g", kDegenerateAreaRatio);
+  return TextFlag("init",
+                  "auto|linear|ltheta: the initial path; linear: positions "
+                  "interpolated after removing the rigid motion between the "
+                  "ends (none with --mask, or below " +
+                      std::to_string(static_cast<int>(kRigidBlendMinDegrees)) +
+                      " degree); ltheta: shells reconstructed from "
+                      "interpolated edge lengths, areas and dihedral angles; "
+                      "auto: linear unless a triangle of it keeps less than " +
+                      ratio +
+                      " of its area or turns over, then ltheta")
+      .Default("auto");
+}
+
+GeodesicInit GeodesicInitFromFlags() {
+  return ParseGeodesicInit(FLAGS_init, "--init");
+}
+
 PathLinearSolver LinearSolverFromFlags() {
   return ParsePathLinearSolver(FLAGS_linear_solver, "--linear_solver");
 }
@@ -66,6 +87,7 @@ MultiresolutionResult SolveGeodesicFromFlags(const ShellSpace& space,
   GeodesicInput with_solver = input;
   with_solver.linear_solver = LinearSolverFromFlags();
   with_solver.lm = ParseGeodesicLm(FLAGS_lm, "--lm");
+  with_solver.init = GeodesicInitFromFlags();
   return SolveGeodesicMultiresolution(space, with_solver, settings,
                                       MultiresFromFlags(space.num_vertices));
 }

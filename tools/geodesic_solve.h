@@ -41,6 +41,10 @@ FlagSpec GeodesicStepsFlag(const std::string& what);
 FlagSpec LinearSolverFlag();
 
 // The --lm flag: who runs the LM stages (GeodesicLm).
+// --init auto|linear|ltheta (GeodesicInit) and its value.
+FlagSpec GeodesicInitFlag();
+GeodesicInit GeodesicInitFromFlags();
+
 FlagSpec GeodesicLmFlag();
 
 // PathLinearSolver of --linear_solver: auto, direct, block-jacobi. Throws

@@ -79,6 +79,7 @@ FlagTable LogFlags() {
            MaskFlag(),
            LinearSolverFlag(),
            GeodesicLmFlag(),
+           GeodesicInitFlag(),
        },
        MaterialFlags(), SolverFlags(), JsonFlag()});
 }
@@ -150,6 +151,7 @@ int RunLog() {
     json.Raw("energy_split", PathEnergySplitJson(space, geodesic.path));
     json.Add("bending_model", FLAGS_bending)
         .Raw("multires_levels", MultiresolutionJson(multires))
+        .Add("prolongation", ProlongationJson(multires.prolongation))
         .Add("log_max_norm", log.cwiseAbs().maxCoeff())
         .Add("seconds", Seconds(clock))
         .Add("output", FLAGS_output);

@@ -39,6 +39,7 @@ FlagTable GeodesicFlags() {
            MultiresFlag(),
            LinearSolverFlag(),
            GeodesicLmFlag(),
+           GeodesicInitFlag(),
        },
        MaterialFlags(), SolverFlags(), JsonFlag(), FilmStripFlags()});
 }
@@ -67,8 +68,10 @@ int RunGeodesic() {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock)
           .count();
   CommitPathRun(&output,
-                GeodesicJson(result).Raw("multires_levels",
-                                         MultiresolutionJson(multires)),
+                GeodesicJson(result)
+                    .Raw("multires_levels", MultiresolutionJson(multires))
+                    .Add("prolongation",
+                         ProlongationJson(multires.prolongation)),
                 space, result.path, seconds);
   if (!FLAGS_json && !FLAGS_quiet) {
     if (ceres_ran) std::cerr << result.summary.BriefReport() << "\n";

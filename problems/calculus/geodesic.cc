@@ -8,6 +8,7 @@
 #include <memory>
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
+#include "shellspace/geometry/validation.h"
 #include "shellspace/geometry/parallel_for.h"
 #include "shellspace/solvers/rigid_gauge.h"
 
@@ -187,6 +188,12 @@ bool ForEachInnerShapeGradient(
   return std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; });
 }
 
+double PathGradientNorm(const ShellSpace& space, const GeodesicInput& input,
+                        const ShellPath& path, int threads) {
+  if (path.size() < 3) return 0;
+  return PathGradientMaxNorm(space, input, path, threads);
+}
+
 double LinearPathGradient(const ShellSpace& space, const GeodesicInput& input) {
   if (input.steps < 2) return 0;
   return PathGradientMaxNorm(space, input,
@@ -203,9 +210,15 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
         std::to_string(input.steps));
   }
   GeodesicResult result;
-  result.path = input.initial.empty()
-                    ? LinearPath(input.start, input.end, input.steps)
-                    : input.initial;
+  if (input.initial.empty()) {
+    result.path = MakeGeodesicInitialPath(space, input.start, input.end,
+                                          input.steps, input.fixed_vertices,
+                                          input.init, settings, &result.init);
+  } else {
+    result.path = input.initial;
+    result.init.requested = input.init;
+    result.init.reason = "given";
+  }
   if (static_cast<int>(result.path.size()) != input.steps + 1) {
     throw InputError("geodesic: the initial path must have K + 1 = " +
                      std::to_string(input.steps + 1) + " shapes, got " +
@@ -224,9 +237,13 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
     // Iterations left of settings.max_iterations (LM iterations and Newton
     // steps of all stages).
     int lm_left = settings.max_iterations;
+    // Slivers of the input: the engine's LM, whose trials respect the step
+    // limit (kStepMinAreaFraction); Ceres' LM may crush a sliver and crawl.
     const bool engine_lm =
         ChooseGeodesicLm(input.lm, input.linear_solver,
-                         PathUnknowns(space, input)) == GeodesicLm::kEngine;
+                         PathUnknowns(space, input)) == GeodesicLm::kEngine ||
+        (input.lm == GeodesicLm::kAuto &&
+         !FindSliverFaces(Mesh{input.start, space.faces}).faces.empty());
     // Ceres' LM problem, built once for all its stages (only if Ceres runs
     // them: the engine needs no residual blocks).
     std::unique_ptr<ceres::Problem> problem;
@@ -248,6 +265,7 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
         lm.gradient_tolerance = lm_tolerance * std::max(1.0, g0);
         lm.max_steps = std::max(0, lm_left);
         lm.num_threads = settings.num_threads;
+        lm.min_area_fraction = kStepMinAreaFraction;
         lm.progress = settings.progress;
         lm.progress_label = settings.progress_label + " lm";
         lm.stop = settings.stop;
@@ -301,16 +319,15 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
       polish.progress = settings.progress;
       polish.progress_label = settings.progress_label + " newton";
       polish.max_steps = std::min(polish.max_steps, lm_left);
-      if (engine_lm) {
-        // The engine's finish: a trust region on the exact Hessian (LM
-        // with lambda from 1e-8, shrinking as steps succeed) instead of the
-        // line search with shifts, which restarts its shift every step.
-        polish.globalisation =
-            NewtonSettings::Globalisation::kLevenbergMarquardt;
+      if (engine_lm || input.newton == GeodesicNewton::kTrustRegion) {
+        // The trust region on the exact Hessian with Steihaug-Toint CG: the
+        // inexact Newton step wherever CG stays inside the region, steps
+        // to its boundary along negative curvature elsewhere.
+        polish.globalisation = NewtonSettings::Globalisation::kTrustRegion;
         polish.model = HessianModel::kExact;
-        polish.lm_initial = 1e-8;
         polish.max_steps = std::min(4 * polish.max_steps, lm_left);
       }
+      polish.min_area_fraction = kStepMinAreaFraction;
       polish.stop = settings.stop;
       const PathNewtonReport report =
           PolishPathNewton(space, input.fixed_vertices, polish, &result.path);

@@ -13,6 +13,7 @@
 
 #include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/cost_functions/shell/shell_space.h"
+#include "shellspace/problems/calculus/geodesic_initial_path.h"
 #include "shellspace/problems/calculus/path_newton.h"
 #include "shellspace/solvers/solver_settings.h"
 
@@ -59,13 +60,29 @@ ShellPath LinearPath(const Positions& a, const Positions& b, int steps);
 //    (GeodesicInput::linear_solver: block-Jacobi CG with memory
 //    O(K x one shape), or the direct space-time Cholesky);
 //  - kAuto: kEngine where the linear solver is block-Jacobi by size
-//    (ChooseLinearSolver), else kCeres.
+//    (ChooseLinearSolver) or where the start shape has sliver triangles
+//    (FindSliverFaces: the engine's trials keep kStepMinAreaFraction of
+//    every triangle's area), else kCeres.
 enum class GeodesicLm { kAuto, kCeres, kEngine };
 
 // The GeodesicLm that runs for `choice` on a problem with `unknowns` reduced
 // unknowns and linear solver `linear_solver` (kAuto resolved; never kAuto).
 GeodesicLm ChooseGeodesicLm(GeodesicLm choice, PathLinearSolver linear_solver,
                             int unknowns);
+
+// The globalisation of a geodesic's Newton finish where the LM stages are
+// Ceres' (with the engine's LM stages it is always the trust region):
+//  - kTrustRegion: NewtonSettings::Globalisation::kTrustRegion on the exact
+//    Hessian (Steihaug-Toint CG in the norm of the linear solver's
+//    factorisation);
+//  - kLineSearch: the Newton step with a line search and shifted Hessians
+//    H + lambda I where it cannot be used.
+enum class GeodesicNewton { kTrustRegion, kLineSearch };
+
+// The step limit of every stage run by the engine (PathNewtonSettings::
+// min_area_fraction): no trial keeps less than this fraction of a
+// triangle's area in the current path, or turns it over.
+inline constexpr double kStepMinAreaFraction = 0.1;
 
 struct GeodesicInput {
   // The geodesic of `steps` steps from `start` to `end`, other fields at
@@ -82,7 +99,11 @@ struct GeodesicInput {
   Positions start, end;
   int steps = 8;                    // K >= 1
   std::vector<int> fixed_vertices;  // Dirichlet mask (may be empty)
-  ShellPath initial;                // optional K + 1 shapes; else linear
+  // Optional K + 1 shapes; else the path of `init`
+  // (MakeGeodesicInitialPath, with the solve's settings for its LΘA
+  // reconstructions).
+  ShellPath initial;
+  GeodesicInit init = GeodesicInit::kAuto;
   // Without a mask: pin the rigid gauge of each inner shape (true), or leave
   // it free for LM's damping to handle (false; for tests of gauge
   // independence).
@@ -99,11 +120,13 @@ struct GeodesicInput {
   static constexpr int kMaxNewtonAttempts = 3;
   // Who runs the LM stages (GeodesicLm).
   GeodesicLm lm = GeodesicLm::kAuto;
+  GeodesicNewton newton = GeodesicNewton::kTrustRegion;
   // The gradient max norm g_0 that the relative tolerance refers to
   // (stop at |grad| <= tolerance * max(1, g_0)); negative: the initial
   // path's. A solve started from a prolongated coarse solution passes the
-  // linear path's (LinearPathGradient), so that it stops where a solve from
-  // the linear path would.
+  // gradient at the fine level's own initial path (PathGradientNorm of
+  // MakeGeodesicInitialPath's path), so that it stops where a solve from
+  // that path would.
   double reference_gradient = -1;
 };
 
@@ -111,6 +134,12 @@ struct GeodesicInput {
 // input.start to input.end (with input's mask or gauge): the g_0 of a solve
 // from the linear path.
 double LinearPathGradient(const ShellSpace& space, const GeodesicInput& input);
+
+// max |grad E_K| over the free coordinates at `path` (K + 1 shapes, with
+// input's mask or gauge): the g_0 of a solve started from `path`; 0 if an
+// element is degenerate.
+double PathGradientNorm(const ShellSpace& space, const GeodesicInput& input,
+                        const ShellPath& path, int threads);
 
 // One stage of a geodesic solve: an LM run or a Newton polish, in the order
 // they ran.
@@ -156,6 +185,9 @@ double StepEnergyRatio(const std::vector<double>& step_energies);
 
 struct GeodesicResult {
   ShellPath path;                     // s_0 = start ... s_K = end
+  // How the initial path was made (used == kLinear and reason "given" when
+  // GeodesicInput::initial was given).
+  InitialPathReport init;
   double path_energy = 0;             // E_K
   std::vector<double> step_energies;  // W[s_{k-1}, s_k]
   ceres::Solver::Summary summary;     // the last Ceres LM stage (if any)

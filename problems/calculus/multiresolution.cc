@@ -3,6 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
+#include <limits>
+#include <optional>
+#include <string>
 
 #include "shellspace/problems/calculus/deformation_transfer.h"
 #include "shellspace/problems/calculus/shared_decimation.h"
@@ -30,7 +34,67 @@ MultiresolutionLevel LevelReport(const ShellSpace& space,
   return level;
 }
 
+std::string Number(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.6g", x);
+  return text;
+}
+
 }  // namespace
+
+ProlongationCheck CheckProlongation(const ShellSpace& space,
+                                    const ShellPath& prolongated,
+                                    const ShellPath& initial,
+                                    const InitialPathReport& init) {
+  ProlongationCheck check;
+  check.checked = true;
+  const std::optional<double> energy = TryPathEnergy(space, prolongated);
+  const std::optional<double> initial_energy = TryPathEnergy(space, initial);
+  check.prolongated_energy =
+      energy ? *energy : std::numeric_limits<double>::infinity();
+  check.initial_energy =
+      initial_energy ? *initial_energy : std::numeric_limits<double>::infinity();
+  check.smallest_face_area = SmallestFaceAreaRatio(space.faces, prolongated);
+  const int K = static_cast<int>(initial.size()) - 1;
+  for (int f = 0; f < space.faces.rows(); ++f) {
+    for (int k = 1; k < K; ++k) {
+      const auto normal = [&](const Positions& x) {
+        const Eigen::Vector3d a = x.row(space.faces(f, 0)).transpose();
+        const Eigen::Vector3d b = x.row(space.faces(f, 1)).transpose();
+        const Eigen::Vector3d c = x.row(space.faces(f, 2)).transpose();
+        return Eigen::Vector3d((b - a).cross(c - a));
+      };
+      if (normal(prolongated[k]).dot(normal(initial[k])) < 0) {
+        ++check.turned_faces;
+        break;
+      }
+    }
+  }
+  const std::string versus = "E_K " + Number(check.prolongated_energy) +
+                             " against " + Number(check.initial_energy) +
+                             " of the " + GeodesicInitName(init.used) +
+                             " path";
+  if (!energy) {
+    check.reason = "rejected: a degenerate element";
+  } else if (check.turned_faces > 0) {
+    check.reason = "rejected: " + std::to_string(check.turned_faces) +
+                   " triangles turned over against the " +
+                   GeodesicInitName(init.used) + " path; " + versus;
+  } else if (check.smallest_face_area.ratio < kCollapsingFaceAreaRatio) {
+    check.reason = "rejected: triangle " +
+                   std::to_string(check.smallest_face_area.face) +
+                   " of shape " +
+                   std::to_string(check.smallest_face_area.shape) +
+                   " keeps " + Number(check.smallest_face_area.ratio) +
+                   " of its area; " + versus;
+  } else if (!(check.prolongated_energy < check.initial_energy)) {
+    check.reason = "rejected: " + versus;
+  } else {
+    check.used = true;
+    check.reason = versus;
+  }
+  return check;
+}
 
 MultiresolutionResult SolveGeodesicMultiresolution(
     const ShellSpace& space, const GeodesicInput& input,
@@ -42,9 +106,15 @@ MultiresolutionResult SolveGeodesicMultiresolution(
   const bool coarsen = multires.levels > 0 && input.steps >= 2 &&
                        target >= multires.min_vertices && target < n;
   GeodesicInput fine = input;
+  InitialPathReport fine_init;
   if (coarsen) {
-    // The fine finish stops where a solve from the linear path would.
-    fine.reference_gradient = LinearPathGradient(space, input);
+    // The fine level's own initial path: the start to beat, and the fine
+    // finish stops where a solve from it would.
+    fine.initial = MakeGeodesicInitialPath(space, input.start, input.end,
+                                           input.steps, input.fixed_vertices,
+                                           input.init, settings, &fine_init);
+    fine.reference_gradient =
+        PathGradientNorm(space, input, fine.initial, settings.num_threads);
     const SharedDecimation level = DecimateShared(
         space.faces, {input.start, input.end}, target, input.fixed_vertices);
     Mesh coarse_mesh;
@@ -60,6 +130,7 @@ MultiresolutionResult SolveGeodesicMultiresolution(
     coarse_input.newton_from = input.newton_from;
     coarse_input.linear_solver = input.linear_solver;
     coarse_input.lm = input.lm;
+    coarse_input.init = input.init;
     std::vector<int> coarse_of(n, -1);
     for (int i = 0; i < level.num_vertices(); ++i) {
       coarse_of[level.survivors[i]] = i;
@@ -84,17 +155,30 @@ MultiresolutionResult SolveGeodesicMultiresolution(
                                   level.shapes[0]);
     const Prolongation from_end(space.faces, input.end, level, level.shapes[1]);
     const int K = input.steps;
-    const ShellPath linear = LinearPath(input.start, input.end, K);
-    fine.initial = linear;
+    ShellPath prolongated = fine.initial;
     for (int k = 1; k < K; ++k) {
       const Prolongation& p = 2 * k <= K ? from_start : from_end;
-      fine.initial[k] = p.Apply(coarse.geodesic.path[k]);
-      for (int v : input.fixed_vertices) fine.initial[k].row(v) = linear[k].row(v);
+      prolongated[k] = p.Apply(coarse.geodesic.path[k]);
+      // Masked vertices at their positions in the initial path (linear).
+      for (int v : input.fixed_vertices) {
+        prolongated[k].row(v) = fine.initial[k].row(v);
+      }
     }
+    result.prolongation =
+        CheckProlongation(space, prolongated, fine.initial, fine_init);
+    if (result.prolongation.used) fine.initial = std::move(prolongated);
     prolongation_seconds = SecondsSince(prolong_clock);
   }
   const auto fine_clock = std::chrono::steady_clock::now();
   result.geodesic = SolveGeodesic(space, fine, settings);
+  if (coarsen) {
+    result.geodesic.init = fine_init;
+    if (result.prolongation.used) {
+      result.geodesic.init.reason =
+          "prolongated from the coarse level (" + result.prolongation.reason +
+          ")";
+    }
+  }
   const double tolerance =
       settings.gradient_tolerance *
       std::max(1.0, coarsen ? fine.reference_gradient

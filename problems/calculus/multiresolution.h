@@ -5,6 +5,7 @@
 #ifndef SHELLSPACE_PROBLEMS_CALCULUS_MULTIRESOLUTION_H_
 #define SHELLSPACE_PROBLEMS_CALCULUS_MULTIRESOLUTION_H_
 
+#include <string>
 #include <vector>
 
 #include "shellspace/problems/calculus/geodesic.h"
@@ -35,9 +36,34 @@ struct MultiresolutionLevel {
   double seconds = 0;         // prolongation onto this level + its solve
 };
 
+// The check of a prolongated path before the fine solve: it is used only if
+// its E_K is below that of the fine level's own initial path
+// (MakeGeodesicInitialPath) and no triangle of an inner shape turned over
+// against that path's shape (normals with a negative dot product) or kept
+// less than kCollapsingFaceAreaRatio of its start area. A coarse solution
+// can be a worse start than the linear path: a thin part (a finger, a horn)
+// that the decimation thinned out is prolongated through its neighbours.
+struct ProlongationCheck {
+  bool checked = false;        // a coarse level ran
+  bool used = false;           // the fine solve started from the prolongation
+  double prolongated_energy = 0;  // E_K (+inf: a degenerate element)
+  double initial_energy = 0;      // E_K of the fine level's initial path
+  int turned_faces = 0;        // against the initial path's shapes
+  FaceAreaRatio smallest_face_area;  // of the prolongated inner shapes
+  std::string reason;          // one line: why it was used or rejected
+};
+
+// The ProlongationCheck of `prolongated` against `initial` (K + 1 shapes
+// each, the same ends), whose path `init` made.
+ProlongationCheck CheckProlongation(const ShellSpace& space,
+                                    const ShellPath& prolongated,
+                                    const ShellPath& initial,
+                                    const InitialPathReport& init);
+
 struct MultiresolutionResult {
   GeodesicResult geodesic;  // the fine solution (as SolveGeodesic's)
   std::vector<MultiresolutionLevel> levels;
+  ProlongationCheck prolongation;  // onto the fine level
 };
 
 // The geodesic of `input` on `space` through `settings.levels` coarse levels
@@ -46,10 +72,12 @@ struct MultiresolutionResult {
 // so the coarse mask is the mask itself), solves its geodesic (recursively),
 // and prolongates each inner shape s_k by deformation transfer from the
 // coarse end shape nearer in time (s_0 for k <= K/2, else s_K); masked
-// vertices are then put back at their linear positions and the fine level
-// is solved from that path, to the caller's tolerance relative to the
-// linear path's gradient (GeodesicInput::reference_gradient), so the result
-// is a solution of the same problem as SolveGeodesic's. Throws InputError
+// vertices are then put back at their linear positions. The fine level is
+// solved from that path if it passes ProlongationCheck, else from its own
+// initial path (MakeGeodesicInitialPath of input.init), to the caller's
+// tolerance relative to the gradient at that initial path
+// (GeodesicInput::reference_gradient), so the result is a solution of the
+// same problem as SolveGeodesic's. Throws InputError
 // as SolveGeodesic does.
 MultiresolutionResult SolveGeodesicMultiresolution(
     const ShellSpace& space, const GeodesicInput& input,

@@ -96,8 +96,10 @@ ShellPath StepPath(const ShellPath& path, const ReducedCoordinates& r,
 class PathEnergyProblem : public NewtonProblem {
  public:
   PathEnergyProblem(const ShellSpace& space, const std::vector<int>& fixed,
-                    int threads, HessianModel model, ShellPath* path)
+                    int threads, HessianModel model, double min_area_fraction,
+                    ShellPath* path)
       : space_(space),
+        min_area_fraction_(min_area_fraction),
         fixed_(fixed),
         threads_(threads),
         assembler_(space, model),
@@ -107,6 +109,10 @@ class PathEnergyProblem : public NewtonProblem {
 
   EvaluationStatus Merit(NewtonPoint point, double* merit) override {
     const ShellPath& path = point == NewtonPoint::kCurrent ? *path_ : trial_;
+    if (point == NewtonPoint::kTrial && min_area_fraction_ > 0 &&
+        CrushesATriangle(*path_, trial_)) {
+      return EvaluationStatus::kInfeasible;
+    }
     const std::optional<double> energy = TryPathEnergy(space_, path);
     if (!energy) return EvaluationStatus::kInfeasible;
     *merit = *energy;
@@ -142,6 +148,30 @@ class PathEnergyProblem : public NewtonProblem {
     return EvaluationStatus::kOk;
   }
   int unknowns() const { return reduced_.size; }
+  // PathNewtonSettings::min_area_fraction: a triangle of an inner shape of
+  // `trial` below that fraction of its area in `current`, or turned over.
+  bool CrushesATriangle(const ShellPath& current,
+                        const ShellPath& trial) const {
+    const Faces& faces = space_.faces;
+    const int K = static_cast<int>(current.size()) - 1;
+    for (int k = 1; k < K; ++k) {
+      for (int f = 0; f < faces.rows(); ++f) {
+        const auto normal = [&](const Positions& x) {
+          const Eigen::Vector3d a = x.row(faces(f, 0)).transpose();
+          const Eigen::Vector3d b = x.row(faces(f, 1)).transpose();
+          const Eigen::Vector3d c = x.row(faces(f, 2)).transpose();
+          return Eigen::Vector3d((b - a).cross(c - a));
+        };
+        const Eigen::Vector3d before = normal(current[k]);
+        const Eigen::Vector3d after = normal(trial[k]);
+        if (after.dot(before) < 0 ||
+            after.norm() < min_area_fraction_ * before.norm()) {
+          return true;
+        }
+      }
+    }
+    return false;
+  }
   void SetTrial(const Eigen::VectorXd& step) override {
     trial_ = StepPath(*path_, reduced_, step);
   }
@@ -155,6 +185,7 @@ class PathEnergyProblem : public NewtonProblem {
 
  private:
   const ShellSpace& space_;
+  const double min_area_fraction_;
   const std::vector<int>& fixed_;
   const int threads_;
   const PathHessianAssembler assembler_;
@@ -192,7 +223,7 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
   PathEnergyProblem problem(
       space, fixed_vertices, std::max(1, settings.num_threads),
       levenberg_marquardt ? settings.model : HessianModel::kExact,
-      path);
+      settings.min_area_fraction, path);
   NewtonSettings newton;
   newton.mode = NewtonMode::kMinimize;
   newton.max_steps = settings.max_steps;
@@ -222,7 +253,11 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
                    " %.2f s)\n",
                    settings.progress_label.c_str(), r.steps, energy,
                    r.final_gradient, accepted ? "ok " : "rej",
-                   r.max_shift > 0 ? " shifted" : "", r.seconds,
+                   r.max_shift > 0                ? " shifted"
+                   : r.negative_curvature_steps > 0 ? " neg-curv"
+                   : r.boundary_steps > 0           ? " boundary"
+                                                    : "",
+                   r.seconds,
                    r.assembly_seconds, r.factorizations,
                    r.linear_solver.c_str(),
                    r.factorization_seconds, r.cg_iterations, r.cg_seconds);

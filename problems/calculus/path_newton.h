@@ -84,6 +84,15 @@ struct PathNewtonSettings {
   // and 48 CG iterations), and the faces geodesic 62.8 s (1e-2) against
   // 52.6 s (1e-1).
   double forcing = 1e-1;
+  // The step limit of every trial path (0: off): a trial in which a
+  // triangle of an inner shape keeps less than this fraction of its area in
+  // the current path, or turns over against it (normals with a negative dot
+  // product), is not evaluated (EvaluationStatus::kInfeasible): the line
+  // search shortens the step, the trust region shrinks. No triangle is
+  // driven to zero area in one step: a sliver of the input that the path
+  // compresses gets there, if at all, through steps the energy accepts one
+  // by one, never by jumping across the barrier of the membrane energy.
+  double min_area_fraction = 0;
   int num_threads = 2;  // Hessian blocks are assembled in parallel
   bool progress = false;
   std::string progress_label = "newton";

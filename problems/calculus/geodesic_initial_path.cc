@@ -1,0 +1,217 @@
+#include "shellspace/problems/calculus/geodesic_initial_path.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <string>
+
+#include "shellspace/cost_functions/ltheta_cost_functions.h"
+#include "shellspace/geometry/blas_threads.h"
+#include "shellspace/geometry/named_values.h"
+#include "shellspace/geometry/parallel_for.h"
+#include "shellspace/geometry/rigid_alignment.h"
+#include "shellspace/problems/calculus/geodesic.h"
+#include "shellspace/problems/calculus/ltheta_reconstruction.h"
+
+namespace shellspace {
+namespace {
+
+// The rotation angle (degrees) of the Kabsch rotation of `end` onto `start`.
+double RotationDegrees(const Positions& start, const Positions& end) {
+  const Eigen::Matrix3Xd a = start.transpose(), b = end.transpose();
+  const Eigen::Matrix4d to_a = Eigen::umeyama(b, a, false);
+  const Eigen::AngleAxisd rotation(Eigen::Matrix3d(to_a.topLeftCorner<3, 3>()));
+  return std::abs(rotation.angle()) * 180.0 / M_PI;
+}
+
+// Unnormalised normal (twice the area) of face f of x.
+Eigen::Vector3d FaceNormal(const Faces& faces, const Positions& x, int f) {
+  const Eigen::Vector3d a = x.row(faces(f, 0)).transpose();
+  const Eigen::Vector3d b = x.row(faces(f, 1)).transpose();
+  const Eigen::Vector3d c = x.row(faces(f, 2)).transpose();
+  return (b - a).cross(c - a);
+}
+
+}  // namespace
+
+const char* GeodesicInitName(GeodesicInit init) {
+  return NameOf(kGeodesicInitNames, init);
+}
+
+ShellPath LinearPathWithoutRigidMotion(const Positions& start,
+                                       const Positions& end, int steps,
+                                       const std::vector<int>& fixed_vertices,
+                                       double* rotation_degrees) {
+  const double degrees = start.rows() >= 3 ? RotationDegrees(start, end) : 0;
+  if (rotation_degrees != nullptr) *rotation_degrees = degrees;
+  if (!fixed_vertices.empty() || !(degrees >= kRigidBlendMinDegrees)) {
+    return LinearPath(start, end, steps);
+  }
+  ShellPath path(steps + 1);
+  path.front() = start;
+  path.back() = end;
+  for (int k = 1; k < steps; ++k) {
+    path[k] = BlendRigidly(start, end, static_cast<double>(k) / steps);
+  }
+  return path;
+}
+
+std::string PathDegeneracy::Describe() const {
+  if (turned_faces > 0) {
+    return "triangle " + std::to_string(turned_face) + " turns over between "
+           "shapes " + std::to_string(turned_shape - 1) + " and " +
+           std::to_string(turned_shape) +
+           (turned_faces > 1 ? " (" + std::to_string(turned_faces) +
+                                   " triangles turn over)"
+                             : std::string());
+  }
+  if (smallest_area_ratio < kDegenerateAreaRatio) {
+    char ratio[32];
+    std::snprintf(ratio, sizeof ratio, "%.3g", smallest_area_ratio);
+    return "triangle " + std::to_string(area_face) + " of shape " +
+           std::to_string(area_shape) + " keeps " + ratio + " of its area";
+  }
+  return "no degenerate triangle";
+}
+
+PathDegeneracy FindPathDegeneracy(const Faces& faces, const ShellPath& path) {
+  PathDegeneracy d;
+  const int K = static_cast<int>(path.size()) - 1;
+  for (int f = 0; f < faces.rows(); ++f) {
+    const double reference =
+        0.5 * std::min(FaceNormal(faces, path.front(), f).norm(),
+                       FaceNormal(faces, path.back(), f).norm());
+    Eigen::Vector3d previous = FaceNormal(faces, path.front(), f);
+    bool turned = false;
+    for (int k = 1; k <= K; ++k) {
+      const Eigen::Vector3d normal = FaceNormal(faces, path[k], f);
+      if (k < K && reference > 0) {
+        const double ratio = 0.5 * normal.norm() / reference;
+        if (ratio < d.smallest_area_ratio) {
+          d.smallest_area_ratio = ratio;
+          d.area_shape = k;
+          d.area_face = f;
+        }
+      }
+      if (!turned && normal.dot(previous) < 0) {
+        turned = true;
+        if (d.turned_faces == 0) {
+          d.turned_shape = k;
+          d.turned_face = f;
+        }
+        ++d.turned_faces;
+      }
+      previous = normal;
+    }
+  }
+  return d;
+}
+
+ShellPath LThetaPath(const ShellSpace& space, const Positions& start,
+                     const Positions& end, int steps,
+                     const std::vector<int>& fixed_vertices,
+                     const SolverSettings& settings, int* iterations,
+                     std::vector<int>* unconverged) {
+  ShellPath path =
+      LinearPathWithoutRigidMotion(start, end, steps, fixed_vertices);
+  if (steps < 2) return path;
+  const LThetaQuantities q0 = ComputeLThetaQuantities(space, start);
+  LThetaQuantities q1 = ComputeLThetaQuantities(space, end);
+  for (int e = 0; e < q1.dihedrals.size(); ++e) {
+    q1.dihedrals[e] = q0.dihedrals[e] + WrapAngle(q1.dihedrals[e] -
+                                                  q0.dihedrals[e]);
+  }
+  const LThetaWeights weights = LThetaResidualWeights(space, start);
+  std::vector<ceres::Solver::Summary> summaries(steps - 1);
+  // One thread per frame (Ceres' and the BLAS's): the digits do not depend
+  // on the thread count.
+  const ScopedBlasThreads one_blas_thread(1);
+  const ShellPath guesses = path;
+  ParallelFor(steps - 1, settings.num_threads, [&](int i) {
+    const int k = i + 1;
+    const double t = static_cast<double>(k) / steps;
+    LThetaQuantities target;
+    target.lengths = (1 - t) * q0.lengths + t * q1.lengths;
+    target.areas = (1 - t) * q0.areas + t * q1.areas;
+    target.dihedrals = (1 - t) * q0.dihedrals + t * q1.dihedrals;
+    SolverSettings frame = settings;
+    frame.num_threads = 1;
+    frame.progress_label =
+        settings.progress_label + " ltheta frame " + std::to_string(k);
+    const Positions solved =
+        ReconstructFromLTheta(space, target, weights, guesses[k], frame,
+                              &summaries[i], fixed_vertices);
+    path[k] =
+        fixed_vertices.empty() ? AlignRigidly(solved, guesses[k]) : solved;
+  });
+  if (iterations != nullptr) {
+    *iterations = 0;
+    for (const ceres::Solver::Summary& s : summaries) {
+      *iterations += std::max(0, static_cast<int>(s.iterations.size()) - 1);
+    }
+  }
+  if (unconverged != nullptr) {
+    unconverged->clear();
+    for (int i = 0; i < steps - 1; ++i) {
+      if (summaries[i].termination_type != ceres::CONVERGENCE) {
+        unconverged->push_back(i + 1);
+      }
+    }
+  }
+  return path;
+}
+
+ShellPath MakeGeodesicInitialPath(const ShellSpace& space,
+                                  const Positions& start, const Positions& end,
+                                  int steps,
+                                  const std::vector<int>& fixed_vertices,
+                                  GeodesicInit init,
+                                  const SolverSettings& settings,
+                                  InitialPathReport* report) {
+  const auto clock = std::chrono::steady_clock::now();
+  InitialPathReport local;
+  InitialPathReport& r = report != nullptr ? *report : local;
+  r = InitialPathReport();
+  r.requested = init;
+  ShellPath linear = LinearPathWithoutRigidMotion(start, end, steps,
+                                                  fixed_vertices,
+                                                  &r.rotation_degrees);
+  r.rigid_motion_removed =
+      fixed_vertices.empty() && r.rotation_degrees >= kRigidBlendMinDegrees;
+  ShellPath path;
+  if (init == GeodesicInit::kLTheta) {
+    r.used = GeodesicInit::kLTheta;
+    r.reason = "ltheta (requested)";
+  } else {
+    r.linear = FindPathDegeneracy(space.faces, linear);
+    const bool use_ltheta = init == GeodesicInit::kAuto &&
+                            r.linear.degenerate() && steps >= 2;
+    r.used = use_ltheta ? GeodesicInit::kLTheta : GeodesicInit::kLinear;
+    r.reason = use_ltheta
+                   ? "ltheta (the linear path degenerates: " +
+                         r.linear.Describe() + ")"
+                   : std::string("linear (") +
+                         (init == GeodesicInit::kLinear ? "requested; " : "") +
+                         r.linear.Describe() + ")";
+  }
+  if (r.rigid_motion_removed) {
+    char rotation[48];
+    std::snprintf(rotation, sizeof rotation,
+                  ", rigid motion of %.1f degrees removed",
+                  r.rotation_degrees);
+    r.reason += rotation;
+  }
+  if (r.used == GeodesicInit::kLTheta) {
+    path = LThetaPath(space, start, end, steps, fixed_vertices, settings,
+                      &r.ltheta_iterations, &r.ltheta_unconverged);
+  } else {
+    path = std::move(linear);
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                            clock)
+                  .count();
+  return path;
+}
+
+}  // namespace shellspace
