@@ -175,4 +175,55 @@ void CheckCompatible(const Mesh& mesh, const std::string& name,
   }
 }
 
+SliverFaces FindSliverFaces(const Mesh& mesh) {
+  SliverFaces slivers;
+  const int m = static_cast<int>(mesh.faces.rows());
+  if (m == 0) return slivers;
+  std::vector<double> area(m), degrees(m);
+  double mean = 0;
+  for (int f = 0; f < m; ++f) {
+    const Eigen::Vector3d a = mesh.positions.row(mesh.faces(f, 0)).transpose();
+    const Eigen::Vector3d b = mesh.positions.row(mesh.faces(f, 1)).transpose();
+    const Eigen::Vector3d c = mesh.positions.row(mesh.faces(f, 2)).transpose();
+    area[f] = 0.5 * (b - a).cross(c - a).norm();
+    mean += area[f] / m;
+    double smallest = 180;
+    const Eigen::Vector3d corners[3] = {a, b, c};
+    for (int i = 0; i < 3; ++i) {
+      const Eigen::Vector3d u = corners[(i + 1) % 3] - corners[i];
+      const Eigen::Vector3d v = corners[(i + 2) % 3] - corners[i];
+      const double angle =
+          std::atan2(u.cross(v).norm(), u.dot(v)) * 180.0 / M_PI;
+      smallest = std::min(smallest, angle);
+    }
+    degrees[f] = smallest;
+  }
+  for (int f = 0; f < m; ++f) {
+    const double fraction = mean > 0 ? area[f] / mean : 0;
+    slivers.smallest_area_fraction =
+        std::min(slivers.smallest_area_fraction, fraction);
+    slivers.smallest_degrees = std::min(slivers.smallest_degrees, degrees[f]);
+    if (fraction < kSliverAreaFraction || degrees[f] < kSliverMinDegrees) {
+      slivers.faces.push_back(f);
+    }
+  }
+  return slivers;
+}
+
+std::string SliverFaces::Describe() const {
+  if (faces.empty()) return "";
+  char rule[96];
+  std::snprintf(rule, sizeof rule,
+                " (area below %g%% of the mean or an angle below %g "
+                "degree): ",
+                100 * kSliverAreaFraction, kSliverMinDegrees);
+  std::string text = std::to_string(faces.size()) + " sliver triangle" +
+                     (faces.size() > 1 ? "s" : "") + rule;
+  for (size_t i = 0; i < faces.size() && i < 8; ++i) {
+    text += (i ? ", " : "") + std::to_string(faces[i]);
+  }
+  if (faces.size() > 8) text += ", ...";
+  return text;
+}
+
 }  // namespace shellspace

@@ -3,6 +3,7 @@
 #define SHELLSPACE_GEOMETRY_VALIDATION_H_
 
 #include <string>
+#include <vector>
 
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/geometry/topology.h"
@@ -41,6 +42,23 @@ void ValidateShellPositions(const Mesh& mesh, const Topology& topology,
 // use `mesh.faces`.
 void CheckCompatible(const Mesh& mesh, const std::string& name,
                      const Mesh& other, const std::string& other_name);
+
+// Sliver triangles: a triangle whose area is below kSliverAreaFraction of
+// the mesh's mean triangle area or whose smallest angle is below
+// kSliverMinDegrees. Legal input, but a path may crush such a triangle;
+// the geodesic's steps never shrink a triangle below a tenth of its area
+// at once (kStepMinAreaFraction), and a sliver is named up front.
+inline constexpr double kSliverAreaFraction = 0.01;
+inline constexpr double kSliverMinDegrees = 1.0;
+struct SliverFaces {
+  std::vector<int> faces;      // in increasing order
+  double smallest_area_fraction = 1;  // of the mean area, over all faces
+  double smallest_degrees = 60;       // smallest angle over all faces
+  // "3 sliver triangles (area below 1% of the mean or an angle below 1
+  // degree): 12, 40, 77" (at most 8 listed), or "" if there are none.
+  std::string Describe() const;
+};
+SliverFaces FindSliverFaces(const Mesh& mesh);
 
 }  // namespace shellspace
 
