@@ -1,0 +1,256 @@
+// The robust start of a geodesic and its safeguards (problems/calculus/
+// geodesic_initial_path.h, multiresolution.h, the trust-region finish and
+// the step limit of geodesic.h), on procedural meshes: the rigid motion
+// removed before interpolating, the LΘA path, a prolongation worse than the
+// fine start rejected, Newton steps that do not grow under refinement, a
+// sliver input.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <cmath>
+
+#include "shellspace/geometry/procedural_shapes.h"
+#include "shellspace/geometry/rigid_alignment.h"
+#include "shellspace/geometry/stress_deformations.h"
+#include "shellspace/geometry/subdivision.h"
+#include "shellspace/geometry/validation.h"
+#include "shellspace/problems/calculus/geodesic.h"
+#include "shellspace/problems/calculus/geodesic_initial_path.h"
+#include "shellspace/problems/calculus/ltheta_reconstruction.h"
+#include "shellspace/problems/calculus/multiresolution.h"
+
+namespace shellspace {
+namespace {
+
+Positions Rotate(const Positions& x, double degrees,
+                 const Eigen::Vector3d& axis) {
+  const Eigen::Matrix3d r =
+      Eigen::AngleAxisd(degrees * M_PI / 180, axis.normalized())
+          .toRotationMatrix();
+  return (x * r.transpose()).eval();
+}
+
+SolverSettings Tight() {
+  SolverSettings s;
+  s.gradient_tolerance = 1e-8;
+  s.max_iterations = 200;
+  s.num_threads = 1;
+  return s;
+}
+
+class InitialPathTest : public ::testing::Test {
+ protected:
+  InitialPathTest()
+      : finger_(MakeFinger(0.5, 3.0, 10, 8, 3)),
+        space_(finger_, Topology::Build(finger_), ShellMaterial{1, 1, 0.01}) {}
+  Mesh finger_;
+  ShellSpace space_;
+};
+
+// A rotation by 170 degrees: the plain linear path passes near a flat
+// shape (its midpoint is a projection), the path without the rigid motion
+// is rigid motions of the start, to round-off.
+TEST_F(InitialPathTest, RemovingTheRigidMotionKeepsEveryShapeRigid) {
+  const Positions end = Rotate(finger_.positions, 170, {1, 0.2, 0});
+  double degrees = 0;
+  const ShellPath path =
+      LinearPathWithoutRigidMotion(finger_.positions, end, 4, {}, &degrees);
+  EXPECT_NEAR(degrees, 170, 1e-9);
+  for (int k = 0; k <= 4; ++k) {
+    EXPECT_LT(RelativeDistanceUpToRigidMotion(path[k], finger_.positions),
+              1e-12)
+        << k;
+  }
+  EXPECT_FALSE(FindPathDegeneracy(finger_.faces, path).degenerate());
+  // The twin: the plain linear path degenerates, and the check says where.
+  const PathDegeneracy plain =
+      FindPathDegeneracy(finger_.faces, LinearPath(finger_.positions, end, 4));
+  EXPECT_TRUE(plain.degenerate());
+  EXPECT_LT(plain.smallest_area_ratio, kDegenerateAreaRatio);
+  EXPECT_NE(plain.Describe().find("triangle"), std::string::npos);
+  // With a mask the shapes keep their linear positions.
+  const ShellPath masked = LinearPathWithoutRigidMotion(
+      finger_.positions, end, 4, FingerBaseVertices(10, 1));
+  EXPECT_EQ(masked[2], LinearPath(finger_.positions, end, 4)[2]);
+}
+
+// A bend plus a rotation by 150 degrees: the plain linear path is
+// degenerate, the default start (auto) is not, and the geodesic converges
+// from it with no collapsing triangle and even steps.
+TEST_F(InitialPathTest, APathThroughADegenerateLinearInterpolationConverges) {
+  const Positions end = Rotate(BendAlongY(finger_.positions, 3.0, 1.2), 150,
+                               {1, 0, 0.3});
+  ASSERT_TRUE(FindPathDegeneracy(finger_.faces,
+                                 LinearPath(finger_.positions, end, 4))
+                  .degenerate());
+  GeodesicInput input = GeodesicInput::Between(finger_.positions, end, 4);
+  const GeodesicResult result = SolveGeodesic(space_, input, Tight());
+  EXPECT_TRUE(result.init.rigid_motion_removed);
+  EXPECT_NEAR(result.init.rotation_degrees, 150, 15);
+  EXPECT_TRUE(result.converged) << result.final_gradient;
+  EXPECT_FALSE(result.collapsing_faces);
+  EXPECT_FALSE(result.uneven_steps);
+}
+
+// The LΘA path: its inner shapes have (nearly) the interpolated edge
+// lengths, and the geodesic from it is the geodesic from the linear path
+// (the same E_K to 1e-8).
+TEST_F(InitialPathTest, TheLThetaPathInterpolatesLengthsAndLeadsToTheGeodesic) {
+  const Positions end = BendAlongY(finger_.positions, 3.0, 1.5);
+  InitialPathReport report;
+  const ShellPath path = MakeGeodesicInitialPath(
+      space_, finger_.positions, end, 4, {}, GeodesicInit::kLTheta, Tight(),
+      &report);
+  EXPECT_EQ(report.used, GeodesicInit::kLTheta);
+  EXPECT_GT(report.ltheta_iterations, 0);
+  const LThetaQuantities q0 = ComputeLThetaQuantities(space_, path[0]);
+  const LThetaQuantities q4 = ComputeLThetaQuantities(space_, path[4]);
+  const LThetaQuantities q2 = ComputeLThetaQuantities(space_, path[2]);
+  const Eigen::VectorXd target = 0.5 * (q0.lengths + q4.lengths);
+  EXPECT_LT(((q2.lengths - target).array() / target.array()).abs().maxCoeff(),
+            0.05);
+  GeodesicInput ltheta = GeodesicInput::Between(finger_.positions, end, 4);
+  ltheta.init = GeodesicInit::kLTheta;
+  GeodesicInput linear = ltheta;
+  linear.init = GeodesicInit::kLinear;
+  const GeodesicResult a = SolveGeodesic(space_, ltheta, Tight());
+  const GeodesicResult b = SolveGeodesic(space_, linear, Tight());
+  ASSERT_TRUE(a.converged && b.converged);
+  EXPECT_NEAR(a.path_energy, b.path_energy, 1e-8 * b.path_energy);
+  EXPECT_EQ(b.init.used, GeodesicInit::kLinear);
+}
+
+// A prolongation that turns a triangle over, or whose E_K exceeds the fine
+// start's, is rejected; the geodesic itself is accepted.
+TEST_F(InitialPathTest, AProlongationWorseThanTheFineStartIsRejected) {
+  const Positions end = BendAlongY(finger_.positions, 3.0, 1.0);
+  InitialPathReport init;
+  const ShellPath start = MakeGeodesicInitialPath(
+      space_, finger_.positions, end, 4, {}, GeodesicInit::kAuto, Tight(),
+      &init);
+  const GeodesicResult geodesic = SolveGeodesic(
+      space_, GeodesicInput::Between(finger_.positions, end, 4), Tight());
+  const ProlongationCheck good =
+      CheckProlongation(space_, geodesic.path, start, init);
+  EXPECT_TRUE(good.used) << good.reason;
+  EXPECT_LT(good.prolongated_energy, good.initial_energy);
+  // Mirrored inner shape: every triangle turns over.
+  ShellPath mirrored = geodesic.path;
+  mirrored[2].col(0) *= -1;
+  const ProlongationCheck turned =
+      CheckProlongation(space_, mirrored, start, init);
+  EXPECT_FALSE(turned.used);
+  EXPECT_GT(turned.turned_faces, 0);
+  EXPECT_NE(turned.reason.find("rejected"), std::string::npos);
+  // A wrinkled path of higher energy, no triangle turned.
+  ShellPath wrinkled = start;
+  for (int k = 1; k < 4; ++k) {
+    for (int v = 0; v < wrinkled[k].rows(); ++v) {
+      wrinkled[k](v, 2) += 0.02 * std::sin(7.0 * v);
+    }
+  }
+  const ProlongationCheck worse =
+      CheckProlongation(space_, wrinkled, start, init);
+  EXPECT_GT(worse.prolongated_energy, worse.initial_energy);
+  EXPECT_FALSE(worse.used) << worse.reason;
+}
+
+// The trust-region Newton finish takes about the same number of steps on
+// refinements of one problem (a sheet rolled onto a cylinder, one row
+// masked): the count does not grow with the mesh.
+TEST(TrustRegionNewtonTest, StepCountDoesNotGrowOnRefinementsOfThePlate) {
+  Mesh sheet = MakeEquilateralSheet(12, 8, 0.125);
+  std::vector<int> row;
+  for (int v = 0; v < 13; ++v) row.push_back(v);
+  std::vector<int> newton_steps;
+  for (int level = 0; level < 3; ++level) {
+    if (level > 0) {
+      const MidpointSubdivision sub(sheet.faces, sheet.num_vertices());
+      sheet = Mesh{sub.Apply(sheet.positions), sub.faces};
+      row = sub.CarryMask(row);
+    }
+    const ShellSpace space(sheet, Topology::Build(sheet),
+                           ShellMaterial{1, 1, 0.01});
+    const Positions end = RollOntoCylinder(sheet.positions, 0.6);
+    GeodesicInput input = GeodesicInput::Between(sheet.positions, end, 4);
+    input.fixed_vertices = row;
+    input.lm = GeodesicLm::kEngine;
+    const GeodesicResult r = SolveGeodesic(space, input, Tight());
+    ASSERT_TRUE(r.converged) << "level " << level;
+    newton_steps.push_back(r.newton.steps);
+  }
+  const auto [lo, hi] =
+      std::minmax_element(newton_steps.begin(), newton_steps.end());
+  EXPECT_LE(*hi - *lo, 2) << newton_steps[0] << " " << newton_steps[1] << " "
+                          << newton_steps[2];
+  EXPECT_GE(*lo, 1);
+}
+
+// An input sliver (a vertex moved next to the opposite edge of one
+// triangle): named up front, and the geodesic converges without crushing
+// it.
+TEST(SliverTest, ASliverInputIsNamedAndConverges) {
+  Mesh sheet = MakeEquilateralSheet(6, 4, 0.25);
+  const MidpointSubdivision sub(sheet.faces, sheet.num_vertices());
+  sheet = Mesh{sub.Apply(sheet.positions), sub.faces};
+  // Vertex 20 towards the midpoint of its neighbours 19 and 21 in its row.
+  const int v = 20;
+  sheet.positions.row(v) =
+      0.5 * (sheet.positions.row(19) + sheet.positions.row(21)) +
+      0.004 * (sheet.positions.row(v) -
+               0.5 * (sheet.positions.row(19) + sheet.positions.row(21)));
+  const SliverFaces slivers = FindSliverFaces(sheet);
+  ASSERT_FALSE(slivers.faces.empty());
+  EXPECT_LT(slivers.smallest_area_fraction, kSliverAreaFraction);
+  EXPECT_NE(slivers.Describe().find("sliver"), std::string::npos);
+  // The twin: the sheet without the moved vertex has none.
+  EXPECT_TRUE(FindSliverFaces(MakeEquilateralSheet(6, 4, 0.25)).faces.empty());
+  const ShellSpace space(sheet, Topology::Build(sheet),
+                         ShellMaterial{1, 1, 0.01});
+  const Positions end = RollOntoCylinder(sheet.positions, 0.5);
+  GeodesicInput input = GeodesicInput::Between(sheet.positions, end, 4);
+  input.fixed_vertices = {0, 1, 2, 3};
+  // Auto: the engine's LM (with the step limit), as for every input with
+  // slivers.
+  const GeodesicResult r = SolveGeodesic(space, input, Tight());
+  EXPECT_NE(r.stages.front().solver, "ceres");
+  EXPECT_TRUE(r.converged) << r.final_gradient << " " << r.stages.back().termination;
+  EXPECT_GT(r.smallest_face_area.ratio, kCollapsingFaceAreaRatio);
+}
+
+// The corpus deformations: a bend keeps the axis length (an isometry of the
+// principal axis), a twist keeps distances to the axis, a rigid motion all
+// pairwise distances; the same seed gives the same pose.
+TEST(StressDeformationsTest, InvariantsOfTheCorpusPoses) {
+  const Mesh finger = MakeFinger(0.5, 3.0, 10, 8, 3);
+  const Positions& x = finger.positions;
+  const Positions rigid = RandomRigidMotion(x, 77, 5);
+  EXPECT_LT(RelativeDistanceUpToRigidMotion(rigid, x), 1e-12);
+  EXPECT_EQ(rigid, RandomRigidMotion(x, 77, 5));
+  EXPECT_NE(rigid, RandomRigidMotion(x, 77, 6));
+  const PrincipalFrame f = ComputePrincipalFrame(x);
+  const Positions twisted = TwistAboutLongestAxis(x, 90);
+  for (int v = 0; v < x.rows(); ++v) {
+    const Eigen::Vector3d d = x.row(v).transpose() - f.centroid;
+    const Eigen::Vector3d e = twisted.row(v).transpose() - f.centroid;
+    const Eigen::Vector3d a = f.axes.col(0);
+    EXPECT_NEAR((d - d.dot(a) * a).norm(), (e - e.dot(a) * a).norm(), 1e-12);
+  }
+  const Positions bent = BendAlongLongestAxis(x, 75);
+  EXPECT_GT(RelativeDistanceUpToRigidMotion(bent, x), 0.05);
+  // Every edge on the axis side keeps its length to first order: the mean
+  // relative edge-length change is small for a moderate bend.
+  const Topology topology = Topology::Build(finger);
+  double change = 0;
+  for (const auto& e : topology.edges) {
+    const double l0 = (x.row(e[0]) - x.row(e[1])).norm();
+    const double l1 = (bent.row(e[0]) - bent.row(e[1])).norm();
+    change += std::abs(l1 - l0) / l0 / topology.edges.size();
+  }
+  EXPECT_LT(change, 0.1);
+  EXPECT_THROW(DeformForCorpus(x, "shear", 1, true, 1), InputError);
+}
+
+}  // namespace
+}  // namespace shellspace
