@@ -208,20 +208,23 @@ def _run(function, items, shapes, F, client, on_result, time_limit, extra):
                                *extra, pure=False)
         futures[future] = item
     pending = dict(futures)
+    results = as_completed(list(futures))
     try:
-        remaining = None if deadline is None else max(
-            0.0, deadline - time.monotonic())
-        for future in as_completed(list(futures), timeout=remaining):
-            item = pending.pop(future)
-            try:
-                result = future.result()
-            except Exception as error:  # KilledWorker, a cancelled task
-                result = ("lost", item, _one_line(error))
-            on_result(result)
-    except Exception as error:  # the time limit (TimeoutError)
-        if "timeout" not in type(error).__name__.lower() and \
-                "Timeout" not in str(type(error)):
-            raise
+        # Polled, so that the time limit can end the wait for a long task.
+        while not results.is_empty():
+            if deadline is not None and time.monotonic() >= deadline:
+                break
+            batch = results.next_batch(block=False)
+            if not batch:
+                time.sleep(0.02)
+                continue
+            for future in batch:
+                item = pending.pop(future)
+                try:
+                    result = future.result()
+                except Exception as error:  # KilledWorker, a cancelled task
+                    result = ("lost", item, _one_line(error))
+                on_result(result)
     finally:
         client.cancel(list(pending))
     return list(pending.values())
