@@ -81,6 +81,24 @@ def _openblas():
     return None
 
 
+def _serial_openmp():
+    """This thread's OpenMP regions serial (nthreads 1, dynamic), as the
+    module does for its importing thread (geometry/openmp_threads.h), also
+    where Dask's workers set OMP_NUM_THREADS=1, which the module respects
+    but which leaves CHOLMOD's num_threads(4) regions at 4 threads per
+    worker."""
+    try:
+        with open("/proc/self/maps") as maps:
+            paths = sorted({line.split()[-1] for line in maps
+                            if "libgomp" in line.split()[-1]})
+        if paths:
+            gomp = ctypes.CDLL(paths[0])
+            gomp.omp_set_num_threads(1)
+            gomp.omp_set_dynamic(1)
+    except (OSError, AttributeError):
+        pass
+
+
 class _BlasThreads:
     """OpenBLAS's thread count fixed for a block, restored after. The count
     changes the digits of the factorisations (cactus0 -> cactus1, K = 2:
@@ -92,6 +110,7 @@ class _BlasThreads:
         self.previous = None
 
     def __enter__(self):
+        _serial_openmp()
         if self.lib is not None:
             self.previous = self.lib.openblas_get_num_threads()
             self.lib.openblas_set_num_threads(self.threads)
