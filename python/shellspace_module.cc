@@ -17,6 +17,7 @@
 #include <glog/logging.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
+#include <dlfcn.h>
 #include <pybind11/stl.h>
 
 #include <algorithm>
@@ -1175,6 +1176,10 @@ auto GatherMaterialAndSolverArgs(Result (*f)(Params...),
              const std::string& bending, double tolerance, int max_iterations,
              int threads, bool quiet, std::optional<double> time_limit,
              bool allow_unconverged) {
+    // The calling thread may not be the importing one (a thread pool's, a
+    // Dask worker's): its OpenMP regions serial too, so that the digits do
+    // not depend on which thread solves (geometry/openmp_threads.h).
+    SerialOpenMpInThisThread();
     // The time limit counts from the call.
     auto control = std::make_shared<SolveControl>(time_limit);
     return f(args..., MaterialArgs{mu, lambda, eta, relative_eta, bending},
@@ -1244,6 +1249,16 @@ PYBIND11_MODULE(shellspace, m) {
       "result raises NotConvergedError (its .result attached) unless\n"
       "allow_unconverged=True; Ctrl-C stops the solves and raises\n"
       "KeyboardInterrupt with the partial result as .result.";
+  // The pure-Python submodules (shellspace.collections) are in the folder
+  // shellspace/ beside this file: the extension is their package.
+  Dl_info self;
+  if (dladdr(reinterpret_cast<void*>(&PyInit_shellspace), &self) != 0 &&
+      self.dli_fname != nullptr) {
+    const std::string file = self.dli_fname;
+    py::list path;
+    path.append(file.substr(0, file.rfind('/') + 1) + "shellspace");
+    m.attr("__path__") = path;
+  }
   py::register_exception<InputError>(m, "InputError", PyExc_ValueError);
   RegisterNotConvergedError(m);
   // The default bending weight relative to the reference's area

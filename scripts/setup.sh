@@ -11,6 +11,8 @@ packages=(build-essential cmake libceres-dev libeigen3-dev libgoogle-glog-dev
           libtinygltf-dev
           # The Python module (python/) and its tests (tests/python/).
           python3-dev pybind11-dev python3-numpy python3-scipy python3-pytest
+          # shellspace.collections on a cluster (python/shellspace/collections.py).
+          python3-distributed
           # The fuzz stage of scripts/test.sh: clang with libFuzzer and the
           # sanitizer runtimes; python3 writes the seed corpus.
           clang libclang-rt-dev python3)
