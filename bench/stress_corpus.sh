@@ -80,7 +80,7 @@ run() {
     [[ "$(json_field "${json}" prolongation.checked)" == True ]] &&
       start+="; prolongation $([[ ${prolongated} == True ]] && echo used || echo rejected)"
   fi
-  [[ ${code} -ne 0 ]] && start+=" — $(grep -v '^\s' "${log}" | grep -v '^warning' | tail -n 1 | cut -c1-120)"
+  [[ ${code} -ne 0 ]] && start+=" — $(grep -v '^\s' "${log}" | grep -v "^warning" | grep -v "^Command exited" | tail -n 1 | cut -c1-120)"
   echo "| ${name} | ${vertices} | ${posename} | ${verb} | ${converged:-no} | ${code} | ${iterations:-} | ${wall} | ${cpu} | ${rss} | ${start} |"
 }
 

@@ -385,7 +385,7 @@ GeodesicPySolve SolveGeodesicPy(const py::object& start_v,
                                 int steps, const py::object& mask,
                                 const std::string& multires,
                                 const std::string& linear_solver,
-                                const std::string& lm,
+                                const std::string& lm, const std::string& init,
                                 const MaterialArgs& material_args,
                                 const SolverSettings& settings,
                                 SolveControl& control) {
@@ -402,6 +402,7 @@ GeodesicPySolve SolveGeodesicPy(const py::object& start_v,
   input.fixed_vertices = MaskArgument(mask, vertices);
   input.linear_solver = ParsePathLinearSolver(linear_solver, "linear_solver");
   input.lm = ParseGeodesicLm(lm, "lm");
+  input.init = ParseGeodesicInit(init, "init");
   const MultiresolutionSettings levels =
       ParseMultiresolution(multires, vertices, "multires");
   GeodesicPySolve solve;
@@ -432,6 +433,7 @@ py::object GeodesicPy(const py::object& start_v, const py::object& end_v,
                       const py::object& F, int steps, const py::object& mask,
                       const std::string& multires,
                       const std::string& linear_solver, const std::string& lm,
+                      const std::string& init,
                       bool report, const std::optional<std::string>& output,
                       const std::optional<std::string>& png,
                       const std::optional<std::string>& gltf,
@@ -439,7 +441,7 @@ py::object GeodesicPy(const py::object& start_v, const py::object& end_v,
                       const SolverOptions& solver) {
   const auto clock = Clock::now();
   const auto [start, space, multi] = SolveGeodesicPy(
-      start_v, end_v, F, steps, mask, multires, linear_solver, lm,
+      start_v, end_v, F, steps, mask, multires, linear_solver, lm, init,
       material_args, solver.Settings("geodesic"), *solver.control);
   const GeodesicResult& result = multi.geodesic;
   CheckGeodesic(result);
@@ -449,6 +451,7 @@ py::object GeodesicPy(const py::object& start_v, const py::object& end_v,
   WritePath(output, png, gltf, start.mesh.faces, result.path);
   JsonObject json = GeodesicJson(result);
   json.Raw("multires_levels", MultiresolutionJson(multi))
+      .Add("prolongation", ProlongationJson(multi.prolongation))
       .Raw("energy_split", PathEnergySplitJson(space, result.path))
       .Raw("material", MaterialRecord(space, start.mesh, material_args))
       .Add("seconds", Seconds(clock));
@@ -461,12 +464,13 @@ py::object GeodesicPy(const py::object& start_v, const py::object& end_v,
 py::object LogPy(const py::object& start_v, const py::object& end_v,
                  const py::object& F, int steps, const py::object& mask,
                  const std::string& multires, const std::string& linear_solver,
-                 const std::string& lm, const std::optional<std::string>& output,
+                 const std::string& lm, const std::string& init,
+                 const std::optional<std::string>& output,
                  const MaterialArgs& material_args,
                  const SolverOptions& solver) {
   const auto clock = Clock::now();
   const auto [start, space, multi] = SolveGeodesicPy(
-      start_v, end_v, F, steps, mask, multires, linear_solver, lm,
+      start_v, end_v, F, steps, mask, multires, linear_solver, lm, init,
       material_args, solver.Settings("log"), *solver.control);
   const GeodesicResult& geodesic = multi.geodesic;
   const Positions log = LogOfGeodesic(geodesic.path);
@@ -475,6 +479,7 @@ py::object LogPy(const py::object& start_v, const py::object& end_v,
   }
   JsonObject json = GeodesicJson(geodesic);
   json.Raw("multires_levels", MultiresolutionJson(multi))
+      .Add("prolongation", ProlongationJson(multi.prolongation))
       .Raw("energy_split", PathEnergySplitJson(space, geodesic.path))
       .Raw("material", MaterialRecord(space, start.mesh, material_args))
       .Add("log_max_norm", log.cwiseAbs().maxCoeff())
@@ -1222,7 +1227,8 @@ auto WithMaterialAndSolverArgs(Result (*f)(Params...)) {
 #define SHELLSPACE_GEODESIC_ARGS                                        \
   py::arg("start"), py::arg("end"), py::arg("F"), py::arg("steps") = 8, \
       py::arg("mask") = py::none(), py::arg("multires") = "auto",       \
-      py::arg("linear_solver") = "auto", py::arg("lm") = "auto"
+      py::arg("linear_solver") = "auto", py::arg("lm") = "auto",        \
+      py::arg("init") = "auto"
 // The files of the verbs that write a path's frames: the frames' directory,
 // a film strip (PNG), a glTF 2.0 animation (.glb); none by default.
 #define SHELLSPACE_FRAME_OUTPUT_ARGS                              \

@@ -79,14 +79,7 @@ bool BlockJacobiSolver::Solve(const LinearSystem& system,
     if (status == BlockJacobiCg::Status::kNotPositive) return false;
     continue_stale = x->size() == b.size() && x->allFinite();
   }
-  const auto start = std::chrono::steady_clock::now();
-  factored_offsets_.clear();
-  const bool positive = cg_.Factorize(h, system.block_offsets);
-  ++stats_.factorizations;
-  if (cg_.time_coupled()) ++stats_.time_coupled_factorizations;
-  stats_.factorization_seconds += Since(start);
-  if (!positive) return false;
-  factored_offsets_ = system.block_offsets;
+  if (!Factorize(system)) return false;
   const BlockJacobiCg::Status status = run_cg(max_iterations, continue_stale);
   if (status == BlockJacobiCg::Status::kNotPositive) return false;
   if (status == BlockJacobiCg::Status::kNotConverged) {

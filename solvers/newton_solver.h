@@ -173,7 +173,7 @@ struct NewtonSettings {
   double tr_accept = 1e-4;
   int tr_max_rejections = 12;
   int tr_max_cg_iterations = 2000;
-  int tr_max_shifts = 8;
+  int tr_max_shifts = 16;
   double tr_shift_initial = 1e-6;
   // The preconditioner of an earlier iteration is reused while its
   // subproblems need at most this many CG iterations.

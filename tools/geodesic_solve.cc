@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "shellspace/geometry/mesh.h"
+#include "shellspace/geometry/validation.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/memory_limits.h"
 #include "shellspace/tools/path_summary.h"
@@ -106,6 +107,12 @@ GeodesicOfFlags SolveGeodesicOfFlags(const std::string& verb) {
               "--steps " + std::to_string(FLAGS_steps) + " on " +
                   std::to_string(start.mesh.num_vertices()) + " vertices",
               kGeodesicModel);
+  // Legal, but a path may crush them: named once, before the solve.
+  const SliverFaces slivers = FindSliverFaces(start.mesh);
+  if (!slivers.faces.empty() && !FLAGS_quiet) {
+    std::fprintf(stderr, "warning: %s: %s\n", FLAGS_start.c_str(),
+                 slivers.Describe().c_str());
+  }
   ShellSpace space = SpaceFromFlags(start);
   GeodesicInput input;
   input.start = start.mesh.positions;

@@ -22,12 +22,6 @@ Shell LoadShell(const std::string& path) {
   shell.path = path;
   shell.mesh = ReadMesh(path);
   shell.topology = ValidateShell(shell.mesh, path);
-  // Legal, but a path may crush them: named once, up front.
-  const SliverFaces slivers = FindSliverFaces(shell.mesh);
-  if (!slivers.faces.empty()) {
-    std::fprintf(stderr, "warning: %s: %s\n", path.c_str(),
-                 slivers.Describe().c_str());
-  }
   return shell;
 }
 

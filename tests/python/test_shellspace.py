@@ -249,8 +249,15 @@ def test_geodesic_round_trip_against_cli(tmp_path):
     assert summary["iterations"] == cli["iterations"]
     drop = {"seconds", "newton_seconds", "output", "multires_levels"}
     assert {k for k in summary} == {k for k in cli}
-    for key in set(summary) - drop - {"stages", "step_energies"}:
+    for key in set(summary) - drop - {"stages", "step_energies", "init",
+                                      "prolongation"}:
         assert summary[key] == pytest.approx(cli[key], rel=1e-10), key
+    # The initial path: the same choice and reason (its seconds are wall
+    # clock).
+    for key in ("requested", "used", "reason", "rigid_motion_removed",
+                "linear_turned_faces", "ltheta_iterations"):
+        assert summary["init"][key] == cli["init"][key], key
+    assert summary["prolongation"] == cli["prolongation"]
     assert path.shape == (5,) + V.shape
     assert np.array_equal(path[0], V) and np.array_equal(path[4], W)
     for k in range(5):

@@ -170,14 +170,21 @@ TEST(NewtonSolverTest, ConvergesQuadraticallyOnAStrictlyConvexFunction) {
 
 // Negative twin: with a wrong Hessian (2 H) Newton still converges, but
 // linearly (e_{k+1} ~ e_k / 2), and the same rate check fails.
-TEST(NewtonSolverTest, WrongHessianFailsTheQuadraticRateCheck) {
-  const ConvexExample example(6);
+// The convex example's callbacks with the Hessian doubled (a wrong
+// derivative for the negative twins of the rate checks).
+Callbacks WithDoubledHessian(const ConvexExample& example) {
   Callbacks wrong = example.MakeCallbacks();
   const auto exact = wrong.jacobian;
   wrong.jacobian = [exact](const Eigen::VectorXd& x) {
     return Eigen::MatrixXd(2.0 * exact(x));
   };
-  FunctionProblem problem(wrong, Eigen::VectorXd::Zero(6), true);
+  return wrong;
+}
+
+TEST(NewtonSolverTest, WrongHessianFailsTheQuadraticRateCheck) {
+  const ConvexExample example(6);
+  FunctionProblem problem(WithDoubledHessian(example), Eigen::VectorXd::Zero(6),
+                          true);
   ReusableCholesky cholesky;
   const NewtonReport report =
       SolveNewton(&problem, &cholesky, Minimize(1e-13, 100));
@@ -768,12 +775,8 @@ TEST(NewtonTrustRegionTest, ConvergesQuadraticallyOnAStrictlyConvexFunction) {
 // Hessian (2 H) converges only linearly.
 TEST(NewtonTrustRegionTest, WrongHessianFailsTheQuadraticRateCheck) {
   const ConvexExample example(6);
-  Callbacks wrong = example.MakeCallbacks();
-  const auto exact = wrong.jacobian;
-  wrong.jacobian = [exact](const Eigen::VectorXd& x) {
-    return Eigen::MatrixXd(2.0 * exact(x));
-  };
-  FunctionProblem problem(wrong, Eigen::VectorXd::Zero(6), true);
+  FunctionProblem problem(WithDoubledHessian(example), Eigen::VectorXd::Zero(6),
+                          true);
   ReusableCholesky cholesky;
   const NewtonReport report =
       SolveNewton(&problem, &cholesky, TrustRegion(1e-13, 100));

@@ -439,6 +439,7 @@ TEST(CliTest, HelpListsOnlyTheVerbsFlags) {
                                           "multires",
                                           "linear_solver",
                                           "lm",
+                                          "init",
                                           "time_limit",
                                           "minloglevel",
                                           "allow_unconverged",
