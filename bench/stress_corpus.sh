@@ -87,8 +87,12 @@ run() {
 seed=1
 for mesh in "${meshes[@]}"; do
   name="$(basename "${mesh%.*}")"
-  vertices=$(awk 'NR == 1 && /OFF/ && NF > 1 {print $2; exit}
-                  NR == 1 {next} !/^#/ && NF {print $1; exit}' "${mesh}")
+  if [[ "${mesh}" == *.ply ]]; then
+    vertices=$(awk '/^element vertex/ {print $3; exit}' "${mesh}")
+  else
+    vertices=$(awk 'NR == 1 && /OFF/ && NF > 1 {print $2; exit}
+                    NR == 1 {next} !/^#/ && NF {print $1; exit}' "${mesh}")
+  fi
   for deformation in ${deformations}; do
     kind="${deformation%%:*}"
     strength="${deformation#*:}"
