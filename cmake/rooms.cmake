@@ -1,4 +1,4 @@
-# The rooms of the library (README, "Layout"): one static library per folder,
+# The rooms of the library (docs/development.md, "Layout"): one static library per folder,
 # linked only to the rooms below it. Each room's CMakeLists.txt calls
 #
 #   shellspace_room(NAME <room> [RECURSE] [PUBLIC deps...] [PRIVATE deps...])

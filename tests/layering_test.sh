@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Usage: tests/layering_test.sh SOURCE_DIR
 #
-# The rooms of the library may include only the rooms below them (README,
+# The rooms of the library may include only the rooms below them (docs/development.md,
 # "Layout"). Lists every project include of every room's sources and fails
 # on one that reaches a room it may not use (a back-edge or a cycle).
 set -euo pipefail

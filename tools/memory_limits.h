@@ -1,7 +1,7 @@
 // Memory estimates of the solves whose size the user picks (--steps, the
 // branching grid), checked before anything is allocated: above the limit,
 // one line naming the flags, the estimate and the limit. The estimates are
-// fits of the peak resident memory measured with /usr/bin/time (README,
+// fits of the peak resident memory measured with /usr/bin/time (docs/cli-behaviour.md,
 // "Limits"); they are rough, on the safe side for the meshes measured.
 #ifndef SHELLSPACE_TOOLS_MEMORY_LIMITS_H_
 #define SHELLSPACE_TOOLS_MEMORY_LIMITS_H_
