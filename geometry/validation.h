@@ -43,6 +43,16 @@ void ValidateShellPositions(const Mesh& mesh, const Topology& topology,
 void CheckCompatible(const Mesh& mesh, const std::string& name,
                      const Mesh& other, const std::string& other_name);
 
+// The normal of face f of the shape x, unnormalised: (b - a) x (c - a),
+// twice the triangle's area long.
+inline Eigen::Vector3d FaceNormal(const Faces& faces, const Positions& x,
+                                  int f) {
+  const Eigen::Vector3d a = x.row(faces(f, 0)).transpose();
+  const Eigen::Vector3d b = x.row(faces(f, 1)).transpose();
+  const Eigen::Vector3d c = x.row(faces(f, 2)).transpose();
+  return (b - a).cross(c - a);
+}
+
 // Sliver triangles: a triangle whose area is below kSliverAreaFraction of
 // the mesh's mean triangle area or whose smallest angle is below
 // kSliverMinDegrees. Legal input, but a path may crush such a triangle;

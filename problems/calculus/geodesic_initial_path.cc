@@ -7,6 +7,7 @@
 #include <string>
 
 #include "shellspace/cost_functions/ltheta_cost_functions.h"
+#include "shellspace/geometry/validation.h"
 #include "shellspace/geometry/blas_threads.h"
 #include "shellspace/geometry/named_values.h"
 #include "shellspace/geometry/parallel_for.h"
@@ -23,14 +24,6 @@ double RotationDegrees(const Positions& start, const Positions& end) {
   const Eigen::Matrix4d to_a = Eigen::umeyama(b, a, false);
   const Eigen::AngleAxisd rotation(Eigen::Matrix3d(to_a.topLeftCorner<3, 3>()));
   return std::abs(rotation.angle()) * 180.0 / M_PI;
-}
-
-// Unnormalised normal (twice the area) of face f of x.
-Eigen::Vector3d FaceNormal(const Faces& faces, const Positions& x, int f) {
-  const Eigen::Vector3d a = x.row(faces(f, 0)).transpose();
-  const Eigen::Vector3d b = x.row(faces(f, 1)).transpose();
-  const Eigen::Vector3d c = x.row(faces(f, 2)).transpose();
-  return (b - a).cross(c - a);
 }
 
 }  // namespace

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "shellspace/geometry/validation.h"
 #include "shellspace/problems/calculus/deformation_transfer.h"
 #include "shellspace/problems/calculus/shared_decimation.h"
 
@@ -58,13 +59,8 @@ ProlongationCheck CheckProlongation(const ShellSpace& space,
   const int K = static_cast<int>(initial.size()) - 1;
   for (int f = 0; f < space.faces.rows(); ++f) {
     for (int k = 1; k < K; ++k) {
-      const auto normal = [&](const Positions& x) {
-        const Eigen::Vector3d a = x.row(space.faces(f, 0)).transpose();
-        const Eigen::Vector3d b = x.row(space.faces(f, 1)).transpose();
-        const Eigen::Vector3d c = x.row(space.faces(f, 2)).transpose();
-        return Eigen::Vector3d((b - a).cross(c - a));
-      };
-      if (normal(prolongated[k]).dot(normal(initial[k])) < 0) {
+      if (FaceNormal(space.faces, prolongated[k], f)
+              .dot(FaceNormal(space.faces, initial[k], f)) < 0) {
         ++check.turned_faces;
         break;
       }

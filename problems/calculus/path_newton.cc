@@ -7,6 +7,7 @@
 #include <array>
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
+#include "shellspace/geometry/validation.h"
 #include "shellspace/geometry/blas_threads.h"
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/problems/calculus/path_hessian.h"
@@ -156,14 +157,8 @@ class PathEnergyProblem : public NewtonProblem {
     const int K = static_cast<int>(current.size()) - 1;
     for (int k = 1; k < K; ++k) {
       for (int f = 0; f < faces.rows(); ++f) {
-        const auto normal = [&](const Positions& x) {
-          const Eigen::Vector3d a = x.row(faces(f, 0)).transpose();
-          const Eigen::Vector3d b = x.row(faces(f, 1)).transpose();
-          const Eigen::Vector3d c = x.row(faces(f, 2)).transpose();
-          return Eigen::Vector3d((b - a).cross(c - a));
-        };
-        const Eigen::Vector3d before = normal(current[k]);
-        const Eigen::Vector3d after = normal(trial[k]);
+        const Eigen::Vector3d before = FaceNormal(faces, current[k], f);
+        const Eigen::Vector3d after = FaceNormal(faces, trial[k], f);
         if (after.dot(before) < 0 ||
             after.norm() < min_area_fraction_ * before.norm()) {
           return true;
