@@ -1,0 +1,174 @@
+// NewtonSettings::Globalisation::kTrustRegion: Steihaug-Toint CG
+// (steihaug_cg.h) on the model g^T p + p^T H p / 2 in the trust region
+// |p|_M <= radius, M the linear solver's preconditioner (factorised from H,
+// or from H + sigma I where H is not positive definite, and held while the
+// subproblems stay cheap); rho = actual / predicted decrease accepts a step
+// at rho >= tr_accept, the radius shrinks to a quarter of the step below
+// rho = 1/4 and doubles above 3/4 when the boundary cut the step short.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <utility>
+#include <vector>
+
+#include "shellspace/solvers/newton_step_strategy.h"
+#include "shellspace/solvers/steihaug_cg.h"
+
+namespace shellspace {
+namespace {
+
+// Factorises M from H, or from H + sigma I where H's factorisation is not
+// positive definite (the diagonal shifted in place and restored exactly).
+bool FactorizePreconditioner(Preconditioner* preconditioner,
+                             const NewtonSettings& settings,
+                             LinearSystem* system, NewtonReport* report) {
+  // M from H, or from H + sigma I where H's factorisation is not positive
+  // definite: the diagonal is shifted in place and restored exactly.
+  const int n = static_cast<int>(system->matrix.rows());
+  std::vector<double*> diagonal_entry(n);
+  std::vector<double> unshifted(n);
+  double mean_diagonal = 0;
+  for (int i = 0; i < n; ++i) {
+    diagonal_entry[i] = &system->matrix.coeffRef(i, i);
+    unshifted[i] = *diagonal_entry[i];
+    mean_diagonal += std::abs(unshifted[i]) / n;
+  }
+  bool factorized = preconditioner->Factorize(*system);
+  double sigma = settings.tr_shift_initial * std::max(mean_diagonal, 1e-300);
+  for (int shift = 0; !factorized && shift < settings.tr_max_shifts;
+       ++shift, sigma *= 10) {
+    for (int i = 0; i < n; ++i) *diagonal_entry[i] = unshifted[i] + sigma;
+    factorized = preconditioner->Factorize(*system);
+    for (int i = 0; i < n; ++i) *diagonal_entry[i] = unshifted[i];
+    if (factorized) ++report->shifted_preconditioners;
+  }
+  return factorized;
+}
+
+class TrustRegionStrategy : public NewtonStepStrategy {
+ public:
+  TrustRegionStrategy(const NewtonSettings& settings,
+                      LinearSolver* linear_solver)
+      : preconditioner_(linear_solver->preconditioner()),
+        radius_(settings.tr_initial_radius) {}
+
+  NewtonStepOutcome Step(const NewtonIteration& it) override;
+
+ private:
+  Preconditioner* const preconditioner_;
+  double radius_;  // in the norm |.|_M of the preconditioner
+  // The preconditioner held across iterations: M of an earlier H is kept
+  // while the subproblems it preconditions take at most
+  // tr_refactor_cg_iterations CG iterations (a deterministic count, no
+  // clock); near a minimiser successive Hessians differ little.
+  bool held_ = false;
+  int last_cg_iterations_ = 0;
+};
+
+// One iteration at the current point (H assembled in *system): the
+// preconditioner factorised (shifted where needed) unless it is held, then
+// Steihaug-Toint steps for the radius until one is accepted or
+// tr_max_rejections trials in a row are rejected.
+NewtonStepOutcome TrustRegionStrategy::Step(const NewtonIteration& it) {
+  NewtonProblem* const problem = it.problem;
+  LinearSolver* const linear_solver = it.linear_solver;
+  Preconditioner* const preconditioner = preconditioner_;
+  const NewtonSettings& settings = *it.settings;
+  const double forcing = it.forcing;
+  const double merit = it.merit;
+  const NewtonResidual& current = *it.current;
+  LinearSystem* const system = it.system;
+  NewtonReport* const report = it.report;
+  double* const radius = &radius_;
+  NewtonStepOutcome outcome;
+  if (preconditioner == nullptr) {
+    outcome.failure = NewtonStop::kLinearSolveFailed;
+    return outcome;
+  }
+  if (!held_ || last_cg_iterations_ > settings.tr_refactor_cg_iterations) {
+    held_ = FactorizePreconditioner(preconditioner, settings, system, report);
+  }
+  if (!held_) {
+    outcome.failure = NewtonStop::kLinearSolveFailed;
+    return outcome;
+  }
+  const Eigen::VectorXd& g = current.reduced;
+  for (int rejected = 0; rejected <= settings.tr_max_rejections; ++rejected) {
+    if (rejected > 0 && settings.stop && settings.stop()) {
+      outcome.failure = NewtonStop::kStopped;
+      return outcome;
+    }
+    const auto cg_start = std::chrono::steady_clock::now();
+    const SteihaugResult step =
+        SolveSteihaugCg(system->matrix, g, *preconditioner, *radius, forcing,
+                        settings.tr_max_cg_iterations);
+    last_cg_iterations_ = step.iterations;
+    linear_solver->CountCg(
+        step.iterations,
+        std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                      cg_start)
+            .count());
+    const bool on_boundary =
+        step.stop == SteihaugResult::Stop::kBoundary ||
+        (step.stop == SteihaugResult::Stop::kNegativeCurvature &&
+         std::isfinite(*radius));
+    double ratio = -1;
+    bool round_off = false;
+    double trial_merit = 0;
+    if (step.model_decrease > 0 && step.step.allFinite()) {
+      problem->SetTrial(step.step);
+      if (problem->Merit(NewtonPoint::kTrial, &trial_merit) ==
+              EvaluationStatus::kOk &&
+          std::isfinite(trial_merit)) {
+        ratio = (merit - trial_merit) / step.model_decrease;
+        round_off = std::abs(trial_merit - merit) <=
+                    settings.merit_round_off * std::abs(merit);
+      }
+    }
+    // Where the predicted decrease itself is below the merit's round-off,
+    // rho is noise: the residual decides (as with accept_smaller_max_norm).
+    const bool model_at_round_off =
+        step.model_decrease <= settings.merit_round_off * std::abs(merit);
+    const bool residual_decides =
+        round_off && (settings.accept_smaller_max_norm || model_at_round_off);
+    bool take = false;
+    NewtonResidual trial;
+    if (ratio >= settings.tr_accept || residual_decides) {
+      take = problem->Residual(NewtonPoint::kTrial, &trial) ==
+                 EvaluationStatus::kOk &&
+             (ratio >= settings.tr_accept ||
+              trial.max_norm < current.max_norm);
+    }
+    // The radius: shrink to a quarter of the step on a poor model (or a
+    // trial that cannot be evaluated), double it after a good step that the
+    // boundary cut short.
+    if (!(ratio >= 0.25) && !(take && round_off)) {
+      *radius = 0.25 * step.step_norm;
+    } else if (ratio > 0.75 && on_boundary) {
+      *radius = 2 * *radius;
+    }
+    if (take) {
+      if (on_boundary) ++report->boundary_steps;
+      if (step.stop == SteihaugResult::Stop::kNegativeCurvature) {
+        ++report->negative_curvature_steps;
+      }
+      outcome.accepted = true;
+      outcome.residual = std::move(trial);
+      outcome.merit = trial_merit;
+      return outcome;
+    }
+    ++report->rejected_trials;
+    if (!(step.step_norm > 0)) break;  // no step left to shrink
+  }
+  return outcome;
+}
+
+}  // namespace
+
+std::unique_ptr<NewtonStepStrategy> MakeTrustRegionStrategy(
+    const NewtonSettings& settings, LinearSolver* linear_solver) {
+  return std::make_unique<TrustRegionStrategy>(settings, linear_solver);
+}
+
+}  // namespace shellspace
