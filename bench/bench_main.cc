@@ -1,13 +1,16 @@
 // The main of every benchmark: CHOLMOD's OpenMP regions on the calling
 // thread alone, as in the CLI and the Python module
-// (geometry/openmp_threads.h), so that the figures are what a user gets;
+// (geometry/openmp_threads.h), and the heap kept for reuse as the CLI keeps
+// it (geometry/heap_reuse.h), so that the figures are what a user gets;
 // then Google Benchmark.
 #include <benchmark/benchmark.h>
 
+#include "shellspace/geometry/heap_reuse.h"
 #include "shellspace/geometry/openmp_threads.h"
 
 int main(int argc, char** argv) {
   shellspace::SerialOpenMpInThisThread();
+  shellspace::KeepFreedHeapForReuse();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

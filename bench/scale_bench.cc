@@ -23,6 +23,7 @@
 // The environment variable SHELLSPACE_LINEAR_SOLVER=auto|direct|block-jacobi
 // forces the linear solver of the Newton finish (default auto; see
 // PathLinearSolver); the counter block_jacobi is 1 if block-Jacobi CG ran.
+// SHELLSPACE_NEWTON_FROM sets GeodesicInput::newton_from (1: no LM stage).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -127,6 +128,11 @@ void BM_Scale(benchmark::State& state) {
   } catch (const InputError& e) {
     state.SkipWithError(e.what());  // one line, no abort
     return;
+  }
+  // SHELLSPACE_NEWTON_FROM: GeodesicInput::newton_from (default 1e-3; 1:
+  // the Newton finish from the first iteration, no LM stage).
+  if (const char* from = std::getenv("SHELLSPACE_NEWTON_FROM")) {
+    if (*from) input.newton_from = std::atof(from);
   }
   SolverSettings settings;
   settings.progress = true;

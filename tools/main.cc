@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "shellspace/geometry/mesh.h"
+#include "shellspace/geometry/heap_reuse.h"
 #include "shellspace/geometry/openmp_threads.h"
 #include "shellspace/io/input_file.h"
 #include "shellspace/tools/common_flags.h"
@@ -211,6 +212,7 @@ int main(int argc, char** argv) {
   using shellspace::VerbRegistry;
   shellspace::SetRunCommandLine(argc, argv);
   shellspace::SerialOpenMpInThisThread();
+  shellspace::KeepFreedHeapForReuse();
   if (argc < 2 || shellspace::IsHelp(argv[1])) {
     shellspace::PrintUsage();
     return argc < 2 ? 1 : 0;

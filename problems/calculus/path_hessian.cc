@@ -58,9 +58,10 @@ double ReducedEntry(const VertexColumns& v, int i, const double* b,
 // calling sink.Column() at the start of every column and sink.Entry(row,
 // value) for each of its entries. Every part is walked twice -- counting
 // (Sink::kValues false: values are not needed, and `walk` may skip
-// computing them), then filling storage allocated to the exact count -- so
-// the result is written in place, with no growing buffers and no copy (on
-// the cactus x4 one path Hessian is about 0.3 GB). The parts are walked in
+// computing them), then filling storage allocated to the exact count (or
+// the old storage of *out, if it is large enough) -- so the result is
+// written in place, with no growing buffers and no copy (on the cactus x4
+// one path Hessian is about 0.3 GB). The parts are walked in
 // parallel (`threads` at a time), each into its own range of the storage:
 // the result does not depend on the thread count.
 struct CountingSink {
@@ -105,7 +106,11 @@ void BuildCompressed(int rows, const std::vector<int>& first_column,
   if (total > std::numeric_limits<int>::max()) {
     throw std::length_error("PathHessianAssembler: more than 2^31 nonzeros");
   }
-  *out = Eigen::SparseMatrix<double>();  // release the old storage first
+  // The old storage is reused where it is large enough (a Newton solve
+  // assembles the same pattern every iteration: no fresh pages to fault in
+  // and clear); otherwise it is released first, so that the old and the
+  // new matrix never exist together.
+  if (out->data().allocatedSize() < total) *out = Eigen::SparseMatrix<double>();
   out->resize(rows, cols);
   out->resizeNonZeros(static_cast<Eigen::Index>(total));
   int* outer = out->outerIndexPtr();
@@ -219,8 +224,13 @@ bool PathHessianAssembler::AddElementBlocks(
         }
       };
       if (d22 != nullptr || mixed_transposed != nullptr || mixed != nullptr) {
+        // d_grad_reference (the mixed block) only where it is scattered.
+        const Rows rows = mixed_transposed == nullptr && mixed == nullptr
+                              ? Rows::kDeformed
+                              : d22 == nullptr ? Rows::kReference
+                                               : Rows::kBoth;
         if (!d.ComputeModel(model_, group.element, ref, def,
-                            ShellSide::kDeformed, weight)) {
+                            ShellSide::kDeformed, weight, rows)) {
           set.Fail(group.first_element + e, failure);
           ok = false;
           return;

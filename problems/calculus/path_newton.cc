@@ -135,9 +135,9 @@ class PathEnergyProblem : public NewtonProblem {
     return EvaluationStatus::kOk;
   }
   EvaluationStatus Assemble(LinearSystem* system) override {
-    // The last H is not needed any more: release it before the element
-    // blocks of the new one are allocated (peak memory).
-    system->matrix = SparseMatrix();
+    // The last H is overwritten in place (its storage reused: the pattern
+    // is the same every iteration); the assembler allocates the element
+    // blocks of the new one only after it has the storage.
     if (!assembler_.TryAssemble(*path_, reduced_.basis, threads_,
                                 &system->matrix)) {
       return EvaluationStatus::kInfeasible;
