@@ -94,8 +94,8 @@ FlagTable MaterialFlags() {
 FlagTable SolverFlags() {
   return {
       RealFlag("tolerance",
-               "stop when the gradient max-norm falls below this fraction of "
-               "its initial value",
+               "stop when the gradient max-norm falls below this times "
+               "max(1, its initial value)",
                0, End::kOpen, 1, End::kOpen),
       IntegerFlag("max_iterations",
                   "maximum iterations of the verb's outer solver (LM "
