@@ -2,18 +2,24 @@
 """The distance matrix of cactus poses in-process and on a Dask LocalCluster,
 the scheduler's overhead per task, and the projection to a large collection.
 
-    PYTHONPATH=build/python python3 bench/collections_bench.py \
-        [--poses 20] [--steps 4] [--workers 2] [--tiny_tasks 2000]
+    PYTHONPATH=build/python python3 bench/collections_bench.py \\
+        [--poses 20] [--steps 4] [--workers 2] [--tiny_tasks 2000] \\
+        [--only serial|cluster] [--save S.npz] [--compare S.npz]
 
-prints: the serial matrix time and the mean time of one pair (its task's
-wall time), the cluster's time and whether its matrix equals the serial one
-bit for bit, the overhead per task (tiny tasks through the same cluster),
-and T = P t / W + P o for --project_shapes shapes on --project_workers
-workers (P pairs, t the measured time of one pair, o the overhead per task,
-counted as if the scheduler handled tasks one at a time).
+prints: the serial matrix time and the mean wall and CPU time of one pair
+(inside its task), the cluster's time and whether its matrix equals the
+serial one bit for bit, the overhead per task (tiny tasks through the same
+cluster: wall per task, and the CPU seconds the scheduler, client and
+workers spent per task), and T = P t / W + P o for --project_shapes shapes
+on --project_workers workers (P pairs, t the time of one pair, o the
+overhead per task, counted as if the scheduler handled tasks one at a
+time). --only runs one half, so that each can be measured on its own
+(/usr/bin/time -v); --save keeps the serial matrix, --compare reads it
+(the bitwise comparison and the serial t of the projection).
 """
 import argparse
 import os
+import resource
 import sys
 import time
 
@@ -27,6 +33,23 @@ def noop(x):
     return x
 
 
+def cpu_seconds():
+    """user + sys of this process (all its threads)."""
+    usage = resource.getrusage(resource.RUSAGE_SELF)
+    return usage.ru_utime + usage.ru_stime
+
+
+def report_matrix(name, wall, result, n):
+    upper = np.triu_indices(n, 1)
+    per_pair = np.nanmean(result.seconds[upper])
+    cpu_pair = np.nanmean(result.cpu_seconds[upper])
+    print(f"{name}: {wall:.1f} s, per pair {per_pair:.2f} s wall, "
+          f"{cpu_pair:.2f} s CPU inside its task "
+          f"(CPU total {np.nansum(result.cpu_seconds[upper]):.1f} s), "
+          f"{len(result.failed_pairs())} failed", flush=True)
+    return per_pair, cpu_pair
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--data", default=os.environ.get(
@@ -37,7 +60,9 @@ def main():
     parser.add_argument("--tiny_tasks", type=int, default=2000)
     parser.add_argument("--project_shapes", type=int, default=1000)
     parser.add_argument("--project_workers", type=int, default=100)
-    parser.add_argument("--skip_serial", action="store_true")
+    parser.add_argument("--only", choices=["serial", "cluster"])
+    parser.add_argument("--save", help="write the serial matrix (.npz)")
+    parser.add_argument("--compare", help="a serial matrix saved by --save")
     args = parser.parse_args()
 
     meshes = []
@@ -54,14 +79,25 @@ def main():
           f"K = {args.steps}", flush=True)
 
     serial = None
-    if not args.skip_serial:
+    times = []
+    if args.only != "cluster":
         start = time.perf_counter()
         serial = sc.distance_matrix(shapes, F, steps=args.steps,
                                     progress=True)
-        wall = time.perf_counter() - start
-        per_pair = np.nanmean(serial.seconds[np.triu_indices(n, 1)])
-        print(f"serial: {wall:.1f} s, {per_pair:.2f} s per pair, "
-              f"{len(serial.failed_pairs())} failed", flush=True)
+        t, cpu = report_matrix("serial", time.perf_counter() - start, serial, n)
+        times.append(("serial", t, cpu))
+        if args.save:
+            np.savez(args.save, **serial.arrays())
+    elif args.compare:
+        with np.load(args.compare) as data:
+            serial = sc.DistanceMatrix(n)
+            serial.distances[...] = data["distances"]
+            serial.status[...] = data["status"]
+            upper = np.triu_indices(n, 1)
+            times.append(("serial", np.nanmean(data["seconds"][upper]),
+                          np.nanmean(data["cpu_seconds"][upper])))
+    if args.only == "serial":
+        return 0
 
     from distributed import Client, LocalCluster
     cluster = LocalCluster(n_workers=args.workers, threads_per_worker=1,
@@ -71,42 +107,47 @@ def main():
         start = time.perf_counter()
         result = sc.distance_matrix(shapes, F, client=client,
                                     steps=args.steps, progress=True)
-        wall = time.perf_counter() - start
-        per_pair = np.nanmean(result.seconds[np.triu_indices(n, 1)])
-        same = (serial is not None and
-                np.array_equal(result.distances, serial.distances,
-                               equal_nan=True) and
-                np.array_equal(result.status, serial.status))
-        print(f"{args.workers} workers: {wall:.1f} s, {per_pair:.2f} s per "
-              f"pair inside its task, equal to serial bit for bit: "
-              f"{same if serial is not None else 'not compared'}", flush=True)
+        t, cpu = report_matrix(f"{args.workers} workers",
+                               time.perf_counter() - start, result, n)
+        times.append(("cluster", t, cpu))
+        if serial is not None:
+            same = (np.array_equal(result.distances, serial.distances,
+                                   equal_nan=True) and
+                    np.array_equal(result.status, serial.status))
+            print(f"equal to serial bit for bit: {same}", flush=True)
 
-        # The overhead: tiny tasks (an identity) through the same cluster.
+        # The overhead: tiny tasks (an identity) through the same cluster;
+        # CPU of this process (client and scheduler) and of the workers.
         client.gather(client.map(noop, range(50), pure=False))  # warm up
+        workers_before = client.run(cpu_seconds)
+        here_before = cpu_seconds()
         start = time.perf_counter()
         futures = client.map(noop, range(args.tiny_tasks), pure=False)
         client.gather(futures)
         tiny = time.perf_counter() - start
+        here = cpu_seconds() - here_before
+        workers_after = client.run(cpu_seconds)
+        workers = sum(workers_after[w] - workers_before[w]
+                      for w in workers_after)
         overhead = tiny / args.tiny_tasks
         print(f"overhead: {args.tiny_tasks} tiny tasks in {tiny:.2f} s, "
-              f"{overhead * 1e3:.2f} ms per task (scheduler throughput "
-              f"{1 / overhead:.0f} tasks/s)", flush=True)
+              f"{overhead * 1e3:.2f} ms per task (throughput "
+              f"{1 / overhead:.0f} tasks/s); CPU per task "
+              f"{here / args.tiny_tasks * 1e3:.2f} ms client + scheduler, "
+              f"{workers / args.tiny_tasks * 1e3:.2f} ms workers", flush=True)
     finally:
         client.close()
         cluster.close()
 
     P = args.project_shapes * (args.project_shapes - 1) // 2
     W = args.project_workers
-    times = [("cluster", per_pair)]
-    if serial is not None:  # one pair on one otherwise idle core
-        times.insert(0, ("serial", np.nanmean(
-            serial.seconds[np.triu_indices(n, 1)])))
-    for name, t in times:
-        T = P * t / W + P * overhead
-        print(f"projection ({name} t): {args.project_shapes} shapes = {P} "
-              f"pairs on {W} workers: T = P t / W + P o = {P} x {t:.2f} s / "
-              f"{W} + {P} x {overhead * 1e3:.2f} ms = {T:.0f} s = "
-              f"{T / 3600:.1f} h (t at K = {args.steps} on this machine)")
+    for name, t, cpu in times:
+        for what, value in (("wall", t), ("CPU", cpu)):
+            T = P * value / W + P * overhead
+            print(f"projection ({name} t, {what} {value:.2f} s): "
+                  f"{args.project_shapes} shapes = {P} pairs on {W} workers: "
+                  f"T = P t / W + P o = {T:.0f} s = {T / 3600:.1f} h "
+                  f"(t at K = {args.steps} on this machine)")
     return 0
 
 

@@ -57,7 +57,7 @@ STATUS_NAMES = {OK: "ok", PENDING: "pending", NOT_CONVERGED: "not converged",
 # task would give the same answer).
 RETRIED = (PENDING, PAIR_TIME_LIMIT, LOST)
 
-CACHE_VERSION = 1
+CACHE_VERSION = 2  # 2: cpu_seconds
 
 
 # ---- thread counts of a task ----------------------------------------------
@@ -139,14 +139,26 @@ def _one_line(error):
     return text.splitlines()[0] if text else type(error).__name__
 
 
+class _Clock:
+    """Wall and CPU seconds of a task: CPU of the calling thread (the task
+    runs its solve in it: one solver thread, one BLAS thread, serial
+    OpenMP)."""
+
+    def __init__(self):
+        self.wall, self.cpu = time.perf_counter(), time.thread_time()
+
+    def seconds(self):
+        return (time.perf_counter() - self.wall, time.thread_time() - self.cpu)
+
+
 def geodesic_task(shapes, F, i, j, options, fail=()):
-    """One pair: (i, j, status, E_K, message, seconds, path or None).
-    `options`: geodesic keywords, plus blas_threads and return_path.
+    """One pair: (i, j, status, E_K, message, (wall, cpu) seconds, path or
+    None). `options`: geodesic keywords, plus blas_threads and return_path.
     `fail`: pairs that raise on purpose (a test's injected failure)."""
     options = dict(options)
     blas_threads = options.pop("blas_threads", 1)
     return_path = options.pop("return_path", False)
-    start = time.perf_counter()
+    clock = _Clock()
     try:
         if (i, j) in fail:
             raise RuntimeError(f"injected failure of pair ({i}, {j})")
@@ -154,13 +166,13 @@ def geodesic_task(shapes, F, i, j, options, fail=()):
             path, summary = shellspace.geodesic(shapes[i], shapes[j], F,
                                                 **options)
         return (i, j, OK, float(summary["path_energy"]), "",
-                time.perf_counter() - start, path if return_path else None)
+                clock.seconds(), path if return_path else None)
     except Exception as error:  # reported in the pair's cell
         summary = getattr(error, "summary", None) or {}
         energy = summary.get("path_energy")
         return (i, j, _status_of(error),
                 math.nan if energy is None else float(energy),
-                _one_line(error), time.perf_counter() - start, None)
+                _one_line(error), clock.seconds(), None)
 
 
 def transfer_task(shapes, F, source, detail, j, options):
@@ -278,15 +290,16 @@ def _write_npz_atomically(path, **arrays):
 class DistanceMatrix:
     """distances (N x N, NaN where a pair failed or is pending), energies
     (E_K of the pair's path, also of an unconverged one when known), status
-    (int8 codes: OK ... LOST), messages {(i, j): one line}, seconds (per
-    pair, wall time of its task: information only), computed (pairs solved
-    by this call)."""
+    (int8 codes: OK ... LOST), messages {(i, j): one line}, seconds and
+    cpu_seconds (per pair, wall and CPU time of its task: information
+    only), computed (pairs solved by this call)."""
 
     def __init__(self, n):
         self.distances = np.full((n, n), np.nan)
         self.energies = np.full((n, n), np.nan)
         self.status = np.full((n, n), PENDING, dtype=np.int8)
         self.seconds = np.full((n, n), np.nan)
+        self.cpu_seconds = np.full((n, n), np.nan)
         np.fill_diagonal(self.distances, 0.0)
         np.fill_diagonal(self.energies, 0.0)
         np.fill_diagonal(self.status, OK)
@@ -294,10 +307,11 @@ class DistanceMatrix:
         self.computed = 0
 
     def set(self, i, j, status, energy, message, seconds):
+        """seconds: (wall, cpu) of the pair's task."""
         for a, b in ((i, j), (j, i)):
             self.status[a, b] = status
             self.energies[a, b] = energy
-            self.seconds[a, b] = seconds
+            self.seconds[a, b], self.cpu_seconds[a, b] = seconds
             self.distances[a, b] = (math.sqrt(energy) if status == OK
                                     else math.nan)
         if message:
@@ -313,6 +327,7 @@ class DistanceMatrix:
         keys = sorted(self.messages)
         return dict(distances=self.distances, energies=self.energies,
                     status=self.status, seconds=self.seconds,
+                    cpu_seconds=self.cpu_seconds,
                     message_pairs=np.array(keys, dtype=np.int64).reshape(-1, 2),
                     message_texts=np.array([self.messages[k] for k in keys],
                                            dtype=str))
@@ -333,6 +348,7 @@ def _load_cache(path, n, digest):
             result.energies[...] = data["energies"]
             result.status[...] = data["status"]
             result.seconds[...] = data["seconds"]
+            result.cpu_seconds[...] = data["cpu_seconds"]
             for (i, j), text in zip(data["message_pairs"].tolist(),
                                     data["message_texts"].tolist()):
                 result.messages[(i, j)] = text
@@ -404,7 +420,7 @@ def distance_matrix(shapes, F, client=None, steps=4, cache=None,
     def on_result(item):
         if item[0] == "lost":
             (i, j), message = item[1], item[2]
-            result.set(i, j, LOST, math.nan, message, math.nan)
+            result.set(i, j, LOST, math.nan, message, (math.nan, math.nan))
         else:
             i, j, status, energy, message, seconds, _ = item
             result.set(i, j, status, energy, message, seconds)
