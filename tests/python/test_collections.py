@@ -239,3 +239,169 @@ def test_the_command_line_writes_the_matrix(serial, tmp_path):
     assert bad.returncode == 1
     assert len(bad.stderr.strip().splitlines()) == 1
     assert not os.path.exists(tmp_path / "E.npz")
+
+
+# ---- transfer, the elastic mean and shell PCA -------------------------------
+
+def detail_on(shape):
+    """A ripple added to a shape (the detail transfer carries)."""
+    D = shape.copy()
+    D[:, 2] += 0.02 * np.sin(3 * np.pi * shape[:, 1]) * shape[:, 0]
+    return D
+
+
+def test_transfer_carries_the_detail_along_each_geodesic(client):
+    detail = detail_on(SHAPES[0])
+    serial = sc.transfer(detail, 0, SHAPES, F, steps=STEPS)
+    assert [status for status, _, _ in serial] == [sc.OK] * N
+    assert np.array_equal(serial[0][1], detail)
+    for j in range(1, N):
+        path, _ = shellspace.geodesic(SHAPES[0], SHAPES[j], F, steps=STEPS,
+                                      threads=1, quiet=True)
+        moved, _ = shellspace.transport(path, detail, F, threads=1,
+                                        quiet=True)
+        assert np.array_equal(serial[j][1], moved[-1])
+        # The detail arrives: the moved shape is not the bare target.
+        assert np.abs(serial[j][1] - SHAPES[j]).max() > 0.005
+    on_cluster = sc.transfer(detail, 0, SHAPES, F, steps=STEPS, client=client)
+    for (s1, a, _), (s2, b, _) in zip(serial, on_cluster):
+        assert s1 == s2 and np.array_equal(a, b)
+
+
+def diameter(shape):
+    return np.linalg.norm(shape.max(axis=0) - shape.min(axis=0))
+
+
+@pytest.fixture(scope="module")
+def serial_mean():
+    mean, summary = shellspace.mean(SHAPES, F, threads=1, quiet=True)
+    return mean, summary
+
+
+@pytest.mark.parametrize("tolerance, bound", [(1e-8, 1e-7), (1e-13, 1e-9)])
+def test_elastic_mean_is_the_library_mean(serial_mean, tolerance, bound):
+    mean, summary = serial_mean
+    result = sc.elastic_mean(SHAPES, F, tolerance=tolerance)
+    assert result.converged and result.termination == "converged"
+    assert result.gradient_norm <= tolerance * max(
+        1, result.initial_gradient_norm)
+    # The same minimiser of sum_i W[S_i, s] (both aligned to shapes[0]).
+    assert np.abs(result.mean - mean).max() <= bound * diameter(SHAPES[0])
+    assert result.energy == pytest.approx(summary["energy"], rel=1e-9)
+    # Its own gradient, from the library's derivative, vanishes (with the
+    # bending weight of shapes[0], as the mean's: energy_gradient would
+    # take each S_i's own).
+    eta = shellspace.energy(SHAPES[0], SHAPES[0], F)["eta"]
+    G = sum(shellspace.energy_gradient(S, result.mean, F, eta=eta)
+            for S in SHAPES)
+    assert np.abs(G).max() <= 1e-6 * result.initial_gradient_norm
+
+
+def test_elastic_mean_on_a_cluster_is_the_same_digits(client):
+    here = sc.elastic_mean(SHAPES, F, shapes_per_task=2)
+    there = sc.elastic_mean(SHAPES, F, shapes_per_task=2, client=client)
+    assert np.array_equal(here.mean, there.mean)
+    assert np.array_equal(here.energies, there.energies)
+    assert here.history == there.history and here.rounds == there.rounds
+    # 5 shapes in tasks of 2: 3 tasks a round, summed in one tree.
+    assert here.rounds == here.iterations + 1
+
+
+def test_elastic_mean_material_and_bad_input():
+    # A stiffer bending weight is another mean (eta resolved from shapes[0]
+    # and passed to every term, as shellspace.mean does).
+    mean, _ = shellspace.mean(SHAPES, F, eta=0.5, threads=1, quiet=True)
+    result = sc.elastic_mean(SHAPES, F, eta=0.5, tolerance=1e-12)
+    assert np.abs(result.mean - mean).max() <= 1e-9 * diameter(SHAPES[0])
+    with pytest.raises(shellspace.InputError, match="unknown keyword"):
+        sc.elastic_mean(SHAPES, F, steps=3)
+    with pytest.raises(shellspace.InputError, match="shapes_per_task"):
+        sc.elastic_mean(SHAPES, F, shapes_per_task=0)
+    stopped = sc.elastic_mean(SHAPES, F, max_iterations=1)
+    assert not stopped.converged and stopped.termination == "max iterations"
+
+
+def swapped(name):
+    return name.replace("minus", "@").replace("plus", "minus").replace(
+        "@", "plus")
+
+
+def test_pca_is_the_library_pca_at_the_same_mean(serial_mean):
+    shapes, summary = shellspace.pca(SHAPES, F, modes=2, threads=1,
+                                     quiet=True)
+    mean = shapes["mean"]
+    assert np.array_equal(mean, serial_mean[0])
+    result = sc.pca(SHAPES, F, mean=mean, modes=2)
+    assert np.all(result.status == sc.OK)
+    expected = np.array(summary["eigenvalues"])
+    assert result.eigenvalues[0] > 100 * result.eigenvalues[1] > 0
+    assert np.abs(result.eigenvalues - expected).max() <= 1e-5 * expected[0]
+    # The modes are orthonormal in g(u, w) = 1/2 u^T D_2^2 W[mean, mean] w.
+    eta = shellspace.energy(SHAPES[0], SHAPES[0], F)["eta"]
+    rows, cols, vals = shellspace.energy_hessian(mean, mean, F, eta=eta)
+    H = np.zeros((mean.size, mean.size))
+    np.add.at(H, (rows, cols), vals)
+    W = np.stack([w.ravel() for w in result.modes[:2]])
+    assert np.allclose(0.5 * W @ H @ W.T, np.eye(2), atol=1e-9)
+    # Mode shapes: the library's up to the sign of each mode.
+    size = diameter(mean)
+    for j in (1, 2):
+        for side in ("minus", "plus"):
+            name = f"mode_{j}_{side}"
+            same = np.abs(result.mode_shapes[name] - shapes[name]).max()
+            other = np.abs(result.mode_shapes[swapped(name)] -
+                           shapes[name]).max()
+            assert min(same, other) <= 1e-4 * size
+            assert max(same, other) >= 1e-3 * size  # the sign is a choice
+
+
+def test_pca_on_a_cluster_is_the_same_digits(client):
+    here = sc.pca(SHAPES, F, modes=2)
+    there = sc.pca(SHAPES, F, modes=2, client=client)
+    assert np.array_equal(here.mean, there.mean)
+    assert np.array_equal(here.eigenvalues, there.eigenvalues)
+    for a, b in zip(here.modes, there.modes):
+        assert np.array_equal(a, b)
+    assert sorted(here.mode_shapes) == sorted(there.mode_shapes) == [
+        "mode_1_minus", "mode_1_plus", "mode_2_minus", "mode_2_plus"]
+    for name in here.mode_shapes:
+        assert np.array_equal(here.mode_shapes[name], there.mode_shapes[name])
+
+
+def test_pca_with_a_worker_killed_during_the_logs(client):
+    shapes, faces = collection(count=6, n=14)
+    mean = sc.elastic_mean(shapes, faces, shapes_per_task=3).mean
+    reference = sc.pca(shapes, faces, mean=mean, modes=2, mode_shapes=False)
+    client.wait_for_workers(2, timeout=60)
+    killed = {}
+
+    def kill_a_busy_worker(done, total, failed):
+        if killed:
+            return
+        busy = [w for w, keys in client.processing().items() if keys]
+        if not busy:
+            return
+        killed.update(worker=busy[0], done=done)
+        pid = client.run(os.getpid, workers=[busy[0]])[busy[0]]
+        os.kill(pid, signal.SIGKILL)
+
+    result = sc.pca(shapes, faces, mean=mean, modes=2, mode_shapes=False,
+                    client=client, progress=kill_a_busy_worker)
+    assert killed and killed["done"] < len(shapes)
+    assert np.all(result.status == sc.OK)
+    assert np.array_equal(result.eigenvalues, reference.eigenvalues)
+    for a, b in zip(result.modes, reference.modes):
+        assert np.array_equal(a, b)
+    client.wait_for_workers(2, timeout=60)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(modes=5), "at most 4"),
+    (dict(modes=0), "modes must be >= 1"),
+    (dict(log_steps=0), "log_steps"),
+    (dict(exp_steps=4, max_exp_steps=2), "max_exp_steps"),
+    (dict(mean=np.zeros((3, 3))), "vertex count"),
+])
+def test_pca_refuses_bad_options(kwargs, match):
+    with pytest.raises(shellspace.InputError, match=match):
+        sc.pca(SHAPES, F, **kwargs)
