@@ -1014,7 +1014,6 @@ def _parser():
 
 def main(argv=None):
     args = _parser().parse_args(argv)
-    progress = not args.quiet
     try:
         if args.verb in ("distances", "pca") and \
                 not args.output.endswith(".npz"):
@@ -1086,6 +1085,10 @@ def _main_mean(args, paths, shapes, F, client):
 
 
 def _main_pca(args, paths, shapes, F, client):
+    if not 1 <= args.modes <= len(paths) - 1:
+        raise shellspace.InputError(
+            f"--modes must be in 1..{len(paths) - 1} (inputs - 1), got "
+            f"{args.modes}")
     mean = elastic_mean(shapes, F, client=client, tolerance=args.tolerance,
                         time_limit=args.time_limit, progress=not args.quiet)
     if not mean.converged:

@@ -405,3 +405,82 @@ def test_pca_with_a_worker_killed_during_the_logs(client):
 def test_pca_refuses_bad_options(kwargs, match):
     with pytest.raises(shellspace.InputError, match=match):
         sc.pca(SHAPES, F, **kwargs)
+
+
+# ---- shellspace collection VERB (the C++ CLI's front) ----------------------
+
+CLI = os.path.join(os.path.dirname(shellspace.__file__), os.pardir,
+                   "shellspace")
+
+
+@pytest.fixture(scope="module")
+def meshes(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("collection")
+    paths = []
+    for k in range(N):
+        paths.append(str(folder / f"s{k}.ply"))
+        shellspace.write_mesh(paths[-1], SHAPES[k], F)
+    return folder, ",".join(paths)
+
+
+def run_cli(*args):
+    if not os.path.exists(CLI):
+        pytest.skip("no shellspace binary beside the module")
+    return subprocess.run([CLI, "collection", *args], capture_output=True,
+                          text=True, timeout=300)
+
+
+def test_cli_collection_mean_and_pca(meshes):
+    folder, inputs = meshes
+    mean_path, model_path = str(folder / "M.ply"), str(folder / "P.npz")
+    run = run_cli("mean", "--inputs", inputs, "--output", mean_path,
+                  "--scheduler", "local:2", "--quiet")
+    assert run.returncode == 0, run.stderr
+    V, faces = shellspace.read_mesh(mean_path)
+    assert np.array_equal(faces, F)
+    expected = sc.elastic_mean(SHAPES, F)
+    assert np.allclose(V, expected.mean, rtol=0, atol=1e-12)
+    run = run_cli("pca", "--inputs", inputs, "--output", model_path,
+                  "--modes", "2", "--quiet")
+    assert run.returncode == 0, run.stderr
+    model = sc.pca(SHAPES, F, modes=2)
+    with np.load(model_path) as data:
+        assert np.allclose(data["eigenvalues"], model.eigenvalues,
+                           rtol=1e-6, atol=1e-12)
+        assert list(data["mode_shape_names"]) == sorted(model.mode_shapes)
+        assert np.array_equal(data["faces"], F)
+
+
+@pytest.mark.parametrize("args, code, text", [
+    (["distances", "--scheduler", "local:0"], 1, "worker count"),
+    (["distances", "--scheduler", "no address"], 1, "scheduler address"),
+    (["distances", "--steps", "0"], 1, "--steps must be"),
+    (["distances", "--modes", "2"], 2, "not a flag of collection distances"),
+    (["mean", "--steps", "2"], 2, "not a flag of collection mean"),
+    (["pca", "--modes", "0"], 1, "--modes must be"),
+    (["pca", "--modes", "5"], 1, "--modes must be in 1..4"),
+    (["distances", "--time_limit", "-1"], 1, "--time_limit must be"),
+    (["distances", "--output", "OUT.txt"], 1, "must end in .npz"),
+    (["mean", "--output", "OUT.xyz"], 1, "must end in .ply"),
+    (["distances", "--inputs", "MISSING"], 1, "cannot open mesh file"),
+])
+def test_cli_collection_refuses_bad_flags_in_one_line(meshes, args, code,
+                                                      text):
+    folder, inputs = meshes
+    args = list(args)
+    if "--inputs" in args:
+        args[args.index("--inputs") + 1] = inputs.split(",")[0] + "," + str(
+            folder / "missing.ply")
+    else:
+        args += ["--inputs", inputs]
+    output = str(folder / ("OUT.ply" if args[0] == "mean" else "OUT.npz"))
+    if "--output" in args:
+        output = str(folder / args[args.index("--output") + 1])
+        args[args.index("--output") + 1] = output
+    else:
+        args += ["--output", output]
+    run = run_cli(*args)
+    assert run.returncode == code
+    lines = run.stderr.strip().splitlines()
+    assert len(lines) == 1 and text in lines[0], run.stderr
+    assert not os.path.exists(output)
