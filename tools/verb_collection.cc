@@ -30,6 +30,11 @@ DECLARE_double(amplitude);
 DECLARE_int32(log_steps);
 DECLARE_int32(exp_steps);
 DECLARE_int32(max_exp_steps);
+DECLARE_double(mu);
+DECLARE_double(lambda);
+DECLARE_double(eta);
+DECLARE_double(relative_eta);
+DECLARE_string(bending);
 DEFINE_string(scheduler, "none",
               "collection: none, local[:N] or a Dask scheduler's address");
 DEFINE_double(pair_time_limit, 0, "collection distances: seconds per pair");
@@ -66,7 +71,7 @@ void CheckScheduler(const std::string& value) {
 }
 
 FlagTable CommonFlags(const std::string& output) {
-  return {
+  return Flags({MaterialFlags(), {
       TextFlag("inputs", "comma-separated meshes of one connectivity (>= 2)")
           .Required(),
       TextFlag("output", output).Required(),
@@ -82,7 +87,7 @@ FlagTable CommonFlags(const std::string& output) {
                "is written; exit 124); 0: no limit",
                0, End::kClosed),
       TextFlag("quiet", "no progress counter on stderr"),
-  };
+  }});
 }
 
 FlagTable DistancesFlags() {
@@ -139,6 +144,18 @@ int RunCollection(const std::string& verb) {
     args.insert(args.end(), {"--time_limit", Number(FLAGS_time_limit)});
   }
   if (FLAGS_quiet) args.push_back("--quiet");
+  args.insert(args.end(), {"--mu", Number(FLAGS_mu), "--lambda",
+                           Number(FLAGS_lambda), "--bending", FLAGS_bending});
+  gflags::CommandLineFlagInfo eta, relative_eta;
+  gflags::GetCommandLineFlagInfo("eta", &eta);
+  gflags::GetCommandLineFlagInfo("relative_eta", &relative_eta);
+  if (!eta.is_default && !relative_eta.is_default) {
+    throw InputError("--eta and --relative_eta: give one, not both");
+  }
+  if (!eta.is_default) args.insert(args.end(), {"--eta", Number(FLAGS_eta)});
+  if (!relative_eta.is_default) {
+    args.insert(args.end(), {"--relative_eta", Number(FLAGS_relative_eta)});
+  }
   if (verb == "distances") {
     args.insert(args.end(), {"--steps", std::to_string(FLAGS_steps)});
     if (FLAGS_pair_time_limit > 0) {

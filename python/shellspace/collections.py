@@ -993,6 +993,13 @@ def _parser():
         sub.add_argument("--max_iterations", type=int, default=None)
         sub.add_argument("--time_limit", type=float, default=None)
         sub.add_argument("--quiet", action="store_true")
+        sub.add_argument("--mu", type=float, default=1.0)
+        sub.add_argument("--lambda", dest="lambda_", type=float, default=1.0)
+        sub.add_argument("--eta", type=float, default=None,
+                         help="absolute bending weight (default: "
+                              "relative_eta x the first shape's area)")
+        sub.add_argument("--relative_eta", type=float, default=None)
+        sub.add_argument("--bending", default="discrete-shells")
 
     d = verbs.add_parser("distances", help="the geodesic distance matrix")
     common(d, "the result, .npz")
@@ -1024,6 +1031,13 @@ def main(argv=None):
                                         ".off")
         if args.time_limit is not None and not args.time_limit >= 0:
             raise shellspace.InputError("--time_limit must be >= 0")
+        if args.eta is not None and args.relative_eta is not None:
+            raise shellspace.InputError(
+                "--eta and --relative_eta: give one, not both")
+        args.material = {k: v for k, v in (
+            ("mu", args.mu), ("lambda_", args.lambda_), ("eta", args.eta),
+            ("relative_eta", args.relative_eta), ("bending", args.bending))
+            if v is not None}
         paths, shapes, F = _read_collection(args.inputs)
         client, cluster = _client_for(args.scheduler)
         try:
@@ -1051,7 +1065,7 @@ def _main_distances(args, paths, shapes, F, client):
         shapes, F, client=client, steps=args.steps, cache=cache,
         progress=not args.quiet, time_limit=args.time_limit,
         pair_time_limit=args.pair_time_limit, tolerance=args.tolerance,
-        max_iterations=args.max_iterations or 200)
+        max_iterations=args.max_iterations or 200, **args.material)
     _write_npz_atomically(args.output, inputs=np.array(paths, dtype=str),
                           **result.arrays())
     failed = result.failed_pairs()
@@ -1071,7 +1085,7 @@ def _main_mean(args, paths, shapes, F, client):
     result = elastic_mean(shapes, F, client=client, tolerance=args.tolerance,
                           max_iterations=args.max_iterations or 100,
                           time_limit=args.time_limit,
-                          progress=not args.quiet)
+                          progress=not args.quiet, **args.material)
     shellspace.write_mesh(args.output, result.mean, F)
     if not args.quiet:
         print(f"mean: {len(paths)} shapes, {result.iterations} Newton steps "
@@ -1090,7 +1104,8 @@ def _main_pca(args, paths, shapes, F, client):
             f"--modes must be in 1..{len(paths) - 1} (inputs - 1), got "
             f"{args.modes}")
     mean = elastic_mean(shapes, F, client=client, tolerance=args.tolerance,
-                        time_limit=args.time_limit, progress=not args.quiet)
+                        time_limit=args.time_limit, progress=not args.quiet,
+                        **args.material)
     if not mean.converged:
         print(f"shellspace.collections: elastic mean: |G| "
               f"{mean.gradient_norm:.3g} above {mean.gradient_target:.3g} "
@@ -1101,7 +1116,7 @@ def _main_pca(args, paths, shapes, F, client):
                 max_exp_steps=args.max_exp_steps, amplitude=args.amplitude,
                 tolerance=args.tolerance,
                 max_iterations=args.max_iterations or 200,
-                progress=not args.quiet)
+                progress=not args.quiet, **args.material)
     names = sorted(model.mode_shapes)
     _write_npz_atomically(
         args.output, inputs=np.array(paths, dtype=str), faces=F,

@@ -440,6 +440,14 @@ def test_cli_collection_mean_and_pca(meshes):
     assert np.array_equal(faces, F)
     expected = sc.elastic_mean(SHAPES, F)
     assert np.allclose(V, expected.mean, rtol=0, atol=1e-12)
+    # A material flag reaches every term.
+    run = run_cli("mean", "--inputs", inputs, "--output", mean_path,
+                  "--eta", "0.5", "--quiet")
+    assert run.returncode == 0, run.stderr
+    stiffer = sc.elastic_mean(SHAPES, F, eta=0.5)
+    assert np.allclose(shellspace.read_mesh(mean_path)[0], stiffer.mean,
+                       rtol=0, atol=1e-12)
+    assert np.abs(stiffer.mean - expected.mean).max() > 1e-4
     run = run_cli("pca", "--inputs", inputs, "--output", model_path,
                   "--modes", "2", "--quiet")
     assert run.returncode == 0, run.stderr
@@ -463,6 +471,8 @@ def test_cli_collection_mean_and_pca(meshes):
     (["distances", "--output", "OUT.txt"], 1, "must end in .npz"),
     (["mean", "--output", "OUT.xyz"], 1, "must end in .ply"),
     (["distances", "--inputs", "MISSING"], 1, "cannot open mesh file"),
+    (["mean", "--eta", "0.5", "--relative_eta", "0.1"], 1, "not both"),
+    (["mean", "--bending", "edges"], 1, "unknown bending model"),
 ])
 def test_cli_collection_refuses_bad_flags_in_one_line(meshes, args, code,
                                                       text):
