@@ -15,7 +15,10 @@ on --project_workers workers (P pairs, t the time of one pair, o the
 overhead per task, counted as if the scheduler handled tasks one at a
 time). --only runs one half, so that each can be measured on its own
 (/usr/bin/time -v); --save keeps the serial matrix, --compare reads it
-(the bitwise comparison and the serial t of the projection).
+(the bitwise comparison and the serial t of the projection); --time_limit
+stops each matrix (the pairs done are measured). --mean_poses M measures
+the elastic mean of M poses instead: shellspace.mean, elastic_mean
+in-process and on the cluster.
 """
 import argparse
 import os
@@ -41,6 +44,7 @@ def cpu_seconds():
 
 def report_matrix(name, wall, result, n):
     upper = np.triu_indices(n, 1)
+    print(file=sys.stderr)  # after the counter's line
     per_pair = np.nanmean(result.seconds[upper])
     cpu_pair = np.nanmean(result.cpu_seconds[upper])
     done = int(np.sum(result.status[upper] != sc.PENDING))
@@ -48,8 +52,47 @@ def report_matrix(name, wall, result, n):
           f"wall, "
           f"{cpu_pair:.2f} s CPU inside its task "
           f"(CPU total {np.nansum(result.cpu_seconds[upper]):.1f} s), "
-          f"{len(result.failed_pairs())} failed", flush=True)
+          f"{done - int(np.sum(result.status[upper] == sc.OK))} failed",
+          flush=True)
     return per_pair, cpu_pair
+
+
+def bench_mean(shapes, F, args):
+    """The elastic mean three ways: shellspace.mean (LM + Newton in C++,
+    one thread), elastic_mean in-process and on --workers workers."""
+    n = len(shapes)
+    size = np.linalg.norm(shapes[0].max(axis=0) - shapes[0].min(axis=0))
+    clock, cpu = time.perf_counter(), cpu_seconds()
+    reference, summary = shellspace.mean(shapes, F, threads=1, quiet=True)
+    print(f"mean of {n} poses, shellspace.mean: "
+          f"{time.perf_counter() - clock:.1f} s, CPU "
+          f"{cpu_seconds() - cpu:.1f} s, |G| "
+          f"{summary['final_gradient_norm']:.3g}, E {summary['energy']:.9g}",
+          flush=True)
+    clock, cpu = time.perf_counter(), cpu_seconds()
+    here = sc.elastic_mean(shapes, F)
+    print(f"elastic_mean in-process: {time.perf_counter() - clock:.1f} s, "
+          f"CPU {cpu_seconds() - cpu:.1f} s, {here.iterations} Newton steps, "
+          f"{here.rounds} rounds, |G| {here.gradient_norm:.3g} "
+          f"({here.termination}), E {here.energy:.9g}, max vertex distance "
+          f"to shellspace.mean "
+          f"{np.abs(here.mean - reference).max() / size:.2e} of the diameter",
+          flush=True)
+    from distributed import Client, LocalCluster
+    cluster = LocalCluster(n_workers=args.workers, threads_per_worker=1,
+                           processes=True, dashboard_address=None)
+    client = Client(cluster)
+    try:
+        clock = time.perf_counter()
+        there = sc.elastic_mean(shapes, F, client=client)
+        print(f"elastic_mean on {args.workers} workers: "
+              f"{time.perf_counter() - clock:.1f} s, the same digits as "
+              f"in-process: {np.array_equal(here.mean, there.mean)}",
+              flush=True)
+    finally:
+        client.close()
+        cluster.close()
+    return 0
 
 
 def main():
@@ -66,6 +109,11 @@ def main():
     parser.add_argument("--time_limit", type=float, default=None,
                         help="seconds for each matrix (then the pairs done "
                              "are measured and compared)")
+    parser.add_argument("--mean_poses", type=int, default=0,
+                        help="instead of the matrix: the elastic mean of the "
+                             "first M poses by shellspace.mean and by "
+                             "shellspace.collections.elastic_mean (in-process "
+                             "and on the cluster)")
     parser.add_argument("--save", help="write the serial matrix (.npz)")
     parser.add_argument("--compare", help="a serial matrix saved by --save")
     args = parser.parse_args()
@@ -83,6 +131,9 @@ def main():
     print(f"cactus: {n} poses, {shapes.shape[1]} vertices, {pairs} pairs, "
           f"K = {args.steps}", flush=True)
 
+    if args.mean_poses:
+        return bench_mean(shapes[:args.mean_poses], F, args)
+
     serial = None
     times = []
     if args.only != "cluster":
@@ -90,7 +141,8 @@ def main():
         serial = sc.distance_matrix(shapes, F, steps=args.steps,
                                     progress=True,
                                     time_limit=args.time_limit)
-        t, cpu = report_matrix("serial", time.perf_counter() - start, serial, n)
+        t, cpu = report_matrix("serial", time.perf_counter() - start, serial,
+                               n)
         times.append(("serial", t, cpu))
         if args.save:
             np.savez(args.save, **serial.arrays())
