@@ -1,10 +1,14 @@
-"""shellspace.collections: the distance matrix in-process and on a Dask
-LocalCluster (2 worker processes, 1 thread each), on procedural plates.
+"""shellspace.collections: the distance matrix, transfer, the elastic mean
+and PCA in-process and on a Dask LocalCluster (2 worker processes, 1
+thread each), on procedural plates, and the `shellspace collection` verbs.
 
 Each cell against an independent expectation (a direct shellspace.geodesic
 of the pair), the cluster's matrix against the serial one bit for bit, a
 worker killed while it runs tasks (the matrix unchanged), failing pairs in
-their cells, and a resumed run that computes nothing twice.
+their cells, and a resumed run that computes nothing twice; transfer
+against geodesic + transport; the mean against shellspace.mean and PCA
+against shellspace.pca, the same digits on the cluster, a worker killed
+during PCA's LOGs; the verbs' files and their refusals.
 """
 import os
 import signal
@@ -409,8 +413,9 @@ def test_pca_refuses_bad_options(kwargs, match):
 
 # ---- shellspace collection VERB (the C++ CLI's front) ----------------------
 
-CLI = os.path.join(os.path.dirname(shellspace.__file__), os.pardir,
-                   "shellspace")
+# ctest sets SHELLSPACE_CLI; else the binary beside build/python.
+CLI = os.environ.get("SHELLSPACE_CLI") or os.path.join(
+    os.path.dirname(shellspace.__file__), os.pardir, "shellspace")
 
 
 @pytest.fixture(scope="module")
@@ -425,7 +430,7 @@ def meshes(tmp_path_factory):
 
 def run_cli(*args):
     if not os.path.exists(CLI):
-        pytest.skip("no shellspace binary beside the module")
+        pytest.skip("no shellspace binary (SHELLSPACE_CLI)")
     return subprocess.run([CLI, "collection", *args], capture_output=True,
                           text=True, timeout=300)
 
