@@ -5,6 +5,8 @@ with one connectivity, in this process or on a Dask cluster.
     result = sc.distance_matrix(shapes, F, steps=4)            # in-process
     result = sc.distance_matrix(shapes, F, client=client)      # on Dask
     result.distances, result.status, result.messages
+    mean = sc.elastic_mean(shapes, F, client=client).mean  # shellspace.mean's
+    model = sc.pca(shapes, F, client=client, mean=mean, modes=3)
 
 The geodesic distance of a pair is sqrt(E_K) of its discrete geodesic
 (E_K = K sum_k W[s_{k-1}, s_k], the path energy `geodesic` reports; for a
