@@ -19,6 +19,7 @@
 #include <pybind11/pybind11.h>
 #include <dlfcn.h>
 #include <pybind11/stl.h>
+#include <Eigen/SparseCholesky>
 
 #include <algorithm>
 #include <chrono>
@@ -37,6 +38,7 @@
 #include "shellspace/cost_functions/shell/shell_space.h"
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/geometry/openmp_threads.h"
+#include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/geometry/validation.h"
 #include "shellspace/io/atomic_file.h"
 #include "shellspace/io/frame_sequence.h"
@@ -58,6 +60,7 @@
 #include "shellspace/problems/statistics/leave_one_out.h"
 #include "shellspace/problems/statistics/procrustes_pca.h"
 #include "shellspace/problems/statistics/shell_pca.h"
+#include "shellspace/solvers/gauge_reduced_solve.h"
 #include "shellspace/render/film_strip.h"
 #include "shellspace/reports/branching_reports.h"
 #include "shellspace/reports/path_reports.h"
@@ -364,6 +367,65 @@ py::tuple HessianPy(const py::object& reference, const py::object& deformed,
     }
   }
   return py::make_tuple(r, c, v);
+}
+
+// The step of a Newton iteration on a rigidly invariant energy of one
+// shell, for a client that sums the Hessian and gradient itself
+// (shellspace.collections.elastic_mean): p = T q with T =
+// RigidGaugeBasis(shape) (solvers/gauge_reduced_solve.h) and
+// (T^T H T + shift I) q = T^T rhs by sparse LDL^T. Returns (p #V x 3,
+// positive_definite: every pivot of the reduced matrix > 0).
+py::tuple SolveModuloRigidMotionsPy(const py::object& rows_object,
+                                    const py::object& cols_object,
+                                    const py::object& vals_object,
+                                    const py::object& rhs_object,
+                                    const py::object& shape_object,
+                                    double shift) {
+  const Positions shape = PositionsArgument(shape_object, "shape");
+  const Positions rhs = PositionsArgument(rhs_object, "rhs");
+  const long long n = 3 * static_cast<long long>(shape.rows());
+  if (rhs.rows() != shape.rows()) {
+    throw InputError("rhs: " + std::to_string(rhs.rows()) +
+                     " rows, expected " + std::to_string(shape.rows()));
+  }
+  const IndexValues rows = CheckedIndexArray(rows_object, "rows", {{"nnz"}});
+  const IndexValues cols =
+      CheckedIndexArray(cols_object, "cols", {{"nnz", static_cast<py::ssize_t>(rows.values.size())}});
+  const RealValues vals = CheckedRealArray(
+      vals_object, "vals", {{"nnz", static_cast<py::ssize_t>(rows.values.size())}});
+  if (!(shift >= 0) || !std::isfinite(shift)) {
+    throw InputError("shift must be finite and >= 0");
+  }
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(rows.values.size());
+  for (size_t k = 0; k < rows.values.size(); ++k) {
+    const long long r = rows.values[k], c = cols.values[k];
+    if (r < 0 || r >= n || c < 0 || c >= n) {
+      throw InputError("rows/cols: index outside 0.." + std::to_string(n - 1));
+    }
+    triplets.emplace_back(static_cast<int>(r), static_cast<int>(c),
+                          vals.values[k]);
+  }
+  SparseMatrix h(n, n);
+  h.setFromTriplets(triplets.begin(), triplets.end());
+  const SparseMatrix basis = RigidGaugeBasis(shape);
+  SparseMatrix reduced = SparseMatrix(basis.transpose() * h * basis);
+  if (shift > 0) {
+    SparseMatrix identity(reduced.rows(), reduced.cols());
+    identity.setIdentity();
+    reduced += shift * identity;
+  }
+  Eigen::SimplicialLDLT<SparseMatrix> ldlt(reduced);
+  const bool factorised = ldlt.info() == Eigen::Success;
+  const bool positive = factorised && ldlt.vectorD().minCoeff() > 0;
+  Positions p = Positions::Zero(shape.rows(), 3);
+  if (factorised) {
+    const Eigen::VectorXd flat_rhs =
+        Eigen::Map<const Eigen::VectorXd>(rhs.data(), rhs.size());
+    const Eigen::VectorXd step = basis * ldlt.solve(basis.transpose() * flat_rhs);
+    std::copy(step.data(), step.data() + step.size(), p.data());
+  }
+  return py::make_tuple(FromPositions(p), positive && p.allFinite());
 }
 
 void CheckGeodesic(const GeodesicResult& result) {
@@ -1323,6 +1385,26 @@ PYBIND11_MODULE(shellspace, m) {
         "triplets (rows, cols, vals): scipy.sparse.coo_matrix((vals, (rows, "
         "cols)), shape=(3 * nV, 3 * nV)). rows/cols: 'deformed' or "
         "'reference' ('reference', 'deformed' is the mixed D_1 D_2 W).");
+
+  m.def("solve_modulo_rigid_motions", &SolveModuloRigidMotionsPy,
+        py::arg("rows"), py::arg("cols"), py::arg("vals"), py::arg("rhs"),
+        py::arg("shape"), py::arg("shift") = 0.0,
+        "p with (H + shift) p = rhs modulo rigid motions: H the 3#V x 3#V "
+        "triplets (rows, cols, vals; duplicates summed) of a rigidly "
+        "invariant energy's Hessian at `shape`, p = T q with T the "
+        "coordinates left by the rigid gauge of `shape` and (T^T H T + "
+        "shift I) q = T^T rhs (sparse LDL^T). Returns (p #V x 3, "
+        "positive_definite).");
+  m.def("align_rigidly", [](const py::object& source, const py::object& target) {
+          const Positions s = PositionsArgument(source, "source");
+          const Positions t = PositionsArgument(target, "target");
+          if (s.rows() != t.rows()) {
+            throw InputError("source and target: different vertex counts");
+          }
+          return FromPositions(AlignRigidly(s, t));
+        }, py::arg("source"), py::arg("target"),
+        "source moved by the rigid motion (rotation and translation, no "
+        "reflection; unweighted Kabsch) that best fits it to target.");
 
   m.def(
       "geodesic",

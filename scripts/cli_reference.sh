@@ -11,10 +11,11 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 binary=${1:-build/shellspace}
 output=${2:-docs/cli.md}
-# The verbs as `shellspace --help` lists them (two words for branching).
+# The verbs as `shellspace --help` lists them (two words for branching and
+# collection).
 mapfile -t verbs < <("$binary" --help 2>&1 | sed -n -E \
-  -e 's/^  (branching (construct|simulate)) .*/\1/p' \
-  -e '/^  branching /!s/^  ([a-z]+)( .*)?$/\1/p')
+  -e 's/^  ((branching|collection) [a-z]+) .*/\1/p' \
+  -e '/^  (branching|collection) /!s/^  ([a-z]+)( .*)?$/\1/p')
 if (( ${#verbs[@]} == 0 )); then
   echo "cli_reference.sh: no verbs in '$binary --help'" >&2
   exit 1

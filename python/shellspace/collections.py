@@ -5,6 +5,8 @@ with one connectivity, in this process or on a Dask cluster.
     result = sc.distance_matrix(shapes, F, steps=4)            # in-process
     result = sc.distance_matrix(shapes, F, client=client)      # on Dask
     result.distances, result.status, result.messages
+    mean = sc.elastic_mean(shapes, F, client=client).mean  # shellspace.mean's
+    model = sc.pca(shapes, F, client=client, mean=mean, modes=3)
 
 The geodesic distance of a pair is sqrt(E_K) of its discrete geodesic
 (E_K = K sum_k W[s_{k-1}, s_k], the path energy `geodesic` reports; for a
@@ -23,11 +25,13 @@ cell; the other pairs are unaffected. `cache=PATH.npz` makes a run
 resumable: the finished pairs are written atomically after every batch and a
 rerun with the same shapes and options computes only the others.
 
-Command line (a front of distance_matrix):
+Command line (`shellspace collection VERB` runs it too):
 
-    python3 -m shellspace.collections distances --inputs a.ply,b.ply,...
-        [--scheduler local[:N]|ADDRESS] --output D.npz [--steps K]
-        [--time_limit S] [--pair_time_limit S] [--cache C.npz]
+    python3 -m shellspace.collections distances|mean|pca
+        --inputs a.ply,b.ply,... --output D.npz|M.ply|P.npz
+        [--scheduler local[:N]|ADDRESS] [--time_limit S] [--quiet]
+        distances: [--steps K] [--pair_time_limit S] [--cache C.npz]
+        pca: [--modes m] [--log_steps K] [--exp_steps K] [--amplitude t]
 """
 import argparse
 import ctypes
@@ -57,7 +61,7 @@ STATUS_NAMES = {OK: "ok", PENDING: "pending", NOT_CONVERGED: "not converged",
 # task would give the same answer).
 RETRIED = (PENDING, PAIR_TIME_LIMIT, LOST)
 
-CACHE_VERSION = 1
+CACHE_VERSION = 2  # 2: cpu_seconds
 
 
 # ---- thread counts of a task ----------------------------------------------
@@ -139,14 +143,26 @@ def _one_line(error):
     return text.splitlines()[0] if text else type(error).__name__
 
 
+class _Clock:
+    """Wall and CPU seconds of a task: CPU of the calling thread (the task
+    runs its solve in it: one solver thread, one BLAS thread, serial
+    OpenMP)."""
+
+    def __init__(self):
+        self.wall, self.cpu = time.perf_counter(), time.thread_time()
+
+    def seconds(self):
+        return (time.perf_counter() - self.wall, time.thread_time() - self.cpu)
+
+
 def geodesic_task(shapes, F, i, j, options, fail=()):
-    """One pair: (i, j, status, E_K, message, seconds, path or None).
-    `options`: geodesic keywords, plus blas_threads and return_path.
+    """One pair: (i, j, status, E_K, message, (wall, cpu) seconds, path or
+    None). `options`: geodesic keywords, plus blas_threads and return_path.
     `fail`: pairs that raise on purpose (a test's injected failure)."""
     options = dict(options)
     blas_threads = options.pop("blas_threads", 1)
     return_path = options.pop("return_path", False)
-    start = time.perf_counter()
+    clock = _Clock()
     try:
         if (i, j) in fail:
             raise RuntimeError(f"injected failure of pair ({i}, {j})")
@@ -154,13 +170,13 @@ def geodesic_task(shapes, F, i, j, options, fail=()):
             path, summary = shellspace.geodesic(shapes[i], shapes[j], F,
                                                 **options)
         return (i, j, OK, float(summary["path_energy"]), "",
-                time.perf_counter() - start, path if return_path else None)
+                clock.seconds(), path if return_path else None)
     except Exception as error:  # reported in the pair's cell
         summary = getattr(error, "summary", None) or {}
         energy = summary.get("path_energy")
         return (i, j, _status_of(error),
                 math.nan if energy is None else float(energy),
-                _one_line(error), time.perf_counter() - start, None)
+                _one_line(error), clock.seconds(), None)
 
 
 def transfer_task(shapes, F, source, detail, j, options):
@@ -219,8 +235,8 @@ def _run(function, items, shapes, F, client, on_result, time_limit, extra):
             on_result(function(shapes, F, *item, *extra))
         return []
     from distributed import as_completed
-    shapes_future = client.scatter(shapes, broadcast=True)
-    faces_future = client.scatter(F, broadcast=True)
+    shapes_future = client.scatter(shapes, broadcast=True, hash=False)
+    faces_future = client.scatter(F, broadcast=True, hash=False)
     futures = {}
     for item in items:
         future = client.submit(function, shapes_future, faces_future, *item,
@@ -278,15 +294,16 @@ def _write_npz_atomically(path, **arrays):
 class DistanceMatrix:
     """distances (N x N, NaN where a pair failed or is pending), energies
     (E_K of the pair's path, also of an unconverged one when known), status
-    (int8 codes: OK ... LOST), messages {(i, j): one line}, seconds (per
-    pair, wall time of its task: information only), computed (pairs solved
-    by this call)."""
+    (int8 codes: OK ... LOST), messages {(i, j): one line}, seconds and
+    cpu_seconds (per pair, wall and CPU time of its task: information
+    only), computed (pairs solved by this call)."""
 
     def __init__(self, n):
         self.distances = np.full((n, n), np.nan)
         self.energies = np.full((n, n), np.nan)
         self.status = np.full((n, n), PENDING, dtype=np.int8)
         self.seconds = np.full((n, n), np.nan)
+        self.cpu_seconds = np.full((n, n), np.nan)
         np.fill_diagonal(self.distances, 0.0)
         np.fill_diagonal(self.energies, 0.0)
         np.fill_diagonal(self.status, OK)
@@ -294,10 +311,11 @@ class DistanceMatrix:
         self.computed = 0
 
     def set(self, i, j, status, energy, message, seconds):
+        """seconds: (wall, cpu) of the pair's task."""
         for a, b in ((i, j), (j, i)):
             self.status[a, b] = status
             self.energies[a, b] = energy
-            self.seconds[a, b] = seconds
+            self.seconds[a, b], self.cpu_seconds[a, b] = seconds
             self.distances[a, b] = (math.sqrt(energy) if status == OK
                                     else math.nan)
         if message:
@@ -313,6 +331,7 @@ class DistanceMatrix:
         keys = sorted(self.messages)
         return dict(distances=self.distances, energies=self.energies,
                     status=self.status, seconds=self.seconds,
+                    cpu_seconds=self.cpu_seconds,
                     message_pairs=np.array(keys, dtype=np.int64).reshape(-1, 2),
                     message_texts=np.array([self.messages[k] for k in keys],
                                            dtype=str))
@@ -333,6 +352,7 @@ def _load_cache(path, n, digest):
             result.energies[...] = data["energies"]
             result.status[...] = data["status"]
             result.seconds[...] = data["seconds"]
+            result.cpu_seconds[...] = data["cpu_seconds"]
             for (i, j), text in zip(data["message_pairs"].tolist(),
                                     data["message_texts"].tolist()):
                 result.messages[(i, j)] = text
@@ -404,7 +424,7 @@ def distance_matrix(shapes, F, client=None, steps=4, cache=None,
     def on_result(item):
         if item[0] == "lost":
             (i, j), message = item[1], item[2]
-            result.set(i, j, LOST, math.nan, message, math.nan)
+            result.set(i, j, LOST, math.nan, message, (math.nan, math.nan))
         else:
             i, j, status, energy, message, seconds, _ = item
             result.set(i, j, status, energy, message, seconds)
@@ -490,6 +510,439 @@ def transfer(detail, source, shapes, F, client=None, steps=4, epsilon=1.0,
     return [found[j] for j in range(len(shapes))]
 
 
+# ---- the elastic mean and shell PCA ---------------------------------------
+#
+# The elastic mean of shellspace.mean is s_bar = argmin_s E(s), E(s) =
+# sum_i W[S_i, s] (the inputs as references; the time-discrete mean with one
+# step, E_1[S_i, s] = W[S_i, s]). Its terms are per shape: E, the gradient
+# G = sum_i D_2 W[S_i, s] and the Hessian H = sum_i D_2^2 W[S_i, s]. Each
+# outer step evaluates them at the current s as tasks of `shapes_per_task`
+# shapes, sums the tasks' terms in a fixed binary tree (on the workers:
+# only the sum comes back), and takes a Newton step on the client: H p = -G
+# modulo rigid motions (shellspace.solve_modulo_rigid_motions), shifted to
+# H + lambda I where H is not positive definite on the gauge's coordinates
+# or p no descent direction; a trial s + p is accepted if it satisfies
+# Armijo's condition on E or lowers |G|_2 without raising E beyond
+# round-off (as the library's Newton finish), else lambda grows. Its fixed
+# point is G(s_bar) = 0, the point the library's LM + Newton solve reaches
+# (tests: to 1e-9 of the diameter on plates).
+
+_MATERIAL_KEYS = ("mu", "lambda_", "eta", "relative_eta", "bending")
+
+
+def _material(shapes, F, kwargs):
+    """The material keywords with eta resolved once from shapes[0] (as
+    shellspace.mean and shellspace.pca do): energy_gradient and log would
+    otherwise take it from their own first argument."""
+    unknown = sorted(set(kwargs) - set(_MATERIAL_KEYS))
+    if unknown:
+        raise shellspace.InputError(
+            f"unknown keyword(s): {', '.join(unknown)}")
+    material = dict(kwargs)
+    if material.get("eta") is None:
+        probe = shellspace.energy(shapes[0], shapes[0], F, **material)
+        material["eta"] = float(probe["eta"])
+    material.pop("relative_eta", None)
+    return material
+
+
+def _sum_triplets(parts, n3):
+    """The sum of sparse matrices given as (rows, cols, vals), in order."""
+    if all(np.array_equal(p[0], parts[0][0]) and
+           np.array_equal(p[1], parts[0][1]) for p in parts[1:]):
+        vals = parts[0][2].copy()  # one pattern (energy_hessian's, by F)
+        for p in parts[1:]:
+            vals += p[2]
+        return parts[0][0], parts[0][1], vals
+    rows = np.concatenate([p[0] for p in parts])
+    cols = np.concatenate([p[1] for p in parts])
+    vals = np.concatenate([p[2] for p in parts])
+    unique, inverse = np.unique(rows * n3 + cols, return_inverse=True)
+    summed = np.bincount(inverse, weights=vals, minlength=len(unique))
+    return unique // n3, unique % n3, summed
+
+
+def mean_terms_task(shapes, F, indices, s, material, hessian=True):
+    """sum over i in indices of (W[S_i, s], D_2 W[S_i, s], D_2^2 W[S_i, s])
+    as a dict: energies (one per shape, in order), gradient (#V x 3),
+    hessian (triplets) or None, infeasible (a degenerate s)."""
+    n3 = 3 * s.shape[0]
+    energies, gradient, hessians = [], np.zeros_like(s), []
+    with _BlasThreads(1):
+        try:
+            for i in indices:
+                energies.append(float(shellspace.energy(
+                    shapes[i], s, F, **material)["total"]))
+                gradient += shellspace.energy_gradient(shapes[i], s, F,
+                                                       **material)
+                if hessian:
+                    hessians.append(shellspace.energy_hessian(
+                        shapes[i], s, F, **material))
+        except shellspace.InputError as error:  # a degenerate trial
+            return dict(infeasible=_one_line(error))
+    return dict(energies=np.array(energies), gradient=gradient,
+                hessian=_sum_triplets(hessians, n3) if hessian else None,
+                infeasible=None)
+
+
+def add_mean_terms(a, b):
+    """Two tasks' terms (of consecutive index ranges) summed: a + b."""
+    if a["infeasible"] or b["infeasible"]:
+        return a if a["infeasible"] else b
+    hessian = None
+    if a["hessian"] is not None:
+        hessian = _sum_triplets([a["hessian"], b["hessian"]],
+                                3 * a["gradient"].shape[0])
+    return dict(energies=np.concatenate([a["energies"], b["energies"]]),
+                gradient=a["gradient"] + b["gradient"], hessian=hessian,
+                infeasible=None)
+
+
+class _Terms:
+    """Evaluates the summed mean terms at s, in-process or on a client
+    (the shapes scattered once); the same tasks and the same reduction tree
+    either way, so the same digits."""
+
+    def __init__(self, shapes, F, client, shapes_per_task, material):
+        self.shapes, self.F, self.client = shapes, F, client
+        n = len(shapes)
+        self.chunks = [list(range(k, min(n, k + shapes_per_task)))
+                       for k in range(0, n, shapes_per_task)]
+        self.material = material
+        self.rounds = 0
+        if client is not None:
+            self.shapes_future = client.scatter(shapes, broadcast=True,
+                                                hash=False)
+            self.faces_future = client.scatter(F, broadcast=True, hash=False)
+
+    def __call__(self, s, hessian=True):
+        self.rounds += 1
+        if self.client is None:
+            level = [mean_terms_task(self.shapes, self.F, c, s,
+                                     self.material, hessian)
+                     for c in self.chunks]
+            while len(level) > 1:
+                level = [add_mean_terms(*level[k:k + 2])
+                         if k + 1 < len(level) else level[k]
+                         for k in range(0, len(level), 2)]
+            return level[0]
+        s_future = self.client.scatter(s, broadcast=True, hash=False)
+        level = [self.client.submit(mean_terms_task, self.shapes_future,
+                                    self.faces_future, c, s_future,
+                                    self.material, hessian, pure=False)
+                 for c in self.chunks]
+        while len(level) > 1:
+            level = [self.client.submit(add_mean_terms, *level[k:k + 2],
+                                        pure=False)
+                     if k + 1 < len(level) else level[k]
+                     for k in range(0, len(level), 2)]
+        return level[0].result()
+
+
+class ElasticMean:
+    """mean (#V x 3, aligned rigidly to shapes[0]), energy (sum_i W[S_i,
+    mean]), energies (W[S_i, mean]), gradient_norm (|G|_inf at the mean),
+    gradient_target, initial_gradient_norm, converged, termination,
+    iterations (outer steps, accepted or not), rounds (evaluations of the
+    terms: one set of tasks each), history [(|G|_inf, E, shift,
+    accepted)]."""
+
+
+def elastic_mean(shapes, F, client=None, tolerance=1e-8, max_iterations=100,
+                 shapes_per_task=None, initial=None, time_limit=None,
+                 progress=False, **material):
+    """The elastic mean argmin_s sum_i W[S_i, s] of `shapes` (N x #V x 3,
+    one connectivity F), the minimiser shellspace.mean computes, with the
+    per-shape terms (W, D_2 W, D_2^2 W at the current mean) computed as
+    tasks in-process (client None) or on a dask.distributed Client, summed
+    on the workers, and a safeguarded Newton step on the client each outer
+    step (the scheme: the comment above this function in
+    shellspace/collections.py). Converged when |G|_inf <= tolerance *
+    max(1, |G(s_0)|_inf), s_0 the rigidly aligned vertex average (the
+    library's start and target). shapes_per_task: default ceil(N / 64).
+    initial: a starting mean. time_limit: seconds, then the current mean is
+    returned unconverged (the clock only stops: the steps taken are the
+    same digits). Material keywords as shellspace.mean (mu, lambda_, eta,
+    relative_eta, bending; eta resolved from shapes[0]). Returns an
+    ElasticMean; the same digits in-process and on any cluster."""
+    shapes, F = _check_collection(shapes, F)
+    n = len(shapes)
+    material = _material(shapes, F, material)
+    if shapes_per_task is None:
+        shapes_per_task = max(1, math.ceil(n / 64))
+    if int(shapes_per_task) < 1:
+        raise shellspace.InputError("shapes_per_task must be >= 1")
+    deadline = None if not time_limit else time.monotonic() + time_limit
+    if initial is None:
+        s = shapes[0].copy()
+        for i in range(1, n):
+            s += shellspace.align_rigidly(shapes[i], shapes[0])
+        s /= n
+    else:
+        s, _ = _check_collection([initial], F)
+        s = s[0]
+        if s.shape != shapes[0].shape:
+            raise shellspace.InputError(
+                "initial: not the shapes' vertex count")
+    terms = _Terms(shapes, F, client, int(shapes_per_task), material)
+    current = terms(s)
+    if current["infeasible"]:
+        raise shellspace.InputError(
+            f"elastic mean: the initial mean is degenerate "
+            f"({current['infeasible']})")
+    result = ElasticMean()
+    result.initial_gradient_norm = float(np.abs(current["gradient"]).max())
+    target = tolerance * max(1.0, result.initial_gradient_norm)
+    history = []
+    shift = 0.0
+    termination = "max iterations"
+    iterations = 0
+    while True:
+        G = current["gradient"]
+        E = float(current["energies"].sum())
+        gnorm = float(np.abs(G).max())
+        if progress is True:
+            print(f"\relastic mean: step {iterations} |G| {gnorm:.3e} "
+                  f"(target {target:.1e})", end="", file=sys.stderr,
+                  flush=True)
+        elif callable(progress):
+            progress(iterations, gnorm, target)
+        if gnorm <= target:
+            termination = "converged"
+            break
+        if iterations >= max_iterations:
+            break
+        if deadline is not None and time.monotonic() >= deadline:
+            termination = "time limit"
+            break
+        iterations += 1
+        rows, cols, vals = current["hessian"]
+        unit = float(np.abs(vals[rows == cols]).mean())
+        for _ in range(30):
+            p, positive = shellspace.solve_modulo_rigid_motions(
+                rows, cols, vals, -G, s, shift=shift * unit)
+            slope = float(np.dot(G.ravel(), p.ravel()))
+            if positive and slope < 0:
+                break
+            shift = max(1e-3, 10 * shift)
+        else:
+            termination = "no descent direction"
+            break
+        trial = s + p
+        candidate = terms(trial)
+        accepted = False
+        if not candidate["infeasible"]:
+            E_t = float(candidate["energies"].sum())
+            accepted = (E_t <= E + 1e-4 * slope or
+                        (np.linalg.norm(candidate["gradient"]) <
+                         np.linalg.norm(G) and E_t <= E + 1e-10 * abs(E)))
+        history.append((gnorm, E, shift, accepted))
+        if accepted:
+            s, current = trial, candidate
+            shift = 0.0 if shift <= 1e-3 else shift / 10
+        else:
+            shift = max(1e-3, 10 * shift)
+    if progress is True:
+        print(file=sys.stderr)
+    result.mean = shellspace.align_rigidly(s, shapes[0])
+    result.energies = current["energies"]
+    result.energy = float(current["energies"].sum())
+    result.gradient_norm = float(np.abs(current["gradient"]).max())
+    result.gradient_target = target
+    result.converged = termination == "converged"
+    result.termination = termination
+    result.iterations = iterations
+    result.rounds = terms.rounds
+    result.history = history
+    return result
+
+
+def log_task(shapes, F, i, mean, options):
+    """v_i = LOG_K(mean -> A(S_i)), A the rigid alignment to the mean:
+    (i, status, v or None, message, (wall, cpu) seconds)."""
+    options = dict(options)
+    blas_threads = options.pop("blas_threads", 1)
+    clock = _Clock()
+    try:
+        with _BlasThreads(blas_threads):
+            end = shellspace.align_rigidly(shapes[i], mean)
+            v, _ = shellspace.log(mean, end, F, **options)
+        return (i, OK, v, "", clock.seconds())
+    except Exception as error:
+        return (i, _status_of(error), None, _one_line(error), clock.seconds())
+
+
+def _step_drift(path, F, material):
+    """max_k |W[s_{k-1}, s_k] - W[s_0, s_1]| / W[s_0, s_1] of a path."""
+    w = [shellspace.energy(path[k - 1], path[k], F, **material)["total"]
+         for k in range(1, len(path))]
+    return max(abs(x - w[0]) for x in w) / w[0] if w[0] > 0 else 0.0
+
+
+def shoot_task(shapes, F, name, mean, variation, options):
+    """EXP_K(mean, variation) with the library's safeguard (K = exp_steps,
+    doubled up to max_exp_steps while a step has no solution or the step
+    energies drift by more than half of the first), aligned to the mean:
+    (name, status, shape or None, message)."""
+    options = dict(options)
+    blas_threads = options.pop("blas_threads", 1)
+    steps = options.pop("exp_steps")
+    most = options.pop("max_exp_steps")
+    material = {k: options[k] for k in _MATERIAL_KEYS if k in options}
+    steps = min(steps, most)
+    try:
+        with _BlasThreads(blas_threads):
+            if not np.any(variation):
+                return (name, OK, mean.copy(), "")
+            while True:
+                last = 2 * steps > most
+                try:
+                    path, _ = shellspace.shoot(mean, mean + variation / steps,
+                                               F, steps=steps, **options)
+                    ok = _step_drift(path, F, material) <= 0.5
+                except (shellspace.NotConvergedError,
+                        shellspace.InputError):
+                    if last:
+                        raise
+                    ok, path = False, None
+                if ok or last:
+                    return (name, OK, shellspace.align_rigidly(path[-1], mean),
+                            "")
+                steps *= 2
+    except Exception as error:
+        return (name, _status_of(error), None, _one_line(error))
+
+
+class ShellPca:
+    """mean, displacements (N x #V x 3, v_i = LOG_K(mean -> S_i)), gram
+    (Gamma_ij = g(v_i, v_j) / N), eigenvalues (all N, descending), modes
+    (w_j with g(w_j, w_k) = delta_jk, for eigenvalues above 1e-10 of the
+    largest), mode_shapes {'mode_1_minus': ..., 'mode_1_plus': ...} (EXP
+    shots, when asked), status (per shape), messages {i or name: line},
+    mean_result (the ElasticMean when computed here)."""
+
+
+def pca(shapes, F, client=None, mean=None, modes=3, log_steps=2,
+        exp_steps=4, max_exp_steps=16, amplitude=1.0, mode_shapes=True,
+        tolerance=1e-8, max_iterations=200, threads=1, blas_threads=1,
+        progress=False, shapes_per_task=None, **material):
+    """Shell PCA of `shapes` at their elastic mean, as shellspace.pca: the
+    metric g(u, w) = 1/2 u^T D_2^2 W[mean, mean] w, the displacements v_i =
+    LOG_K(mean -> S_i) (K = log_steps, S_i aligned rigidly to the mean)
+    one task each, the Gram matrix, its eigenpairs and the modes on the
+    client, and (mode_shapes) the shapes EXP_K(mean, +-amplitude
+    sqrt(lambda_j) w_j) for the first `modes` modes, one task each. mean:
+    given (#V x 3), or None: elastic_mean(shapes, F, client, ...). A
+    failed LOG leaves its shape out of the Gram matrix (its status and
+    message say why). Returns a ShellPca; the same digits in-process and on
+    any cluster."""
+    shapes, F = _check_collection(shapes, F)
+    n = len(shapes)
+    if n < 2:
+        raise shellspace.InputError(f"pca needs at least 2 shapes, got {n}")
+    for name, value in (("modes", modes), ("log_steps", log_steps),
+                        ("exp_steps", exp_steps)):
+        if int(value) < 1:
+            raise shellspace.InputError(f"{name} must be >= 1")
+    if modes > n - 1:
+        raise shellspace.InputError(
+            f"modes must be at most {n - 1} (inputs - 1), got {modes}")
+    if max_exp_steps < exp_steps:
+        raise shellspace.InputError("max_exp_steps must be at least exp_steps")
+    material = _material(shapes, F, material)
+    out = ShellPca()
+    out.mean_result = None
+    if mean is None:
+        out.mean_result = elastic_mean(
+            shapes, F, client=client, tolerance=tolerance,
+            shapes_per_task=shapes_per_task, progress=progress, **material)
+        if not out.mean_result.converged:
+            raise shellspace.NotConvergedError(
+                f"elastic mean: |G| {out.mean_result.gradient_norm:.3g} above "
+                f"{out.mean_result.gradient_target:.3g} "
+                f"({out.mean_result.termination})")
+        mean = out.mean_result.mean
+    else:
+        mean, _ = _check_collection([mean], F)
+        mean = mean[0]
+        if mean.shape != shapes[0].shape:
+            raise shellspace.InputError("mean: not the shapes' vertex count")
+    out.mean = mean
+    options = dict(material, steps=log_steps, tolerance=tolerance,
+                   max_iterations=max_iterations, threads=threads,
+                   quiet=True, blas_threads=blas_threads)
+    found = {}
+    counter = _Progress(progress, n, "log")
+
+    def on_log(item):
+        if item[0] == "lost":
+            i = item[1][0]
+            found[i] = (LOST, None, item[2])
+        else:
+            i, status, v, message, _ = item
+            found[i] = (status, v, message)
+        counter.step(found[i][0] != OK)
+
+    _run(log_task, [(i, mean) for i in range(n)], shapes, F, client, on_log,
+         None, (options,))
+    out.status = np.array([found[i][0] for i in range(n)], dtype=np.int8)
+    out.messages = {i: found[i][2] for i in range(n) if found[i][2]}
+    used = [i for i in range(n) if found[i][0] == OK]
+    out.used = used
+    V = np.stack([found[i][1] for i in used]) if used else np.zeros(
+        (0,) + mean.shape)
+    out.displacements = V
+    rows, cols, vals = shellspace.energy_hessian(mean, mean, F, **material)
+    flat = V.reshape(len(used), -1)
+    HV = np.stack([np.bincount(rows, weights=vals * f[cols],
+                               minlength=flat.shape[1]) for f in flat]) \
+        if used else flat
+    m = len(used)
+    out.gram = 0.5 * flat @ HV.T / max(m, 1)
+    eigenvalues, vectors = np.linalg.eigh(out.gram)
+    order = np.argsort(eigenvalues)[::-1]
+    out.eigenvalues = eigenvalues[order]
+    vectors = vectors[:, order]
+    top = out.eigenvalues[0] if m else 0.0
+    out.modes = []
+    for j in range(m):
+        if not out.eigenvalues[j] > 1e-10 * max(top, 0.0):
+            break
+        w = (vectors[:, j] @ flat) / math.sqrt(m * out.eigenvalues[j])
+        out.modes.append(w.reshape(mean.shape))
+    out.mode_shapes = {}
+    if mode_shapes:
+        shots = []
+        for j in range(min(modes, len(out.modes))):
+            for sign, label in ((-1.0, "minus"), (1.0, "plus")):
+                variation = (sign * amplitude * math.sqrt(out.eigenvalues[j])
+                             * out.modes[j])
+                shots.append((f"mode_{j + 1}_{label}", mean, variation))
+        shot_options = dict(material, tolerance=tolerance,
+                            max_iterations=max_iterations, threads=threads,
+                            quiet=True, blas_threads=blas_threads,
+                            exp_steps=exp_steps, max_exp_steps=max_exp_steps)
+        counter = _Progress(progress, len(shots), "mode shapes")
+
+        def on_shot(item):
+            if item[0] == "lost":
+                name = item[1][0]
+                out.messages[name] = item[2]
+            else:
+                name, status, shape, message = item
+                if status == OK:
+                    out.mode_shapes[name] = shape
+                else:
+                    out.messages[name] = message
+            counter.step(name not in out.mode_shapes)
+
+        _run(shoot_task, shots, shapes, F, client, on_shot, None,
+             (shot_options,))
+        out.mode_shapes = {name: out.mode_shapes[name]
+                           for name, _, _ in shots if name in out.mode_shapes}
+    return out
+
+
 # ---- the command line -----------------------------------------------------
 
 def _client_for(scheduler):
@@ -508,61 +961,115 @@ def _client_for(scheduler):
     return Client(scheduler), None
 
 
-def main(argv=None):
+def _read_collection(inputs):
+    """(paths, shapes, F) of a comma-separated list of meshes with one
+    connectivity."""
+    paths = [p for p in inputs.split(",") if p]
+    if len(paths) < 2:
+        raise shellspace.InputError("--inputs needs at least 2 meshes")
+    meshes = [shellspace.read_mesh(p) for p in paths]
+    F = meshes[0][1]
+    for p, (V, faces) in zip(paths, meshes):
+        if faces.shape != F.shape or not np.array_equal(faces, F):
+            raise shellspace.InputError(
+                f"{p}: another connectivity than {paths[0]}")
+    return paths, np.stack([V for V, _ in meshes]), F
+
+
+def _parser():
     parser = argparse.ArgumentParser(
         prog="python3 -m shellspace.collections",
         description="Solves over a collection of shapes with one "
                     "connectivity, in-process or on Dask.")
     verbs = parser.add_subparsers(dest="verb", required=True)
+
+    def common(sub, what):
+        sub.add_argument("--inputs", required=True,
+                         help="comma-separated meshes (one connectivity)")
+        sub.add_argument("--output", required=True, help=what)
+        sub.add_argument("--scheduler", default="none",
+                         help="none (in-process), local[:N] (N worker "
+                              "processes, default 2) or a scheduler address "
+                              "tcp://HOST:8786")
+        sub.add_argument("--tolerance", type=float, default=1e-8)
+        sub.add_argument("--max_iterations", type=int, default=None)
+        sub.add_argument("--time_limit", type=float, default=None)
+        sub.add_argument("--quiet", action="store_true")
+        sub.add_argument("--mu", type=float, default=1.0)
+        sub.add_argument("--lambda", dest="lambda_", type=float, default=1.0)
+        sub.add_argument("--eta", type=float, default=None,
+                         help="absolute bending weight (default: "
+                              "relative_eta x the first shape's area)")
+        sub.add_argument("--relative_eta", type=float, default=None)
+        sub.add_argument("--bending", default="discrete-shells")
+
     d = verbs.add_parser("distances", help="the geodesic distance matrix")
-    d.add_argument("--inputs", required=True,
-                   help="comma-separated meshes (one connectivity)")
-    d.add_argument("--output", required=True, help="the result, .npz")
-    d.add_argument("--scheduler", default="none",
-                   help="none (in-process), local[:N] (N worker processes, "
-                        "default 2) or a scheduler address tcp://HOST:8786")
+    common(d, "the result, .npz")
     d.add_argument("--steps", type=int, default=4)
-    d.add_argument("--tolerance", type=float, default=1e-8)
-    d.add_argument("--max_iterations", type=int, default=200)
-    d.add_argument("--time_limit", type=float, default=None,
-                   help="seconds for the whole matrix (then the finished "
-                        "pairs are written, the others pending)")
     d.add_argument("--pair_time_limit", type=float, default=None)
     d.add_argument("--cache", default=None,
                    help="resumable .npz cache (default: OUTPUT.cache.npz)")
-    d.add_argument("--quiet", action="store_true")
-    args = parser.parse_args(argv)
+    m = verbs.add_parser("mean", help="the elastic mean")
+    common(m, "the mean, a mesh (.ply, .obj, .off)")
+    p = verbs.add_parser("pca", help="shell PCA at the elastic mean")
+    common(p, "the model, .npz")
+    p.add_argument("--modes", type=int, default=3)
+    p.add_argument("--log_steps", type=int, default=2)
+    p.add_argument("--exp_steps", type=int, default=4)
+    p.add_argument("--max_exp_steps", type=int, default=16)
+    p.add_argument("--amplitude", type=float, default=1.0)
+    return parser
+
+
+def main(argv=None):
+    args = _parser().parse_args(argv)
     try:
-        if not args.output.endswith(".npz"):
+        if args.verb in ("distances", "pca") and \
+                not args.output.endswith(".npz"):
             raise shellspace.InputError("--output must end in .npz")
-        paths = [p for p in args.inputs.split(",") if p]
-        if len(paths) < 2:
-            raise shellspace.InputError("--inputs needs at least 2 meshes")
-        meshes = [shellspace.read_mesh(p) for p in paths]
-        F = meshes[0][1]
-        for p, (V, faces) in zip(paths, meshes):
-            if faces.shape != F.shape or not np.array_equal(faces, F):
-                raise shellspace.InputError(
-                    f"{p}: another connectivity than {paths[0]}")
-        shapes = np.stack([V for V, _ in meshes])
-        cache = args.cache or args.output[:-4] + ".cache.npz"
+        if args.verb == "mean" and not args.output.lower().endswith(
+                (".ply", ".obj", ".off")):
+            raise shellspace.InputError("--output must end in .ply, .obj or "
+                                        ".off")
+        if args.time_limit is not None and not args.time_limit >= 0:
+            raise shellspace.InputError("--time_limit must be >= 0")
+        if args.eta is not None and args.relative_eta is not None:
+            raise shellspace.InputError(
+                "--eta and --relative_eta: give one, not both")
+        args.material = {k: v for k, v in (
+            ("mu", args.mu), ("lambda_", args.lambda_), ("eta", args.eta),
+            ("relative_eta", args.relative_eta), ("bending", args.bending))
+            if v is not None}
+        paths, shapes, F = _read_collection(args.inputs)
         client, cluster = _client_for(args.scheduler)
         try:
-            result = distance_matrix(
-                shapes, F, client=client, steps=args.steps, cache=cache,
-                progress=not args.quiet, time_limit=args.time_limit,
-                pair_time_limit=args.pair_time_limit,
-                tolerance=args.tolerance, max_iterations=args.max_iterations)
+            if args.verb == "distances":
+                return _main_distances(args, paths, shapes, F, client)
+            if args.verb == "mean":
+                return _main_mean(args, paths, shapes, F, client)
+            return _main_pca(args, paths, shapes, F, client)
         finally:
             if client is not None:
                 client.close()
             if cluster is not None:
                 cluster.close()
-        _write_npz_atomically(args.output, inputs=np.array(paths, dtype=str),
-                              **result.arrays())
     except (shellspace.InputError, ValueError, OSError) as error:
         print(f"shellspace.collections: {error}", file=sys.stderr)
         return 1
+    except shellspace.NotConvergedError as error:
+        print(f"shellspace.collections: {_one_line(error)}", file=sys.stderr)
+        return 4
+
+
+def _main_distances(args, paths, shapes, F, client):
+    cache = args.cache or args.output[:-4] + ".cache.npz"
+    result = distance_matrix(
+        shapes, F, client=client, steps=args.steps, cache=cache,
+        progress=not args.quiet, time_limit=args.time_limit,
+        pair_time_limit=args.pair_time_limit, tolerance=args.tolerance,
+        max_iterations=args.max_iterations or 200, **args.material)
+    _write_npz_atomically(args.output, inputs=np.array(paths, dtype=str),
+                          **result.arrays())
     failed = result.failed_pairs()
     pending = [p for p in failed if result.status[p] == PENDING]
     if not args.quiet:
@@ -573,6 +1080,63 @@ def main(argv=None):
               file=sys.stderr)
     if pending:
         return 124
+    return 4 if failed else 0
+
+
+def _main_mean(args, paths, shapes, F, client):
+    result = elastic_mean(shapes, F, client=client, tolerance=args.tolerance,
+                          max_iterations=args.max_iterations or 100,
+                          time_limit=args.time_limit,
+                          progress=not args.quiet, **args.material)
+    shellspace.write_mesh(args.output, result.mean, F)
+    if not args.quiet:
+        print(f"mean: {len(paths)} shapes, {result.iterations} Newton steps "
+              f"({result.rounds} rounds of tasks), |G| "
+              f"{result.gradient_norm:.3g} (target "
+              f"{result.gradient_target:.3g}), {result.termination} -> "
+              f"{args.output}", file=sys.stderr)
+    if result.termination == "time limit":
+        return 124
+    return 0 if result.converged else 4
+
+
+def _main_pca(args, paths, shapes, F, client):
+    if not 1 <= args.modes <= len(paths) - 1:
+        raise shellspace.InputError(
+            f"--modes must be in 1..{len(paths) - 1} (inputs - 1), got "
+            f"{args.modes}")
+    mean = elastic_mean(shapes, F, client=client, tolerance=args.tolerance,
+                        time_limit=args.time_limit, progress=not args.quiet,
+                        **args.material)
+    if not mean.converged:
+        print(f"shellspace.collections: elastic mean: |G| "
+              f"{mean.gradient_norm:.3g} above {mean.gradient_target:.3g} "
+              f"({mean.termination}); no output", file=sys.stderr)
+        return 124 if mean.termination == "time limit" else 4
+    model = pca(shapes, F, client=client, mean=mean.mean, modes=args.modes,
+                log_steps=args.log_steps, exp_steps=args.exp_steps,
+                max_exp_steps=args.max_exp_steps, amplitude=args.amplitude,
+                tolerance=args.tolerance,
+                max_iterations=args.max_iterations or 200,
+                progress=not args.quiet, **args.material)
+    names = sorted(model.mode_shapes)
+    _write_npz_atomically(
+        args.output, inputs=np.array(paths, dtype=str), faces=F,
+        mean=model.mean, eigenvalues=model.eigenvalues,
+        modes=np.array(model.modes), gram=model.gram, status=model.status,
+        used=np.array(model.used, dtype=np.int64),
+        displacements=model.displacements,
+        mode_shape_names=np.array(names, dtype=str),
+        mode_shapes=np.array([model.mode_shapes[k] for k in names]),
+        message_keys=np.array([str(k) for k in model.messages], dtype=str),
+        message_texts=np.array(list(model.messages.values()), dtype=str))
+    failed = int(np.sum(model.status != OK)) + (
+        2 * min(args.modes, len(model.modes)) - len(names))
+    if not args.quiet:
+        values = ", ".join(f"{v:.4g}" for v in model.eigenvalues[:args.modes])
+        print(f"pca: {len(paths)} shapes, {len(model.modes)} modes, "
+              f"eigenvalues {values}, {failed} failed -> {args.output}",
+              file=sys.stderr)
     return 4 if failed else 0
 
 

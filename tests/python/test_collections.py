@@ -1,10 +1,14 @@
-"""shellspace.collections: the distance matrix in-process and on a Dask
-LocalCluster (2 worker processes, 1 thread each), on procedural plates.
+"""shellspace.collections: the distance matrix, transfer, the elastic mean
+and PCA in-process and on a Dask LocalCluster (2 worker processes, 1
+thread each), on procedural plates, and the `shellspace collection` verbs.
 
 Each cell against an independent expectation (a direct shellspace.geodesic
 of the pair), the cluster's matrix against the serial one bit for bit, a
 worker killed while it runs tasks (the matrix unchanged), failing pairs in
-their cells, and a resumed run that computes nothing twice.
+their cells, and a resumed run that computes nothing twice; transfer
+against geodesic + transport; the mean against shellspace.mean and PCA
+against shellspace.pca, the same digits on the cluster, a worker killed
+during PCA's LOGs; the verbs' files and their refusals.
 """
 import os
 import signal
@@ -239,3 +243,259 @@ def test_the_command_line_writes_the_matrix(serial, tmp_path):
     assert bad.returncode == 1
     assert len(bad.stderr.strip().splitlines()) == 1
     assert not os.path.exists(tmp_path / "E.npz")
+
+
+# ---- transfer, the elastic mean and shell PCA -------------------------------
+
+def detail_on(shape):
+    """A ripple added to a shape (the detail transfer carries)."""
+    D = shape.copy()
+    D[:, 2] += 0.02 * np.sin(3 * np.pi * shape[:, 1]) * shape[:, 0]
+    return D
+
+
+def test_transfer_carries_the_detail_along_each_geodesic(client):
+    detail = detail_on(SHAPES[0])
+    serial = sc.transfer(detail, 0, SHAPES, F, steps=STEPS)
+    assert [status for status, _, _ in serial] == [sc.OK] * N
+    assert np.array_equal(serial[0][1], detail)
+    for j in range(1, N):
+        path, _ = shellspace.geodesic(SHAPES[0], SHAPES[j], F, steps=STEPS,
+                                      threads=1, quiet=True)
+        moved, _ = shellspace.transport(path, detail, F, threads=1,
+                                        quiet=True)
+        assert np.array_equal(serial[j][1], moved[-1])
+        # The detail arrives: the moved shape is not the bare target.
+        assert np.abs(serial[j][1] - SHAPES[j]).max() > 0.005
+    on_cluster = sc.transfer(detail, 0, SHAPES, F, steps=STEPS, client=client)
+    for (s1, a, _), (s2, b, _) in zip(serial, on_cluster):
+        assert s1 == s2 and np.array_equal(a, b)
+
+
+def diameter(shape):
+    return np.linalg.norm(shape.max(axis=0) - shape.min(axis=0))
+
+
+@pytest.fixture(scope="module")
+def serial_mean():
+    mean, summary = shellspace.mean(SHAPES, F, threads=1, quiet=True)
+    return mean, summary
+
+
+@pytest.mark.parametrize("tolerance, bound", [(1e-8, 1e-7), (1e-13, 1e-9)])
+def test_elastic_mean_is_the_library_mean(serial_mean, tolerance, bound):
+    mean, summary = serial_mean
+    result = sc.elastic_mean(SHAPES, F, tolerance=tolerance)
+    assert result.converged and result.termination == "converged"
+    assert result.gradient_norm <= tolerance * max(
+        1, result.initial_gradient_norm)
+    # The same minimiser of sum_i W[S_i, s] (both aligned to shapes[0]).
+    assert np.abs(result.mean - mean).max() <= bound * diameter(SHAPES[0])
+    assert result.energy == pytest.approx(summary["energy"], rel=1e-9)
+    # Its own gradient, from the library's derivative, vanishes (with the
+    # bending weight of shapes[0], as the mean's: energy_gradient would
+    # take each S_i's own).
+    eta = shellspace.energy(SHAPES[0], SHAPES[0], F)["eta"]
+    G = sum(shellspace.energy_gradient(S, result.mean, F, eta=eta)
+            for S in SHAPES)
+    assert np.abs(G).max() <= 1e-6 * result.initial_gradient_norm
+
+
+def test_elastic_mean_on_a_cluster_is_the_same_digits(client):
+    here = sc.elastic_mean(SHAPES, F, shapes_per_task=2)
+    there = sc.elastic_mean(SHAPES, F, shapes_per_task=2, client=client)
+    assert np.array_equal(here.mean, there.mean)
+    assert np.array_equal(here.energies, there.energies)
+    assert here.history == there.history and here.rounds == there.rounds
+    # 5 shapes in tasks of 2: 3 tasks a round, summed in one tree.
+    assert here.rounds == here.iterations + 1
+
+
+def test_elastic_mean_material_and_bad_input():
+    # A stiffer bending weight is another mean (eta resolved from shapes[0]
+    # and passed to every term, as shellspace.mean does).
+    mean, _ = shellspace.mean(SHAPES, F, eta=0.5, threads=1, quiet=True)
+    result = sc.elastic_mean(SHAPES, F, eta=0.5, tolerance=1e-12)
+    assert np.abs(result.mean - mean).max() <= 1e-9 * diameter(SHAPES[0])
+    with pytest.raises(shellspace.InputError, match="unknown keyword"):
+        sc.elastic_mean(SHAPES, F, steps=3)
+    with pytest.raises(shellspace.InputError, match="shapes_per_task"):
+        sc.elastic_mean(SHAPES, F, shapes_per_task=0)
+    stopped = sc.elastic_mean(SHAPES, F, max_iterations=1)
+    assert not stopped.converged and stopped.termination == "max iterations"
+
+
+def swapped(name):
+    return name.replace("minus", "@").replace("plus", "minus").replace(
+        "@", "plus")
+
+
+def test_pca_is_the_library_pca_at_the_same_mean(serial_mean):
+    shapes, summary = shellspace.pca(SHAPES, F, modes=2, threads=1,
+                                     quiet=True)
+    mean = shapes["mean"]
+    assert np.array_equal(mean, serial_mean[0])
+    result = sc.pca(SHAPES, F, mean=mean, modes=2)
+    assert np.all(result.status == sc.OK)
+    expected = np.array(summary["eigenvalues"])
+    assert result.eigenvalues[0] > 100 * result.eigenvalues[1] > 0
+    assert np.abs(result.eigenvalues - expected).max() <= 1e-5 * expected[0]
+    # The modes are orthonormal in g(u, w) = 1/2 u^T D_2^2 W[mean, mean] w.
+    eta = shellspace.energy(SHAPES[0], SHAPES[0], F)["eta"]
+    rows, cols, vals = shellspace.energy_hessian(mean, mean, F, eta=eta)
+    H = np.zeros((mean.size, mean.size))
+    np.add.at(H, (rows, cols), vals)
+    W = np.stack([w.ravel() for w in result.modes[:2]])
+    assert np.allclose(0.5 * W @ H @ W.T, np.eye(2), atol=1e-9)
+    # Mode shapes: the library's up to the sign of each mode.
+    size = diameter(mean)
+    for j in (1, 2):
+        for side in ("minus", "plus"):
+            name = f"mode_{j}_{side}"
+            same = np.abs(result.mode_shapes[name] - shapes[name]).max()
+            other = np.abs(result.mode_shapes[swapped(name)] -
+                           shapes[name]).max()
+            assert min(same, other) <= 1e-4 * size
+            assert max(same, other) >= 1e-3 * size  # the sign is a choice
+
+
+def test_pca_on_a_cluster_is_the_same_digits(client):
+    here = sc.pca(SHAPES, F, modes=2)
+    there = sc.pca(SHAPES, F, modes=2, client=client)
+    assert np.array_equal(here.mean, there.mean)
+    assert np.array_equal(here.eigenvalues, there.eigenvalues)
+    for a, b in zip(here.modes, there.modes):
+        assert np.array_equal(a, b)
+    assert sorted(here.mode_shapes) == sorted(there.mode_shapes) == [
+        "mode_1_minus", "mode_1_plus", "mode_2_minus", "mode_2_plus"]
+    for name in here.mode_shapes:
+        assert np.array_equal(here.mode_shapes[name], there.mode_shapes[name])
+
+
+def test_pca_with_a_worker_killed_during_the_logs(client):
+    shapes, faces = collection(count=6, n=14)
+    mean = sc.elastic_mean(shapes, faces, shapes_per_task=3).mean
+    reference = sc.pca(shapes, faces, mean=mean, modes=2, mode_shapes=False)
+    client.wait_for_workers(2, timeout=60)
+    killed = {}
+
+    def kill_a_busy_worker(done, total, failed):
+        if killed:
+            return
+        busy = [w for w, keys in client.processing().items() if keys]
+        if not busy:
+            return
+        killed.update(worker=busy[0], done=done)
+        pid = client.run(os.getpid, workers=[busy[0]])[busy[0]]
+        os.kill(pid, signal.SIGKILL)
+
+    result = sc.pca(shapes, faces, mean=mean, modes=2, mode_shapes=False,
+                    client=client, progress=kill_a_busy_worker)
+    assert killed and killed["done"] < len(shapes)
+    assert np.all(result.status == sc.OK)
+    assert np.array_equal(result.eigenvalues, reference.eigenvalues)
+    for a, b in zip(result.modes, reference.modes):
+        assert np.array_equal(a, b)
+    client.wait_for_workers(2, timeout=60)
+
+
+@pytest.mark.parametrize("kwargs, match", [
+    (dict(modes=5), "at most 4"),
+    (dict(modes=0), "modes must be >= 1"),
+    (dict(log_steps=0), "log_steps"),
+    (dict(exp_steps=4, max_exp_steps=2), "max_exp_steps"),
+    (dict(mean=np.zeros((3, 3))), "vertex count"),
+])
+def test_pca_refuses_bad_options(kwargs, match):
+    with pytest.raises(shellspace.InputError, match=match):
+        sc.pca(SHAPES, F, **kwargs)
+
+
+# ---- shellspace collection VERB (the C++ CLI's front) ----------------------
+
+# ctest sets SHELLSPACE_CLI; else the binary beside build/python.
+CLI = os.environ.get("SHELLSPACE_CLI") or os.path.join(
+    os.path.dirname(shellspace.__file__), os.pardir, "shellspace")
+
+
+@pytest.fixture(scope="module")
+def meshes(tmp_path_factory):
+    folder = tmp_path_factory.mktemp("collection")
+    paths = []
+    for k in range(N):
+        paths.append(str(folder / f"s{k}.ply"))
+        shellspace.write_mesh(paths[-1], SHAPES[k], F)
+    return folder, ",".join(paths)
+
+
+def run_cli(*args):
+    if not os.path.exists(CLI):
+        pytest.skip("no shellspace binary (SHELLSPACE_CLI)")
+    return subprocess.run([CLI, "collection", *args], capture_output=True,
+                          text=True, timeout=300)
+
+
+def test_cli_collection_mean_and_pca(meshes):
+    folder, inputs = meshes
+    mean_path, model_path = str(folder / "M.ply"), str(folder / "P.npz")
+    run = run_cli("mean", "--inputs", inputs, "--output", mean_path,
+                  "--scheduler", "local:2", "--quiet")
+    assert run.returncode == 0, run.stderr
+    V, faces = shellspace.read_mesh(mean_path)
+    assert np.array_equal(faces, F)
+    expected = sc.elastic_mean(SHAPES, F)
+    assert np.allclose(V, expected.mean, rtol=0, atol=1e-12)
+    # A material flag reaches every term.
+    run = run_cli("mean", "--inputs", inputs, "--output", mean_path,
+                  "--eta", "0.5", "--quiet")
+    assert run.returncode == 0, run.stderr
+    stiffer = sc.elastic_mean(SHAPES, F, eta=0.5)
+    assert np.allclose(shellspace.read_mesh(mean_path)[0], stiffer.mean,
+                       rtol=0, atol=1e-12)
+    assert np.abs(stiffer.mean - expected.mean).max() > 1e-4
+    run = run_cli("pca", "--inputs", inputs, "--output", model_path,
+                  "--modes", "2", "--quiet")
+    assert run.returncode == 0, run.stderr
+    model = sc.pca(SHAPES, F, modes=2)
+    with np.load(model_path) as data:
+        assert np.allclose(data["eigenvalues"], model.eigenvalues,
+                           rtol=1e-6, atol=1e-12)
+        assert list(data["mode_shape_names"]) == sorted(model.mode_shapes)
+        assert np.array_equal(data["faces"], F)
+
+
+@pytest.mark.parametrize("args, code, text", [
+    (["distances", "--scheduler", "local:0"], 1, "worker count"),
+    (["distances", "--scheduler", "no address"], 1, "scheduler address"),
+    (["distances", "--steps", "0"], 1, "--steps must be"),
+    (["distances", "--modes", "2"], 2, "not a flag of collection distances"),
+    (["mean", "--steps", "2"], 2, "not a flag of collection mean"),
+    (["pca", "--modes", "0"], 1, "--modes must be"),
+    (["pca", "--modes", "5"], 1, "--modes must be in 1..4"),
+    (["distances", "--time_limit", "-1"], 1, "--time_limit must be"),
+    (["distances", "--output", "OUT.txt"], 1, "must end in .npz"),
+    (["mean", "--output", "OUT.xyz"], 1, "must end in .ply"),
+    (["distances", "--inputs", "MISSING"], 1, "cannot open mesh file"),
+    (["mean", "--eta", "0.5", "--relative_eta", "0.1"], 1, "not both"),
+    (["mean", "--bending", "edges"], 1, "unknown bending model"),
+])
+def test_cli_collection_refuses_bad_flags_in_one_line(meshes, args, code,
+                                                      text):
+    folder, inputs = meshes
+    args = list(args)
+    if "--inputs" in args:
+        args[args.index("--inputs") + 1] = inputs.split(",")[0] + "," + str(
+            folder / "missing.ply")
+    else:
+        args += ["--inputs", inputs]
+    output = str(folder / ("OUT.ply" if args[0] == "mean" else "OUT.npz"))
+    if "--output" in args:
+        output = str(folder / args[args.index("--output") + 1])
+        args[args.index("--output") + 1] = output
+    else:
+        args += ["--output", output]
+    run = run_cli(*args)
+    assert run.returncode == code
+    lines = run.stderr.strip().splitlines()
+    assert len(lines) == 1 and text in lines[0], run.stderr
+    assert not os.path.exists(output)
