@@ -6,7 +6,7 @@
 #include <cmath>
 #include <string>
 
-#include "shellspace/geometry/blas_threads.h"
+#include "shellspace/runtime/blas_threads.h"
 
 namespace shellspace {
 namespace {
@@ -99,7 +99,7 @@ EdgeAngleFit FitEdgeAngles(const std::vector<EdgeAngleFace>& shape,
   fit.face_energy_at_zero = fit.face_energy;
   if (num_interior_edges > 0) {
     // One BLAS thread: the fit's factorisations are small and many
-    // (geometry/blas_threads.h has the measurement).
+    // (runtime/blas_threads.h has the measurement).
     const ScopedBlasThreads blas(1);
     ceres::Solver::Options solver;
     solver.linear_solver_type = ceres::SPARSE_NORMAL_CHOLESKY;

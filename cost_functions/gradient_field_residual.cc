@@ -4,7 +4,7 @@
 #include <cstring>
 #include <type_traits>
 
-#include "shellspace/geometry/parallel_for.h"
+#include "shellspace/runtime/parallel_for.h"
 
 namespace shellspace {
 

@@ -27,7 +27,7 @@ namespace shellspace {
 class GradientFieldCache : public ceres::EvaluationCallback {
  public:
   // `unknown_side`: the argument of W that the unknown shell occupies.
-  // Elements are evaluated on `threads` threads (geometry/parallel_for.h);
+  // Elements are evaluated on `threads` threads (runtime/parallel_for.h);
   // the results do not depend on it.
   GradientFieldCache(const ShellSpace& space, const Positions& fixed,
                      ShellSide unknown_side, const Positions* unknown,

@@ -37,7 +37,7 @@
 #include "shellspace/cost_functions/shell/relative_bending_weight.h"
 #include "shellspace/cost_functions/shell/shell_space.h"
 #include "shellspace/geometry/mesh.h"
-#include "shellspace/geometry/openmp_threads.h"
+#include "shellspace/runtime/openmp_threads.h"
 #include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/geometry/validation.h"
 #include "shellspace/io/atomic_file.h"
@@ -1245,7 +1245,7 @@ auto GatherMaterialAndSolverArgs(Result (*f)(Params...),
              bool allow_unconverged) {
     // The calling thread may not be the importing one (a thread pool's, a
     // Dask worker's): its OpenMP regions serial too, so that the digits do
-    // not depend on which thread solves (geometry/openmp_threads.h).
+    // not depend on which thread solves (runtime/openmp_threads.h).
     SerialOpenMpInThisThread();
     // The time limit counts from the call.
     auto control = std::make_shared<SolveControl>(time_limit);
@@ -1300,7 +1300,7 @@ auto WithMaterialAndSolverArgs(Result (*f)(Params...)) {
 PYBIND11_MODULE(shellspace, m) {
   using namespace shellspace;
   // CHOLMOD's OpenMP regions on the importing thread alone, as in the CLI
-  // (geometry/openmp_threads.h).
+  // (runtime/openmp_threads.h).
   SerialOpenMpInThisThread();
   // Ceres' routine warnings hidden, as in the CLI (its --minloglevel=0).
   FLAGS_minloglevel = google::GLOG_ERROR;

@@ -1,4 +1,4 @@
-#include "shellspace/geometry/blas_threads.h"
+#include "shellspace/runtime/blas_threads.h"
 
 #include <dlfcn.h>
 

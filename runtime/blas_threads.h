@@ -7,8 +7,8 @@
 // them (16.0 s vs 19.8 s wall), so the calculus keeps the default; the
 // spline and regression solves use 1 (problems/splines/spline.cc: faster
 // in wall time too). Deterministic: the count is fixed, not chosen by timing.
-#ifndef SHELLSPACE_GEOMETRY_BLAS_THREADS_H_
-#define SHELLSPACE_GEOMETRY_BLAS_THREADS_H_
+#ifndef SHELLSPACE_RUNTIME_BLAS_THREADS_H_
+#define SHELLSPACE_RUNTIME_BLAS_THREADS_H_
 
 namespace shellspace {
 
@@ -29,4 +29,4 @@ class ScopedBlasThreads {
 
 }  // namespace shellspace
 
-#endif  // SHELLSPACE_GEOMETRY_BLAS_THREADS_H_
+#endif  // SHELLSPACE_RUNTIME_BLAS_THREADS_H_

@@ -1,4 +1,4 @@
-#include "shellspace/geometry/openmp_threads.h"
+#include "shellspace/runtime/openmp_threads.h"
 
 #include <dlfcn.h>
 

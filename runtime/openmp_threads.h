@@ -7,8 +7,8 @@
 // time (4.4 million context switches) with them, 29.1 s / 29.5 + 2.0 s
 // without (OMP_DYNAMIC=true OMP_NUM_THREADS=1). The heavy dense work of the
 // factorisation is the BLAS's (blas_threads.h), not these regions.
-#ifndef SHELLSPACE_GEOMETRY_OPENMP_THREADS_H_
-#define SHELLSPACE_GEOMETRY_OPENMP_THREADS_H_
+#ifndef SHELLSPACE_RUNTIME_OPENMP_THREADS_H_
+#define SHELLSPACE_RUNTIME_OPENMP_THREADS_H_
 
 namespace shellspace {
 
@@ -26,4 +26,4 @@ void SerialOpenMpInThisThread();
 
 }  // namespace shellspace
 
-#endif  // SHELLSPACE_GEOMETRY_OPENMP_THREADS_H_
+#endif  // SHELLSPACE_RUNTIME_OPENMP_THREADS_H_

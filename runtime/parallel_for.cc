@@ -1,4 +1,4 @@
-#include "shellspace/geometry/parallel_for.h"
+#include "shellspace/runtime/parallel_for.h"
 
 #include <algorithm>
 #include <atomic>
@@ -7,7 +7,7 @@
 #include <thread>
 #include <vector>
 
-#include "shellspace/geometry/openmp_threads.h"
+#include "shellspace/runtime/openmp_threads.h"
 
 namespace shellspace {
 

@@ -1,6 +1,6 @@
 // A minimal parallel loop for the assembly routines of problems/.
-#ifndef SHELLSPACE_GEOMETRY_PARALLEL_FOR_H_
-#define SHELLSPACE_GEOMETRY_PARALLEL_FOR_H_
+#ifndef SHELLSPACE_RUNTIME_PARALLEL_FOR_H_
+#define SHELLSPACE_RUNTIME_PARALLEL_FOR_H_
 
 #include <functional>
 
@@ -14,4 +14,4 @@ void ParallelFor(int count, int threads, const std::function<void(int)>& task);
 
 }  // namespace shellspace
 
-#endif  // SHELLSPACE_GEOMETRY_PARALLEL_FOR_H_
+#endif  // SHELLSPACE_RUNTIME_PARALLEL_FOR_H_

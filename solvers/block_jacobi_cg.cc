@@ -4,7 +4,7 @@
 
 #include <algorithm>
 
-#include "shellspace/geometry/parallel_for.h"
+#include "shellspace/runtime/parallel_for.h"
 #include "shellspace/solvers/block_tridiagonal_product.h"
 
 namespace shellspace {

@@ -2,7 +2,7 @@
 
 #include <atomic>
 
-#include "shellspace/geometry/parallel_for.h"
+#include "shellspace/runtime/parallel_for.h"
 
 namespace shellspace {
 

@@ -8,7 +8,7 @@
 
 #include <Eigen/Cholesky>
 
-#include "shellspace/geometry/parallel_for.h"
+#include "shellspace/runtime/parallel_for.h"
 #include "shellspace/solvers/block_tridiagonal_product.h"
 #include "shellspace/solvers/supernodal_factor.h"
 

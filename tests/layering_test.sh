@@ -10,18 +10,19 @@ cd "$src"
 
 # room folder -> rooms it may include (itself always).
 declare -A allowed=(
+  [runtime]=""
   [geometry]=""
-  [cost_functions]="geometry"
-  [solvers]="geometry"
+  [cost_functions]="geometry runtime"
+  [solvers]="geometry runtime"
   [io]="geometry"
-  [problems/calculus]="geometry cost_functions solvers"
-  [problems/splines]="geometry cost_functions solvers problems/calculus"
-  [problems/statistics]="geometry cost_functions solvers problems/calculus"
-  [problems/branching]="geometry cost_functions solvers"
+  [problems/calculus]="runtime geometry cost_functions solvers"
+  [problems/splines]="runtime geometry cost_functions solvers problems/calculus"
+  [problems/statistics]="runtime geometry cost_functions solvers problems/calculus"
+  [problems/branching]="runtime geometry cost_functions solvers"
   # cost_functions: the branching data it draws (constructions, relaxed fields).
   [render]="geometry io cost_functions"
   # The verbs' summaries (CLI --json and the Python module's dicts).
-  [reports]="geometry cost_functions solvers io problems/calculus problems/splines problems/statistics problems/branching"
+  [reports]="runtime geometry cost_functions solvers io problems/calculus problems/splines problems/statistics problems/branching"
 )
 
 # The room of an include path "shellspace/<room>/...".
@@ -55,7 +56,7 @@ done
 while IFS= read -r line; do
   echo "layering: include without the shellspace/ prefix: $line"
   violations=$((violations + 1))
-done < <(grep -rnE '^\s*#include "(geometry|cost_functions|solvers|problems|io|render|reports|tools|python)/' \
-           geometry cost_functions solvers problems io render reports tools python bench tests --include='*.h' --include='*.cc' || true)
+done < <(grep -rnE '^\s*#include "(runtime|geometry|cost_functions|solvers|problems|io|render|reports|tools|python)/' \
+           runtime geometry cost_functions solvers problems io render reports tools python bench tests --include='*.h' --include='*.cc' || true)
 echo "layering: ${checked} includes checked, ${violations} violations"
 [[ $violations -eq 0 ]]

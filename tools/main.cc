@@ -21,7 +21,7 @@
 
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/geometry/heap_reuse.h"
-#include "shellspace/geometry/openmp_threads.h"
+#include "shellspace/runtime/openmp_threads.h"
 #include "shellspace/io/input_file.h"
 #include "shellspace/tools/common_flags.h"
 #include "shellspace/tools/flag_repeats.h"

@@ -10,7 +10,7 @@
 #include <ceres/ceres.h>
 
 #include "shellspace/geometry/mesh.h"
-#include "shellspace/geometry/parallel_for.h"
+#include "shellspace/runtime/parallel_for.h"
 #include "shellspace/problems/branching/self_similar_series.h"
 
 namespace shellspace::branching {

@@ -6,7 +6,7 @@
 
 #include "shellspace/cost_functions/gradient_field_residual.h"
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
-#include "shellspace/geometry/blas_threads.h"
+#include "shellspace/runtime/blas_threads.h"
 #include "shellspace/problems/calculus/exp_step_newton.h"
 #include "shellspace/solvers/rigid_gauge.h"
 

@@ -9,7 +9,7 @@
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
 #include "shellspace/geometry/validation.h"
-#include "shellspace/geometry/parallel_for.h"
+#include "shellspace/runtime/parallel_for.h"
 #include "shellspace/solvers/rigid_gauge.h"
 
 namespace shellspace {

@@ -8,9 +8,9 @@
 
 #include "shellspace/cost_functions/ltheta_cost_functions.h"
 #include "shellspace/geometry/validation.h"
-#include "shellspace/geometry/blas_threads.h"
+#include "shellspace/runtime/blas_threads.h"
 #include "shellspace/geometry/named_values.h"
-#include "shellspace/geometry/parallel_for.h"
+#include "shellspace/runtime/parallel_for.h"
 #include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/problems/calculus/ltheta_reconstruction.h"

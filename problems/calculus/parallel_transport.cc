@@ -5,7 +5,7 @@
 #include <cstdio>
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
-#include "shellspace/geometry/blas_threads.h"
+#include "shellspace/runtime/blas_threads.h"
 #include "shellspace/problems/calculus/geodesic.h"
 
 namespace shellspace {

@@ -8,7 +8,7 @@
 #include <stdexcept>
 
 #include "shellspace/cost_functions/shell/element_set.h"
-#include "shellspace/geometry/parallel_for.h"
+#include "shellspace/runtime/parallel_for.h"
 
 namespace shellspace {
 

@@ -8,8 +8,8 @@
 #include <utility>
 
 #include "shellspace/cost_functions/ltheta_cost_functions.h"
-#include "shellspace/geometry/blas_threads.h"
-#include "shellspace/geometry/parallel_for.h"
+#include "shellspace/runtime/blas_threads.h"
+#include "shellspace/runtime/parallel_for.h"
 #include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/problems/splines/cubic_spline.h"
 

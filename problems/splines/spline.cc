@@ -10,7 +10,7 @@
 #include <memory>
 #include <string>
 
-#include "shellspace/geometry/blas_threads.h"
+#include "shellspace/runtime/blas_threads.h"
 #include "shellspace/problems/splines/spline_preconditioner.h"
 #include "shellspace/solvers/solver_settings.h"
 

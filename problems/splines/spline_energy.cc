@@ -6,7 +6,7 @@
 #include <cmath>
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
-#include "shellspace/geometry/parallel_for.h"
+#include "shellspace/runtime/parallel_for.h"
 #include "shellspace/solvers/gauge_reduced_solve.h"
 #include "shellspace/problems/calculus/path_hessian.h"
 #include "shellspace/solvers/newton_solver.h"

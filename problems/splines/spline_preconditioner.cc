@@ -4,7 +4,7 @@
 #include <Eigen/SparseCholesky>
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
-#include "shellspace/geometry/parallel_for.h"
+#include "shellspace/runtime/parallel_for.h"
 
 namespace shellspace {
 

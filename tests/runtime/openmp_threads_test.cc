@@ -1,4 +1,4 @@
-// SerialOpenMpInThisThread (geometry/openmp_threads.h): the calling thread's
+// SerialOpenMpInThisThread (runtime/openmp_threads.h): the calling thread's
 // OpenMP settings become one thread with dynamic adjustment, a thread that
 // did not call it keeps the defaults, and ParallelFor's workers call it. The
 // OpenMP runtime is the one CHOLMOD loads (the factorisation below pins
@@ -12,8 +12,8 @@
 #include <thread>
 #include <vector>
 
-#include "shellspace/geometry/openmp_threads.h"
-#include "shellspace/geometry/parallel_for.h"
+#include "shellspace/runtime/openmp_threads.h"
+#include "shellspace/runtime/parallel_for.h"
 #include "shellspace/solvers/reusable_cholesky.h"
 
 namespace shellspace {

@@ -10,7 +10,7 @@
 #include <stdexcept>
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
-#include "shellspace/geometry/parallel_for.h"
+#include "shellspace/runtime/parallel_for.h"
 #include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/geodesic.h"
