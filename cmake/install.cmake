@@ -110,7 +110,7 @@ install(TARGETS shellspace_cli
 # Public headers keep their source-tree layout under include/shellspace/; the
 # library's own includes are "shellspace/<room>/...", so only include/ is on a
 # consumer's include path.
-foreach(shellspace_header_dir runtime geometry cost_functions solvers problems io render reports)
+foreach(shellspace_header_dir runtime geometry models cost_functions solvers problems io render reports)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${shellspace_header_dir}/
     DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/shellspace/${shellspace_header_dir}
     FILES_MATCHING PATTERN "*.h")

@@ -9,8 +9,8 @@
 
 #include "shellspace/io/png_writer.h"
 #include "shellspace/render/plot_axes.h"
-#include "shellspace/cost_functions/branching/construction.h"
-#include "shellspace/cost_functions/branching/relaxed_grid.h"
+#include "shellspace/models/branching/construction.h"
+#include "shellspace/models/branching/relaxed_grid.h"
 
 namespace shellspace::branching {
 

@@ -12,24 +12,25 @@ cd "$src"
 declare -A allowed=(
   [runtime]=""
   [geometry]=""
-  [cost_functions]="geometry runtime"
+  [models/branching]="geometry"
+  [cost_functions]="geometry runtime models/branching"
   [solvers]="geometry runtime"
   [io]="geometry"
-  [problems/calculus]="runtime geometry cost_functions solvers"
-  [problems/splines]="runtime geometry cost_functions solvers problems/calculus"
-  [problems/statistics]="runtime geometry cost_functions solvers problems/calculus"
-  [problems/branching]="runtime geometry cost_functions solvers"
-  # cost_functions: the branching data it draws (constructions, relaxed fields).
-  [render]="geometry io cost_functions"
+  [problems/calculus]="runtime geometry cost_functions solvers models/branching"
+  [problems/splines]="runtime geometry cost_functions solvers problems/calculus models/branching"
+  [problems/statistics]="runtime geometry cost_functions solvers problems/calculus models/branching"
+  [problems/branching]="runtime geometry cost_functions solvers models/branching"
+  # models/branching: the data it draws (constructions, relaxed fields).
+  [render]="geometry io models/branching"
   # The verbs' summaries (CLI --json and the Python module's dicts).
-  [reports]="runtime geometry cost_functions solvers io problems/calculus problems/splines problems/statistics problems/branching"
+  [reports]="runtime geometry cost_functions solvers io problems/calculus problems/splines problems/statistics problems/branching models/branching"
 )
 
 # The room of an include path "shellspace/<room>/...".
 room_of() {
   local path="${1#shellspace/}"
   case "$path" in
-    problems/*) echo "$path" | cut -d/ -f1-2 ;;
+    problems/* | models/*) echo "$path" | cut -d/ -f1-2 ;;
     *) echo "${path%%/*}" ;;
   esac
 }
@@ -56,7 +57,7 @@ done
 while IFS= read -r line; do
   echo "layering: include without the shellspace/ prefix: $line"
   violations=$((violations + 1))
-done < <(grep -rnE '^\s*#include "(runtime|geometry|cost_functions|solvers|problems|io|render|reports|tools|python)/' \
-           runtime geometry cost_functions solvers problems io render reports tools python bench tests --include='*.h' --include='*.cc' || true)
+done < <(grep -rnE '^\s*#include "(runtime|geometry|models|cost_functions|solvers|problems|io|render|reports|tools|python)/' \
+           runtime geometry models cost_functions solvers problems io render reports tools python bench tests --include='*.h' --include='*.cc' || true)
 echo "layering: ${checked} includes checked, ${violations} violations"
 [[ $violations -eq 0 ]]

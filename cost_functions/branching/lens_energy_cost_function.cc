@@ -3,8 +3,8 @@
 #include <cmath>
 #include <vector>
 
-#include "shellspace/cost_functions/branching/cell_pattern.h"
-#include "shellspace/cost_functions/branching/lens_family.h"
+#include "shellspace/models/branching/cell_pattern.h"
+#include "shellspace/models/branching/lens_family.h"
 
 namespace shellspace::branching {
 

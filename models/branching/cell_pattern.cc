@@ -1,4 +1,4 @@
-#include "shellspace/cost_functions/branching/cell_pattern.h"
+#include "shellspace/models/branching/cell_pattern.h"
 
 #include <algorithm>
 #include <cmath>

@@ -6,8 +6,8 @@
 // One cell of a self-similar branching construction in the sharp-interface
 // Kohn–Müller model (spec branching.md, "Self-similar constructions"), and the
 // exact evaluation of its energy coefficients A (elastic) and B (interfacial).
-#ifndef SHELLSPACE_COST_FUNCTIONS_BRANCHING_CELL_PATTERN_H_
-#define SHELLSPACE_COST_FUNCTIONS_BRANCHING_CELL_PATTERN_H_
+#ifndef SHELLSPACE_MODELS_BRANCHING_CELL_PATTERN_H_
+#define SHELLSPACE_MODELS_BRANCHING_CELL_PATTERN_H_
 
 #include <functional>
 #include <string>
@@ -92,4 +92,4 @@ void GaussLegendre01(int points, std::vector<double>* nodes,
 
 }  // namespace shellspace::branching
 
-#endif  // SHELLSPACE_COST_FUNCTIONS_BRANCHING_CELL_PATTERN_H_
+#endif  // SHELLSPACE_MODELS_BRANCHING_CELL_PATTERN_H_

@@ -1,4 +1,4 @@
-#include "shellspace/cost_functions/branching/construction.h"
+#include "shellspace/models/branching/construction.h"
 
 #include <algorithm>
 #include <cmath>

@@ -4,13 +4,13 @@
 // x_{k+1} = x_k - l_k, l_k = L (1 - theta) theta^k (generation 0 farthest
 // from the austenite at x = 0). Generation k's period starts at y = offset_k, offset_0 = 0,
 // offset_{k+1} = offset_k + next_offset h_{k+1}.
-#ifndef SHELLSPACE_COST_FUNCTIONS_BRANCHING_CONSTRUCTION_H_
-#define SHELLSPACE_COST_FUNCTIONS_BRANCHING_CONSTRUCTION_H_
+#ifndef SHELLSPACE_MODELS_BRANCHING_CONSTRUCTION_H_
+#define SHELLSPACE_MODELS_BRANCHING_CONSTRUCTION_H_
 
 #include <string>
 #include <vector>
 
-#include "shellspace/cost_functions/branching/cell_pattern.h"
+#include "shellspace/models/branching/cell_pattern.h"
 
 namespace shellspace::branching {
 
@@ -36,4 +36,4 @@ struct Construction {
 
 }  // namespace shellspace::branching
 
-#endif  // SHELLSPACE_COST_FUNCTIONS_BRANCHING_CONSTRUCTION_H_
+#endif  // SHELLSPACE_MODELS_BRANCHING_CONSTRUCTION_H_

@@ -1,4 +1,4 @@
-#include "shellspace/cost_functions/branching/lens_family.h"
+#include "shellspace/models/branching/lens_family.h"
 
 #include <cmath>
 #include <string>

@@ -28,10 +28,10 @@
 //   B = 2 (2 + 4 (1 - tau)) = 12 - 8 tau.
 // The metric (1 - 2W) dW^2 is not flat: its geodesic (1 - 2W)^(3/2) linear in
 // s is a curved (lens) profile, which a1, a2 approximate.
-#ifndef SHELLSPACE_COST_FUNCTIONS_BRANCHING_LENS_FAMILY_H_
-#define SHELLSPACE_COST_FUNCTIONS_BRANCHING_LENS_FAMILY_H_
+#ifndef SHELLSPACE_MODELS_BRANCHING_LENS_FAMILY_H_
+#define SHELLSPACE_MODELS_BRANCHING_LENS_FAMILY_H_
 
-#include "shellspace/cost_functions/branching/cell_pattern.h"
+#include "shellspace/models/branching/cell_pattern.h"
 
 namespace shellspace::branching {
 
@@ -67,4 +67,4 @@ double LensReducedB(const LensShape& shape, double* dB = nullptr);
 
 }  // namespace shellspace::branching
 
-#endif  // SHELLSPACE_COST_FUNCTIONS_BRANCHING_LENS_FAMILY_H_
+#endif  // SHELLSPACE_MODELS_BRANCHING_LENS_FAMILY_H_

@@ -1,4 +1,4 @@
-#include "shellspace/cost_functions/branching/relaxed_grid.h"
+#include "shellspace/models/branching/relaxed_grid.h"
 
 #include <cmath>
 

@@ -1,7 +1,7 @@
 // The grid of the relaxed (diffuse-interface) Kohn–Müller simulation and the
 // nodal field u on it (spec branching.md, "Relaxed model").
-#ifndef SHELLSPACE_COST_FUNCTIONS_BRANCHING_RELAXED_GRID_H_
-#define SHELLSPACE_COST_FUNCTIONS_BRANCHING_RELAXED_GRID_H_
+#ifndef SHELLSPACE_MODELS_BRANCHING_RELAXED_GRID_H_
+#define SHELLSPACE_MODELS_BRANCHING_RELAXED_GRID_H_
 
 #include <cstddef>
 #include <vector>
@@ -61,4 +61,4 @@ struct RelaxedField {
 
 }  // namespace shellspace::branching
 
-#endif  // SHELLSPACE_COST_FUNCTIONS_BRANCHING_RELAXED_GRID_H_
+#endif  // SHELLSPACE_MODELS_BRANCHING_RELAXED_GRID_H_

@@ -8,8 +8,8 @@
 
 #include <string>
 
-#include "shellspace/cost_functions/branching/construction.h"
-#include "shellspace/cost_functions/branching/lens_family.h"
+#include "shellspace/models/branching/construction.h"
+#include "shellspace/models/branching/lens_family.h"
 
 namespace shellspace::branching {
 

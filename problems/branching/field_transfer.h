@@ -17,7 +17,7 @@
 #ifndef SHELLSPACE_PROBLEMS_BRANCHING_FIELD_TRANSFER_H_
 #define SHELLSPACE_PROBLEMS_BRANCHING_FIELD_TRANSFER_H_
 
-#include "shellspace/cost_functions/branching/relaxed_grid.h"
+#include "shellspace/models/branching/relaxed_grid.h"
 
 namespace shellspace::branching {
 

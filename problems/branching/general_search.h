@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "shellspace/cost_functions/branching/cell_pattern.h"
+#include "shellspace/models/branching/cell_pattern.h"
 #include "shellspace/cost_functions/branching/general_cell_cost_function.h"
 
 namespace shellspace::branching {

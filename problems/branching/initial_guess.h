@@ -16,8 +16,8 @@
 #include <functional>
 #include <string>
 
-#include "shellspace/cost_functions/branching/construction.h"
-#include "shellspace/cost_functions/branching/relaxed_grid.h"
+#include "shellspace/models/branching/construction.h"
+#include "shellspace/models/branching/relaxed_grid.h"
 
 namespace shellspace::branching {
 

@@ -44,7 +44,7 @@
 #ifndef SHELLSPACE_PROBLEMS_BRANCHING_KM_FAMILY_H_
 #define SHELLSPACE_PROBLEMS_BRANCHING_KM_FAMILY_H_
 
-#include "shellspace/cost_functions/branching/cell_pattern.h"
+#include "shellspace/models/branching/cell_pattern.h"
 
 namespace shellspace::branching {
 

@@ -19,7 +19,7 @@
 
 #include <ceres/ceres.h>
 
-#include "shellspace/cost_functions/branching/relaxed_grid.h"
+#include "shellspace/models/branching/relaxed_grid.h"
 
 namespace shellspace::branching {
 

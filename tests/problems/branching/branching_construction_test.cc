@@ -7,10 +7,10 @@
 
 #include "shellspace/cost_functions/branching/km_energy_cost_function.h"
 #include "shellspace/cost_functions/branching/lens_energy_cost_function.h"
-#include "shellspace/cost_functions/branching/cell_pattern.h"
+#include "shellspace/models/branching/cell_pattern.h"
 #include "shellspace/problems/branching/construction_optimizer.h"
 #include "shellspace/problems/branching/km_family.h"
-#include "shellspace/cost_functions/branching/lens_family.h"
+#include "shellspace/models/branching/lens_family.h"
 #include "shellspace/problems/branching/self_similar_series.h"
 
 namespace shellspace::branching {

@@ -9,7 +9,7 @@
 
 #include <gtest/gtest.h>
 
-#include "shellspace/cost_functions/branching/cell_pattern.h"
+#include "shellspace/models/branching/cell_pattern.h"
 #include "shellspace/cost_functions/branching/general_cell_cost_function.h"
 #include "shellspace/problems/branching/general_search.h"
 #include "shellspace/problems/branching/km_family.h"
