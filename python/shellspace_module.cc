@@ -13,7 +13,7 @@
 // solve take time_limit and allow_unconverged, stop at KeyboardInterrupt,
 // and raise shellspace.NotConvergedError for a result that missed its
 // stopping criterion (python/solve_control.h); their steps are bounded up
-// front by the CLI's memory estimates (tools/memory_limits.h).
+// front by the CLI's memory estimates (tools/run/memory_limits.h).
 #include <glog/logging.h>
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
@@ -70,7 +70,7 @@
 #include "shellspace/python/solve_control.h"
 // The CLI's memory bounds of --steps (compiled into the module,
 // python/CMakeLists.txt).
-#include "shellspace/tools/memory_limits.h"
+#include "shellspace/tools/run/memory_limits.h"
 
 namespace py = pybind11;
 
@@ -258,7 +258,7 @@ void CheckAtLeast(const std::string& name, long value, long min) {
 }
 
 // `steps` of a solve the CLI bounds up front: in [min, kMaxSteps] and its
-// memory estimate `bytes` (tools/memory_limits.h, the model `model`)
+// memory estimate `bytes` (tools/run/memory_limits.h, the model `model`)
 // within half the physical memory.
 void CheckSteps(const std::string& name, long steps, long min, double bytes,
                 int vertices, const std::string& model) {
@@ -273,7 +273,7 @@ void CheckSteps(const std::string& name, long steps, long min, double bytes,
               model);
 }
 
-// The memory models of tools/memory_limits.h, as the CLI words them.
+// The memory models of tools/run/memory_limits.h, as the CLI words them.
 const char* const kGeodesicModel = "64 MB + 1500 B x #V x K^2";
 const char* const kPathModel = "64 MB + 200 B x #V x (K + 1)";
 
@@ -716,7 +716,7 @@ std::vector<std::string> SplineFailures(const SplineResult& result,
 }
 
 // The path verbs' (spline, regress) bound of steps: kMaxSteps and the
-// path's memory (tools/memory_limits.h's PathBytes).
+// path's memory (tools/run/memory_limits.h's PathBytes).
 void CheckPathSteps(int steps, int min, int vertices) {
   CheckSteps("steps", steps, min, PathBytes(vertices, steps + 1), vertices,
              kPathModel);

@@ -1,7 +1,7 @@
 // `shellspace VERB [SUBCOMMAND] [--flags]`: dispatches to the verbs
-// registered in tools/verb_*.cc. Before a verb runs, main checks its flags
-// against the verb's table (tools/verb_flags.h): a flag the verb does not
-// take or a flag given twice (tools/flag_repeats.h) is rejected (exit 2),
+// registered in tools/verbs/verb_*.cc. Before a verb runs, main checks its flags
+// against the verb's table (tools/verbs/verb_flags.h): a flag the verb does not
+// take or a flag given twice (tools/run/flag_repeats.h) is rejected (exit 2),
 // the verb's own defaults are applied, and
 // required flags, numeric ranges and the values of string flags with a check
 // are checked (exit 1). Input errors are
@@ -23,12 +23,12 @@
 #include "shellspace/geometry/heap_reuse.h"
 #include "shellspace/runtime/openmp_threads.h"
 #include "shellspace/io/input_file.h"
-#include "shellspace/tools/common_flags.h"
-#include "shellspace/tools/flag_repeats.h"
-#include "shellspace/tools/run_output.h"
-#include "shellspace/tools/run_status.h"
-#include "shellspace/tools/stop_request.h"
-#include "shellspace/tools/verb.h"
+#include "shellspace/tools/run/common_flags.h"
+#include "shellspace/tools/run/flag_repeats.h"
+#include "shellspace/tools/run/run_output.h"
+#include "shellspace/tools/run/run_status.h"
+#include "shellspace/tools/run/stop_request.h"
+#include "shellspace/tools/verbs/verb.h"
 
 namespace shellspace {
 

@@ -28,7 +28,7 @@ def mesh(path):
     return shellspace.read_mesh(path)
 
 
-# Keys only the CLI's report has: the run's identity (tools/run_output.h)
+# Keys only the CLI's report has: the run's identity (tools/run/run_output.h)
 # and the material flag it was given; and its stop state, which the
 # Python summaries of the solving functions have too (stop_state=True
 # keeps it for them).

@@ -1,4 +1,4 @@
-// The verdict of the solving verbs (tools/run_status.h): a run that misses
+// The verdict of the solving verbs (tools/run/run_status.h): a run that misses
 // its stopping criterion writes its outputs and its --json summary with
 // "converged": false, prints one line naming what did not converge and
 // exits 4; --allow_unconverged turns that line into a warning and exits 0.

@@ -1,10 +1,10 @@
 // The gflags variables that several verbs read (one binary, so a flag name
 // has one definition). What a flag means in a verb, its default there and
-// its valid range are in that verb's FlagTable (tools/verb_flags.h), which
+// its valid range are in that verb's FlagTable (tools/verbs/verb_flags.h), which
 // is also what `shellspace VERB --help` prints; a verb accepts no flag
 // outside its table.
-#ifndef SHELLSPACE_TOOLS_COMMON_FLAGS_H_
-#define SHELLSPACE_TOOLS_COMMON_FLAGS_H_
+#ifndef SHELLSPACE_TOOLS_RUN_COMMON_FLAGS_H_
+#define SHELLSPACE_TOOLS_RUN_COMMON_FLAGS_H_
 
 #include <gflags/gflags.h>
 
@@ -38,4 +38,4 @@ DECLARE_string(linear_solver);
 DECLARE_string(lm);
 DECLARE_double(time_limit);
 
-#endif  // SHELLSPACE_TOOLS_COMMON_FLAGS_H_
+#endif  // SHELLSPACE_TOOLS_RUN_COMMON_FLAGS_H_

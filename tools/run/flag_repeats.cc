@@ -1,4 +1,4 @@
-#include "shellspace/tools/flag_repeats.h"
+#include "shellspace/tools/run/flag_repeats.h"
 
 #include <gflags/gflags.h>
 

@@ -4,8 +4,8 @@
 // --fromenv and --tryfromenv are not flags of any verb (main.cc refuses
 // them as it refuses every flag outside the verb's table), so a flag file
 // never repeats or overrides a command-line flag.
-#ifndef SHELLSPACE_TOOLS_FLAG_REPEATS_H_
-#define SHELLSPACE_TOOLS_FLAG_REPEATS_H_
+#ifndef SHELLSPACE_TOOLS_RUN_FLAG_REPEATS_H_
+#define SHELLSPACE_TOOLS_RUN_FLAG_REPEATS_H_
 
 #include <string>
 #include <vector>
@@ -19,4 +19,4 @@ std::string RepeatedFlagProblem(const std::vector<std::string>& args);
 
 }  // namespace shellspace
 
-#endif  // SHELLSPACE_TOOLS_FLAG_REPEATS_H_
+#endif  // SHELLSPACE_TOOLS_RUN_FLAG_REPEATS_H_

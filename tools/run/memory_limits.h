@@ -3,8 +3,8 @@
 // one line naming the flags, the estimate and the limit. The estimates are
 // fits of the peak resident memory measured with /usr/bin/time (docs/cli-behaviour.md,
 // "Limits"); they are rough, on the safe side for the meshes measured.
-#ifndef SHELLSPACE_TOOLS_MEMORY_LIMITS_H_
-#define SHELLSPACE_TOOLS_MEMORY_LIMITS_H_
+#ifndef SHELLSPACE_TOOLS_RUN_MEMORY_LIMITS_H_
+#define SHELLSPACE_TOOLS_RUN_MEMORY_LIMITS_H_
 
 #include <string>
 
@@ -50,4 +50,4 @@ std::string StepsBoundText(const std::string& model);
 
 }  // namespace shellspace
 
-#endif  // SHELLSPACE_TOOLS_MEMORY_LIMITS_H_
+#endif  // SHELLSPACE_TOOLS_RUN_MEMORY_LIMITS_H_

@@ -1,8 +1,8 @@
 // What a verb run writes: its identity (run id, command line), the fields
 // every --json report and summary.json carry, and an output directory
 // written whole (io/output_directory.h) with its summary.json.
-#ifndef SHELLSPACE_TOOLS_RUN_OUTPUT_H_
-#define SHELLSPACE_TOOLS_RUN_OUTPUT_H_
+#ifndef SHELLSPACE_TOOLS_RUN_RUN_OUTPUT_H_
+#define SHELLSPACE_TOOLS_RUN_RUN_OUTPUT_H_
 
 #include <string>
 
@@ -23,7 +23,7 @@ const std::string& RunCommandLine();
 
 // Adds material (the resolved material of the run, RunMaterialJson in
 // shell_inputs.h, if the verb has one), run_id, command_line, partial (a time limit or a signal cut a solve
-// short, tools/stop_request.h) and stop_reason ("" or e.g. "SIGTERM",
+// short, tools/run/stop_request.h) and stop_reason ("" or e.g. "SIGTERM",
 // "time limit 10 s") to `json`.
 JsonObject& AddRunFields(JsonObject& json);
 
@@ -54,4 +54,4 @@ class RunDirectory {
 
 }  // namespace shellspace
 
-#endif  // SHELLSPACE_TOOLS_RUN_OUTPUT_H_
+#endif  // SHELLSPACE_TOOLS_RUN_RUN_OUTPUT_H_

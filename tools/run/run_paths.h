@@ -10,8 +10,8 @@
 // "./out" and "out/" are "out"), so two spellings of one file are one
 // file. Once every check passed, the temporaries of killed runs beside each
 // output are removed (RemoveLeftoversOfEndedRuns).
-#ifndef SHELLSPACE_TOOLS_RUN_PATHS_H_
-#define SHELLSPACE_TOOLS_RUN_PATHS_H_
+#ifndef SHELLSPACE_TOOLS_RUN_RUN_PATHS_H_
+#define SHELLSPACE_TOOLS_RUN_RUN_PATHS_H_
 
 #include <string>
 #include <vector>
@@ -49,4 +49,4 @@ class RunPaths {
 
 }  // namespace shellspace
 
-#endif  // SHELLSPACE_TOOLS_RUN_PATHS_H_
+#endif  // SHELLSPACE_TOOLS_RUN_RUN_PATHS_H_

@@ -1,13 +1,13 @@
-#include "shellspace/tools/run_status.h"
+#include "shellspace/tools/run/run_status.h"
 
-#include "shellspace/tools/stop_request.h"
+#include "shellspace/tools/run/stop_request.h"
 
 #include <gflags/gflags.h>
 
 #include <cstdio>
 #include <iostream>
 
-#include "shellspace/tools/common_flags.h"
+#include "shellspace/tools/run/common_flags.h"
 
 DEFINE_bool(allow_unconverged, false,
             "see `shellspace VERB --help`");
@@ -20,21 +20,6 @@ namespace {
 std::string g_stopped_failures;  // NOLINT(runtime/string)
 
 }  // namespace
-
-FlagSpec AllowUnconvergedFlag() {
-  return TextFlag("allow_unconverged",
-                  "exit 0 (with a warning line) even if a solve missed its "
-                  "stopping criterion; without it such a run writes its "
-                  "outputs and exits " +
-                      std::to_string(kExitNotConverged));
-}
-
-FlagSpec AllowUnsolvedFlag() {
-  return TextFlag("allow_unsolved",
-                  "exit 0 (with a warning line naming the step) even if an "
-                  "EXP step has no solution; without it exit " +
-                      std::to_string(kExitNotConverged));
-}
 
 void RunStatus::Require(bool met, const std::string& what) {
   if (!met) failures_.push_back(what);

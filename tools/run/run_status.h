@@ -4,13 +4,12 @@
 // exits with kExitNotConverged -- or, with --allow_unconverged (transport
 // and shoot: also --allow_unsolved), prints that line as a warning and
 // exits 0.
-#ifndef SHELLSPACE_TOOLS_RUN_STATUS_H_
-#define SHELLSPACE_TOOLS_RUN_STATUS_H_
+#ifndef SHELLSPACE_TOOLS_RUN_RUN_STATUS_H_
+#define SHELLSPACE_TOOLS_RUN_RUN_STATUS_H_
 
 #include <string>
+#include <utility>
 #include <vector>
-
-#include "shellspace/tools/verb_flags.h"
 
 namespace shellspace {
 
@@ -18,10 +17,6 @@ namespace shellspace {
 // not all meet their stopping criterion (1: bad input, 2: bad flags, 3:
 // internal error).
 inline constexpr int kExitNotConverged = 4;
-
-// --allow_unconverged (and --allow_unsolved for the EXP-step verbs).
-FlagSpec AllowUnconvergedFlag();
-FlagSpec AllowUnsolvedFlag();
 
 class RunStatus {
  public:
@@ -62,4 +57,4 @@ std::string GradientAboveTarget(double gradient, double target);
 
 }  // namespace shellspace
 
-#endif  // SHELLSPACE_TOOLS_RUN_STATUS_H_
+#endif  // SHELLSPACE_TOOLS_RUN_RUN_STATUS_H_

@@ -1,8 +1,8 @@
 // Loading the shells and options the verbs take as input. The flags these
-// functions read are in each verb's table (tools/verb_flags.h); main has
+// functions read are in each verb's table (tools/verbs/verb_flags.h); main has
 // checked their ranges and required values before the verb runs.
-#ifndef SHELLSPACE_TOOLS_SHELL_INPUTS_H_
-#define SHELLSPACE_TOOLS_SHELL_INPUTS_H_
+#ifndef SHELLSPACE_TOOLS_RUN_SHELL_INPUTS_H_
+#define SHELLSPACE_TOOLS_RUN_SHELL_INPUTS_H_
 
 #include <string>
 #include <vector>
@@ -77,7 +77,7 @@ std::vector<int> MaskFromFlags(int num_vertices);
 
 // Solver settings of --tolerance, --max_iterations, --threads, with
 // progress on unless --quiet, stopped by --time_limit and SIGINT/SIGTERM
-// (tools/stop_request.h).
+// (tools/run/stop_request.h).
 SolverSettings SettingsFromFlags(const std::string& label);
 
 // Splits "a,b,c" at commas (empty items are an error naming `flag`).
@@ -86,4 +86,4 @@ std::vector<std::string> SplitList(const std::string& list,
 
 }  // namespace shellspace
 
-#endif  // SHELLSPACE_TOOLS_SHELL_INPUTS_H_
+#endif  // SHELLSPACE_TOOLS_RUN_SHELL_INPUTS_H_

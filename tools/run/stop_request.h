@@ -18,8 +18,8 @@
 // The time limit is a stopping rule of the user: a run it does not stop
 // computes the same numbers as without it. A limit beyond the steady
 // clock's range (more than about 146 years, e.g. 1e10 s) is no limit.
-#ifndef SHELLSPACE_TOOLS_STOP_REQUEST_H_
-#define SHELLSPACE_TOOLS_STOP_REQUEST_H_
+#ifndef SHELLSPACE_TOOLS_RUN_STOP_REQUEST_H_
+#define SHELLSPACE_TOOLS_RUN_STOP_REQUEST_H_
 
 #include <string>
 
@@ -51,4 +51,4 @@ int StopExitCode(StopCause cause);
 
 }  // namespace shellspace
 
-#endif  // SHELLSPACE_TOOLS_STOP_REQUEST_H_
+#endif  // SHELLSPACE_TOOLS_RUN_STOP_REQUEST_H_

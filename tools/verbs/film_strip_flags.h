@@ -1,11 +1,11 @@
 // How a film strip is drawn, from the command line: --up, --labels and
 // --color, shared by `render` and every verb that writes a strip (--png of
 // geodesic, shoot, transport, spline, regress, pca; demo's film_strip.png).
-#ifndef SHELLSPACE_TOOLS_FILM_STRIP_FLAGS_H_
-#define SHELLSPACE_TOOLS_FILM_STRIP_FLAGS_H_
+#ifndef SHELLSPACE_TOOLS_VERBS_FILM_STRIP_FLAGS_H_
+#define SHELLSPACE_TOOLS_VERBS_FILM_STRIP_FLAGS_H_
 
 #include "shellspace/render/film_strip.h"
-#include "shellspace/tools/verb_flags.h"
+#include "shellspace/tools/verbs/verb_flags.h"
 
 namespace shellspace {
 
@@ -20,4 +20,4 @@ RenderOptions FilmStripOptionsFromFlags();
 
 }  // namespace shellspace
 
-#endif  // SHELLSPACE_TOOLS_FILM_STRIP_FLAGS_H_
+#endif  // SHELLSPACE_TOOLS_VERBS_FILM_STRIP_FLAGS_H_

@@ -1,7 +1,7 @@
 // The geodesic solve of the `geodesic` and `log` verbs: single level or
 // multiresolution by --multires.
-#ifndef SHELLSPACE_TOOLS_GEODESIC_SOLVE_H_
-#define SHELLSPACE_TOOLS_GEODESIC_SOLVE_H_
+#ifndef SHELLSPACE_TOOLS_VERBS_GEODESIC_SOLVE_H_
+#define SHELLSPACE_TOOLS_VERBS_GEODESIC_SOLVE_H_
 
 #include <string>
 
@@ -9,9 +9,9 @@
 #include "shellspace/problems/calculus/multiresolution.h"
 #include "shellspace/reports/path_reports.h"
 #include "shellspace/reports/solve_choices.h"
-#include "shellspace/tools/run_paths.h"
-#include "shellspace/tools/shell_inputs.h"
-#include "shellspace/tools/verb_flags.h"
+#include "shellspace/tools/run/run_paths.h"
+#include "shellspace/tools/run/shell_inputs.h"
+#include "shellspace/tools/verbs/verb_flags.h"
 
 namespace shellspace {
 
@@ -73,4 +73,4 @@ GeodesicOfFlags SolveGeodesicOfFlags(const std::string& verb);
 
 }  // namespace shellspace
 
-#endif  // SHELLSPACE_TOOLS_GEODESIC_SOLVE_H_
+#endif  // SHELLSPACE_TOOLS_VERBS_GEODESIC_SOLVE_H_

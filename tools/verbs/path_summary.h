@@ -1,17 +1,17 @@
 // The frame output of the path verbs and their verdicts; their --json
 // reports are built by reports/path_reports.h (shared with the Python
 // module).
-#ifndef SHELLSPACE_TOOLS_PATH_SUMMARY_H_
-#define SHELLSPACE_TOOLS_PATH_SUMMARY_H_
+#ifndef SHELLSPACE_TOOLS_VERBS_PATH_SUMMARY_H_
+#define SHELLSPACE_TOOLS_VERBS_PATH_SUMMARY_H_
 
 #include <string>
 
 #include "shellspace/problems/calculus/exponential_map.h"
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/reports/path_reports.h"
-#include "shellspace/tools/run_output.h"
-#include "shellspace/tools/run_status.h"
-#include "shellspace/tools/verb_flags.h"
+#include "shellspace/tools/run/run_output.h"
+#include "shellspace/tools/run/run_status.h"
+#include "shellspace/tools/verbs/verb_flags.h"
 
 namespace shellspace {
 
@@ -29,7 +29,7 @@ void CheckShoot(const ShootResult& result, RunStatus* status);
 // Writes shape_000.ply ... into the run's output directory and adds, if
 // --png is set, the film strip and, if --gltf is set, the frames as one
 // glTF 2.0 morph animation (io/gltf_writer.h) to its outside files
-// (tools/run_output.h): all appear together at Commit or none.
+// (tools/run/run_output.h): all appear together at Commit or none.
 void WritePathOutputs(RunDirectory* out, const Faces& faces,
                       const ShellPath& path);
 
@@ -44,4 +44,4 @@ std::string CommitPathRun(RunDirectory* out, JsonObject summary,
 
 }  // namespace shellspace
 
-#endif  // SHELLSPACE_TOOLS_PATH_SUMMARY_H_
+#endif  // SHELLSPACE_TOOLS_VERBS_PATH_SUMMARY_H_

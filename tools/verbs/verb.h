@@ -1,16 +1,16 @@
 // Registry of the `shellspace` command's verbs. Each verb lives in a
-// tools/verb_*.cc, lists the flags it takes in its own FlagTable
-// (tools/verb_flags.h) and registers itself with SHELLSPACE_REGISTER_VERB.
+// tools/verbs/verb_*.cc, lists the flags it takes in its own FlagTable
+// (tools/verbs/verb_flags.h) and registers itself with SHELLSPACE_REGISTER_VERB.
 // A verb with sub-commands registers each one as "VERB SUBCOMMAND"
 // ("branching simulate"), each with its own flags.
-#ifndef SHELLSPACE_TOOLS_VERB_H_
-#define SHELLSPACE_TOOLS_VERB_H_
+#ifndef SHELLSPACE_TOOLS_VERBS_VERB_H_
+#define SHELLSPACE_TOOLS_VERBS_VERB_H_
 
 #include <functional>
 #include <map>
 #include <string>
 
-#include "shellspace/tools/verb_flags.h"
+#include "shellspace/tools/verbs/verb_flags.h"
 
 namespace shellspace {
 
@@ -41,4 +41,4 @@ struct VerbRegistrar {
 
 }  // namespace shellspace
 
-#endif  // SHELLSPACE_TOOLS_VERB_H_
+#endif  // SHELLSPACE_TOOLS_VERBS_VERB_H_

@@ -9,13 +9,13 @@
 #include "shellspace/io/json_writer.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/elastic_deformation.h"
-#include "shellspace/tools/common_flags.h"
-#include "shellspace/tools/path_summary.h"
-#include "shellspace/tools/run_output.h"
-#include "shellspace/tools/run_paths.h"
-#include "shellspace/tools/run_status.h"
-#include "shellspace/tools/shell_inputs.h"
-#include "shellspace/tools/verb.h"
+#include "shellspace/tools/run/common_flags.h"
+#include "shellspace/tools/verbs/path_summary.h"
+#include "shellspace/tools/run/run_output.h"
+#include "shellspace/tools/run/run_paths.h"
+#include "shellspace/tools/run/run_status.h"
+#include "shellspace/tools/run/shell_inputs.h"
+#include "shellspace/tools/verbs/verb.h"
 
 DEFINE_string(targets, "", "deform: prescribed positions");
 

@@ -1,7 +1,7 @@
-#include "shellspace/tools/verb_flags.h"
+#include "shellspace/tools/verbs/verb_flags.h"
 
 #include "shellspace/solvers/solver_settings.h"
-#include "shellspace/tools/run_status.h"
+#include "shellspace/tools/run/run_status.h"
 
 #include <cmath>
 #include <sstream>
@@ -121,6 +121,21 @@ FlagSpec TimeLimitFlag() {
 
 FlagTable JsonFlag() {
   return {TextFlag("json", "print a JSON summary on stdout")};
+}
+
+FlagSpec AllowUnconvergedFlag() {
+  return TextFlag("allow_unconverged",
+                  "exit 0 (with a warning line) even if a solve missed its "
+                  "stopping criterion; without it such a run writes its "
+                  "outputs and exits " +
+                      std::to_string(kExitNotConverged));
+}
+
+FlagSpec AllowUnsolvedFlag() {
+  return TextFlag("allow_unsolved",
+                  "exit 0 (with a warning line naming the step) even if an "
+                  "EXP step has no solution; without it exit " +
+                      std::to_string(kExitNotConverged));
 }
 
 const FlagSpec* FindFlag(const FlagTable& table, const std::string& name) {

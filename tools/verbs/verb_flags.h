@@ -6,8 +6,8 @@
 // rejects any flag set on the command line that is not in the verb's table,
 // applies the verb's defaults, checks the required flags and the ranges,
 // and prints the table for `shellspace VERB --help`.
-#ifndef SHELLSPACE_TOOLS_VERB_FLAGS_H_
-#define SHELLSPACE_TOOLS_VERB_FLAGS_H_
+#ifndef SHELLSPACE_TOOLS_VERBS_VERB_FLAGS_H_
+#define SHELLSPACE_TOOLS_VERBS_VERB_FLAGS_H_
 
 #include <functional>
 #include <initializer_list>
@@ -81,12 +81,16 @@ FlagTable Flags(std::initializer_list<FlagTable> parts);
 FlagTable MaterialFlags();  // --mu, --lambda, --eta, --bending
 // --tolerance, --max_iterations, --threads, --quiet, --time_limit
 FlagTable SolverFlags();
-FlagSpec TimeLimitFlag();  // --time_limit (tools/stop_request.h)
+FlagSpec TimeLimitFlag();  // --time_limit (tools/run/stop_request.h)
 FlagTable JsonFlag();       // --json
+// --allow_unconverged (and --allow_unsolved for the EXP-step verbs); the
+// flags themselves and what they change are tools/run/run_status.h's.
+FlagSpec AllowUnconvergedFlag();
+FlagSpec AllowUnsolvedFlag();
 
 // The flag of `table` called `name`, or nullptr.
 const FlagSpec* FindFlag(const FlagTable& table, const std::string& name);
 
 }  // namespace shellspace
 
-#endif  // SHELLSPACE_TOOLS_VERB_FLAGS_H_
+#endif  // SHELLSPACE_TOOLS_VERBS_VERB_FLAGS_H_

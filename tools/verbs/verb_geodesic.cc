@@ -6,15 +6,15 @@
 
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/geodesic.h"
-#include "shellspace/tools/common_flags.h"
-#include "shellspace/tools/film_strip_flags.h"
-#include "shellspace/tools/geodesic_solve.h"
-#include "shellspace/tools/memory_limits.h"
-#include "shellspace/tools/path_summary.h"
-#include "shellspace/tools/run_paths.h"
-#include "shellspace/tools/run_status.h"
-#include "shellspace/tools/shell_inputs.h"
-#include "shellspace/tools/verb.h"
+#include "shellspace/tools/run/common_flags.h"
+#include "shellspace/tools/verbs/film_strip_flags.h"
+#include "shellspace/tools/verbs/geodesic_solve.h"
+#include "shellspace/tools/run/memory_limits.h"
+#include "shellspace/tools/verbs/path_summary.h"
+#include "shellspace/tools/run/run_paths.h"
+#include "shellspace/tools/run/run_status.h"
+#include "shellspace/tools/run/shell_inputs.h"
+#include "shellspace/tools/verbs/verb.h"
 
 namespace shellspace {
 namespace {
