@@ -30,3 +30,38 @@ function(shellspace_room)
   target_compile_definitions(${target} PRIVATE _USE_MATH_DEFINES)
   set_property(GLOBAL APPEND PROPERTY SHELLSPACE_ROOMS ${target})
 endfunction()
+
+# Writes FILE, the table of the layering test (tests/layering_test.sh): one
+# line per room, bottom up (the order of SHELLSPACE_ROOMS),
+#
+#   <room> <source folder> <include prefix> : <rooms it links>
+#
+# from each room's LINK_LIBRARIES (its public and private
+# target_link_libraries), so that the test checks the includes against the
+# links the build has, not against a list of its own.
+function(shellspace_write_room_table file)
+  get_property(targets GLOBAL PROPERTY SHELLSPACE_ROOMS)
+  set(text "# Written by cmake/rooms.cmake (shellspace_write_room_table) from the rooms' links.\n")
+  foreach(target ${targets})
+    get_target_property(room ${target} EXPORT_NAME)
+    get_target_property(dir ${target} SOURCE_DIR)
+    file(RELATIVE_PATH folder ${PROJECT_SOURCE_DIR} ${dir})
+    get_target_property(links ${target} LINK_LIBRARIES)
+    set(linked "")
+    foreach(item IN LISTS links)
+      if(TARGET ${item})
+        get_target_property(real ${item} ALIASED_TARGET)
+        if(NOT real)
+          set(real ${item})
+        endif()
+        if(real IN_LIST targets)
+          get_target_property(name ${real} EXPORT_NAME)
+          list(APPEND linked ${name})
+        endif()
+      endif()
+    endforeach()
+    list(JOIN linked " " linked)
+    string(APPEND text "${room} ${folder} ${SHELLSPACE_INCLUDE_PREFIX}${folder} : ${linked}\n")
+  endforeach()
+  file(WRITE ${file} "${text}")
+endfunction()
