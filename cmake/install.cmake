@@ -107,14 +107,12 @@ install(EXPORT shellspaceTargets
 install(TARGETS shellspace_cli
   RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
 
-# Public headers keep their source-tree layout under include/shellspace/; the
+# Public headers keep their source-tree layout (shellspace/) under include/; the
 # library's own includes are "shellspace/<room>/...", so only include/ is on a
 # consumer's include path.
-foreach(shellspace_header_dir runtime geometry models cost_functions solvers problems io render reports)
-  install(DIRECTORY ${PROJECT_SOURCE_DIR}/${shellspace_header_dir}/
-    DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/shellspace/${shellspace_header_dir}
-    FILES_MATCHING PATTERN "*.h")
-endforeach()
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/shellspace/
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/shellspace
+  FILES_MATCHING PATTERN "*.h")
 
 # The Config is written by configure_file, not
 # configure_package_config_file: the latter's @PACKAGE_INIT@ names the

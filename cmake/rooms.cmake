@@ -6,9 +6,9 @@
 # which builds every .cc of that folder (and, with RECURSE, of its
 # subfolders) into the target shellspace_<room>, exported as
 # shellspace::<room>. Sources include every project header as
-# "shellspace/<room>/<file>.h": the build tree reaches them through the
-# symbolic link build/include/shellspace -> the source tree, an installed
-# tree through <prefix>/include/shellspace/.
+# "shellspace/<room>/<file>.h", their path in the checkout (the rooms live
+# under shellspace/, whose parent is the build tree's include folder); an
+# installed tree has the same paths under <prefix>/include/.
 
 function(shellspace_room)
   cmake_parse_arguments(ROOM "RECURSE" "NAME" "PUBLIC;PRIVATE" ${ARGN})

@@ -1,7 +1,7 @@
 // libFuzzer target: the vertex-mask reader (ReadMask, io/mesh_io.h) for a
 // mesh of 100 vertices: returns sorted unique indices in [0, 100) or throws
 // a one-line, printable InputError.
-#include "shellspace/fuzz/fuzz_reader.h"
+#include "fuzz/fuzz_reader.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   using namespace shellspace;

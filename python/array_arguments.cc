@@ -1,4 +1,4 @@
-#include "shellspace/python/array_arguments.h"
+#include "python/array_arguments.h"
 
 #include <algorithm>
 #include <cmath>

@@ -66,11 +66,11 @@
 #include "shellspace/reports/path_reports.h"
 #include "shellspace/reports/shape_reports.h"
 #include "shellspace/reports/solve_choices.h"
-#include "shellspace/python/array_arguments.h"
-#include "shellspace/python/solve_control.h"
+#include "python/array_arguments.h"
+#include "python/solve_control.h"
 // The CLI's memory bounds of --steps (compiled into the module,
 // python/CMakeLists.txt).
-#include "shellspace/tools/run/memory_limits.h"
+#include "tools/run/memory_limits.h"
 
 namespace py = pybind11;
 

@@ -1,4 +1,4 @@
-#include "shellspace/python/solve_control.h"
+#include "python/solve_control.h"
 
 #include <signal.h>
 

@@ -13,14 +13,17 @@
 #   - an include of a room above it (one that links it): "upward";
 #   - an include of a room it does not link: "not linked" (a missing link:
 #     it compiles only because every room shares one include folder);
-#   - a project include that names no room (tools/, python/, a typo);
-#   - an include without the shellspace/ prefix ("geometry/mesh.h"), in
-#     any of the project's C++ folders;
+#   - an include of the front ends (tools/, tests/, python/, bench/,
+#     examples/, fuzz/: included by their path from the checkout's top,
+#     "tools/run/run_status.h") from a room: "upward";
+#   - an include "shellspace/..." that names no room (anywhere);
+#   - an include of a room without the shellspace/ prefix
+#     ("geometry/mesh.h"), in any of the project's C++ folders;
 #   - a link in the table to a room that is not below (a cycle);
 #   - in the CLI, an include of tools/verbs/ from tools/run/ (the run's
 #     infrastructure knows no verb).
 # With --self-test, first checks that a copy of the rooms passes and that
-# each of seven injected faults (bad includes, wrong edges in the table)
+# each of eight injected faults (bad includes, wrong edges in the table)
 # fails with its message.
 set -uo pipefail
 src="${1:?usage: $0 SOURCE_DIR ROOM_TABLE [--self-test]}"
@@ -63,7 +66,8 @@ check() {
         top = prefix[name]; sub(/^shellspace\//, "", top); sub(/\/.*/, "", top)
         bare[top] = 1
       }
-      bare["tools"] = 1; bare["python"] = 1
+      split("tools tests python bench examples fuzz", f, " ")
+      for (i in f) front[f[i]] = 1
       for (a in order) {
         k = split(links[a], l, " ")
         for (i = 1; i <= k; i++) {
@@ -88,14 +92,22 @@ check() {
         fail(file " includes \"" include "\" without the shellspace/ prefix")
         next
       }
-      if (file ~ /^tools\/run\// && include ~ /^shellspace\/tools\/verbs\//) {
+      if (include ~ /^shellspace\// && room_of(include, "prefix") == "") {
+        fail(file " includes " include ", which names no room")
+        next
+      }
+      if (file ~ /^tools\/run\// && include ~ /^tools\/verbs\//) {
         fail(file " (tools/run) includes " include ": the run infrastructure knows no verb")
         next
       }
       room = room_of(file, "folder")
-      if (room == "" || include !~ /^shellspace\//) next
+      if (room == "") next
+      if (include ~ /\// && (top in front)) {
+        fail(file " (" room ") includes " include ": upward, " top "/ is above every room")
+        next
+      }
+      if (include !~ /^shellspace\//) next
       target = room_of(include, "prefix")
-      if (target == "") { fail(file " (" room ") includes " include ", which names no room"); next }
       if (target == room || ((room, target) in reach)) next
       if ((target, room) in reach)
         fail(file " (" room ") includes " include " (" target "): upward, " target " links " room)
@@ -138,7 +150,9 @@ if [[ "${3:-}" == "--self-test" ]]; then
   echo "#include \"$(prefix_of calculus)/geodesic.h\"" > "$probe"
   expect "upward include" "$geometry/layering_probe.h \(geometry\) includes .*: upward, calculus links geometry"
   echo "#include \"shellspace/tools/verbs/verb.h\"" > "$probe"
-  expect "include of no room" "$geometry/layering_probe.h \(geometry\) includes shellspace/tools/verbs/verb.h, which names no room"
+  expect "include of no room" "$geometry/layering_probe.h includes shellspace/tools/verbs/verb.h, which names no room"
+  echo "#include \"tools/run/run_status.h\"" > "$probe"
+  expect "room includes the CLI" "$geometry/layering_probe.h \(geometry\) includes tools/run/run_status.h: upward, tools/ is above every room"
   echo "#include \"geometry/mesh.h\"" > "$probe"
   expect "bare include" "$geometry/layering_probe.h includes \"geometry/mesh.h\" without the shellspace/ prefix"
   rm "$probe"
@@ -147,8 +161,8 @@ if [[ "${3:-}" == "--self-test" ]]; then
   expect "missing link" "$io/layering_probe.cc \(io\) includes .*: not linked, io does not link solvers"
   rm "$copy/$io/layering_probe.cc"
   mkdir -p "$copy/tools/run"
-  echo "#include \"shellspace/tools/verbs/verb.h\"" > "$copy/tools/run/layering_probe.cc"
-  expect "run includes a verb" "tools/run/layering_probe.cc \(tools/run\) includes shellspace/tools/verbs/verb.h"
+  echo "#include \"tools/verbs/verb.h\"" > "$copy/tools/run/layering_probe.cc"
+  expect "run includes a verb" "tools/run/layering_probe.cc \(tools/run\) includes tools/verbs/verb.h"
   rm -r "$copy/tools"
   # Wrong edges in the table: render without its link to the branching
   # model it draws, and geometry linking the calculus (a back edge).

@@ -23,12 +23,12 @@
 #include "shellspace/geometry/heap_reuse.h"
 #include "shellspace/runtime/openmp_threads.h"
 #include "shellspace/io/input_file.h"
-#include "shellspace/tools/run/common_flags.h"
-#include "shellspace/tools/run/flag_repeats.h"
-#include "shellspace/tools/run/run_output.h"
-#include "shellspace/tools/run/run_status.h"
-#include "shellspace/tools/run/stop_request.h"
-#include "shellspace/tools/verbs/verb.h"
+#include "tools/run/common_flags.h"
+#include "tools/run/flag_repeats.h"
+#include "tools/run/run_output.h"
+#include "tools/run/run_status.h"
+#include "tools/run/stop_request.h"
+#include "tools/verbs/verb.h"
 
 namespace shellspace {
 

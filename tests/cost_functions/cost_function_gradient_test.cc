@@ -8,8 +8,8 @@
 
 #include "shellspace/cost_functions/bending_cost_function.h"
 #include "shellspace/cost_functions/membrane_cost_function.h"
-#include "shellspace/tests/testing/derivative_check.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/derivative_check.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

@@ -20,8 +20,8 @@
 #include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/geometry/procedural_shapes.h"
 #include "shellspace/geometry/topology.h"
-#include "shellspace/tests/testing/derivative_check.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/derivative_check.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

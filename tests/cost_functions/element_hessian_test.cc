@@ -23,8 +23,8 @@
 
 #include "shellspace/cost_functions/shell/element_hessian.h"
 #include "shellspace/cost_functions/shell/element_set.h"
-#include "shellspace/tests/testing/derivative_check.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/derivative_check.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

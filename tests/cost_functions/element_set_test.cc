@@ -20,7 +20,7 @@
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/problems/calculus/path_hessian.h"
 #include "shellspace/solvers/gauge_reduced_solve.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

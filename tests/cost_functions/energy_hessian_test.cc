@@ -8,8 +8,8 @@
 
 #include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
-#include "shellspace/tests/testing/derivative_check.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/derivative_check.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

@@ -6,7 +6,7 @@
 
 #include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/cost_functions/shell/membrane_law.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

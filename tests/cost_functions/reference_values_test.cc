@@ -5,7 +5,7 @@
 
 #include "shellspace/cost_functions/deformation_energy_residuals.h"
 #include "shellspace/cost_functions/shell/deformation_energy.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

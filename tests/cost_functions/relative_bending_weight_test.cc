@@ -8,7 +8,7 @@
 #include <cmath>
 
 #include "shellspace/cost_functions/shell/deformation_energy.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

@@ -27,8 +27,8 @@
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
 #include "shellspace/geometry/procedural_shapes.h"
 #include "shellspace/geometry/topology.h"
-#include "shellspace/tests/testing/derivative_check.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/derivative_check.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

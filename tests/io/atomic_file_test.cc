@@ -15,8 +15,8 @@
 #include "shellspace/io/frame_sequence.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/io/png_writer.h"
-#include "shellspace/tests/testing/cli_output.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/cli_output.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

@@ -15,7 +15,7 @@
 #include <fstream>
 
 #include "shellspace/geometry/procedural_shapes.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

@@ -27,7 +27,7 @@
 #include <functional>
 
 #include "shellspace/io/mesh_io.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/test_support.h"
 
 #if defined(__SANITIZE_ADDRESS__)
 #define SHELLSPACE_TEST_ASAN 1

@@ -9,8 +9,8 @@
 
 #include "shellspace/geometry/validation.h"
 #include "shellspace/io/mesh_io.h"
-#include "shellspace/tests/io/bad_mesh_files.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/io/bad_mesh_files.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

@@ -9,7 +9,7 @@
 #include <fstream>
 
 #include "shellspace/geometry/mesh.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

@@ -17,8 +17,8 @@
 #include <fstream>
 #include <iostream>
 
-#include "shellspace/tests/testing/cli_output.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/cli_output.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

@@ -10,7 +10,7 @@
 
 #include "shellspace/render/bitmap_font.h"
 #include "shellspace/render/plot_axes.h"
-#include "shellspace/tests/testing/render_fixtures.h"
+#include "tests/testing/render_fixtures.h"
 
 namespace shellspace {
 namespace {

@@ -15,7 +15,7 @@
 #include "shellspace/render/film_strip.h"
 #include "shellspace/render/up_axis.h"
 #include "shellspace/render/view.h"
-#include "shellspace/tests/testing/render_fixtures.h"
+#include "tests/testing/render_fixtures.h"
 
 namespace shellspace {
 namespace {

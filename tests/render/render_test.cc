@@ -17,9 +17,9 @@
 #include "shellspace/render/camera.h"
 #include "shellspace/render/film_strip.h"
 #include "shellspace/render/view.h"
-#include "shellspace/tests/testing/cli_output.h"
-#include "shellspace/tests/testing/render_fixtures.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/cli_output.h"
+#include "tests/testing/render_fixtures.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

@@ -11,8 +11,8 @@
 #include "shellspace/render/camera.h"
 #include "shellspace/render/up_axis.h"
 #include "shellspace/render/view.h"
-#include "shellspace/tests/testing/render_fixtures.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/render_fixtures.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

@@ -11,8 +11,8 @@
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/problems/calculus/path_hessian.h"
 #include "shellspace/solvers/gauge_reduced_solve.h"
-#include "shellspace/tests/testing/kronecker_model.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/kronecker_model.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

@@ -9,8 +9,8 @@
 #include <Eigen/SparseCholesky>
 
 #include "shellspace/geometry/topology.h"
-#include "shellspace/tests/testing/kronecker_model.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/kronecker_model.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

@@ -7,7 +7,7 @@
 
 #include <cmath>
 
-#include "shellspace/tests/testing/kronecker_model.h"
+#include "tests/testing/kronecker_model.h"
 
 namespace shellspace {
 namespace {

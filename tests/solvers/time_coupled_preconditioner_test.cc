@@ -16,8 +16,8 @@
 #include "shellspace/problems/calculus/path_hessian.h"
 #include "shellspace/solvers/block_jacobi_cg.h"
 #include "shellspace/solvers/gauge_reduced_solve.h"
-#include "shellspace/tests/testing/kronecker_model.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/kronecker_model.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

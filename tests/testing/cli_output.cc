@@ -1,4 +1,4 @@
-#include "shellspace/tests/testing/cli_output.h"
+#include "tests/testing/cli_output.h"
 
 #include <cmath>
 #include <cstdio>
@@ -8,7 +8,7 @@
 
 #include <gtest/gtest.h>
 
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace::testing {
 

@@ -1,4 +1,4 @@
-#include "shellspace/tests/testing/derivative_check.h"
+#include "tests/testing/derivative_check.h"
 
 #include <ceres/gradient_checker.h>
 

@@ -1,7 +1,7 @@
-#include "shellspace/tests/testing/kronecker_model.h"
+#include "tests/testing/kronecker_model.h"
 
 #include "shellspace/geometry/topology.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace::testing {
 

@@ -1,6 +1,6 @@
-#include "shellspace/tests/testing/render_fixtures.h"
+#include "tests/testing/render_fixtures.h"
 
-#include "shellspace/tests/testing/cli_output.h"
+#include "tests/testing/cli_output.h"
 
 namespace shellspace::testing {
 

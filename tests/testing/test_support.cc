@@ -1,6 +1,6 @@
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/test_support.h"
 
-#include "shellspace/tests/testing/cli_output.h"
+#include "tests/testing/cli_output.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>

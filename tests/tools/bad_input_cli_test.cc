@@ -12,8 +12,8 @@
 #include <map>
 #include <sstream>
 
-#include "shellspace/tests/io/bad_mesh_files.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/io/bad_mesh_files.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

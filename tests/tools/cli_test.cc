@@ -17,7 +17,7 @@
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/branching/simulation.h"
 #include "shellspace/problems/calculus/geodesic.h"
-#include "shellspace/tests/tools/cli_test_support.h"
+#include "tests/tools/cli_test_support.h"
 
 namespace shellspace {
 namespace {

@@ -6,8 +6,8 @@
 
 #include <string>
 
-#include "shellspace/tests/testing/cli_output.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/cli_output.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 

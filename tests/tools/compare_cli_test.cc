@@ -9,7 +9,7 @@
 #include "shellspace/io/frame_sequence.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/shape_comparison.h"
-#include "shellspace/tests/tools/cli_test_support.h"
+#include "tests/tools/cli_test_support.h"
 
 namespace shellspace {
 namespace {

@@ -13,7 +13,7 @@
 #include "shellspace/geometry/procedural_shapes.h"
 #include "shellspace/geometry/validation.h"
 #include "shellspace/io/mesh_io.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

@@ -9,8 +9,8 @@
 #include <utility>
 #include <vector>
 
-#include "shellspace/tests/testing/render_fixtures.h"
-#include "shellspace/tests/tools/cli_test_support.h"
+#include "tests/testing/render_fixtures.h"
+#include "tests/tools/cli_test_support.h"
 
 namespace shellspace {
 namespace {

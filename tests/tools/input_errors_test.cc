@@ -12,7 +12,7 @@
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/problems/calculus/parallel_transport.h"
 #include "shellspace/problems/splines/spline.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

@@ -11,7 +11,7 @@
 #include <iostream>
 #include <sstream>
 
-#include "shellspace/tests/tools/cli_test_support.h"
+#include "tests/tools/cli_test_support.h"
 
 namespace shellspace {
 namespace {

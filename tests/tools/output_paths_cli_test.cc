@@ -20,7 +20,7 @@
 #include <sstream>
 
 #include "shellspace/io/atomic_file.h"
-#include "shellspace/tests/tools/cli_test_support.h"
+#include "tests/tools/cli_test_support.h"
 
 namespace shellspace {
 namespace {

@@ -12,7 +12,7 @@
 #include "shellspace/cost_functions/shell/relative_bending_weight.h"
 #include "shellspace/io/frame_sequence.h"
 #include "shellspace/io/mesh_io.h"
-#include "shellspace/tests/tools/cli_test_support.h"
+#include "tests/tools/cli_test_support.h"
 
 namespace shellspace {
 namespace {

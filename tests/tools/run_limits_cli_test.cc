@@ -14,7 +14,7 @@
 #include <fstream>
 #include <iostream>
 
-#include "shellspace/tests/tools/cli_test_support.h"
+#include "tests/tools/cli_test_support.h"
 
 namespace shellspace {
 namespace {

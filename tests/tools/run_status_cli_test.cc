@@ -13,7 +13,7 @@
 #include <vector>
 
 #include "shellspace/io/mesh_io.h"
-#include "shellspace/tests/tools/cli_test_support.h"
+#include "tests/tools/cli_test_support.h"
 
 namespace shellspace {
 namespace {

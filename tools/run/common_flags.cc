@@ -1,6 +1,6 @@
 // The shared gflags variables. Their meanings are per verb: see each verb's
 // FlagTable (`shellspace VERB --help`); the text here is only gflags' own.
-#include "shellspace/tools/run/common_flags.h"
+#include "tools/run/common_flags.h"
 
 #include "shellspace/cost_functions/shell/relative_bending_weight.h"
 

@@ -1,4 +1,4 @@
-#include "shellspace/tools/run/flag_repeats.h"
+#include "tools/run/flag_repeats.h"
 
 #include <gflags/gflags.h>
 

@@ -1,4 +1,4 @@
-#include "shellspace/tools/run/memory_limits.h"
+#include "tools/run/memory_limits.h"
 
 #include <unistd.h>
 

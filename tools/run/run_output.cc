@@ -1,12 +1,12 @@
-#include "shellspace/tools/run/run_output.h"
+#include "tools/run/run_output.h"
 
 #include <unistd.h>
 
 #include <chrono>
 #include <ctime>
 
-#include "shellspace/tools/run/shell_inputs.h"
-#include "shellspace/tools/run/stop_request.h"
+#include "tools/run/shell_inputs.h"
+#include "tools/run/stop_request.h"
 
 namespace shellspace {
 namespace {

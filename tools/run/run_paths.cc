@@ -1,4 +1,4 @@
-#include "shellspace/tools/run/run_paths.h"
+#include "tools/run/run_paths.h"
 
 #include <sys/statvfs.h>
 #include <unistd.h>

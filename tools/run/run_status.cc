@@ -1,13 +1,13 @@
-#include "shellspace/tools/run/run_status.h"
+#include "tools/run/run_status.h"
 
-#include "shellspace/tools/run/stop_request.h"
+#include "tools/run/stop_request.h"
 
 #include <gflags/gflags.h>
 
 #include <cstdio>
 #include <iostream>
 
-#include "shellspace/tools/run/common_flags.h"
+#include "tools/run/common_flags.h"
 
 DEFINE_bool(allow_unconverged, false,
             "see `shellspace VERB --help`");

@@ -1,4 +1,4 @@
-#include "shellspace/tools/run/shell_inputs.h"
+#include "tools/run/shell_inputs.h"
 
 #include <cstdio>
 
@@ -12,8 +12,8 @@
 #include "shellspace/reports/shape_reports.h"
 #include "shellspace/io/atomic_file.h"
 #include "shellspace/io/mesh_io.h"
-#include "shellspace/tools/run/common_flags.h"
-#include "shellspace/tools/run/stop_request.h"
+#include "tools/run/common_flags.h"
+#include "tools/run/stop_request.h"
 
 namespace shellspace {
 

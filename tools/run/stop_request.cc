@@ -1,4 +1,4 @@
-#include "shellspace/tools/run/stop_request.h"
+#include "tools/run/stop_request.h"
 
 #include <signal.h>
 

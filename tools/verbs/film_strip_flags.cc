@@ -1,4 +1,4 @@
-#include "shellspace/tools/verbs/film_strip_flags.h"
+#include "tools/verbs/film_strip_flags.h"
 
 #include <gflags/gflags.h>
 

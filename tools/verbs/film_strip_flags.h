@@ -5,7 +5,7 @@
 #define SHELLSPACE_TOOLS_VERBS_FILM_STRIP_FLAGS_H_
 
 #include "shellspace/render/film_strip.h"
-#include "shellspace/tools/verbs/verb_flags.h"
+#include "tools/verbs/verb_flags.h"
 
 namespace shellspace {
 

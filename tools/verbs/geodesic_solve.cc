@@ -1,4 +1,4 @@
-#include "shellspace/tools/verbs/geodesic_solve.h"
+#include "tools/verbs/geodesic_solve.h"
 
 #include <cstdio>
 #include <string>
@@ -6,9 +6,9 @@
 
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/geometry/validation.h"
-#include "shellspace/tools/run/common_flags.h"
-#include "shellspace/tools/run/memory_limits.h"
-#include "shellspace/tools/verbs/path_summary.h"
+#include "tools/run/common_flags.h"
+#include "tools/run/memory_limits.h"
+#include "tools/verbs/path_summary.h"
 
 namespace shellspace {
 

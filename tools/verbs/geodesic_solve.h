@@ -9,9 +9,9 @@
 #include "shellspace/problems/calculus/multiresolution.h"
 #include "shellspace/reports/path_reports.h"
 #include "shellspace/reports/solve_choices.h"
-#include "shellspace/tools/run/run_paths.h"
-#include "shellspace/tools/run/shell_inputs.h"
-#include "shellspace/tools/verbs/verb_flags.h"
+#include "tools/run/run_paths.h"
+#include "tools/run/shell_inputs.h"
+#include "tools/verbs/verb_flags.h"
 
 namespace shellspace {
 

@@ -1,4 +1,4 @@
-#include "shellspace/tools/verbs/path_summary.h"
+#include "tools/verbs/path_summary.h"
 
 #include <algorithm>
 #include <iostream>
@@ -8,9 +8,9 @@
 #include "shellspace/io/gltf_writer.h"
 #include "shellspace/io/png_writer.h"
 #include "shellspace/render/film_strip.h"
-#include "shellspace/tools/run/common_flags.h"
-#include "shellspace/tools/verbs/film_strip_flags.h"
-#include "shellspace/tools/run/shell_inputs.h"
+#include "tools/run/common_flags.h"
+#include "tools/verbs/film_strip_flags.h"
+#include "tools/run/shell_inputs.h"
 
 namespace shellspace {
 

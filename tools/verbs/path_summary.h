@@ -9,9 +9,9 @@
 #include "shellspace/problems/calculus/exponential_map.h"
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/reports/path_reports.h"
-#include "shellspace/tools/run/run_output.h"
-#include "shellspace/tools/run/run_status.h"
-#include "shellspace/tools/verbs/verb_flags.h"
+#include "tools/run/run_output.h"
+#include "tools/run/run_status.h"
+#include "tools/verbs/verb_flags.h"
 
 namespace shellspace {
 

@@ -10,7 +10,7 @@
 #include <map>
 #include <string>
 
-#include "shellspace/tools/verbs/verb_flags.h"
+#include "tools/verbs/verb_flags.h"
 
 namespace shellspace {
 

@@ -33,14 +33,14 @@
 #include "shellspace/io/atomic_file.h"
 #include "shellspace/io/png_writer.h"
 #include "shellspace/render/branching_image.h"
-#include "shellspace/tools/run/common_flags.h"
-#include "shellspace/tools/run/memory_limits.h"
-#include "shellspace/tools/run/run_output.h"
-#include "shellspace/tools/run/run_paths.h"
-#include "shellspace/tools/run/stop_request.h"
+#include "tools/run/common_flags.h"
+#include "tools/run/memory_limits.h"
+#include "tools/run/run_output.h"
+#include "tools/run/run_paths.h"
+#include "tools/run/stop_request.h"
 #include "shellspace/io/json_writer.h"
 #include "shellspace/reports/branching_reports.h"
-#include "shellspace/tools/verbs/verb.h"
+#include "tools/verbs/verb.h"
 
 DEFINE_double(length, 1.0, "branching: domain length L");
 DEFINE_int32(nx, 64, "branching simulate: number of x-cells");

@@ -12,10 +12,10 @@
 #include "shellspace/io/json_writer.h"
 #include "shellspace/reports/path_reports.h"
 #include "shellspace/problems/calculus/shape_comparison.h"
-#include "shellspace/tools/run/common_flags.h"
-#include "shellspace/tools/run/run_status.h"
-#include "shellspace/tools/run/shell_inputs.h"
-#include "shellspace/tools/verbs/verb.h"
+#include "tools/run/common_flags.h"
+#include "tools/run/run_status.h"
+#include "tools/run/shell_inputs.h"
+#include "tools/verbs/verb.h"
 
 DEFINE_string(a, "", "compare: the first shell or path");
 DEFINE_string(b, "", "compare: the second shell or path");

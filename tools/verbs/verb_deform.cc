@@ -9,13 +9,13 @@
 #include "shellspace/io/json_writer.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/elastic_deformation.h"
-#include "shellspace/tools/run/common_flags.h"
-#include "shellspace/tools/verbs/path_summary.h"
-#include "shellspace/tools/run/run_output.h"
-#include "shellspace/tools/run/run_paths.h"
-#include "shellspace/tools/run/run_status.h"
-#include "shellspace/tools/run/shell_inputs.h"
-#include "shellspace/tools/verbs/verb.h"
+#include "tools/run/common_flags.h"
+#include "tools/verbs/path_summary.h"
+#include "tools/run/run_output.h"
+#include "tools/run/run_paths.h"
+#include "tools/run/run_status.h"
+#include "tools/run/shell_inputs.h"
+#include "tools/verbs/verb.h"
 
 DEFINE_string(targets, "", "deform: prescribed positions");
 

@@ -8,10 +8,10 @@
 #include "shellspace/cost_functions/edge_angle_bending.h"
 #include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/reports/shape_reports.h"
-#include "shellspace/tools/run/common_flags.h"
-#include "shellspace/tools/run/run_status.h"
-#include "shellspace/tools/run/shell_inputs.h"
-#include "shellspace/tools/verbs/verb.h"
+#include "tools/run/common_flags.h"
+#include "tools/run/run_status.h"
+#include "tools/run/shell_inputs.h"
+#include "tools/verbs/verb.h"
 
 DEFINE_string(deformed, "", "energy: deformed shell");
 

@@ -8,9 +8,9 @@
 #include "shellspace/io/frame_sequence.h"
 #include "shellspace/io/gltf_writer.h"
 #include "shellspace/io/json_writer.h"
-#include "shellspace/tools/run/common_flags.h"
-#include "shellspace/tools/run/run_paths.h"
-#include "shellspace/tools/verbs/verb.h"
+#include "tools/run/common_flags.h"
+#include "tools/run/run_paths.h"
+#include "tools/verbs/verb.h"
 
 DECLARE_string(input);
 DEFINE_double(fps, 4.0, "export: frames per second");

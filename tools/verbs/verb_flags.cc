@@ -1,7 +1,7 @@
-#include "shellspace/tools/verbs/verb_flags.h"
+#include "tools/verbs/verb_flags.h"
 
 #include "shellspace/solvers/solver_settings.h"
-#include "shellspace/tools/run/run_status.h"
+#include "tools/run/run_status.h"
 
 #include <cmath>
 #include <sstream>

@@ -6,15 +6,15 @@
 
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/geodesic.h"
-#include "shellspace/tools/run/common_flags.h"
-#include "shellspace/tools/verbs/film_strip_flags.h"
-#include "shellspace/tools/verbs/geodesic_solve.h"
-#include "shellspace/tools/run/memory_limits.h"
-#include "shellspace/tools/verbs/path_summary.h"
-#include "shellspace/tools/run/run_paths.h"
-#include "shellspace/tools/run/run_status.h"
-#include "shellspace/tools/run/shell_inputs.h"
-#include "shellspace/tools/verbs/verb.h"
+#include "tools/run/common_flags.h"
+#include "tools/verbs/film_strip_flags.h"
+#include "tools/verbs/geodesic_solve.h"
+#include "tools/run/memory_limits.h"
+#include "tools/verbs/path_summary.h"
+#include "tools/run/run_paths.h"
+#include "tools/run/run_status.h"
+#include "tools/run/shell_inputs.h"
+#include "tools/verbs/verb.h"
 
 namespace shellspace {
 namespace {

@@ -10,10 +10,10 @@
 #include "shellspace/render/film_strip.h"
 #include "shellspace/io/frame_sequence.h"
 #include "shellspace/render/view.h"
-#include "shellspace/tools/run/common_flags.h"
-#include "shellspace/tools/verbs/film_strip_flags.h"
-#include "shellspace/tools/run/run_paths.h"
-#include "shellspace/tools/verbs/verb.h"
+#include "tools/run/common_flags.h"
+#include "tools/verbs/film_strip_flags.h"
+#include "tools/run/run_paths.h"
+#include "tools/verbs/verb.h"
 
 DEFINE_string(input, "", "render: the meshes");
 DEFINE_string(view, "front", "render: the view direction");

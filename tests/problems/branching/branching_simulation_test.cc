@@ -15,7 +15,7 @@
 #include "shellspace/problems/branching/initial_guess.h"
 #include "shellspace/problems/branching/relaxed_problem.h"
 #include "shellspace/problems/branching/simulation.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace::branching {
 namespace {

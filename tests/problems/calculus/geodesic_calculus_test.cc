@@ -11,7 +11,7 @@
 #include "shellspace/problems/calculus/exponential_map.h"
 #include "shellspace/problems/calculus/parallel_transport.h"
 #include "shellspace/solvers/rigid_gauge.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

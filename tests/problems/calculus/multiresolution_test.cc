@@ -13,7 +13,7 @@
 #include "shellspace/geometry/topology.h"
 #include "shellspace/problems/calculus/deformation_transfer.h"
 #include "shellspace/problems/calculus/shared_decimation.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

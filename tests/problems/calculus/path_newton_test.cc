@@ -18,8 +18,8 @@
 #include "shellspace/solvers/gauge_reduced_solve.h"
 #include "shellspace/solvers/reusable_cholesky.h"
 #include "shellspace/solvers/space_time_ordering.h"
-#include "shellspace/tests/testing/derivative_check.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/derivative_check.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

@@ -7,7 +7,7 @@
 
 #include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/problems/calculus/shape_comparison.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

@@ -18,7 +18,7 @@
 #include "shellspace/geometry/element_geometry.h"
 #include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/problems/splines/cubic_spline.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

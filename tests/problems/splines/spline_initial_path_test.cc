@@ -9,7 +9,7 @@
 #include <utility>
 
 #include "shellspace/geometry/rigid_alignment.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

@@ -7,7 +7,7 @@
 #include <random>
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

@@ -10,9 +10,9 @@
 #include <random>
 
 #include "shellspace/geometry/rigid_alignment.h"
-#include "shellspace/tests/testing/cli_output.h"
-#include "shellspace/tests/testing/derivative_check.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/cli_output.h"
+#include "tests/testing/derivative_check.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {

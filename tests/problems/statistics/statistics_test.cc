@@ -19,8 +19,8 @@
 #include "shellspace/problems/statistics/leave_one_out.h"
 #include "shellspace/problems/statistics/procrustes_pca.h"
 #include "shellspace/problems/statistics/shell_pca.h"
-#include "shellspace/tests/testing/cli_output.h"
-#include "shellspace/tests/testing/test_support.h"
+#include "tests/testing/cli_output.h"
+#include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {
