@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "shellspace/geometry/mesh.h"
-#include "shellspace/geometry/heap_reuse.h"
+#include "shellspace/runtime/heap_reuse.h"
 #include "shellspace/runtime/openmp_threads.h"
 #include "shellspace/io/input_file.h"
 #include "tools/run/common_flags.h"

@@ -1,4 +1,4 @@
-#include "shellspace/geometry/heap_reuse.h"
+#include "shellspace/runtime/heap_reuse.h"
 
 #include <cstdlib>
 #include <cstring>

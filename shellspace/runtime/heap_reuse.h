@@ -8,8 +8,8 @@
 // 32 MB (glibc's ceiling) and the trim threshold to 2 GB keeps blocks up to
 // 32 MB in the heap once freed; larger ones (the x16 meshes' blocks) are
 // still mapped and returned, so the peak of a large solve is unchanged.
-#ifndef SHELLSPACE_GEOMETRY_HEAP_REUSE_H_
-#define SHELLSPACE_GEOMETRY_HEAP_REUSE_H_
+#ifndef SHELLSPACE_RUNTIME_HEAP_REUSE_H_
+#define SHELLSPACE_RUNTIME_HEAP_REUSE_H_
 
 namespace shellspace {
 
@@ -23,4 +23,4 @@ void KeepFreedHeapForReuse();
 
 }  // namespace shellspace
 
-#endif  // SHELLSPACE_GEOMETRY_HEAP_REUSE_H_
+#endif  // SHELLSPACE_RUNTIME_HEAP_REUSE_H_

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "shellspace/geometry/mesh.h"
-#include "shellspace/tools/verb.h"
+#include "tools/verbs/verb.h"
 
 DECLARE_string(inputs);
 DECLARE_string(output);
