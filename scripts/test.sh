@@ -5,7 +5,7 @@
 # ./build-fuzz (-DSHELLSPACE_BUILD_FUZZERS=ON, only the fuzz targets and the
 # geometry and io rooms, with ASan + UBSan) and fuzz/run.sh with 20000
 # inputs per target (about 3 minutes on 2 cores from a clean build dir).
-# Needs ../shared/data next to the checkout. Exits non-zero on any failure
+# Needs ../shared/data next to the checkout (or SHELLSPACE_DATA). Exits non-zero on any failure
 # or fuzz finding.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -16,6 +16,12 @@ scripts/setup.sh -DSHELLSPACE_BUILD_TESTS=ON -DSHELLSPACE_BUILD_BENCHMARKS=ON \
   -DSHELLSPACE_BUILD_EXAMPLES=ON -DSHELLSPACE_BUILD_PYTHON=ON \
   -DSHELLSPACE_SANITIZE=OFF -DSHELLSPACE_BUILD_FUZZERS=OFF
 cd build
+# CI runs the data tests too: without the data folder (SHELLSPACE_DATA) CTest
+# would skip them (data_tests) and pass.
+if ctest -N -R '^data_tests$' | grep -q 'Total Tests: 1'; then
+  echo "scripts/test.sh: no data folder (SHELLSPACE_DATA, ../shared/data): the data tests cannot run" >&2
+  exit 1
+fi
 # No test found is a failure, not a pass.
 ctest --output-on-failure --no-tests=error -j"$(nproc)"
 cd ..

@@ -87,7 +87,7 @@ def _openblas():
 
 def _serial_openmp():
     """This thread's OpenMP regions serial (nthreads 1, dynamic), as the
-    module does for its importing thread (geometry/openmp_threads.h), also
+    module does for its importing thread (runtime/openmp_threads.h), also
     where Dask's workers set OMP_NUM_THREADS=1, which the module respects
     but which leaves CHOLMOD's num_threads(4) regions at 4 threads per
     worker."""

@@ -12,6 +12,7 @@
 #include <stdexcept>
 
 #include "shellspace/geometry/mesh.h"
+#include "shellspace/geometry/procedural_shapes.h"
 #include "shellspace/io/frame_sequence.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/io/png_writer.h"
@@ -93,8 +94,7 @@ TEST(AtomicFileTest, TemporaryNamesAreUniqueAndNotMeshFiles) {
   }
   // A frame listing of a directory holding a temporary sees only the mesh.
   const std::string dir = testing::TempDir();
-  const Mesh square = testing::LoadData("simple/square4.ply");
-  WriteMesh(square, dir + "/shape_000.ply");
+  WriteMesh(MakeEquilateralSheet(2, 2, 1.0), dir + "/shape_000.ply");
   std::ofstream(TemporarySibling(dir + "/shape_001.ply")) << "partial";
   EXPECT_EQ(ListFrameFiles(dir),
             std::vector<std::string>{dir + "/shape_000.ply"});
@@ -102,7 +102,8 @@ TEST(AtomicFileTest, TemporaryNamesAreUniqueAndNotMeshFiles) {
 
 TEST(AtomicFileTest, MeshAndPngWritersGoThroughIt) {
   const std::string dir = testing::TempDir();
-  const Mesh square = testing::LoadData("simple/square4.ply");
+  // A 3 x 3 vertex sheet of 8 triangles.
+  const Mesh square = MakeEquilateralSheet(2, 2, 1.0);
   for (const char* name : {"m.ply", "m.obj", "m.off"}) {
     WriteMesh(square, dir + "/" + name);
     const Mesh back = ReadMesh(dir + "/" + name);

@@ -14,7 +14,7 @@ import numpy as np
 
 import shellspace
 
-DATA = os.environ.get("SHELLSPACE_DATA_DIR", "../shared/data")
+DATA = os.environ.get("SHELLSPACE_DATA", "../shared/data")
 DOUBLE = os.path.join(DATA, "simple", "double_square.ply")
 DOUBLE_BENT = os.path.join(DATA, "simple", "double_square_bent.ply")
 

@@ -19,7 +19,7 @@ allocations). From the checkout, after the normal build:
   cmake --build build -j2 --target shellspace_python_asan
   ASAN_OPTIONS=detect_leaks=0 \\
     LD_PRELOAD="$(gcc -print-file-name=libasan.so) $(gcc -print-file-name=libstdc++.so)" \\
-    PYTHONPATH=build/python-asan SHELLSPACE_DATA_DIR=../shared/data \\
+    PYTHONPATH=build/python-asan SHELLSPACE_DATA=../shared/data \\
     SHELLSPACE_FUZZ_CASES=20000 SHELLSPACE_FUZZ_SECONDS=0 \\
     python3 -m pytest -q -s -p no:cacheprovider tests/python/test_array_fuzz.py
 """

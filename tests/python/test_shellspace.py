@@ -1,7 +1,7 @@
 """Tests of the Python module `shellspace` (python/shellspace_module.cc).
 
 Run by CTest (`python_tests`) with PYTHONPATH at the build tree's python/
-folder, SHELLSPACE_CLI the built `shellspace` tool and SHELLSPACE_DATA_DIR the
+folder, SHELLSPACE_CLI the built `shellspace` tool and SHELLSPACE_DATA the
 shared meshes. Values are checked against independent expectations: W[S, S] =
 0, central finite differences of the energy and of the gradient (each with a
 negative twin that must fail the same check), and the CLI's own numbers.
@@ -16,7 +16,7 @@ import scipy.sparse
 
 import shellspace
 
-DATA = os.environ.get("SHELLSPACE_DATA_DIR", "../shared/data")
+DATA = os.environ.get("SHELLSPACE_DATA", "../shared/data")
 CLI = os.environ.get("SHELLSPACE_CLI", "build/shellspace")
 SQUARE = os.path.join(DATA, "simple", "square4.ply")
 SQUARE_BENT = os.path.join(DATA, "simple", "square4_bent.ply")

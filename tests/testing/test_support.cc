@@ -20,8 +20,13 @@
 
 namespace shellspace::testing {
 
+// The environment variable SHELLSPACE_DATA first (CTest sets it: the data
+// folder for data tests, a folder that does not exist for unit tests), else
+// the folder configured in tests/CMakeLists.txt (SHELLSPACE_DATA, default
+// ../shared/data).
 std::string DataPath(const std::string& relative) {
-  return std::string(SHELLSPACE_DATA_DIR) + "/" + relative;
+  const char* dir = std::getenv("SHELLSPACE_DATA");
+  return std::string(dir && *dir ? dir : SHELLSPACE_DATA_DIR) + "/" + relative;
 }
 
 Mesh LoadData(const std::string& relative) {

@@ -1,0 +1,260 @@
+"""Writes the type stubs of the module `shellspace` (shellspace/__init__.pyi).
+
+    python3 python/make_stubs.py [--check] OUTPUT.pyi
+
+with the built module on PYTHONPATH (build/python). Every function, its
+parameters one per line with their types and defaults (from the signature
+pybind11 writes first in each docstring) and a docstring: the function's own
+text, then "Parameters:" with one line per parameter. A parameter's line is
+the CLI flag's description of the same name (docs/cli.md, the verb's
+--help) or, for the arrays the CLI reads from files, the line of ARRAYS
+below. --check compares instead of writing and exits 1 if OUTPUT differs
+(ctest python_stubs): after changing a function or a flag, run it without
+--check and commit the stub.
+"""
+import argparse
+import os
+import re
+import sys
+
+import shellspace
+
+HERE = os.path.dirname(os.path.abspath(__file__))
+CLI_MD = os.path.join(HERE, "..", "docs", "cli.md")
+
+# The CLI verb whose flags a function shares (its section of docs/cli.md).
+VERBS = {"branching_construct": "branching construct",
+         "branching_simulate": "branching simulate",
+         "write_film_strip": "render", "write_gltf": "export"}
+
+# Parameters that are arrays (or paths) in Python and files on the CLI,
+# and the function-specific ones the CLI's text does not fit.
+ARRAYS = {
+    "F": "#F x 3 integer faces (0-based vertex indices)",
+    "V": "#V x 3 float64 vertex positions",
+    "reference": "#V x 3 positions of the reference shell",
+    "deformed": "#V x 3 positions of the deformed shell",
+    "start": "#V x 3 positions of the first shape of the path",
+    "end": "#V x 3 positions of the last shape of the path",
+    "first": "#V x 3 positions of shape 0",
+    "second": "#V x 3 positions of shape 1",
+    "a": "#V x 3 positions of the first shape",
+    "b": "#V x 3 positions of the second shape",
+    "variation": "#V x 3 positions of the variation at the path's start",
+    "inputs": "the shapes: K x #V x 3, or a list of #V x 3 arrays",
+    "keyframes": "the keyframes: K x #V x 3, or a list of #V x 3 arrays",
+    "frames": "the frames: K x #V x 3, or a list of #V x 3 arrays",
+    "at": "the time step of each shape (integers in [0, steps])",
+    "mask": "vertex indices held fixed, or the path of a mask file",
+    "num_vertices": "the vertex count of the mesh the mask is for",
+    # Python's side of the CLI's exit codes.
+    "time_limit": "stop the solves after this many seconds of wall clock "
+                  "(None: no limit); the partial result is raised as "
+                  "NotConvergedError's .result unless allow_unconverged",
+    "allow_unconverged": "return a result whose solve missed its stopping "
+                         "criterion (or was cut by time_limit) instead of "
+                         "raising NotConvergedError",
+}
+# Per function, where the name means something else than above.
+SPECIFIC = {
+    ("transport", "path"): "the path: K x #V x 3, or a list of #V x 3 arrays",
+    ("read_mesh", "path"): "a .ply, .obj or .off file",
+    ("read_mask", "path"): "a mask file: one 0-based vertex index per line",
+    ("write_mesh", "path"): "the file to write (.ply, .obj or .off)",
+    ("write_film_strip", "path"): "the PNG file to write",
+    ("write_gltf", "path"): "the .glb file to write",
+    ("align_rigidly", "source"): "#V x 3 positions to move",
+    ("align_rigidly", "target"): "#V x 3 positions to fit them to",
+    ("solve_modulo_rigid_motions", "rows"): "row indices of the triplets of "
+                                            "H (3#V x 3#V)",
+    ("solve_modulo_rigid_motions", "cols"): "column indices of the triplets",
+    ("solve_modulo_rigid_motions", "vals"): "values of the triplets "
+                                            "(duplicates summed)",
+    ("solve_modulo_rigid_motions", "rhs"): "the right-hand side, 3#V or "
+                                           "#V x 3",
+    ("solve_modulo_rigid_motions", "shape"): "#V x 3 positions whose rigid "
+                                             "motions are factored out",
+    ("solve_modulo_rigid_motions", "shift"): "added to the diagonal of the "
+                                             "reduced Hessian",
+    ("energy_gradient", "side"): "the side differentiated: 'reference' or "
+                                 "'deformed'",
+    ("energy_hessian", "rows"): "the side of the rows: 'reference' or "
+                                "'deformed'",
+    ("energy_hessian", "cols"): "the side of the columns: 'reference' or "
+                                "'deformed'",
+}
+SHAPE_ARGS = {"reference", "deformed", "start", "end", "first", "second",
+              "a", "b", "variation", "V", "F", "at", "source", "target",
+              "shape", "rhs", "rows", "cols", "vals"}
+STACK_ARGS = {"inputs", "keyframes", "frames", "path"}
+
+
+def cli_flags():
+    """{verb: {flag: description}} from docs/cli.md."""
+    flags, verb = {}, None
+    with open(CLI_MD, encoding="utf-8") as f:
+        for line in f:
+            m = re.match(r"^## (.+)$", line)
+            if m:
+                verb = m.group(1).strip()
+                flags[verb] = {}
+                continue
+            m = re.match(r"^  --(\w+) \([\w ]+\)  (.*)$", line)
+            if m and verb:
+                flags[verb][m.group(1)] = m.group(2).strip()
+    return flags
+
+
+def split_parameters(inner):
+    """The parameters of a pybind11 signature: [(name, type, default)]."""
+    parts, depth, current, quote = [], 0, "", None
+    for c in inner:
+        if quote:
+            quote = None if c == quote else quote
+        elif c in "'\"":
+            quote = c
+        elif c in "[(":
+            depth += 1
+        elif c in "])":
+            depth -= 1
+        if c == "," and depth == 0 and not quote:
+            parts.append(current.strip())
+            current = ""
+        else:
+            current += c
+    if current.strip():
+        parts.append(current.strip())
+    out = []
+    for p in parts:
+        m = re.match(r"^(\w+): ([^=]+?)(?: = (.*))?$", p)
+        if not m:
+            raise SystemExit("cannot parse parameter " + repr(p))
+        out.append(m.groups())
+    return out
+
+
+def python_type(function, name, kind):
+    if kind == "object":
+        if function == "transport" and name == "path" or name in STACK_ARGS:
+            return "Union[ArrayLike, Sequence[ArrayLike]]"
+        if name == "mask":
+            return "Union[ArrayLike, str, None]"
+        if name in SHAPE_ARGS:
+            return "ArrayLike"
+        return "Any"
+    kind = kind.replace("numpy.ndarray[numpy.float64]", "NDArray[np.float64]")
+    kind = kind.replace("List[", "list[")
+    return {"tuple": "tuple[Any, ...]"}.get(kind, kind)
+
+
+def return_type(kind):
+    if kind == "object":
+        return "Any"
+    return python_type("", "", kind)
+
+
+def describe(function, name, flags):
+    if (function, name) in SPECIFIC:
+        return SPECIFIC[(function, name)]
+    verb = VERBS.get(function, function)
+    flag = "lambda" if name == "lambda_" else name
+    if flag in flags.get(verb, {}) and name not in ARRAYS:
+        return flags[verb][flag]
+    if name in ARRAYS:
+        return ARRAYS[name]
+    for verb_flags in flags.values():  # a flag of another verb
+        if flag in verb_flags:
+            return verb_flags[flag]
+    raise SystemExit("no description of parameter %s of %s: add it to "
+                     "python/make_stubs.py" % (name, function))
+
+
+def docstring(text, indent):
+    text = text.replace("\\", "\\\\").replace('"""', '\\"\\"\\"')
+    lines = text.rstrip().split("\n")
+    out = indent + '"""' + lines[0] + "\n"
+    for line in lines[1:]:
+        out += (indent + line if line else "") + "\n"
+    return out + indent + '"""\n'
+
+
+def function_stub(name, function, flags):
+    doc = function.__doc__ or ""
+    signature, _, text = doc.partition("\n")
+    m = re.match(r"^%s\((.*)\) -> (.+)$" % re.escape(name), signature)
+    if not m:
+        raise SystemExit("no signature in the docstring of " + name)
+    parameters = split_parameters(m.group(1))
+    out = "def %s(\n" % name
+    body = text.strip()
+    body = re.sub(r"\s*\n\s*", " ", body)
+    lines = [body, "", "Parameters:"] if body else ["Parameters:"]
+    for pname, kind, default in parameters:
+        out += "    %s: %s%s,\n" % (pname, python_type(name, pname, kind),
+                                    " = ..." if default is not None else "")
+        shown = "" if default is None else " (default %s)" % default
+        lines.append("    %s: %s%s" % (pname, describe(name, pname, flags),
+                                        shown))
+    out += ") -> %s:\n" % return_type(m.group(2).strip())
+    return out + docstring("\n".join(lines), "    ") + "\n"
+
+
+def stubs():
+    flags = cli_flags()
+    out = ('"""Type stubs of the extension module shellspace (generated by '
+           'python/make_stubs.py).\n\n' + shellspace.__doc__.strip() +
+           '\n"""\nfrom typing import Any, Optional, Sequence, Union\n\n'
+           'import numpy as np\nfrom numpy.typing import ArrayLike, NDArray\n'
+           '\nfrom . import collections as collections\n\n')
+    names = sorted(n for n in dir(shellspace) if not n.startswith("_"))
+    for name in names:
+        value = getattr(shellspace, name)
+        if isinstance(value, float):
+            out += "%s: float\n\n" % name
+    for name in names:
+        value = getattr(shellspace, name)
+        if isinstance(value, type) and issubclass(value, BaseException):
+            out += "\nclass %s(%s):\n" % (name, value.__bases__[0].__name__)
+            if value.__doc__ and not value.__doc__.startswith(
+                    value.__bases__[0].__doc__ or "\0"):
+                out += docstring(value.__doc__.strip(), "    ")
+            if name == "NotConvergedError":
+                for attribute in ("result", "summary", "failures",
+                                  "stop_reason"):
+                    out += "    %s: Any\n" % attribute
+            elif not value.__doc__:
+                out += "    ...\n"
+            out += "\n"
+    out += "\n"
+    for name in names:
+        value = getattr(shellspace, name)
+        if callable(value) and not isinstance(value, type):
+            out += function_stub(name, value, flags) + "\n"
+    return out.rstrip("\n") + "\n"
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("output")
+    parser.add_argument("--check", action="store_true")
+    args = parser.parse_args()
+    text = stubs()
+    if args.check:
+        try:
+            with open(args.output, encoding="utf-8") as f:
+                current = f.read()
+        except OSError:
+            current = None
+        if current != text:
+            sys.stderr.write(args.output + " is not the stub of this build: "
+                             "run python3 python/make_stubs.py " +
+                             args.output + "\n")
+            return 1
+        return 0
+    with open(args.output, "w", encoding="utf-8") as f:
+        f.write(text)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
