@@ -13,6 +13,9 @@ packages=(build-essential cmake libceres-dev libeigen3-dev libgoogle-glog-dev
           python3-dev pybind11-dev python3-numpy python3-scipy python3-pytest
           # shellspace.collections on a cluster (python/shellspace/collections.py).
           python3-distributed
+          # pip install . (setup.py, pyproject.toml) and its test in a venv
+          # (tests/python/pip_install_test.sh).
+          python3-venv python3-pip python3-setuptools python3-wheel
           # The fuzz stage of scripts/test.sh: clang with libFuzzer and the
           # sanitizer runtimes; python3 writes the seed corpus.
           clang libclang-rt-dev python3)
