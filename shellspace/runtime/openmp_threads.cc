@@ -3,15 +3,19 @@
 #include <dlfcn.h>
 
 #include <cstdlib>
+#include <cstring>
 
 namespace shellspace {
 
 void SerialOpenMpInThisThread() {
-  if (std::getenv("OMP_NUM_THREADS") != nullptr ||
-      std::getenv("OMP_DYNAMIC") != nullptr ||
+  if (std::getenv("OMP_DYNAMIC") != nullptr ||
       std::getenv("OMP_THREAD_LIMIT") != nullptr) {
     return;
   }
+  // OMP_NUM_THREADS=1 asks for what this does; any other value is the
+  // user's choice of OpenMP threads, kept.
+  const char* requested = std::getenv("OMP_NUM_THREADS");
+  if (requested != nullptr && std::strcmp(requested, "1") != 0) return;
   using SetInt = void (*)(int);
   const auto set_dynamic =
       reinterpret_cast<SetInt>(dlsym(RTLD_DEFAULT, "omp_set_dynamic"));

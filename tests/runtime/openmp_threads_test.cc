@@ -85,6 +85,22 @@ TEST(OpenMpThreadsTest, OneThreadWithDynamicAdjustmentInTheCallingThread) {
   EXPECT_EQ(plain.dynamic, 0);
 }
 
+// OMP_NUM_THREADS=1 asks for one thread, which nthreads-var alone does not
+// give against CHOLMOD's num_threads(4): the dynamic adjustment is still
+// set. Any other count is the user's and stands (the twin).
+TEST(OpenMpThreadsTest, OmpNumThreadsOneStillSerialisesOthersStand) {
+  FactoriseWithCholmod();
+  if (*NotApplicable()) GTEST_SKIP() << NotApplicable();
+  setenv("OMP_NUM_THREADS", "1", 1);
+  const OpenMpSettings one = OnAFreshThread(true);
+  setenv("OMP_NUM_THREADS", "2", 1);
+  const OpenMpSettings two = OnAFreshThread(true);
+  unsetenv("OMP_NUM_THREADS");
+  EXPECT_EQ(one.dynamic, 1);
+  EXPECT_EQ(one.max_threads, 1);
+  EXPECT_EQ(two.dynamic, 0);
+}
+
 TEST(OpenMpThreadsTest, ParallelForWorkersAreSerialised) {
   FactoriseWithCholmod();
   if (*NotApplicable()) GTEST_SKIP() << NotApplicable();
