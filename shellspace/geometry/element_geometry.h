@@ -115,6 +115,24 @@ struct TriangleArea {
   }
 };
 
+// theta - theta_bar as the representative in [-pi, pi): the change of a
+// dihedral angle that crosses the branch cut of atan2 (a flap folded to
+// nearly +-pi, turning a little further) is the small turn it is, not
+// 2 pi minus it. A constant shift of the difference, so its derivatives are
+// those of theta - theta_bar; the jump moves to a flap turned by pi
+// against its reference.
+template <typename T>
+T DihedralAngleChange(const T& theta, const T& theta_bar) {
+  T delta = theta - theta_bar;
+  const double value = ScalarValue(delta);
+  if (value >= M_PI) {
+    delta -= T(2 * M_PI);
+  } else if (value < -M_PI) {
+    delta += T(2 * M_PI);
+  }
+  return delta;
+}
+
 // Signed dihedral angle of an edge flap (i, j, k, l) (geometry/topology.h):
 // with e = X_j - X_i, n0 = e x (X_k - X_i), n1 = (X_l - X_i) x e,
 //   theta = atan2(((n0 x n1) . e) / |e|, n0 . n1),

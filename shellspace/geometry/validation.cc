@@ -207,11 +207,59 @@ SliverFaces FindSliverFaces(const Mesh& mesh) {
       slivers.faces.push_back(f);
     }
   }
+  // Folds: the faces of each interior edge, by the edge's sorted vertices.
+  std::map<std::pair<int, int>, std::vector<int>> faces_of_edge;
+  for (int f = 0; f < m; ++f) {
+    for (int c = 0; c < 3; ++c) {
+      const int i = mesh.faces(f, c), j = mesh.faces(f, (c + 1) % 3);
+      faces_of_edge[{std::min(i, j), std::max(i, j)}].push_back(f);
+    }
+  }
+  const auto normal = [&](int f) {
+    const Eigen::Vector3d a = mesh.positions.row(mesh.faces(f, 0)).transpose();
+    const Eigen::Vector3d b = mesh.positions.row(mesh.faces(f, 1)).transpose();
+    const Eigen::Vector3d c = mesh.positions.row(mesh.faces(f, 2)).transpose();
+    return Eigen::Vector3d((b - a).cross(c - a));
+  };
+  for (const auto& [edge, faces] : faces_of_edge) {
+    if (faces.size() != 2) continue;
+    const Eigen::Vector3d n0 = normal(faces[0]), n1 = normal(faces[1]);
+    const double degrees =
+        std::atan2(n0.cross(n1).norm(), n0.dot(n1)) * 180.0 / M_PI;
+    if (!std::isfinite(degrees)) continue;
+    slivers.largest_fold_degrees =
+        std::max(slivers.largest_fold_degrees, degrees);
+    if (degrees > kFoldDegrees) {
+      slivers.folds.emplace_back(std::min(faces[0], faces[1]),
+                                 std::max(faces[0], faces[1]));
+    }
+  }
+  std::sort(slivers.folds.begin(), slivers.folds.end());
   return slivers;
 }
 
 std::string SliverFaces::Describe() const {
-  if (faces.empty()) return "";
+  std::string text;
+  if (!faces.empty()) text = DescribeSlivers();
+  if (!folds.empty()) {
+    char rule[96];
+    std::snprintf(rule, sizeof rule,
+                  " (triangles turned more than %g degrees against each "
+                  "other): faces ",
+                  kFoldDegrees);
+    text += std::string(text.empty() ? "" : "; ") +
+            std::to_string(folds.size()) + " folded edge" +
+            (folds.size() > 1 ? "s" : "") + rule;
+    for (size_t i = 0; i < folds.size() && i < 8; ++i) {
+      text += (i ? ", " : "") + std::to_string(folds[i].first) + " and " +
+              std::to_string(folds[i].second);
+    }
+    if (folds.size() > 8) text += ", ...";
+  }
+  return text;
+}
+
+std::string SliverFaces::DescribeSlivers() const {
   char rule[96];
   std::snprintf(rule, sizeof rule,
                 " (area below %g%% of the mean or an angle below %g "

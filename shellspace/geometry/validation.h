@@ -3,6 +3,7 @@
 #define SHELLSPACE_GEOMETRY_VALIDATION_H_
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "shellspace/geometry/mesh.h"
@@ -58,15 +59,31 @@ inline Eigen::Vector3d FaceNormal(const Faces& faces, const Positions& x,
 // kSliverMinDegrees. Legal input, but a path may crush such a triangle;
 // the geodesic's steps never shrink a triangle below a tenth of its area
 // at once (kStepMinAreaFraction), and a sliver is named up front.
+// A folded edge: its two triangles turned more than kFoldDegrees against
+// each other (normals that far apart: the flap nearly shut, its dihedral
+// angle near +-pi). Legal too; the bending energy measures the change of
+// such an angle across atan2's branch cut as the small turn it is
+// (DihedralAngleChange), but a path may still shut the fold.
 inline constexpr double kSliverAreaFraction = 0.01;
 inline constexpr double kSliverMinDegrees = 1.0;
+inline constexpr double kFoldDegrees = 170.0;
 struct SliverFaces {
   std::vector<int> faces;      // in increasing order
   double smallest_area_fraction = 1;  // of the mean area, over all faces
   double smallest_degrees = 60;       // smallest angle over all faces
+  // Folded edges as the pairs of their faces (lower index first), in
+  // increasing order.
+  std::vector<std::pair<int, int>> folds;
+  double largest_fold_degrees = 0;  // over all interior edges
+  bool empty() const { return faces.empty() && folds.empty(); }
   // "3 sliver triangles (area below 1% of the mean or an angle below 1
-  // degree): 12, 40, 77" (at most 8 listed), or "" if there are none.
+  // degree): 12, 40, 77" (at most 8 listed) and/or "2 folded edges
+  // (triangles turned more than 170 degrees against each other): faces 5
+  // and 9, 30 and 31", or "" if there are none.
   std::string Describe() const;
+
+ private:
+  std::string DescribeSlivers() const;
 };
 SliverFaces FindSliverFaces(const Mesh& mesh);
 

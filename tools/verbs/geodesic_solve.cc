@@ -109,7 +109,7 @@ GeodesicOfFlags SolveGeodesicOfFlags(const std::string& verb) {
               kGeodesicModel);
   // Legal, but a path may crush them: named once, before the solve.
   const SliverFaces slivers = FindSliverFaces(start.mesh);
-  if (!slivers.faces.empty() && !FLAGS_quiet) {
+  if (!slivers.empty() && !FLAGS_quiet) {
     std::fprintf(stderr, "warning: %s: %s\n", FLAGS_start.c_str(),
                  slivers.Describe().c_str());
   }

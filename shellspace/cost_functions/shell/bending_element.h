@@ -16,7 +16,9 @@ namespace shellspace {
 //   r = sqrt(2 eta wbar) (theta - thetabar),  wbar = 3 |Ebar|^2 / (abar_0 +
 //   abar_1),
 // so 1/2 r^2 = eta (theta - thetabar)^2 |Ebar|^2 / dbar_E (shells.md). theta
-// is the signed dihedral angle (geometry/element_geometry.h). Jacobians are
+// is the signed dihedral angle (geometry/element_geometry.h), in (-pi, pi];
+// theta - thetabar is taken in [-pi, pi) (DihedralAngleChange), so a flap
+// folded to nearly +-pi has a smooth energy across the branch cut. Jacobians are
 // 1 x 12, columns (i, j, k, l) x (x, y, z). An element type of the element
 // set (element_set.h): stencil (i, j, k, l), weight eta (= this eta).
 struct BendingElement {
@@ -52,7 +54,7 @@ struct BendingElement {
       edge_sq = edge.squaredNorm();
       weight = T(3) * edge_sq / area_sum;
       scale = sqrt(T(2.0 * eta) * weight);
-      delta = angle.theta - angle_bar.theta;
+      delta = DihedralAngleChange(angle.theta, angle_bar.theta);
       ok = std::isfinite(ScalarValue(delta));
     }
 
@@ -224,7 +226,7 @@ struct BendingElement {
     const TriangleArea<double> a0(ref[0], ref[1], ref[2]);
     const TriangleArea<double> a1(ref[1], ref[0], ref[3]);
     const double edge_sq = (ref[1] - ref[0]).squaredNorm();
-    const double delta = theta.theta - theta_bar.theta;
+    const double delta = DihedralAngleChange(theta.theta, theta_bar.theta);
     const double e = delta * delta * edge_sq / ((a0.area + a1.area) / 3);
     if (!std::isfinite(e)) return false;
     *energy = e;
