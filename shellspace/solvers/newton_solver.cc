@@ -178,8 +178,8 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
     double forcing = settings.forcing;
     if (settings.forcing_rule == NewtonSettings::Forcing::kInexactNewton) {
       const double g = std::max(current.reduced.norm(), 1e-300);
-      forcing = std::min(0.1, std::max(std::min(settings.forcing,
-                                                g / initial_two_norm),
+      const double fall = g / initial_two_norm;
+      forcing = std::min(0.1, std::max(std::min(settings.forcing, fall * fall),
                                        0.25 * settings.tolerance / g));
     } else if (settings.forcing_rule ==
                NewtonSettings::Forcing::kRelativeResidual) {

@@ -77,7 +77,7 @@ struct PathNewtonSettings {
   // and cactus ring masks it needs 2-4x fewer CG iterations.
   bool time_coupled_preconditioner = true;
   // The linear solves' relative residual: min(0.1, max(min(forcing,
-  // |G| / |G_0|), 0.25 tolerance / |G|)) (NewtonSettings::Forcing::
+  // (|G| / |G_0|)^2), 0.25 tolerance / |G|)) (NewtonSettings::Forcing::
   // kInexactNewton). Away from the quadratic regime the steps are limited by
   // the nonlinearity, not by the solve: on finger_ring the Newton finish
   // takes 5 steps with forcing 1e-4, 1e-3, 1e-2 and 1e-1 alike (110, 89, 77
@@ -114,7 +114,7 @@ using PathNewtonReport = NewtonReport;
 // RigidGaugeBasis (gauge_reduced_solve.h). H is assembled by
 // PathHessianAssembler; the iteration is SolveNewton (newton_solver.h) in
 // minimisation mode: each step solves H p = -G inexactly (relative
-// residual min(forcing, |G|/|G_0|), never tighter than a quarter of the
+// residual min(forcing, (|G|/|G_0|)^2), never tighter than a quarter of the
 // tolerance needs) by the linear solver of settings.linear_solver
 // (PathLinearSolver: ReusableCholesky -- CG preconditioned by the last
 // Cholesky factor, a new factorisation only when CG stalls -- or
