@@ -4,8 +4,11 @@
 // 128 x 256 nodes = 32768 unknowns, 98304 residuals, delta = 3 dy = 0.0059
 // = 0.059 eps^(1/3), continuation 4 delta -> delta; the ladder's finest rung,
 // 48 x 250, is smaller), the LM optimisation of the lens and KM families, and the
-// scaling ladder of the report (counters: exponent, constant).
+// scaling ladder of the report (counters: exponent, constant), and one
+// evaluation of the general cell cost function (residuals, or residuals and
+// Jacobian) on three topologies.
 #include <cmath>
+#include <vector>
 
 #include <benchmark/benchmark.h>
 
@@ -90,6 +93,69 @@ void BM_GeneralSearchR4(benchmark::State& state) {
   state.counters["solves"] = r.solves;
 }
 BENCHMARK(BM_GeneralSearchR4)->Arg(2)->Unit(benchmark::kSecond)->Iterations(1);
+
+// One GeneralCellCostFunction::Evaluate at a start of a topology:
+// range(0) picks the topology (0: the lens, r = 3, one pair, K = 2, 11
+// parameters; 1: the r = 4 cell of three groups with K = 6, 96 parameters;
+// 2: two pairs, r = 3, two groups, K = 3, 61 parameters; 32, 300 and 300
+// residuals), range(1) = 1 asks for the Jacobian as well.
+void BM_GeneralCellEvaluate(benchmark::State& state) {
+  GeneralTopology t;
+  switch (state.range(0)) {
+    case 0:
+      t.r = 3;
+      t.subintervals = 2;
+      t.groups = {NucleationGroup{{{0, 0.5}, {1, 0.5}}, 0.4}};
+      break;
+    case 1:
+      t.r = 4;
+      t.label_offset = 1;
+      t.subintervals = 6;
+      t.groups = {NucleationGroup{{{0, 0.5}}, 0.3},
+                  NucleationGroup{{{3, 0.5}}, 0.5},
+                  NucleationGroup{{{0, 0.5}}, 0.7}};
+      break;
+    default:
+      t.pairs = 2;
+      t.r = 3;
+      t.label_offset = 1;
+      t.subintervals = 3;
+      t.groups = {NucleationGroup{{{0, 0.5}, {2, 0.5}}, 0.3},
+                  NucleationGroup{{{1, 0.5}, {6, 0.5}}, 0.6}};
+      break;
+  }
+  const GeneralCellCostFunction cost(t);
+  // The first valid start of the search's (shift, noise) sequence.
+  const double base = -t.label_offset / (2.0 * t.pairs * t.r);
+  const double unit = 1.0 / (4.0 * t.r * t.pairs);
+  std::vector<double> x;
+  bool valid = false;
+  for (double shift : {0.0, unit, -unit}) {
+    for (double noise : {0.3, 0.0}) {
+      if (!valid) valid = GeneralStart(cost.layout(), base + shift, noise, 1, &x);
+    }
+  }
+  if (!valid) {
+    state.SkipWithError("no valid start");
+    return;
+  }
+  std::vector<double> residuals(cost.num_residuals());
+  std::vector<double> jacobian(residuals.size() * x.size());
+  const double* parameters[] = {x.data()};
+  double* jacobians[] = {jacobian.data()};
+  const bool with_jacobian = state.range(1) != 0;
+  for (auto _ : state) {
+    const bool ok = cost.Evaluate(parameters, residuals.data(),
+                                  with_jacobian ? jacobians : nullptr);
+    benchmark::DoNotOptimize(ok);
+    benchmark::ClobberMemory();
+  }
+  state.counters["parameters"] = static_cast<double>(x.size());
+  state.counters["residuals"] = static_cast<double>(residuals.size());
+}
+BENCHMARK(BM_GeneralCellEvaluate)
+    ->ArgsProduct({{0, 1, 2}, {0, 1}})
+    ->Unit(benchmark::kMicrosecond);
 
 // The ladder of the report: 5 eps over a decade, delta = 0.06 eps^(1/3),
 // H = 0.5, nx = 48 (graded), dy = delta / 3.

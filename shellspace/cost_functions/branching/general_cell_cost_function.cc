@@ -141,270 +141,392 @@ int GeneralCellLayout::segment_start_group(int segment) const {
 
 namespace {
 
-// A linear form value + gradient over the parameter block (dense; the
-// gradient is empty when derivatives are not requested).
-struct Lin {
-  double v = 0.0;
-  std::vector<double> d;
-};
+// The residuals are one template, evaluated with T = double (residuals,
+// geometry) and with T = ceres::Jet<double, kStride> (the Jacobian, kStride
+// columns per pass). Every decision on the domain reads the scalar part.
+inline double Value(double v) { return v; }
+template <int N>
+double Value(const ceres::Jet<double, N>& v) {
+  return v.a;
+}
 
-class Forms {
- public:
-  Forms(int n, bool grad) : n_(n), grad_(grad) {}
-  Lin Constant(double v) const {
-    Lin l;
-    l.v = v;
-    if (grad_) l.d.assign(n_, 0.0);
-    return l;
+// Nucleation positions tau_g per group (tau_0 = 0 if first_at_zero); false
+// unless 0 <= tau_0 < tau_1 < ... < tau_{G-1} < 1.
+template <typename T>
+bool NucleationPositions(const GeneralCellLayout& layout, const T* x,
+                         std::vector<T>* tau) {
+  const int G = static_cast<int>(layout.topology().groups.size());
+  tau->clear();
+  for (int g = 0; g < G; ++g) {
+    const int o = layout.tau_offset(g);
+    tau->push_back(o < 0 ? T(0.0) : x[o]);
   }
-  Lin Param(const double* x, int index) const {
-    Lin l = Constant(x[index]);
-    if (grad_) l.d[index] = 1.0;
-    return l;
+  for (int g = 0; g < G; ++g) {
+    const double value = Value((*tau)[g]);
+    const double lower = g == 0 ? 0.0 : Value((*tau)[g - 1]);
+    if (!(value >= lower) || !(value < 1.0)) return false;
+    if (g > 0 && !(value > Value((*tau)[g - 1]))) return false;
   }
-  // a += f b
-  void Axpy(double f, const Lin& b, Lin* a) const {
-    a->v += f * b.v;
-    if (grad_) {
-      for (int k = 0; k < n_; ++k) a->d[k] += f * b.d[k];
+  return true;
+}
+
+// Relative positions p_e per needle (all groups in order); false unless
+// every p lies in [0, 1].
+template <typename T>
+bool NeedlePositions(const GeneralCellLayout& layout, const T* x,
+                     std::vector<T>* p) {
+  p->clear();
+  for (int e = 0; e < layout.num_needles(); ++e) {
+    p->push_back(x[layout.p_offset(e)]);
+    if (!(Value(p->back()) >= 0.0 && Value(p->back()) <= 1.0)) return false;
+  }
+  return true;
+}
+
+// The coarse end s = 0: q_0 = 0 (gauge), q_1 .. q_{S-1} parameters, q_S from
+// the volume constraint; false unless q_0 < q_1 < ... < q_S < 1.
+template <typename T>
+bool CoarseEnd(const GeneralCellLayout& layout, const T* x,
+               std::vector<T>* q) {
+  const int slave = 2 * layout.topology().pairs - 1;
+  q->assign(1, T(0.0));
+  for (int i = 1; i < slave; ++i) q->push_back(x[i - 1]);
+  T qs(0.5);
+  for (int i = 0; i < slave; ++i) qs += (layout.jump(i) / 2.0) * (*q)[i];
+  q->push_back(qs);
+  for (int i = 0; i < slave; ++i) {
+    if (!(Value((*q)[i + 1]) > Value((*q)[i]))) return false;
+  }
+  return Value((*q)[slave]) < 1.0;
+}
+
+// s of knot m: step / K of the way through its segment [tau_{g0}, tau_{g0+1}]
+// (tau_{-1} = 0, tau_G = 1).
+template <typename T>
+T KnotS(const GeneralCellLayout& layout, const std::vector<T>& tau, int m) {
+  const GeneralCellLayout::Knot& knot = layout.knot(m);
+  const int G = static_cast<int>(tau.size());
+  const int g0 = layout.segment_start_group(knot.segment);
+  const T start = g0 < 0 ? T(0.0) : tau[g0];
+  const T end = g0 + 1 < G ? tau[g0 + 1] : T(1.0);
+  const double f = static_cast<double>(knot.step) / layout.topology().subintervals;
+  T s = start;
+  s += f * end;
+  s += (-f) * start;
+  return s;
+}
+
+// The fine end s = 1, closed self-similarly: the j-th interface of the final
+// order sits at Delta + (q_{(j+o) mod 2n_c} + floor((j+o) / 2n_c)) / r.
+template <typename T>
+void ClosurePositions(const GeneralCellLayout& layout, const std::vector<T>& q,
+                      const T& delta, std::vector<T>* pos) {
+  const GeneralTopology& t = layout.topology();
+  const std::vector<int>& order = layout.knot(layout.num_knots() - 1).order;
+  const int nc = t.pairs;
+  for (int j = 0; j < static_cast<int>(order.size()); ++j) {
+    const int c = (j + t.label_offset) % (2 * nc);
+    const int wrap = (j + t.label_offset) / (2 * nc);
+    T v = delta;
+    v += (1.0 / t.r) * q[c];
+    v += static_cast<double>(wrap) / t.r;
+    (*pos)[order[j]] = v;
+  }
+}
+
+bool BornAtKnot(const GeneralCellLayout& layout,
+                const GeneralCellLayout::Knot& knot, int id) {
+  return knot.born_group >= 0 && layout.birth_group(id) == knot.born_group;
+}
+
+// The interfaces alive before knot m (< N - 1): the coarse end at m = 0;
+// further on the parameters, and the volume slave from the +1 fraction 1/2.
+template <typename T>
+void CarriedPositions(const GeneralCellLayout& layout, const T* x,
+                      const std::vector<T>& q, int m, std::vector<T>* pos) {
+  const GeneralCellLayout::Knot& knot = layout.knot(m);
+  const int slave = 2 * layout.topology().pairs - 1;
+  for (int id : knot.order) {
+    if (BornAtKnot(layout, knot, id)) continue;
+    if (m == 0) {
+      (*pos)[id] = q[id];
+    } else if (id != slave) {
+      (*pos)[id] = x[knot.param[id]];
     }
   }
-  bool grad() const { return grad_; }
-  int n() const { return n_; }
+  if (m == 0) return;
+  T v(0.5);
+  for (int id : knot.order) {
+    if (id == slave || BornAtKnot(layout, knot, id)) continue;
+    v += (layout.jump(id) / 2.0) * (*pos)[id];
+  }
+  (*pos)[slave] = v;
+}
 
- private:
-  int n_;
-  bool grad_;
+// The needle (numbered over all groups) that trajectory `id` of group
+// `group` belongs to: a group's trajectories are numbered in insertion
+// order, its needles sorted by piece, highest first.
+int NeedleOfTrajectory(const GeneralTopology& t, int group, int id) {
+  int first_id = 2 * t.pairs, first_needle = 0;
+  for (int g = 0; g < group; ++g) {
+    const int count = static_cast<int>(t.groups[g].needles.size());
+    first_id += 2 * count;
+    first_needle += count;
+  }
+  const std::vector<NeedleEvent>& needles = t.groups[group].needles;
+  std::vector<int> by_piece(needles.size());
+  for (size_t e = 0; e < by_piece.size(); ++e) by_piece[e] = static_cast<int>(e);
+  std::stable_sort(by_piece.begin(), by_piece.end(), [&](int a, int b) {
+    return needles[a].piece > needles[b].piece;
+  });
+  return first_needle + by_piece[(id - first_id) / 2];
+}
+
+// The pairs born at knot m: both flanks at lo + p (hi - lo), lo and hi the
+// host piece's bounds (its nearest carried neighbours; hi + 1 on the wrap
+// piece).
+template <typename T>
+void NewbornPositions(const GeneralCellLayout& layout, const std::vector<T>& p,
+                      int m, std::vector<T>* pos) {
+  const GeneralCellLayout::Knot& knot = layout.knot(m);
+  const int M = static_cast<int>(knot.order.size());
+  for (int j = 0; j < M; ++j) {
+    const int id = knot.order[j];
+    // The lower flank of a pair: its predecessor is carried.
+    if (!BornAtKnot(layout, knot, id)) continue;
+    const int prev = knot.order[(j + M - 1) % M];
+    if (BornAtKnot(layout, knot, prev)) continue;
+    const int hi_index = (j + 2) % M;
+    const T& lo = (*pos)[prev];
+    T hi = (*pos)[knot.order[hi_index]];
+    if (hi_index == 0) hi += 1.0;
+    const int needle = NeedleOfTrajectory(layout.topology(), knot.born_group, id);
+    const T born = lo + p[needle] * (hi - lo);
+    (*pos)[id] = born;
+    (*pos)[knot.order[(j + 1) % M]] = born;
+  }
+}
+
+// B = 2 sum_i (1 - birth_i) = 4 n_c + 4 sum_g n_g (1 - tau_g).
+template <typename T>
+T InterfacialCoefficient(const GeneralCellLayout& layout,
+                         const std::vector<T>& tau) {
+  const GeneralTopology& t = layout.topology();
+  T B(2.0 * 2 * t.pairs);
+  for (size_t g = 0; g < tau.size(); ++g) {
+    const double count = static_cast<double>(t.groups[g].needles.size());
+    B += 4.0 * count;
+    B += (-4.0 * count) * tau[g];
+  }
+  return B;
+}
+
+// The cell at its knots: s and the positions of the alive interfaces (the
+// others are left at zero), B, and the parameters read on the way. The
+// Jacobian's passes reuse one, so its storage is allocated once.
+template <typename T>
+struct CellKnots {
+  std::vector<T> tau, p, q;       // per group, per needle, at s = 0
+  std::vector<T> s;               // [knot]
+  std::vector<std::vector<T>> g;  // [knot][trajectory]
+  T B;
 };
 
-// The whole evaluation; residuals / jacobian / geometry optional.
+// False outside the domain of tau, p and the coarse end.
+template <typename T>
+bool EvaluateKnots(const GeneralCellLayout& layout, const T* x,
+                   CellKnots<T>* cell) {
+  if (!NucleationPositions(layout, x, &cell->tau) ||
+      !NeedlePositions(layout, x, &cell->p) || !CoarseEnd(layout, x, &cell->q)) {
+    return false;
+  }
+  const T& delta = x[layout.delta_offset()];
+  const int N = layout.num_knots();
+  cell->s.resize(N);
+  cell->g.resize(N);
+  for (int m = 0; m < N; ++m) {
+    std::vector<T>& pos = cell->g[m];
+    pos.assign(layout.num_trajectories(), T(0.0));
+    cell->s[m] = KnotS(layout, cell->tau, m);
+    if (m + 1 == N) {
+      ClosurePositions(layout, cell->q, delta, &pos);
+    } else {
+      CarriedPositions(layout, x, cell->q, m, &pos);
+      NewbornPositions(layout, cell->p, m, &pos);
+    }
+  }
+  cell->B = InterfacialCoefficient(layout, cell->tau);
+  return true;
+}
+
+// The pieces of one interval: widths W0 (at s_a), W1 (at s_b) and the
+// cumulative jumps D_j (storage reused from interval to interval).
+template <typename T>
+struct Pieces {
+  std::vector<T> W0, W1, D;
+};
+
+// The pieces of the interval from knot m to m + 1. False if ds <= 0 or a
+// width is negative or zero at both ends.
+template <typename T>
+bool IntervalPieces(const GeneralCellLayout& layout, const CellKnots<T>& cell,
+                    int m, Pieces<T>* pieces) {
+  const std::vector<int>& order = layout.knot(m).order;
+  const std::vector<T>& g0 = cell.g[m];
+  const std::vector<T>& g1 = cell.g[m + 1];
+  const int M = static_cast<int>(order.size());
+  if (!(Value(cell.s[m + 1]) - Value(cell.s[m]) > 0.0)) return false;
+  std::vector<T>& W0 = pieces->W0;
+  std::vector<T>& W1 = pieces->W1;
+  std::vector<T>& D = pieces->D;
+  W0.resize(M);
+  W1.resize(M);
+  D.resize(M);
+  T cumulative(0.0);
+  for (int j = 0; j < M; ++j) {
+    const int lo = order[j];
+    const int hi = order[(j + 1) % M];
+    const double wrap = j + 1 == M ? 1.0 : 0.0;
+    W0[j] = g0[hi] + wrap - g0[lo];
+    W1[j] = g1[hi] + wrap - g1[lo];
+    const double w0 = Value(W0[j]), w1 = Value(W1[j]);
+    if (!(w0 >= 0.0) || !(w1 >= 0.0) || !(w0 + w1 > 0.0)) return false;
+    cumulative += static_cast<double>(-layout.jump(lo)) * g1[lo];
+    cumulative += static_cast<double>(layout.jump(lo)) * g0[lo];
+    D[j] = cumulative;
+  }
+  return true;
+}
+
+// The residuals of interval m, one per piece pair i < j:
+//   r_ij = B sqrt(c_ij / ds) (D_j - D_i),
+// written from `residuals` on (if not null); adds the interval's share of A
+// to *A (if not null). False outside the domain.
+template <typename T>
+bool IntervalResiduals(const GeneralCellLayout& layout,
+                       const CellKnots<T>& cell, int m, T* residuals,
+                       double* A, Pieces<T>* pieces) {
+  if (!IntervalPieces(layout, cell, m, pieces)) return false;
+  const std::vector<T>& W0 = pieces->W0;
+  const std::vector<T>& W1 = pieces->W1;
+  const std::vector<T>& D = pieces->D;
+  const T ds = cell.s[m + 1] - cell.s[m];
+  const int M = static_cast<int>(D.size());
+  int row = 0;
+  for (int i = 0; i < M; ++i) {
+    for (int j = i + 1; j < M; ++j) {
+      const T c = (2.0 * W0[i] * W0[j] + W0[i] * W1[j] + W1[i] * W0[j] +
+                   2.0 * W1[i] * W1[j]) /
+                  6.0;
+      if (!(Value(c) > 0.0)) return false;
+      using std::sqrt;
+      const T R = sqrt(c / ds);
+      const T Dij = D[j] - D[i];
+      if (A != nullptr) {
+        *A += Value(c) * Value(Dij) * Value(Dij) / Value(ds);
+      }
+      if (residuals != nullptr) residuals[row] = cell.B * R * Dij;
+      ++row;
+    }
+  }
+  return true;
+}
+
+// The residuals of all intervals in order; A (if not null) summed.
+template <typename T>
+bool CellEnergy(const GeneralCellLayout& layout, const CellKnots<T>& cell,
+                T* residuals, double* A, Pieces<T>* pieces) {
+  int row = 0;
+  for (int m = 0; m + 1 < layout.num_knots(); ++m) {
+    if (!IntervalResiduals(layout, cell, m,
+                           residuals == nullptr ? nullptr : residuals + row, A,
+                           pieces)) {
+      return false;
+    }
+    const int M = static_cast<int>(layout.knot(m).order.size());
+    row += M * (M - 1) / 2;
+  }
+  return true;
+}
+
+// The storage of one residual evaluation, reusable by the next.
+template <typename T>
+struct CellWorkspace {
+  CellKnots<T> cell;
+  Pieces<T> pieces;
+};
+
+// The templated residual evaluation: the knots, then the energy (storage
+// from `work` if given).
+template <typename T>
+bool CellResiduals(const GeneralCellLayout& layout, const T* x, T* residuals,
+                   CellWorkspace<T>* work = nullptr) {
+  CellWorkspace<T> local;
+  if (work == nullptr) work = &local;
+  return EvaluateKnots(layout, x, &work->cell) &&
+         CellEnergy(layout, work->cell, residuals, nullptr, &work->pieces);
+}
+
+// The Jacobian (row-major, num_residuals x size) by forward-mode automatic
+// differentiation in chunks, as ceres::DynamicAutoDiffCostFunction does:
+// pass k seeds parameters [k kStride, (k + 1) kStride) and reads those
+// columns off the residual jets.
+constexpr int kStride = 16;
+bool CellJacobian(const GeneralCellLayout& layout, const double* x,
+                  double* jacobian) {
+  using Jet = ceres::Jet<double, kStride>;
+  const int n = layout.size();
+  const int rows = layout.num_residuals();
+  std::vector<Jet> x_jet(n), r_jet(rows);
+  for (int k = 0; k < n; ++k) x_jet[k] = Jet(x[k]);
+  CellWorkspace<Jet> work;
+  for (int first = 0; first < n; first += kStride) {
+    const int width = std::min(kStride, n - first);
+    for (int k = 0; k < width; ++k) x_jet[first + k].v[k] = 1.0;
+    if (!CellResiduals(layout, x_jet.data(), r_jet.data(), &work)) return false;
+    for (int row = 0; row < rows; ++row) {
+      double* J = jacobian + static_cast<size_t>(row) * n + first;
+      for (int k = 0; k < width; ++k) J[k] = r_jet[row].v[k];
+    }
+    for (int k = 0; k < width; ++k) x_jet[first + k].v[k] = 0.0;
+  }
+  return true;
+}
+
+// The knots' s, positions (NaN where not alive) and orders, and B, into
+// `geometry`; A = 0 until the energy is summed.
+void KnotGeometry(const GeneralCellLayout& layout, const CellKnots<double>& cell,
+                  GeneralCellGeometry* geometry) {
+  const int N = layout.num_knots();
+  geometry->s = cell.s;
+  geometry->position.assign(
+      N, std::vector<double>(layout.num_trajectories(),
+                             std::numeric_limits<double>::quiet_NaN()));
+  geometry->order.assign(N, {});
+  for (int m = 0; m < N; ++m) {
+    geometry->order[m] = layout.knot(m).order;
+    for (int id : layout.knot(m).order) {
+      geometry->position[m][id] = cell.g[m][id];
+    }
+  }
+  geometry->B = cell.B;
+  geometry->A = 0.0;
+}
+
+// The whole evaluation; residuals / jacobian / geometry optional. The
+// residuals and the geometry come from the double evaluation, the Jacobian
+// from the jets.
 bool Compute(const GeneralCellLayout& layout, const double* x,
              double* residuals, double* jacobian,
              GeneralCellGeometry* geometry) {
-  const GeneralTopology& t = layout.topology();
-  const int n = layout.size();
-  const Forms forms(n, jacobian != nullptr);
-  const int nc = t.pairs;
-  const int G = static_cast<int>(t.groups.size());
-  const int K = t.subintervals;
-  const int T = layout.num_trajectories();
-  const int slave = 2 * nc - 1;
-  // Nucleation positions tau_g as forms; tau_{-1} = 0, tau_G = 1.
-  std::vector<Lin> tau;
-  for (int g = 0; g < G; ++g) {
-    const int o = layout.tau_offset(g);
-    tau.push_back(o < 0 ? forms.Constant(0.0) : forms.Param(x, o));
-  }
-  for (int g = 0; g < G; ++g) {
-    const double lower = g == 0 ? 0.0 : tau[g - 1].v;
-    if (!(tau[g].v >= lower) || !(tau[g].v < 1.0)) return false;
-    if (g > 0 && !(tau[g].v > tau[g - 1].v)) return false;
-  }
-  std::vector<Lin> p;
-  for (int e = 0; e < layout.num_needles(); ++e) {
-    p.push_back(forms.Param(x, layout.p_offset(e)));
-    if (!(p.back().v >= 0.0 && p.back().v <= 1.0)) return false;
-  }
-  // Needle index of the first needle of each group.
-  std::vector<int> first_needle(G + 1, 0);
-  for (int g = 0; g < G; ++g) {
-    first_needle[g + 1] =
-        first_needle[g] + static_cast<int>(t.groups[g].needles.size());
-  }
-  // q at s = 0.
-  std::vector<Lin> q;
-  q.push_back(forms.Constant(0.0));
-  for (int i = 1; i + 1 < 2 * nc; ++i) q.push_back(forms.Param(x, i - 1));
-  {
-    Lin qs = forms.Constant(0.5);
-    for (int i = 0; i < slave; ++i) forms.Axpy(layout.jump(i) / 2.0, q[i], &qs);
-    q.push_back(qs);
-  }
-  for (int i = 0; i + 1 < 2 * nc; ++i) {
-    if (!(q[i + 1].v > q[i].v)) return false;
-  }
-  if (!(q[2 * nc - 1].v < 1.0)) return false;
-  const Lin delta = forms.Param(x, layout.delta_offset());
-
-  const int N = layout.num_knots();
-  std::vector<Lin> s(N);
-  std::vector<std::vector<Lin>> g(N, std::vector<Lin>(T));
-  for (int m = 0; m < N; ++m) {
-    const GeneralCellLayout::Knot& knot = layout.knot(m);
-    const int g0 = layout.segment_start_group(knot.segment);
-    const Lin start = g0 < 0 ? forms.Constant(0.0) : tau[g0];
-    const Lin end = g0 + 1 < G ? tau[g0 + 1] : forms.Constant(1.0);
-    Lin sm = start;
-    const double f = static_cast<double>(knot.step) / K;
-    forms.Axpy(f, end, &sm);
-    forms.Axpy(-f, start, &sm);
-    s[m] = sm;
-    std::vector<Lin>& pos = g[m];
-    if (m + 1 == N) {
-      // Self-similar closure.
-      const int M = static_cast<int>(knot.order.size());
-      for (int j = 0; j < M; ++j) {
-        const int c = (j + t.label_offset) % (2 * nc);
-        const int wrap = (j + t.label_offset) / (2 * nc);
-        Lin v = delta;
-        forms.Axpy(1.0 / t.r, q[c], &v);
-        v.v += static_cast<double>(wrap) / t.r;
-        pos[knot.order[j]] = v;
-      }
-      continue;
-    }
-    // Pre-existing interfaces.
-    for (int id : knot.order) {
-      if (knot.born_group >= 0 && layout.birth_group(id) == knot.born_group) {
-        continue;
-      }
-      if (m == 0) {
-        pos[id] = q[id];
-      } else if (id != slave) {
-        pos[id] = forms.Param(x, knot.param[id]);
-      }
-    }
-    if (m > 0) {
-      Lin v = forms.Constant(0.5);
-      for (int id : knot.order) {
-        if (id == slave) continue;
-        if (knot.born_group >= 0 && layout.birth_group(id) == knot.born_group) {
-          continue;
-        }
-        forms.Axpy(layout.jump(id) / 2.0, pos[id], &v);
-      }
-      pos[slave] = v;
-    }
-    // Births: the order before the group is knot.order without the group's
-    // trajectories; each new pair follows its host's lower bound.
-    if (knot.born_group >= 0) {
-      const int bg = knot.born_group;
-      const int M = static_cast<int>(knot.order.size());
-      // The host bounds are the nearest pre-existing neighbours.
-      for (int j = 0; j < M; ++j) {
-        const int id = knot.order[j];
-        if (layout.birth_group(id) != bg) continue;
-        // Lower flank of a pair: its predecessor is pre-existing.
-        const int prev = knot.order[(j + M - 1) % M];
-        if (layout.birth_group(prev) == bg) continue;  // upper flank
-        const int hi_index = (j + 2) % M;
-        const int hi = knot.order[hi_index];
-        Lin lo_pos = pos[prev];
-        Lin hi_pos = pos[hi];
-        if (hi_index == 0) hi_pos.v += 1.0;  // the wrap piece
-        // Which needle: trajectories of group bg are numbered in insertion
-        // order (highest piece first); recover the needle by its id.
-        int first_id = 2 * nc;
-        for (int gg = 0; gg < bg; ++gg) {
-          first_id += 2 * static_cast<int>(t.groups[gg].needles.size());
-        }
-        // Insertion order: pieces sorted descending.
-        std::vector<int> by_piece(t.groups[bg].needles.size());
-        for (size_t e = 0; e < by_piece.size(); ++e) by_piece[e] = static_cast<int>(e);
-        std::stable_sort(by_piece.begin(), by_piece.end(), [&](int a, int b) {
-          return t.groups[bg].needles[a].piece > t.groups[bg].needles[b].piece;
-        });
-        const int needle = first_needle[bg] + by_piece[(id - first_id) / 2];
-        Lin born = lo_pos;
-        const double width = hi_pos.v - lo_pos.v;
-        // born = lo + p (hi - lo): bilinear.
-        born.v += p[needle].v * width;
-        if (forms.grad()) {
-          for (int k = 0; k < n; ++k) {
-            born.d[k] += p[needle].v * (hi_pos.d[k] - lo_pos.d[k]) +
-                         width * p[needle].d[k];
-          }
-        }
-        pos[id] = born;
-        pos[knot.order[(j + 1) % M]] = born;
-      }
-    }
-  }
-
-  // Interfacial coefficient.
-  Lin B = forms.Constant(2.0 * 2 * nc);
-  for (int gg = 0; gg < G; ++gg) {
-    const double count = static_cast<double>(t.groups[gg].needles.size());
-    B.v += 4.0 * count;
-    forms.Axpy(-4.0 * count, tau[gg], &B);
-  }
-
-  if (geometry != nullptr) {
-    geometry->s.assign(N, 0.0);
-    geometry->position.assign(
-        N, std::vector<double>(T, std::numeric_limits<double>::quiet_NaN()));
-    geometry->order.assign(N, {});
-    for (int m = 0; m < N; ++m) {
-      geometry->s[m] = s[m].v;
-      geometry->order[m] = layout.knot(m).order;
-      for (int id : layout.knot(m).order) geometry->position[m][id] = g[m][id].v;
-    }
-    geometry->B = B.v;
-    geometry->A = 0.0;
-  }
-
-  int row = 0;
+  CellKnots<double> cell;
+  if (!EvaluateKnots(layout, x, &cell)) return false;
+  if (geometry != nullptr) KnotGeometry(layout, cell, geometry);
   double A = 0.0;
-  for (int m = 0; m + 1 < N; ++m) {
-    const std::vector<int>& order = layout.knot(m).order;
-    const int M = static_cast<int>(order.size());
-    Lin ds = s[m + 1];
-    forms.Axpy(-1.0, s[m], &ds);
-    if (!(ds.v > 0.0)) return false;
-    std::vector<Lin> W0(M), W1(M), D(M);
-    Lin cumulative = forms.Constant(0.0);
-    for (int j = 0; j < M; ++j) {
-      const int lo = order[j];
-      const int hi = order[(j + 1) % M];
-      const double wrap = j + 1 == M ? 1.0 : 0.0;
-      W0[j] = g[m][hi];
-      W0[j].v += wrap;
-      forms.Axpy(-1.0, g[m][lo], &W0[j]);
-      W1[j] = g[m + 1][hi];
-      W1[j].v += wrap;
-      forms.Axpy(-1.0, g[m + 1][lo], &W1[j]);
-      if (!(W0[j].v >= 0.0) || !(W1[j].v >= 0.0) ||
-          !(W0[j].v + W1[j].v > 0.0)) {
-        return false;
-      }
-      forms.Axpy(-layout.jump(lo), g[m + 1][lo], &cumulative);
-      forms.Axpy(layout.jump(lo), g[m][lo], &cumulative);
-      D[j] = cumulative;
-    }
-    for (int i = 0; i < M; ++i) {
-      for (int j = i + 1; j < M; ++j) {
-        const double c = (2.0 * W0[i].v * W0[j].v + W0[i].v * W1[j].v +
-                          W1[i].v * W0[j].v + 2.0 * W1[i].v * W1[j].v) /
-                         6.0;
-        if (!(c > 0.0)) return false;
-        const double R = std::sqrt(c / ds.v);
-        const double Dij = D[j].v - D[i].v;
-        A += c * Dij * Dij / ds.v;
-        if (residuals != nullptr) residuals[row] = B.v * R * Dij;
-        if (jacobian != nullptr) {
-          double* J = jacobian + static_cast<size_t>(row) * n;
-          const double a0i = (2.0 * W0[j].v + W1[j].v) / 6.0;
-          const double a0j = (2.0 * W0[i].v + W1[i].v) / 6.0;
-          const double a1i = (W0[j].v + 2.0 * W1[j].v) / 6.0;
-          const double a1j = (W0[i].v + 2.0 * W1[i].v) / 6.0;
-          const double base = B.v * R * Dij;
-          const double fc = base / (2.0 * c);
-          const double fds = -base / (2.0 * ds.v);
-          const double fB = R * Dij;
-          const double fD = B.v * R;
-          for (int k = 0; k < n; ++k) {
-            const double dc = a0i * W0[i].d[k] + a0j * W0[j].d[k] +
-                              a1i * W1[i].d[k] + a1j * W1[j].d[k];
-            J[k] = fB * B.d[k] + fc * dc + fds * ds.d[k] +
-                   fD * (D[j].d[k] - D[i].d[k]);
-          }
-        }
-        ++row;
-      }
-    }
-  }
+  Pieces<double> pieces;
+  if (!CellEnergy(layout, cell, residuals, &A, &pieces)) return false;
   if (geometry != nullptr) geometry->A = A;
-  return true;
+  return jacobian == nullptr || CellJacobian(layout, x, jacobian);
 }
 
 }  // namespace

@@ -2,8 +2,8 @@
 // "Self-similar constructions" and the last practical note): a super-cell of
 // n_c lamella pairs whose interfaces are piecewise linear in s, with needle
 // nucleation events, refined by r across the cell and closed self-similarly.
-// Its energy coefficient product A B^2 as a Ceres cost function with an
-// analytic Jacobian.
+// Its energy coefficient product A B^2 as a Ceres cost function whose
+// Jacobian comes from forward-mode automatic differentiation (ceres::Jet).
 //
 // Coordinates: s in [0, 1] from the coarse end (s = 0) to the fine end, eta
 // in units of the super-period P (one cell = n_c lamella pairs at s = 0 and
@@ -51,9 +51,17 @@
 // Parameter block (one, size GeneralCellLayout::size()):
 //   [q_1 .. q_{2n_c-2}] [Delta] [tau_g (g >= 1 if first_at_zero)] [p_e]
 //   [knot positions: per interior knot, per alive parameter trajectory].
-// Jacobian: chain rule through the affine/bilinear maps above (every knot
-// position is a linear form in the parameters, newborns bilinear in p);
-//   d r = dB R D + B R D (dc / (2c) - d ds / (2 ds)) + B R dD,  R = sqrt(c/ds).
+// Evaluation: one template over the scalar type, in the steps above (tau, p
+// and the coarse end q; per knot s, then the closure at s = 1 or the carried
+// interfaces with the volume slave and the newborn pairs; B; per interval the
+// widths W0, W1 and the cumulative jumps D, then r_ij per piece pair).
+// Residuals and EvaluateGeneralGeometry evaluate it with double; the
+// Jacobian with ceres::Jet<double, 16> in ceil(size / 16) passes, each
+// seeding 16 parameters (the chunking of ceres::DynamicAutoDiffCostFunction),
+// so the chain rule is the jets' (every knot position is affine in the
+// parameters, newborns bilinear in p). Every domain test reads the scalar
+// part, so both evaluations take the same branches; with the Jacobian the
+// residuals are still those of the double evaluation.
 // Evaluate returns false outside the valid domain: a width < 0 at a knot, a
 // piece of zero width at both ends of an interval, ds <= 0, p outside [0, 1].
 #ifndef SHELLSPACE_COST_FUNCTIONS_BRANCHING_GENERAL_CELL_COST_FUNCTION_H_

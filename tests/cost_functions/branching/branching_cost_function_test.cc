@@ -1,11 +1,16 @@
 // Gradient checks of every branching cost function (ceres::GradientChecker,
 // fixed seed), and a negative test: a deliberately wrong Jacobian fails.
+// The general cell's Jacobian (automatic differentiation) also against
+// central differences through the suite's derivative-check helper, with its
+// negative twin.
 #include <cmath>
 #include <functional>
+#include <limits>
 #include <memory>
 #include <random>
 #include <vector>
 
+#include <Eigen/Core>
 #include <ceres/ceres.h>
 #include <ceres/gradient_checker.h>
 #include <gtest/gtest.h>
@@ -16,6 +21,7 @@
 #include "shellspace/cost_functions/branching/gradient_cost_function.h"
 #include "shellspace/cost_functions/branching/km_energy_cost_function.h"
 #include "shellspace/cost_functions/branching/lens_energy_cost_function.h"
+#include "tests/testing/derivative_check.h"
 
 namespace shellspace::branching {
 namespace {
@@ -255,6 +261,125 @@ TEST(BranchingCostGradient, GeneralCellWrongJacobianIsDetected) {
   // The unperturbed cost passes at the same (seeded) point.
   EXPECT_TRUE(CheckAt(&perturbed.inner_, sample, 1, 1e-6, nullptr));
   EXPECT_FALSE(CheckAt(&perturbed, sample, 1, 1e-6, nullptr));
+}
+
+// Every topology class of the general cell tests (here and in
+// tests/problems/branching/branching_general_test.cc): the needle (p = 1/2)
+// and the psi-junctions (p = 1, p = 0) of r = 2, nucleating at tau = 0 or
+// later; the lens (two needles in one group); staggered groups; two and
+// three lamella pairs with odd label offsets; the r = 4 cell of three
+// groups with K = 6.
+struct GeneralCase {
+  const char* name;
+  GeneralTopology topology;
+};
+
+GeneralTopology Cell(int pairs, int r, int offset, int subintervals,
+                     bool at_zero, std::vector<NucleationGroup> groups) {
+  GeneralTopology t;
+  t.pairs = pairs;
+  t.r = r;
+  t.label_offset = offset;
+  t.subintervals = subintervals;
+  t.first_at_zero = at_zero;
+  t.groups = std::move(groups);
+  return t;
+}
+
+std::vector<GeneralCase> GeneralCases() {
+  const std::vector<GeneralTopology> check = CheckTopologies();
+  return {
+      {"needle_at_zero", Cell(1, 2, 0, 2, true, {{{{0, 0.5}}, 0.0}})},
+      {"psi_top_at_zero", Cell(1, 2, 0, 2, true, {{{{0, 1.0}}, 0.0}})},
+      {"psi_bottom", Cell(1, 2, 1, 2, false, {{{{1, 0.0}}, 0.5}})},
+      {"lens", check[0]},
+      {"lens_at_zero", Cell(1, 3, 0, 2, true, {{{{0, 0.5}, {1, 0.5}}, 0.0}})},
+      {"staggered", check[1]},
+      {"two_pairs_odd_offset", check[2]},
+      {"three_pairs_psi", Cell(3, 2, 1, 3, false,
+                               {{{{1, 0.5}, {3, 0.0}}, 0.4},
+                                {{{0, 1.0}}, 0.6}})},
+      {"r4_three_groups", Cell(1, 4, 1, 6, false,
+                               {{{{0, 0.5}}, 0.3},
+                                {{{3, 0.5}}, 0.5},
+                                {{{0, 0.5}}, 0.7}})},
+  };
+}
+
+// The residuals at x (NaN outside the domain).
+Eigen::VectorXd GeneralResiduals(const GeneralCellCostFunction& cost,
+                                 const Eigen::VectorXd& x) {
+  Eigen::VectorXd r(cost.num_residuals());
+  const double* parameters[] = {x.data()};
+  if (!cost.Evaluate(parameters, r.data(), nullptr)) {
+    r.setConstant(std::numeric_limits<double>::quiet_NaN());
+  }
+  return r;
+}
+
+// The Jacobian of the general cell against central differences of its
+// residuals (testing::CentralDifferenceError, h = 1e-6, every coordinate but
+// a needle position on the boundary p = 0 or 1, where one side leaves the
+// domain) at 3 random points per topology class: the start values of tau
+// and of the interior p drawn, the knots jittered (GeneralPoint). The
+// negative twin is the same Jacobian with its largest probed entry off by
+// 1e-4 of that entry. The residuals of an evaluation with the Jacobian are
+// those without, to the bit.
+TEST(BranchingCostGradient, GeneralCellJacobianMatchesCentralDifferences) {
+  std::mt19937 rng(20261204);
+  std::uniform_real_distribution<double> shift(-1.0, 1.0);
+  int checked = 0;
+  for (const GeneralCase& c : GeneralCases()) {
+    for (int trial = 0; trial < 3; ++trial) {
+      SCOPED_TRACE(std::string(c.name) + " trial " + std::to_string(trial));
+      GeneralTopology t = c.topology;
+      for (size_t g = 0; g < t.groups.size(); ++g) {
+        if (!(t.first_at_zero && g == 0)) t.groups[g].tau += 0.04 * shift(rng);
+        for (NeedleEvent& e : t.groups[g].needles) {
+          if (e.p > 0.0 && e.p < 1.0) e.p += 0.15 * shift(rng);
+        }
+      }
+      const GeneralCellCostFunction cost(t);
+      const GeneralCellLayout& layout = cost.layout();
+      const std::vector<double> start = GeneralPoint(layout, rng);
+      const Eigen::VectorXd x =
+          Eigen::Map<const Eigen::VectorXd>(start.data(), start.size());
+      const int n = layout.size();
+      const int m = cost.num_residuals();
+      Eigen::VectorXd residuals(m);
+      Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>
+          jacobian(m, n);
+      const double* parameters[] = {x.data()};
+      double* jacobians[] = {jacobian.data()};
+      ASSERT_TRUE(cost.Evaluate(parameters, residuals.data(), jacobians));
+      const Eigen::VectorXd plain = GeneralResiduals(cost, x);
+      EXPECT_TRUE((residuals.array() == plain.array()).all());
+      std::vector<int> probes;
+      for (int k = 0; k < n; ++k) {
+        const bool needle = k >= layout.p_offset(0) &&
+                            k < layout.p_offset(0) + layout.num_needles();
+        if (!(needle && (x(k) == 0.0 || x(k) == 1.0))) probes.push_back(k);
+      }
+      // The wrong entry: the largest of the probed columns.
+      testing::WrongEntry wrong{0, probes[0], 0.0};
+      for (int k : probes) {
+        Eigen::Index row = 0;
+        const double v = jacobian.col(k).cwiseAbs().maxCoeff(&row);
+        if (v > std::abs(wrong.offset)) {
+          wrong = {static_cast<int>(row), k, v};
+        }
+      }
+      wrong.offset *= 1e-4;
+      const testing::ErrorAndTwin e = testing::CentralDifferenceErrorAndTwin(
+          [&](const Eigen::VectorXd& y) { return GeneralResiduals(cost, y); },
+          x, [&](int k) -> Eigen::VectorXd { return jacobian.col(k); },
+          probes, 1e-6, wrong);
+      EXPECT_LT(e.error, 1e-7) << n << " parameters";
+      EXPECT_GT(e.twin_error, 1e-5);
+      ++checked;
+    }
+  }
+  EXPECT_EQ(checked, 27);
 }
 
 }  // namespace
