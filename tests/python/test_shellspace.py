@@ -1,4 +1,4 @@
-"""Tests of the Python module `shellspace` (python/shellspace_module.cc).
+"""Tests of the Python module `shellspace` (python/shellspace_module.cc and python/module_*.cc).
 
 Run by CTest (`python_tests`) with PYTHONPATH at the build tree's python/
 folder, SHELLSPACE_CLI the built `shellspace` tool and SHELLSPACE_DATA the

@@ -1,0 +1,319 @@
+// The module's geodesic calculus: geodesic, log, shoot, transport, compare.
+#include <string>
+#include <vector>
+
+#include "python/module_common.h"
+#include "shellspace/io/mesh_io.h"
+#include "shellspace/problems/calculus/exponential_map.h"
+#include "shellspace/problems/calculus/geodesic.h"
+#include "shellspace/problems/calculus/multiresolution.h"
+#include "shellspace/problems/calculus/parallel_transport.h"
+#include "shellspace/problems/calculus/shape_comparison.h"
+#include "shellspace/reports/path_reports.h"
+#include "shellspace/reports/solve_choices.h"
+#include "python/array_arguments.h"
+#include "tools/run/memory_limits.h"
+
+namespace shellspace {
+namespace pymodule {
+namespace {
+
+void CheckGeodesic(const GeodesicResult& result) {
+  if (!result.failure.empty()) {
+    throw InputError("solver failed: " + result.failure);
+  }
+}
+
+// The geodesic between two arrays of one mesh (geodesic, log): the start
+// shell and the (multiresolution) solve.
+struct GeodesicPySolve {
+  Shell start;
+  ShellSpace space;
+  MultiresolutionResult multi;
+};
+
+GeodesicPySolve SolveGeodesicPy(const py::object& start_v,
+                                const py::object& end_v, const py::object& F,
+                                int steps, const py::object& mask,
+                                const std::string& multires,
+                                const std::string& linear_solver,
+                                const std::string& lm, const std::string& init,
+                                const MaterialArgs& material_args,
+                                const SolverSettings& settings,
+                                SolveControl& control) {
+  CheckAtLeast("steps", steps, 1);
+  ShellPair pair =
+      MakeShellPair(start_v, end_v, F, "start", "end", material_args);
+  const int vertices = pair.first.mesh.num_vertices();
+  CheckSteps("steps", steps, 1, GeodesicBytes(vertices, steps), vertices,
+             kGeodesicModel);
+  GeodesicInput input;
+  input.start = pair.first.mesh.positions;
+  input.end = pair.second;
+  input.steps = steps;
+  input.fixed_vertices = MaskArgument(mask, vertices);
+  input.linear_solver = ParsePathLinearSolver(linear_solver, "linear_solver");
+  input.lm = ParseGeodesicLm(lm, "lm");
+  input.init = ParseGeodesicInit(init, "init");
+  const MultiresolutionSettings levels =
+      ParseMultiresolution(multires, vertices, "multires");
+  GeodesicPySolve solve;
+  {
+    SolveControl::Solving solving(control);
+    solve.multi =
+        SolveGeodesicMultiresolution(pair.space, input, settings, levels);
+  }
+  solve.start = std::move(pair.first);
+  solve.space = std::move(pair.space);
+  return solve;
+}
+
+// What an unconverged geodesic missed (the CLI's text).
+std::vector<std::string> GeodesicFailures(const GeodesicResult& result,
+                                          const std::string& what) {
+  if (result.converged) return {};
+  return {what + ": |grad| " + Short(result.final_gradient) +
+          " above the target " + Short(result.gradient_target) +
+          " (tolerance x max(1, |grad_0|)) after " +
+          std::to_string(result.iterations) + " iterations (" +
+          (result.stages.empty() ? std::string("no stages")
+                                 : result.stages.back().termination) +
+          ")"};
+}
+
+py::object GeodesicPy(const py::object& start_v, const py::object& end_v,
+                      const py::object& F, int steps, const py::object& mask,
+                      const std::string& multires,
+                      const std::string& linear_solver, const std::string& lm,
+                      const std::string& init,
+                      bool report, const std::optional<std::string>& output,
+                      const std::optional<std::string>& png,
+                      const std::optional<std::string>& gltf,
+                      const MaterialArgs& material_args,
+                      const SolverOptions& solver) {
+  const auto clock = Clock::now();
+  const auto [start, space, multi] = SolveGeodesicPy(
+      start_v, end_v, F, steps, mask, multires, linear_solver, lm, init,
+      material_args, solver.Settings("geodesic"), *solver.control);
+  const GeodesicResult& result = multi.geodesic;
+  CheckGeodesic(result);
+  if (report)
+    py::print(result.summary.FullReport(),
+              py::arg("file") = py::module_::import("sys").attr("stderr"));
+  WritePath(output, png, gltf, start.mesh.faces, result.path);
+  JsonObject json = GeodesicJson(result);
+  json.Raw("multires_levels", MultiresolutionJson(multi))
+      .Add("prolongation", ProlongationJson(multi.prolongation))
+      .Raw("energy_split", PathEnergySplitJson(space, result.path))
+      .Raw("material", MaterialRecord(space, start.mesh, material_args))
+      .Add("seconds", Seconds(clock));
+  AddStopFields(json, *solver.control);
+  const py::object summary = ToDict(AddOutput(json, output));
+  return solver.Finish(py::make_tuple(FromPath(result.path), summary), summary,
+                       "geodesic", GeodesicFailures(result, "geodesic"));
+}
+
+py::object LogPy(const py::object& start_v, const py::object& end_v,
+                 const py::object& F, int steps, const py::object& mask,
+                 const std::string& multires, const std::string& linear_solver,
+                 const std::string& lm, const std::string& init,
+                 const std::optional<std::string>& output,
+                 const MaterialArgs& material_args,
+                 const SolverOptions& solver) {
+  const auto clock = Clock::now();
+  const auto [start, space, multi] = SolveGeodesicPy(
+      start_v, end_v, F, steps, mask, multires, linear_solver, lm, init,
+      material_args, solver.Settings("log"), *solver.control);
+  const GeodesicResult& geodesic = multi.geodesic;
+  const Positions log = LogOfGeodesic(geodesic.path);
+  if (output) {
+    WriteMesh(Mesh{start.mesh.positions + log, start.mesh.faces}, *output);
+  }
+  JsonObject json = GeodesicJson(geodesic);
+  json.Raw("multires_levels", MultiresolutionJson(multi))
+      .Add("prolongation", ProlongationJson(multi.prolongation))
+      .Raw("energy_split", PathEnergySplitJson(space, geodesic.path))
+      .Raw("material", MaterialRecord(space, start.mesh, material_args))
+      .Add("log_max_norm", log.cwiseAbs().maxCoeff())
+      .Add("seconds", Seconds(clock));
+  AddStopFields(json, *solver.control);
+  const py::object summary = ToDict(AddOutput(json, output));
+  return solver.Finish(py::make_tuple(FromPositions(log), summary), summary,
+                       "log", GeodesicFailures(geodesic, "log: the geodesic"));
+}
+
+py::object ShootPy(const py::object& first_v, const py::object& second_v,
+                   const py::object& F, int steps, bool backward,
+                   const py::object& mask,
+                   const std::optional<std::string>& output,
+                   const std::optional<std::string>& png,
+                   const std::optional<std::string>& gltf,
+                   const MaterialArgs& material_args,
+                   const SolverOptions& solver) {
+  const auto clock = Clock::now();
+  CheckAtLeast("steps", steps, 1);
+  const auto [first, second, space] = MakeShellPair(
+      first_v, second_v, F, "first", "second", material_args);
+  const int vertices = first.mesh.num_vertices();
+  CheckSteps("steps", steps, 1, PathBytes(vertices, steps + 1), vertices,
+             kPathModel);
+  const std::vector<int> fixed = MaskArgument(mask, vertices);
+  const SolverSettings settings = solver.Settings("shoot");
+  ShootResult result;
+  {
+    SolveControl::Solving solving(*solver.control);
+    result = ShootWithReport(
+        space, first.mesh.positions, second, steps,
+        backward ? StepDirection::kBackward : StepDirection::kForward, fixed,
+        settings);
+  }
+  // An EXP step without a root is the CLI's unsolved step (exit 4).
+  std::vector<std::string> failures;
+  for (size_t i = 0; i < result.exp_steps.size(); ++i) {
+    const ExpStepResult& step = result.exp_steps[i];
+    if (step.solved) continue;
+    failures.push_back("EXP step " + std::to_string(i + 1) +
+                       " not solved: relative residual " +
+                       Short(step.relative_residual) + " > " +
+                       Short(kExpStepAcceptance));
+  }
+  WritePath(output, png, gltf, first.mesh.faces, result.path);
+  JsonObject json = ShootJson(result);
+  json.Raw("energy_split", PathEnergySplitJson(space, result.path))
+      .Raw("material", MaterialRecord(space, first.mesh, material_args))
+      .Add("seconds", Seconds(clock));
+  AddStopFields(json, *solver.control);
+  const py::object summary = ToDict(AddOutput(json, output));
+  return solver.Finish(py::make_tuple(FromPath(result.path), summary), summary,
+                       "shoot", std::move(failures));
+}
+
+py::object TransportPy(const py::object& path_object,
+                       const py::object& variation_v, const py::object& F,
+                       double epsilon, const py::object& mask,
+                       const std::optional<std::string>& output,
+                       const std::optional<std::string>& png,
+                       const std::optional<std::string>& gltf,
+                       const MaterialArgs& material_args,
+                       const SolverOptions& solver) {
+  const auto clock = Clock::now();
+  if (!(epsilon > 0) || !std::isfinite(epsilon)) {
+    throw InputError("epsilon must be > 0, got " + std::to_string(epsilon));
+  }
+  const std::vector<Positions> frames = ShapeListArgument(path_object, "path");
+  if (frames.size() < 2) throw InputError("path: need at least 2 frames");
+  const Shell first = MakeShell(frames[0], F, "path[0]");
+  ShellPath path = {first.mesh.positions};
+  for (size_t k = 1; k < frames.size(); ++k) {
+    path.push_back(CompatiblePositions(frames[k], first,
+                                       "path[" + std::to_string(k) + "]"));
+  }
+  const Positions varied = CompatiblePositions(variation_v, first, "variation");
+  const ShellSpace space(first.mesh, first.topology, Material(material_args, first.mesh));
+  const std::vector<int> fixed = MaskArgument(mask, first.mesh.num_vertices());
+  const SolverSettings settings = solver.Settings("transport");
+  TransportResult result;
+  {
+    SolveControl::Solving solving(*solver.control);
+    result = ParallelTransport(space, path, varied - first.mesh.positions,
+                               epsilon, fixed, settings);
+  }
+  std::vector<std::string> failures;
+  for (size_t k = 0; k < result.rungs.size(); ++k) {
+    const TransportResult::Rung& rung = result.rungs[k];
+    if (rung.solved) continue;
+    failures.push_back("rung " + std::to_string(k + 1) +
+                       " not solved: EXP residual " +
+                       Short(rung.relative_residual) + " > " +
+                       Short(kExpStepAcceptance) + " (also at epsilon / " +
+                       std::to_string(rung.divisor) + ")");
+  }
+  WritePath(output, png, gltf, first.mesh.faces, result.shapes);
+  JsonObject json = TransportJson(result, epsilon);
+  json.Raw("energy_split", PathEnergySplitJson(space, result.shapes))
+      .Raw("material", MaterialRecord(space, first.mesh, material_args))
+      .Add("seconds", Seconds(clock));
+  AddStopFields(json, *solver.control);
+  const py::object summary = ToDict(AddOutput(json, output));
+  return solver.Finish(py::make_tuple(FromPath(result.shapes), summary),
+                       summary, "transport", std::move(failures));
+}
+
+// `compare`: a and b each one #V x 3 array (a shell) or a sequence / #frames
+// x #V x 3 array (a path), with the connectivity F.
+py::object ComparePy(const py::object& a_object, const py::object& b_object,
+                     const py::object& F, double tolerance,
+                     double energy_tolerance, const MaterialArgs& material_args) {
+  for (const auto& [name, value] :
+       {std::pair{"tolerance", tolerance}, {"energy_tolerance", energy_tolerance}}) {
+    if (!(value >= 0) || !std::isfinite(value)) {
+      throw InputError(std::string(name) + " must be >= 0, got " +
+                       std::to_string(value));
+    }
+  }
+  const std::vector<Positions> a_shapes = ShapeOrListArgument(a_object, "a");
+  const std::vector<Positions> b_shapes = ShapeOrListArgument(b_object, "b");
+  const Shell first = MakeShell(a_shapes[0], F, "a[0]");
+  ShellPath a, b;
+  for (size_t k = 0; k < a_shapes.size(); ++k) {
+    a.push_back(CompatiblePositions(a_shapes[k], first, "a[" + std::to_string(k) + "]"));
+  }
+  for (size_t k = 0; k < b_shapes.size(); ++k) {
+    b.push_back(CompatiblePositions(b_shapes[k], first, "b[" + std::to_string(k) + "]"));
+  }
+  const ShellSpace space(first.mesh, first.topology, Material(material_args, first.mesh));
+  return ToDict(ComparisonJson(CompareShapes(space, a, b), tolerance,
+                               energy_tolerance));
+}
+
+}  // namespace
+
+void RegisterCalculus(py::module_& m) {
+  m.def("compare",
+        WithMaterialArgs(&ComparePy),
+        py::arg("a"), py::arg("b"), py::arg("F"),
+        py::arg("tolerance") = 1e-6, py::arg("energy_tolerance") = 1e-6,
+        SHELLSPACE_MATERIAL_ARGS,
+        "Two shells (#V x 3 arrays) or two paths (sequences of them) up to "
+        "rigid motion per frame: the `compare` verb's summary (max and mean "
+        "vertex distance per frame, E_K of each path or W[a, b], `equal` "
+        "against the tolerances).");
+  m.def(
+      "geodesic",
+      WithMaterialAndSolverArgs(&GeodesicPy), SHELLSPACE_GEODESIC_ARGS,
+      py::arg("report") = false, SHELLSPACE_FRAME_OUTPUT_ARGS,
+      SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
+      "Discrete geodesic from start to end in `steps` steps: returns (path, "
+      "summary). mask: vertex indices or a mask file held at their linear "
+      "positions. lm: who runs the LM stages, 'auto' | 'ceres' | 'engine' "
+      "(as the CLI's --lm). output: also write DIR/shape_000.ply ...; png: a "
+      "film strip.");
+  m.def(
+      "log",
+      WithMaterialAndSolverArgs(&LogPy), SHELLSPACE_GEODESIC_ARGS,
+      py::arg("output") = py::none(), SHELLSPACE_MATERIAL_ARGS,
+      SHELLSPACE_SOLVER_ARGS,
+      "LOG_K(start -> end) = K (s_1 - s_0) of the discrete geodesic: returns "
+      "(log #V x 3, summary). output: write start + log (as the CLI).");
+  m.def(
+      "shoot",
+      WithMaterialAndSolverArgs(&ShootPy),
+      py::arg("first"), py::arg("second"), py::arg("F"), py::arg("steps") = 8,
+      py::arg("backward") = false, py::arg("mask") = py::none(),
+      SHELLSPACE_FRAME_OUTPUT_ARGS, SHELLSPACE_MATERIAL_ARGS,
+      SHELLSPACE_SOLVER_ARGS,
+      "Geodesic shooting (EXP steps) from (first, second): returns (path, "
+      "summary).");
+  m.def(
+      "transport",
+      WithMaterialAndSolverArgs(&TransportPy),
+      py::arg("path"), py::arg("variation"), py::arg("F"),
+      py::arg("epsilon") = 1.0, py::arg("mask") = py::none(),
+      SHELLSPACE_FRAME_OUTPUT_ARGS, SHELLSPACE_MATERIAL_ARGS,
+      SHELLSPACE_SOLVER_ARGS,
+      "Schild's-ladder transport of variation - path[0] along path: returns "
+      "(shapes s_k + epsilon xi_k, summary).");
+}
+
+}  // namespace pymodule
+}  // namespace shellspace

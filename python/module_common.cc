@@ -1,0 +1,200 @@
+// The helpers the files of the Python module share (python/module_common.h).
+#include "python/module_common.h"
+
+#include <algorithm>
+
+#include "shellspace/geometry/validation.h"
+#include "shellspace/io/atomic_file.h"
+#include "shellspace/io/frame_sequence.h"
+#include "shellspace/io/gltf_writer.h"
+#include "shellspace/io/png_writer.h"
+#include "shellspace/render/film_strip.h"
+#include "shellspace/reports/shape_reports.h"
+#include "python/array_arguments.h"
+// The CLI's memory bounds of --steps (compiled into the module,
+// python/CMakeLists.txt).
+#include "tools/run/memory_limits.h"
+
+namespace shellspace {
+namespace pymodule {
+
+double Seconds(Clock::time_point since) {
+  return std::chrono::duration<double>(Clock::now() - since).count();
+}
+
+py::array_t<double> FromPositions(const Positions& positions) {
+  py::array_t<double> out({static_cast<py::ssize_t>(positions.rows()),
+                           static_cast<py::ssize_t>(3)});
+  std::copy(positions.data(), positions.data() + positions.size(),
+            out.mutable_data());
+  return out;
+}
+
+py::array_t<long long> FromFaces(const Faces& faces) {
+  py::array_t<long long> out(
+      {static_cast<py::ssize_t>(faces.rows()), static_cast<py::ssize_t>(3)});
+  for (Eigen::Index i = 0; i < faces.size(); ++i) {
+    out.mutable_data()[i] = faces.data()[i];
+  }
+  return out;
+}
+
+// A path as a (K + 1) x #V x 3 array.
+py::array_t<double> FromPath(const std::vector<Positions>& path) {
+  const py::ssize_t n = path.empty() ? 0 : path[0].rows();
+  py::array_t<double> out(
+      {static_cast<py::ssize_t>(path.size()), n, static_cast<py::ssize_t>(3)});
+  double* data = out.mutable_data();
+  for (const Positions& shape : path) {
+    std::copy(shape.data(), shape.data() + shape.size(), data);
+    data += shape.size();
+  }
+  return out;
+}
+
+py::object ToDict(const JsonObject& json) {
+  return py::module_::import("json").attr("loads")(json.str());
+}
+
+Shell MakeShell(Positions positions, const py::object& F,
+                const std::string& name) {
+  Shell shell;
+  const int num_vertices = static_cast<int>(positions.rows());
+  shell.mesh = Mesh{std::move(positions), FacesArgument(F, "F", num_vertices)};
+  shell.topology = ValidateShell(shell.mesh, name);
+  return shell;
+}
+
+Shell MakeShell(const py::object& V, const py::object& F,
+                const std::string& name) {
+  return MakeShell(PositionsArgument(V, name), F, name);
+}
+
+// Positions of a pose of `like` (same vertex count), validated.
+Positions CompatiblePositions(const Positions& positions, const Shell& like,
+                              const std::string& name) {
+  if (positions.rows() != like.mesh.positions.rows()) {
+    throw InputError(name + " has " + std::to_string(positions.rows()) +
+                     " vertices, expected " +
+                     std::to_string(like.mesh.positions.rows()));
+  }
+  ValidateShellPositions(Mesh{positions, like.mesh.faces}, like.topology, name);
+  return positions;
+}
+
+Positions CompatiblePositions(const py::object& V, const Shell& like,
+                              const std::string& name) {
+  return CompatiblePositions(PositionsArgument(V, name), like, name);
+}
+
+ShellMaterial Material(const MaterialArgs& args, const Mesh& reference) {
+  ShellMaterial material;
+  if (!ParseBendingModel(args.bending, &material.bending_model)) {
+    throw InputError("bending: unknown bending model '" + args.bending +
+                     "' (discrete-shells or shape-operator; the edge-angle "
+                     "variant is evaluated only by the `energy` verb of the "
+                     "CLI)");
+  }
+  material.mu = args.mu;
+  material.lambda = args.lambda;
+  material.eta = args.eta ? *args.eta
+                          : EtaFromRelative(args.relative_eta, reference);
+  material.Validate();
+  return material;
+}
+
+// The material as resolved for `reference` (the CLI's "material" record).
+std::string MaterialRecord(const ShellSpace& space, const Mesh& reference,
+                           const MaterialArgs& args) {
+  return MaterialJson(space.material, reference, args.eta.has_value()).str();
+}
+
+ShellPair MakeShellPair(const py::object& first, const py::object& second,
+                        const py::object& F, const std::string& first_name,
+                        const std::string& second_name,
+                        const MaterialArgs& material_args) {
+  ShellPair pair;
+  pair.first = MakeShell(first, F, first_name);
+  pair.second = CompatiblePositions(second, pair.first, second_name);
+  pair.space = ShellSpace(pair.first.mesh, pair.first.topology,
+                          Material(material_args, pair.first.mesh));
+  return pair;
+}
+
+JsonObject& AddStopFields(JsonObject& json, const SolveControl& control) {
+  return json.Add("partial", control.stopped())
+      .Add("stop_reason", control.stop_reason());
+}
+
+void CheckAtLeast(const std::string& name, long value, long min) {
+  if (value < min) {
+    throw InputError(name + " must be >= " + std::to_string(min) + ", got " +
+                     std::to_string(value));
+  }
+}
+
+// `steps` of a solve the CLI bounds up front: in [min, kMaxSteps] and its
+// memory estimate `bytes` (tools/run/memory_limits.h, the model `model`)
+// within half the physical memory.
+void CheckSteps(const std::string& name, long steps, long min, double bytes,
+                int vertices, const std::string& model) {
+  CheckAtLeast(name, steps, min);
+  if (steps > kMaxSteps) {
+    throw InputError(name + " must be <= " + std::to_string(kMaxSteps) +
+                     ", got " + std::to_string(steps));
+  }
+  CheckMemory(bytes,
+              name + " " + std::to_string(steps) + " on " +
+                  std::to_string(vertices) + " vertices",
+              model);
+}
+
+void WritePath(const std::optional<std::string>& output,
+               const std::optional<std::string>& png,
+               const std::optional<std::string>& gltf, const Faces& faces,
+               const std::vector<Positions>& path) {
+  RenderOptions options;
+  if (png) ValidateRenderOptions(options);
+  AtomicFileSet files;  // all together or none, as the CLI
+  if (gltf) files.Add(*gltf, EncodeGltfMorphAnimation(path, faces));
+  if (png) files.Add(*png, EncodePng(RenderFilmStrip(path, faces, options)));
+  if (output) AddFrames(*output, faces, path, &files);
+  files.Commit();
+}
+
+JsonObject& AddOutput(JsonObject& json,
+                      const std::optional<std::string>& output) {
+  if (output) json.Add("output", *output);
+  return json;
+}
+
+ShapeSet MakeShapeSet(const py::object& list, const py::object& F,
+                      const std::string& name) {
+  const std::vector<Positions> shapes = ShapeListArgument(list, name);
+  ShapeSet set;
+  set.first = MakeShell(shapes[0], F, name + "[0]");
+  set.shapes.push_back(set.first.mesh.positions);
+  for (size_t i = 1; i < shapes.size(); ++i) {
+    set.shapes.push_back(CompatiblePositions(
+        shapes[i], set.first, name + "[" + std::to_string(i) + "]"));
+  }
+  return set;
+}
+
+Frames FramesArgument(const py::object& frames_object, const py::object& F) {
+  Frames frames;
+  frames.shapes = ShapeListArgument(frames_object, "frames");
+  const Eigen::Index vertices = frames.shapes[0].rows();
+  for (size_t k = 1; k < frames.shapes.size(); ++k) {
+    if (frames.shapes[k].rows() != vertices) {
+      throw InputError("frames[" + std::to_string(k) + "] has " +
+                       std::to_string(frames.shapes[k].rows()) +
+                       " vertices, expected " + std::to_string(vertices));
+    }
+  }
+  frames.faces = FacesArgument(F, "F", static_cast<int>(vertices));
+  return frames;
+}
+
+}  // namespace pymodule
+}  // namespace shellspace

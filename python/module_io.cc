@@ -1,0 +1,55 @@
+// The module's mesh files: read_mesh, write_mesh, read_mask, write_gltf.
+#include <string>
+
+#include "python/module_common.h"
+#include "shellspace/geometry/validation.h"
+#include "shellspace/io/gltf_writer.h"
+#include "shellspace/io/mesh_io.h"
+#include "python/array_arguments.h"
+
+namespace shellspace {
+namespace pymodule {
+namespace {
+
+py::tuple ReadMeshPy(const std::string& path) {
+  const Mesh mesh = ReadMesh(path);
+  return py::make_tuple(FromPositions(mesh.positions), FromFaces(mesh.faces));
+}
+
+void WriteMeshPy(const std::string& path, const py::object& V,
+                 const py::object& F) {
+  Positions positions = PositionsArgument(V, "V");
+  const int num_vertices = static_cast<int>(positions.rows());
+  const Mesh mesh{std::move(positions), FacesArgument(F, "F", num_vertices)};
+  ValidateMeshStructure(mesh, path);
+  WriteMesh(mesh, path);
+}
+
+void WriteGltfPy(const std::string& path, const py::object& frames_object,
+                 const py::object& F, double fps,
+                 const std::string& interpolation) {
+  GltfAnimationOptions options;
+  options.frames_per_second = fps;
+  options.interpolation =
+      ParseGltfInterpolation(interpolation, "interpolation");
+  const Frames frames = FramesArgument(frames_object, F);
+  WriteGltfMorphAnimation(path, frames.shapes, frames.faces, options);
+}
+
+}  // namespace
+
+void RegisterIo(py::module_& m) {
+  m.def("read_mesh", &ReadMeshPy, py::arg("path"),
+        "Reads a PLY, OBJ or OFF mesh (strict readers): returns (V, F).");
+  m.def("write_mesh", &WriteMeshPy, py::arg("path"), py::arg("V"), py::arg("F"),
+        "Writes (V, F) as PLY, OBJ or OFF (by the extension), atomically.");
+  m.def("write_gltf", &WriteGltfPy, py::arg("path"), py::arg("frames"),
+        py::arg("F"), py::arg("fps") = 4.0, py::arg("interpolation") = "linear",
+        "Writes frames (a path) as one glTF 2.0 morph animation (.glb), as "
+        "`shellspace export` does.");
+  m.def("read_mask", &ReadMask, py::arg("path"), py::arg("num_vertices"),
+        "Reads a vertex mask file: sorted unique 0-based indices.");
+}
+
+}  // namespace pymodule
+}  // namespace shellspace
