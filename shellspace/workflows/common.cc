@@ -1,0 +1,59 @@
+#include "shellspace/workflows/common.h"
+
+#include <cstdio>
+#include <utility>
+
+#include "shellspace/cost_functions/shell/deformation_energy.h"
+#include "shellspace/reports/shape_reports.h"
+
+namespace shellspace {
+namespace workflows {
+
+EnergySplit PathEnergySplit(const ShellSpace& space,
+                            const std::vector<Positions>& path) {
+  EnergySplit split;
+  const double steps = path.size() > 1 ? path.size() - 1.0 : 0.0;
+  for (size_t k = 1; k < path.size(); ++k) {
+    const DeformationEnergy w =
+        EvaluateDeformationEnergy(space, path[k - 1], path[k]);
+    split.membrane += steps * w.membrane;
+    split.bending += steps * (w.total - w.membrane);
+  }
+  return split;
+}
+
+EnergySplit MeanEnergySplit(const ShellSpace& space, const Positions& mean,
+                            const std::vector<Positions>& shapes) {
+  EnergySplit split;
+  for (const Positions& shape : shapes) {
+    const DeformationEnergy w = EvaluateDeformationEnergy(space, mean, shape);
+    split.membrane += w.membrane;
+    split.bending += w.total - w.membrane;
+  }
+  return split;
+}
+
+std::string EnergySplitJson(const EnergySplit& split) {
+  return shellspace::EnergySplitJson(split.membrane, split.bending);
+}
+
+ObservedStop::ObservedStop(SolverSettings* settings)
+    : flag_(std::make_shared<std::atomic<bool>>(false)) {
+  if (!settings->stop) return;
+  StopPoll poll = std::move(settings->stop);
+  std::shared_ptr<std::atomic<bool>> flag = flag_;
+  settings->stop = [poll, flag] {
+    if (!poll()) return false;
+    flag->store(true);
+    return true;
+  };
+}
+
+std::string ShortNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.3g", value);
+  return text;
+}
+
+}  // namespace workflows
+}  // namespace shellspace

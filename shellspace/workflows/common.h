@@ -1,0 +1,67 @@
+// What the workflows share: the resolved material of a run, the membrane /
+// bending split of an energy, the stop poll that remembers whether it
+// stopped a solve, and the numbers of the failure texts.
+#ifndef SHELLSPACE_WORKFLOWS_COMMON_H_
+#define SHELLSPACE_WORKFLOWS_COMMON_H_
+
+#include <atomic>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "shellspace/cost_functions/shell/shell_space.h"
+#include "shellspace/geometry/mesh.h"
+#include "shellspace/io/json_writer.h"
+#include "shellspace/solvers/solver_settings.h"
+
+namespace shellspace {
+namespace workflows {
+
+// The material of a run as its front end resolved it (the CLI's flags, the
+// Python keywords): eta_absolute when eta was given rather than relative
+// to the reference's area; the record names both (reports' MaterialJson).
+struct MaterialChoice {
+  ShellMaterial material;
+  bool eta_absolute = false;
+};
+
+// The membrane / bending split of an energy whose bending part includes
+// eta: membrane + bending is the energy.
+struct EnergySplit {
+  double membrane = 0;
+  double bending = 0;
+  double total() const { return membrane + bending; }
+  // bending / total (0 when both are 0).
+  double bending_share() const {
+    return total() > 0 ? bending / total() : 0.0;
+  }
+};
+
+// E_K = K sum_k W[s_{k-1}, s_k] of `path` split (one evaluation per step).
+EnergySplit PathEnergySplit(const ShellSpace& space, const std::vector<Positions>& path);
+// sum_i W[mean, s_i] split.
+EnergySplit MeanEnergySplit(const ShellSpace& space, const Positions& mean,
+                            const std::vector<Positions>& shapes);
+// {"membrane", "bending", "bending_share"} (reports' EnergySplitJson).
+std::string EnergySplitJson(const EnergySplit& split);
+
+// `settings` whose stop poll also records, in stopped(), whether it
+// returned true to a solve: a workflow's stop state is what its solves
+// saw, without polls of its own (which could observe a time limit that no
+// solve was cut by).
+class ObservedStop {
+ public:
+  explicit ObservedStop(SolverSettings* settings);
+  bool stopped() const { return flag_->load(); }
+
+ private:
+  std::shared_ptr<std::atomic<bool>> flag_;
+};
+
+// "%.3g" of a number, for the failure texts.
+std::string ShortNumber(double value);
+
+}  // namespace workflows
+}  // namespace shellspace
+
+#endif  // SHELLSPACE_WORKFLOWS_COMMON_H_

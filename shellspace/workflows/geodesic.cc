@@ -1,0 +1,124 @@
+#include "shellspace/workflows/geodesic.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "shellspace/problems/calculus/exponential_map.h"
+#include "shellspace/reports/path_reports.h"
+#include "shellspace/reports/solve_choices.h"
+
+namespace shellspace {
+namespace workflows {
+namespace {
+
+// What an unconverged geodesic missed, as the front ends word it.
+std::string GradientFailure(const shellspace::GeodesicResult& g,
+                            const std::string& what) {
+  return what + ": |grad| " + ShortNumber(g.final_gradient) +
+         " above the target " + ShortNumber(g.gradient_target) +
+         " (tolerance x max(1, |grad_0|)) after " +
+         std::to_string(g.iterations) + " iterations (" +
+         (g.stages.empty() ? std::string("no stages")
+                           : g.stages.back().termination) +
+         ")";
+}
+
+std::vector<std::string> PathWarnings(const shellspace::GeodesicResult& g) {
+  std::vector<std::string> warnings;
+  if (g.uneven_steps) {
+    const auto [lo, hi] =
+        std::minmax_element(g.step_energies.begin(), g.step_energies.end());
+    warnings.push_back(
+        "step energies far from equal: max/min " +
+        ShortNumber(g.step_energy_ratio) + " (W of step " +
+        std::to_string(hi - g.step_energies.begin() + 1) + " = " +
+        ShortNumber(*hi) + ", of step " +
+        std::to_string(lo - g.step_energies.begin() + 1) + " = " +
+        ShortNumber(*lo) + "; a geodesic has equal steps)");
+  }
+  if (g.collapsing_faces) {
+    const FaceAreaRatio& f = g.smallest_face_area;
+    warnings.push_back("face " + std::to_string(f.face) + " of shape " +
+                       std::to_string(f.shape) + " has " +
+                       ShortNumber(f.ratio) +
+                       " of its start area: the path passes near a "
+                       "degenerate triangle (a sliver of the mesh?)");
+  }
+  return warnings;
+}
+
+GeodesicResult Solve(const GeodesicOptions& options, const std::string& what) {
+  if (options.steps < 1) {
+    throw InputError(options.option_prefix + "steps must be >= 1, got " +
+                     std::to_string(options.steps));
+  }
+  GeodesicInput input;
+  input.start = options.start.positions;
+  input.end = options.end;
+  input.steps = options.steps;
+  input.fixed_vertices = options.fixed_vertices;
+  const std::string& prefix = options.option_prefix;
+  input.linear_solver =
+      ParsePathLinearSolver(options.linear_solver, prefix + "linear_solver");
+  input.lm = ParseGeodesicLm(options.lm, prefix + "lm");
+  input.init = ParseGeodesicInit(options.init, prefix + "init");
+  const MultiresolutionSettings levels = ParseMultiresolution(
+      options.multires, options.start.num_vertices(), prefix + "multires");
+
+  GeodesicResult result;
+  result.start = options.start;
+  result.material = options.material;
+  // Legal, but a path may crush them: named once, before the solve.
+  result.slivers = FindSliverFaces(options.start);
+  if (!result.slivers.faces.empty() && options.warn) {
+    options.warn(result.slivers.Describe());
+  }
+  const ShellSpace space(options.start, options.topology,
+                         options.material.material);
+  SolverSettings settings = options.settings;
+  const ObservedStop stop(&settings);
+  result.solve = SolveGeodesicMultiresolution(space, input, settings, levels);
+  result.stopped = stop.stopped();
+  const shellspace::GeodesicResult& g = result.solve.geodesic;
+  if (!g.failure.empty()) {
+    result.status = FailedStatus(what, g.failure);
+    return result;
+  }
+  result.energy_split = PathEnergySplit(space, g.path);
+  result.warnings = PathWarnings(g);
+  std::vector<std::string> failures;
+  if (!g.converged) failures.push_back(GradientFailure(g, what));
+  result.status = StatusOf(std::move(failures), result.stopped);
+  return result;
+}
+
+}  // namespace
+
+GeodesicResult RunGeodesic(const GeodesicOptions& options) {
+  return Solve(options, "geodesic");
+}
+
+JsonObject ToJson(const GeodesicResult& result) {
+  JsonObject json = GeodesicJson(result.geodesic());
+  json.Raw("multires_levels", MultiresolutionJson(result.solve))
+      .Add("prolongation", ProlongationJson(result.solve.prolongation))
+      .Raw("energy_split", EnergySplitJson(result.energy_split));
+  return json;
+}
+
+LogResult RunLog(const GeodesicOptions& options) {
+  LogResult result;
+  result.geodesic = Solve(options, "log: the geodesic");
+  result.log = LogOfGeodesic(result.geodesic.path());
+  result.log_max_norm = result.log.cwiseAbs().maxCoeff();
+  return result;
+}
+
+JsonObject ToJson(const LogResult& result) {
+  JsonObject json = ToJson(result.geodesic);
+  json.Add("log_max_norm", result.log_max_norm);
+  return json;
+}
+
+}  // namespace workflows
+}  // namespace shellspace

@@ -1,0 +1,178 @@
+#include "shellspace/workflows/pca.h"
+
+#include <algorithm>
+#include <chrono>
+#include <sstream>
+#include <utility>
+
+#include "shellspace/reports/shape_reports.h"
+#include "shellspace/workflows/mean.h"
+
+namespace shellspace {
+namespace workflows {
+namespace {
+
+void CheckOptions(const PcaOptions& options) {
+  const int n = static_cast<int>(options.shapes.size());
+  const int minimum = options.leave_one_out ? 3 : 2;
+  const std::string& prefix = options.option_prefix;
+  if (n < minimum) {
+    throw InputError(prefix + "inputs needs at least " +
+                     std::to_string(minimum) + " shells, got " +
+                     std::to_string(n));
+  }
+  CheckPcaModeCount(options.modes, n, options.leave_one_out, prefix);
+  if (!(options.amplitude >= 0) || !std::isfinite(options.amplitude)) {
+    throw InputError(prefix + "amplitude must be >= 0");
+  }
+}
+
+}  // namespace
+
+const Positions* PcaResult::Shape(const std::string& name) const {
+  for (const auto& [key, shape] : shapes) {
+    if (key == name) return &shape;
+  }
+  return nullptr;
+}
+
+PcaResult RunPca(const PcaOptions& options) {
+  CheckOptions(options);
+  const auto clock = std::chrono::steady_clock::now();
+  // Seconds since the start, for the progress lines only.
+  const auto seconds = [&clock] {
+    std::ostringstream text;
+    text << std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                          clock)
+                .count();
+    return text.str();
+  };
+  const auto log = [&options](const std::string& line) {
+    if (options.log) options.log(line);
+  };
+  PcaResult result;
+  result.reference = options.reference;
+  result.material = options.material;
+  result.inputs = static_cast<int>(options.shapes.size());
+  const ShellSpace space(options.reference, options.topology,
+                         options.material.material);
+  SolverSettings settings = options.settings;
+  const ObservedStop stop(&settings);
+  SolverSettings inner = settings;
+  inner.progress = false;
+
+  log("elastic mean of " + std::to_string(result.inputs) + " shells" +
+      (options.initial_mean ? " from the given mean" : ""));
+  result.mean = ComputeElasticMean(
+      space, options.shapes, settings,
+      options.initial_mean ? &*options.initial_mean : nullptr);
+  if (result.mean.summary.termination_type == ceres::FAILURE) {
+    result.status = FailedStatus("elastic mean", result.mean.summary.message);
+    return result;
+  }
+  std::vector<std::string> failures;
+  if (!result.mean.converged) {
+    failures.push_back(MeanFailure(result.mean, "the elastic mean"));
+  }
+  result.shapes.emplace_back("mean", result.mean.mean);
+  // A stop ends the run with the mean alone.
+  const auto finish = [&](const char* phase) {
+    result.stopped = stop.stopped();
+    if (phase != nullptr) {
+      result.stopped_in = phase;
+      result.shapes.resize(1);
+    }
+    result.status = StatusOf(std::move(failures), result.stopped);
+    return std::move(result);
+  };
+  if (stop.stopped()) return finish("mean");
+  result.far_input_indices = FarInputs(result.mean.energies);
+  for (int i : result.far_input_indices) {
+    result.far_inputs.push_back(InputName(options.names, i));
+  }
+  log("elastic mean done (" + std::to_string(result.mean.lm_iterations) +
+      " LM + " + std::to_string(result.mean.newton_iterations) +
+      " Newton iterations, " + seconds() + " s); displacements (" +
+      options.displacement + ") and the Gram matrix");
+  ShellPcaModel model = ComputeShellPca(space, result.mean.mean,
+                                        options.shapes, options.pca, inner);
+  if (stop.stopped()) return finish("displacements");
+  result.shell_modes =
+      std::min<int>(options.modes, static_cast<int>(model.modes.size()));
+  log("shell PCA done (" + seconds() + " s); " +
+      std::to_string(2 * result.shell_modes) + " mode shapes by EXP_K");
+  for (int j = 0; j < result.shell_modes; ++j) {
+    for (const double sign : {-1.0, 1.0}) {
+      if (stop.stopped()) break;  // no new shot once stopped
+      const std::string name =
+          "mode_" + std::to_string(j + 1) + (sign < 0 ? "_minus" : "_plus");
+      Positions shape;
+      ExpShotReport shot;
+      if (TryShellModeShape(space, model, j, sign * options.amplitude,
+                            options.pca, inner, &shape, &shot)) {
+        result.shapes.emplace_back(name, std::move(shape));
+      } else {
+        result.failed_shapes.push_back(name);
+        result.failed_shape_reasons.push_back(shot.failure);
+      }
+    }
+  }
+  if (stop.stopped()) return finish("mode shapes");
+  log("shell modes done");
+  result.model = std::move(model);
+
+  if (options.procrustes) {
+    result.procrustes = ComputeProcrustesPca(options.shapes);
+    JsonObject unused;
+    for (auto& shape : AddProcrustesBaseline(*result.procrustes, options.modes,
+                                             options.amplitude, &unused)) {
+      result.shapes.push_back(std::move(shape));
+    }
+  }
+  if (options.leave_one_out) {
+    LeaveOneOutOptions loo;
+    loo.max_modes = options.modes;
+    loo.pca = options.pca;
+    loo.initial_mean = result.mean.mean;  // warm start; same minimiser
+    loo.log = options.log;
+    result.leave_one_out =
+        EvaluateLeaveOneOut(space, options.shapes, loo, inner);
+    if (stop.stopped()) {
+      result.model.reset();
+      result.procrustes.reset();
+      result.leave_one_out.reset();
+      return finish("leave-one-out");
+    }
+  }
+  return finish(nullptr);
+}
+
+JsonObject ToJson(const PcaResult& result, const PcaOptions& options) {
+  if (!result.stopped_in.empty() || !result.model) {
+    JsonObject json = PcaMeanJson(result.inputs, result.mean);
+    json.Add("modes", 0).Add("stopped_in", result.stopped_in);
+    return json;
+  }
+  std::vector<std::string> failed_files;
+  for (const std::string& name : result.failed_shapes) {
+    failed_files.push_back(name + ".ply");
+  }
+  JsonObject json =
+      PcaJson(result.inputs, result.mean, options.displacement, options.pca,
+              *result.model, result.shell_modes, failed_files,
+              result.far_inputs, options.amplitude);
+  if (result.procrustes) {
+    AddProcrustesJson(*result.procrustes,
+                      std::min<int>(options.modes, static_cast<int>(
+                                                       result.procrustes->modes
+                                                           .size())),
+                      &json);
+  }
+  if (result.leave_one_out) {
+    json.Raw("leave_one_out", LeaveOneOutJson(*result.leave_one_out));
+  }
+  return json;
+}
+
+}  // namespace workflows
+}  // namespace shellspace
