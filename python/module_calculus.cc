@@ -11,6 +11,7 @@
 #include "shellspace/problems/calculus/shape_comparison.h"
 #include "shellspace/reports/path_reports.h"
 #include "shellspace/reports/solve_choices.h"
+#include "shellspace/workflows/geodesic.h"
 #include "python/array_arguments.h"
 #include "tools/run/memory_limits.h"
 
@@ -18,69 +19,51 @@ namespace shellspace {
 namespace pymodule {
 namespace {
 
-void CheckGeodesic(const GeodesicResult& result) {
-  if (!result.failure.empty()) {
-    throw InputError("solver failed: " + result.failure);
-  }
-}
-
-// The geodesic between two arrays of one mesh (geodesic, log): the start
-// shell and the (multiresolution) solve.
-struct GeodesicPySolve {
-  Shell start;
-  ShellSpace space;
-  MultiresolutionResult multi;
-};
-
-GeodesicPySolve SolveGeodesicPy(const py::object& start_v,
-                                const py::object& end_v, const py::object& F,
-                                int steps, const py::object& mask,
-                                const std::string& multires,
-                                const std::string& linear_solver,
-                                const std::string& lm, const std::string& init,
-                                const MaterialArgs& material_args,
-                                const SolverSettings& settings,
-                                SolveControl& control) {
+// The geodesic workflow's options of the keywords of geodesic and log: the
+// ends (the start validated, the end compatible), steps (bounded by the
+// CLI's memory model), the mask, the material, the solve choices and the
+// solver keywords.
+workflows::GeodesicOptions GeodesicOptionsOf(
+    const py::object& start_v, const py::object& end_v, const py::object& F,
+    int steps, const py::object& mask, const std::string& multires,
+    const std::string& linear_solver, const std::string& lm,
+    const std::string& init, const MaterialArgs& material_args,
+    const SolverOptions& solver, const std::string& label) {
   CheckAtLeast("steps", steps, 1);
-  ShellPair pair =
-      MakeShellPair(start_v, end_v, F, "start", "end", material_args);
-  const int vertices = pair.first.mesh.num_vertices();
+  Shell start = MakeShell(start_v, F, "start");
+  Positions end = CompatiblePositions(end_v, start, "end");
+  workflows::GeodesicOptions options;
+  options.material = MaterialChoiceOf(material_args, start.mesh);
+  const int vertices = start.mesh.num_vertices();
   CheckSteps("steps", steps, 1, GeodesicBytes(vertices, steps), vertices,
              kGeodesicModel);
-  GeodesicInput input;
-  input.start = pair.first.mesh.positions;
-  input.end = pair.second;
-  input.steps = steps;
-  input.fixed_vertices = MaskArgument(mask, vertices);
-  input.linear_solver = ParsePathLinearSolver(linear_solver, "linear_solver");
-  input.lm = ParseGeodesicLm(lm, "lm");
-  input.init = ParseGeodesicInit(init, "init");
-  const MultiresolutionSettings levels =
-      ParseMultiresolution(multires, vertices, "multires");
-  GeodesicPySolve solve;
-  {
-    SolveControl::Solving solving(control);
-    solve.multi =
-        SolveGeodesicMultiresolution(pair.space, input, settings, levels);
-  }
-  solve.start = std::move(pair.first);
-  solve.space = std::move(pair.space);
-  return solve;
+  options.fixed_vertices = MaskArgument(mask, vertices);
+  options.start = std::move(start.mesh);
+  options.topology = std::move(start.topology);
+  options.end = std::move(end);
+  options.steps = steps;
+  options.multires = multires;
+  options.linear_solver = linear_solver;
+  options.lm = lm;
+  options.init = init;
+  options.settings = solver.Settings(label);
+  return options;
 }
 
-// What an unconverged geodesic missed (the CLI's text).
-std::vector<std::string> GeodesicFailures(const GeodesicResult& result,
-                                          const std::string& what) {
-  if (result.converged) return {};
-  return {what + ": |grad| " + Short(result.final_gradient) +
-          " above the target " + Short(result.gradient_target) +
-          " (tolerance x max(1, |grad_0|)) after " +
-          std::to_string(result.iterations) + " iterations (" +
-          (result.stages.empty() ? std::string("no stages")
-                                 : result.stages.back().termination) +
-          ")"};
+// The keys every geodesic summary ends with: material, seconds, the stop
+// fields, output.
+py::object GeodesicSummary(JsonObject json,
+                           const workflows::GeodesicResult& result,
+                           Clock::time_point clock,
+                           const std::optional<std::string>& output,
+                           const SolverOptions& solver) {
+  json.Raw("material", MaterialRecord(result.material, result.start))
+      .Add("seconds", Seconds(clock));
+  AddStopFields(json, *solver.control);
+  return ToDict(AddOutput(json, output));
 }
 
+// Keywords -> options -> the workflow -> files and (path, summary).
 py::object GeodesicPy(const py::object& start_v, const py::object& end_v,
                       const py::object& F, int steps, const py::object& mask,
                       const std::string& multires,
@@ -92,25 +75,25 @@ py::object GeodesicPy(const py::object& start_v, const py::object& end_v,
                       const MaterialArgs& material_args,
                       const SolverOptions& solver) {
   const auto clock = Clock::now();
-  const auto [start, space, multi] = SolveGeodesicPy(
-      start_v, end_v, F, steps, mask, multires, linear_solver, lm, init,
-      material_args, solver.Settings("geodesic"), *solver.control);
-  const GeodesicResult& result = multi.geodesic;
-  CheckGeodesic(result);
+  const workflows::GeodesicOptions options =
+      GeodesicOptionsOf(start_v, end_v, F, steps, mask, multires,
+                        linear_solver, lm, init, material_args, solver,
+                        "geodesic");
+  workflows::GeodesicResult result;
+  {
+    SolveControl::Solving solving(*solver.control);
+    result = workflows::RunGeodesic(options);
+  }
   if (report)
-    py::print(result.summary.FullReport(),
+    py::print(result.geodesic().summary.FullReport(),
               py::arg("file") = py::module_::import("sys").attr("stderr"));
-  WritePath(output, png, gltf, start.mesh.faces, result.path);
-  JsonObject json = GeodesicJson(result);
-  json.Raw("multires_levels", MultiresolutionJson(multi))
-      .Add("prolongation", ProlongationJson(multi.prolongation))
-      .Raw("energy_split", PathEnergySplitJson(space, result.path))
-      .Raw("material", MaterialRecord(space, start.mesh, material_args))
-      .Add("seconds", Seconds(clock));
-  AddStopFields(json, *solver.control);
-  const py::object summary = ToDict(AddOutput(json, output));
-  return solver.Finish(py::make_tuple(FromPath(result.path), summary), summary,
-                       "geodesic", GeodesicFailures(result, "geodesic"));
+  if (!result.status.failed()) {
+    WritePath(output, png, gltf, result.start.faces, result.path());
+  }
+  const py::object summary = GeodesicSummary(
+      workflows::ToJson(result), result, clock, output, solver);
+  return solver.Finish(py::make_tuple(FromPath(result.path()), summary),
+                       summary, "geodesic", FailuresOf(result.status));
 }
 
 py::object LogPy(const py::object& start_v, const py::object& end_v,
@@ -121,25 +104,24 @@ py::object LogPy(const py::object& start_v, const py::object& end_v,
                  const MaterialArgs& material_args,
                  const SolverOptions& solver) {
   const auto clock = Clock::now();
-  const auto [start, space, multi] = SolveGeodesicPy(
-      start_v, end_v, F, steps, mask, multires, linear_solver, lm, init,
-      material_args, solver.Settings("log"), *solver.control);
-  const GeodesicResult& geodesic = multi.geodesic;
-  const Positions log = LogOfGeodesic(geodesic.path);
-  if (output) {
-    WriteMesh(Mesh{start.mesh.positions + log, start.mesh.faces}, *output);
+  const workflows::GeodesicOptions options =
+      GeodesicOptionsOf(start_v, end_v, F, steps, mask, multires,
+                        linear_solver, lm, init, material_args, solver, "log");
+  workflows::LogResult result;
+  {
+    SolveControl::Solving solving(*solver.control);
+    result = workflows::RunLog(options);
   }
-  JsonObject json = GeodesicJson(geodesic);
-  json.Raw("multires_levels", MultiresolutionJson(multi))
-      .Add("prolongation", ProlongationJson(multi.prolongation))
-      .Raw("energy_split", PathEnergySplitJson(space, geodesic.path))
-      .Raw("material", MaterialRecord(space, start.mesh, material_args))
-      .Add("log_max_norm", log.cwiseAbs().maxCoeff())
-      .Add("seconds", Seconds(clock));
-  AddStopFields(json, *solver.control);
-  const py::object summary = ToDict(AddOutput(json, output));
-  return solver.Finish(py::make_tuple(FromPositions(log), summary), summary,
-                       "log", GeodesicFailures(geodesic, "log: the geodesic"));
+  const workflows::GeodesicResult& geodesic = result.geodesic;
+  if (output && !geodesic.status.failed()) {
+    WriteMesh(Mesh{geodesic.start.positions + result.log,
+                   geodesic.start.faces},
+              *output);
+  }
+  const py::object summary = GeodesicSummary(workflows::ToJson(result),
+                                             geodesic, clock, output, solver);
+  return solver.Finish(py::make_tuple(FromPositions(result.log), summary),
+                       summary, "log", FailuresOf(geodesic.status));
 }
 
 py::object ShootPy(const py::object& first_v, const py::object& second_v,

@@ -109,6 +109,22 @@ std::string MaterialRecord(const ShellSpace& space, const Mesh& reference,
   return MaterialJson(space.material, reference, args.eta.has_value()).str();
 }
 
+workflows::MaterialChoice MaterialChoiceOf(const MaterialArgs& args,
+                                           const Mesh& reference) {
+  return {Material(args, reference), args.eta.has_value()};
+}
+
+std::string MaterialRecord(const workflows::MaterialChoice& material,
+                           const Mesh& reference) {
+  return MaterialJson(material.material, reference, material.eta_absolute)
+      .str();
+}
+
+std::vector<std::string> FailuresOf(const workflows::SolveStatus& status) {
+  if (status.failed()) return {status.message};
+  return status.failures;
+}
+
 ShellPair MakeShellPair(const py::object& first, const py::object& second,
                         const py::object& F, const std::string& first_name,
                         const std::string& second_name,

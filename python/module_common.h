@@ -26,6 +26,8 @@
 #include "shellspace/io/json_writer.h"
 #include "shellspace/runtime/openmp_threads.h"
 #include "shellspace/solvers/solver_settings.h"
+#include "shellspace/workflows/common.h"
+#include "shellspace/workflows/solve_status.h"
 #include "python/solve_control.h"
 
 namespace shellspace {
@@ -92,6 +94,17 @@ ShellMaterial Material(const MaterialArgs& args, const Mesh& reference);
 // The material as resolved for `reference` (the CLI's "material" record).
 std::string MaterialRecord(const ShellSpace& space, const Mesh& reference,
                            const MaterialArgs& args);
+
+// The material of the keywords for `reference`, as the workflows take it.
+workflows::MaterialChoice MaterialChoiceOf(const MaterialArgs& args,
+                                           const Mesh& reference);
+// The "material" record of a workflow's result.
+std::string MaterialRecord(const workflows::MaterialChoice& material,
+                           const Mesh& reference);
+
+// What a workflow's status raises as NotConvergedError's failures: its
+// failures, or the one line of a solve that could not run.
+std::vector<std::string> FailuresOf(const workflows::SolveStatus& status);
 
 ShellPair MakeShellPair(const py::object& first, const py::object& second,
                         const py::object& F, const std::string& first_name,

@@ -1,5 +1,6 @@
 // The module's statistics: mean, pca.
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -13,56 +14,55 @@
 #include "shellspace/problems/statistics/shell_pca.h"
 #include "shellspace/render/film_strip.h"
 #include "shellspace/reports/shape_reports.h"
+#include "shellspace/workflows/mean.h"
+#include "shellspace/workflows/pca.h"
 #include "tools/run/memory_limits.h"
 
 namespace shellspace {
 namespace pymodule {
 namespace {
 
-// What an unconverged elastic mean missed (the CLI's text).
-std::vector<std::string> MeanFailures(const ElasticMeanResult& mean,
-                                      const std::string& what) {
-  if (mean.converged) return {};
-  return {what + ": |grad| " + Short(mean.gradient_norm) +
-          " above the target " + Short(mean.gradient_target) + " after " +
-          std::to_string(mean.lm_iterations) + " LM + " +
-          std::to_string(mean.newton_iterations) + " Newton iterations (" +
-          mean.termination + ")"};
+// The options every statistics workflow takes from the inputs (named
+// "inputs[i]"), the material and solver keywords.
+template <class Options>
+Options OptionsOfInputs(const ShapeSet& set, const MaterialArgs& material_args,
+                        const SolverOptions& solver, const std::string& label) {
+  Options options;
+  options.reference = set.first.mesh;
+  options.topology = set.first.topology;
+  options.shapes = set.shapes;
+  options.material = MaterialChoiceOf(material_args, set.first.mesh);
+  options.settings = solver.Settings(label);
+  return options;
 }
 
+// Keywords -> options -> the workflow -> the file and (mean, summary).
 py::object MeanPy(const py::object& inputs_object, const py::object& F,
                   bool report, const std::optional<std::string>& output,
                   const MaterialArgs& material_args,
                   const SolverOptions& solver) {
   const auto clock = Clock::now();
   const ShapeSet set = MakeShapeSet(inputs_object, F, "inputs");
-  const ShellSpace space(set.first.mesh, set.first.topology,
-                         Material(material_args, set.first.mesh));
-  const SolverSettings settings = solver.Settings("mean");
-  ElasticMeanResult result;
+  const auto options = OptionsOfInputs<workflows::MeanOptions>(
+      set, material_args, solver, "mean");
+  workflows::MeanResult result;
   {
     SolveControl::Solving solving(*solver.control);
-    result = ComputeElasticMean(space, set.shapes, settings);
-  }
-  if (result.summary.termination_type == ceres::FAILURE) {
-    throw InputError("elastic mean failed: " + result.summary.message);
-  }
-  std::vector<std::string> far;
-  for (int i : FarInputs(result.energies)) {
-    far.push_back("inputs[" + std::to_string(i) + "]");
+    result = workflows::RunMean(options);
   }
   if (report)
-    py::print(result.summary.FullReport(),
+    py::print(result.mean.summary.FullReport(),
               py::arg("file") = py::module_::import("sys").attr("stderr"));
-  if (output) WriteMesh(Mesh{result.mean, set.first.mesh.faces}, *output);
-  JsonObject json = MeanJson(result, static_cast<int>(set.shapes.size()), far);
-  json.Raw("energy_split", MeanEnergySplitJson(space, result.mean, set.shapes))
-      .Raw("material", MaterialRecord(space, set.first.mesh, material_args))
+  if (output && !result.status.failed()) {
+    WriteMesh(Mesh{result.mean.mean, set.first.mesh.faces}, *output);
+  }
+  JsonObject json = workflows::ToJson(result);
+  json.Raw("material", MaterialRecord(result.material, set.first.mesh))
       .Add("seconds", Seconds(clock));
   AddStopFields(json, *solver.control);
   const py::object summary = ToDict(AddOutput(json, output));
-  return solver.Finish(py::make_tuple(FromPositions(result.mean), summary),
-                       summary, "mean", MeanFailures(result, "elastic mean"));
+  return solver.Finish(py::make_tuple(FromPositions(result.mean.mean), summary),
+                       summary, "mean", FailuresOf(result.status));
 }
 
 // The `pca` verb: elastic mean, shell PCA modes shot by EXP_K, optionally
@@ -91,7 +91,7 @@ py::object PcaPy(const py::object& inputs_object, const py::object& F,
   if (!(amplitude >= 0) || !std::isfinite(amplitude)) {
     throw InputError("amplitude must be >= 0");
   }
-  const ShellPcaOptions options = MakeShellPcaOptions(
+  const ShellPcaOptions pca = MakeShellPcaOptions(
       log_steps, exp_steps, max_exp_steps, displacement, "");
   const auto clock = Clock::now();
   const ShapeSet set = MakeShapeSet(inputs_object, F, "inputs");
@@ -107,120 +107,55 @@ py::object PcaPy(const py::object& inputs_object, const py::object& F,
              vertices, kGeodesicModel);
   CheckSteps("max_exp_steps", max_exp_steps, 1,
              PathBytes(vertices, max_exp_steps + 1), vertices, kPathModel);
-  const ShellSpace space(set.first.mesh, set.first.topology,
-                         Material(material_args, set.first.mesh));
-  const SolverSettings settings = solver.Settings("pca");
-  SolverSettings inner = settings;
-  inner.progress = false;
-  SolveControl& control = *solver.control;
-
-  std::vector<std::pair<std::string, Positions>> shapes;
-  std::vector<Positions> strip;
-  std::vector<std::string> failed_shapes, far;
-  JsonObject json;
-  ElasticMeanResult mean;
-  std::string stopped_in;  // the phase a stop ended, or ""
+  auto options = OptionsOfInputs<workflows::PcaOptions>(set, material_args,
+                                                        solver, "pca");
+  options.modes = modes;
+  options.procrustes = baseline == "procrustes";
+  options.leave_one_out = loo;
+  options.amplitude = amplitude;
+  options.pca = pca;
+  options.displacement = displacement;
+  workflows::PcaResult result;
   {
-    SolveControl::Solving solving(control);
-    mean = ComputeElasticMean(space, set.shapes, settings);
-    if (mean.summary.termination_type == ceres::FAILURE) {
-      throw InputError("elastic mean failed: " + mean.summary.message);
-    }
-    for (int i : FarInputs(mean.energies)) {
-      far.push_back("inputs[" + std::to_string(i) + "]");
-    }
-    shapes.emplace_back("mean", mean.mean);
-    strip.push_back(mean.mean);
-    std::optional<ShellPcaModel> model;
-    if (control.stopped()) {
-      stopped_in = "mean";
-    } else {
-      model = ComputeShellPca(space, mean.mean, set.shapes, options, inner);
-      if (control.stopped()) {
-        stopped_in = "displacements";
-        model.reset();
-      }
-    }
-    const int shell_modes =
-        model ? std::min<int>(modes, static_cast<int>(model->modes.size()))
-              : 0;
-    for (int j = 0; j < shell_modes; ++j) {
-      for (const double sign : {-1.0, 1.0}) {
-        if (control.stopped()) break;  // no new shot once stopped
-        const std::string name =
-            "mode_" + std::to_string(j + 1) + (sign < 0 ? "_minus" : "_plus");
-        // A mode shape whose EXP shot has no solution is not returned; it
-        // is listed in the summary (as the CLI does).
-        Positions shape;
-        if (TryShellModeShape(space, *model, j, sign * amplitude, options,
-                              inner, &shape)) {
-          shapes.emplace_back(name, shape);
-          strip.push_back(std::move(shape));
-        } else {
-          failed_shapes.push_back(name + ".ply");
-        }
-      }
-    }
-    if (model && control.stopped()) stopped_in = "mode shapes";
-    if (stopped_in.empty()) {
-      json = PcaJson(n, mean, displacement, options, *model, shell_modes,
-                     failed_shapes, far, amplitude);
-      json.Raw("material",
-               MaterialRecord(space, set.first.mesh, material_args));
-      if (baseline == "procrustes") {
-        for (auto& shape : AddProcrustesBaseline(
-                 ComputeProcrustesPca(set.shapes), modes, amplitude, &json)) {
-          shapes.push_back(std::move(shape));
-        }
-      }
-      if (loo) {
-        LeaveOneOutOptions loo_options;
-        loo_options.max_modes = modes;
-        loo_options.pca = options;
-        loo_options.initial_mean = mean.mean;
-        const LeaveOneOutTable table =
-            EvaluateLeaveOneOut(space, set.shapes, loo_options, inner);
-        if (control.stopped()) {
-          stopped_in = "leave-one-out";
-        } else {
-          json.Raw("leave_one_out", LeaveOneOutJson(table));
-        }
-      }
-    }
+    SolveControl::Solving solving(*solver.control);
+    result = workflows::RunPca(options);
   }
-  if (!stopped_in.empty()) {  // the mean alone
-    shapes.resize(1);
-    strip.resize(1);
-    json = PcaMeanJson(n, mean);
-    json.Add("modes", 0).Add("stopped_in", stopped_in);
-    json.Raw("material", MaterialRecord(space, set.first.mesh, material_args));
-  }
-  json.Add("seconds", Seconds(clock));
-  AddStopFields(json, control);
+  JsonObject json = workflows::ToJson(result, options);
+  json.Raw("material", MaterialRecord(result.material, set.first.mesh))
+      .Add("seconds", Seconds(clock));
+  AddStopFields(json, *solver.control);
   AddOutput(json, output);
-  if (output) {  // the CLI's files: the PLY set and pca.json, together
+  const Faces& faces = set.first.mesh.faces;
+  if (output && !result.status.failed()) {
+    // The CLI's files: the PLY set and pca.json, together.
     MakeDirectory(*output);
     AtomicFileSet files;
     std::vector<Mesh> meshes;
-    meshes.reserve(shapes.size());
-    for (const auto& [name, positions] : shapes) {
-      meshes.push_back(Mesh{positions, set.first.mesh.faces});
+    meshes.reserve(result.shapes.size());
+    for (const auto& [name, positions] : result.shapes) {
+      meshes.push_back(Mesh{positions, faces});
       const std::string path = *output + "/" + name + ".ply";
       files.Add(path, MeshWriter(meshes.back(), path));
     }
     files.Add(*output + "/pca.json", json.str() + "\n");
     files.Commit();
   }
-  if (png && stopped_in.empty()) {
-    WriteFilmStrip(strip, set.first.mesh.faces, RenderOptions(), *png);
+  if (png && result.stopped_in.empty() && !result.status.failed()) {
+    std::vector<Positions> strip;  // the mean and the shell mode shapes
+    for (const auto& [name, positions] : result.shapes) {
+      if (name == "mean" || name.rfind("mode_", 0) == 0) {
+        strip.push_back(positions);
+      }
+    }
+    WriteFilmStrip(strip, faces, RenderOptions(), *png);
   }
   py::dict out;
-  for (const auto& [name, positions] : shapes) {
+  for (const auto& [name, positions] : result.shapes) {
     out[py::str(name)] = FromPositions(positions);
   }
   const py::object summary = ToDict(json);
   return solver.Finish(py::make_tuple(out, summary), summary, "pca",
-                       MeanFailures(mean, "the elastic mean"));
+                       FailuresOf(result.status));
 }
 
 }  // namespace

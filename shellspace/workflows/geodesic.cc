@@ -70,7 +70,7 @@ GeodesicResult Solve(const GeodesicOptions& options, const std::string& what) {
   result.material = options.material;
   // Legal, but a path may crush them: named once, before the solve.
   result.slivers = FindSliverFaces(options.start);
-  if (!result.slivers.faces.empty() && options.warn) {
+  if (!result.slivers.empty() && options.warn) {
     options.warn(result.slivers.Describe());
   }
   const ShellSpace space(options.start, options.topology,

@@ -45,7 +45,7 @@ struct GeodesicOptions {
   // (a time limit, a signal), polled between iterations.
   SolverSettings settings;
   // Called before the solve with each warning about the input (sliver
-  // triangles of s_0); may be empty.
+  // triangles and folded edges of s_0); may be empty.
   std::function<void(const std::string&)> warn;
 };
 
@@ -56,7 +56,7 @@ struct GeodesicResult {
   MultiresolutionResult solve;
   EnergySplit energy_split;  // of the path, computed once
   MaterialChoice material;   // as resolved
-  SliverFaces slivers;       // of s_0, found before the solve
+  SliverFaces slivers;       // of s_0 (and its folds), before the solve
   // Lines about the path (uneven step energies, a collapsing triangle).
   std::vector<std::string> warnings;
   bool stopped = false;  // the stop request cut a solve short

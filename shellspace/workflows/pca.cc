@@ -134,7 +134,7 @@ PcaResult RunPca(const PcaOptions& options) {
     loo.max_modes = options.modes;
     loo.pca = options.pca;
     loo.initial_mean = result.mean.mean;  // warm start; same minimiser
-    loo.log = options.log;
+    loo.log = options.leave_one_out_log;
     result.leave_one_out =
         EvaluateLeaveOneOut(space, options.shapes, loo, inner);
     if (stop.stopped()) {

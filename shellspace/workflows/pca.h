@@ -47,8 +47,10 @@ struct PcaOptions {
   std::string option_prefix;
   SolverSettings settings;  // settings.stop: the front end's stop request
   std::optional<Positions> initial_mean;  // the CLI's --mean
-  // One line per finished phase and leave-one-out step; may be empty.
+  // One line per finished phase, and one per leave-one-out step; may be
+  // empty.
   std::function<void(const std::string&)> log;
+  std::function<void(const std::string&)> leave_one_out_log;
 };
 
 struct PcaResult {

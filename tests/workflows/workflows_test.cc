@@ -3,8 +3,8 @@
 // PCA and a failing solve as a status, not an exception.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <memory>
 #include <string>
 #include <vector>
@@ -14,6 +14,7 @@
 #include "shellspace/geometry/topology.h"
 #include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/cost_functions/shell/relative_bending_weight.h"
+#include "shellspace/io/json_writer.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/workflows/geodesic.h"
 #include "shellspace/workflows/mean.h"
@@ -70,23 +71,9 @@ workflows::PcaOptions FourSheets() {
   return options;
 }
 
-// Writes the inputs of the numbers recorded below as PLY files (17 digits:
-// read back bit for bit) for the CLI of the commit before the workflows:
-//   build/tests/workflows_test --gtest_also_run_disabled_tests
-//     --gtest_filter='*WriteInputsForTheCli*'
-// writes /tmp/workflow_inputs/{sheet,rolled_0.6,rolled_1,rolled_2}.ply.
-TEST(WorkflowFixtures, DISABLED_WriteInputsForTheCli) {
-  const std::string dir = "/tmp/workflow_inputs";
-  ASSERT_EQ(std::system(("mkdir -p " + dir).c_str()), 0);
-  const workflows::PcaOptions sheets = FourSheets();
-  const char* const names[] = {"sheet", "rolled_0.6", "rolled_1", "rolled_2"};
-  for (int i = 0; i < 4; ++i) {
-    WriteMesh(Mesh{sheets.shapes[i], sheets.reference.faces},
-              dir + "/" + names[i] + ".ply");
-  }
-}
-
-// E_K of the CLI before the workflows (commit 832cb59):
+// E_K of the CLI before the workflows (commit 832cb59), on the files that
+// WorkflowCliTest's SetUp writes (the sheets of FourSheets() as PLY with 17
+// digits, read back bit for bit; the temporary folder is left behind):
 //   shellspace geodesic --start sheet.ply --end rolled_0.6.ply --steps 4
 //     --output g --json --quiet
 // "path_energy": 0.0013510370561477059 (7 iterations, converged),
@@ -192,7 +179,7 @@ TEST(MeanWorkflowTest, AStoppedMeanIsAStatusWithItsState) {
 }
 
 // The mean and the first mode shape of the CLI before the workflows (commit
-// 832cb59), on the files of DISABLED_WriteInputsForTheCli:
+// 832cb59), on the files of WorkflowCliTest:
 //   shellspace pca --inputs sheet.ply,rolled_0.6.ply,rolled_1.ply,rolled_2.ply
 //     --modes 1 --output p --json --quiet
 // p/mean.ply and p/mode_1_plus.ply: the sum of the squares of all
@@ -303,6 +290,74 @@ TEST(MeanWorkflowTest, SplitSumsToTheMeanEnergy) {
   EXPECT_NEAR(result.energy_split.membrane, membrane, 1e-15);
   EXPECT_NEAR(result.energy_split.total(), total, 1e-12 * total);
   EXPECT_GT(result.energy_split.bending, 0);
+}
+
+// The CLI runs the same workflow: its E_K is RunGeodesic's to the digit,
+// and a log or pca whose solve misses its criterion exits 4 with one line
+// naming the workflow's solve.
+class WorkflowCliTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = testing::TempDir();
+    const workflows::PcaOptions sheets = FourSheets();
+    const char* const names[] = {"sheet", "rolled_0.6", "rolled_1",
+                                 "rolled_2"};
+    for (int i = 0; i < 4; ++i) {
+      WriteMesh(Mesh{sheets.shapes[i], sheets.reference.faces},
+                File(names[i]));
+    }
+  }
+  std::string File(const std::string& name) const {
+    return dir_ + "/" + name + ".ply";
+  }
+  std::string dir_;
+};
+
+TEST_F(WorkflowCliTest, GeodesicPrintsTheWorkflowsEnergy) {
+  std::string out, err;
+  ASSERT_EQ(testing::RunCli("geodesic --start " + File("sheet") + " --end " +
+                                File("rolled_0.6") + " --steps 4 --output " +
+                                dir_ + "/g --json --quiet",
+                            &out, &err),
+            0)
+      << err;
+  const workflows::GeodesicResult result =
+      workflows::RunGeodesic(BentSheetGeodesic());
+  EXPECT_NE(out.find("\"path_energy\": " +
+                     JsonObject::Number(result.path_energy()) + ","),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("\"energy_split\": " +
+                     workflows::EnergySplitJson(result.energy_split)),
+            std::string::npos)
+      << out;
+}
+
+TEST_F(WorkflowCliTest, UnconvergedSolvesExitFourWithOneLine) {
+  struct Case {
+    std::string args;
+    std::string line;  // how stderr begins
+  };
+  const std::string inputs = File("sheet") + "," + File("rolled_0.6") + "," +
+                             File("rolled_1") + "," + File("rolled_2");
+  const std::vector<Case> cases = {
+      {"log --start " + File("sheet") + " --end " + File("rolled_0.6") +
+           " --steps 4 --output " + dir_ + "/log.ply",
+       "shellspace log: not converged: log: the geodesic: |grad| "},
+      {"mean --inputs " + inputs + " --output " + dir_ + "/mean.ply",
+       "shellspace mean: not converged: elastic mean: |grad| "},
+      {"pca --modes 1 --inputs " + inputs + " --output " + dir_ + "/pca",
+       "shellspace pca: not converged: the elastic mean: |grad| "},
+  };
+  for (const Case& c : cases) {
+    std::string out, err;
+    EXPECT_EQ(testing::RunCli(c.args + " --max_iterations 1 --quiet", &out,
+                              &err),
+              4)
+        << c.args << "\n" << err;
+    EXPECT_EQ(err.rfind(c.line, 0), 0u) << err;
+    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+  }
 }
 
 // The status of failure lines and a stop, and of a solve that could not run.

@@ -1,5 +1,7 @@
 #include "tools/verbs/geodesic_solve.h"
 
+#include <gflags/gflags.h>
+
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -20,10 +22,6 @@ FlagSpec MultiresFlag() {
       "input mesh; auto: as many levels as keep the coarsest at >= " +
           std::to_string(kAutoMinVertices) + " vertices")
       .Default("auto");
-}
-
-MultiresolutionSettings MultiresFromFlags(int num_vertices) {
-  return ParseMultiresolution(FLAGS_multires, num_vertices, "--multires");
 }
 
 FlagTable GeodesicEndsFlags(const std::string& start, const std::string& end) {
@@ -74,25 +72,6 @@ FlagSpec GeodesicInitFlag() {
       .Default("auto");
 }
 
-GeodesicInit GeodesicInitFromFlags() {
-  return ParseGeodesicInit(FLAGS_init, "--init");
-}
-
-PathLinearSolver LinearSolverFromFlags() {
-  return ParsePathLinearSolver(FLAGS_linear_solver, "--linear_solver");
-}
-
-MultiresolutionResult SolveGeodesicFromFlags(const ShellSpace& space,
-                                             const GeodesicInput& input,
-                                             const SolverSettings& settings) {
-  GeodesicInput with_solver = input;
-  with_solver.linear_solver = LinearSolverFromFlags();
-  with_solver.lm = ParseGeodesicLm(FLAGS_lm, "--lm");
-  with_solver.init = GeodesicInitFromFlags();
-  return SolveGeodesicMultiresolution(space, with_solver, settings,
-                                      MultiresFromFlags(space.num_vertices));
-}
-
 RunPaths GeodesicInputPaths() {
   RunPaths paths;
   paths.InputFile("start", FLAGS_start)
@@ -101,27 +80,36 @@ RunPaths GeodesicInputPaths() {
   return paths;
 }
 
-GeodesicOfFlags SolveGeodesicOfFlags(const std::string& verb) {
+workflows::GeodesicOptions GeodesicOptionsFromFlags(const std::string& verb) {
   const auto [start, end] = LoadShellPair(FLAGS_start, FLAGS_end);
-  CheckMemory(GeodesicBytes(start.mesh.num_vertices(), FLAGS_steps),
+  const int vertices = start.mesh.num_vertices();
+  CheckMemory(GeodesicBytes(vertices, FLAGS_steps),
               "--steps " + std::to_string(FLAGS_steps) + " on " +
-                  std::to_string(start.mesh.num_vertices()) + " vertices",
+                  std::to_string(vertices) + " vertices",
               kGeodesicModel);
+  workflows::GeodesicOptions options;
+  options.start = start.mesh;
+  options.topology = start.topology;
+  options.end = end.positions;
+  options.steps = FLAGS_steps;
+  options.fixed_vertices = MaskFromFlags(vertices);
+  options.material.material = MaterialFromFlags(start.mesh);
+  options.material.eta_absolute =
+      !gflags::GetCommandLineFlagInfoOrDie("eta").is_default;
+  options.multires = FLAGS_multires;
+  options.linear_solver = FLAGS_linear_solver;
+  options.lm = FLAGS_lm;
+  options.init = FLAGS_init;
+  options.option_prefix = "--";
+  options.settings = SettingsFromFlags(verb);
   // Legal, but a path may crush them: named once, before the solve.
-  const SliverFaces slivers = FindSliverFaces(start.mesh);
-  if (!slivers.empty() && !FLAGS_quiet) {
-    std::fprintf(stderr, "warning: %s: %s\n", FLAGS_start.c_str(),
-                 slivers.Describe().c_str());
+  if (!FLAGS_quiet) {
+    options.warn = [](const std::string& text) {
+      std::fprintf(stderr, "warning: %s: %s\n", FLAGS_start.c_str(),
+                   text.c_str());
+    };
   }
-  ShellSpace space = SpaceFromFlags(start);
-  GeodesicInput input;
-  input.start = start.mesh.positions;
-  input.end = end.positions;
-  input.steps = FLAGS_steps;
-  input.fixed_vertices = MaskFromFlags(start.mesh.num_vertices());
-  MultiresolutionResult multires =
-      SolveGeodesicFromFlags(space, input, SettingsFromFlags(verb));
-  return {start, std::move(space), std::move(multires)};
+  return options;
 }
 
 }  // namespace shellspace

@@ -1,5 +1,6 @@
-// The geodesic solve of the `geodesic` and `log` verbs: single level or
-// multiresolution by --multires.
+// The flags of the verbs that solve geodesics (`geodesic`, `log`) and the
+// options of the geodesic workflow (shellspace/workflows/geodesic.h) they
+// give.
 #ifndef SHELLSPACE_TOOLS_VERBS_GEODESIC_SOLVE_H_
 #define SHELLSPACE_TOOLS_VERBS_GEODESIC_SOLVE_H_
 
@@ -9,6 +10,7 @@
 #include "shellspace/problems/calculus/multiresolution.h"
 #include "shellspace/reports/path_reports.h"
 #include "shellspace/reports/solve_choices.h"
+#include "shellspace/workflows/geodesic.h"
 #include "tools/run/run_paths.h"
 #include "tools/run/shell_inputs.h"
 #include "tools/verbs/verb_flags.h"
@@ -17,13 +19,6 @@ namespace shellspace {
 
 // The --multires flag of the verbs that solve geodesics.
 FlagSpec MultiresFlag();
-
-// The multiresolution settings of --multires for a mesh of `num_vertices`:
-// "off" (or 0) none; a number, that many coarse levels; "auto" as many
-// levels as keep the coarsest at kAutoMinVertices or more (none for meshes
-// below 4 kAutoMinVertices). Throws InputError naming --multires for
-// anything else.
-MultiresolutionSettings MultiresFromFlags(int num_vertices);
 
 // The memory model of a geodesic solve of K steps (GeodesicBytes in
 // memory_limits.h), as named in errors and --help.
@@ -41,35 +36,21 @@ FlagSpec GeodesicStepsFlag(const std::string& what);
 FlagSpec LinearSolverFlag();
 
 // The --lm flag: who runs the LM stages (GeodesicLm).
-// --init auto|linear|ltheta (GeodesicInit) and its value.
-FlagSpec GeodesicInitFlag();
-GeodesicInit GeodesicInitFromFlags();
-
 FlagSpec GeodesicLmFlag();
 
-// PathLinearSolver of --linear_solver: auto, direct, block-jacobi. Throws
-// InputError naming --linear_solver for anything else.
-PathLinearSolver LinearSolverFromFlags();
-
-// SolveGeodesicMultiresolution with those settings (with 0 levels the
-// plain single-level solve) and input.linear_solver from --linear_solver.
-MultiresolutionResult SolveGeodesicFromFlags(const ShellSpace& space,
-                                             const GeodesicInput& input,
-                                             const SolverSettings& settings);
+// --init auto|linear|ltheta (GeodesicInit).
+FlagSpec GeodesicInitFlag();
 
 // The input files of the verbs that solve geodesics (--start, --end,
 // --mask), to which the verb adds its outputs before RunPaths::Check.
 RunPaths GeodesicInputPaths();
 
-// The geodesic of the flags of `verb` (geodesic, log): --start, --end,
-// --steps (checked against kGeodesicModel's memory estimate first), --mask,
-// the material and the solver flags.
-struct GeodesicOfFlags {
-  Shell start;
-  ShellSpace space;  // of start, with the flags' material
-  MultiresolutionResult multires;
-};
-GeodesicOfFlags SolveGeodesicOfFlags(const std::string& verb);
+// The geodesic workflow's options of the flags of `verb` (geodesic, log):
+// --start and --end read and validated, --steps (checked against
+// kGeodesicModel's memory estimate first), --mask, the material, the solve
+// choices (--multires, --linear_solver, --lm, --init) and the solver flags;
+// the sliver warning about --start printed on stderr unless --quiet.
+workflows::GeodesicOptions GeodesicOptionsFromFlags(const std::string& verb);
 
 }  // namespace shellspace
 

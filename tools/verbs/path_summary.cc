@@ -51,6 +51,23 @@ void CheckGeodesic(const GeodesicResult& result, const std::string& what,
   }
 }
 
+void RecordWorkflow(const workflows::SolveStatus& solve,
+                    const std::vector<std::string>& warnings,
+                    const std::string& what, RunStatus* status) {
+  for (const std::string& failure : solve.failures) {
+    status->Require(false, failure);
+  }
+  for (const std::string& warning : warnings) {
+    status->Warn(what + ": " + warning);
+  }
+}
+
+int FailedSolveExit(const std::string& verb,
+                    const workflows::SolveStatus& solve) {
+  std::cerr << "shellspace " << verb << ": " << solve.message << "\n";
+  return kExitNotConverged;
+}
+
 void CheckShoot(const ShootResult& result, RunStatus* status) {
   for (size_t i = 0; i < result.exp_steps.size(); ++i) {
     const ExpStepResult& step = result.exp_steps[i];
@@ -82,8 +99,13 @@ void WritePathOutputs(RunDirectory* out, const Faces& faces,
 std::string CommitPathRun(RunDirectory* out, JsonObject summary,
                           const ShellSpace& space, const ShellPath& path,
                           double seconds) {
-  summary.Raw("energy_split", PathEnergySplitJson(space, path))
-      .Add("bending_model", FLAGS_bending)
+  summary.Raw("energy_split", PathEnergySplitJson(space, path));
+  return CommitPathRun(out, std::move(summary), seconds);
+}
+
+std::string CommitPathRun(RunDirectory* out, JsonObject summary,
+                          double seconds) {
+  summary.Add("bending_model", FLAGS_bending)
       .Add("seconds", seconds)
       .Add("output", FLAGS_output);
   const std::string text = out->Commit(std::move(summary));

@@ -9,6 +9,7 @@
 #include "shellspace/problems/calculus/exponential_map.h"
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/reports/path_reports.h"
+#include "shellspace/workflows/solve_status.h"
 #include "tools/run/run_output.h"
 #include "tools/run/run_status.h"
 #include "tools/verbs/verb_flags.h"
@@ -22,6 +23,19 @@ FlagSpec GltfFlag();
 // (naming `what`, e.g. "geodesic") and warns about uneven step energies.
 void CheckGeodesic(const GeodesicResult& result, const std::string& what,
                    RunStatus* status);
+
+// Records in `status` what a workflow's solves missed (its SolveStatus
+// failures, each already naming its solve) and warns with each of
+// `warnings`, prefixed "WHAT: ".
+void RecordWorkflow(const workflows::SolveStatus& solve,
+                    const std::vector<std::string>& warnings,
+                    const std::string& what, RunStatus* status);
+
+// The end of a run whose workflow could not solve (status kFailed): one
+// line "shellspace VERB: MESSAGE" on stderr and kExitNotConverged, nothing
+// written.
+int FailedSolveExit(const std::string& verb,
+                    const workflows::SolveStatus& solve);
 
 // Records each unsolved EXP step of the shot in `status`.
 void CheckShoot(const ShootResult& result, RunStatus* status);
@@ -40,6 +54,9 @@ void WritePathOutputs(RunDirectory* out, const Faces& faces,
 // the report's text.
 std::string CommitPathRun(RunDirectory* out, JsonObject summary,
                           const ShellSpace& space, const ShellPath& path,
+                          double seconds);
+// The same for a summary that has its energy_split (a workflow's ToJson).
+std::string CommitPathRun(RunDirectory* out, JsonObject summary,
                           double seconds);
 
 }  // namespace shellspace

@@ -9,6 +9,7 @@
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/exponential_map.h"
 #include "shellspace/problems/calculus/parallel_transport.h"
+#include "shellspace/workflows/geodesic.h"
 #include "tools/run/common_flags.h"
 #include "tools/verbs/film_strip_flags.h"
 #include "tools/verbs/geodesic_solve.h"
@@ -137,22 +138,22 @@ int RunShoot() {
   return status.Finish();
 }
 
+// Flags -> options -> the workflow -> the file and summary.
 int RunLog() {
   const auto clock = std::chrono::steady_clock::now();
   GeodesicInputPaths().OutputFile("output", FLAGS_output).Check();
-  const auto [start, space, multires] = SolveGeodesicOfFlags("log");
-  const GeodesicResult& geodesic = multires.geodesic;
-  const Positions log = LogOfGeodesic(geodesic.path);
+  const workflows::LogResult result =
+      workflows::RunLog(GeodesicOptionsFromFlags("log"));
+  const workflows::GeodesicResult& geodesic = result.geodesic;
+  if (geodesic.status.failed()) return FailedSolveExit("log", geodesic.status);
   RunStatus status("log");
-  CheckGeodesic(geodesic, "log: the geodesic", &status);
-  WriteMesh(Mesh{start.mesh.positions + log, start.mesh.faces}, FLAGS_output);
+  RecordWorkflow(geodesic.status, geodesic.warnings, "log: the geodesic",
+                 &status);
+  WriteMesh(Mesh{geodesic.start.positions + result.log, geodesic.start.faces},
+            FLAGS_output);
   if (FLAGS_json) {
-    JsonObject json = GeodesicJson(geodesic);
-    json.Raw("energy_split", PathEnergySplitJson(space, geodesic.path));
+    JsonObject json = workflows::ToJson(result);
     json.Add("bending_model", FLAGS_bending)
-        .Raw("multires_levels", MultiresolutionJson(multires))
-        .Add("prolongation", ProlongationJson(multires.prolongation))
-        .Add("log_max_norm", log.cwiseAbs().maxCoeff())
         .Add("seconds", Seconds(clock))
         .Add("output", FLAGS_output);
     std::cout << AddRunFields(json).str() << "\n";

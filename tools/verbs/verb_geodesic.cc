@@ -5,11 +5,10 @@
 #include <iostream>
 
 #include "shellspace/io/mesh_io.h"
-#include "shellspace/problems/calculus/geodesic.h"
+#include "shellspace/workflows/geodesic.h"
 #include "tools/run/common_flags.h"
 #include "tools/verbs/film_strip_flags.h"
 #include "tools/verbs/geodesic_solve.h"
-#include "tools/run/memory_limits.h"
 #include "tools/verbs/path_summary.h"
 #include "tools/run/run_paths.h"
 #include "tools/run/run_status.h"
@@ -18,7 +17,6 @@
 
 namespace shellspace {
 namespace {
-
 
 FlagTable GeodesicFlags() {
   return Flags(
@@ -44,6 +42,7 @@ FlagTable GeodesicFlags() {
        MaterialFlags(), SolverFlags(), JsonFlag(), FilmStripFlags()});
 }
 
+// Flags -> options -> the workflow -> files and summary.
 int RunGeodesic() {
   const auto clock = std::chrono::steady_clock::now();
   GeodesicInputPaths()
@@ -51,34 +50,26 @@ int RunGeodesic() {
       .OutputFile("png", FLAGS_png)
       .OutputFile("gltf", FLAGS_gltf)
       .Check();
-  const auto [start, space, multires] = SolveGeodesicOfFlags("geodesic");
-  const GeodesicResult& result = multires.geodesic;
-  if (!result.failure.empty()) {
-    throw InputError("solver failed: " + result.failure);
-  }
-  const bool ceres_ran = !result.summary.iterations.empty();
-  if (FLAGS_report && ceres_ran) {
-    std::cerr << result.summary.FullReport() << "\n";
-  }
+  const workflows::GeodesicResult result =
+      workflows::RunGeodesic(GeodesicOptionsFromFlags("geodesic"));
+  if (result.status.failed()) return FailedSolveExit("geodesic", result.status);
+  const ceres::Solver::Summary& ceres = result.geodesic().summary;
+  const bool ceres_ran = !ceres.iterations.empty();
+  if (FLAGS_report && ceres_ran) std::cerr << ceres.FullReport() << "\n";
   RunStatus status("geodesic");
-  CheckGeodesic(result, "geodesic", &status);
+  RecordWorkflow(result.status, result.warnings, "geodesic", &status);
   RunDirectory output(FLAGS_output);
-  WritePathOutputs(&output, start.mesh.faces, result.path);
+  WritePathOutputs(&output, result.start.faces, result.path());
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock)
           .count();
-  CommitPathRun(&output,
-                GeodesicJson(result)
-                    .Raw("multires_levels", MultiresolutionJson(multires))
-                    .Add("prolongation",
-                         ProlongationJson(multires.prolongation)),
-                space, result.path, seconds);
+  CommitPathRun(&output, workflows::ToJson(result), seconds);
   if (!FLAGS_json && !FLAGS_quiet) {
-    if (ceres_ran) std::cerr << result.summary.BriefReport() << "\n";
-    std::cout << "E_K = " << result.path_energy << " over " << FLAGS_steps
-              << " steps (" << result.iterations << " iterations, |grad| "
-              << result.final_gradient << "); wrote " << FLAGS_output
-              << "/shape_*.ply\n";
+    if (ceres_ran) std::cerr << ceres.BriefReport() << "\n";
+    std::cout << "E_K = " << result.path_energy() << " over " << FLAGS_steps
+              << " steps (" << result.geodesic().iterations
+              << " iterations, |grad| " << result.geodesic().final_gradient
+              << "); wrote " << FLAGS_output << "/shape_*.ply\n";
   }
   return status.Finish();
 }

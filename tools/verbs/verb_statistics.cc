@@ -27,7 +27,9 @@
 #include "tools/run/shell_inputs.h"
 #include "tools/run/run_output.h"
 #include "tools/run/run_paths.h"
-#include "tools/run/stop_request.h"
+#include "shellspace/workflows/mean.h"
+#include "shellspace/workflows/pca.h"
+#include "tools/verbs/path_summary.h"
 #include "tools/verbs/verb.h"
 
 DEFINE_int32(modes, 3, "pca: number of modes");
@@ -112,46 +114,38 @@ ShellSet LoadInputs(size_t minimum) {
   return LoadShellList(FLAGS_inputs, "inputs");
 }
 
-void CheckSolve(const ceres::Solver::Summary& summary, const char* what) {
-  if (summary.termination_type == ceres::FAILURE) {
-    throw InputError(std::string(what) + " failed: " + summary.message);
+// The options every statistics workflow takes from --inputs and the
+// material and solver flags.
+template <class Options>
+Options OptionsOfInputs(const ShellSet& inputs, const std::string& verb) {
+  Options options;
+  options.reference = inputs.first.mesh;
+  options.topology = inputs.first.topology;
+  options.shapes = inputs.shapes;
+  options.names = inputs.paths;
+  options.material.material = MaterialFromFlags(inputs.first.mesh);
+  options.material.eta_absolute =
+      !gflags::GetCommandLineFlagInfoOrDie("eta").is_default;
+  options.settings = SettingsFromFlags(verb);
+  return options;
+}
+
+// The inputs far from the others (the result's far_input_indices), each
+// with a warning on stderr unless --quiet: such an input dominates the mean
+// and the leading shell PCA mode, and EXP shots along that mode may have no
+// solution.
+void WarnAboutFarInputs(const std::vector<int>& far,
+                        const std::vector<std::string>& names,
+                        const ElasticMeanResult& mean, const char* verb) {
+  if (FLAGS_quiet) return;
+  for (int i : far) {
+    std::cerr << verb << ": warning: input " << names[i]
+              << " is far from the others: "
+              << workflows::FarInputText(mean, i) << "\n";
   }
 }
 
-// The inputs far from the others (FarInputs), by path, each with a warning
-// on stderr unless --quiet: such an input dominates the mean and the leading
-// shell PCA mode, and EXP shots along that mode may have no solution.
-std::vector<std::string> WarnAboutFarInputs(const ShellSet& inputs,
-                                            const ElasticMeanResult& mean,
-                                            const char* verb) {
-  std::vector<std::string> far;
-  const double median = Median(mean.energies);
-  for (int i : FarInputs(mean.energies)) {
-    far.push_back(inputs.paths[i]);
-    if (FLAGS_quiet) continue;
-    char text[160];
-    std::snprintf(text, sizeof(text),
-                  ": W[S, mean] = %.4g, %.0f times the median %.4g",
-                  mean.energies[i], mean.energies[i] / median, median);
-    std::cerr << verb << ": warning: input " << inputs.paths[i]
-              << " is far from the others" << text << "\n";
-  }
-  return far;
-}
-
-// Records whether the elastic mean met its stopping criterion.
-void CheckMean(const ElasticMeanResult& mean, const std::string& what,
-               RunStatus* status) {
-  status->Require(mean.converged,
-                  what + ": " +
-                      GradientAboveTarget(mean.gradient_norm,
-                                          mean.gradient_target) +
-                      " after " + std::to_string(mean.lm_iterations) +
-                      " LM + " +
-                      std::to_string(mean.newton_iterations) +
-                      " Newton iterations (" + mean.termination + ")");
-}
-
+// Flags -> options -> the workflow -> the file and summary.
 int RunMean() {
   const auto clock = std::chrono::steady_clock::now();
   RunPaths()
@@ -159,33 +153,30 @@ int RunMean() {
       .OutputFile("output", FLAGS_output)
       .Check();
   const ShellSet inputs = LoadInputs(1);
-  const ShellSpace space = SpaceFromFlags(inputs.first);
-  const ElasticMeanResult result =
-      ComputeElasticMean(space, inputs.shapes, SettingsFromFlags("mean"));
-  CheckSolve(result.summary, "elastic mean");
-  const std::vector<std::string> far =
-      WarnAboutFarInputs(inputs, result, "mean");
-  if (FLAGS_report) std::cerr << result.summary.FullReport() << "\n";
+  const workflows::MeanResult result = workflows::RunMean(
+      OptionsOfInputs<workflows::MeanOptions>(inputs, "mean"));
+  if (result.status.failed()) return FailedSolveExit("mean", result.status);
+  WarnAboutFarInputs(result.far_input_indices, inputs.paths, result.mean,
+                     "mean");
+  const ElasticMeanResult& mean = result.mean;
+  if (FLAGS_report) std::cerr << mean.summary.FullReport() << "\n";
   RunStatus status("mean");
-  CheckMean(result, "elastic mean", &status);
-  WriteMesh(Mesh{result.mean, inputs.first.mesh.faces}, FLAGS_output);
+  RecordWorkflow(result.status, {}, "mean", &status);
+  WriteMesh(Mesh{mean.mean, inputs.first.mesh.faces}, FLAGS_output);
   if (FLAGS_json) {
-    JsonObject json =
-        MeanJson(result, static_cast<int>(inputs.shapes.size()), far);
-    json.Add("bending_model", FLAGS_bending)
-        .Raw("energy_split", MeanEnergySplitJson(space, result.mean,
-                                                 inputs.shapes));
+    JsonObject json = workflows::ToJson(result);
+    json.Add("bending_model", FLAGS_bending);
     std::cout << AddRunFields(json)
                      .Add("seconds", Seconds(clock))
                      .Add("output", FLAGS_output)
                      .str()
               << "\n";
   } else if (!FLAGS_quiet) {
-    std::cerr << result.summary.BriefReport() << "\n";
-    std::cout << "sum_i W[S_i, mean] = " << result.energy << " over "
-              << inputs.shapes.size() << " shells (" << result.lm_iterations
-              << " LM + " << result.newton_iterations
-              << " Newton iterations, |grad| " << result.gradient_norm
+    std::cerr << mean.summary.BriefReport() << "\n";
+    std::cout << "sum_i W[S_i, mean] = " << mean.energy << " over "
+              << inputs.shapes.size() << " shells (" << mean.lm_iterations
+              << " LM + " << mean.newton_iterations
+              << " Newton iterations, |grad| " << mean.gradient_norm
               << "); wrote " << FLAGS_output << "\n";
   }
   return status.Finish();
@@ -212,6 +203,7 @@ std::string TableText(const LeaveOneOutTable& table) {
   return out.str();
 }
 
+// Flags -> options -> the workflow -> the directory and summary.
 int RunPca() {
   if (FLAGS_baseline != "" && FLAGS_baseline != "procrustes") {
     throw InputError("--baseline must be 'procrustes' (or empty), got '" +
@@ -220,7 +212,7 @@ int RunPca() {
   if (FLAGS_max_exp_steps < FLAGS_exp_steps) {
     throw InputError("--max_exp_steps must be at least --exp_steps");
   }
-  const ShellPcaOptions options =
+  const ShellPcaOptions pca =
       MakeShellPcaOptions(FLAGS_log_steps, FLAGS_exp_steps,
                           FLAGS_max_exp_steps, FLAGS_displacement, "--");
   const auto clock = std::chrono::steady_clock::now();
@@ -230,144 +222,75 @@ int RunPca() {
       .OutputFile("png", FLAGS_png)
       .Check();
   const ShellSet inputs = LoadInputs(FLAGS_loo ? 3 : 2);
-  const int n = static_cast<int>(inputs.shapes.size());
-  CheckPcaModeCount(FLAGS_modes, n, FLAGS_loo, "--");
-  const ShellSpace space = SpaceFromFlags(inputs.first);
-  const SolverSettings settings = SettingsFromFlags("pca");
-  SolverSettings inner = settings;
-  inner.progress = false;
-  // A stop (--time_limit, SIGINT, SIGTERM) in any phase ends the run with the
-  // mean alone, marked partial: a LOG or EXP shot stopped midway would give a
-  // wrong mode, so modes are written only by a run that was not stopped.
-
-  // Shell model.
-  Positions given_mean;
+  workflows::PcaOptions options =
+      OptionsOfInputs<workflows::PcaOptions>(inputs, "pca");
+  options.modes = FLAGS_modes;
+  options.procrustes = FLAGS_baseline == "procrustes";
+  options.leave_one_out = FLAGS_loo;
+  options.amplitude = FLAGS_amplitude;
+  options.pca = pca;
+  options.displacement = FLAGS_displacement;
+  options.option_prefix = "--";
   if (!FLAGS_mean.empty()) {
-    given_mean = LoadCompatibleShell(FLAGS_mean, inputs.first).positions;
+    options.initial_mean =
+        LoadCompatibleShell(FLAGS_mean, inputs.first).positions;
   }
   if (!FLAGS_quiet) {
-    std::cerr << "pca: elastic mean of " << n << " shells"
-              << (FLAGS_mean.empty() ? "" : " from " + FLAGS_mean) << "\n";
+    options.log = [](const std::string& line) {
+      std::cerr << "pca: " << line << "\n";
+    };
+    options.leave_one_out_log = [](const std::string& line) {
+      std::cerr << "loo: " << line << "\n";
+    };
   }
-  const ElasticMeanResult mean = ComputeElasticMean(
-      space, inputs.shapes, settings,
-      FLAGS_mean.empty() ? nullptr : &given_mean);
-  CheckSolve(mean.summary, "elastic mean");
+  const workflows::PcaResult result = workflows::RunPca(options);
+  if (result.status.failed()) return FailedSolveExit("pca", result.status);
   RunStatus status("pca");
-  CheckMean(mean, "the elastic mean", &status);
-  // Stopped: the mean so far (or the converged mean, if the stop came
-  // later), no modes. The exit code is the stop's (main).
-  const auto write_mean_only = [&](const char* phase) {
-    JsonObject json = PcaMeanJson(n, mean);
-    json.Add("modes", 0)
-        .Add("stopped_in", phase)
-        .Add("seconds", Seconds(clock))
-        .Add("output", FLAGS_output);
+  RecordWorkflow(result.status, {}, "pca", &status);
+  const Faces& faces = inputs.first.mesh.faces;
+  JsonObject json = workflows::ToJson(result, options);
+  if (!result.stopped_in.empty()) {
+    // Stopped: the mean so far (or the converged mean, if the stop came
+    // later), no modes. The exit code is the stop's (main).
+    json.Add("seconds", Seconds(clock)).Add("output", FLAGS_output);
     AddRunFields(json);
     RunDirectory output(FLAGS_output);
-    WriteMesh(Mesh{mean.mean, inputs.first.mesh.faces},
-              output.File("mean.ply"));
+    WriteMesh(Mesh{result.mean.mean, faces}, output.File("mean.ply"));
     WriteFileAtomically(output.File("pca.json"), json.str() + "\n");
     output.CommitSummary(json.str());
     if (FLAGS_json) std::cout << json.str() << "\n";
     return 0;
-  };
-  if (ObservedStop() != StopCause::kNone) return write_mean_only("mean");
-  const std::vector<std::string> far = WarnAboutFarInputs(inputs, mean, "pca");
-  if (!FLAGS_quiet) {
-    std::cerr << "pca: elastic mean done (" << mean.lm_iterations << " LM + "
-              << mean.newton_iterations << " Newton iterations, "
-              << Seconds(clock) << " s); displacements ("
-              << FLAGS_displacement << ") and the Gram matrix\n";
   }
-  const ShellPcaModel shell =
-      ComputeShellPca(space, mean.mean, inputs.shapes, options, inner);
-  if (ObservedStop() != StopCause::kNone) {
-    return write_mean_only("displacements");
+  WarnAboutFarInputs(result.far_input_indices, inputs.paths, result.mean,
+                     "pca");
+  for (size_t i = 0; i < result.failed_shapes.size() && !FLAGS_quiet; ++i) {
+    std::cerr << "pca: warning: " << result.failed_shapes[i]
+              << ".ply not written: " << result.failed_shape_reasons[i]
+              << "\n";
   }
-  const int shell_modes =
-      std::min<int>(FLAGS_modes, static_cast<int>(shell.modes.size()));
-  if (!FLAGS_quiet) {
-    std::cerr << "pca: shell PCA done (" << Seconds(clock) << " s); "
-              << 2 * shell_modes << " mode shapes by EXP_K\n";
-  }
-  std::vector<std::pair<std::string, Positions>> files = {
-      {"mean.ply", mean.mean}};  // written at the end, with pca.json
-  std::vector<Positions> strip = {mean.mean};
-  // A mode shape whose EXP shot has no solution (TryShellModeShape false)
-  // is not written; it is listed in the JSON and warned about.
-  std::vector<std::string> failed_shapes;
-  for (int j = 0; j < shell_modes; ++j) {
-    for (const double sign : {-1.0, 1.0}) {
-      // No new shot once a stop is requested (the mean is written alone).
-      if (ObservedStop() != StopCause::kNone) break;
-      const std::string name = "mode_" + std::to_string(j + 1) +
-                               (sign < 0 ? "_minus.ply" : "_plus.ply");
-      Positions shape;
-      ExpShotReport shot;
-      if (TryShellModeShape(space, shell, j, sign * FLAGS_amplitude, options,
-                            inner, &shape, &shot)) {
-        files.emplace_back(name, shape);
-        strip.push_back(std::move(shape));
-      } else {
-        failed_shapes.push_back(name);
-        if (!FLAGS_quiet) {
-          std::cerr << "pca: warning: " << name
-                    << " not written: " << shot.failure << "\n";
-        }
-      }
-    }
-  }
-  if (ObservedStop() != StopCause::kNone) return write_mean_only("mode shapes");
-  if (!FLAGS_quiet) std::cerr << "pca: shell modes done\n";
-
-  JsonObject json = PcaJson(n, mean, FLAGS_displacement, options, shell,
-                            shell_modes, failed_shapes, far, FLAGS_amplitude);
   json.Add("bending_model", FLAGS_bending)
       .Add("converged", status.ok());  // the mean; mode shapes: warned
-
-  if (FLAGS_baseline == "procrustes") {
-    for (auto& [name, shape] :
-         AddProcrustesBaseline(ComputeProcrustesPca(inputs.shapes), FLAGS_modes,
-                               FLAGS_amplitude, &json)) {
-      files.emplace_back(name + ".ply", std::move(shape));
-    }
-  }
-
-  std::string table_text;
-  if (FLAGS_loo) {
-    LeaveOneOutOptions loo;
-    loo.max_modes = FLAGS_modes;
-    loo.pca = options;
-    loo.initial_mean = mean.mean;  // warm start; same minimiser per fold
-    if (!FLAGS_quiet) {
-      loo.log = [](const std::string& line) {
-        std::cerr << "loo: " << line << "\n";
-      };
-    }
-    const LeaveOneOutTable table =
-        EvaluateLeaveOneOut(space, inputs.shapes, loo, inner);
-    if (ObservedStop() != StopCause::kNone) {
-      return write_mean_only("leave-one-out");
-    }
-    json.Raw("leave_one_out", LeaveOneOutJson(table));
-    table_text = TableText(table);
-  }
+  const std::string table_text =
+      result.leave_one_out ? TableText(*result.leave_one_out) : "";
   json.Add("seconds", Seconds(clock)).Add("output", FLAGS_output);
   AddRunFields(json);
 
   // All results computed: write the directory (the PLY set, pca.json and
-  // summary.json, the same object) whole, then the film strip.
+  // summary.json, the same object) whole, then the film strip of the mean
+  // and the shell mode shapes.
   RunDirectory output(FLAGS_output);
-  for (const auto& [name, positions] : files) {
-    WriteMesh(Mesh{positions, inputs.first.mesh.faces}, output.File(name));
+  std::vector<Positions> strip;
+  for (const auto& [name, positions] : result.shapes) {
+    WriteMesh(Mesh{positions, faces}, output.File(name + ".ply"));
+    if (name == "mean" || name.rfind("mode_", 0) == 0) {
+      strip.push_back(positions);
+    }
   }
   WriteFileAtomically(output.File("pca.json"), json.str() + "\n");
   if (!FLAGS_png.empty()) {
     const RenderOptions render = FilmStripOptionsFromFlags();
-    output.AddOutside(
-        FLAGS_png,
-        EncodePng(RenderFilmStrip(strip, inputs.first.mesh.faces, render)));
+    output.AddOutside(FLAGS_png,
+                      EncodePng(RenderFilmStrip(strip, faces, render)));
   }
   output.CommitSummary(json.str());
   if (FLAGS_json) {
@@ -377,11 +300,11 @@ int RunPca() {
     if (!table_text.empty()) std::cout << table_text;
     if (!FLAGS_quiet) {
       std::cout << "eigenvalues:";
-      for (int j = 0; j < shell.eigenvalues.size(); ++j) {
-        std::cout << " " << shell.eigenvalues(j);
+      for (int j = 0; j < result.model->eigenvalues.size(); ++j) {
+        std::cout << " " << result.model->eigenvalues(j);
       }
-      std::cout << "\nwrote " << FLAGS_output << "/mean.ply and " << shell_modes
-                << " mode pairs\n";
+      std::cout << "\nwrote " << FLAGS_output << "/mean.ply and "
+                << result.shell_modes << " mode pairs\n";
     }
   }
   return status.Finish();
