@@ -1,4 +1,5 @@
 // The module's geodesic calculus: geodesic, log, shoot, transport, compare.
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -12,6 +13,8 @@
 #include "shellspace/reports/path_reports.h"
 #include "shellspace/reports/solve_choices.h"
 #include "shellspace/workflows/geodesic.h"
+#include "shellspace/workflows/shoot.h"
+#include "shellspace/workflows/transport.h"
 #include "python/array_arguments.h"
 #include "tools/run/memory_limits.h"
 
@@ -124,6 +127,7 @@ py::object LogPy(const py::object& start_v, const py::object& end_v,
                        summary, "log", FailuresOf(geodesic.status));
 }
 
+// Keywords -> options -> the workflow -> files and (path, summary).
 py::object ShootPy(const py::object& first_v, const py::object& second_v,
                    const py::object& F, int steps, bool backward,
                    const py::object& mask,
@@ -134,42 +138,36 @@ py::object ShootPy(const py::object& first_v, const py::object& second_v,
                    const SolverOptions& solver) {
   const auto clock = Clock::now();
   CheckAtLeast("steps", steps, 1);
-  const auto [first, second, space] = MakeShellPair(
-      first_v, second_v, F, "first", "second", material_args);
+  Shell first = MakeShell(first_v, F, "first");
+  workflows::ShootOptions options;
+  options.second = CompatiblePositions(second_v, first, "second");
+  options.material = MaterialChoiceOf(material_args, first.mesh);
   const int vertices = first.mesh.num_vertices();
   CheckSteps("steps", steps, 1, PathBytes(vertices, steps + 1), vertices,
              kPathModel);
-  const std::vector<int> fixed = MaskArgument(mask, vertices);
-  const SolverSettings settings = solver.Settings("shoot");
-  ShootResult result;
+  options.fixed_vertices = MaskArgument(mask, vertices);
+  options.first = std::move(first.mesh);
+  options.topology = std::move(first.topology);
+  options.steps = steps;
+  options.backward = backward;
+  options.settings = solver.Settings("shoot");
+  workflows::ShootResult result;
   {
     SolveControl::Solving solving(*solver.control);
-    result = ShootWithReport(
-        space, first.mesh.positions, second, steps,
-        backward ? StepDirection::kBackward : StepDirection::kForward, fixed,
-        settings);
+    result = workflows::RunShoot(options);
   }
   // An EXP step without a root is the CLI's unsolved step (exit 4).
-  std::vector<std::string> failures;
-  for (size_t i = 0; i < result.exp_steps.size(); ++i) {
-    const ExpStepResult& step = result.exp_steps[i];
-    if (step.solved) continue;
-    failures.push_back("EXP step " + std::to_string(i + 1) +
-                       " not solved: relative residual " +
-                       Short(step.relative_residual) + " > " +
-                       Short(kExpStepAcceptance));
-  }
-  WritePath(output, png, gltf, first.mesh.faces, result.path);
-  JsonObject json = ShootJson(result);
-  json.Raw("energy_split", PathEnergySplitJson(space, result.path))
-      .Raw("material", MaterialRecord(space, first.mesh, material_args))
+  WritePath(output, png, gltf, result.first.faces, result.path());
+  JsonObject json = workflows::ToJson(result);
+  json.Raw("material", MaterialRecord(result.material, result.first))
       .Add("seconds", Seconds(clock));
   AddStopFields(json, *solver.control);
   const py::object summary = ToDict(AddOutput(json, output));
-  return solver.Finish(py::make_tuple(FromPath(result.path), summary), summary,
-                       "shoot", std::move(failures));
+  return solver.Finish(py::make_tuple(FromPath(result.path()), summary),
+                       summary, "shoot", FailuresOf(result.status));
 }
 
+// Keywords -> options -> the workflow -> files and (shapes, summary).
 py::object TransportPy(const py::object& path_object,
                        const py::object& variation_v, const py::object& F,
                        double epsilon, const py::object& mask,
@@ -184,41 +182,33 @@ py::object TransportPy(const py::object& path_object,
   }
   const std::vector<Positions> frames = ShapeListArgument(path_object, "path");
   if (frames.size() < 2) throw InputError("path: need at least 2 frames");
-  const Shell first = MakeShell(frames[0], F, "path[0]");
-  ShellPath path = {first.mesh.positions};
+  Shell first = MakeShell(frames[0], F, "path[0]");
+  workflows::TransportOptions options;
+  options.path = {first.mesh.positions};
   for (size_t k = 1; k < frames.size(); ++k) {
-    path.push_back(CompatiblePositions(frames[k], first,
-                                       "path[" + std::to_string(k) + "]"));
+    options.path.push_back(CompatiblePositions(
+        frames[k], first, "path[" + std::to_string(k) + "]"));
   }
-  const Positions varied = CompatiblePositions(variation_v, first, "variation");
-  const ShellSpace space(first.mesh, first.topology, Material(material_args, first.mesh));
-  const std::vector<int> fixed = MaskArgument(mask, first.mesh.num_vertices());
-  const SolverSettings settings = solver.Settings("transport");
-  TransportResult result;
+  options.variation = CompatiblePositions(variation_v, first, "variation");
+  options.material = MaterialChoiceOf(material_args, first.mesh);
+  options.fixed_vertices = MaskArgument(mask, first.mesh.num_vertices());
+  options.first = std::move(first.mesh);
+  options.topology = std::move(first.topology);
+  options.epsilon = epsilon;
+  options.settings = solver.Settings("transport");
+  workflows::TransportResult result;
   {
     SolveControl::Solving solving(*solver.control);
-    result = ParallelTransport(space, path, varied - first.mesh.positions,
-                               epsilon, fixed, settings);
+    result = workflows::RunTransport(options);
   }
-  std::vector<std::string> failures;
-  for (size_t k = 0; k < result.rungs.size(); ++k) {
-    const TransportResult::Rung& rung = result.rungs[k];
-    if (rung.solved) continue;
-    failures.push_back("rung " + std::to_string(k + 1) +
-                       " not solved: EXP residual " +
-                       Short(rung.relative_residual) + " > " +
-                       Short(kExpStepAcceptance) + " (also at epsilon / " +
-                       std::to_string(rung.divisor) + ")");
-  }
-  WritePath(output, png, gltf, first.mesh.faces, result.shapes);
-  JsonObject json = TransportJson(result, epsilon);
-  json.Raw("energy_split", PathEnergySplitJson(space, result.shapes))
-      .Raw("material", MaterialRecord(space, first.mesh, material_args))
+  WritePath(output, png, gltf, result.first.faces, result.shapes());
+  JsonObject json = workflows::ToJson(result);
+  json.Raw("material", MaterialRecord(result.material, result.first))
       .Add("seconds", Seconds(clock));
   AddStopFields(json, *solver.control);
   const py::object summary = ToDict(AddOutput(json, output));
-  return solver.Finish(py::make_tuple(FromPath(result.shapes), summary),
-                       summary, "transport", std::move(failures));
+  return solver.Finish(py::make_tuple(FromPath(result.shapes()), summary),
+                       summary, "transport", FailuresOf(result.status));
 }
 
 // `compare`: a and b each one #V x 3 array (a shell) or a sequence / #frames

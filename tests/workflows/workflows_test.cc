@@ -19,6 +19,8 @@
 #include "shellspace/workflows/geodesic.h"
 #include "shellspace/workflows/mean.h"
 #include "shellspace/workflows/pca.h"
+#include "shellspace/workflows/shoot.h"
+#include "shellspace/workflows/transport.h"
 #include "tests/testing/test_support.h"
 
 namespace shellspace {
@@ -290,6 +292,63 @@ TEST(MeanWorkflowTest, SplitSumsToTheMeanEnergy) {
   EXPECT_NEAR(result.energy_split.membrane, membrane, 1e-15);
   EXPECT_NEAR(result.energy_split.total(), total, 1e-12 * total);
   EXPECT_GT(result.energy_split.bending, 0);
+}
+
+// A shot from the geodesic's first two shapes: K + 1 shapes starting with
+// them, every EXP step solved, the shot's split summing to its E_K.
+TEST(ShootWorkflowTest, ShotFromAGeodesicsFirstStep) {
+  const workflows::GeodesicOptions geodesic_options = BentSheetGeodesic();
+  const workflows::GeodesicResult geodesic =
+      workflows::RunGeodesic(geodesic_options);
+  ASSERT_TRUE(geodesic.status.ok());
+  workflows::ShootOptions options;
+  options.first = geodesic.start;
+  options.topology = geodesic_options.topology;
+  options.second = geodesic.path()[1];
+  options.steps = 4;
+  options.material = geodesic_options.material;
+  options.settings = DefaultSettings();
+  const workflows::ShootResult result = workflows::RunShoot(options);
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
+  ASSERT_EQ(result.path().size(), 5u);
+  EXPECT_EQ(result.path()[0], geodesic.path()[0]);
+  EXPECT_EQ(result.path()[1], geodesic.path()[1]);
+  ASSERT_EQ(result.shot.exp_steps.size(), 3u);
+  for (const ExpStepResult& step : result.shot.exp_steps) {
+    EXPECT_TRUE(step.solved);
+  }
+  EXPECT_NEAR(result.energy_split.total(), result.shot.path_energy,
+              1e-12 * result.shot.path_energy);
+  options.steps = 0;
+  EXPECT_THROW(workflows::RunShoot(options), InputError);
+}
+
+// Transport of a zero variation is zero (to the EXP solves' accuracy);
+// epsilon must be positive.
+TEST(TransportWorkflowTest, ZeroStaysZeroAndBadEpsilonIsInput) {
+  const workflows::GeodesicOptions geodesic_options = BentSheetGeodesic();
+  const workflows::GeodesicResult geodesic =
+      workflows::RunGeodesic(geodesic_options);
+  ASSERT_TRUE(geodesic.status.ok());
+  workflows::TransportOptions options;
+  options.first = geodesic.start;
+  options.topology = geodesic_options.topology;
+  options.path = geodesic.path();
+  options.variation = geodesic.start.positions;
+  options.material = geodesic_options.material;
+  options.settings = DefaultSettings();
+  const workflows::TransportResult result = workflows::RunTransport(options);
+  ASSERT_TRUE(result.status.ok()) << result.status.message;
+  ASSERT_EQ(result.shapes().size(), geodesic.path().size());
+  for (size_t k = 0; k < result.shapes().size(); ++k) {
+    EXPECT_LT((result.shapes()[k] - geodesic.path()[k]).cwiseAbs().maxCoeff(),
+              1e-5)
+        << "frame " << k;
+  }
+  for (const double epsilon : {0.0, -1.0, std::nan("")}) {
+    options.epsilon = epsilon;
+    EXPECT_THROW(workflows::RunTransport(options), InputError) << epsilon;
+  }
 }
 
 // The CLI runs the same workflow: its E_K is RunGeodesic's to the digit,

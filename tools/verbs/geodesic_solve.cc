@@ -80,6 +80,13 @@ RunPaths GeodesicInputPaths() {
   return paths;
 }
 
+workflows::MaterialChoice MaterialChoiceFromFlags(const Mesh& reference) {
+  workflows::MaterialChoice choice;
+  choice.material = MaterialFromFlags(reference);
+  choice.eta_absolute = !gflags::GetCommandLineFlagInfoOrDie("eta").is_default;
+  return choice;
+}
+
 workflows::GeodesicOptions GeodesicOptionsFromFlags(const std::string& verb) {
   const auto [start, end] = LoadShellPair(FLAGS_start, FLAGS_end);
   const int vertices = start.mesh.num_vertices();
@@ -93,9 +100,7 @@ workflows::GeodesicOptions GeodesicOptionsFromFlags(const std::string& verb) {
   options.end = end.positions;
   options.steps = FLAGS_steps;
   options.fixed_vertices = MaskFromFlags(vertices);
-  options.material.material = MaterialFromFlags(start.mesh);
-  options.material.eta_absolute =
-      !gflags::GetCommandLineFlagInfoOrDie("eta").is_default;
+  options.material = MaterialChoiceFromFlags(start.mesh);
   options.multires = FLAGS_multires;
   options.linear_solver = FLAGS_linear_solver;
   options.lm = FLAGS_lm;

@@ -10,6 +10,8 @@
 #include "shellspace/problems/calculus/exponential_map.h"
 #include "shellspace/problems/calculus/parallel_transport.h"
 #include "shellspace/workflows/geodesic.h"
+#include "shellspace/workflows/shoot.h"
+#include "shellspace/workflows/transport.h"
 #include "tools/run/common_flags.h"
 #include "tools/verbs/film_strip_flags.h"
 #include "tools/verbs/geodesic_solve.h"
@@ -109,6 +111,7 @@ FlagTable TransportFlags() {
        MaterialFlags(), SolverFlags(), JsonFlag(), FilmStripFlags()});
 }
 
+// Flags -> options -> the workflow -> frames and summary.
 int RunShoot() {
   const auto clock = std::chrono::steady_clock::now();
   RunPaths()
@@ -124,17 +127,21 @@ int RunShoot() {
               "--steps " + std::to_string(FLAGS_steps) + " on " +
                   std::to_string(first.mesh.num_vertices()) + " vertices",
               kPathModel);
-  const ShellSpace space = SpaceFromFlags(first);
-  const ShootResult result = ShootWithReport(
-      space, first.mesh.positions, second.positions, FLAGS_steps,
-      FLAGS_backward ? StepDirection::kBackward : StepDirection::kForward,
-      MaskFromFlags(first.mesh.num_vertices()), SettingsFromFlags("shoot"));
+  workflows::ShootOptions options;
+  options.first = first.mesh;
+  options.topology = first.topology;
+  options.second = second.positions;
+  options.steps = FLAGS_steps;
+  options.backward = FLAGS_backward;
+  options.material = MaterialChoiceFromFlags(first.mesh);
+  options.fixed_vertices = MaskFromFlags(first.mesh.num_vertices());
+  options.settings = SettingsFromFlags("shoot");
+  const workflows::ShootResult result = workflows::RunShoot(options);
   RunStatus status("shoot");
-  CheckShoot(result, &status);
+  RecordWorkflow(result.status, {}, "shoot", &status);
   RunDirectory output(FLAGS_output);
-  WritePathOutputs(&output, first.mesh.faces, result.path);
-  CommitPathRun(&output, ShootJson(result), space, result.path,
-                Seconds(clock));
+  WritePathOutputs(&output, first.mesh.faces, result.path());
+  CommitPathRun(&output, workflows::ToJson(result), Seconds(clock));
   return status.Finish();
 }
 
@@ -161,6 +168,7 @@ int RunLog() {
   return status.Finish();
 }
 
+// Flags -> options -> the workflow -> frames and summary.
 int RunTransport() {
   const auto clock = std::chrono::steady_clock::now();
   RunPaths()
@@ -176,34 +184,25 @@ int RunTransport() {
     throw InputError(FLAGS_path + ": need at least 2 frames");
   }
   const Shell first = LoadShell(files[0]);
-  ShellPath path = {first.mesh.positions};
+  workflows::TransportOptions options;
+  options.first = first.mesh;
+  options.topology = first.topology;
+  options.path = {first.mesh.positions};
   for (size_t k = 1; k < files.size(); ++k) {
-    path.push_back(LoadCompatibleShell(files[k], first).positions);
+    options.path.push_back(LoadCompatibleShell(files[k], first).positions);
   }
-  const Mesh varied = LoadCompatibleShell(FLAGS_variation, first);
-  const ShellSpace space = SpaceFromFlags(first);
-  const TransportResult result = ParallelTransport(
-      space, path, varied.positions - first.mesh.positions, FLAGS_epsilon,
-      MaskFromFlags(first.mesh.num_vertices()),
-      SettingsFromFlags("transport"));
+  options.variation = LoadCompatibleShell(FLAGS_variation, first).positions;
+  options.epsilon = FLAGS_epsilon;
+  options.material = MaterialChoiceFromFlags(first.mesh);
+  options.fixed_vertices = MaskFromFlags(first.mesh.num_vertices());
+  options.settings = SettingsFromFlags("transport");
+  const workflows::TransportResult result = workflows::RunTransport(options);
   RunStatus status("transport");
-  for (size_t k = 0; k < result.rungs.size(); ++k) {
-    const TransportResult::Rung& rung = result.rungs[k];
-    status.Require(rung.solved,
-                   "rung " + std::to_string(k + 1) +
-                       " not solved: EXP residual " +
-                       Short(rung.relative_residual) + " > " +
-                       Short(kExpStepAcceptance) + " (also at epsilon / " +
-                       std::to_string(rung.divisor) + ")");
-    if (rung.solved && rung.divisor > 1) {
-      status.Warn("rung " + std::to_string(k + 1) + " solved at epsilon / " +
-                  std::to_string(rung.divisor) + " and scaled back");
-    }
-  }
+  RecordWorkflow(result.status, {}, "transport", &status);
+  for (const std::string& warning : result.warnings) status.Warn(warning);
   RunDirectory output(FLAGS_output);
-  WritePathOutputs(&output, first.mesh.faces, result.shapes);
-  CommitPathRun(&output, TransportJson(result, FLAGS_epsilon), space,
-                result.shapes, Seconds(clock));
+  WritePathOutputs(&output, first.mesh.faces, result.shapes());
+  CommitPathRun(&output, workflows::ToJson(result), Seconds(clock));
   return status.Finish();
 }
 

@@ -29,6 +29,7 @@
 #include "tools/run/run_paths.h"
 #include "shellspace/workflows/mean.h"
 #include "shellspace/workflows/pca.h"
+#include "tools/verbs/geodesic_solve.h"
 #include "tools/verbs/path_summary.h"
 #include "tools/verbs/verb.h"
 
@@ -123,9 +124,7 @@ Options OptionsOfInputs(const ShellSet& inputs, const std::string& verb) {
   options.topology = inputs.first.topology;
   options.shapes = inputs.shapes;
   options.names = inputs.paths;
-  options.material.material = MaterialFromFlags(inputs.first.mesh);
-  options.material.eta_absolute =
-      !gflags::GetCommandLineFlagInfoOrDie("eta").is_default;
+  options.material = MaterialChoiceFromFlags(inputs.first.mesh);
   options.settings = SettingsFromFlags(verb);
   return options;
 }
