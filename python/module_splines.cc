@@ -7,6 +7,8 @@
 #include "shellspace/problems/splines/spline.h"
 #include "shellspace/problems/splines/spline_initial_path.h"
 #include "shellspace/reports/path_reports.h"
+#include "shellspace/workflows/regress.h"
+#include "shellspace/workflows/spline.h"
 #include "python/array_arguments.h"
 #include "tools/run/memory_limits.h"
 
@@ -46,21 +48,6 @@ SplineSettings SplineSettingsOf(const SolverOptions& solver,
   return settings;
 }
 
-// What an unconverged spline or regression missed (the CLI's text).
-std::vector<std::string> SplineFailures(const SplineResult& result,
-                                        const std::string& verb,
-                                        double tolerance) {
-  if (result.converged) return {};
-  if (!result.evaluated) {
-    return {verb + ": stopped before the first evaluation of F_K finished"};
-  }
-  return {verb + ": relative gradient " + Short(result.relative_gradient_norm) +
-          " above the tolerance " + Short(tolerance) + " after " +
-          std::to_string(result.iterations) + " L-BFGS iterations (" +
-          ceres::TerminationTypeToString(result.summary.termination_type) +
-          ")"};
-}
-
 // The path verbs' (spline, regress) bound of steps: kMaxSteps and the
 // path's memory (tools/run/memory_limits.h's PathBytes).
 void CheckPathSteps(int steps, int min, int vertices) {
@@ -68,6 +55,7 @@ void CheckPathSteps(int steps, int min, int vertices) {
              kPathModel);
 }
 
+// Keywords -> options -> the workflow -> files and (path, summary).
 py::object SplinePy(const py::object& keyframes_object,
                     const py::object& at_object, const py::object& F,
                     int steps, const std::string& method,
@@ -84,59 +72,34 @@ py::object SplinePy(const py::object& keyframes_object,
   const auto clock = Clock::now();
   const ShapeSet set = MakeShapeSet(keyframes_object, F, "keyframes");
   CheckPathSteps(steps, 2, set.first.mesh.num_vertices());
-  const std::vector<int> at =
-      Indices(at_object, steps, set.shapes.size(), "keyframes");
-  const ShellSpace space(set.first.mesh, set.first.topology,
-                         Material(material_args, set.first.mesh));
-  const SplineInit initial_path = ParseSplineInit(init);
-  if (method == "ltheta" && initial_path != SplineInit::kLTheta) {
-    throw InputError("init " + init +
-                     " needs method nonlinear (method ltheta is the LΘA "
-                     "spline itself)");
-  }
-  SolverSettings init_settings = solver.Settings(init);
-  init_settings.progress = false;
-  SplineSettings settings = SplineSettingsOf(solver, "spline");
-  if (method == "ltheta") settings.max_iterations = 0;
-  SplineResult result;
-  SplineInitialPath initial;
+  workflows::SplineOptions options;
+  options.at = Indices(at_object, steps, set.shapes.size(), "keyframes");
+  options.material = MaterialChoiceOf(material_args, set.first.mesh);
+  options.init = ParseSplineInit(init);
+  options.reference = set.first.mesh;
+  options.topology = set.first.topology;
+  options.keyframes = set.shapes;
+  options.steps = steps;
+  options.periodic = periodic;
+  options.method = method;
+  options.init_settings = solver.Settings(init);
+  options.init_settings.progress = false;
+  options.settings = SplineSettingsOf(solver, "spline");
+  workflows::SplineResult result;
   {
     SolveControl::Solving solving(*solver.control);
-    initial = MakeSplineInitialPath(initial_path, space, set.shapes, at, steps,
-                                    periodic, init_settings);
-    result = SolveSpline(space, set.shapes, at, steps, periodic, initial.path,
-                         settings);
+    result = workflows::RunSpline(options);
   }
-  std::vector<std::string> failures;
-  if (method == "ltheta") {
-    // The LΘA spline alone converged if every frame's reconstruction did.
-    const std::vector<int> frames = initial.ltheta.unconverged_frames();
-    result.converged = frames.empty();
-    std::string list;
-    for (size_t i = 0; i < frames.size(); ++i) {
-      list += (i ? ", " : "") + std::to_string(frames[i]);
-    }
-    if (!frames.empty()) {
-      failures.push_back("spline: the LΘA reconstruction of frame(s) " + list +
-                         " stopped short of the tolerance " +
-                         Short(solver.tolerance));
-    }
-  } else {
-    failures = SplineFailures(result, "spline", solver.tolerance);
-  }
-  WritePath(output, png, gltf, set.first.mesh.faces, result.path);
-  JsonObject head;
-  head.Add("method", method);
-  AddSplineInitJson(head, initial);
-  head.Raw("energy_split", PathEnergySplitJson(space, result.path))
-      .Raw("material", MaterialRecord(space, set.first.mesh, material_args));
-  JsonObject json = SplineJson(head, result, Seconds(clock));
+  WritePath(output, png, gltf, set.first.mesh.faces, result.path());
+  JsonObject json = workflows::ToJson(result, Seconds(clock));
+  json.Raw("material", MaterialRecord(result.material, set.first.mesh));
   AddStopFields(json, *solver.control);
   const py::object summary = ToDict(AddOutput(json, output));
-  return solver.Finish(py::make_tuple(FromPath(result.path), summary), summary,
-                       "spline", std::move(failures));
+  return solver.Finish(py::make_tuple(FromPath(result.path()), summary),
+                       summary, "spline", FailuresOf(result.status));
 }
 
+// Keywords -> options -> the workflow -> files and (path, summary).
 py::object RegressPy(const py::object& inputs_object,
                      const py::object& at_object, const py::object& F,
                      int steps, double sigma,
@@ -152,27 +115,27 @@ py::object RegressPy(const py::object& inputs_object,
   const auto clock = Clock::now();
   const ShapeSet set = MakeShapeSet(inputs_object, F, "inputs");
   CheckPathSteps(steps, 2, set.first.mesh.num_vertices());
-  const std::vector<int> at =
-      Indices(at_object, steps, set.shapes.size(), "inputs");
-  const ShellSpace space(set.first.mesh, set.first.topology,
-                         Material(material_args, set.first.mesh));
-  const SplineSettings settings = SplineSettingsOf(solver, "regress");
-  SplineResult result;
+  workflows::RegressOptions options;
+  options.at = Indices(at_object, steps, set.shapes.size(), "inputs");
+  options.reference = set.first.mesh;
+  options.topology = set.first.topology;
+  options.inputs = set.shapes;
+  options.steps = steps;
+  options.sigma = sigma;
+  options.material = MaterialChoiceOf(material_args, set.first.mesh);
+  options.settings = SplineSettingsOf(solver, "regress");
+  workflows::RegressResult result;
   {
     SolveControl::Solving solving(*solver.control);
-    result = SolveRegression(space, set.shapes, at, steps, sigma, {}, settings);
+    result = workflows::RunRegress(options);
   }
-  WritePath(output, png, gltf, set.first.mesh.faces, result.path);
-  JsonObject head;
-  head.Add("sigma", sigma);
-  head.Raw("energy_split", PathEnergySplitJson(space, result.path))
-      .Raw("material", MaterialRecord(space, set.first.mesh, material_args));
-  JsonObject json = SplineJson(head, result, Seconds(clock));
+  WritePath(output, png, gltf, set.first.mesh.faces, result.path());
+  JsonObject json = workflows::ToJson(result, Seconds(clock));
+  json.Raw("material", MaterialRecord(result.material, set.first.mesh));
   AddStopFields(json, *solver.control);
   const py::object summary = ToDict(AddOutput(json, output));
-  return solver.Finish(py::make_tuple(FromPath(result.path), summary), summary,
-                       "regress",
-                       SplineFailures(result, "regress", solver.tolerance));
+  return solver.Finish(py::make_tuple(FromPath(result.path()), summary),
+                       summary, "regress", FailuresOf(result.status));
 }
 
 }  // namespace

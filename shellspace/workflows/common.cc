@@ -37,12 +37,12 @@ std::string EnergySplitJson(const EnergySplit& split) {
   return shellspace::EnergySplitJson(split.membrane, split.bending);
 }
 
-ObservedStop::ObservedStop(SolverSettings* settings)
+ObservedStop::ObservedStop(StopPoll* poll_to_wrap)
     : flag_(std::make_shared<std::atomic<bool>>(false)) {
-  if (!settings->stop) return;
-  StopPoll poll = std::move(settings->stop);
+  if (!*poll_to_wrap) return;
+  StopPoll poll = std::move(*poll_to_wrap);
   std::shared_ptr<std::atomic<bool>> flag = flag_;
-  settings->stop = [poll, flag] {
+  *poll_to_wrap = [poll, flag] {
     if (!poll()) return false;
     flag->store(true);
     return true;

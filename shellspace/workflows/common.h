@@ -51,7 +51,10 @@ std::string EnergySplitJson(const EnergySplit& split);
 // solve was cut by).
 class ObservedStop {
  public:
-  explicit ObservedStop(SolverSettings* settings);
+  explicit ObservedStop(SolverSettings* settings)
+      : ObservedStop(&settings->stop) {}
+  // The same for a poll of its own (SplineSettings::stop).
+  explicit ObservedStop(StopPoll* poll);
   bool stopped() const { return flag_->load(); }
 
  private:

@@ -19,7 +19,9 @@
 #include "shellspace/workflows/geodesic.h"
 #include "shellspace/workflows/mean.h"
 #include "shellspace/workflows/pca.h"
+#include "shellspace/workflows/regress.h"
 #include "shellspace/workflows/shoot.h"
+#include "shellspace/workflows/spline.h"
 #include "shellspace/workflows/transport.h"
 #include "tests/testing/test_support.h"
 
@@ -349,6 +351,130 @@ TEST(TransportWorkflowTest, ZeroStaysZeroAndBadEpsilonIsInput) {
     options.epsilon = epsilon;
     EXPECT_THROW(workflows::RunTransport(options), InputError) << epsilon;
   }
+}
+
+// The regression of the CLI before the workflows (commit 1cc4f27, whose
+// regress verb was that of 832cb59), on the files of WorkflowCliTest:
+//   shellspace regress --inputs sheet.ply,rolled_1.ply,rolled_0.6.ply
+//     --at 0,2,4 --steps 4 --sigma 1 --max_iterations 5 --output r --json
+// exits 4 (not converged after 5 L-BFGS iterations) with "objective":
+// 14.263225887182728, "spline_energy": 14.25779633380303,
+// "energy_split": {"membrane": 0.3277188182028495, ...}.
+constexpr double kCliRegressObjective = 14.263225887182728;
+constexpr double kCliRegressSplineEnergy = 14.25779633380303;
+constexpr double kCliRegressMembrane = 0.3277188182028495;
+
+TEST(RegressWorkflowTest, EqualsTheCliDigitsAndIsNotConverged) {
+  const workflows::PcaOptions sheets = FourSheets();
+  workflows::RegressOptions options;
+  options.reference = sheets.reference;
+  options.topology = sheets.topology;
+  options.inputs = {sheets.shapes[0], sheets.shapes[2], sheets.shapes[1]};
+  options.at = {0, 2, 4};
+  options.steps = 4;
+  options.sigma = 1;
+  options.material = sheets.material;
+  // The CLI's settings: the outer L-BFGS at --max_iterations 5, the
+  // midpoint solves to 1e-10 in at most 200 iterations.
+  options.settings.inner = DefaultSettings();
+  options.settings.inner.gradient_tolerance = 1e-10;
+  options.settings.inner.max_iterations = 200;
+  options.settings.max_iterations = 5;
+  options.settings.gradient_tolerance = 1e-8;
+  const workflows::RegressResult result = workflows::RunRegress(options);
+  EXPECT_EQ(result.status.code, SolveStatus::Code::kNotConverged);
+  EXPECT_EQ(result.status.message.rfind("regress: relative gradient ", 0), 0u)
+      << result.status.message;
+  EXPECT_NEAR(result.spline.objective, kCliRegressObjective,
+              1e-12 * kCliRegressObjective);
+  EXPECT_NEAR(result.spline.spline_energy, kCliRegressSplineEnergy,
+              1e-12 * kCliRegressSplineEnergy);
+  EXPECT_NEAR(result.energy_split.membrane, kCliRegressMembrane,
+              1e-12 * kCliRegressMembrane);
+  options.sigma = -1;
+  EXPECT_THROW(workflows::RunRegress(options), InputError);
+}
+
+// The splines of the CLI before the spline workflow (commit 66b2642, whose
+// spline verb was that of 832cb59), on the files of WorkflowCliTest:
+//   shellspace spline --keyframes sheet.ply,rolled_1.ply,rolled_0.6.ply
+//     --at 0,2,4 --steps 4 --method M --max_iterations 3 --output s --json
+// nonlinear: exit 4 (3 L-BFGS iterations), "spline_energy":
+// 0.0006148546899275184, energy_split "membrane": 9.933615809719777e-05;
+// ltheta: exit 0, "spline_energy": 0.0006193429321353981, "membrane":
+// 9.954466905005312e-05.
+workflows::SplineOptions ThreeKeyframes(const std::string& method) {
+  const workflows::PcaOptions sheets = FourSheets();
+  workflows::SplineOptions options;
+  options.reference = sheets.reference;
+  options.topology = sheets.topology;
+  options.keyframes = {sheets.shapes[0], sheets.shapes[2], sheets.shapes[1]};
+  options.at = {0, 2, 4};
+  options.steps = 4;
+  options.method = method;
+  options.material = sheets.material;
+  // The CLI's: the initial path's solves and the midpoints at most 200
+  // iterations each, the midpoints to 1e-10, the L-BFGS 3 iterations.
+  options.init_settings = DefaultSettings();
+  options.init_settings.max_iterations = 200;
+  options.settings.inner = DefaultSettings();
+  options.settings.inner.gradient_tolerance = 1e-10;
+  options.settings.inner.max_iterations = 200;
+  options.settings.max_iterations = 3;
+  options.settings.gradient_tolerance = 1e-8;
+  return options;
+}
+
+TEST(SplineWorkflowTest, EqualsTheCliDigitsForBothMethods) {
+  struct Case {
+    std::string method;
+    double spline_energy, membrane;
+    SolveStatus::Code code;
+  };
+  const std::vector<Case> cases = {
+      {"nonlinear", 0.0006148546899275184, 9.933615809719777e-05,
+       SolveStatus::Code::kNotConverged},
+      {"ltheta", 0.0006193429321353981, 9.954466905005312e-05,
+       SolveStatus::Code::kConverged},
+  };
+  for (const Case& c : cases) {
+    const workflows::SplineResult result =
+        workflows::RunSpline(ThreeKeyframes(c.method));
+    EXPECT_EQ(result.status.code, c.code) << c.method << ": "
+                                          << result.status.message;
+    EXPECT_TRUE(result.energy_evaluated);
+    EXPECT_EQ(result.optimised, c.method == "nonlinear");
+    EXPECT_NEAR(result.spline.spline_energy, c.spline_energy,
+                1e-12 * c.spline_energy)
+        << c.method;
+    EXPECT_NEAR(result.energy_split.membrane, c.membrane, 1e-12 * c.membrane)
+        << c.method;
+  }
+}
+
+TEST(SplineWorkflowTest, TheLThetaPathAloneAndBadMethods) {
+  workflows::SplineOptions options = ThreeKeyframes("ltheta");
+  options.evaluate_energy = false;
+  const workflows::SplineResult alone = workflows::RunSpline(options);
+  EXPECT_TRUE(alone.status.ok()) << alone.status.message;
+  EXPECT_FALSE(alone.energy_evaluated);
+  EXPECT_EQ(alone.path().size(), 5u);
+  const std::string json = workflows::ToJson(alone, 0).str();
+  EXPECT_NE(json.find("\"termination\": \"not optimised\""),
+            std::string::npos)
+      << json;
+  options.init = SplineInit::kGeodesic;
+  options.option_prefix = "--";
+  try {
+    workflows::RunSpline(options);
+    FAIL() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "--init geodesic needs --method nonlinear (--method ltheta is "
+              "the LΘA spline itself)");
+  }
+  options.method = "cubic";
+  EXPECT_THROW(workflows::RunSpline(options), InputError);
 }
 
 // The CLI runs the same workflow: its E_K is RunGeodesic's to the digit,

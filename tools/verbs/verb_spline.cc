@@ -9,6 +9,8 @@
 #include "shellspace/problems/splines/ltheta_spline.h"
 #include "shellspace/problems/splines/spline.h"
 #include "shellspace/problems/splines/spline_initial_path.h"
+#include "shellspace/workflows/regress.h"
+#include "shellspace/workflows/spline.h"
 #include "tools/run/common_flags.h"
 #include "tools/verbs/film_strip_flags.h"
 #include "tools/verbs/geodesic_solve.h"
@@ -163,54 +165,16 @@ SplineSettings SplineSettingsFromFlags(const std::string& label) {
   return settings;
 }
 
-// What a path that is the LΘA spline alone failed to reach, for the run's
-// status: "" if every frame's reconstruction converged.
-std::string LThetaFailure(const LThetaSplineReport& report) {
-  const std::vector<int> frames = report.unconverged_frames();
-  if (frames.empty()) return "";
-  std::string list;
-  for (size_t i = 0; i < frames.size(); ++i) {
-    list += (i ? ", " : "") + std::to_string(frames[i]);
-  }
-  return "spline: the LΘA reconstruction of frame(s) " + list +
-         " stopped short of the tolerance " + Short(FLAGS_tolerance) +
-         " (" + std::to_string(kInnerMaxIterations) +
-         " LM iterations each at most)";
-}
-
-// What an unconverged outer solve fell short of, for the run's status.
-std::string SplineShortfall(const std::string& verb,
-                            const SplineResult& result) {
-  if (!result.evaluated) {
-    return verb + ": stopped before the first evaluation of F_K finished";
-  }
-  return verb + ": relative gradient " + Short(result.relative_gradient_norm) +
-         " above the tolerance " + Short(FLAGS_tolerance) +
-         ", no function-tolerance stop, after " +
-         std::to_string(result.iterations) + " L-BFGS iterations (" +
-         ceres::TerminationTypeToString(result.summary.termination_type) + ")";
-}
-
-// Writes the frames and the report; returns the exit code. `optimised`:
-// the outer solver ran (not --method ltheta); `ltheta_failure`:
-// LThetaFailure of a path that is the LΘA spline alone.
-int Report(const std::string& verb, const ShellSpace& space, const Faces& faces,
-           const SplineResult& result, double seconds, JsonObject extra,
-           bool optimised = true, const std::string& ltheta_failure = "") {
-  RunStatus status(verb);
-  status.Require(ltheta_failure.empty(), ltheta_failure);
-  if (optimised) {
-    status.Require(result.converged, SplineShortfall(verb, result));
-  }
+// Writes the frames and `summary` (a spline's SplineJson) with the verb's
+// last keys, prints it or the one-line result; returns the exit code.
+int CommitSplineRun(const RunStatus& status, const Faces& faces,
+                    const SplineResult& result, JsonObject summary) {
   RunDirectory output(FLAGS_output);
   WritePathOutputs(&output, faces, result.path);
-  extra.Add("bending_model", FLAGS_bending)
-      .Raw("energy_split", PathEnergySplitJson(space, result.path));
-  const std::string summary = output.Commit(
-      SplineJson(std::move(extra), result, seconds)
-          .Add("output", FLAGS_output));
+  const std::string text = output.Commit(std::move(
+      summary.Add("bending_model", FLAGS_bending).Add("output", FLAGS_output)));
   if (FLAGS_json) {
-    std::cout << summary << "\n";
+    std::cout << text << "\n";
   } else if (!FLAGS_quiet) {
     if (result.evaluated) {
       std::cout << "F_K = " << result.spline_energy;
@@ -223,6 +187,7 @@ int Report(const std::string& verb, const ShellSpace& space, const Faces& faces,
   return status.Finish();
 }
 
+// Flags -> options -> the workflow -> frames and summary.
 int RunSpline() {
   if (FLAGS_method != "nonlinear" && FLAGS_method != "ltheta") {
     throw InputError("--method must be nonlinear or ltheta");
@@ -235,80 +200,48 @@ int RunSpline() {
       .OutputFile("gltf", FLAGS_gltf)
       .Check();
   const ShellSet set = LoadShellList(FLAGS_keyframes, "keyframes");
-  const std::vector<Positions>& keyframes = set.shapes;
-  const std::vector<int> at = ParseIndices(FLAGS_at);
-  CheckIndexCount(at, keyframes.size(), "keyframes");
-  const bool alone = FLAGS_method == "ltheta";
-  const SplineInit init = ParseSplineInit(FLAGS_init);
-  CheckSplineMemory(set.first.mesh.num_vertices(), at,
-                    init == SplineInit::kGeodesic);
-  const ShellSpace space = SpaceFromFlags(set.first);
-  if (alone && init != SplineInit::kLTheta) {
-    throw InputError("--init " + FLAGS_init +
-                     " needs --method nonlinear (--method ltheta is the LΘA "
-                     "spline itself)");
-  }
-  SolverSettings init_settings = SettingsFromFlags("spline " + FLAGS_init);
-  init_settings.progress = false;
-  init_settings.max_iterations = kInnerMaxIterations;
+  workflows::SplineOptions options;
+  options.at = ParseIndices(FLAGS_at);
+  CheckIndexCount(options.at, set.shapes.size(), "keyframes");
+  options.init = ParseSplineInit(FLAGS_init);
+  CheckSplineMemory(set.first.mesh.num_vertices(), options.at,
+                    options.init == SplineInit::kGeodesic);
+  options.reference = set.first.mesh;
+  options.topology = set.first.topology;
+  options.keyframes = set.shapes;
+  options.steps = FLAGS_steps;
+  options.periodic = FLAGS_periodic;
+  options.method = FLAGS_method;
+  options.evaluate_energy = FLAGS_energy;
+  options.option_prefix = "--";
+  options.material = MaterialChoiceFromFlags(set.first.mesh);
+  options.init_settings = SettingsFromFlags("spline " + FLAGS_init);
+  options.init_settings.progress = false;
+  options.init_settings.max_iterations = kInnerMaxIterations;
+  options.settings = SplineSettingsFromFlags("spline");
   if (!FLAGS_quiet) {
-    std::cerr << "spline: "
-              << (init == SplineInit::kLTheta ? "LTheta spline"
-                                              : "piecewise geodesic")
-              << "\n";
+    options.log = [](const std::string& line) {
+      std::cerr << "spline: " << line << "\n";
+    };
   }
-  const SplineInitialPath initial =
-      MakeSplineInitialPath(init, space, keyframes, at, FLAGS_steps,
-                            FLAGS_periodic, init_settings);
-  if (!FLAGS_quiet) {
-    for (const GeodesicSegment& g : initial.segments) {
-      std::cerr << "spline: geodesic " << g.from << "-" << g.to << ": E "
-                << g.path_energy << ", " << g.iterations << " iterations"
-                << (g.converged ? "" : ", NOT converged (kept as the guess)")
-                << "\n";
-    }
-    if (init == SplineInit::kLTheta) {
-      std::cerr << "spline: LTheta spline done (" << initial.seconds << " s, "
-                << initial.ltheta.lm_iterations() << " LM iterations over "
-                << initial.ltheta.solved_frames.size() << " frames)\n";
-      if (!alone && !initial.ltheta.unconverged_frames().empty() &&
-          !StopRequested(init_settings)) {  // not the cap: the stop
-        std::cerr << "spline: some LTheta frames stopped at their iteration "
-                     "cap, a far-off initial path (keyframes far apart?); "
-                     "--init geodesic starts from the piecewise geodesic\n";
-      }
-    }
-  }
-  const std::string ltheta_failure =
-      alone ? LThetaFailure(initial.ltheta) : "";
-  JsonObject head;
-  head.Add("method", FLAGS_method);
-  AddSplineInitJson(head, initial);
-  if (alone && !FLAGS_energy) {
-    RunStatus status("spline");
-    status.Require(ltheta_failure.empty(), ltheta_failure);
+  const workflows::SplineResult result = workflows::RunSpline(options);
+  RunStatus status("spline");
+  RecordWorkflow(result.status, {}, "spline", &status);
+  if (!result.energy_evaluated) {
     RunDirectory output(FLAGS_output);
-    WritePathOutputs(&output, set.first.mesh.faces, initial.path);
-    const std::string summary =
-        output.Commit(head.Add("bending_model", FLAGS_bending)
-                          .Add("iterations", 0)
-                          .Add("converged", ltheta_failure.empty())
-                          .Add("termination", "not optimised")
-                          .Add("seconds", Seconds(clock))
-                          .Add("frames", static_cast<int>(initial.path.size()))
-                          .Add("output", FLAGS_output));
+    WritePathOutputs(&output, set.first.mesh.faces, result.path());
+    const std::string summary = output.Commit(
+        workflows::ToJson(result, Seconds(clock))
+            .Add("bending_model", FLAGS_bending)
+            .Add("output", FLAGS_output));
     if (FLAGS_json) std::cout << summary << "\n";
     return status.Finish();
   }
-  SplineSettings settings = SplineSettingsFromFlags("spline");
-  if (alone) settings.max_iterations = 0;
-  SplineResult result = SolveSpline(space, keyframes, at, FLAGS_steps,
-                                    FLAGS_periodic, initial.path, settings);
-  if (alone) result.converged = ltheta_failure.empty();
-  return Report("spline", space, set.first.mesh.faces, result, Seconds(clock),
-                std::move(head), !alone, ltheta_failure);
+  return CommitSplineRun(status, set.first.mesh.faces, result.spline,
+                         workflows::ToJson(result, Seconds(clock)));
 }
 
+// Flags -> options -> the workflow -> frames and summary.
 int RunRegress() {
   const auto clock = std::chrono::steady_clock::now();
   RunPaths()
@@ -318,15 +251,22 @@ int RunRegress() {
       .OutputFile("gltf", FLAGS_gltf)
       .Check();
   const ShellSet set = LoadShellList(FLAGS_inputs, "inputs");
-  const std::vector<int> at = ParseIndices(FLAGS_at);
-  CheckIndexCount(at, set.shapes.size(), "inputs");
-  CheckSplineMemory(set.first.mesh.num_vertices(), at, false);
-  const ShellSpace space = SpaceFromFlags(set.first);
-  const SplineResult result =
-      SolveRegression(space, set.shapes, at, FLAGS_steps, FLAGS_sigma, {},
-                      SplineSettingsFromFlags("regress"));
-  return Report("regress", space, set.first.mesh.faces, result, Seconds(clock),
-                JsonObject().Add("sigma", FLAGS_sigma));
+  workflows::RegressOptions options;
+  options.at = ParseIndices(FLAGS_at);
+  CheckIndexCount(options.at, set.shapes.size(), "inputs");
+  CheckSplineMemory(set.first.mesh.num_vertices(), options.at, false);
+  options.reference = set.first.mesh;
+  options.topology = set.first.topology;
+  options.inputs = set.shapes;
+  options.steps = FLAGS_steps;
+  options.sigma = FLAGS_sigma;
+  options.material = MaterialChoiceFromFlags(set.first.mesh);
+  options.settings = SplineSettingsFromFlags("regress");
+  const workflows::RegressResult result = workflows::RunRegress(options);
+  RunStatus status("regress");
+  RecordWorkflow(result.status, {}, "regress", &status);
+  return CommitSplineRun(status, set.first.mesh.faces, result.spline,
+                         workflows::ToJson(result, Seconds(clock)));
 }
 
 }  // namespace
