@@ -65,6 +65,37 @@ py::object MeanPy(const py::object& inputs_object, const py::object& F,
                        summary, "mean", FailuresOf(result.status));
 }
 
+// The CLI's files of a pca run, each if given: `output` (the PLY set and
+// pca.json, together) and `png` (the film strip of the mean and the shell
+// mode shapes; not after a stop).
+void WritePcaFiles(const workflows::PcaResult& result, const Faces& faces,
+                   const JsonObject& json,
+                   const std::optional<std::string>& output,
+                   const std::optional<std::string>& png) {
+  if (output) {
+    MakeDirectory(*output);
+    AtomicFileSet files;
+    std::vector<Mesh> meshes;
+    meshes.reserve(result.shapes.size());
+    for (const auto& [name, positions] : result.shapes) {
+      meshes.push_back(Mesh{positions, faces});
+      const std::string path = *output + "/" + name + ".ply";
+      files.Add(path, MeshWriter(meshes.back(), path));
+    }
+    files.Add(*output + "/pca.json", json.str() + "\n");
+    files.Commit();
+  }
+  if (png && result.stopped_in.empty()) {
+    std::vector<Positions> strip;
+    for (const auto& [name, positions] : result.shapes) {
+      if (name == "mean" || name.rfind("mode_", 0) == 0) {
+        strip.push_back(positions);
+      }
+    }
+    WriteFilmStrip(strip, faces, RenderOptions(), *png);
+  }
+}
+
 // The `pca` verb: elastic mean, shell PCA modes shot by EXP_K, optionally
 // the Procrustes baseline and the leave-one-out table. Returns ({name:
 // shape} with the names of the CLI's files without ".ply", summary). A stop
@@ -125,29 +156,8 @@ py::object PcaPy(const py::object& inputs_object, const py::object& F,
       .Add("seconds", Seconds(clock));
   AddStopFields(json, *solver.control);
   AddOutput(json, output);
-  const Faces& faces = set.first.mesh.faces;
-  if (output && !result.status.failed()) {
-    // The CLI's files: the PLY set and pca.json, together.
-    MakeDirectory(*output);
-    AtomicFileSet files;
-    std::vector<Mesh> meshes;
-    meshes.reserve(result.shapes.size());
-    for (const auto& [name, positions] : result.shapes) {
-      meshes.push_back(Mesh{positions, faces});
-      const std::string path = *output + "/" + name + ".ply";
-      files.Add(path, MeshWriter(meshes.back(), path));
-    }
-    files.Add(*output + "/pca.json", json.str() + "\n");
-    files.Commit();
-  }
-  if (png && result.stopped_in.empty() && !result.status.failed()) {
-    std::vector<Positions> strip;  // the mean and the shell mode shapes
-    for (const auto& [name, positions] : result.shapes) {
-      if (name == "mean" || name.rfind("mode_", 0) == 0) {
-        strip.push_back(positions);
-      }
-    }
-    WriteFilmStrip(strip, faces, RenderOptions(), *png);
+  if (!result.status.failed()) {
+    WritePcaFiles(result, set.first.mesh.faces, json, output, png);
   }
   py::dict out;
   for (const auto& [name, positions] : result.shapes) {

@@ -202,8 +202,9 @@ std::string TableText(const LeaveOneOutTable& table) {
   return out.str();
 }
 
-// Flags -> options -> the workflow -> the directory and summary.
-int RunPca() {
+// The options of the pca workflow from the flags, --inputs loaded into
+// `inputs` (at least 2, 3 with --loo).
+workflows::PcaOptions PcaOptionsFromFlags(ShellSet* inputs) {
   if (FLAGS_baseline != "" && FLAGS_baseline != "procrustes") {
     throw InputError("--baseline must be 'procrustes' (or empty), got '" +
                      FLAGS_baseline + "'");
@@ -214,15 +215,14 @@ int RunPca() {
   const ShellPcaOptions pca =
       MakeShellPcaOptions(FLAGS_log_steps, FLAGS_exp_steps,
                           FLAGS_max_exp_steps, FLAGS_displacement, "--");
-  const auto clock = std::chrono::steady_clock::now();
   RunPaths()
       .InputList("inputs", FLAGS_inputs)
       .OutputDirectory("output", FLAGS_output)
       .OutputFile("png", FLAGS_png)
       .Check();
-  const ShellSet inputs = LoadInputs(FLAGS_loo ? 3 : 2);
+  *inputs = LoadInputs(FLAGS_loo ? 3 : 2);
   workflows::PcaOptions options =
-      OptionsOfInputs<workflows::PcaOptions>(inputs, "pca");
+      OptionsOfInputs<workflows::PcaOptions>(*inputs, "pca");
   options.modes = FLAGS_modes;
   options.procrustes = FLAGS_baseline == "procrustes";
   options.leave_one_out = FLAGS_loo;
@@ -232,7 +232,7 @@ int RunPca() {
   options.option_prefix = "--";
   if (!FLAGS_mean.empty()) {
     options.initial_mean =
-        LoadCompatibleShell(FLAGS_mean, inputs.first).positions;
+        LoadCompatibleShell(FLAGS_mean, inputs->first).positions;
   }
   if (!FLAGS_quiet) {
     options.log = [](const std::string& line) {
@@ -242,21 +242,47 @@ int RunPca() {
       std::cerr << "loo: " << line << "\n";
     };
   }
+  return options;
+}
+
+// The directory of a pca run (`summary` its summary with the run fields):
+// every shape of the result as NAME.ply, pca.json and summary.json (the
+// same object) whole, and the film strip of the mean and the shell mode
+// shapes (not after a stop).
+void WritePcaRun(const workflows::PcaResult& result, const Faces& faces,
+                 const JsonObject& summary) {
+  RunDirectory output(FLAGS_output);
+  std::vector<Positions> strip;
+  for (const auto& [name, positions] : result.shapes) {
+    WriteMesh(Mesh{positions, faces}, output.File(name + ".ply"));
+    if (name == "mean" || name.rfind("mode_", 0) == 0) {
+      strip.push_back(positions);
+    }
+  }
+  WriteFileAtomically(output.File("pca.json"), summary.str() + "\n");
+  if (!FLAGS_png.empty() && result.stopped_in.empty()) {
+    const RenderOptions render = FilmStripOptionsFromFlags();
+    output.AddOutside(FLAGS_png,
+                      EncodePng(RenderFilmStrip(strip, faces, render)));
+  }
+  output.CommitSummary(summary.str());
+}
+
+// Flags -> options -> the workflow -> the directory and summary.
+int RunPca() {
+  const auto clock = std::chrono::steady_clock::now();
+  ShellSet inputs;
+  const workflows::PcaOptions options = PcaOptionsFromFlags(&inputs);
   const workflows::PcaResult result = workflows::RunPca(options);
   if (result.status.failed()) return FailedSolveExit("pca", result.status);
   RunStatus status("pca");
   RecordWorkflow(result.status, {}, "pca", &status);
-  const Faces& faces = inputs.first.mesh.faces;
   JsonObject json = workflows::ToJson(result, options);
   if (!result.stopped_in.empty()) {
     // Stopped: the mean so far (or the converged mean, if the stop came
     // later), no modes. The exit code is the stop's (main).
     json.Add("seconds", Seconds(clock)).Add("output", FLAGS_output);
-    AddRunFields(json);
-    RunDirectory output(FLAGS_output);
-    WriteMesh(Mesh{result.mean.mean, faces}, output.File("mean.ply"));
-    WriteFileAtomically(output.File("pca.json"), json.str() + "\n");
-    output.CommitSummary(json.str());
+    WritePcaRun(result, inputs.first.mesh.faces, AddRunFields(json));
     if (FLAGS_json) std::cout << json.str() << "\n";
     return 0;
   }
@@ -268,30 +294,12 @@ int RunPca() {
               << "\n";
   }
   json.Add("bending_model", FLAGS_bending)
-      .Add("converged", status.ok());  // the mean; mode shapes: warned
+      .Add("converged", status.ok())  // the mean; mode shapes: warned
+      .Add("seconds", Seconds(clock))
+      .Add("output", FLAGS_output);
+  WritePcaRun(result, inputs.first.mesh.faces, AddRunFields(json));
   const std::string table_text =
       result.leave_one_out ? TableText(*result.leave_one_out) : "";
-  json.Add("seconds", Seconds(clock)).Add("output", FLAGS_output);
-  AddRunFields(json);
-
-  // All results computed: write the directory (the PLY set, pca.json and
-  // summary.json, the same object) whole, then the film strip of the mean
-  // and the shell mode shapes.
-  RunDirectory output(FLAGS_output);
-  std::vector<Positions> strip;
-  for (const auto& [name, positions] : result.shapes) {
-    WriteMesh(Mesh{positions, faces}, output.File(name + ".ply"));
-    if (name == "mean" || name.rfind("mode_", 0) == 0) {
-      strip.push_back(positions);
-    }
-  }
-  WriteFileAtomically(output.File("pca.json"), json.str() + "\n");
-  if (!FLAGS_png.empty()) {
-    const RenderOptions render = FilmStripOptionsFromFlags();
-    output.AddOutside(FLAGS_png,
-                      EncodePng(RenderFilmStrip(strip, faces, render)));
-  }
-  output.CommitSummary(json.str());
   if (FLAGS_json) {
     std::cout << json.str() << "\n";
     if (!FLAGS_quiet && !table_text.empty()) std::cerr << table_text;
