@@ -95,7 +95,10 @@ TEST(GeodesicWorkflowTest, EqualsTheCliDigitsAndItsSplitSumsToTheEnergy) {
   EXPECT_NEAR(result.path_energy(), kCliPathEnergy, 1e-12);
   EXPECT_EQ(result.path().size(), 5u);
   // The split once, from the path: membrane + bending = E_K, both > 0.
-  EXPECT_NEAR(result.energy_split.membrane, kCliMembrane, 1e-15);
+  // (E_K and its parts to 1e-12, as recorded at 832cb59: the Newton
+  // finish's forcing of 4a1dd84 moved the membrane part by 8e-15; the CLI
+  // of this build is compared digit for digit in WorkflowCliTest.)
+  EXPECT_NEAR(result.energy_split.membrane, kCliMembrane, 1e-12);
   EXPECT_GT(result.energy_split.bending, 0);
   EXPECT_NEAR(result.energy_split.total(), result.path_energy(),
               1e-12 * result.path_energy());
@@ -187,7 +190,11 @@ TEST(MeanWorkflowTest, AStoppedMeanIsAStatusWithItsState) {
 //   shellspace pca --inputs sheet.ply,rolled_0.6.ply,rolled_1.ply,rolled_2.ply
 //     --modes 1 --output p --json --quiet
 // p/mean.ply and p/mode_1_plus.ply: the sum of the squares of all
-// coordinates and vertex 17's z; "eigenvalues"[0] of its summary.
+// coordinates and vertex 17's z; "eigenvalues"[0] of its summary. The
+// Newton finish's forcing of 4a1dd84 moved the LOG and EXP solves within
+// their tolerance: the mode shape by 4e-9, the eigenvalue by 2.5e-7
+// relative (the mean not at all); the CLI of this build is compared digit
+// for digit in WorkflowCliTest.PcaWritesTheWorkflowsShapes.
 constexpr double kCliMeanSquares = 40.56464366574963;
 constexpr double kCliMeanZ17 = 0.09707285835091392;
 constexpr double kCliModePlusSquares = 40.11099133625926;
@@ -208,10 +215,10 @@ TEST(PcaWorkflowTest, MeanAndFirstModeShapeEqualTheCli) {
   EXPECT_EQ(result.Shape("mode_2_plus"), nullptr);  // modes = 1
   EXPECT_NEAR(mean->squaredNorm(), kCliMeanSquares, 1e-12);
   EXPECT_NEAR((*mean)(17, 2), kCliMeanZ17, 1e-14);
-  EXPECT_NEAR(plus->squaredNorm(), kCliModePlusSquares, 1e-12);
-  EXPECT_NEAR((*plus)(17, 2), kCliModePlusZ17, 1e-14);
+  EXPECT_NEAR(plus->squaredNorm(), kCliModePlusSquares, 1e-6);
+  EXPECT_NEAR((*plus)(17, 2), kCliModePlusZ17, 1e-7);
   EXPECT_NEAR(result.model->eigenvalues(0), kCliFirstEigenvalue,
-              1e-10 * kCliFirstEigenvalue);
+              1e-5 * kCliFirstEigenvalue);
   EXPECT_TRUE(result.failed_shapes.empty());
   const std::string json = workflows::ToJson(result, options).str();
   EXPECT_NE(json.find("\"modes\": 1"), std::string::npos) << json;
@@ -514,6 +521,31 @@ TEST_F(WorkflowCliTest, GeodesicPrintsTheWorkflowsEnergy) {
       << out;
   EXPECT_NE(out.find("\"energy_split\": " +
                      workflows::EnergySplitJson(result.energy_split)),
+            std::string::npos)
+      << out;
+}
+
+TEST_F(WorkflowCliTest, PcaWritesTheWorkflowsShapes) {
+  std::string out, err;
+  ASSERT_EQ(testing::RunCli("pca --modes 1 --inputs " + File("sheet") + "," +
+                                File("rolled_0.6") + "," + File("rolled_1") +
+                                "," + File("rolled_2") + " --output " + dir_ +
+                                "/p --json --quiet",
+                            &out, &err),
+            0)
+      << err;
+  workflows::PcaOptions options = FourSheets();
+  const workflows::PcaResult result = workflows::RunPca(options);
+  ASSERT_TRUE(result.status.ok());
+  for (const char* name : {"mean", "mode_1_minus", "mode_1_plus"}) {
+    const Mesh written = ReadMesh(dir_ + "/p/" + name + ".ply");
+    ASSERT_NE(result.Shape(name), nullptr) << name;
+    EXPECT_EQ((written.positions - *result.Shape(name)).cwiseAbs().maxCoeff(),
+              0.0)
+        << name;
+  }
+  EXPECT_NE(out.find("\"eigenvalues\": [" +
+                     JsonObject::Number(result.model->eigenvalues(0))),
             std::string::npos)
       << out;
 }
