@@ -198,6 +198,18 @@ ShellPath MakeGeodesicInitialPath(const ShellSpace& space,
   if (r.used == GeodesicInit::kLTheta) {
     path = LThetaPath(space, start, end, steps, fixed_vertices, settings,
                       &r.ltheta_iterations, &r.ltheta_unconverged);
+    // Auto: a reconstruction with a degenerate triangle (no energy) is no
+    // better a start than the linear path it replaces, if that one has an
+    // energy.
+    ElementFailure failure;
+    if (init == GeodesicInit::kAuto &&
+        !TryPathEnergy(space, path, nullptr, &failure) &&
+        TryPathEnergy(space, linear)) {
+      r.used = GeodesicInit::kLinear;
+      r.reason += "; the ltheta path has a degenerate triangle (" +
+                  failure.description + "), linear used";
+      path = std::move(linear);
+    }
   } else {
     path = std::move(linear);
   }

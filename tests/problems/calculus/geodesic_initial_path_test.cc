@@ -194,14 +194,26 @@ TEST(SliverTest, ASliverInputIsNamedAndConverges) {
   Mesh sheet = MakeEquilateralSheet(6, 4, 0.25);
   const MidpointSubdivision sub(sheet.faces, sheet.num_vertices());
   sheet = Mesh{sub.Apply(sheet.positions), sub.faces};
-  // Vertex 20 towards the midpoint of its neighbours 19 and 21 in its row.
+  // Vertex 20 towards the midpoint of the opposite edge (a, b) of its first
+  // triangle: inside that triangle, so nothing turns over (the hexagonal
+  // star of an interior vertex is convex).
   const int v = 20;
-  sheet.positions.row(v) =
-      0.5 * (sheet.positions.row(19) + sheet.positions.row(21)) +
-      0.004 * (sheet.positions.row(v) -
-               0.5 * (sheet.positions.row(19) + sheet.positions.row(21)));
+  int a = -1, b = -1;
+  for (int f = 0; f < sheet.num_faces() && a < 0; ++f) {
+    for (int c = 0; c < 3; ++c) {
+      if (sheet.faces(f, c) == v) {
+        a = sheet.faces(f, (c + 1) % 3);
+        b = sheet.faces(f, (c + 2) % 3);
+      }
+    }
+  }
+  ASSERT_GE(a, 0);
+  const Eigen::RowVector3d mid =
+      0.5 * (sheet.positions.row(a) + sheet.positions.row(b));
+  sheet.positions.row(v) = mid + 0.004 * (sheet.positions.row(v) - mid);
   const SliverFaces slivers = FindSliverFaces(sheet);
   ASSERT_FALSE(slivers.faces.empty());
+  EXPECT_TRUE(slivers.folds.empty());
   EXPECT_LT(slivers.smallest_area_fraction, kSliverAreaFraction);
   EXPECT_NE(slivers.Describe().find("sliver"), std::string::npos);
   // The twin: the sheet without the moved vertex has none.
