@@ -4,6 +4,7 @@
 #include <string>
 
 #include "python/module_common.h"
+#include "python/parameter_docs.h"
 #include "shellspace/problems/branching/construction_optimizer.h"
 #include "shellspace/problems/branching/general_construction.h"
 #include "shellspace/problems/branching/simulation.h"
@@ -136,13 +137,15 @@ void RegisterBranching(py::module_& m) {
         py::arg("periods") = simulation.periods,
         py::arg("init_seed") = static_cast<int>(simulation.seed),
         py::arg("lm_iterations") = simulation.max_iterations,
-        py::arg("delta_extrapolation") = 0,
-        py::arg("time_limit") = py::none(),
+        py::arg("delta_extrapolation") = 0, py::arg("time_limit") = py::none(),
         py::arg("allow_unconverged") = false,
-        "The relaxed Kohn-Mueller simulation (`branching simulate`): "
-        "returns (u (nx + 1) x ny, summary). Writes no files. time_limit: "
-        "seconds, then the field so far, partial (NotConvergedError unless "
-        "allow_unconverged).");
+        WithParameters(
+            "branching_simulate",
+            "The relaxed Kohn-Mueller simulation (`branching simulate`): "
+            "returns (u (nx + 1) x ny, summary). Writes no files. time_limit: "
+            "seconds, then the field so far, partial (NotConvergedError unless "
+            "allow_unconverged).")
+            .c_str());
   m.def("branching_construct", &BranchingConstructPy,
         py::arg("epsilon") = 0.001, py::arg("length") = 1.0,
         py::arg("family") = "km", py::arg("optimize") = false,
@@ -150,8 +153,11 @@ void RegisterBranching(py::module_& m) {
         py::arg("search_pairs") = 2, py::arg("subintervals") = 3,
         py::arg("search_starts") = 1, py::arg("search_filter") = "",
         py::arg("search_threads") = 1,
-        "A self-similar construction (`branching construct`): returns the "
-        "summary. Writes no files.");
+        WithParameters(
+            "branching_construct",
+            "A self-similar construction (`branching construct`): returns the "
+            "summary. Writes no files.")
+            .c_str());
 }
 
 }  // namespace pymodule

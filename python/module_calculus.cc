@@ -3,7 +3,9 @@
 #include <string>
 #include <vector>
 
+#include "python/array_arguments.h"
 #include "python/module_common.h"
+#include "python/parameter_docs.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/exponential_map.h"
 #include "shellspace/problems/calculus/geodesic.h"
@@ -15,7 +17,6 @@
 #include "shellspace/workflows/geodesic.h"
 #include "shellspace/workflows/shoot.h"
 #include "shellspace/workflows/transport.h"
-#include "python/array_arguments.h"
 #include "tools/run/memory_limits.h"
 
 namespace shellspace {
@@ -241,50 +242,61 @@ py::object ComparePy(const py::object& a_object, const py::object& b_object,
 }  // namespace
 
 void RegisterCalculus(py::module_& m) {
-  m.def("compare",
-        WithMaterialArgs(&ComparePy),
-        py::arg("a"), py::arg("b"), py::arg("F"),
-        py::arg("tolerance") = 1e-6, py::arg("energy_tolerance") = 1e-6,
-        SHELLSPACE_MATERIAL_ARGS,
-        "Two shells (#V x 3 arrays) or two paths (sequences of them) up to "
-        "rigid motion per frame: the `compare` verb's summary (max and mean "
-        "vertex distance per frame, E_K of each path or W[a, b], `equal` "
-        "against the tolerances).");
   m.def(
-      "geodesic",
-      WithMaterialAndSolverArgs(&GeodesicPy), SHELLSPACE_GEODESIC_ARGS,
-      py::arg("report") = false, SHELLSPACE_FRAME_OUTPUT_ARGS,
-      SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
-      "Discrete geodesic from start to end in `steps` steps: returns (path, "
-      "summary). mask: vertex indices or a mask file held at their linear "
-      "positions. lm: who runs the LM stages, 'auto' | 'ceres' | 'engine' "
-      "(as the CLI's --lm). output: also write DIR/shape_000.ply ...; png: a "
-      "film strip.");
+      "compare", WithMaterialArgs(&ComparePy), py::arg("a"), py::arg("b"),
+      py::arg("F"), py::arg("tolerance") = 1e-6,
+      py::arg("energy_tolerance") = 1e-6, SHELLSPACE_MATERIAL_ARGS,
+      WithParameters(
+          "compare",
+          "Two shells (#V x 3 arrays) or two paths (sequences of them) up to "
+          "rigid motion per frame: the `compare` verb's summary (max and mean "
+          "vertex distance per frame, E_K of each path or W[a, b], `equal` "
+          "against the tolerances).")
+          .c_str());
   m.def(
-      "log",
-      WithMaterialAndSolverArgs(&LogPy), SHELLSPACE_GEODESIC_ARGS,
-      py::arg("output") = py::none(), SHELLSPACE_MATERIAL_ARGS,
+      "geodesic", WithMaterialAndSolverArgs(&GeodesicPy),
+      SHELLSPACE_GEODESIC_ARGS, py::arg("report") = false,
+      SHELLSPACE_FRAME_OUTPUT_ARGS, SHELLSPACE_MATERIAL_ARGS,
       SHELLSPACE_SOLVER_ARGS,
-      "LOG_K(start -> end) = K (s_1 - s_0) of the discrete geodesic: returns "
-      "(log #V x 3, summary). output: write start + log (as the CLI).");
+      WithParameters(
+          "geodesic",
+          "Discrete geodesic from start to end in `steps` steps: returns "
+          "(path, "
+          "summary). mask: vertex indices or a mask file held at their linear "
+          "positions. lm: who runs the LM stages, 'auto' | 'ceres' | 'engine' "
+          "(as the CLI's --lm). output: also write DIR/shape_000.ply ...; png: "
+          "a "
+          "film strip.")
+          .c_str());
+  m.def("log", WithMaterialAndSolverArgs(&LogPy), SHELLSPACE_GEODESIC_ARGS,
+        py::arg("output") = py::none(), SHELLSPACE_MATERIAL_ARGS,
+        SHELLSPACE_SOLVER_ARGS,
+        WithParameters(
+            "log",
+            "LOG_K(start -> end) = K (s_1 - s_0) of the discrete geodesic: "
+            "returns "
+            "(log #V x 3, summary). output: write start + log (as the CLI).")
+            .c_str());
   m.def(
-      "shoot",
-      WithMaterialAndSolverArgs(&ShootPy),
-      py::arg("first"), py::arg("second"), py::arg("F"), py::arg("steps") = 8,
+      "shoot", WithMaterialAndSolverArgs(&ShootPy), py::arg("first"),
+      py::arg("second"), py::arg("F"), py::arg("steps") = 8,
       py::arg("backward") = false, py::arg("mask") = py::none(),
       SHELLSPACE_FRAME_OUTPUT_ARGS, SHELLSPACE_MATERIAL_ARGS,
       SHELLSPACE_SOLVER_ARGS,
-      "Geodesic shooting (EXP steps) from (first, second): returns (path, "
-      "summary).");
-  m.def(
-      "transport",
-      WithMaterialAndSolverArgs(&TransportPy),
-      py::arg("path"), py::arg("variation"), py::arg("F"),
-      py::arg("epsilon") = 1.0, py::arg("mask") = py::none(),
-      SHELLSPACE_FRAME_OUTPUT_ARGS, SHELLSPACE_MATERIAL_ARGS,
-      SHELLSPACE_SOLVER_ARGS,
-      "Schild's-ladder transport of variation - path[0] along path: returns "
-      "(shapes s_k + epsilon xi_k, summary).");
+      WithParameters(
+          "shoot",
+          "Geodesic shooting (EXP steps) from (first, second): returns (path, "
+          "summary).")
+          .c_str());
+  m.def("transport", WithMaterialAndSolverArgs(&TransportPy), py::arg("path"),
+        py::arg("variation"), py::arg("F"), py::arg("epsilon") = 1.0,
+        py::arg("mask") = py::none(), SHELLSPACE_FRAME_OUTPUT_ARGS,
+        SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
+        WithParameters("transport",
+                       "Schild's-ladder transport of variation - path[0] along "
+                       "path: returns "
+                       "(shapes s_k + epsilon xi_k, summary).")
+            .c_str());
 }
 
 }  // namespace pymodule

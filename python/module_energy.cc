@@ -2,18 +2,18 @@
 // energy, energy_gradient, energy_hessian; and the rigid motions:
 // solve_modulo_rigid_motions, align_rigidly.
 #include <Eigen/SparseCholesky>
-
 #include <cmath>
 #include <string>
 #include <vector>
 
+#include "python/array_arguments.h"
 #include "python/module_common.h"
+#include "python/parameter_docs.h"
 #include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
 #include "shellspace/geometry/rigid_alignment.h"
-#include "shellspace/solvers/gauge_reduced_solve.h"
 #include "shellspace/reports/shape_reports.h"
-#include "python/array_arguments.h"
+#include "shellspace/solvers/gauge_reduced_solve.h"
 
 namespace shellspace {
 namespace pymodule {
@@ -133,49 +133,61 @@ py::tuple SolveModuloRigidMotionsPy(const py::object& rows_object,
 }  // namespace
 
 void RegisterEnergy(py::module_& m) {
-  m.def(
-      "energy",
-      WithMaterialArgs(&EnergyPy),
-      py::arg("reference"), py::arg("deformed"), py::arg("F"),
-      SHELLSPACE_MATERIAL_ARGS,
-      "W[reference, deformed] = W_mem + eta W_bend: the `energy` verb's "
-      "summary {membrane, bending, total, mu, lambda, eta}.");
-  m.def("energy_gradient",
-        WithMaterialArgs(&GradientPy),
-        py::arg("reference"),
+  m.def("energy", WithMaterialArgs(&EnergyPy), py::arg("reference"),
+        py::arg("deformed"), py::arg("F"), SHELLSPACE_MATERIAL_ARGS,
+        WithParameters(
+            "energy",
+            "W[reference, deformed] = W_mem + eta W_bend: the `energy` verb's "
+            "summary {membrane, bending, total, mu, lambda, eta}.")
+            .c_str());
+  m.def("energy_gradient", WithMaterialArgs(&GradientPy), py::arg("reference"),
         py::arg("deformed"), py::arg("F"), py::arg("side") = "deformed",
         SHELLSPACE_MATERIAL_ARGS,
-        "D_2 W (side='deformed') or D_1 W (side='reference') as a #V x 3 "
-        "array (the derivative by vertex v, coordinate c at [v, c]).");
-  m.def("energy_hessian",
-        WithMaterialArgs(&HessianPy),
-        py::arg("reference"), py::arg("deformed"),
-        py::arg("F"), py::arg("rows") = "deformed",
-        py::arg("cols") = "deformed", SHELLSPACE_MATERIAL_ARGS,
-        "The 3#V x 3#V block d_rows d_cols W (coordinate 3 v + c) as "
-        "triplets (rows, cols, vals): scipy.sparse.coo_matrix((vals, (rows, "
-        "cols)), shape=(3 * nV, 3 * nV)). rows/cols: 'deformed' or "
-        "'reference' ('reference', 'deformed' is the mixed D_1 D_2 W).");
+        WithParameters(
+            "energy_gradient",
+            "D_2 W (side='deformed') or D_1 W (side='reference') as a #V x 3 "
+            "array (the derivative by vertex v, coordinate c at [v, c]).")
+            .c_str());
+  m.def(
+      "energy_hessian", WithMaterialArgs(&HessianPy), py::arg("reference"),
+      py::arg("deformed"), py::arg("F"), py::arg("rows") = "deformed",
+      py::arg("cols") = "deformed", SHELLSPACE_MATERIAL_ARGS,
+      WithParameters(
+          "energy_hessian",
+          "The 3#V x 3#V block d_rows d_cols W (coordinate 3 v + c) as "
+          "triplets (rows, cols, vals): scipy.sparse.coo_matrix((vals, (rows, "
+          "cols)), shape=(3 * nV, 3 * nV)). rows/cols: 'deformed' or "
+          "'reference' ('reference', 'deformed' is the mixed D_1 D_2 W).")
+          .c_str());
 
   m.def("solve_modulo_rigid_motions", &SolveModuloRigidMotionsPy,
         py::arg("rows"), py::arg("cols"), py::arg("vals"), py::arg("rhs"),
         py::arg("shape"), py::arg("shift") = 0.0,
-        "p with (H + shift) p = rhs modulo rigid motions: H the 3#V x 3#V "
-        "triplets (rows, cols, vals; duplicates summed) of a rigidly "
-        "invariant energy's Hessian at `shape`, p = T q with T the "
-        "coordinates left by the rigid gauge of `shape` and (T^T H T + "
-        "shift I) q = T^T rhs (sparse LDL^T). Returns (p #V x 3, "
-        "positive_definite).");
-  m.def("align_rigidly", [](const py::object& source, const py::object& target) {
-          const Positions s = PositionsArgument(source, "source");
-          const Positions t = PositionsArgument(target, "target");
-          if (s.rows() != t.rows()) {
-            throw InputError("source and target: different vertex counts");
-          }
-          return FromPositions(AlignRigidly(s, t));
-        }, py::arg("source"), py::arg("target"),
-        "source moved by the rigid motion (rotation and translation, no "
-        "reflection; unweighted Kabsch) that best fits it to target.");
+        WithParameters(
+            "solve_modulo_rigid_motions",
+            "p with (H + shift) p = rhs modulo rigid motions: H the 3#V x 3#V "
+            "triplets (rows, cols, vals; duplicates summed) of a rigidly "
+            "invariant energy's Hessian at `shape`, p = T q with T the "
+            "coordinates left by the rigid gauge of `shape` and (T^T H T + "
+            "shift I) q = T^T rhs (sparse LDL^T). Returns (p #V x 3, "
+            "positive_definite).")
+            .c_str());
+  m.def(
+      "align_rigidly",
+      [](const py::object& source, const py::object& target) {
+        const Positions s = PositionsArgument(source, "source");
+        const Positions t = PositionsArgument(target, "target");
+        if (s.rows() != t.rows()) {
+          throw InputError("source and target: different vertex counts");
+        }
+        return FromPositions(AlignRigidly(s, t));
+      },
+      py::arg("source"), py::arg("target"),
+      WithParameters(
+          "align_rigidly",
+          "source moved by the rigid motion (rotation and translation, no "
+          "reflection; unweighted Kabsch) that best fits it to target.")
+          .c_str());
 }
 
 }  // namespace pymodule

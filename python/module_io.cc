@@ -1,11 +1,12 @@
 // The module's mesh files: read_mesh, write_mesh, read_mask, write_gltf.
 #include <string>
 
+#include "python/array_arguments.h"
 #include "python/module_common.h"
+#include "python/parameter_docs.h"
 #include "shellspace/geometry/validation.h"
 #include "shellspace/io/gltf_writer.h"
 #include "shellspace/io/mesh_io.h"
-#include "python/array_arguments.h"
 
 namespace shellspace {
 namespace pymodule {
@@ -40,15 +41,27 @@ void WriteGltfPy(const std::string& path, const py::object& frames_object,
 
 void RegisterIo(py::module_& m) {
   m.def("read_mesh", &ReadMeshPy, py::arg("path"),
-        "Reads a PLY, OBJ or OFF mesh (strict readers): returns (V, F).");
+        WithParameters(
+            "read_mesh",
+            "Reads a PLY, OBJ or OFF mesh (strict readers): returns (V, F).")
+            .c_str());
   m.def("write_mesh", &WriteMeshPy, py::arg("path"), py::arg("V"), py::arg("F"),
-        "Writes (V, F) as PLY, OBJ or OFF (by the extension), atomically.");
+        WithParameters(
+            "write_mesh",
+            "Writes (V, F) as PLY, OBJ or OFF (by the extension), atomically.")
+            .c_str());
   m.def("write_gltf", &WriteGltfPy, py::arg("path"), py::arg("frames"),
         py::arg("F"), py::arg("fps") = 4.0, py::arg("interpolation") = "linear",
-        "Writes frames (a path) as one glTF 2.0 morph animation (.glb), as "
-        "`shellspace export` does.");
-  m.def("read_mask", &ReadMask, py::arg("path"), py::arg("num_vertices"),
-        "Reads a vertex mask file: sorted unique 0-based indices.");
+        WithParameters(
+            "write_gltf",
+            "Writes frames (a path) as one glTF 2.0 morph animation (.glb), as "
+            "`shellspace export` does.")
+            .c_str());
+  m.def(
+      "read_mask", &ReadMask, py::arg("path"), py::arg("num_vertices"),
+      WithParameters("read_mask",
+                     "Reads a vertex mask file: sorted unique 0-based indices.")
+          .c_str());
 }
 
 }  // namespace pymodule

@@ -1,9 +1,10 @@
 // The module's pictures: write_film_strip (`shellspace render`).
 #include <string>
 
-#include "python/module_common.h"
-#include "shellspace/render/film_strip.h"
 #include "python/array_arguments.h"
+#include "python/module_common.h"
+#include "python/parameter_docs.h"
+#include "shellspace/render/film_strip.h"
 
 namespace shellspace {
 namespace pymodule {
@@ -35,10 +36,13 @@ void RegisterRender(py::module_& m) {
         py::arg("height") = 0, py::arg("view") = "front",
         py::arg("up") = "auto", py::arg("labels") = true,
         py::arg("color") = "plain", py::arg("shading") = "gouraud",
-        "Writes frames as a PNG film strip, as `shellspace render` does: "
-        "width the whole image (0: 320 per column), height per frame (0: "
-        "square), up auto|x|y|z|-x|-y|-z, labels under the frames, color "
-        "plain|displacement.");
+        WithParameters(
+            "write_film_strip",
+            "Writes frames as a PNG film strip, as `shellspace render` does: "
+            "width the whole image (0: 320 per column), height per frame (0: "
+            "square), up auto|x|y|z|-x|-y|-z, labels under the frames, color "
+            "plain|displacement.")
+            .c_str());
 }
 
 }  // namespace pymodule

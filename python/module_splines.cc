@@ -2,14 +2,15 @@
 #include <string>
 #include <vector>
 
+#include "python/array_arguments.h"
 #include "python/module_common.h"
+#include "python/parameter_docs.h"
 #include "shellspace/problems/splines/ltheta_spline.h"
 #include "shellspace/problems/splines/spline.h"
 #include "shellspace/problems/splines/spline_initial_path.h"
 #include "shellspace/reports/path_reports.h"
 #include "shellspace/workflows/regress.h"
 #include "shellspace/workflows/spline.h"
-#include "python/array_arguments.h"
 #include "tools/run/memory_limits.h"
 
 namespace shellspace {
@@ -142,23 +143,28 @@ py::object RegressPy(const py::object& inputs_object,
 
 void RegisterSplines(py::module_& m) {
   m.def(
-      "spline",
-      WithMaterialAndSolverArgs(&SplinePy),
-      py::arg("keyframes"), py::arg("at"), py::arg("F"), py::arg("steps") = 8,
+      "spline", WithMaterialAndSolverArgs(&SplinePy), py::arg("keyframes"),
+      py::arg("at"), py::arg("F"), py::arg("steps") = 8,
       py::arg("method") = "nonlinear", py::arg("init") = "ltheta",
       py::arg("periodic") = false, SHELLSPACE_FRAME_OUTPUT_ARGS,
       SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
-      "Riemannian spline through keyframes at path indices `at`, from the "
-      "initial path `init` (ltheta or geodesic, as the CLI's --init): returns "
-      "(path, summary).");
+      WithParameters(
+          "spline",
+          "Riemannian spline through keyframes at path indices `at`, from the "
+          "initial path `init` (ltheta or geodesic, as the CLI's --init): "
+          "returns "
+          "(path, summary).")
+          .c_str());
   m.def(
-      "regress",
-      WithMaterialAndSolverArgs(&RegressPy),
-      py::arg("inputs"), py::arg("at"), py::arg("F"), py::arg("steps") = 8,
-      py::arg("sigma") = 1.0, SHELLSPACE_FRAME_OUTPUT_ARGS,
-      SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
-      "Shape regression (data term + sigma spline energy): returns (path, "
-      "summary).");
+      "regress", WithMaterialAndSolverArgs(&RegressPy), py::arg("inputs"),
+      py::arg("at"), py::arg("F"), py::arg("steps") = 8, py::arg("sigma") = 1.0,
+      SHELLSPACE_FRAME_OUTPUT_ARGS, SHELLSPACE_MATERIAL_ARGS,
+      SHELLSPACE_SOLVER_ARGS,
+      WithParameters(
+          "regress",
+          "Shape regression (data term + sigma spline energy): returns (path, "
+          "summary).")
+          .c_str());
 }
 
 }  // namespace pymodule
