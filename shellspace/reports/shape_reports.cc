@@ -56,18 +56,6 @@ JsonObject MaterialJson(const ShellMaterial& material, const Mesh& reference,
   return json;
 }
 
-std::string MeanEnergySplitJson(const ShellSpace& space,
-                                const Positions& mean,
-                                const std::vector<Positions>& shapes) {
-  double membrane = 0, bending = 0;
-  for (const Positions& shape : shapes) {
-    const DeformationEnergy w = EvaluateDeformationEnergy(space, mean, shape);
-    membrane += w.membrane;
-    bending += w.total - w.membrane;
-  }
-  return EnergySplitJson(membrane, bending);
-}
-
 JsonObject MeanJson(const ElasticMeanResult& result, int inputs,
                     const std::vector<std::string>& far_inputs) {
   const double relative =

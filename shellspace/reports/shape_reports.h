@@ -48,13 +48,6 @@ std::string EnergySplitJson(double membrane, double bending);
 JsonObject MaterialJson(const ShellMaterial& material, const Mesh& reference,
                         bool eta_absolute);
 
-// The membrane / bending split of the mean's objective sum_i W[mean, s_i]
-// ({"membrane", "bending" (eta included), "bending_share"}, as
-// PathEnergySplitJson in path_reports.h).
-std::string MeanEnergySplitJson(const ShellSpace& space,
-                                const Positions& mean,
-                                const std::vector<Positions>& shapes);
-
 JsonObject MeanJson(const ElasticMeanResult& result, int inputs,
                     const std::vector<std::string>& far_inputs);
 

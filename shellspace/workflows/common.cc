@@ -26,7 +26,8 @@ EnergySplit MeanEnergySplit(const ShellSpace& space, const Positions& mean,
                             const std::vector<Positions>& shapes) {
   EnergySplit split;
   for (const Positions& shape : shapes) {
-    const DeformationEnergy w = EvaluateDeformationEnergy(space, mean, shape);
+    // The inputs are the references: W[S_i, mean], as the mean's objective.
+    const DeformationEnergy w = EvaluateDeformationEnergy(space, shape, mean);
     split.membrane += w.membrane;
     split.bending += w.total - w.membrane;
   }

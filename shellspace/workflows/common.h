@@ -39,7 +39,8 @@ struct EnergySplit {
 
 // E_K = K sum_k W[s_{k-1}, s_k] of `path` split (one evaluation per step).
 EnergySplit PathEnergySplit(const ShellSpace& space, const std::vector<Positions>& path);
-// sum_i W[mean, s_i] split.
+// The mean's objective sum_i W[S_i, mean] (the inputs as references, as
+// ElasticMeanResult::energy) split.
 EnergySplit MeanEnergySplit(const ShellSpace& space, const Positions& mean,
                             const std::vector<Positions>& shapes);
 // {"membrane", "bending", "bending_share"} (reports' EnergySplitJson).

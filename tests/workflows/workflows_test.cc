@@ -287,19 +287,23 @@ TEST(MeanWorkflowTest, SplitSumsToTheMeanEnergy) {
   options.settings = sheets.settings;
   const workflows::MeanResult result = workflows::RunMean(options);
   ASSERT_TRUE(result.status.ok()) << result.status.message;
-  // The split is that of sum_i W[mean, S_i] (the summary's energy_split,
-  // as before the workflows), evaluated here independently.
+  // The split is that of the mean's objective sum_i W[S_i, mean] (the
+  // inputs as references): its total is the solver's energy, and its
+  // membrane part is evaluated here independently. The reversed order
+  // W[mean, S_i] (what the summary split before) is another number.
   const ShellSpace space(options.reference, options.topology,
                          options.material.material);
-  double membrane = 0, total = 0;
+  double membrane = 0, reversed = 0;
   for (const Positions& shape : options.shapes) {
-    const DeformationEnergy w =
-        EvaluateDeformationEnergy(space, result.mean.mean, shape);
-    membrane += w.membrane;
-    total += w.total;
+    membrane += EvaluateDeformationEnergy(space, shape, result.mean.mean)
+                    .membrane;
+    reversed +=
+        EvaluateDeformationEnergy(space, result.mean.mean, shape).total;
   }
   EXPECT_NEAR(result.energy_split.membrane, membrane, 1e-15);
-  EXPECT_NEAR(result.energy_split.total(), total, 1e-12 * total);
+  EXPECT_NEAR(result.energy_split.total(), result.mean.energy,
+              1e-12 * result.mean.energy);
+  EXPECT_GT(std::abs(reversed - result.mean.energy), 1e-6 * reversed);
   EXPECT_GT(result.energy_split.bending, 0);
 }
 
