@@ -1,10 +1,12 @@
 // The module's geodesic calculus: geodesic, log, shoot, transport, compare.
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "python/array_arguments.h"
 #include "python/module_common.h"
+#include "python/module_results.h"
 #include "python/parameter_docs.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/exponential_map.h"
@@ -96,8 +98,10 @@ py::object GeodesicPy(const py::object& start_v, const py::object& end_v,
   }
   const py::object summary = GeodesicSummary(
       workflows::ToJson(result), result, clock, output, solver);
-  return solver.Finish(py::make_tuple(FromPath(result.path()), summary),
-                       summary, "geodesic", FailuresOf(result.status));
+  std::vector<std::string> failures = FailuresOf(result.status);
+  py::object value = FromPath(result.path());
+  return solver.Finish(MakeResult(std::move(result), std::move(value), summary),
+                       summary, "geodesic", std::move(failures));
 }
 
 py::object LogPy(const py::object& start_v, const py::object& end_v,
@@ -124,8 +128,10 @@ py::object LogPy(const py::object& start_v, const py::object& end_v,
   }
   const py::object summary = GeodesicSummary(workflows::ToJson(result),
                                              geodesic, clock, output, solver);
-  return solver.Finish(py::make_tuple(FromPositions(result.log), summary),
-                       summary, "log", FailuresOf(geodesic.status));
+  std::vector<std::string> failures = FailuresOf(geodesic.status);
+  py::object value = FromPositions(result.log);
+  return solver.Finish(MakeResult(std::move(result), std::move(value), summary),
+                       summary, "log", std::move(failures));
 }
 
 // Keywords -> options -> the workflow -> files and (path, summary).
@@ -164,8 +170,10 @@ py::object ShootPy(const py::object& first_v, const py::object& second_v,
       .Add("seconds", Seconds(clock));
   AddStopFields(json, *solver.control);
   const py::object summary = ToDict(AddOutput(json, output));
-  return solver.Finish(py::make_tuple(FromPath(result.path()), summary),
-                       summary, "shoot", FailuresOf(result.status));
+  std::vector<std::string> failures = FailuresOf(result.status);
+  py::object value = FromPath(result.path());
+  return solver.Finish(MakeResult(std::move(result), std::move(value), summary),
+                       summary, "shoot", std::move(failures));
 }
 
 // Keywords -> options -> the workflow -> files and (shapes, summary).
@@ -208,8 +216,10 @@ py::object TransportPy(const py::object& path_object,
       .Add("seconds", Seconds(clock));
   AddStopFields(json, *solver.control);
   const py::object summary = ToDict(AddOutput(json, output));
-  return solver.Finish(py::make_tuple(FromPath(result.shapes()), summary),
-                       summary, "transport", FailuresOf(result.status));
+  std::vector<std::string> failures = FailuresOf(result.status);
+  py::object value = FromPath(result.shapes());
+  return solver.Finish(MakeResult(std::move(result), std::move(value), summary),
+                       summary, "transport", std::move(failures));
 }
 
 // `compare`: a and b each one #V x 3 array (a shell) or a sequence / #frames

@@ -1,9 +1,11 @@
 // The module's splines: spline, regress.
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "python/array_arguments.h"
 #include "python/module_common.h"
+#include "python/module_results.h"
 #include "python/parameter_docs.h"
 #include "shellspace/problems/splines/ltheta_spline.h"
 #include "shellspace/problems/splines/spline.h"
@@ -96,8 +98,10 @@ py::object SplinePy(const py::object& keyframes_object,
   json.Raw("material", MaterialRecord(result.material, set.first.mesh));
   AddStopFields(json, *solver.control);
   const py::object summary = ToDict(AddOutput(json, output));
-  return solver.Finish(py::make_tuple(FromPath(result.path()), summary),
-                       summary, "spline", FailuresOf(result.status));
+  std::vector<std::string> failures = FailuresOf(result.status);
+  py::object value = FromPath(result.path());
+  return solver.Finish(MakeResult(std::move(result), std::move(value), summary),
+                       summary, "spline", std::move(failures));
 }
 
 // Keywords -> options -> the workflow -> files and (path, summary).
@@ -135,8 +139,10 @@ py::object RegressPy(const py::object& inputs_object,
   json.Raw("material", MaterialRecord(result.material, set.first.mesh));
   AddStopFields(json, *solver.control);
   const py::object summary = ToDict(AddOutput(json, output));
-  return solver.Finish(py::make_tuple(FromPath(result.path()), summary),
-                       summary, "regress", FailuresOf(result.status));
+  std::vector<std::string> failures = FailuresOf(result.status);
+  py::object value = FromPath(result.path());
+  return solver.Finish(MakeResult(std::move(result), std::move(value), summary),
+                       summary, "regress", std::move(failures));
 }
 
 }  // namespace

@@ -2,9 +2,11 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "python/module_common.h"
+#include "python/module_results.h"
 #include "python/parameter_docs.h"
 #include "shellspace/io/atomic_file.h"
 #include "shellspace/io/frame_sequence.h"
@@ -62,8 +64,10 @@ py::object MeanPy(const py::object& inputs_object, const py::object& F,
       .Add("seconds", Seconds(clock));
   AddStopFields(json, *solver.control);
   const py::object summary = ToDict(AddOutput(json, output));
-  return solver.Finish(py::make_tuple(FromPositions(result.mean.mean), summary),
-                       summary, "mean", FailuresOf(result.status));
+  std::vector<std::string> failures = FailuresOf(result.status);
+  py::object value = FromPositions(result.mean.mean);
+  return solver.Finish(MakeResult(std::move(result), std::move(value), summary),
+                       summary, "mean", std::move(failures));
 }
 
 // The CLI's files of a pca run, each if given: `output` (the PLY set and
@@ -165,8 +169,10 @@ py::object PcaPy(const py::object& inputs_object, const py::object& F,
     out[py::str(name)] = FromPositions(positions);
   }
   const py::object summary = ToDict(json);
-  return solver.Finish(py::make_tuple(out, summary), summary, "pca",
-                       FailuresOf(result.status));
+  std::vector<std::string> failures = FailuresOf(result.status);
+  py::object value = out;
+  return solver.Finish(MakeResult(std::move(result), std::move(value), summary),
+                       summary, "pca", std::move(failures));
 }
 
 }  // namespace

@@ -7,10 +7,11 @@
 // defaults (`shellspace VERB --help`), calls the library functions the verb
 // calls, and returns its results and the verb's --json summary as a dict
 // (reports/: the same objects the CLI prints; `output` and `seconds` as the
-// CLI has them). Bad input raises shellspace.InputError (a ValueError) with
-// the library's message; other library errors RuntimeError. Every array
-// argument is checked by python/array_arguments.h. The functions that
-// solve take time_limit and allow_unconverged, stop at KeyboardInterrupt,
+// CLI has them) -- the workflow functions inside a result object
+// (python/module_results.h). Bad input raises shellspace.InputError (a
+// ValueError) with the library's message; other library errors RuntimeError.
+// Every array argument is checked by python/array_arguments.h. The functions
+// that solve take time_limit and allow_unconverged, stop at KeyboardInterrupt,
 // and raise shellspace.NotConvergedError for a result that missed its
 // stopping criterion (python/solve_control.h); their steps are bounded up
 // front by the CLI's memory estimates (tools/run/memory_limits.h).
@@ -18,17 +19,18 @@
 // This file makes the module and its exceptions; the functions are added
 // by one file per room of the library, python/module_<room>.cc (their
 // shared helpers: python/module_common.h).
+#include <dlfcn.h>
 #include <glog/logging.h>
 #include <pybind11/pybind11.h>
-#include <dlfcn.h>
 
 #include <string>
 
+#include "python/module_common.h"
+#include "python/module_results.h"
+#include "python/solve_control.h"
 #include "shellspace/cost_functions/shell/relative_bending_weight.h"
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/runtime/openmp_threads.h"
-#include "python/module_common.h"
-#include "python/solve_control.h"
 
 namespace py = pybind11;
 
@@ -45,11 +47,14 @@ PYBIND11_MODULE(shellspace, m) {
       "shellspace: the time-discrete geodesic calculus on discrete shells.\n"
       "Meshes are (V, F): V #V x 3 float64, F #F x 3 int; paths are\n"
       "(K + 1) x #V x 3 arrays. Each verb function takes the CLI verb's\n"
-      "options as keyword arguments (lambda as lambda_) and returns its\n"
-      "results and the verb's --json summary as a dict. Bad arrays and\n"
-      "options raise InputError. The solving functions take time_limit\n"
-      "(seconds) and allow_unconverged: an unconverged or time-limited\n"
-      "result raises NotConvergedError (its .result attached) unless\n"
+      "options as keyword arguments (lambda as lambda_). The workflow\n"
+      "functions return result objects (GeodesicResult, ...: the numbers\n"
+      "as attributes, status, energy_split, to_dict() the verb's --json\n"
+      "summary) that unpack as the pair (value, summary); the others return\n"
+      "their values and summary dicts. Bad arrays and options raise\n"
+      "InputError. The solving functions take time_limit (seconds) and\n"
+      "allow_unconverged: an unconverged or time-limited result raises\n"
+      "NotConvergedError (its .result attached) unless\n"
       "allow_unconverged=True; Ctrl-C stops the solves and raises\n"
       "KeyboardInterrupt with the partial result as .result.";
   // The pure-Python submodules (shellspace.collections) are in the folder
@@ -69,6 +74,7 @@ PYBIND11_MODULE(shellspace, m) {
   m.attr("DEFAULT_RELATIVE_ETA") = kDefaultRelativeEta;
 
   using namespace shellspace::pymodule;
+  RegisterResults(m);
   RegisterIo(m);
   RegisterEnergy(m);
   RegisterCalculus(m);

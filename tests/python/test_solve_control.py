@@ -90,12 +90,15 @@ def test_no_limit_values_run_to_the_same_digits(name, limit):
     # CLI's deadline) are no limit: not stopped, the same result.
     plain = SOLVERS[name]()
     limited = SOLVERS[name](time_limit=limit)
-    summary = limited[-1] if isinstance(limited, tuple) else limited
+    summary = limited if isinstance(limited, dict) else limited[-1]
     assert summary["partial"] is False and summary["stop_reason"] == ""
     assert_same(limited, plain)
 
 
 def assert_same(a, b):
+    if hasattr(a, "to_dict"):  # a result: the pair (value, summary)
+        assert type(a) is type(b)
+        a, b = tuple(a), tuple(b)
     if isinstance(a, dict):
         assert set(a) == set(b)
         for k in a:

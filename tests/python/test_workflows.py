@@ -102,3 +102,77 @@ def test_pca_names_its_shapes_and_stops_with_the_phase():
     assert stopped_summary["stopped_in"] == "mean"
     assert stopped_summary["modes"] == 0
     assert stopped_summary["partial"] is True
+
+
+# ---- The result classes (python/module_results.h) ----------------------
+
+def test_a_geodesic_result_carries_its_numbers_as_attributes():
+    result = shellspace.geodesic(V, bent(2), F, steps=4, quiet=True)
+    assert isinstance(result, shellspace.GeodesicResult)
+    path, summary = result  # the pair of the earlier functions
+    assert path is result.path and summary is result.summary
+    assert result[0] is path and result[-1] is summary and len(result) == 2
+    with pytest.raises(IndexError):
+        result[2]
+    assert path.shape == (5, len(V), 3)
+    # The attributes are the workflow's numbers: the summary's to the bit.
+    assert result.path_energy == summary["path_energy"]
+    assert result.iterations == summary["iterations"]
+    assert result.converged and summary["converged"]
+    assert result.status.name == "converged" and result.status.failures == []
+    split = result.energy_split
+    assert split.membrane == summary["energy_split"]["membrane"]
+    assert split.bending == summary["energy_split"]["bending"]
+    assert split.to_dict() == summary["energy_split"]
+    # Independent: E_K = K sum_k W[s_k-1, s_k] = membrane + bending.
+    assert len(result.step_energies) == 4
+    assert np.isclose(4 * sum(result.step_energies), result.path_energy,
+                      rtol=1e-12, atol=0)
+    assert np.isclose(split.total, result.path_energy, rtol=1e-12, atol=0)
+    assert result.material.mu == summary["material"]["mu"]
+    assert result.material.bending == "discrete-shells"
+    assert result.to_dict() == summary and result.to_dict() is not summary
+    assert repr(result).startswith("GeodesicResult(status='converged', "
+                                   "path_energy=")
+
+
+def test_an_unconverged_result_names_its_status():
+    with pytest.raises(shellspace.NotConvergedError) as error:
+        shellspace.geodesic(V, bent(3), F, steps=4, max_iterations=1,
+                            quiet=True)
+    result = error.value.result
+    assert isinstance(result, shellspace.GeodesicResult)
+    assert not result.converged
+    assert result.status.name == "not converged"
+    assert result.status.failures == error.value.failures
+    assert "status='not converged'" in repr(result)
+
+
+def test_the_other_results_carry_their_values():
+    log = shellspace.log(V, bent(2), F, steps=4, quiet=True)
+    geodesic = shellspace.geodesic(V, bent(2), F, steps=4, quiet=True)
+    assert isinstance(log, shellspace.LogResult)
+    # LOG_K = K (s_1 - s_0) of the same geodesic.
+    assert np.allclose(log.log, 4 * (geodesic.path[1] - geodesic.path[0]),
+                       rtol=0, atol=1e-12)
+    assert log.log_max_norm == np.abs(log.log).max()
+    assert log.path_energy == geodesic.path_energy
+    mean = shellspace.mean(SHAPES, F, quiet=True)
+    assert isinstance(mean, shellspace.MeanResult)
+    assert mean.mean is mean[0] and len(mean.energies) == len(SHAPES)
+    assert np.isclose(sum(mean.energies), mean.energy, rtol=1e-12, atol=0)
+    assert np.isclose(mean.energy_split.total, mean.energy, rtol=1e-12,
+                      atol=0)
+    pca = shellspace.pca(SHAPES, F, modes=1, quiet=True)
+    assert isinstance(pca, shellspace.PcaResult)
+    assert set(pca.shapes) >= {"mean", "mode_1_minus", "mode_1_plus"}
+    assert np.array_equal(pca.mean, pca.shapes["mean"])
+    assert pca.eigenvalues == sorted(pca.eigenvalues, reverse=True)
+    assert pca.eigenvalues[0] == pca.summary["eigenvalues"][0]
+
+
+def test_a_result_pickles_as_its_pair():
+    import pickle
+    result = shellspace.geodesic(V, bent(1), F, steps=2, quiet=True)
+    path, summary = pickle.loads(pickle.dumps(result))
+    assert np.array_equal(path, result.path) and summary == result.summary
