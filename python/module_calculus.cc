@@ -63,7 +63,7 @@ py::object GeodesicSummary(JsonObject json,
                            Clock::time_point clock,
                            const std::optional<std::string>& output,
                            const SolverOptions& solver) {
-  json.Raw("material", MaterialRecord(result.material, result.start))
+  json.Add("material", MaterialRecord(result.material, result.start))
       .Add("seconds", Seconds(clock));
   AddStopFields(json, *solver.control);
   return ToDict(AddOutput(json, output));
@@ -166,7 +166,7 @@ py::object ShootPy(const py::object& first_v, const py::object& second_v,
   // An EXP step without a root is the CLI's unsolved step (exit 4).
   WritePath(output, png, gltf, result.first.faces, result.path());
   JsonObject json = workflows::ToJson(result);
-  json.Raw("material", MaterialRecord(result.material, result.first))
+  json.Add("material", MaterialRecord(result.material, result.first))
       .Add("seconds", Seconds(clock));
   AddStopFields(json, *solver.control);
   const py::object summary = ToDict(AddOutput(json, output));
@@ -212,7 +212,7 @@ py::object TransportPy(const py::object& path_object,
   }
   WritePath(output, png, gltf, result.first.faces, result.shapes());
   JsonObject json = workflows::ToJson(result);
-  json.Raw("material", MaterialRecord(result.material, result.first))
+  json.Add("material", MaterialRecord(result.material, result.first))
       .Add("seconds", Seconds(clock));
   AddStopFields(json, *solver.control);
   const py::object summary = ToDict(AddOutput(json, output));

@@ -2,7 +2,9 @@
 #include "python/module_common.h"
 
 #include <algorithm>
+#include <cmath>
 
+#include "python/array_arguments.h"
 #include "shellspace/geometry/validation.h"
 #include "shellspace/io/atomic_file.h"
 #include "shellspace/io/frame_sequence.h"
@@ -10,7 +12,6 @@
 #include "shellspace/io/png_writer.h"
 #include "shellspace/render/film_strip.h"
 #include "shellspace/reports/shape_reports.h"
-#include "python/array_arguments.h"
 // The CLI's memory bounds of --steps (compiled into the module,
 // python/CMakeLists.txt).
 #include "tools/run/memory_limits.h"
@@ -52,9 +53,39 @@ py::array_t<double> FromPath(const std::vector<Positions>& path) {
   return out;
 }
 
-py::object ToDict(const JsonObject& json) {
-  return py::module_::import("json").attr("loads")(json.str());
+py::object ToPython(const JsonValue& value) {
+  using Kind = JsonValue::Kind;
+  switch (value.kind()) {
+    case Kind::kNull:
+      return py::none();
+    case Kind::kBool:
+      return py::bool_(value.boolean());
+    case Kind::kInt:
+      return py::int_(value.integer());
+    case Kind::kNumber:  // non-finite as JSON's null, as the CLI prints it
+      return std::isfinite(value.number())
+                 ? py::object(py::float_(value.number()))
+                 : py::object(py::none());
+    case Kind::kString:
+      return py::str(value.text());
+    case Kind::kRaw:
+      return py::module_::import("json").attr("loads")(value.text());
+    case Kind::kArray: {
+      py::list list;
+      for (const JsonValue& item : value.items()) list.append(ToPython(item));
+      return list;
+    }
+    case Kind::kObject: {
+      py::dict dict;
+      for (const auto& [key, member] : value.members())
+        dict[py::str(key)] = ToPython(member);
+      return dict;
+    }
+  }
+  return py::none();
 }
+
+py::object ToDict(const JsonObject& json) { return ToPython(json.value()); }
 
 Shell MakeShell(Positions positions, const py::object& F,
                 const std::string& name) {
@@ -104,9 +135,9 @@ ShellMaterial Material(const MaterialArgs& args, const Mesh& reference) {
 }
 
 // The material as resolved for `reference` (the CLI's "material" record).
-std::string MaterialRecord(const ShellSpace& space, const Mesh& reference,
-                           const MaterialArgs& args) {
-  return MaterialJson(space.material, reference, args.eta.has_value()).str();
+JsonObject MaterialRecord(const ShellSpace& space, const Mesh& reference,
+                          const MaterialArgs& args) {
+  return MaterialJson(space.material, reference, args.eta.has_value());
 }
 
 workflows::MaterialChoice MaterialChoiceOf(const MaterialArgs& args,
@@ -114,10 +145,9 @@ workflows::MaterialChoice MaterialChoiceOf(const MaterialArgs& args,
   return {Material(args, reference), args.eta.has_value()};
 }
 
-std::string MaterialRecord(const workflows::MaterialChoice& material,
-                           const Mesh& reference) {
-  return MaterialJson(material.material, reference, material.eta_absolute)
-      .str();
+JsonObject MaterialRecord(const workflows::MaterialChoice& material,
+                          const Mesh& reference) {
+  return MaterialJson(material.material, reference, material.eta_absolute);
 }
 
 std::vector<std::string> FailuresOf(const workflows::SolveStatus& status) {

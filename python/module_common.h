@@ -47,6 +47,10 @@ py::array_t<double> FromPositions(const Positions& positions);
 py::array_t<long long> FromFaces(const Faces& faces);
 // A path as a (K + 1) x #V x 3 array.
 py::array_t<double> FromPath(const std::vector<Positions>& path);
+// The summary tree as Python values (dict, list, float, int, bool, str,
+// None for null and non-finite numbers), built directly; a raw text member
+// (JsonValue::Raw) is parsed by json.loads.
+py::object ToPython(const JsonValue& value);
 py::object ToDict(const JsonObject& json);
 
 // ---- Inputs -------------------------------------------------------------
@@ -92,15 +96,15 @@ struct MaterialArgs {
 ShellMaterial Material(const MaterialArgs& args, const Mesh& reference);
 
 // The material as resolved for `reference` (the CLI's "material" record).
-std::string MaterialRecord(const ShellSpace& space, const Mesh& reference,
-                           const MaterialArgs& args);
+JsonObject MaterialRecord(const ShellSpace& space, const Mesh& reference,
+                          const MaterialArgs& args);
 
 // The material of the keywords for `reference`, as the workflows take it.
 workflows::MaterialChoice MaterialChoiceOf(const MaterialArgs& args,
                                            const Mesh& reference);
 // The "material" record of a workflow's result.
-std::string MaterialRecord(const workflows::MaterialChoice& material,
-                           const Mesh& reference);
+JsonObject MaterialRecord(const workflows::MaterialChoice& material,
+                          const Mesh& reference);
 
 // What a workflow's status raises as NotConvergedError's failures: its
 // failures, or the one line of a solve that could not run.

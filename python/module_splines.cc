@@ -95,7 +95,7 @@ py::object SplinePy(const py::object& keyframes_object,
   }
   WritePath(output, png, gltf, set.first.mesh.faces, result.path());
   JsonObject json = workflows::ToJson(result, Seconds(clock));
-  json.Raw("material", MaterialRecord(result.material, set.first.mesh));
+  json.Add("material", MaterialRecord(result.material, set.first.mesh));
   AddStopFields(json, *solver.control);
   const py::object summary = ToDict(AddOutput(json, output));
   std::vector<std::string> failures = FailuresOf(result.status);
@@ -136,7 +136,7 @@ py::object RegressPy(const py::object& inputs_object,
   }
   WritePath(output, png, gltf, set.first.mesh.faces, result.path());
   JsonObject json = workflows::ToJson(result, Seconds(clock));
-  json.Raw("material", MaterialRecord(result.material, set.first.mesh));
+  json.Add("material", MaterialRecord(result.material, set.first.mesh));
   AddStopFields(json, *solver.control);
   const py::object summary = ToDict(AddOutput(json, output));
   std::vector<std::string> failures = FailuresOf(result.status);

@@ -60,7 +60,7 @@ py::object MeanPy(const py::object& inputs_object, const py::object& F,
     WriteMesh(Mesh{result.mean.mean, set.first.mesh.faces}, *output);
   }
   JsonObject json = workflows::ToJson(result);
-  json.Raw("material", MaterialRecord(result.material, set.first.mesh))
+  json.Add("material", MaterialRecord(result.material, set.first.mesh))
       .Add("seconds", Seconds(clock));
   AddStopFields(json, *solver.control);
   const py::object summary = ToDict(AddOutput(json, output));
@@ -157,7 +157,7 @@ py::object PcaPy(const py::object& inputs_object, const py::object& F,
     result = workflows::RunPca(options);
   }
   JsonObject json = workflows::ToJson(result, options);
-  json.Raw("material", MaterialRecord(result.material, set.first.mesh))
+  json.Add("material", MaterialRecord(result.material, set.first.mesh))
       .Add("seconds", Seconds(clock));
   AddStopFields(json, *solver.control);
   AddOutput(json, output);

@@ -31,32 +31,30 @@ JsonObject SimulationJson(const SimulationSettings& s,
       .Add("energy_over_eps23_L13", result.energy.total() / scale)
       .Add("km_constant", KmClosedFormConstant())
       .Add("iterations", result.iterations).Add("seconds", result.seconds);
-  std::string stages = "[";
-  for (size_t k = 0; k < result.stages.size(); ++k) {
-    const RelaxedStage& st = result.stages[k];
+  std::vector<JsonObject> stages;
+  for (const RelaxedStage& st : result.stages) {
     JsonObject o;
     o.Add("delta", st.delta).Add("iterations", st.iterations)
         .Add("energy", st.energy.total()).Add("seconds", st.seconds)
         .Add("max_slope", st.max_slope).Add("retried", st.retried)
         .Add("termination", st.termination);
-    stages += (k ? ", " : "") + o.str();
+    stages.push_back(o);
   }
-  summary.Raw("stages", stages + "]");
-  std::vector<double> x, counts;
+  summary.Add("stages", stages);
+  std::vector<double> x;
   for (size_t k = 0; k < result.interfaces.size(); ++k) {
     x.push_back(result.field.grid.x(static_cast<int>(k) + 1));
-    counts.push_back(result.interfaces[k]);
   }
-  summary.Add("x", x).Add("interfaces", counts);
+  summary.Add("x", x).Add("interfaces", result.interfaces);
   return summary;
 }
 
 JsonObject DeltaExtrapolationJson(const DeltaExtrapolation& ex) {
   JsonObject e;
-  std::vector<double> deltas, nys, nxs, constants;
-  std::string widths = "[";
-  for (size_t k = 0; k < ex.widths.size(); ++k) {
-    const DeltaWidth& w = ex.widths[k];
+  std::vector<double> deltas, constants;
+  std::vector<int> nys, nxs;
+  std::vector<JsonObject> widths;
+  for (const DeltaWidth& w : ex.widths) {
     deltas.push_back(w.delta);
     nys.push_back(w.ny);
     nxs.push_back(w.nx);
@@ -68,11 +66,11 @@ JsonObject DeltaExtrapolationJson(const DeltaExtrapolation& ex) {
         .Add("termination", w.termination).Add("converged", w.converged)
         .Add("interfaces_far", w.interfaces_far)
         .Add("interfaces_max", w.interfaces_max).Add("seconds", w.seconds);
-    widths += (k ? ", " : "") + o.str();
+    widths.push_back(o);
   }
   e.Add("delta", deltas).Add("ny", nys).Add("nx", nxs)
       .Add("constant", constants);
-  e.Raw("widths", widths + "]");
+  e.Add("widths", widths);
   e.Add("all_converged", ex.all_converged).Add("monotone", ex.monotone)
       .Add("linear_c0", ex.c0).Add("linear_c1", ex.c1)
       .Add("linear_rms", ex.linear_rms);
@@ -84,16 +82,14 @@ JsonObject DeltaExtrapolationJson(const DeltaExtrapolation& ex) {
   }
   e.Add("extrapolated_constant", ex.extrapolated)
       .Add("extrapolation_error", ex.error);
-  std::vector<double> counts(ex.interfaces.begin(), ex.interfaces.end());
-  e.Add("x", ex.x).Add("interfaces", counts);
-  std::string steps = "[";
-  for (size_t k = 0; k < ex.steps.size(); ++k) {
+  e.Add("x", ex.x).Add("interfaces", ex.interfaces);
+  std::vector<JsonObject> steps;
+  for (const auto& step : ex.steps) {
     JsonObject o;
-    o.Add("x", ex.steps[k].x).Add("outer", ex.steps[k].outer)
-        .Add("inner", ex.steps[k].inner);
-    steps += (k ? ", " : "") + o.str();
+    o.Add("x", step.x).Add("outer", step.outer).Add("inner", step.inner);
+    steps.push_back(o);
   }
-  e.Raw("count_steps", steps + "]");
+  e.Add("count_steps", steps);
   return e;
 }
 

@@ -13,16 +13,7 @@ int LmIterations(const ceres::Solver::Summary& summary) {
   return std::max(0, static_cast<int>(summary.iterations.size()) - 1);
 }
 
-std::string JsonArray(const std::vector<std::string>& objects) {
-  std::string out = "[";
-  for (size_t i = 0; i < objects.size(); ++i) {
-    out += (i ? ", " : "") + objects[i];
-  }
-  return out + "]";
-}
-
-std::string PathEnergySplitJson(const ShellSpace& space,
-                                const ShellPath& path) {
+JsonObject PathEnergySplitJson(const ShellSpace& space, const ShellPath& path) {
   double membrane = 0, bending = 0;
   const double steps = path.size() > 1 ? path.size() - 1.0 : 0.0;
   for (size_t k = 1; k < path.size(); ++k) {
@@ -34,18 +25,17 @@ std::string PathEnergySplitJson(const ShellSpace& space,
   return EnergySplitJson(membrane, bending);
 }
 
-std::vector<std::string> GeodesicStages(const GeodesicResult& result) {
-  std::vector<std::string> stages;
+std::vector<JsonObject> GeodesicStages(const GeodesicResult& result) {
+  std::vector<JsonObject> stages;
   for (const GeodesicStage& stage : result.stages) {
     const bool newton = stage.method == GeodesicStage::Method::kNewton;
-    stages.push_back(JsonObject()
-                         .Add("method", newton ? "newton"
-                                               : "levenberg-marquardt")
-                         .Add("solver", stage.solver)
-                         .Add("iterations", stage.iterations)
-                         .Add("final_gradient_norm", stage.final_gradient)
-                         .Add("termination", stage.termination)
-                         .str());
+    stages.push_back(
+        JsonObject()
+            .Add("method", newton ? "newton" : "levenberg-marquardt")
+            .Add("solver", stage.solver)
+            .Add("iterations", stage.iterations)
+            .Add("final_gradient_norm", stage.final_gradient)
+            .Add("termination", stage.termination));
   }
   return stages;
 }
@@ -58,8 +48,8 @@ const char* ExpMethodName(ExpStepResult::Method method) {
   return NameOf(kNames, method);
 }
 
-std::vector<std::string> ExpStepStages(const ShootResult& result) {
-  std::vector<std::string> stages;
+std::vector<JsonObject> ExpStepStages(const ShootResult& result) {
+  std::vector<JsonObject> stages;
   for (const ExpStepResult& step : result.exp_steps) {
     const int lm = LmIterations(step.summary);
     stages.push_back(
@@ -72,8 +62,7 @@ std::vector<std::string> ExpStepStages(const ShootResult& result) {
             .Add("residual", step.residual_norm)
             .Add("relative_residual", step.relative_residual)
             .Add("termination", ceres::TerminationTypeToString(
-                                    step.summary.termination_type))
-            .str());
+                                    step.summary.termination_type)));
   }
   return stages;
 }
@@ -88,9 +77,7 @@ JsonObject InitialPathJson(const InitialPathReport& init) {
       .Add("linear_smallest_area_ratio", init.linear.smallest_area_ratio)
       .Add("linear_turned_faces", init.linear.turned_faces)
       .Add("ltheta_iterations", init.ltheta_iterations)
-      .Add("ltheta_unconverged_frames",
-           std::vector<double>(init.ltheta_unconverged.begin(),
-                               init.ltheta_unconverged.end()))
+      .Add("ltheta_unconverged_frames", init.ltheta_unconverged)
       .Add("seconds", init.seconds);
   return json;
 }
@@ -121,7 +108,7 @@ JsonObject GeodesicJson(const GeodesicResult& result) {
       .Add("termination", result.stages.empty()
                               ? std::string("no unknowns")
                               : result.stages.back().termination)
-      .Raw("stages", JsonArray(GeodesicStages(result)))
+      .Add("stages", GeodesicStages(result))
       .Add("newton_steps", result.newton.steps)
       .Add("newton_seconds", result.newton.seconds)
       .Add("factorizations", result.newton.factorizations)
@@ -150,7 +137,8 @@ JsonObject GeodesicJson(const GeodesicResult& result) {
   return json;
 }
 
-std::string MultiresolutionJson(const MultiresolutionResult& result) {
+std::vector<JsonObject> MultiresolutionJson(
+    const MultiresolutionResult& result) {
   return JsonArrayOf(result.levels, [](const MultiresolutionLevel& level) {
     return JsonObject()
         .Add("vertices", level.vertices)
@@ -185,7 +173,7 @@ JsonObject ShootJson(const ShootResult& result) {
       .Add("max_exp_residual", totals.max_residual)
       .Add("max_relative_residual", totals.max_relative_residual)
       .Add("converged", totals.converged)
-      .Raw("stages", JsonArray(ExpStepStages(result)))
+      .Add("stages", ExpStepStages(result))
       .Add("frames", static_cast<int>(result.path.size()));
   return json;
 }
@@ -195,7 +183,7 @@ JsonObject TransportJson(const TransportResult& result, double epsilon) {
   for (const Positions& xi : result.variations) {
     norms.push_back(xi.cwiseAbs().maxCoeff());
   }
-  std::vector<std::string> rungs;
+  std::vector<JsonObject> rungs;
   int iterations = 0;
   for (size_t k = 0; k < result.rungs.size(); ++k) {
     const TransportResult::Rung& rung = result.rungs[k];
@@ -209,15 +197,14 @@ JsonObject TransportJson(const TransportResult& result, double epsilon) {
                         .Add("epsilon_divisor", rung.divisor)
                         .Add("newton_steps", rung.newton_steps)
                         .Add("lm_iterations", rung.lm_iterations)
-                        .Add("midpoint_iterations", rung.midpoint_iterations)
-                        .str());
+                        .Add("midpoint_iterations", rung.midpoint_iterations));
   }
   JsonObject json;
   json.Add("variation_max_norms", norms)
       .Add("exp_residuals", result.exp_residuals)
       .Add("converged", result.all_solved)
       .Add("iterations", iterations)
-      .Raw("rungs", JsonArray(rungs))
+      .Add("rungs", rungs)
       .Add("epsilon", epsilon)
       .Add("frames", static_cast<int>(result.shapes.size()));
   return json;
@@ -250,8 +237,7 @@ JsonObject LThetaSplineJson(const LThetaSplineReport& report) {
   JsonObject json;
   json.Add("frames_solved", static_cast<int>(report.solved_frames.size()))
       .Add("lm_iterations", report.lm_iterations())
-      .Add("unconverged_frames",  // indices, printed as integers
-           std::vector<double>(unconverged.begin(), unconverged.end()))
+      .Add("unconverged_frames", unconverged)
       .Add("spline_seconds", report.spline_seconds)
       .Add("solve_seconds", report.solve_seconds);
   return json;
@@ -265,7 +251,7 @@ JsonObject& AddSplineInitJson(JsonObject& head,
         .Add("ltheta", LThetaSplineJson(initial.ltheta));
   }
   return head.Add("init_seconds", initial.seconds)
-      .Raw("init_segments",
+      .Add("init_segments",
            JsonArrayOf(initial.segments, [](const GeodesicSegment& g) {
              return JsonObject()
                  .Add("from", g.from)

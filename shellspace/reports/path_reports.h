@@ -33,31 +33,29 @@ int LmIterations(const ceres::Solver::Summary& summary);
 // E_K), "bending_share": bending / (membrane + bending) (0 for E_K = 0)}.
 // Frames with a degenerate triangle give InputError. Costs one energy
 // evaluation per step.
-std::string PathEnergySplitJson(const ShellSpace& space, const ShellPath& path);
+JsonObject PathEnergySplitJson(const ShellSpace& space, const ShellPath& path);
 
-// A JSON array of already serialised objects.
-std::string JsonArray(const std::vector<std::string>& objects);
-
-// The JSON array of object(item).str() over `items` (object: item ->
-// JsonObject), in order.
+// The objects object(item) over `items` (object: item -> JsonObject), in
+// order: a JSON array for JsonObject::Add.
 template <class T, class ToObject>
-std::string JsonArrayOf(const std::vector<T>& items, ToObject object) {
-  std::vector<std::string> objects;
-  for (const T& item : items) objects.push_back(object(item).str());
-  return JsonArray(objects);
+std::vector<JsonObject> JsonArrayOf(const std::vector<T>& items,
+                                    ToObject object) {
+  std::vector<JsonObject> objects;
+  for (const T& item : items) objects.push_back(object(item));
+  return objects;
 }
 
 // The stages of a geodesic solve, one object each: method
 // ("levenberg-marquardt" or "newton"), iterations, final_gradient_norm,
 // termination.
-std::vector<std::string> GeodesicStages(const GeodesicResult& result);
+std::vector<JsonObject> GeodesicStages(const GeodesicResult& result);
 
 // The EXP steps of a shot, one object each: method ("newton" or
 // "levenberg-marquardt": the solver that produced the shape), solved
 // (relative_residual <= kExpStepAcceptance), newton_steps, lm_iterations,
 // iterations (their sum), residual (max |F|), relative_residual (max |F| /
 // max |D_2 W|), termination.
-std::vector<std::string> ExpStepStages(const ShootResult& result);
+std::vector<JsonObject> ExpStepStages(const ShootResult& result);
 
 // "newton" or "levenberg-marquardt".
 const char* ExpMethodName(ExpStepResult::Method method);
@@ -91,10 +89,11 @@ JsonObject GeodesicJson(const GeodesicResult& result);
 JsonObject InitialPathJson(const InitialPathReport& init);
 JsonObject ProlongationJson(const ProlongationCheck& check);
 
-// The levels of a multiresolution solve as a JSON array (coarsest first; the
+// The levels of a multiresolution solve (a JSON array: coarsest first; the
 // last is the input mesh), one object each: vertices, faces, iterations,
 // path_energy, final_gradient_norm, converged, seconds.
-std::string MultiresolutionJson(const MultiresolutionResult& result);
+std::vector<JsonObject> MultiresolutionJson(
+    const MultiresolutionResult& result);
 
 // A shot (ShootWithReport): path_energy, step_energies, iterations (Newton
 // steps and LM iterations of every EXP step), max_exp_residual, converged

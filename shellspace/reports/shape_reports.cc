@@ -33,13 +33,12 @@ JsonObject EdgeAngleBendingJson(const EdgeAngleBending& bending) {
   return json;
 }
 
-std::string EnergySplitJson(double membrane, double bending) {
+JsonObject EnergySplitJson(double membrane, double bending) {
   const double total = membrane + bending;
   return JsonObject()
       .Add("membrane", membrane)
       .Add("bending", bending)
-      .Add("bending_share", total > 0 ? bending / total : 0.0)
-      .str();
+      .Add("bending_share", total > 0 ? bending / total : 0.0);
 }
 
 JsonObject MaterialJson(const ShellMaterial& material, const Mesh& reference,
@@ -68,10 +67,9 @@ JsonObject MeanJson(const ElasticMeanResult& result, int inputs,
       .Add("iterations", result.lm_iterations + result.newton_iterations)
       .Add("lm_iterations", result.lm_iterations)
       .Add("newton_iterations", result.newton_iterations)
-      .Raw("stages", JsonObject()
+      .Add("stages", JsonObject()
                          .Add("lm_iterations", result.lm_iterations)
-                         .Add("newton_steps", result.newton_iterations)
-                         .str())
+                         .Add("newton_steps", result.newton_iterations))
       .Add("newton_fell_back", result.newton_fell_back)
       .Add("initial_gradient_norm", result.initial_gradient_norm)
       .Add("final_gradient_norm", result.gradient_norm)
@@ -145,62 +143,56 @@ std::vector<std::pair<std::string, Positions>> AddProcrustesBaseline(
   return shapes;
 }
 
-std::string LeaveOneOutJson(const LeaveOneOutTable& table) {
-  std::string rows = "[";
-  for (size_t i = 0; i < table.rows.size(); ++i) {
-    const LeaveOneOutRow& row = table.rows[i];
-    rows += (i ? ", " : "") +
-            JsonObject()
-                .Add("modes", row.modes)
-                .Add("shell_vertex_error", row.shell_vertex_error)
-                .Add("shell_energy", row.shell_energy)
-                .Add("procrustes_vertex_error", row.procrustes_vertex_error)
-                .Add("procrustes_energy", row.procrustes_energy)
-                .Add("shell_failed", row.shell_failed)
-                .Add("procrustes_vertex_error_shell_folds",
-                     row.procrustes_vertex_error_shell_folds)
-                .Add("procrustes_energy_shell_folds",
-                     row.procrustes_energy_shell_folds)
-                .str();
+JsonObject LeaveOneOutJson(const LeaveOneOutTable& table) {
+  std::vector<JsonObject> rows;
+  for (const LeaveOneOutRow& row : table.rows) {
+    rows.push_back(
+        JsonObject()
+            .Add("modes", row.modes)
+            .Add("shell_vertex_error", row.shell_vertex_error)
+            .Add("shell_energy", row.shell_energy)
+            .Add("procrustes_vertex_error", row.procrustes_vertex_error)
+            .Add("procrustes_energy", row.procrustes_energy)
+            .Add("shell_failed", row.shell_failed)
+            .Add("procrustes_vertex_error_shell_folds",
+                 row.procrustes_vertex_error_shell_folds)
+            .Add("procrustes_energy_shell_folds",
+                 row.procrustes_energy_shell_folds));
   }
-  rows += "]";
-  std::string folds = "[";
-  for (size_t i = 0; i < table.folds.size(); ++i) {
-    const LeaveOneOutFold& f = table.folds[i];
-    std::vector<double> shot_steps, shot_drift;
-    std::vector<double> shot_ok;  // 1: passed the safeguard
+  std::vector<JsonObject> folds;
+  for (const LeaveOneOutFold& f : table.folds) {
+    std::vector<int> shot_steps;
+    std::vector<double> shot_drift;
+    std::vector<int> shot_ok;  // 1: passed the safeguard
     for (const ExpShotReport& r : f.shell_shots) {
       shot_steps.push_back(r.steps);
       shot_drift.push_back(r.energy_drift);
-      shot_ok.push_back(r.ok ? 1.0 : 0.0);
+      shot_ok.push_back(r.ok ? 1 : 0);
     }
-    folds += (i ? ", " : "") +
-             JsonObject()
-                 .Add("held_out", f.held_out)
-                 .Add("mean_energy", f.mean_energy)
-                 .Add("mean_iterations", f.mean_iterations)
-                 .Add("mean_newton_iterations", f.mean_newton_iterations)
-                 .Add("mean_converged", f.mean_converged)
-                 .Add("log_iterations", f.log_iterations)
-                 .Add("shell_vertex_error", f.shell_vertex_error)
-                 .Add("shell_energy", f.shell_energy)
-                 .Add("procrustes_vertex_error", f.procrustes_vertex_error)
-                 .Add("procrustes_energy", f.procrustes_energy)
-                 .Add("shell_exp_steps", shot_steps)
-                 .Add("shell_exp_energy_drift", shot_drift)
-                 .Add("shell_exp_ok", shot_ok)
-                 .Add("seconds", f.seconds)
-                 .str();
+    folds.push_back(
+        JsonObject()
+            .Add("held_out", f.held_out)
+            .Add("mean_energy", f.mean_energy)
+            .Add("mean_iterations", f.mean_iterations)
+            .Add("mean_newton_iterations", f.mean_newton_iterations)
+            .Add("mean_converged", f.mean_converged)
+            .Add("log_iterations", f.log_iterations)
+            .Add("shell_vertex_error", f.shell_vertex_error)
+            .Add("shell_energy", f.shell_energy)
+            .Add("procrustes_vertex_error", f.procrustes_vertex_error)
+            .Add("procrustes_energy", f.procrustes_energy)
+            .Add("shell_exp_steps", shot_steps)
+            .Add("shell_exp_energy_drift", shot_drift)
+            .Add("shell_exp_ok", shot_ok)
+            .Add("seconds", f.seconds));
   }
-  folds += "]";
   return JsonObject()
       .Add("energy_order", "W[truth, reconstruction]")
       .Add("vertex_error",
            "mean over vertices of |aligned reconstruction - truth|")
-      .Raw("rows", rows)
-      .Raw("folds", folds)
-      .Add("seconds", table.seconds)
-      .str();
+      .Add("rows", rows)
+      .Add("folds", folds)
+      .Add("seconds", table.seconds);
 }
 
 }  // namespace shellspace

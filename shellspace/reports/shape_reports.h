@@ -39,7 +39,7 @@ JsonObject EdgeAngleBendingJson(const EdgeAngleBending& bending);
 // {"membrane", "bending", "bending_share": bending / (membrane + bending),
 // 0 when both are 0}: the split of an energy whose bending part includes
 // eta.
-std::string EnergySplitJson(double membrane, double bending);
+JsonObject EnergySplitJson(double membrane, double bending);
 
 // The material of a run as resolved from its options: mu, lambda, eta,
 // relative_eta (eta / area of the reference), eta_from ("absolute" when eta
@@ -86,7 +86,7 @@ std::vector<std::pair<std::string, Positions>> AddProcrustesBaseline(
 // The leave-one-out table as a JSON object: energy_order, vertex_error (the
 // definitions), rows (per number of modes m), folds (per held-out input),
 // seconds.
-std::string LeaveOneOutJson(const LeaveOneOutTable& table);
+JsonObject LeaveOneOutJson(const LeaveOneOutTable& table);
 
 }  // namespace shellspace
 

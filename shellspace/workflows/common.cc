@@ -34,7 +34,7 @@ EnergySplit MeanEnergySplit(const ShellSpace& space, const Positions& mean,
   return split;
 }
 
-std::string EnergySplitJson(const EnergySplit& split) {
+JsonObject EnergySplitJson(const EnergySplit& split) {
   return shellspace::EnergySplitJson(split.membrane, split.bending);
 }
 

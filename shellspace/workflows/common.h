@@ -44,7 +44,7 @@ EnergySplit PathEnergySplit(const ShellSpace& space, const std::vector<Positions
 EnergySplit MeanEnergySplit(const ShellSpace& space, const Positions& mean,
                             const std::vector<Positions>& shapes);
 // {"membrane", "bending", "bending_share"} (reports' EnergySplitJson).
-std::string EnergySplitJson(const EnergySplit& split);
+JsonObject EnergySplitJson(const EnergySplit& split);
 
 // `settings` whose stop poll also records, in stopped(), whether it
 // returned true to a solve: a workflow's stop state is what its solves

@@ -100,9 +100,9 @@ GeodesicResult RunGeodesic(const GeodesicOptions& options) {
 
 JsonObject ToJson(const GeodesicResult& result) {
   JsonObject json = GeodesicJson(result.geodesic());
-  json.Raw("multires_levels", MultiresolutionJson(result.solve))
+  json.Add("multires_levels", MultiresolutionJson(result.solve))
       .Add("prolongation", ProlongationJson(result.solve.prolongation))
-      .Raw("energy_split", EnergySplitJson(result.energy_split));
+      .Add("energy_split", EnergySplitJson(result.energy_split));
   return json;
 }
 

@@ -65,7 +65,7 @@ MeanResult RunMean(const MeanOptions& options) {
 
 JsonObject ToJson(const MeanResult& result) {
   JsonObject json = MeanJson(result.mean, result.inputs, result.far_inputs);
-  json.Raw("energy_split", EnergySplitJson(result.energy_split));
+  json.Add("energy_split", EnergySplitJson(result.energy_split));
   return json;
 }
 

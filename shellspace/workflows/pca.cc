@@ -169,7 +169,7 @@ JsonObject ToJson(const PcaResult& result, const PcaOptions& options) {
                       &json);
   }
   if (result.leave_one_out) {
-    json.Raw("leave_one_out", LeaveOneOutJson(*result.leave_one_out));
+    json.Add("leave_one_out", LeaveOneOutJson(*result.leave_one_out));
   }
   return json;
 }

@@ -50,7 +50,7 @@ RegressResult RunRegress(const RegressOptions& options) {
 JsonObject ToJson(const RegressResult& result, double seconds) {
   JsonObject head;
   head.Add("sigma", result.sigma)
-      .Raw("energy_split", EnergySplitJson(result.energy_split));
+      .Add("energy_split", EnergySplitJson(result.energy_split));
   return SplineJson(std::move(head), result.spline, seconds);
 }
 

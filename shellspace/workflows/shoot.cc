@@ -42,7 +42,7 @@ ShootResult RunShoot(const ShootOptions& options) {
 
 JsonObject ToJson(const ShootResult& result) {
   JsonObject json = ShootJson(result.shot);
-  json.Raw("energy_split", EnergySplitJson(result.energy_split));
+  json.Add("energy_split", EnergySplitJson(result.energy_split));
   return json;
 }
 

@@ -114,7 +114,7 @@ JsonObject ToJson(const SplineResult& result, double seconds) {
   JsonObject head;
   head.Add("method", result.method);
   AddSplineInitJson(head, result.initial);
-  head.Raw("energy_split", EnergySplitJson(result.energy_split));
+  head.Add("energy_split", EnergySplitJson(result.energy_split));
   if (!result.energy_evaluated) {
     return head.Add("iterations", 0)
         .Add("converged", result.spline.converged)

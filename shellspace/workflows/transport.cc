@@ -51,7 +51,7 @@ TransportResult RunTransport(const TransportOptions& options) {
 
 JsonObject ToJson(const TransportResult& result) {
   JsonObject json = TransportJson(result.transport, result.epsilon);
-  json.Raw("energy_split", EnergySplitJson(result.energy_split));
+  json.Add("energy_split", EnergySplitJson(result.energy_split));
   return json;
 }
 

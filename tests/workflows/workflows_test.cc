@@ -102,7 +102,9 @@ TEST(GeodesicWorkflowTest, EqualsTheCliDigitsAndItsSplitSumsToTheEnergy) {
   EXPECT_GT(result.energy_split.bending, 0);
   EXPECT_NEAR(result.energy_split.total(), result.path_energy(),
               1e-12 * result.path_energy());
-  // The summary is made from the result: its E_K is the result's.
+  // The summary is made from the result: its E_K is the result's. It is a
+  // tree of values to its leaves (no raw text: Python converts it directly).
+  EXPECT_FALSE(workflows::ToJson(result).value().ContainsRaw());
   const std::string json = workflows::ToJson(result).str();
   EXPECT_NE(json.find("\"path_energy\": " + JsonObject::Number(
                           result.path_energy())),
@@ -220,6 +222,7 @@ TEST(PcaWorkflowTest, MeanAndFirstModeShapeEqualTheCli) {
   EXPECT_NEAR(result.model->eigenvalues(0), kCliFirstEigenvalue,
               1e-5 * kCliFirstEigenvalue);
   EXPECT_TRUE(result.failed_shapes.empty());
+  EXPECT_FALSE(workflows::ToJson(result, options).value().ContainsRaw());
   const std::string json = workflows::ToJson(result, options).str();
   EXPECT_NE(json.find("\"modes\": 1"), std::string::npos) << json;
 }
@@ -305,6 +308,7 @@ TEST(MeanWorkflowTest, SplitSumsToTheMeanEnergy) {
               1e-12 * result.mean.energy);
   EXPECT_GT(std::abs(reversed - result.mean.energy), 1e-6 * reversed);
   EXPECT_GT(result.energy_split.bending, 0);
+  EXPECT_FALSE(workflows::ToJson(result).value().ContainsRaw());
 }
 
 // A shot from the geodesic's first two shapes: K + 1 shapes starting with
@@ -332,6 +336,7 @@ TEST(ShootWorkflowTest, ShotFromAGeodesicsFirstStep) {
   }
   EXPECT_NEAR(result.energy_split.total(), result.shot.path_energy,
               1e-12 * result.shot.path_energy);
+  EXPECT_FALSE(workflows::ToJson(result).value().ContainsRaw());
   options.steps = 0;
   EXPECT_THROW(workflows::RunShoot(options), InputError);
 }
@@ -460,6 +465,7 @@ TEST(SplineWorkflowTest, EqualsTheCliDigitsForBothMethods) {
         << c.method;
     EXPECT_NEAR(result.energy_split.membrane, c.membrane, 1e-12 * c.membrane)
         << c.method;
+    EXPECT_FALSE(workflows::ToJson(result, 0).value().ContainsRaw());
   }
 }
 
@@ -524,7 +530,7 @@ TEST_F(WorkflowCliTest, GeodesicPrintsTheWorkflowsEnergy) {
             std::string::npos)
       << out;
   EXPECT_NE(out.find("\"energy_split\": " +
-                     workflows::EnergySplitJson(result.energy_split)),
+                     workflows::EnergySplitJson(result.energy_split).str()),
             std::string::npos)
       << out;
 }

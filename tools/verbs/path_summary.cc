@@ -99,7 +99,7 @@ void WritePathOutputs(RunDirectory* out, const Faces& faces,
 std::string CommitPathRun(RunDirectory* out, JsonObject summary,
                           const ShellSpace& space, const ShellPath& path,
                           double seconds) {
-  summary.Raw("energy_split", PathEnergySplitJson(space, path));
+  summary.Add("energy_split", PathEnergySplitJson(space, path));
   return CommitPathRun(out, std::move(summary), seconds);
 }
 

@@ -100,8 +100,8 @@ int RunDemo() {
   const ShootTotals totals = TotalsOf(shot);
   const int shot_iterations = totals.iterations;
   const bool shot_converged = totals.converged;
-  std::vector<std::string> stages = GeodesicStages(geodesic);
-  for (const std::string& stage : ExpStepStages(shot)) stages.push_back(stage);
+  std::vector<JsonObject> stages = GeodesicStages(geodesic);
+  for (const JsonObject& stage : ExpStepStages(shot)) stages.push_back(stage);
   const std::vector<double> extrapolated(
       shot.step_energies.empty() ? shot.step_energies.end()
                                  : shot.step_energies.begin() + 1,
@@ -139,7 +139,7 @@ int RunDemo() {
       .Add("extrapolation_converged", shot_converged)
       .Add("step_energy_ratio", geodesic.step_energy_ratio)
       .Add("uneven_steps", geodesic.uneven_steps)
-      .Raw("stages", JsonArray(stages))
+      .Add("stages", stages)
       .Add("newton_steps", geodesic.newton.steps)
       .Add("factorizations", geodesic.newton.factorizations)
       .Add("cg_iterations", geodesic.newton.cg_iterations)

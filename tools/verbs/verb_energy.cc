@@ -111,15 +111,13 @@ int RunEnergy() {
     JsonObject json = EnergyJson(e, space.material);
     json.Add("bending_model", requested).Raw("material", RunMaterialJson());
     if (both) {
-      json.Raw("bending_models",
-               JsonObject()
-                   .Add("discrete-shells", e.bending)
-                   .Add("shape-operator", so.bending)
-                   .Add(kEdgeAngles, variant.energy)
-                   .str());
+      json.Add("bending_models", JsonObject()
+                                     .Add("discrete-shells", e.bending)
+                                     .Add("shape-operator", so.bending)
+                                     .Add(kEdgeAngles, variant.energy));
     }
     if (both || edge_angles) {
-      json.Raw("edge_angles", EdgeAngleBendingJson(variant).str());
+      json.Add("edge_angles", EdgeAngleBendingJson(variant));
     }
     std::cout << json.str() << "\n";
   } else if (both) {
