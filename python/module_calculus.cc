@@ -270,9 +270,9 @@ void RegisterCalculus(py::module_& m) {
       SHELLSPACE_SOLVER_ARGS,
       WithParameters(
           "geodesic",
-          "Discrete geodesic from start to end in `steps` steps: returns "
-          "(path, "
-          "summary). mask: vertex indices or a mask file held at their linear "
+          "Discrete geodesic from start to end in `steps` steps: returns a "
+          "GeodesicResult (unpacks as (path, summary)). mask: vertex indices "
+          "or a mask file held at their linear "
           "positions. lm: who runs the LM stages, 'auto' | 'ceres' | 'engine' "
           "(as the CLI's --lm). output: also write DIR/shape_000.ply ...; png: "
           "a "
@@ -284,28 +284,28 @@ void RegisterCalculus(py::module_& m) {
         WithParameters(
             "log",
             "LOG_K(start -> end) = K (s_1 - s_0) of the discrete geodesic: "
-            "returns "
-            "(log #V x 3, summary). output: write start + log (as the CLI).")
+            "returns a LogResult (unpacks as (log #V x 3, summary)). output: "
+            "write start + log (as the CLI).")
             .c_str());
-  m.def(
-      "shoot", WithMaterialAndSolverArgs(&ShootPy), py::arg("first"),
-      py::arg("second"), py::arg("F"), py::arg("steps") = 8,
-      py::arg("backward") = false, py::arg("mask") = py::none(),
-      SHELLSPACE_FRAME_OUTPUT_ARGS, SHELLSPACE_MATERIAL_ARGS,
-      SHELLSPACE_SOLVER_ARGS,
-      WithParameters(
-          "shoot",
-          "Geodesic shooting (EXP steps) from (first, second): returns (path, "
-          "summary).")
-          .c_str());
+  m.def("shoot", WithMaterialAndSolverArgs(&ShootPy), py::arg("first"),
+        py::arg("second"), py::arg("F"), py::arg("steps") = 8,
+        py::arg("backward") = false, py::arg("mask") = py::none(),
+        SHELLSPACE_FRAME_OUTPUT_ARGS, SHELLSPACE_MATERIAL_ARGS,
+        SHELLSPACE_SOLVER_ARGS,
+        WithParameters(
+            "shoot",
+            "Geodesic shooting (EXP steps) from (first, second): returns a "
+            "ShootResult (unpacks as (path, summary)).")
+            .c_str());
   m.def("transport", WithMaterialAndSolverArgs(&TransportPy), py::arg("path"),
         py::arg("variation"), py::arg("F"), py::arg("epsilon") = 1.0,
         py::arg("mask") = py::none(), SHELLSPACE_FRAME_OUTPUT_ARGS,
         SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
-        WithParameters("transport",
-                       "Schild's-ladder transport of variation - path[0] along "
-                       "path: returns "
-                       "(shapes s_k + epsilon xi_k, summary).")
+        WithParameters(
+            "transport",
+            "Schild's-ladder transport of variation - path[0] along "
+            "path: returns a TransportResult (unpacks as (shapes s_k + "
+            "epsilon xi_k, summary)).")
             .c_str());
 }
 

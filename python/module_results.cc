@@ -165,10 +165,8 @@ py::class_<BoundResult<Run>> BindResult(py::module_& m, const char* name,
   return c;
 }
 
-}  // namespace
-
-void RegisterResults(py::module_& m) {
-  RegisterParts(m);
+// The results of geodesic, log, shoot and transport.
+void BindCalculusResults(py::module_& m) {
   using Geodesic = BoundResult<workflows::GeodesicResult>;
   BindResult<workflows::GeodesicResult>(
       m, "GeodesicResult",
@@ -256,7 +254,10 @@ void RegisterResults(py::module_& m) {
                              })
       .def_property_readonly("warnings",
                              [](const Transport& r) { return r.run.warnings; });
+}
 
+// The results of spline and regress.
+void BindSplineResults(py::module_& m) {
   using Spline = BoundResult<workflows::SplineResult>;
   BindResult<workflows::SplineResult>(
       m, "SplineResult",
@@ -300,7 +301,10 @@ void RegisterResults(py::module_& m) {
       .def_property_readonly("iterations", [](const Regress& r) {
         return r.run.spline.iterations;
       });
+}
 
+// The results of mean and pca.
+void BindStatisticsResults(py::module_& m) {
   using Mean = BoundResult<workflows::MeanResult>;
   BindResult<workflows::MeanResult>(
       m, "MeanResult",
@@ -343,6 +347,15 @@ void RegisterResults(py::module_& m) {
                              [](const Pca& r) { return r.run.failed_shapes; })
       .def_property_readonly("far_inputs",
                              [](const Pca& r) { return r.run.far_inputs; });
+}
+
+}  // namespace
+
+void RegisterResults(py::module_& m) {
+  RegisterParts(m);
+  BindCalculusResults(m);
+  BindSplineResults(m);
+  BindStatisticsResults(m);
 }
 
 }  // namespace pymodule

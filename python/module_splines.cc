@@ -158,19 +158,17 @@ void RegisterSplines(py::module_& m) {
           "spline",
           "Riemannian spline through keyframes at path indices `at`, from the "
           "initial path `init` (ltheta or geodesic, as the CLI's --init): "
-          "returns "
-          "(path, summary).")
+          "returns a SplineResult (unpacks as (path, summary)).")
           .c_str());
-  m.def(
-      "regress", WithMaterialAndSolverArgs(&RegressPy), py::arg("inputs"),
-      py::arg("at"), py::arg("F"), py::arg("steps") = 8, py::arg("sigma") = 1.0,
-      SHELLSPACE_FRAME_OUTPUT_ARGS, SHELLSPACE_MATERIAL_ARGS,
-      SHELLSPACE_SOLVER_ARGS,
-      WithParameters(
-          "regress",
-          "Shape regression (data term + sigma spline energy): returns (path, "
-          "summary).")
-          .c_str());
+  m.def("regress", WithMaterialAndSolverArgs(&RegressPy), py::arg("inputs"),
+        py::arg("at"), py::arg("F"), py::arg("steps") = 8,
+        py::arg("sigma") = 1.0, SHELLSPACE_FRAME_OUTPUT_ARGS,
+        SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
+        WithParameters(
+            "regress",
+            "Shape regression (data term + sigma spline energy): returns a "
+            "RegressResult (unpacks as (path, summary)).")
+            .c_str());
 }
 
 }  // namespace pymodule

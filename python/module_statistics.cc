@@ -188,16 +188,17 @@ void RegisterStatistics(py::module_& m) {
         WithParameters(
             "pca",
             "Shell PCA at the elastic mean (and the Procrustes baseline, "
-            "leave-one-out): returns ({'mean': ..., 'mode_1_minus': ..., ...}, "
-            "summary). output: the CLI's directory (PLY files and pca.json).")
+            "leave-one-out): returns a PcaResult (unpacks as ({'mean': ..., "
+            "'mode_1_minus': ..., ...}, summary)). output: the CLI's directory "
+            "(PLY files and pca.json).")
             .c_str());
   m.def("mean", WithMaterialAndSolverArgs(&MeanPy), py::arg("inputs"),
         py::arg("F"), py::arg("report") = false, py::arg("output") = py::none(),
         SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
         WithParameters(
             "mean",
-            "Elastic mean argmin_s sum_i W[inputs_i, s]: returns (mean #V x 3, "
-            "summary).")
+            "Elastic mean argmin_s sum_i W[inputs_i, s]: returns a MeanResult "
+            "(unpacks as (mean #V x 3, summary)).")
             .c_str());
 }
 

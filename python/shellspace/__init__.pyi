@@ -521,7 +521,7 @@ def geodesic(
     time_limit: Optional[float] = ...,
     allow_unconverged: bool = ...,
 ) -> GeodesicResult:
-    """Discrete geodesic from start to end in `steps` steps: returns (path, summary). mask: vertex indices or a mask file held at their linear positions. lm: who runs the LM stages, 'auto' | 'ceres' | 'engine' (as the CLI's --lm). output: also write DIR/shape_000.ply ...; png: a film strip.
+    """Discrete geodesic from start to end in `steps` steps: returns a GeodesicResult (unpacks as (path, summary)). mask: vertex indices or a mask file held at their linear positions. lm: who runs the LM stages, 'auto' | 'ceres' | 'engine' (as the CLI's --lm). output: also write DIR/shape_000.ply ...; png: a film strip.
 
     Parameters:
         start: #V x 3 positions of the first shape of the path
@@ -574,7 +574,7 @@ def log(
     time_limit: Optional[float] = ...,
     allow_unconverged: bool = ...,
 ) -> LogResult:
-    """LOG_K(start -> end) = K (s_1 - s_0) of the discrete geodesic: returns (log #V x 3, summary). output: write start + log (as the CLI).
+    """LOG_K(start -> end) = K (s_1 - s_0) of the discrete geodesic: returns a LogResult (unpacks as (log #V x 3, summary)). output: write start + log (as the CLI).
 
     Parameters:
         start: #V x 3 positions of the first shape of the path
@@ -618,7 +618,7 @@ def mean(
     time_limit: Optional[float] = ...,
     allow_unconverged: bool = ...,
 ) -> MeanResult:
-    """Elastic mean argmin_s sum_i W[inputs_i, s]: returns (mean #V x 3, summary).
+    """Elastic mean argmin_s sum_i W[inputs_i, s]: returns a MeanResult (unpacks as (mean #V x 3, summary)).
 
     Parameters:
         inputs: the shapes: K x #V x 3, or a list of #V x 3 arrays
@@ -664,7 +664,7 @@ def pca(
     time_limit: Optional[float] = ...,
     allow_unconverged: bool = ...,
 ) -> PcaResult:
-    """Shell PCA at the elastic mean (and the Procrustes baseline, leave-one-out): returns ({'mean': ..., 'mode_1_minus': ..., ...}, summary). output: the CLI's directory (PLY files and pca.json).
+    """Shell PCA at the elastic mean (and the Procrustes baseline, leave-one-out): returns a PcaResult (unpacks as ({'mean': ..., 'mode_1_minus': ..., ...}, summary)). output: the CLI's directory (PLY files and pca.json).
 
     Parameters:
         inputs: the shapes: K x #V x 3, or a list of #V x 3 arrays
@@ -736,7 +736,7 @@ def regress(
     time_limit: Optional[float] = ...,
     allow_unconverged: bool = ...,
 ) -> RegressResult:
-    """Shape regression (data term + sigma spline energy): returns (path, summary).
+    """Shape regression (data term + sigma spline energy): returns a RegressResult (unpacks as (path, summary)).
 
     Parameters:
         inputs: the shapes: K x #V x 3, or a list of #V x 3 arrays
@@ -783,7 +783,7 @@ def shoot(
     time_limit: Optional[float] = ...,
     allow_unconverged: bool = ...,
 ) -> ShootResult:
-    """Geodesic shooting (EXP steps) from (first, second): returns (path, summary).
+    """Geodesic shooting (EXP steps) from (first, second): returns a ShootResult (unpacks as (path, summary)).
 
     Parameters:
         first: #V x 3 positions of shape 0
@@ -852,7 +852,7 @@ def spline(
     time_limit: Optional[float] = ...,
     allow_unconverged: bool = ...,
 ) -> SplineResult:
-    """Riemannian spline through keyframes at path indices `at`, from the initial path `init` (ltheta or geodesic, as the CLI's --init): returns (path, summary).
+    """Riemannian spline through keyframes at path indices `at`, from the initial path `init` (ltheta or geodesic, as the CLI's --init): returns a SplineResult (unpacks as (path, summary)).
 
     Parameters:
         keyframes: the keyframes: K x #V x 3, or a list of #V x 3 arrays
@@ -900,7 +900,7 @@ def transport(
     time_limit: Optional[float] = ...,
     allow_unconverged: bool = ...,
 ) -> TransportResult:
-    """Schild's-ladder transport of variation - path[0] along path: returns (shapes s_k + epsilon xi_k, summary).
+    """Schild's-ladder transport of variation - path[0] along path: returns a TransportResult (unpacks as (shapes s_k + epsilon xi_k, summary)).
 
     Parameters:
         path: the path: K x #V x 3, or a list of #V x 3 arrays
