@@ -179,6 +179,33 @@ def test_a_resumed_run_computes_only_the_rest(serial, tmp_path):
     assert sorted(os.listdir(tmp_path)) == ["d.cache.npz"]  # no temporaries
 
 
+def test_ctrl_c_keeps_the_finished_pairs(serial, tmp_path):
+    # A real SIGINT after the third pair, with no batch written yet: the
+    # in-process matrix raises KeyboardInterrupt, its cache holds the 3
+    # finished pairs, and a resumed run computes only the others, to the
+    # same digits. (Python's own handler is set for the test: a process
+    # started in the background by a non-interactive shell inherits SIGINT
+    # ignored, and then Ctrl-C does nothing anywhere.)
+    cache = str(tmp_path / "d.cache.npz")
+
+    def interrupt_after_3(done, total, failed):
+        if done == 3:
+            os.kill(os.getpid(), signal.SIGINT)
+
+    previous = signal.signal(signal.SIGINT, signal.default_int_handler)
+    try:
+        with pytest.raises(KeyboardInterrupt):
+            sc.distance_matrix(SHAPES, F, steps=STEPS, cache=cache,
+                               batch_size=100, progress=interrupt_after_3)
+    finally:
+        signal.signal(signal.SIGINT, previous)
+    with np.load(cache) as data:
+        assert (data["status"][np.triu_indices(N, 1)] == sc.OK).sum() == 3
+    resumed = sc.distance_matrix(SHAPES, F, steps=STEPS, cache=cache)
+    assert resumed.computed == PAIRS - 3
+    assert np.array_equal(resumed.distances, serial.distances)
+
+
 @pytest.mark.parametrize("change", ["shapes", "steps", "material"])
 def test_a_cache_of_other_data_is_refused(serial, tmp_path, change):
     cache = str(tmp_path / "d.npz")
