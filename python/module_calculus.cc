@@ -96,12 +96,11 @@ py::object GeodesicPy(const py::object& start_v, const py::object& end_v,
   if (!result.status.failed()) {
     WritePath(output, png, gltf, result.start.faces, result.path());
   }
-  const py::object summary = GeodesicSummary(
-      workflows::ToJson(result), result, clock, output, solver);
-  std::vector<std::string> failures = FailuresOf(result.status);
+  const py::object summary =
+      GeodesicSummary(workflows::ToJson(result), result, clock, output, solver);
   py::object value = FromPath(result.path());
-  return solver.Finish(MakeResult(std::move(result), std::move(value), summary),
-                       summary, "geodesic", std::move(failures));
+  return FinishResult(solver, "geodesic", std::move(result), std::move(value),
+                      summary);
 }
 
 py::object LogPy(const py::object& start_v, const py::object& end_v,
@@ -128,10 +127,9 @@ py::object LogPy(const py::object& start_v, const py::object& end_v,
   }
   const py::object summary = GeodesicSummary(workflows::ToJson(result),
                                              geodesic, clock, output, solver);
-  std::vector<std::string> failures = FailuresOf(geodesic.status);
   py::object value = FromPositions(result.log);
-  return solver.Finish(MakeResult(std::move(result), std::move(value), summary),
-                       summary, "log", std::move(failures));
+  return FinishResult(solver, "log", std::move(result), std::move(value),
+                      summary);
 }
 
 // Keywords -> options -> the workflow -> files and (path, summary).
@@ -170,10 +168,9 @@ py::object ShootPy(const py::object& first_v, const py::object& second_v,
       .Add("seconds", Seconds(clock));
   AddStopFields(json, *solver.control);
   const py::object summary = ToDict(AddOutput(json, output));
-  std::vector<std::string> failures = FailuresOf(result.status);
   py::object value = FromPath(result.path());
-  return solver.Finish(MakeResult(std::move(result), std::move(value), summary),
-                       summary, "shoot", std::move(failures));
+  return FinishResult(solver, "shoot", std::move(result), std::move(value),
+                      summary);
 }
 
 // Keywords -> options -> the workflow -> files and (shapes, summary).
@@ -216,10 +213,9 @@ py::object TransportPy(const py::object& path_object,
       .Add("seconds", Seconds(clock));
   AddStopFields(json, *solver.control);
   const py::object summary = ToDict(AddOutput(json, output));
-  std::vector<std::string> failures = FailuresOf(result.status);
   py::object value = FromPath(result.shapes());
-  return solver.Finish(MakeResult(std::move(result), std::move(value), summary),
-                       summary, "transport", std::move(failures));
+  return FinishResult(solver, "transport", std::move(result), std::move(value),
+                      summary);
 }
 
 // `compare`: a and b each one #V x 3 array (a shell) or a sequence / #frames

@@ -96,15 +96,7 @@ void RegisterParts(py::module_& m) {
       });
 }
 
-// The status and material of a workflow's result (the log's are its
-// geodesic's).
-template <class Run>
-const SolveStatus& StatusOfRun(const Run& run) {
-  return run.status;
-}
-const SolveStatus& StatusOfRun(const workflows::LogResult& run) {
-  return run.geodesic.status;
-}
+// The material of a workflow's result (the log's is its geodesic's).
 template <class Run>
 const MaterialChoice& MaterialOfRun(const Run& run) {
   return run.material;

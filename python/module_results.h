@@ -16,8 +16,11 @@
 
 #include <pybind11/pybind11.h>
 
+#include <string>
 #include <utility>
+#include <vector>
 
+#include "python/module_common.h"
 #include "shellspace/workflows/geodesic.h"
 #include "shellspace/workflows/mean.h"
 #include "shellspace/workflows/pca.h"
@@ -46,6 +49,27 @@ py::object MakeResult(Run run, py::object value, py::object summary) {
   return py::cast(BoundResult<Run>{std::move(run), std::move(value),
                                    py::dict(std::move(summary))},
                   py::return_value_policy::move);
+}
+
+// The status of a workflow's result (the log's is its geodesic's).
+template <class Run>
+const workflows::SolveStatus& StatusOfRun(const Run& run) {
+  return run.status;
+}
+inline const workflows::SolveStatus& StatusOfRun(
+    const workflows::LogResult& run) {
+  return run.geodesic.status;
+}
+
+// The end of a workflow function: the result object of (value, summary)
+// returned, or raised by solver.Finish (NotConvergedError with it attached)
+// for the failures of its status, under `verb`.
+template <class Run>
+py::object FinishResult(const SolverOptions& solver, const char* verb, Run run,
+                        py::object value, const py::object& summary) {
+  std::vector<std::string> failures = FailuresOf(StatusOfRun(run));
+  return solver.Finish(MakeResult(std::move(run), std::move(value), summary),
+                       summary, verb, std::move(failures));
 }
 
 // Registers SolveStatus, EnergySplit, Material and the eight result

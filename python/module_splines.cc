@@ -98,10 +98,9 @@ py::object SplinePy(const py::object& keyframes_object,
   json.Add("material", MaterialRecord(result.material, set.first.mesh));
   AddStopFields(json, *solver.control);
   const py::object summary = ToDict(AddOutput(json, output));
-  std::vector<std::string> failures = FailuresOf(result.status);
   py::object value = FromPath(result.path());
-  return solver.Finish(MakeResult(std::move(result), std::move(value), summary),
-                       summary, "spline", std::move(failures));
+  return FinishResult(solver, "spline", std::move(result), std::move(value),
+                      summary);
 }
 
 // Keywords -> options -> the workflow -> files and (path, summary).
@@ -139,10 +138,9 @@ py::object RegressPy(const py::object& inputs_object,
   json.Add("material", MaterialRecord(result.material, set.first.mesh));
   AddStopFields(json, *solver.control);
   const py::object summary = ToDict(AddOutput(json, output));
-  std::vector<std::string> failures = FailuresOf(result.status);
   py::object value = FromPath(result.path());
-  return solver.Finish(MakeResult(std::move(result), std::move(value), summary),
-                       summary, "regress", std::move(failures));
+  return FinishResult(solver, "regress", std::move(result), std::move(value),
+                      summary);
 }
 
 }  // namespace

@@ -64,10 +64,9 @@ py::object MeanPy(const py::object& inputs_object, const py::object& F,
       .Add("seconds", Seconds(clock));
   AddStopFields(json, *solver.control);
   const py::object summary = ToDict(AddOutput(json, output));
-  std::vector<std::string> failures = FailuresOf(result.status);
   py::object value = FromPositions(result.mean.mean);
-  return solver.Finish(MakeResult(std::move(result), std::move(value), summary),
-                       summary, "mean", std::move(failures));
+  return FinishResult(solver, "mean", std::move(result), std::move(value),
+                      summary);
 }
 
 // The CLI's files of a pca run, each if given: `output` (the PLY set and
@@ -169,10 +168,9 @@ py::object PcaPy(const py::object& inputs_object, const py::object& F,
     out[py::str(name)] = FromPositions(positions);
   }
   const py::object summary = ToDict(json);
-  std::vector<std::string> failures = FailuresOf(result.status);
   py::object value = out;
-  return solver.Finish(MakeResult(std::move(result), std::move(value), summary),
-                       summary, "pca", std::move(failures));
+  return FinishResult(solver, "pca", std::move(result), std::move(value),
+                      summary);
 }
 
 }  // namespace
