@@ -56,19 +56,6 @@ workflows::GeodesicOptions GeodesicOptionsOf(
   return options;
 }
 
-// The keys every geodesic summary ends with: material, seconds, the stop
-// fields, output.
-py::object GeodesicSummary(JsonObject json,
-                           const workflows::GeodesicResult& result,
-                           Clock::time_point clock,
-                           const std::optional<std::string>& output,
-                           const SolverOptions& solver) {
-  json.Add("material", MaterialRecord(result.material, result.start))
-      .Add("seconds", Seconds(clock));
-  AddStopFields(json, *solver.control);
-  return ToDict(AddOutput(json, output));
-}
-
 // Keywords -> options -> the workflow -> files and (path, summary).
 py::object GeodesicPy(const py::object& start_v, const py::object& end_v,
                       const py::object& F, int steps, const py::object& mask,
@@ -97,7 +84,8 @@ py::object GeodesicPy(const py::object& start_v, const py::object& end_v,
     WritePath(output, png, gltf, result.start.faces, result.path());
   }
   const py::object summary =
-      GeodesicSummary(workflows::ToJson(result), result, clock, output, solver);
+      WorkflowSummary(workflows::ToJson(result), result.material, result.start,
+                      Seconds(clock), solver, output);
   py::object value = FromPath(result.path());
   return FinishResult(solver, "geodesic", std::move(result), std::move(value),
                       summary);
@@ -125,8 +113,9 @@ py::object LogPy(const py::object& start_v, const py::object& end_v,
                    geodesic.start.faces},
               *output);
   }
-  const py::object summary = GeodesicSummary(workflows::ToJson(result),
-                                             geodesic, clock, output, solver);
+  const py::object summary =
+      WorkflowSummary(workflows::ToJson(result), geodesic.material,
+                      geodesic.start, Seconds(clock), solver, output);
   py::object value = FromPositions(result.log);
   return FinishResult(solver, "log", std::move(result), std::move(value),
                       summary);
@@ -163,11 +152,9 @@ py::object ShootPy(const py::object& first_v, const py::object& second_v,
   }
   // An EXP step without a root is the CLI's unsolved step (exit 4).
   WritePath(output, png, gltf, result.first.faces, result.path());
-  JsonObject json = workflows::ToJson(result);
-  json.Add("material", MaterialRecord(result.material, result.first))
-      .Add("seconds", Seconds(clock));
-  AddStopFields(json, *solver.control);
-  const py::object summary = ToDict(AddOutput(json, output));
+  const py::object summary =
+      WorkflowSummary(workflows::ToJson(result), result.material, result.first,
+                      Seconds(clock), solver, output);
   py::object value = FromPath(result.path());
   return FinishResult(solver, "shoot", std::move(result), std::move(value),
                       summary);
@@ -208,11 +195,9 @@ py::object TransportPy(const py::object& path_object,
     result = workflows::RunTransport(options);
   }
   WritePath(output, png, gltf, result.first.faces, result.shapes());
-  JsonObject json = workflows::ToJson(result);
-  json.Add("material", MaterialRecord(result.material, result.first))
-      .Add("seconds", Seconds(clock));
-  AddStopFields(json, *solver.control);
-  const py::object summary = ToDict(AddOutput(json, output));
+  const py::object summary =
+      WorkflowSummary(workflows::ToJson(result), result.material, result.first,
+                      Seconds(clock), solver, output);
   py::object value = FromPath(result.shapes());
   return FinishResult(solver, "transport", std::move(result), std::move(value),
                       summary);

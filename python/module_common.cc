@@ -214,6 +214,17 @@ JsonObject& AddOutput(JsonObject& json,
   return json;
 }
 
+py::object WorkflowSummary(JsonObject json,
+                           const workflows::MaterialChoice& material,
+                           const Mesh& reference, std::optional<double> seconds,
+                           const SolverOptions& solver,
+                           const std::optional<std::string>& output) {
+  json.Add("material", MaterialRecord(material, reference));
+  if (seconds) json.Add("seconds", *seconds);
+  AddStopFields(json, *solver.control);
+  return ToDict(AddOutput(json, output));
+}
+
 ShapeSet MakeShapeSet(const py::object& list, const py::object& F,
                       const std::string& name) {
   const std::vector<Positions> shapes = ShapeListArgument(list, name);

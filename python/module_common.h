@@ -181,6 +181,16 @@ void WritePath(const std::optional<std::string>& output,
 JsonObject& AddOutput(JsonObject& json,
                       const std::optional<std::string>& output);
 
+// A workflow's summary dict: its JSON, then the keys every front-end
+// summary ends with: material (as resolved for `reference`), seconds (when
+// given: the workflows that do not print it themselves), the stop fields,
+// output.
+py::object WorkflowSummary(JsonObject json,
+                           const workflows::MaterialChoice& material,
+                           const Mesh& reference, std::optional<double> seconds,
+                           const SolverOptions& solver,
+                           const std::optional<std::string>& output);
+
 // The frames of a path to draw (write_gltf, write_film_strip) and their
 // faces: every frame with the first one's vertex count.
 struct Frames {

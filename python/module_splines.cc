@@ -94,10 +94,9 @@ py::object SplinePy(const py::object& keyframes_object,
     result = workflows::RunSpline(options);
   }
   WritePath(output, png, gltf, set.first.mesh.faces, result.path());
-  JsonObject json = workflows::ToJson(result, Seconds(clock));
-  json.Add("material", MaterialRecord(result.material, set.first.mesh));
-  AddStopFields(json, *solver.control);
-  const py::object summary = ToDict(AddOutput(json, output));
+  const py::object summary = WorkflowSummary(
+      workflows::ToJson(result, Seconds(clock)), result.material,
+      set.first.mesh, std::nullopt, solver, output);
   py::object value = FromPath(result.path());
   return FinishResult(solver, "spline", std::move(result), std::move(value),
                       summary);
@@ -134,10 +133,9 @@ py::object RegressPy(const py::object& inputs_object,
     result = workflows::RunRegress(options);
   }
   WritePath(output, png, gltf, set.first.mesh.faces, result.path());
-  JsonObject json = workflows::ToJson(result, Seconds(clock));
-  json.Add("material", MaterialRecord(result.material, set.first.mesh));
-  AddStopFields(json, *solver.control);
-  const py::object summary = ToDict(AddOutput(json, output));
+  const py::object summary = WorkflowSummary(
+      workflows::ToJson(result, Seconds(clock)), result.material,
+      set.first.mesh, std::nullopt, solver, output);
   py::object value = FromPath(result.path());
   return FinishResult(solver, "regress", std::move(result), std::move(value),
                       summary);

@@ -59,11 +59,9 @@ py::object MeanPy(const py::object& inputs_object, const py::object& F,
   if (output && !result.status.failed()) {
     WriteMesh(Mesh{result.mean.mean, set.first.mesh.faces}, *output);
   }
-  JsonObject json = workflows::ToJson(result);
-  json.Add("material", MaterialRecord(result.material, set.first.mesh))
-      .Add("seconds", Seconds(clock));
-  AddStopFields(json, *solver.control);
-  const py::object summary = ToDict(AddOutput(json, output));
+  const py::object summary =
+      WorkflowSummary(workflows::ToJson(result), result.material,
+                      set.first.mesh, Seconds(clock), solver, output);
   py::object value = FromPositions(result.mean.mean);
   return FinishResult(solver, "mean", std::move(result), std::move(value),
                       summary);
