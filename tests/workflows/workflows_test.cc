@@ -75,6 +75,18 @@ workflows::PcaOptions FourSheets() {
   return options;
 }
 
+// The mean of the same four sheets, material and settings.
+workflows::MeanOptions MeanOfFourSheets() {
+  const workflows::PcaOptions sheets = FourSheets();
+  workflows::MeanOptions options;
+  options.reference = sheets.reference;
+  options.topology = sheets.topology;
+  options.shapes = sheets.shapes;
+  options.material = sheets.material;
+  options.settings = sheets.settings;
+  return options;
+}
+
 // E_K of the CLI before the workflows (commit 832cb59), on the files that
 // WorkflowCliTest's SetUp writes (the sheets of FourSheets() as PLY with 17
 // digits, read back bit for bit; the temporary folder is left behind):
@@ -169,13 +181,7 @@ TEST(GeodesicWorkflowTest, AnUnconvergedSolveIsAStatusNotAThrow) {
 // A mean whose solve stops short is a status too; the stop poll seen by a
 // solve is the run's stop state.
 TEST(MeanWorkflowTest, AStoppedMeanIsAStatusWithItsState) {
-  const workflows::PcaOptions sheets = FourSheets();
-  workflows::MeanOptions options;
-  options.reference = sheets.reference;
-  options.topology = sheets.topology;
-  options.shapes = sheets.shapes;
-  options.material = sheets.material;
-  options.settings = sheets.settings;
+  workflows::MeanOptions options = MeanOfFourSheets();
   options.settings.stop = [] { return true; };
   workflows::MeanResult result;
   ASSERT_NO_THROW(result = workflows::RunMean(options));
@@ -281,13 +287,7 @@ TEST(PcaWorkflowTest, AStopAfterTheMeanEndsInALaterPhase) {
 }
 
 TEST(MeanWorkflowTest, SplitSumsToTheMeanEnergy) {
-  const workflows::PcaOptions sheets = FourSheets();
-  workflows::MeanOptions options;
-  options.reference = sheets.reference;
-  options.topology = sheets.topology;
-  options.shapes = sheets.shapes;
-  options.material = sheets.material;
-  options.settings = sheets.settings;
+  workflows::MeanOptions options = MeanOfFourSheets();
   const workflows::MeanResult result = workflows::RunMean(options);
   ASSERT_TRUE(result.status.ok()) << result.status.message;
   // The split is that of the mean's objective sum_i W[S_i, mean] (the
