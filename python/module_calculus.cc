@@ -6,6 +6,7 @@
 
 #include "python/array_arguments.h"
 #include "python/module_common.h"
+#include "python/module_options.h"
 #include "python/module_results.h"
 #include "python/parameter_docs.h"
 #include "shellspace/io/mesh_io.h"
@@ -244,11 +245,8 @@ void RegisterCalculus(py::module_& m) {
           "vertex distance per frame, E_K of each path or W[a, b], `equal` "
           "against the tolerances).")
           .c_str());
-  m.def(
-      "geodesic", WithMaterialAndSolverArgs(&GeodesicPy),
-      SHELLSPACE_GEODESIC_ARGS, py::arg("report") = false,
-      SHELLSPACE_FRAME_OUTPUT_ARGS, SHELLSPACE_MATERIAL_ARGS,
-      SHELLSPACE_SOLVER_ARGS,
+  DefWithOptions(
+      m, "geodesic", "GeodesicOptions", WithMaterialAndSolverArgs(&GeodesicPy),
       WithParameters(
           "geodesic",
           "Discrete geodesic from start to end in `steps` steps: returns a "
@@ -257,37 +255,41 @@ void RegisterCalculus(py::module_& m) {
           "positions. lm: who runs the LM stages, 'auto' | 'ceres' | 'engine' "
           "(as the CLI's --lm). output: also write DIR/shape_000.ply ...; png: "
           "a "
-          "film strip.")
-          .c_str());
-  m.def("log", WithMaterialAndSolverArgs(&LogPy), SHELLSPACE_GEODESIC_ARGS,
-        py::arg("output") = py::none(), SHELLSPACE_MATERIAL_ARGS,
-        SHELLSPACE_SOLVER_ARGS,
-        WithParameters(
-            "log",
-            "LOG_K(start -> end) = K (s_1 - s_0) of the discrete geodesic: "
-            "returns a LogResult (unpacks as (log #V x 3, summary)). output: "
-            "write start + log (as the CLI).")
-            .c_str());
-  m.def("shoot", WithMaterialAndSolverArgs(&ShootPy), py::arg("first"),
-        py::arg("second"), py::arg("F"), py::arg("steps") = 8,
-        py::arg("backward") = false, py::arg("mask") = py::none(),
-        SHELLSPACE_FRAME_OUTPUT_ARGS, SHELLSPACE_MATERIAL_ARGS,
-        SHELLSPACE_SOLVER_ARGS,
-        WithParameters(
-            "shoot",
-            "Geodesic shooting (EXP steps) from (first, second): returns a "
-            "ShootResult (unpacks as (path, summary)).")
-            .c_str());
-  m.def("transport", WithMaterialAndSolverArgs(&TransportPy), py::arg("path"),
-        py::arg("variation"), py::arg("F"), py::arg("epsilon") = 1.0,
-        py::arg("mask") = py::none(), SHELLSPACE_FRAME_OUTPUT_ARGS,
-        SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
-        WithParameters(
-            "transport",
-            "Schild's-ladder transport of variation - path[0] along "
-            "path: returns a TransportResult (unpacks as (shapes s_k + "
-            "epsilon xi_k, summary)).")
-            .c_str());
+          "film strip."),
+      SHELLSPACE_GEODESIC_ARGS, py::arg("report") = false,
+      SHELLSPACE_FRAME_OUTPUT_ARGS, SHELLSPACE_MATERIAL_ARGS,
+      SHELLSPACE_SOLVER_ARGS);
+  DefWithOptions(
+      m, "log", "LogOptions", WithMaterialAndSolverArgs(&LogPy),
+      WithParameters(
+          "log",
+          "LOG_K(start -> end) = K (s_1 - s_0) of the discrete geodesic: "
+          "returns a LogResult (unpacks as (log #V x 3, summary)). output: "
+          "write start + log (as the CLI)."),
+      SHELLSPACE_GEODESIC_ARGS, py::arg("output") = py::none(),
+      SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS);
+  DefWithOptions(
+      m, "shoot", "ShootOptions", WithMaterialAndSolverArgs(&ShootPy),
+      WithParameters(
+          "shoot",
+          "Geodesic shooting (EXP steps) from (first, second): returns a "
+          "ShootResult (unpacks as (path, summary))."),
+      py::arg("first"), py::arg("second"), py::arg("F"), py::arg("steps") = 8,
+      py::arg("backward") = false, py::arg("mask") = py::none(),
+      SHELLSPACE_FRAME_OUTPUT_ARGS, SHELLSPACE_MATERIAL_ARGS,
+      SHELLSPACE_SOLVER_ARGS);
+  DefWithOptions(
+      m, "transport", "TransportOptions",
+      WithMaterialAndSolverArgs(&TransportPy),
+      WithParameters(
+          "transport",
+          "Schild's-ladder transport of variation - path[0] along "
+          "path: returns a TransportResult (unpacks as (shapes s_k + "
+          "epsilon xi_k, summary))."),
+      py::arg("path"), py::arg("variation"), py::arg("F"),
+      py::arg("epsilon") = 1.0, py::arg("mask") = py::none(),
+      SHELLSPACE_FRAME_OUTPUT_ARGS, SHELLSPACE_MATERIAL_ARGS,
+      SHELLSPACE_SOLVER_ARGS);
 }
 
 }  // namespace pymodule

@@ -5,6 +5,7 @@
 
 #include "python/array_arguments.h"
 #include "python/module_common.h"
+#include "python/module_options.h"
 #include "python/module_results.h"
 #include "python/parameter_docs.h"
 #include "shellspace/problems/splines/ltheta_spline.h"
@@ -144,27 +145,26 @@ py::object RegressPy(const py::object& inputs_object,
 }  // namespace
 
 void RegisterSplines(py::module_& m) {
-  m.def(
-      "spline", WithMaterialAndSolverArgs(&SplinePy), py::arg("keyframes"),
-      py::arg("at"), py::arg("F"), py::arg("steps") = 8,
-      py::arg("method") = "nonlinear", py::arg("init") = "ltheta",
-      py::arg("periodic") = false, SHELLSPACE_FRAME_OUTPUT_ARGS,
-      SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
+  DefWithOptions(
+      m, "spline", "SplineOptions", WithMaterialAndSolverArgs(&SplinePy),
       WithParameters(
           "spline",
           "Riemannian spline through keyframes at path indices `at`, from the "
           "initial path `init` (ltheta or geodesic, as the CLI's --init): "
-          "returns a SplineResult (unpacks as (path, summary)).")
-          .c_str());
-  m.def("regress", WithMaterialAndSolverArgs(&RegressPy), py::arg("inputs"),
-        py::arg("at"), py::arg("F"), py::arg("steps") = 8,
-        py::arg("sigma") = 1.0, SHELLSPACE_FRAME_OUTPUT_ARGS,
-        SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
-        WithParameters(
-            "regress",
-            "Shape regression (data term + sigma spline energy): returns a "
-            "RegressResult (unpacks as (path, summary)).")
-            .c_str());
+          "returns a SplineResult (unpacks as (path, summary))."),
+      py::arg("keyframes"), py::arg("at"), py::arg("F"), py::arg("steps") = 8,
+      py::arg("method") = "nonlinear", py::arg("init") = "ltheta",
+      py::arg("periodic") = false, SHELLSPACE_FRAME_OUTPUT_ARGS,
+      SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS);
+  DefWithOptions(
+      m, "regress", "RegressOptions", WithMaterialAndSolverArgs(&RegressPy),
+      WithParameters(
+          "regress",
+          "Shape regression (data term + sigma spline energy): returns a "
+          "RegressResult (unpacks as (path, summary))."),
+      py::arg("inputs"), py::arg("at"), py::arg("F"), py::arg("steps") = 8,
+      py::arg("sigma") = 1.0, SHELLSPACE_FRAME_OUTPUT_ARGS,
+      SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS);
 }
 
 }  // namespace pymodule

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "python/module_common.h"
+#include "python/module_options.h"
 #include "python/module_results.h"
 #include "python/parameter_docs.h"
 #include "shellspace/io/atomic_file.h"
@@ -174,28 +175,30 @@ py::object PcaPy(const py::object& inputs_object, const py::object& F,
 }  // namespace
 
 void RegisterStatistics(py::module_& m) {
-  m.def("pca", WithMaterialAndSolverArgs(&PcaPy), py::arg("inputs"),
-        py::arg("F"), py::arg("modes") = 3, py::arg("baseline") = "",
-        py::arg("loo") = false, py::arg("amplitude") = 1.0,
-        py::arg("log_steps") = 2, py::arg("exp_steps") = 4,
-        py::arg("max_exp_steps") = 16, py::arg("displacement") = "log",
-        py::arg("output") = py::none(), py::arg("png") = py::none(),
-        SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
-        WithParameters(
-            "pca",
-            "Shell PCA at the elastic mean (and the Procrustes baseline, "
-            "leave-one-out): returns a PcaResult (unpacks as ({'mean': ..., "
-            "'mode_1_minus': ..., ...}, summary)). output: the CLI's directory "
-            "(PLY files and pca.json).")
-            .c_str());
-  m.def("mean", WithMaterialAndSolverArgs(&MeanPy), py::arg("inputs"),
-        py::arg("F"), py::arg("report") = false, py::arg("output") = py::none(),
-        SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
-        WithParameters(
-            "mean",
-            "Elastic mean argmin_s sum_i W[inputs_i, s]: returns a MeanResult "
-            "(unpacks as (mean #V x 3, summary)).")
-            .c_str());
+  DefWithOptions(
+      m, "pca", "PcaOptions", WithMaterialAndSolverArgs(&PcaPy),
+      WithParameters(
+          "pca",
+          "Shell PCA at the elastic mean (and the Procrustes baseline, "
+          "leave-one-out): returns a PcaResult (unpacks as ({'mean': ..., "
+          "'mode_1_minus': ..., ...}, summary)). output: the CLI's directory "
+          "(PLY files and pca.json)."),
+      py::arg("inputs"), py::arg("F"), py::arg("modes") = 3,
+      py::arg("baseline") = "", py::arg("loo") = false,
+      py::arg("amplitude") = 1.0, py::arg("log_steps") = 2,
+      py::arg("exp_steps") = 4, py::arg("max_exp_steps") = 16,
+      py::arg("displacement") = "log", py::arg("output") = py::none(),
+      py::arg("png") = py::none(), SHELLSPACE_MATERIAL_ARGS,
+      SHELLSPACE_SOLVER_ARGS);
+  DefWithOptions(
+      m, "mean", "MeanOptions", WithMaterialAndSolverArgs(&MeanPy),
+      WithParameters(
+          "mean",
+          "Elastic mean argmin_s sum_i W[inputs_i, s]: returns a MeanResult "
+          "(unpacks as (mean #V x 3, summary))."),
+      py::arg("inputs"), py::arg("F"), py::arg("report") = false,
+      py::arg("output") = py::none(), SHELLSPACE_MATERIAL_ARGS,
+      SHELLSPACE_SOLVER_ARGS);
 }
 
 }  // namespace pymodule

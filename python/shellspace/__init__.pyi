@@ -3,11 +3,13 @@
 shellspace: the time-discrete geodesic calculus on discrete shells.
 Meshes are (V, F): V #V x 3 float64, F #F x 3 int; paths are
 (K + 1) x #V x 3 arrays. Each verb function takes the CLI verb's
-options as keyword arguments (lambda as lambda_). The workflow
-functions return result objects (GeodesicResult, ...: the numbers
-as attributes, status, energy_split, to_dict() the verb's --json
-summary) that unpack as the pair (value, summary); the others return
-their values and summary dicts. Bad arrays and options raise
+options as keyword arguments (lambda as lambda_); each workflow
+function has an options class (GeodesicOptions, ...: its keywords
+with their defaults as checked attributes, passed as **options).
+The workflow functions return result objects (GeodesicResult, ...:
+the numbers as attributes, status, energy_split, to_dict() the
+verb's --json summary) that unpack as the pair (value, summary); the
+others return their values and summary dicts. Bad arrays and options raise
 InputError. The solving functions take time_limit (seconds) and
 allow_unconverged: an unconverged or time-limited result raises
 NotConvergedError (its .result attached) unless
@@ -51,6 +53,86 @@ class EnergySplit:
     def to_dict(self) -> dict[str, Any]: ...
 
 
+class GeodesicOptions:
+    """The keyword options of geodesic with their defaults, as attributes: pass them as geodesic(inputs..., **options).
+
+    Options:
+        steps: number of time steps K (K + 1 shapes; K = 1: the two ends, nothing to solve); at most 100000 and an estimated memory of 64 MB + 1500 B x #V x K^2 within half the physical memory (default 8)
+        mask: vertex indices held fixed, or the path of a mask file (default None)
+        multires: auto|off|LEVELS: solve the geodesic on LEVELS decimated meshes first (each 1/4 of the vertices of the one above), prolongate, finish on the input mesh; auto: as many levels as keep the coarsest at >= 2500 vertices (default 'auto')
+        linear_solver: auto|direct|block-jacobi: the linear solver of the Newton finish; direct: Cholesky of the whole space-time Hessian; block-jacobi: CG preconditioned by one-shape Cholesky factors (memory O(K x one shape)); auto: block-jacobi from 20000 unknowns ((K - 1) x free coordinates per shape) (default 'auto')
+        lm: auto|ceres|engine: the solver of the LM stages; ceres: Ceres' sparse LM (a Cholesky factorisation of the whole space-time J^T J per iteration); engine: the same Gauss-Newton model solved by --linear_solver (block-jacobi: memory O(K x one shape)); auto: engine where the linear solver is block-jacobi (default 'auto')
+        init: auto|linear|ltheta: the initial path; linear: positions interpolated after removing the rigid motion between the ends (none with --mask, or below 1 degree); ltheta: shells reconstructed from interpolated edge lengths, areas and dihedral angles; auto: linear unless a triangle of it keeps less than 0.1 of its area or turns over, then ltheta (default 'auto')
+        report: print Ceres' full report on stderr (default False)
+        output: directory of the frames shape_000.ply ... (default None)
+        png: also write a PNG film strip of the frames here (default None)
+        gltf: also write the frames as one glTF 2.0 file (.glb): the first frame the base mesh, the others morph targets, animated at 4 frames per second (default None)
+        mu: membrane Lame weight mu (default 1.0)
+        lambda_: membrane Lame weight lambda (default 1.0)
+        eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
+        relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
+        bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        tolerance: stop when the gradient max-norm falls below this times max(1, its initial value) (default 1e-08)
+        max_iterations: maximum iterations of the verb's outer solver (LM iterations summed over its stages; spline: L-BFGS); inner solves keep their own limits (default 200)
+        threads: threads of the solves (default 2)
+        quiet: suppress progress output (default False)
+        time_limit: stop the solves after this many seconds of wall clock (None: no limit); the partial result is raised as NotConvergedError's .result unless allow_unconverged (default None)
+        allow_unconverged: return a result whose solve missed its stopping criterion (or was cut by time_limit) instead of raising NotConvergedError (default False)
+    """
+    function: str
+    steps: int
+    mask: Union[ArrayLike, str, None]
+    multires: str
+    linear_solver: str
+    lm: str
+    init: str
+    report: bool
+    output: Optional[str]
+    png: Optional[str]
+    gltf: Optional[str]
+    mu: float
+    lambda_: float
+    eta: Optional[float]
+    relative_eta: float
+    bending: str
+    tolerance: float
+    max_iterations: int
+    threads: int
+    quiet: bool
+    time_limit: Optional[float]
+    allow_unconverged: bool
+    def __init__(
+        self,
+        *,
+        steps: int = ...,
+        mask: Union[ArrayLike, str, None] = ...,
+        multires: str = ...,
+        linear_solver: str = ...,
+        lm: str = ...,
+        init: str = ...,
+        report: bool = ...,
+        output: Optional[str] = ...,
+        png: Optional[str] = ...,
+        gltf: Optional[str] = ...,
+        mu: float = ...,
+        lambda_: float = ...,
+        eta: Optional[float] = ...,
+        relative_eta: float = ...,
+        bending: str = ...,
+        tolerance: float = ...,
+        max_iterations: int = ...,
+        threads: int = ...,
+        quiet: bool = ...,
+        time_limit: Optional[float] = ...,
+        allow_unconverged: bool = ...,
+    ) -> None: ...
+    def keys(self) -> list[str]: ...
+    def __getitem__(self, name: str) -> Any: ...
+    def __iter__(self) -> Iterator[str]: ...
+    def __len__(self) -> int: ...
+    def to_dict(self) -> dict[str, Any]: ...
+
+
 class GeodesicResult:
     """shellspace.geodesic's result: path ((K + 1) x #V x 3), path_energy E_K, its energy_split, step_energies W[s_k-1, s_k], iterations (LM + Newton), the initial and final gradient max-norms, init (the initial path's choice and reason), warnings. Unpacks as (path, summary).
     """
@@ -84,6 +166,77 @@ class GeodesicResult:
     def __len__(self) -> int: ...
     def __iter__(self) -> Iterator[Any]: ...
     def __getitem__(self, index: int) -> Any: ...
+
+
+class LogOptions:
+    """The keyword options of log with their defaults, as attributes: pass them as log(inputs..., **options).
+
+    Options:
+        steps: K of LOG_K (the geodesic's time steps; K = 1: B - A, nothing to solve); at most 100000 and an estimated memory of 64 MB + 1500 B x #V x K^2 within half the physical memory (default 8)
+        mask: vertex indices held fixed, or the path of a mask file (default None)
+        multires: auto|off|LEVELS: solve the geodesic on LEVELS decimated meshes first (each 1/4 of the vertices of the one above), prolongate, finish on the input mesh; auto: as many levels as keep the coarsest at >= 2500 vertices (default 'auto')
+        linear_solver: auto|direct|block-jacobi: the linear solver of the Newton finish; direct: Cholesky of the whole space-time Hessian; block-jacobi: CG preconditioned by one-shape Cholesky factors (memory O(K x one shape)); auto: block-jacobi from 20000 unknowns ((K - 1) x free coordinates per shape) (default 'auto')
+        lm: auto|ceres|engine: the solver of the LM stages; ceres: Ceres' sparse LM (a Cholesky factorisation of the whole space-time J^T J per iteration); engine: the same Gauss-Newton model solved by --linear_solver (block-jacobi: memory O(K x one shape)); auto: engine where the linear solver is block-jacobi (default 'auto')
+        init: auto|linear|ltheta: the initial path; linear: positions interpolated after removing the rigid motion between the ends (none with --mask, or below 1 degree); ltheta: shells reconstructed from interpolated edge lengths, areas and dihedral angles; auto: linear unless a triangle of it keeps less than 0.1 of its area or turns over, then ltheta (default 'auto')
+        output: the shell A + LOG_K(A -> B): PLY, OBJ or OFF (default None)
+        mu: membrane Lame weight mu (default 1.0)
+        lambda_: membrane Lame weight lambda (default 1.0)
+        eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
+        relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
+        bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        tolerance: stop when the gradient max-norm falls below this times max(1, its initial value) (default 1e-08)
+        max_iterations: maximum iterations of the verb's outer solver (LM iterations summed over its stages; spline: L-BFGS); inner solves keep their own limits (default 200)
+        threads: threads of the solves (default 2)
+        quiet: suppress progress output (default False)
+        time_limit: stop the solves after this many seconds of wall clock (None: no limit); the partial result is raised as NotConvergedError's .result unless allow_unconverged (default None)
+        allow_unconverged: return a result whose solve missed its stopping criterion (or was cut by time_limit) instead of raising NotConvergedError (default False)
+    """
+    function: str
+    steps: int
+    mask: Union[ArrayLike, str, None]
+    multires: str
+    linear_solver: str
+    lm: str
+    init: str
+    output: Optional[str]
+    mu: float
+    lambda_: float
+    eta: Optional[float]
+    relative_eta: float
+    bending: str
+    tolerance: float
+    max_iterations: int
+    threads: int
+    quiet: bool
+    time_limit: Optional[float]
+    allow_unconverged: bool
+    def __init__(
+        self,
+        *,
+        steps: int = ...,
+        mask: Union[ArrayLike, str, None] = ...,
+        multires: str = ...,
+        linear_solver: str = ...,
+        lm: str = ...,
+        init: str = ...,
+        output: Optional[str] = ...,
+        mu: float = ...,
+        lambda_: float = ...,
+        eta: Optional[float] = ...,
+        relative_eta: float = ...,
+        bending: str = ...,
+        tolerance: float = ...,
+        max_iterations: int = ...,
+        threads: int = ...,
+        quiet: bool = ...,
+        time_limit: Optional[float] = ...,
+        allow_unconverged: bool = ...,
+    ) -> None: ...
+    def keys(self) -> list[str]: ...
+    def __getitem__(self, name: str) -> Any: ...
+    def __iter__(self) -> Iterator[str]: ...
+    def __len__(self) -> int: ...
+    def to_dict(self) -> dict[str, Any]: ...
 
 
 class LogResult:
@@ -130,6 +283,62 @@ class Material:
     def bending(self) -> str: ...
 
 
+class MeanOptions:
+    """The keyword options of mean with their defaults, as attributes: pass them as mean(inputs..., **options).
+
+    Options:
+        report: print Ceres' full report on stderr (default False)
+        output: the elastic mean: PLY, OBJ or OFF (default None)
+        mu: membrane Lame weight mu (default 1.0)
+        lambda_: membrane Lame weight lambda (default 1.0)
+        eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
+        relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
+        bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        tolerance: stop when the gradient max-norm falls below this times max(1, its initial value) (default 1e-08)
+        max_iterations: maximum iterations of the verb's outer solver (LM iterations summed over its stages; spline: L-BFGS); inner solves keep their own limits (default 200)
+        threads: threads of the solves (default 2)
+        quiet: suppress progress output (default False)
+        time_limit: stop the solves after this many seconds of wall clock (None: no limit); the partial result is raised as NotConvergedError's .result unless allow_unconverged (default None)
+        allow_unconverged: return a result whose solve missed its stopping criterion (or was cut by time_limit) instead of raising NotConvergedError (default False)
+    """
+    function: str
+    report: bool
+    output: Optional[str]
+    mu: float
+    lambda_: float
+    eta: Optional[float]
+    relative_eta: float
+    bending: str
+    tolerance: float
+    max_iterations: int
+    threads: int
+    quiet: bool
+    time_limit: Optional[float]
+    allow_unconverged: bool
+    def __init__(
+        self,
+        *,
+        report: bool = ...,
+        output: Optional[str] = ...,
+        mu: float = ...,
+        lambda_: float = ...,
+        eta: Optional[float] = ...,
+        relative_eta: float = ...,
+        bending: str = ...,
+        tolerance: float = ...,
+        max_iterations: int = ...,
+        threads: int = ...,
+        quiet: bool = ...,
+        time_limit: Optional[float] = ...,
+        allow_unconverged: bool = ...,
+    ) -> None: ...
+    def keys(self) -> list[str]: ...
+    def __getitem__(self, name: str) -> Any: ...
+    def __iter__(self) -> Iterator[str]: ...
+    def __len__(self) -> int: ...
+    def to_dict(self) -> dict[str, Any]: ...
+
+
 class MeanResult:
     """shellspace.mean's result: mean (#V x 3), energy (sum_i W[mean, s_i]), energies (each W), its energy_split, iterations (LM + Newton), far_inputs (names of inputs far from the mean). Unpacks as (mean, summary).
     """
@@ -159,6 +368,86 @@ class MeanResult:
     def __getitem__(self, index: int) -> Any: ...
 
 
+class PcaOptions:
+    """The keyword options of pca with their defaults, as attributes: pass them as pca(inputs..., **options).
+
+    Options:
+        modes: number of modes written (and m = 1..modes of --loo); at most the number of inputs - 1 (default 3)
+        baseline: 'procrustes' also writes the Procrustes PCA model (procrustes_mean.ply, procrustes_mode_J_{minus,plus}.ply); '' none (default '')
+        loo: leave-one-out evaluation of shell vs Procrustes PCA (m = 0..modes), table printed and in the JSON (default False)
+        amplitude: mode shapes at +- amplitude sqrt(lambda_j) w_j (default 1.0)
+        log_steps: K of LOG_K (displacements) (default 2)
+        exp_steps: K of EXP_K (mode shapes, reconstructions); doubled up to --max_exp_steps while a shot fails or its step energies drift by more than 50% (default 4)
+        max_exp_steps: largest K of the EXP safeguard (>= --exp_steps) (default 16)
+        displacement: 'log' (v_i = LOG_K(mean -> S_i)) or 'difference' (v_i = S_i - mean after rigid alignment) (default 'log')
+        output: directory of mean.ply, mode_J_{minus,plus}.ply, pca.json (default None)
+        png: also write a PNG film strip of the mean and the modes (default None)
+        mu: membrane Lame weight mu (default 1.0)
+        lambda_: membrane Lame weight lambda (default 1.0)
+        eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
+        relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
+        bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        tolerance: stop when the gradient max-norm falls below this times max(1, its initial value) (default 1e-08)
+        max_iterations: maximum iterations of the verb's outer solver (LM iterations summed over its stages; spline: L-BFGS); inner solves keep their own limits (default 200)
+        threads: threads of the solves (default 2)
+        quiet: suppress progress output (default False)
+        time_limit: stop the solves after this many seconds of wall clock (None: no limit); the partial result is raised as NotConvergedError's .result unless allow_unconverged (default None)
+        allow_unconverged: return a result whose solve missed its stopping criterion (or was cut by time_limit) instead of raising NotConvergedError (default False)
+    """
+    function: str
+    modes: int
+    baseline: str
+    loo: bool
+    amplitude: float
+    log_steps: int
+    exp_steps: int
+    max_exp_steps: int
+    displacement: str
+    output: Optional[str]
+    png: Optional[str]
+    mu: float
+    lambda_: float
+    eta: Optional[float]
+    relative_eta: float
+    bending: str
+    tolerance: float
+    max_iterations: int
+    threads: int
+    quiet: bool
+    time_limit: Optional[float]
+    allow_unconverged: bool
+    def __init__(
+        self,
+        *,
+        modes: int = ...,
+        baseline: str = ...,
+        loo: bool = ...,
+        amplitude: float = ...,
+        log_steps: int = ...,
+        exp_steps: int = ...,
+        max_exp_steps: int = ...,
+        displacement: str = ...,
+        output: Optional[str] = ...,
+        png: Optional[str] = ...,
+        mu: float = ...,
+        lambda_: float = ...,
+        eta: Optional[float] = ...,
+        relative_eta: float = ...,
+        bending: str = ...,
+        tolerance: float = ...,
+        max_iterations: int = ...,
+        threads: int = ...,
+        quiet: bool = ...,
+        time_limit: Optional[float] = ...,
+        allow_unconverged: bool = ...,
+    ) -> None: ...
+    def keys(self) -> list[str]: ...
+    def __getitem__(self, name: str) -> Any: ...
+    def __iter__(self) -> Iterator[str]: ...
+    def __len__(self) -> int: ...
+    def to_dict(self) -> dict[str, Any]: ...
+
+
 class PcaResult:
     """shellspace.pca's result: shapes (dict name -> #V x 3: mean, mode_j_minus / mode_j_plus, ...), mean (#V x 3), eigenvalues (lambda_1 >= ... of the shell PCA; empty if it did not run), failed_shapes, far_inputs. Unpacks as (shapes, summary).
     """
@@ -184,6 +473,71 @@ class PcaResult:
     def __len__(self) -> int: ...
     def __iter__(self) -> Iterator[Any]: ...
     def __getitem__(self, index: int) -> Any: ...
+
+
+class RegressOptions:
+    """The keyword options of regress with their defaults, as attributes: pass them as regress(inputs..., **options).
+
+    Options:
+        steps: number of time steps K (K + 1 shapes); at most 100000 and an estimated memory of 64 MB + 24 B x (K + 1)^2 + 20 KB x #V x (K + 1) within half the physical memory (default 8)
+        sigma: weight of the spline energy F_K (default 1.0)
+        output: directory of the frames shape_000.ply ... (default None)
+        png: also write a PNG film strip of the frames here (default None)
+        gltf: also write the frames as one glTF 2.0 file (.glb): the first frame the base mesh, the others morph targets, animated at 4 frames per second (default None)
+        mu: membrane Lame weight mu (default 1.0)
+        lambda_: membrane Lame weight lambda (default 1.0)
+        eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
+        relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
+        bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        tolerance: stop when the gradient max-norm falls below this times max(1, its initial value) (default 1e-08)
+        max_iterations: maximum iterations of the verb's outer solver (LM iterations summed over its stages; spline: L-BFGS); inner solves keep their own limits (default 200)
+        threads: threads of the solves (default 2)
+        quiet: suppress progress output (default False)
+        time_limit: stop the solves after this many seconds of wall clock (None: no limit); the partial result is raised as NotConvergedError's .result unless allow_unconverged (default None)
+        allow_unconverged: return a result whose solve missed its stopping criterion (or was cut by time_limit) instead of raising NotConvergedError (default False)
+    """
+    function: str
+    steps: int
+    sigma: float
+    output: Optional[str]
+    png: Optional[str]
+    gltf: Optional[str]
+    mu: float
+    lambda_: float
+    eta: Optional[float]
+    relative_eta: float
+    bending: str
+    tolerance: float
+    max_iterations: int
+    threads: int
+    quiet: bool
+    time_limit: Optional[float]
+    allow_unconverged: bool
+    def __init__(
+        self,
+        *,
+        steps: int = ...,
+        sigma: float = ...,
+        output: Optional[str] = ...,
+        png: Optional[str] = ...,
+        gltf: Optional[str] = ...,
+        mu: float = ...,
+        lambda_: float = ...,
+        eta: Optional[float] = ...,
+        relative_eta: float = ...,
+        bending: str = ...,
+        tolerance: float = ...,
+        max_iterations: int = ...,
+        threads: int = ...,
+        quiet: bool = ...,
+        time_limit: Optional[float] = ...,
+        allow_unconverged: bool = ...,
+    ) -> None: ...
+    def keys(self) -> list[str]: ...
+    def __getitem__(self, name: str) -> Any: ...
+    def __iter__(self) -> Iterator[str]: ...
+    def __len__(self) -> int: ...
+    def to_dict(self) -> dict[str, Any]: ...
 
 
 class RegressResult:
@@ -215,6 +569,74 @@ class RegressResult:
     def __len__(self) -> int: ...
     def __iter__(self) -> Iterator[Any]: ...
     def __getitem__(self, index: int) -> Any: ...
+
+
+class ShootOptions:
+    """The keyword options of shoot with their defaults, as attributes: pass them as shoot(inputs..., **options).
+
+    Options:
+        steps: number of time steps K (K + 1 shapes; K = 1: s_0, s_1, nothing to solve); at most 100000 and an estimated memory of 64 MB + 200 B x #V x (K + 1) within half the physical memory (default 8)
+        backward: extrapolate backward in time, before s_0 (default False)
+        mask: vertex indices held fixed, or the path of a mask file (default None)
+        output: directory of the frames shape_000.ply ... (default None)
+        png: also write a PNG film strip of the frames here (default None)
+        gltf: also write the frames as one glTF 2.0 file (.glb): the first frame the base mesh, the others morph targets, animated at 4 frames per second (default None)
+        mu: membrane Lame weight mu (default 1.0)
+        lambda_: membrane Lame weight lambda (default 1.0)
+        eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
+        relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
+        bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        tolerance: stop when the gradient max-norm falls below this times max(1, its initial value) (default 1e-08)
+        max_iterations: maximum iterations of the verb's outer solver (LM iterations summed over its stages; spline: L-BFGS); inner solves keep their own limits (default 200)
+        threads: threads of the solves (default 2)
+        quiet: suppress progress output (default False)
+        time_limit: stop the solves after this many seconds of wall clock (None: no limit); the partial result is raised as NotConvergedError's .result unless allow_unconverged (default None)
+        allow_unconverged: return a result whose solve missed its stopping criterion (or was cut by time_limit) instead of raising NotConvergedError (default False)
+    """
+    function: str
+    steps: int
+    backward: bool
+    mask: Union[ArrayLike, str, None]
+    output: Optional[str]
+    png: Optional[str]
+    gltf: Optional[str]
+    mu: float
+    lambda_: float
+    eta: Optional[float]
+    relative_eta: float
+    bending: str
+    tolerance: float
+    max_iterations: int
+    threads: int
+    quiet: bool
+    time_limit: Optional[float]
+    allow_unconverged: bool
+    def __init__(
+        self,
+        *,
+        steps: int = ...,
+        backward: bool = ...,
+        mask: Union[ArrayLike, str, None] = ...,
+        output: Optional[str] = ...,
+        png: Optional[str] = ...,
+        gltf: Optional[str] = ...,
+        mu: float = ...,
+        lambda_: float = ...,
+        eta: Optional[float] = ...,
+        relative_eta: float = ...,
+        bending: str = ...,
+        tolerance: float = ...,
+        max_iterations: int = ...,
+        threads: int = ...,
+        quiet: bool = ...,
+        time_limit: Optional[float] = ...,
+        allow_unconverged: bool = ...,
+    ) -> None: ...
+    def keys(self) -> list[str]: ...
+    def __getitem__(self, name: str) -> Any: ...
+    def __iter__(self) -> Iterator[str]: ...
+    def __len__(self) -> int: ...
+    def to_dict(self) -> dict[str, Any]: ...
 
 
 class ShootResult:
@@ -253,6 +675,77 @@ class SolveStatus:
     def failures(self) -> list[str]: ...
 
 
+class SplineOptions:
+    """The keyword options of spline with their defaults, as attributes: pass them as spline(inputs..., **options).
+
+    Options:
+        steps: number of time steps K (K + 1 shapes); at most 100000 and an estimated memory of 64 MB + 24 B x (K + 1)^2 + 20 KB x #V x (K + 1) within half the physical memory (default 8)
+        method: nonlinear (L-BFGS on F_K from the LTheta spline) or ltheta (the fast approximation alone) (default 'nonlinear')
+        init: the initial path of --method nonlinear: ltheta (the LTheta spline) or geodesic (the piecewise geodesic through the keyframes: no LM reconstructions, zero acceleration between keyframes; try it when keyframes are far apart and the LTheta frames stop at their iteration cap). Either start's solves (LM per LTheta frame, or per geodesic segment) stop at --tolerance, 200 iterations each at most (default 'ltheta')
+        periodic: closed path (indices mod K) (default False)
+        output: directory of the frames shape_000.ply ... (default None)
+        png: also write a PNG film strip of the frames here (default None)
+        gltf: also write the frames as one glTF 2.0 file (.glb): the first frame the base mesh, the others morph targets, animated at 4 frames per second (default None)
+        mu: membrane Lame weight mu (default 1.0)
+        lambda_: membrane Lame weight lambda (default 1.0)
+        eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
+        relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
+        bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        tolerance: stop when the gradient max-norm falls below this times max(1, its initial value) (default 1e-08)
+        max_iterations: maximum iterations of the verb's outer solver (LM iterations summed over its stages; spline: L-BFGS); inner solves keep their own limits (default 200)
+        threads: threads of the solves (default 2)
+        quiet: suppress progress output (default False)
+        time_limit: stop the solves after this many seconds of wall clock (None: no limit); the partial result is raised as NotConvergedError's .result unless allow_unconverged (default None)
+        allow_unconverged: return a result whose solve missed its stopping criterion (or was cut by time_limit) instead of raising NotConvergedError (default False)
+    """
+    function: str
+    steps: int
+    method: str
+    init: str
+    periodic: bool
+    output: Optional[str]
+    png: Optional[str]
+    gltf: Optional[str]
+    mu: float
+    lambda_: float
+    eta: Optional[float]
+    relative_eta: float
+    bending: str
+    tolerance: float
+    max_iterations: int
+    threads: int
+    quiet: bool
+    time_limit: Optional[float]
+    allow_unconverged: bool
+    def __init__(
+        self,
+        *,
+        steps: int = ...,
+        method: str = ...,
+        init: str = ...,
+        periodic: bool = ...,
+        output: Optional[str] = ...,
+        png: Optional[str] = ...,
+        gltf: Optional[str] = ...,
+        mu: float = ...,
+        lambda_: float = ...,
+        eta: Optional[float] = ...,
+        relative_eta: float = ...,
+        bending: str = ...,
+        tolerance: float = ...,
+        max_iterations: int = ...,
+        threads: int = ...,
+        quiet: bool = ...,
+        time_limit: Optional[float] = ...,
+        allow_unconverged: bool = ...,
+    ) -> None: ...
+    def keys(self) -> list[str]: ...
+    def __getitem__(self, name: str) -> Any: ...
+    def __iter__(self) -> Iterator[str]: ...
+    def __len__(self) -> int: ...
+    def to_dict(self) -> dict[str, Any]: ...
+
+
 class SplineResult:
     """shellspace.spline's result: path ((K + 1) x #V x 3), method, spline_energy F_K, the energy_split of the path's E_K, iterations (L-BFGS), optimised (the outer solve ran). Unpacks as (path, summary).
     """
@@ -280,6 +773,71 @@ class SplineResult:
     def __len__(self) -> int: ...
     def __iter__(self) -> Iterator[Any]: ...
     def __getitem__(self, index: int) -> Any: ...
+
+
+class TransportOptions:
+    """The keyword options of transport with their defaults, as attributes: pass them as transport(inputs..., **options).
+
+    Options:
+        epsilon: transport step epsilon: 1 transports a finite shape difference, small values the tangent vector (default 1.0)
+        mask: vertex indices held fixed, or the path of a mask file (default None)
+        output: directory of the transported shapes s_k + eps xi_k (default None)
+        png: also write a PNG film strip of the frames here (default None)
+        gltf: also write the frames as one glTF 2.0 file (.glb): the first frame the base mesh, the others morph targets, animated at 4 frames per second (default None)
+        mu: membrane Lame weight mu (default 1.0)
+        lambda_: membrane Lame weight lambda (default 1.0)
+        eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
+        relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
+        bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        tolerance: stop when the gradient max-norm falls below this times max(1, its initial value) (default 1e-08)
+        max_iterations: maximum iterations of the verb's outer solver (LM iterations summed over its stages; spline: L-BFGS); inner solves keep their own limits (default 200)
+        threads: threads of the solves (default 2)
+        quiet: suppress progress output (default False)
+        time_limit: stop the solves after this many seconds of wall clock (None: no limit); the partial result is raised as NotConvergedError's .result unless allow_unconverged (default None)
+        allow_unconverged: return a result whose solve missed its stopping criterion (or was cut by time_limit) instead of raising NotConvergedError (default False)
+    """
+    function: str
+    epsilon: float
+    mask: Union[ArrayLike, str, None]
+    output: Optional[str]
+    png: Optional[str]
+    gltf: Optional[str]
+    mu: float
+    lambda_: float
+    eta: Optional[float]
+    relative_eta: float
+    bending: str
+    tolerance: float
+    max_iterations: int
+    threads: int
+    quiet: bool
+    time_limit: Optional[float]
+    allow_unconverged: bool
+    def __init__(
+        self,
+        *,
+        epsilon: float = ...,
+        mask: Union[ArrayLike, str, None] = ...,
+        output: Optional[str] = ...,
+        png: Optional[str] = ...,
+        gltf: Optional[str] = ...,
+        mu: float = ...,
+        lambda_: float = ...,
+        eta: Optional[float] = ...,
+        relative_eta: float = ...,
+        bending: str = ...,
+        tolerance: float = ...,
+        max_iterations: int = ...,
+        threads: int = ...,
+        quiet: bool = ...,
+        time_limit: Optional[float] = ...,
+        allow_unconverged: bool = ...,
+    ) -> None: ...
+    def keys(self) -> list[str]: ...
+    def __getitem__(self, name: str) -> Any: ...
+    def __iter__(self) -> Iterator[str]: ...
+    def __len__(self) -> int: ...
+    def to_dict(self) -> dict[str, Any]: ...
 
 
 class TransportResult:
