@@ -16,12 +16,14 @@ namespace shellspace {
 
 FlagSpec MultiresFlag() {
   return TextFlag(
-      "multires",
-      "auto|off|LEVELS: solve the geodesic on LEVELS decimated meshes first "
-      "(each 1/4 of the vertices of the one above), prolongate, finish on the "
-      "input mesh; auto: as many levels as keep the coarsest at >= " +
-          std::to_string(kAutoMinVertices) + " vertices")
-      .Default("auto");
+             "multires",
+             "auto|off|LEVELS: solve the geodesic on LEVELS decimated meshes "
+             "first "
+             "(each 1/4 of the vertices of the one above), prolongate, finish "
+             "on the "
+             "input mesh; auto: as many levels as keep the coarsest at >= " +
+                 std::to_string(kAutoMinVertices) + " vertices")
+      .Default(workflows::GeodesicOptions().multires);
 }
 
 FlagTable GeodesicEndsFlags(const std::string& start, const std::string& end) {
@@ -30,7 +32,8 @@ FlagTable GeodesicEndsFlags(const std::string& start, const std::string& end) {
 
 FlagSpec GeodesicStepsFlag(const std::string& what) {
   return IntegerFlag("steps", what + StepsBoundText(kGeodesicModel), 1,
-                     kMaxSteps);
+                     kMaxSteps)
+      .Default(FlagDefault(workflows::GeodesicOptions().steps));
 }
 
 FlagSpec LinearSolverFlag() {
@@ -42,7 +45,7 @@ FlagSpec LinearSolverFlag() {
              "(memory O(K x one shape)); auto: block-jacobi from " +
                  std::to_string(kBlockJacobiFromUnknowns) +
                  " unknowns ((K - 1) x free coordinates per shape)")
-      .Default("auto");
+      .Default(workflows::GeodesicOptions().linear_solver);
 }
 
 FlagSpec GeodesicLmFlag() {
@@ -53,7 +56,7 @@ FlagSpec GeodesicLmFlag() {
                   "Gauss-Newton model solved by --linear_solver (block-jacobi: "
                   "memory O(K x one shape)); auto: engine where the linear "
                   "solver is block-jacobi")
-      .Default("auto");
+      .Default(workflows::GeodesicOptions().lm);
 }
 
 FlagSpec GeodesicInitFlag() {
@@ -67,9 +70,8 @@ FlagSpec GeodesicInitFlag() {
                       " degree); ltheta: shells reconstructed from "
                       "interpolated edge lengths, areas and dihedral angles; "
                       "auto: linear unless a triangle of it keeps less than " +
-                      ratio +
-                      " of its area or turns over, then ltheta")
-      .Default("auto");
+                      ratio + " of its area or turns over, then ltheta")
+      .Default(workflows::GeodesicOptions().init);
 }
 
 RunPaths GeodesicInputPaths() {

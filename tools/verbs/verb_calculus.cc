@@ -59,16 +59,21 @@ FlagTable ShootFlags() {
                        "number of time steps K (K + 1 shapes; K = 1: s_0, "
                        "s_1, nothing to solve)" +
                            StepsBoundText(kPathModel),
-                       1, kMaxSteps),
+                       1, kMaxSteps)
+               .Default(FlagDefault(workflows::ShootOptions().steps)),
            TextFlag("output", "directory of the frames shape_000.ply ...")
                .Required(),
-           TextFlag("backward", "extrapolate backward in time, before s_0"),
+           TextFlag("backward", "extrapolate backward in time, before s_0")
+               .Default(BoolFlagDefault(workflows::ShootOptions().backward)),
            MaskFlag(),
            PngFlag(),
            AllowUnsolvedFlag(),
            GltfFlag(),
        },
-       MaterialFlags(), SolverFlags(), JsonFlag(), FilmStripFlags()});
+       MaterialFlags(),
+       SolverFlags(),
+       JsonFlag(),
+       FilmStripFlags()});
 }
 
 FlagTable LogFlags() {
@@ -90,8 +95,7 @@ FlagTable LogFlags() {
 FlagTable TransportFlags() {
   return Flags(
       {{
-           TextFlag("path",
-                    "directory of the path's frames shape_000.ply ...")
+           TextFlag("path", "directory of the path's frames shape_000.ply ...")
                .Required(),
            TextFlag("variation",
                     "shell s_0 + xi_0 (the variation xi_0 at the first frame)")
@@ -102,13 +106,17 @@ FlagTable TransportFlags() {
            RealFlag("epsilon",
                     "transport step epsilon: 1 transports a finite shape "
                     "difference, small values the tangent vector",
-                    0, End::kOpen),
+                    0, End::kOpen)
+               .Default(FlagDefault(workflows::TransportOptions().epsilon)),
            MaskFlag(),
            PngFlag(),
            AllowUnsolvedFlag(),
            GltfFlag(),
        },
-       MaterialFlags(), SolverFlags(), JsonFlag(), FilmStripFlags()});
+       MaterialFlags(),
+       SolverFlags(),
+       JsonFlag(),
+       FilmStripFlags()});
 }
 
 // Flags -> options -> the workflow -> frames and summary.

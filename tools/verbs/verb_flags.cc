@@ -1,10 +1,14 @@
 #include "tools/verbs/verb_flags.h"
 
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+
+#include "shellspace/cost_functions/shell/relative_bending_weight.h"
+#include "shellspace/cost_functions/shell/shell_space.h"
 #include "shellspace/solvers/solver_settings.h"
 #include "tools/run/run_status.h"
-
-#include <cmath>
-#include <sstream>
 
 namespace shellspace {
 namespace {
@@ -16,6 +20,21 @@ std::string Number(double value) {
 }
 
 }  // namespace
+
+std::string FlagDefault(int value) { return std::to_string(value); }
+
+std::string FlagDefault(double value) {
+  char text[32];
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(text, sizeof text, "%.*g", digits, value);
+    if (std::strtod(text, nullptr) == value) break;
+  }
+  return text;
+}
+
+std::string FlagDefault(const std::string& value) { return value; }
+
+std::string BoolFlagDefault(bool value) { return value ? "true" : "false"; }
 
 FlagSpec TextFlag(const std::string& name, const std::string& meaning) {
   FlagSpec spec;
@@ -72,9 +91,12 @@ FlagTable Flags(std::initializer_list<FlagTable> parts) {
 }
 
 FlagTable MaterialFlags() {
+  const ShellMaterial material;
   return {
-      RealFlag("mu", "membrane Lame weight mu", 0, End::kOpen),
-      RealFlag("lambda", "membrane Lame weight lambda", 0, End::kOpen),
+      RealFlag("mu", "membrane Lame weight mu", 0, End::kOpen)
+          .Default(FlagDefault(material.mu)),
+      RealFlag("lambda", "membrane Lame weight lambda", 0, End::kOpen)
+          .Default(FlagDefault(material.lambda)),
       RealFlag("eta",
                "absolute bending weight eta of W = W_mem + eta W_bend; "
                "replaces relative_eta x area (not both)",
@@ -85,24 +107,30 @@ FlagTable MaterialFlags() {
                "the surface area of the reference shell (the first input), "
                "the same material at any scale (W_mem scales like area, "
                "W_bend not at all)",
-               0, End::kClosed),
+               0, End::kClosed)
+          .Default(FlagDefault(kDefaultRelativeEta)),
       TextFlag("bending",
-               "bending model: discrete-shells (default) or shape-operator"),
+               "bending model: discrete-shells (default) or shape-operator")
+          .Default(BendingModelName(material.bending_model)),
   };
 }
 
 FlagTable SolverFlags() {
+  const SolverSettings settings;
   return {
       RealFlag("tolerance",
                "stop when the gradient max-norm falls below this times "
                "max(1, its initial value)",
-               0, End::kOpen, 1, End::kOpen),
+               0, End::kOpen, 1, End::kOpen)
+          .Default(FlagDefault(settings.gradient_tolerance)),
       IntegerFlag("max_iterations",
                   "maximum iterations of the verb's outer solver (LM "
                   "iterations summed over its stages; spline: L-BFGS); inner "
                   "solves keep their own limits",
-                  1),
-      IntegerFlag("threads", "threads of the solves", 1, kMaxSolverThreads),
+                  1)
+          .Default(FlagDefault(settings.max_iterations)),
+      IntegerFlag("threads", "threads of the solves", 1, kMaxSolverThreads)
+          .Default(FlagDefault(settings.num_threads)),
       TextFlag("quiet", "suppress progress output"),
       AllowUnconvergedFlag(),
       TimeLimitFlag(),

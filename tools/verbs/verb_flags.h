@@ -54,6 +54,18 @@ struct FlagSpec {
 
 using FlagTable = std::vector<FlagSpec>;
 
+// A library default as a flag's verb_default (FlagSpec::Default), so that a
+// flag's default is taken from the library's Options or settings struct
+// rather than written twice: an integer in decimal, a real as the shortest
+// "%g" text that reads back to the same double (1e-08, 0.0001, 1), a word
+// as it is.
+std::string FlagDefault(int value);
+std::string FlagDefault(double value);
+std::string FlagDefault(const std::string& value);
+// "true" or "false" (a name of its own: a string literal would convert to
+// bool before std::string).
+std::string BoolFlagDefault(bool value);
+
 // A string or boolean flag (no range).
 FlagSpec TextFlag(const std::string& name, const std::string& meaning);
 

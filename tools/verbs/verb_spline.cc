@@ -40,12 +40,14 @@ namespace {
 const char* const kSplineModel =
     "64 MB + 24 B x (K + 1)^2 + 20 KB x #V x (K + 1)";
 
-FlagTable PathFlags() {
+// The path flags of spline and regress, --steps defaulting to `steps`.
+FlagTable PathFlags(int steps) {
   return {
       IntegerFlag("steps",
                   "number of time steps K (K + 1 shapes)" +
                       StepsBoundText(kSplineModel),
-                  2, kMaxSteps),
+                  2, kMaxSteps)
+          .Default(FlagDefault(steps)),
       TextFlag("output", "directory of the frames shape_000.ply ...")
           .Required(),
       TextFlag("png", "also write a PNG film strip of the frames here"),
@@ -54,41 +56,46 @@ FlagTable PathFlags() {
 }
 
 FlagTable SplineFlags() {
-  return Flags({{
-                    TextFlag("keyframes", "comma-separated keyframe shells")
-                        .Required(),
-                    TextFlag("at",
-                             "comma-separated time indices of the keyframes "
-                             "(0 and K among them unless --periodic)")
-                        .Required(),
-                    TextFlag("method",
-                             "nonlinear (L-BFGS on F_K from the LTheta "
-                             "spline) or ltheta (the fast approximation "
-                             "alone)"),
-                    TextFlag("init",
-                             "the initial path of --method nonlinear: ltheta "
-                             "(the LTheta spline) or geodesic (the piecewise "
-                             "geodesic through the keyframes: no LM "
-                             "reconstructions, zero acceleration between "
-                             "keyframes; try it when keyframes are far apart "
-                             "and the LTheta frames stop at their iteration "
-                             "cap). Either start's solves (LM per LTheta "
-                             "frame, or per geodesic segment) stop at "
-                             "--tolerance, " +
-                                 std::to_string(kInnerMaxIterations) +
-                                 " iterations each at most")
-                        .Default("ltheta")
-                        .Check([](const std::string& name) {
-                          ParseSplineInit(name);
-                        }),
-                    TextFlag("periodic", "closed path (indices mod K)"),
-                    TextFlag("energy",
-                             "--method ltheta: also evaluate F_K of the "
-                             "result for the report (one midpoint solve per "
-                             "step; --energy=false skips it)"),
-                },
-                PathFlags(), MaterialFlags(), SolverFlags(), JsonFlag(),
-                FilmStripFlags()});
+  return Flags(
+      {{
+           TextFlag("keyframes", "comma-separated keyframe shells").Required(),
+           TextFlag("at",
+                    "comma-separated time indices of the keyframes "
+                    "(0 and K among them unless --periodic)")
+               .Required(),
+           TextFlag("method",
+                    "nonlinear (L-BFGS on F_K from the LTheta "
+                    "spline) or ltheta (the fast approximation "
+                    "alone)")
+               .Default(workflows::SplineOptions().method),
+           TextFlag("init",
+                    "the initial path of --method nonlinear: ltheta "
+                    "(the LTheta spline) or geodesic (the piecewise "
+                    "geodesic through the keyframes: no LM "
+                    "reconstructions, zero acceleration between "
+                    "keyframes; try it when keyframes are far apart "
+                    "and the LTheta frames stop at their iteration "
+                    "cap). Either start's solves (LM per LTheta "
+                    "frame, or per geodesic segment) stop at "
+                    "--tolerance, " +
+                        std::to_string(kInnerMaxIterations) +
+                        " iterations each at most")
+               .Default(SplineInitName(workflows::SplineOptions().init))
+               .Check([](const std::string& name) { ParseSplineInit(name); }),
+           TextFlag("periodic", "closed path (indices mod K)")
+               .Default(BoolFlagDefault(workflows::SplineOptions().periodic)),
+           TextFlag("energy",
+                    "--method ltheta: also evaluate F_K of the "
+                    "result for the report (one midpoint solve per "
+                    "step; --energy=false skips it)")
+               .Default(
+                   BoolFlagDefault(workflows::SplineOptions().evaluate_energy)),
+       },
+       PathFlags(workflows::SplineOptions().steps),
+       MaterialFlags(),
+       SolverFlags(),
+       JsonFlag(),
+       FilmStripFlags()});
 }
 
 FlagTable RegressFlags() {
@@ -97,11 +104,14 @@ FlagTable RegressFlags() {
            TextFlag("inputs", "comma-separated input shells").Required(),
            TextFlag("at", "comma-separated time indices of the inputs")
                .Required(),
-           RealFlag("sigma", "weight of the spline energy F_K", 0,
-                    End::kClosed),
+           RealFlag("sigma", "weight of the spline energy F_K", 0, End::kClosed)
+               .Default(FlagDefault(workflows::RegressOptions().sigma)),
        },
-       PathFlags(), MaterialFlags(), SolverFlags(), JsonFlag(),
-                FilmStripFlags()});
+       PathFlags(workflows::RegressOptions().steps),
+       MaterialFlags(),
+       SolverFlags(),
+       JsonFlag(),
+       FilmStripFlags()});
 }
 
 // --steps within the memory estimate of the spline (and, for

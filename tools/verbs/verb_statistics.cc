@@ -72,28 +72,34 @@ FlagTable PcaFlags() {
            IntegerFlag("modes",
                        "number of modes written (and m = 1..modes of --loo); "
                        "at most the number of inputs - 1",
-                       1),
+                       1)
+               .Default(FlagDefault(workflows::PcaOptions().modes)),
            TextFlag("baseline",
                     "'procrustes' also writes the Procrustes PCA model "
                     "(procrustes_mean.ply, "
                     "procrustes_mode_J_{minus,plus}.ply); '' none"),
            TextFlag("loo",
                     "leave-one-out evaluation of shell vs Procrustes PCA "
-                    "(m = 0..modes), table printed and in the JSON"),
+                    "(m = 0..modes), table printed and in the JSON")
+               .Default(BoolFlagDefault(workflows::PcaOptions().leave_one_out)),
            RealFlag("amplitude",
                     "mode shapes at +- amplitude sqrt(lambda_j) w_j", 0,
-                    End::kClosed),
-           IntegerFlag("log_steps", "K of LOG_K (displacements)", 1),
+                    End::kClosed)
+               .Default(FlagDefault(workflows::PcaOptions().amplitude)),
+           IntegerFlag("log_steps", "K of LOG_K (displacements)", 1)
+               .Default(FlagDefault(ShellPcaOptions().steps)),
            IntegerFlag("exp_steps",
                        "K of EXP_K (mode shapes, reconstructions); doubled up "
                        "to --max_exp_steps while a shot fails or its step "
                        "energies drift by more than 50%",
                        1),
            IntegerFlag("max_exp_steps",
-                       "largest K of the EXP safeguard (>= --exp_steps)", 1),
+                       "largest K of the EXP safeguard (>= --exp_steps)", 1)
+               .Default(FlagDefault(ShellPcaOptions().max_exp_steps)),
            TextFlag("displacement",
                     "'log' (v_i = LOG_K(mean -> S_i)) or 'difference' "
-                    "(v_i = S_i - mean after rigid alignment)"),
+                    "(v_i = S_i - mean after rigid alignment)")
+               .Default(workflows::PcaOptions().displacement),
            TextFlag("png",
                     "also write a PNG film strip of the mean and the modes"),
            TextFlag("mean",
@@ -102,7 +108,10 @@ FlagTable PcaFlags() {
                     "only checks it (no iterations if it meets the "
                     "tolerance)"),
        },
-       MaterialFlags(), SolverFlags(), JsonFlag(), FilmStripFlags()});
+       MaterialFlags(),
+       SolverFlags(),
+       JsonFlag(),
+       FilmStripFlags()});
 }
 
 // Loads --inputs (at least `minimum` shells with one connectivity).
