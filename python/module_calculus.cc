@@ -274,10 +274,11 @@ void RegisterCalculus(py::module_& m) {
           "shoot",
           "Geodesic shooting (EXP steps) from (first, second): returns a "
           "ShootResult (unpacks as (path, summary))."),
-      py::arg("first"), py::arg("second"), py::arg("F"), py::arg("steps") = 8,
-      py::arg("backward") = false, py::arg("mask") = py::none(),
-      SHELLSPACE_FRAME_OUTPUT_ARGS, SHELLSPACE_MATERIAL_ARGS,
-      SHELLSPACE_SOLVER_ARGS);
+      py::arg("first"), py::arg("second"), py::arg("F"),
+      py::arg("steps") = workflows::ShootOptions().steps,
+      py::arg("backward") = workflows::ShootOptions().backward,
+      py::arg("mask") = py::none(), SHELLSPACE_FRAME_OUTPUT_ARGS,
+      SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS);
   DefWithOptions(
       m, "transport", "TransportOptions",
       WithMaterialAndSolverArgs(&TransportPy),
@@ -287,9 +288,9 @@ void RegisterCalculus(py::module_& m) {
           "path: returns a TransportResult (unpacks as (shapes s_k + "
           "epsilon xi_k, summary))."),
       py::arg("path"), py::arg("variation"), py::arg("F"),
-      py::arg("epsilon") = 1.0, py::arg("mask") = py::none(),
-      SHELLSPACE_FRAME_OUTPUT_ARGS, SHELLSPACE_MATERIAL_ARGS,
-      SHELLSPACE_SOLVER_ARGS);
+      py::arg("epsilon") = workflows::TransportOptions().epsilon,
+      py::arg("mask") = py::none(), SHELLSPACE_FRAME_OUTPUT_ARGS,
+      SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS);
 }
 
 }  // namespace pymodule

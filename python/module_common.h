@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "python/solve_control.h"
 #include "shellspace/cost_functions/shell/relative_bending_weight.h"
 #include "shellspace/cost_functions/shell/shell_space.h"
 #include "shellspace/geometry/mesh.h"
@@ -27,8 +28,8 @@
 #include "shellspace/runtime/openmp_threads.h"
 #include "shellspace/solvers/solver_settings.h"
 #include "shellspace/workflows/common.h"
+#include "shellspace/workflows/geodesic.h"
 #include "shellspace/workflows/solve_status.h"
-#include "python/solve_control.h"
 
 namespace shellspace {
 namespace pymodule {
@@ -268,21 +269,29 @@ void RegisterRender(py::module_& m);
 }  // namespace pymodule
 }  // namespace shellspace
 
-// The keyword arguments shared by the verbs, with the CLI's defaults.
-#define SHELLSPACE_MATERIAL_ARGS \
-  py::arg("mu") = 1.0, py::arg("lambda_") = 1.0, py::arg("eta") = py::none(), \
-      py::arg("relative_eta") = kDefaultRelativeEta,                          \
-      py::arg("bending") = "discrete-shells"
-#define SHELLSPACE_SOLVER_ARGS                                  \
-  py::arg("tolerance") = 1e-8, py::arg("max_iterations") = 200, \
-  py::arg("threads") = 2, py::arg("quiet") = false,             \
+// The keyword arguments shared by the verbs. A default that the library
+// has is taken from its Options or settings struct (as the CLI's flag
+// tables take theirs: one source per default).
+#define SHELLSPACE_MATERIAL_ARGS                                            \
+  py::arg("mu") = ShellMaterial().mu,                                       \
+  py::arg("lambda_") = ShellMaterial().lambda, py::arg("eta") = py::none(), \
+  py::arg("relative_eta") = kDefaultRelativeEta,                            \
+  py::arg("bending") =                                                      \
+      std::string(BendingModelName(ShellMaterial().bending_model))
+#define SHELLSPACE_SOLVER_ARGS                                                 \
+  py::arg("tolerance") = SolverSettings().gradient_tolerance,                  \
+  py::arg("max_iterations") = SolverSettings().max_iterations,                 \
+  py::arg("threads") = SolverSettings().num_threads, py::arg("quiet") = false, \
   py::arg("time_limit") = py::none(), py::arg("allow_unconverged") = false
 // The first arguments of the verbs that solve a geodesic (geodesic, log).
-#define SHELLSPACE_GEODESIC_ARGS                                        \
-  py::arg("start"), py::arg("end"), py::arg("F"), py::arg("steps") = 8, \
-      py::arg("mask") = py::none(), py::arg("multires") = "auto",       \
-      py::arg("linear_solver") = "auto", py::arg("lm") = "auto",        \
-      py::arg("init") = "auto"
+#define SHELLSPACE_GEODESIC_ARGS                                             \
+  py::arg("start"), py::arg("end"), py::arg("F"),                            \
+      py::arg("steps") = workflows::GeodesicOptions().steps,                 \
+      py::arg("mask") = py::none(),                                          \
+      py::arg("multires") = workflows::GeodesicOptions().multires,           \
+      py::arg("linear_solver") = workflows::GeodesicOptions().linear_solver, \
+      py::arg("lm") = workflows::GeodesicOptions().lm,                       \
+      py::arg("init") = workflows::GeodesicOptions().init
 // The files of the verbs that write a path's frames: the frames' directory,
 // a film strip (PNG), a glTF 2.0 animation (.glb); none by default.
 #define SHELLSPACE_FRAME_OUTPUT_ARGS                              \

@@ -152,19 +152,25 @@ void RegisterSplines(py::module_& m) {
           "Riemannian spline through keyframes at path indices `at`, from the "
           "initial path `init` (ltheta or geodesic, as the CLI's --init): "
           "returns a SplineResult (unpacks as (path, summary))."),
-      py::arg("keyframes"), py::arg("at"), py::arg("F"), py::arg("steps") = 8,
-      py::arg("method") = "nonlinear", py::arg("init") = "ltheta",
-      py::arg("periodic") = false, SHELLSPACE_FRAME_OUTPUT_ARGS,
-      SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS);
+      py::arg("keyframes"), py::arg("at"), py::arg("F"),
+      py::arg("steps") = workflows::SplineOptions().steps,
+      py::arg("method") = workflows::SplineOptions().method,
+      py::arg("init") =
+          std::string(SplineInitName(workflows::SplineOptions().init)),
+      py::arg("periodic") = workflows::SplineOptions().periodic,
+      SHELLSPACE_FRAME_OUTPUT_ARGS, SHELLSPACE_MATERIAL_ARGS,
+      SHELLSPACE_SOLVER_ARGS);
   DefWithOptions(
       m, "regress", "RegressOptions", WithMaterialAndSolverArgs(&RegressPy),
       WithParameters(
           "regress",
           "Shape regression (data term + sigma spline energy): returns a "
           "RegressResult (unpacks as (path, summary))."),
-      py::arg("inputs"), py::arg("at"), py::arg("F"), py::arg("steps") = 8,
-      py::arg("sigma") = 1.0, SHELLSPACE_FRAME_OUTPUT_ARGS,
-      SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS);
+      py::arg("inputs"), py::arg("at"), py::arg("F"),
+      py::arg("steps") = workflows::RegressOptions().steps,
+      py::arg("sigma") = workflows::RegressOptions().sigma,
+      SHELLSPACE_FRAME_OUTPUT_ARGS, SHELLSPACE_MATERIAL_ARGS,
+      SHELLSPACE_SOLVER_ARGS);
 }
 
 }  // namespace pymodule

@@ -183,13 +183,19 @@ void RegisterStatistics(py::module_& m) {
           "leave-one-out): returns a PcaResult (unpacks as ({'mean': ..., "
           "'mode_1_minus': ..., ...}, summary)). output: the CLI's directory "
           "(PLY files and pca.json)."),
-      py::arg("inputs"), py::arg("F"), py::arg("modes") = 3,
-      py::arg("baseline") = "", py::arg("loo") = false,
-      py::arg("amplitude") = 1.0, py::arg("log_steps") = 2,
-      py::arg("exp_steps") = 4, py::arg("max_exp_steps") = 16,
-      py::arg("displacement") = "log", py::arg("output") = py::none(),
-      py::arg("png") = py::none(), SHELLSPACE_MATERIAL_ARGS,
-      SHELLSPACE_SOLVER_ARGS);
+      py::arg("inputs"), py::arg("F"),
+      py::arg("modes") = workflows::PcaOptions().modes,
+      py::arg("baseline") = "",
+      py::arg("loo") = workflows::PcaOptions().leave_one_out,
+      py::arg("amplitude") = workflows::PcaOptions().amplitude,
+      py::arg("log_steps") = ShellPcaOptions().steps,
+      // The CLI's --exp_steps (ShellPcaOptions::exp_steps 0 means the
+      // LOG's K; the verb shoots with 4).
+      py::arg("exp_steps") = 4,
+      py::arg("max_exp_steps") = ShellPcaOptions().max_exp_steps,
+      py::arg("displacement") = workflows::PcaOptions().displacement,
+      py::arg("output") = py::none(), py::arg("png") = py::none(),
+      SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS);
   DefWithOptions(
       m, "mean", "MeanOptions", WithMaterialAndSolverArgs(&MeanPy),
       WithParameters(
