@@ -20,20 +20,9 @@ import pytest
 
 import shellspace
 import shellspace.collections as sc
+from procedural import plate
 
 STEPS = 2
-
-
-def plate(n=6):
-    """An n x n grid on the unit square, two triangles per cell."""
-    x, y = np.meshgrid(np.linspace(0, 1, n), np.linspace(0, 1, n))
-    V = np.stack([x.ravel(), y.ravel(), np.zeros(n * n)], axis=1)
-    F = []
-    for r in range(n - 1):
-        for c in range(n - 1):
-            a = r * n + c
-            F += [[a, a + 1, a + n + 1], [a, a + n + 1, a + n]]
-    return V, np.array(F, dtype=np.int64)
 
 
 def collection(count=5, n=6):

@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 import shellspace
+from procedural import plate
 
 CLASSES = {"geodesic": "GeodesicOptions", "log": "LogOptions",
            "shoot": "ShootOptions", "transport": "TransportOptions",
@@ -78,17 +79,6 @@ def test_a_changed_default_is_caught():
     assert defaults_mismatch(changed, expected) == ["steps"]
     expected.pop("mask")
     assert defaults_mismatch(shellspace.GeodesicOptions(), expected) != []
-
-
-def plate(n=5):
-    x, y = np.meshgrid(np.linspace(0, 1, n), np.linspace(0, 1, n))
-    V = np.stack([x.ravel(), y.ravel(), np.zeros(n * n)], axis=1)
-    F = []
-    for r in range(n - 1):
-        for c in range(n - 1):
-            a = r * n + c
-            F += [[a, a + 1, a + n + 1], [a, a + n + 1, a + n]]
-    return V, np.array(F, dtype=np.int64)
 
 
 def test_options_pass_as_keywords_to_the_same_digits():
