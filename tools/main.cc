@@ -205,66 +205,68 @@ void CheckFlagFiles(const std::vector<std::string>& args, int depth = 0) {
   }
 }
 
-}  // namespace
-}  // namespace shellspace
-
-int main(int argc, char** argv) {
-  using shellspace::VerbRegistry;
-  shellspace::SetRunCommandLine(argc, argv);
-  shellspace::SerialOpenMpInThisThread();
-  shellspace::KeepFreedHeapForReuse();
-  if (argc < 2 || shellspace::IsHelp(argv[1])) {
-    shellspace::PrintUsage();
+// The verb named by argv[1] (and argv[2] for a verb with sub-commands):
+// *first_flag is the index of its first flag. Returns -1 to go on, or the
+// exit code of a usage line printed here (help, a missing sub-command, an
+// unknown verb).
+int ResolveVerb(int argc, char** argv, std::string* name, int* first_flag) {
+  if (argc < 2 || IsHelp(argv[1])) {
+    PrintUsage();
     return argc < 2 ? 1 : 0;
   }
-  // The verb: one word, or "VERB SUBCOMMAND" for a verb with sub-commands.
-  std::string name = argv[1];
-  int first_flag = 2;
-  const std::vector<std::string> subcommands = shellspace::Subcommands(name);
+  *name = argv[1];
+  *first_flag = 2;
+  const std::vector<std::string> subcommands = Subcommands(*name);
   if (!subcommands.empty()) {
-    if (argc < 3 || argv[2][0] == '-' || shellspace::IsHelp(argv[2])) {
-      if (argc >= 3 && shellspace::IsHelp(argv[2])) {
-        std::cout << "usage: shellspace " << name << " "
-                  << shellspace::Join(subcommands, "|")
-                  << " [--flags]\n\n`shellspace " << name
+    if (argc < 3 || argv[2][0] == '-' || IsHelp(argv[2])) {
+      if (argc >= 3 && IsHelp(argv[2])) {
+        std::cout << "usage: shellspace " << *name << " "
+                  << Join(subcommands, "|") << " [--flags]\n\n`shellspace "
+                  << *name
                   << " SUBCOMMAND --help` lists the flags of a sub-command.\n";
         return 0;
       }
-      std::cerr << "shellspace " << name << ": expected a sub-command: "
-                << shellspace::Join(subcommands, ", ") << "\n";
+      std::cerr << "shellspace " << *name
+                << ": expected a sub-command: " << Join(subcommands, ", ")
+                << "\n";
       return 2;
     }
-    name += std::string(" ") + argv[2];
-    first_flag = 3;
+    *name += std::string(" ") + argv[2];
+    *first_flag = 3;
   }
-  auto it = VerbRegistry().find(name);
-  if (it == VerbRegistry().end()) {
-    std::cerr << "shellspace: unknown verb '" << name
+  if (VerbRegistry().find(*name) == VerbRegistry().end()) {
+    std::cerr << "shellspace: unknown verb '" << *name
               << "' (run `shellspace --help`)\n";
     return 2;
   }
-  const shellspace::Verb& verb = it->second;
+  return -1;
+}
+
+// Checks the verb's table, answers --help, reads the flag files and lets
+// gflags parse the flags after the verb; refuses stray arguments, repeated
+// flags and flags of other verbs. Returns -1 to go on, or the exit code.
+int ParseVerbFlags(const Verb& verb, int argc, char** argv, int first_flag) {
+  const std::string& name = verb.name;
   try {
-    shellspace::CheckTable(verb);
+    CheckTable(verb);
   } catch (const std::exception& error) {
     std::cerr << "shellspace " << name << ": internal error: " << error.what()
               << "\n";
     return 3;
   }
   for (int i = first_flag; i < argc; ++i) {
-    if (shellspace::IsHelp(argv[i])) {
-      shellspace::PrintVerbHelp(verb);
+    if (IsHelp(argv[i])) {
+      PrintVerbHelp(verb);
       return 0;
     }
   }
+  const std::vector<std::string> given(argv + first_flag, argv + argc);
   try {
-    shellspace::CheckFlagFiles(
-        std::vector<std::string>(argv + first_flag, argv + argc));
-  } catch (const shellspace::InputError& error) {
+    CheckFlagFiles(given);
+  } catch (const InputError& error) {
     std::cerr << "shellspace " << name << ": error: " << error.what() << "\n";
     return 1;
   }
-  // Let gflags parse everything after the verb.
   std::vector<char*> args;
   std::string program = std::string(argv[0]) + " " + name;
   args.push_back(program.data());
@@ -278,61 +280,66 @@ int main(int argc, char** argv) {
               << new_argv[1] << "'\n";
     return 2;
   }
-  const std::string repeated = shellspace::RepeatedFlagProblem(
-      std::vector<std::string>(argv + first_flag, argv + argc));
+  const std::string repeated = RepeatedFlagProblem(given);
   if (!repeated.empty()) {
     std::cerr << "shellspace " << name << ": " << repeated << "\n";
     return 2;
   }
-  const std::string foreign = shellspace::ForeignFlag(verb);
+  const std::string foreign = ForeignFlag(verb);
   if (!foreign.empty()) {
     std::cerr << "shellspace " << name << ": --" << foreign
               << " is not a flag of " << name << " (`shellspace " << name
               << " --help` lists them)\n";
     return 2;
   }
-  // Ceres' warnings and errors (an LM step retried after a failed
-  // factorisation of a nearly singular Gauss-Newton matrix, an evaluation
-  // at a degenerate trial shape) are routine here and our own status lines
-  // say how a solve went: hidden unless the user passes --minloglevel=0.
+  return -1;
+}
+
+// Ceres' warnings and errors (an LM step retried after a failed
+// factorisation of a nearly singular Gauss-Newton matrix, an evaluation at a
+// degenerate trial shape) are routine here and our own status lines say how
+// a solve went: hidden unless the user passes --minloglevel=0.
+void QuietCeresLogging(const char* program) {
   gflags::CommandLineFlagInfo loglevel;
   if (gflags::GetCommandLineFlagInfo("minloglevel", &loglevel) &&
       loglevel.is_default) {
     FLAGS_minloglevel = google::GLOG_FATAL;
   }
   FLAGS_logtostderr = true;
-  google::InitGoogleLogging(argv[0]);
+  google::InitGoogleLogging(program);
+}
+
+// Applies the verb's defaults, validates its flags and runs it under the
+// stop handlers; a stop request, input errors and internal errors end in
+// one line on stderr and their exit codes.
+int RunVerb(const Verb& verb) {
+  const std::string& name = verb.name;
   try {
-    shellspace::ApplyDefaultsAndValidate(verb);
-    shellspace::InstallStopHandlers(
-        shellspace::FindFlag(verb.flags, "time_limit") ? FLAGS_time_limit : 0);
+    ApplyDefaultsAndValidate(verb);
+    InstallStopHandlers(FindFlag(verb.flags, "time_limit") ? FLAGS_time_limit
+                                                           : 0);
     // SIGINT and SIGTERM end a long read of an input (io/input_file.h); the
     // time limit stops solves only.
-    shellspace::SetReadStopPoll([] {
-      return shellspace::RequestedStop() != shellspace::StopCause::kNone;
-    });
+    SetReadStopPoll([] { return RequestedStop() != StopCause::kNone; });
     const int code = verb.run();
-    const shellspace::StopCause stop = shellspace::RequestedStop();
-    if (code != 0 || stop == shellspace::StopCause::kNone) return code;
-    std::cerr << "shellspace " << name << ": stopped ("
-              << shellspace::StopCauseText(stop) << "): "
-              << (shellspace::ObservedStop() != shellspace::StopCause::kNone
+    const StopCause stop = RequestedStop();
+    if (code != 0 || stop == StopCause::kNone) return code;
+    std::cerr << "shellspace " << name << ": stopped (" << StopCauseText(stop)
+              << "): "
+              << (ObservedStop() != StopCause::kNone
                       ? "wrote the best state so far, marked partial"
                       : "after the solves; the output is complete");
-    const std::string unmet = shellspace::StoppedRunFailures();
+    const std::string unmet = StoppedRunFailures();
     if (!unmet.empty()) std::cerr << "; not converged: " << unmet;
     std::cerr << "\n";
-    return shellspace::StopExitCode(stop);
-  } catch (const shellspace::ReadStopped& error) {
+    return StopExitCode(stop);
+  } catch (const ReadStopped& error) {
     // A signal while an input was read: nothing to write.
-    const shellspace::StopCause stop = shellspace::RequestedStop();
-    std::cerr << "shellspace " << name << ": stopped ("
-              << shellspace::StopCauseText(stop) << ") while reading "
-              << error.path() << "\n";
-    return stop == shellspace::StopCause::kNone
-               ? 1
-               : shellspace::StopExitCode(stop);
-  } catch (const shellspace::InputError& error) {
+    const StopCause stop = RequestedStop();
+    std::cerr << "shellspace " << name << ": stopped (" << StopCauseText(stop)
+              << ") while reading " << error.path() << "\n";
+    return stop == StopCause::kNone ? 1 : StopExitCode(stop);
+  } catch (const InputError& error) {
     std::cerr << "shellspace " << name << ": error: " << error.what() << "\n";
     return 1;
   } catch (const std::exception& error) {
@@ -340,4 +347,27 @@ int main(int argc, char** argv) {
               << "\n";
     return 3;
   }
+}
+
+}  // namespace
+}  // namespace shellspace
+
+// The verb, its flags (parsed and validated), then the verb's run.
+int main(int argc, char** argv) {
+  shellspace::SetRunCommandLine(argc, argv);
+  shellspace::SerialOpenMpInThisThread();
+  shellspace::KeepFreedHeapForReuse();
+  std::string name;
+  int first_flag = 0;
+  if (const int code = shellspace::ResolveVerb(argc, argv, &name, &first_flag);
+      code >= 0) {
+    return code;
+  }
+  const shellspace::Verb& verb = shellspace::VerbRegistry().at(name);
+  if (const int code = shellspace::ParseVerbFlags(verb, argc, argv, first_flag);
+      code >= 0) {
+    return code;
+  }
+  shellspace::QuietCeresLogging(argv[0]);
+  return shellspace::RunVerb(verb);
 }
