@@ -18,10 +18,9 @@ FlagSpec MultiresFlag() {
   return TextFlag(
              "multires",
              "auto|off|LEVELS: solve the geodesic on LEVELS decimated meshes "
-             "first "
-             "(each 1/4 of the vertices of the one above), prolongate, finish "
-             "on the "
-             "input mesh; auto: as many levels as keep the coarsest at >= " +
+             "first (each 1/4 of the vertices of the one above), prolongate, "
+             "finish on the input mesh; auto: as many levels as keep the "
+             "coarsest at >= " +
                  std::to_string(kAutoMinVertices) + " vertices")
       .Default(workflows::GeodesicOptions().multires);
 }
