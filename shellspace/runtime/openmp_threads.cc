@@ -21,9 +21,12 @@ void SerialOpenMpInThisThread() {
       reinterpret_cast<SetInt>(dlsym(RTLD_DEFAULT, "omp_set_dynamic"));
   const auto set_num_threads =
       reinterpret_cast<SetInt>(dlsym(RTLD_DEFAULT, "omp_set_num_threads"));
+  const auto set_max_active_levels = reinterpret_cast<SetInt>(
+      dlsym(RTLD_DEFAULT, "omp_set_max_active_levels"));
   if (set_dynamic == nullptr || set_num_threads == nullptr) return;
   set_num_threads(1);
   set_dynamic(1);
+  if (set_max_active_levels != nullptr) set_max_active_levels(0);
 }
 
 }  // namespace shellspace

@@ -15,7 +15,11 @@ namespace shellspace {
 // Makes the OpenMP parallel regions that the calling thread opens run on
 // that thread alone: its nthreads-var becomes 1 and its dyn-var true, which
 // caps even an explicit num_threads clause at 1 (OpenMP's dynamic
-// adjustment, deterministic at nthreads-var 1). OpenMP keeps these settings
+// adjustment, deterministic at nthreads-var 1), and its max-active-levels-var
+// 0, so that no region is active and the runtime settles on one thread before
+// the dynamic adjustment looks at the machine (libgomp's asks for the load
+// average and the affinity mask at every region: 24,000 of each on the
+// cactus 10-ring geodesic, K = 8). OpenMP keeps these settings
 // per thread, so every thread that factorises calls it: the CLI's main,
 // the Python module's import, ParallelFor's workers. Does nothing if the
 // user set OMP_DYNAMIC, OMP_THREAD_LIMIT or OMP_NUM_THREADS to anything
