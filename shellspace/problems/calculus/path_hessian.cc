@@ -207,10 +207,12 @@ bool PathHessianAssembler::AddElementBlocks(
       // out[slot(a, b)](i, j) += m(3a + i, 3b + j), or with `transposed`
       // out[slot(b, a)](j, i) += m(3a + i, 3b + j) (rows deformed, columns
       // reference).
+      const auto& stencil = group.stencils[e];
       auto scatter = [&](const auto& m, BlockArray* out,
-                         bool transposed = false) {
+                         bool transposed = false, bool lower_only = false) {
         for (int a = 0; a < count; ++a) {
           for (int b = 0; b < count; ++b) {
+            if (lower_only && stencil[a] < stencil[b]) continue;
             double* block =
                 out->data() +
                 9 * slot[transposed ? b * count + a : a * count + b];
@@ -235,7 +237,9 @@ bool PathHessianAssembler::AddElementBlocks(
           ok = false;
           return;
         }
-        if (d22 != nullptr) scatter(d.d_grad_deformed, d22);
+        if (d22 != nullptr) {
+          scatter(d.d_grad_deformed, d22, false, /*lower_only=*/true);
+        }
         if (mixed_transposed != nullptr) {
           scatter(d.d_grad_reference, mixed_transposed, /*transposed=*/true);
         }
@@ -251,7 +255,9 @@ bool PathHessianAssembler::AddElementBlocks(
           ok = false;
           return;
         }
-        if (d11 != nullptr) scatter(d.d_grad_reference, d11);
+        if (d11 != nullptr) {
+          scatter(d.d_grad_reference, d11, false, /*lower_only=*/true);
+        }
         // d_grad_deformed with the reference active: rows deformed, columns
         // reference, as the scatter's slot(a, b) = (row a, column b) wants.
         if (reference_mixed != nullptr) {

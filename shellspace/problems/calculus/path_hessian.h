@@ -103,7 +103,9 @@ class PathHessianAssembler {
   // reference_mixed, from the reference-active pass that also gives
   // D_1^2 W) and with rows reference (mixed), element by element in the
   // set's order. False (arrays partly filled) at the first degenerate
-  // element, named in *failure if given.
+  // element, named in *failure if given. d22 and d11 receive the blocks on
+  // and below the diagonal only (row vertex >= column vertex: the only ones
+  // Compress reads of a diagonal block); the mixed arrays receive all.
   bool AddElementBlocks(const Positions& reference, const Positions& deformed,
                         double weight, BlockArray* d22, BlockArray* d11,
                         BlockArray* mixed_transposed,

@@ -11,6 +11,7 @@
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
 #include "shellspace/runtime/parallel_for.h"
+#include "shellspace/geometry/procedural_shapes.h"
 #include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/geodesic.h"
@@ -276,6 +277,50 @@ ShellPath CollapsedFirstTrianglePath(const Mesh& a) {
   path[1].row(v1) = path[1].row(v0);
   path[1].row(v2) = path[1].row(v0);
   return path;
+}
+
+// One assembler used for several paths (as a Newton solve uses it) gives
+// the Hessians of a fresh assembler, bit for bit: for another path, for
+// the first one again, and for the elastic-mean sum (whose diagonal blocks,
+// like the path's, receive only the vertex pairs on and below the
+// diagonal). Procedural: a sheet rolled onto a cylinder.
+bool SameMatrix(const SparseMatrix& a, const SparseMatrix& b) {
+  return a.rows() == b.rows() && a.cols() == b.cols() &&
+         a.nonZeros() == b.nonZeros() &&
+         std::equal(a.outerIndexPtr(), a.outerIndexPtr() + a.cols() + 1,
+                    b.outerIndexPtr()) &&
+         std::equal(a.innerIndexPtr(), a.innerIndexPtr() + a.nonZeros(),
+                    b.innerIndexPtr()) &&
+         std::equal(a.valuePtr(), a.valuePtr() + a.nonZeros(), b.valuePtr());
+}
+
+TEST(PathHessianReuseTest, AReusedAssemblerGivesTheFreshHessians) {
+  const Mesh sheet = MakeEquilateralSheet(10, 6, 0.15);
+  const ShellSpace space(sheet, Topology::Build(sheet),
+                         ShellMaterial{1, 1, 0.01});
+  const int K = 4;
+  const ShellPath a = PerturbedLinearPath(
+      sheet.positions, RollOntoCylinder(sheet.positions, 0.8), K, 1e-3, 1);
+  const ShellPath b = PerturbedLinearPath(
+      sheet.positions, RollOntoCylinder(sheet.positions, 1.3), K, 1e-3, 2);
+  const std::vector<SparseMatrix> bases(
+      K - 1, FreeVertexBasis(sheet.num_vertices(), {0, 1, 2}));
+  const PathHessianAssembler kept(space);
+  for (int threads : {1, 2}) {
+    const SparseMatrix first = kept.Assemble(a, bases, threads);
+    const SparseMatrix second = kept.Assemble(b, bases, threads);
+    const SparseMatrix again = kept.Assemble(a, bases, threads);
+    EXPECT_TRUE(SameMatrix(second,
+                           PathHessianAssembler(space).Assemble(b, bases,
+                                                                threads)));
+    EXPECT_TRUE(SameMatrix(again, first));
+    // The check tells the two paths' Hessians apart.
+    EXPECT_FALSE(SameMatrix(second, first));
+    const SparseMatrix sum =
+        kept.AssembleDeformedSum({a[0], b[2]}, a[1], bases[0], threads);
+    EXPECT_TRUE(SameMatrix(sum, PathHessianAssembler(space).AssembleDeformedSum(
+                                    {a[0], b[2]}, a[1], bases[0], threads)));
+  }
 }
 
 TEST(PathHessianAssemblerTest, DegenerateTriangleThrowsInputError) {
