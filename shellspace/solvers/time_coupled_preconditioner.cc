@@ -16,19 +16,6 @@ namespace shellspace {
 
 using SparseMatrix = Eigen::SparseMatrix<double>;
 
-// The slices' factors, sharing one pattern, in the chosen precision (the
-// CHOLMOD factors are released as soon as they are copied).
-struct TimeCoupledPreconditioner::Factors {
-  std::shared_ptr<const SupernodalPattern> pattern;
-  std::vector<SupernodalFactor<float>> single;
-  std::vector<SupernodalFactor<double>> full;
-  void Clear() {
-    single.clear();
-    full.clear();
-    pattern.reset();
-  }
-};
-
 namespace {
 
 // CHOLMOD's view of the lower triangle of a compressed, sorted block.
@@ -78,6 +65,59 @@ Eigen::MatrixXd TwiceInverseTimeMatrix(const std::vector<double>& theta) {
 
 }  // namespace
 
+// The slices' factors, sharing one pattern, in the chosen precision (the
+// CHOLMOD factors are released as soon as they are copied), and the
+// symbolic analysis they came from.
+struct TimeCoupledPreconditioner::Factors {
+  // The ordering and supernodes of one block pattern (cholmod_analyze),
+  // kept for the next Factorize of the same pattern: a Newton or LM solve
+  // factorises one pattern at every refactorisation, and a shifted retry
+  // again (the analysis is a deterministic function of the pattern, so
+  // the factors are the same as with a fresh one).
+  struct Analysis {
+    explicit Analysis(const SparseMatrix& front) : of(front) {
+      cholmod_start(&common);
+      common.print = 0;
+      common.supernodal = CHOLMOD_SUPERNODAL;
+      // The ordering with the least fill of AMD and METIS' nested
+      // dissection (on the cactus x4 slices, 59,508 unknowns: nnz(L) 14.9M
+      // AMD, 13.0M METIS, factorisation 1.12 s against 0.97 s; on small
+      // slices AMD wins). Both are deterministic.
+      common.nmethods = 2;
+      common.method[0].ordering = CHOLMOD_AMD;
+      common.method[1].ordering = CHOLMOD_METIS;
+      cholmod_sparse first = LowerView(front);
+      symbolic = cholmod_analyze(&first, &common);
+      pattern = std::make_shared<const SupernodalPattern>(
+          symbolic ? SupernodalPattern::Of(*symbolic) : SupernodalPattern());
+    }
+    ~Analysis() {
+      if (symbolic) cholmod_free_factor(&symbolic, &common);
+      cholmod_finish(&common);
+    }
+    Analysis(const Analysis&) = delete;
+    Analysis& operator=(const Analysis&) = delete;
+    bool valid() const {
+      return symbolic != nullptr && pattern->size == static_cast<int>(of.rows);
+    }
+
+    const BlockPattern of;
+    cholmod_common common;
+    cholmod_factor* symbolic = nullptr;
+    std::shared_ptr<const SupernodalPattern> pattern;
+  };
+
+  std::shared_ptr<const SupernodalPattern> pattern;
+  std::vector<SupernodalFactor<float>> single;
+  std::vector<SupernodalFactor<double>> full;
+  std::unique_ptr<Analysis> analysis;  // kept by Clear
+  void Clear() {
+    single.clear();
+    full.clear();
+    pattern.reset();
+  }
+};
+
 TimeCoupledPreconditioner::TimeCoupledPreconditioner()
     : factors_(std::make_unique<Factors>()) {}
 TimeCoupledPreconditioner::~TimeCoupledPreconditioner() = default;
@@ -106,28 +146,20 @@ TimeCoupledPreconditioner::Status TimeCoupledPreconditioner::Factorize(
   if (count <= 0) return Status::kDifferentPatterns;
   SparseMatrix front;
   block_source(0, &front);
-  const BlockPattern front_pattern(front);
-  // The ordering and the supernodes of the common pattern, once.
-  cholmod_common common;
-  cholmod_start(&common);
-  common.print = 0;
-  common.supernodal = CHOLMOD_SUPERNODAL;
-  // The ordering with the least fill of AMD and METIS' nested dissection
-  // (on the cactus x4 slices, 59,508 unknowns: nnz(L) 14.9M AMD, 13.0M
-  // METIS, factorisation 1.12 s against 0.97 s; on small slices AMD wins).
-  // Both are deterministic; the analysis is done once for all slices.
-  common.nmethods = 2;
-  common.method[0].ordering = CHOLMOD_AMD;
-  common.method[1].ordering = CHOLMOD_METIS;
-  cholmod_sparse first = LowerView(front);
-  cholmod_factor* symbolic = cholmod_analyze(&first, &common);
-  auto pattern = std::make_shared<const SupernodalPattern>(
-      symbolic ? SupernodalPattern::Of(*symbolic) : SupernodalPattern());
-  if (pattern->size != static_cast<int>(first.nrow)) {
-    if (symbolic) cholmod_free_factor(&symbolic, &common);
-    cholmod_finish(&common);
+  // The ordering and the supernodes of the common pattern: once for all
+  // slices, and kept while the pattern stays.
+  std::unique_ptr<Factors::Analysis>& analysis = factors_->analysis;
+  if (!analysis || !analysis->of.Of(front)) {
+    analysis.reset();  // the old one is freed before the new one is made
+    analysis = std::make_unique<Factors::Analysis>(front);
+  }
+  if (!analysis->valid()) {
+    analysis.reset();
     return Status::kNotPositive;
   }
+  const BlockPattern& front_pattern = analysis->of;
+  const cholmod_factor* const symbolic = analysis->symbolic;
+  const std::shared_ptr<const SupernodalPattern> pattern = analysis->pattern;
   // Each slice: a copy of the symbolic factor, factorised, converted, freed.
   // A cholmod_common is not shared between threads.
   const bool single = precision_ == FactorPrecision::kSingle;
@@ -152,7 +184,8 @@ TimeCoupledPreconditioner::Status TimeCoupledPreconditioner::Factorize(
     own.print = 0;  // an indefinite block is an answer
     own.supernodal = CHOLMOD_SUPERNODAL;
     own.final_asis = 1;  // keep the supernodal L L^T
-    cholmod_factor* factor = cholmod_copy_factor(symbolic, &own);
+    cholmod_factor* factor =
+        cholmod_copy_factor(const_cast<cholmod_factor*>(symbolic), &own);
     cholmod_sparse view = LowerView(block);
     const bool factorized = factor && cholmod_factorize(&view, factor, &own);
     own_block = SparseMatrix();  // not needed for the copy
@@ -191,8 +224,6 @@ TimeCoupledPreconditioner::Status TimeCoupledPreconditioner::Factorize(
     ParallelFor(width, width, [&](int t) { factorize_slice(done + t); });
     done += width;
   }
-  cholmod_free_factor(&symbolic, &common);
-  cholmod_finish(&common);
   const auto all = [](const std::vector<char>& v) {
     return std::all_of(v.begin(), v.end(), [](char c) { return c != 0; });
   };

@@ -184,6 +184,53 @@ TEST(TimeCoupledPreconditionerTest, ReportsDifferentPatternsAndIndefiniteBlocks)
   EXPECT_EQ(p.Apply(u, 2), q.Apply(u, 2));
 }
 
+// The symbolic analysis is kept from one Factorize to the next of the same
+// pattern, and made afresh for another pattern: a preconditioner that has
+// factorised other values, and then another pattern, applies the same
+// digits as a fresh one, bit for bit, at each stage.
+TEST(TimeCoupledPreconditionerTest, AKeptAnalysisGivesTheFreshFactors) {
+  const SparseMatrix g = testing::PlateLaplacianMetric(0.1);
+  const int m = static_cast<int>(g.rows());
+  const std::vector<SparseMatrix> blocks =
+      DiagonalBlocks(testing::KroneckerPathModel(g, 4), m);
+  const int count = static_cast<int>(blocks.size());
+  std::vector<SparseMatrix> scaled;  // the same pattern, other values
+  for (int i = 0; i < count; ++i) {
+    SparseMatrix block = (1.0 + 0.25 * i) * blocks[i];
+    block.diagonal().array() += 0.5;
+    scaled.push_back(block);
+  }
+  std::vector<SparseMatrix> smaller;  // another pattern: one vertex fewer
+  for (const SparseMatrix& block : blocks) {
+    SparseMatrix cut = block.block(0, 0, m - 3, m - 3);
+    cut.makeCompressed();
+    smaller.push_back(cut);
+  }
+  const auto fresh_apply = [](const std::vector<SparseMatrix>& b,
+                              const Eigen::VectorXd& u) {
+    TimeCoupledPreconditioner fresh;
+    EXPECT_EQ(fresh.Factorize(b, 2),
+              TimeCoupledPreconditioner::Status::kFactorized);
+    return fresh.Apply(u, 2);
+  };
+  TimeCoupledPreconditioner kept;
+  const Eigen::VectorXd u = TestVector(count * m, 0.7);
+  ASSERT_EQ(kept.Factorize(blocks, 2),
+            TimeCoupledPreconditioner::Status::kFactorized);
+  ASSERT_EQ(kept.Factorize(scaled, 2),
+            TimeCoupledPreconditioner::Status::kFactorized);
+  EXPECT_EQ(kept.Apply(u, 2), fresh_apply(scaled, u));
+  // Not the factors of the first values: the check can tell them apart.
+  EXPECT_NE(kept.Apply(u, 2), fresh_apply(blocks, u));
+  const Eigen::VectorXd w = TestVector(count * (m - 3), 0.2);
+  ASSERT_EQ(kept.Factorize(smaller, 2),
+            TimeCoupledPreconditioner::Status::kFactorized);
+  EXPECT_EQ(kept.Apply(w, 2), fresh_apply(smaller, w));
+  ASSERT_EQ(kept.Factorize(blocks, 2),
+            TimeCoupledPreconditioner::Status::kFactorized);
+  EXPECT_EQ(kept.Apply(u, 2), fresh_apply(blocks, u));
+}
+
 // CG iterations to 1e-10 with block Jacobi [0] and the fitted time-coupled
 // preconditioner [1] on the Hessian of the plate geodesic (two rows masked,
 // as in block_jacobi_cg_test.cc, K = 8) to `roll` times the roll of
