@@ -21,6 +21,7 @@ class LevenbergMarquardtStrategy : public NewtonStepStrategy {
       : lambda_(settings.lm_initial) {}
 
   bool ReportsTrials() const override { return true; }
+  double damping() const override { return lambda_; }
 
   NewtonStepOutcome Step(const NewtonIteration& it) override {
     const NewtonSettings& settings = *it.settings;

@@ -33,6 +33,8 @@ constexpr NamedValue<NewtonStop> kNewtonStopTexts[] = {
     {NewtonStop::kLineSearchFailed, "no decrease along the Newton direction"},
     {NewtonStop::kRoundOffFloor, "round-off floor"},
     {NewtonStop::kNoProgress, "no progress"},
+    {NewtonStop::kHandedOver, "gradient contracting: handed over"},
+    {NewtonStop::kOutsideBasin, "not yet in Newton's basin"},
     {NewtonStop::kStopped, "stopped on request"}};
 constexpr NamedValue<NewtonStop> kRootFindingStopTexts[] = {
     {NewtonStop::kAssemblyFailed, "Jacobian not assembled"},
@@ -70,6 +72,7 @@ void NewtonReport::Append(const NewtonReport& later) {
   rejected_trials += later.rejected_trials;
   shifted_preconditioners += later.shifted_preconditioners;
   max_shift = std::max(max_shift, later.max_shift);
+  final_damping = later.final_damping;
   linear_solver = later.linear_solver;
   final_gradient = later.final_gradient;
   final_merit = later.final_merit;
@@ -221,10 +224,20 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
       break;
     }
     const double norm = report.final_gradient;
+    if (outcome.end && !(norm <= settings.tolerance * current.scale)) {
+      finish(outcome.failure);
+      break;
+    }
     if (norm <= settings.round_off_floor &&
         !(norm <= settings.round_off_factor * previous_norm) &&
         !(norm <= settings.tolerance * current.scale)) {
       finish(NewtonStop::kRoundOffFloor);
+      break;
+    }
+    if (minimize && settings.hand_over_contraction > 0 &&
+        norm * settings.hand_over_contraction <= previous_norm &&
+        !(norm <= settings.tolerance * current.scale)) {
+      finish(NewtonStop::kHandedOver);
       break;
     }
     if (settings.progress_steps > 0 && report.steps >= settings.progress_steps &&
@@ -233,6 +246,7 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
       break;
     }
   }
+  report.final_damping = strategy->damping();
   update_counters();
   return report;
 }

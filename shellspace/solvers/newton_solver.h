@@ -183,6 +183,14 @@ struct NewtonSettings {
   // The preconditioner of an earlier iteration is reused while its
   // subproblems need at most this many CG iterations.
   int tr_refactor_cg_iterations = 25;
+  // kTrustRegion as a probe of Newton's basin (0: off): the solve ends
+  // (kOutsideBasin) at the first step that is not a full Newton step of a
+  // good model -- a rejected trial (not taken), or one that ended on the
+  // boundary or along negative curvature or whose ratio rho is below
+  // tr_basin_ratio (taken if acceptable). Near a minimiser rho -> 1; a
+  // caller that handed over early (hand_over_contraction) goes back to its
+  // first method there instead of globalising Newton far from the basin.
+  double tr_basin_ratio = 0;
 
   // Stall rules (0: off).
   // Round-off floor: stop after an accepted step that leaves max_norm <=
@@ -193,6 +201,16 @@ struct NewtonSettings {
   // max_norm to progress_factor times its initial value.
   int progress_steps = 0;
   double progress_factor = 0.5;
+  // Hand-over (minimisation; 0: off): stop (kHandedOver) after an accepted
+  // step that divided the residual's max_norm by at least this factor,
+  // for a caller that then switches to another method. Meant for a
+  // Levenberg-Marquardt stage on a Gauss-Newton model: Gauss-Newton
+  // converges linearly, at a rate set by the second-order term of the
+  // residuals it leaves out; one step that cuts the gradient tenfold shows
+  // that term already small against J^T J along the step, and Newton's
+  // method on the exact Hessian can take over. Deterministic: it reads
+  // norms, no clock.
+  double hand_over_contraction = 0;
 
   // Called after every line search (accepted or not), for progress lines.
   std::function<void(const NewtonReport& report, double merit,
@@ -212,6 +230,8 @@ enum class NewtonStop {
   kLineSearchFailed,   // no step length accepted
   kRoundOffFloor,      // the round-off floor rule
   kNoProgress,         // the no-progress rule
+  kHandedOver,         // the hand-over rule (hand_over_contraction)
+  kOutsideBasin,       // the basin probe (tr_basin_ratio)
   kStopped,            // NewtonSettings::stop returned true
 };
 
@@ -249,6 +269,9 @@ struct NewtonReport {
   int rejected_trials = 0;
   int shifted_preconditioners = 0;
   double max_shift = 0;              // largest lambda tried (0: none)
+  // kLevenbergMarquardt: the lambda the next step would have started from
+  // (lm_initial for a solve that continues this one).
+  double final_damping = 0;
 
   // Adds a later solve: counts and times summed, the rest from `later`
   // (initial_gradient stays the first solve's).

@@ -43,6 +43,9 @@ struct NewtonStepOutcome {
   double merit = 0;
   bool shifted = false;  // the step solved a shifted or damped system
   NewtonStop failure = NewtonStop::kLineSearchFailed;  // if not accepted
+  // Accepted, and the solve ends after it with `failure` (unless the step
+  // met the tolerance).
+  bool end = false;
 };
 
 class NewtonStepStrategy {
@@ -52,6 +55,9 @@ class NewtonStepStrategy {
   // True if Step reports every rejected trial itself (report_rejection):
   // the engine then reports an iteration only when it accepted a step.
   virtual bool ReportsTrials() const { return false; }
+  // The damping the next step would start from (kLevenbergMarquardt's
+  // lambda; 0 for the others).
+  virtual double damping() const { return 0; }
 };
 
 // The strategy of settings.globalisation (kLineSearch for root finding,

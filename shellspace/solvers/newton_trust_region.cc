@@ -140,6 +140,12 @@ NewtonStepOutcome TrustRegionStrategy::Step(const NewtonIteration& it) {
              (ratio >= settings.tr_accept ||
               trial.max_norm < current.max_norm);
     }
+    // The basin probe: anything but a full step of a good model ends it.
+    const bool outside_basin =
+        settings.tr_basin_ratio > 0 &&
+        (!take || on_boundary ||
+         step.stop == SteihaugResult::Stop::kNegativeCurvature ||
+         !(ratio >= settings.tr_basin_ratio));
     // The radius: shrink to a quarter of the step on a poor model (or a
     // trial that cannot be evaluated), double it after a good step that the
     // boundary cut short.
@@ -156,9 +162,15 @@ NewtonStepOutcome TrustRegionStrategy::Step(const NewtonIteration& it) {
       outcome.accepted = true;
       outcome.residual = std::move(trial);
       outcome.merit = trial_merit;
+      outcome.end = outside_basin;
+      if (outside_basin) outcome.failure = NewtonStop::kOutsideBasin;
       return outcome;
     }
     ++report->rejected_trials;
+    if (outside_basin) {
+      outcome.failure = NewtonStop::kOutsideBasin;
+      return outcome;
+    }
     if (!(step.step_norm > 0)) break;  // no step left to shrink
   }
   return outcome;

@@ -647,6 +647,48 @@ TEST(NewtonSolverTest, LevenbergMarquardtSolvesRosenbrockOnTheGaussNewtonModel) 
   EXPECT_GT(wrong, 40);
 }
 
+// The hand-over rule ends LM at its first accepted step that divides the
+// gradient's max norm by the set factor (here on Rosenbrock's valley, where
+// Gauss-Newton's steps contract the gradient by less far from the
+// minimiser and by more near it). The contractions are read from the
+// iterates with the problem's own gradient; the twin without the rule runs
+// to convergence through the same steps.
+std::vector<double> GradientMaxNorms(const Callbacks& c,
+                                     const std::vector<Eigen::VectorXd>& xs) {
+  std::vector<double> norms;
+  for (const Eigen::VectorXd& x : xs) {
+    norms.push_back(c.residual(x).cwiseAbs().maxCoeff());
+  }
+  return norms;
+}
+
+TEST(NewtonSolverTest, HandOverEndsLevenbergMarquardtAtAContractingStep) {
+  const Callbacks c = RosenbrockLeastSquares();
+  const double factor = 10;
+  NewtonSettings s = LevenbergMarquardt(1e-12, 200);
+  s.hand_over_contraction = factor;
+  FunctionProblem problem(c, Eigen::Vector2d(-1.2, 1), true);
+  ReusableCholesky cholesky;
+  const NewtonReport r = SolveNewton(&problem, &cholesky, s);
+  EXPECT_EQ(r.stop, NewtonStop::kHandedOver);
+  EXPECT_EQ(r.stop_reason, "gradient contracting: handed over");
+  EXPECT_FALSE(r.converged);
+  const std::vector<double> g = GradientMaxNorms(c, problem.iterates);
+  ASSERT_GE(g.size(), 3u);  // a few steps before the contracting one
+  for (size_t k = 1; k + 1 < g.size(); ++k) EXPECT_GT(g[k] * factor, g[k - 1]);
+  EXPECT_LE(g.back() * factor, g[g.size() - 2]);
+  // Without the rule: the same first steps, on to convergence.
+  FunctionProblem all(c, Eigen::Vector2d(-1.2, 1), true);
+  ReusableCholesky cholesky2;
+  const NewtonReport full =
+      SolveNewton(&all, &cholesky2, LevenbergMarquardt(1e-12, 200));
+  EXPECT_TRUE(full.converged) << full.stop_reason;
+  ASSERT_GT(all.iterates.size(), problem.iterates.size());
+  for (size_t k = 0; k < problem.iterates.size(); ++k) {
+    EXPECT_EQ(all.iterates[k], problem.iterates[k]) << k;
+  }
+}
+
 // On the hyperbolas from (3, -2.5, 2), where the Newton step raises f, and
 // with the exact (there positive definite but misleading) Hessian as the
 // model: every accepted step lowers f, rejected steps raise lambda (the
@@ -831,6 +873,51 @@ TEST(NewtonTrustRegionTest, LeavesASaddleAlongNegativeCurvature) {
   const NewtonReport plain =
       SolveNewton(&line_search, &cholesky2, Minimize(1e-12, 60));
   EXPECT_FALSE(plain.converged && std::abs(line_search.x()[1]) > 0.5);
+}
+
+// The basin probe: from near the saddle the first step follows negative
+// curvature, so the probe ends there (kOutsideBasin) instead of
+// globalising; on the convex example every step is a full Newton step of a
+// good model (rho near 1) and the probe converges as the plain trust region
+// does, through the same iterates.
+TEST(NewtonTrustRegionTest, BasinProbeStopsAtTheFirstStepThatIsNotANewtonStep) {
+  Callbacks saddle;
+  saddle.merit = [](const Eigen::VectorXd& x) {
+    return 0.5 * x[0] * x[0] + 0.25 * std::pow(x[1] * x[1] - 1, 2);
+  };
+  saddle.residual = [](const Eigen::VectorXd& x) {
+    return Eigen::VectorXd(
+        (Eigen::VectorXd(2) << x[0], x[1] * (x[1] * x[1] - 1)).finished());
+  };
+  saddle.jacobian = [](const Eigen::VectorXd& x) {
+    Eigen::MatrixXd h = Eigen::MatrixXd::Zero(2, 2);
+    h(0, 0) = 1;
+    h(1, 1) = 3 * x[1] * x[1] - 1;
+    return h;
+  };
+  NewtonSettings probe = TrustRegion(1e-12, 60);
+  probe.tr_basin_ratio = 0.5;
+  Eigen::VectorXd x0(2);
+  x0 << 0.5, 1e-3;
+  FunctionProblem near_saddle(saddle, x0, true);
+  ReusableCholesky cholesky;
+  const NewtonReport stopped = SolveNewton(&near_saddle, &cholesky, probe);
+  EXPECT_EQ(stopped.stop, NewtonStop::kOutsideBasin);
+  EXPECT_EQ(stopped.stop_reason, "not yet in Newton's basin");
+  EXPECT_LE(stopped.steps, 1);
+  EXPECT_LE(saddle.merit(near_saddle.x()), saddle.merit(x0));
+
+  const ConvexExample example(6);
+  FunctionProblem convex(example.MakeCallbacks(), Eigen::VectorXd::Zero(6),
+                         true);
+  ReusableCholesky cholesky2;
+  const NewtonReport converged = SolveNewton(&convex, &cholesky2, probe);
+  EXPECT_TRUE(converged.converged) << converged.stop_reason;
+  FunctionProblem plain(example.MakeCallbacks(), Eigen::VectorXd::Zero(6),
+                        true);
+  ReusableCholesky cholesky3;
+  SolveNewton(&plain, &cholesky3, TrustRegion(1e-12, 60));
+  EXPECT_EQ(convex.iterates, plain.iterates);
 }
 
 // Infeasible trials (outside |x|_inf < 3 here) shrink the region: the trust

@@ -251,9 +251,12 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
       problem = std::make_unique<ceres::Problem>();
       BuildPathProblem(space, input, &result.path, problem.get());
     }
-    bool lm_failed = false, lm_stopped = false;
+    bool lm_failed = false, lm_stopped = false, lm_handed_over = false;
+    // After a basin probe LM resumes with the damping it had reached, so
+    // that it goes on as if it had not been interrupted.
+    double lm_damping = 0, resume_damping = 0;
     // LM down to `relative` (or the tolerance), continuing from where it is.
-    const auto run_lm = [&](double relative) {
+    const auto run_lm = [&](double relative, double hand_over_contraction) {
       GeodesicStage stage;
       const double lm_tolerance =
           std::max(settings.gradient_tolerance, relative);
@@ -266,6 +269,8 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
         lm.max_steps = std::max(0, lm_left);
         lm.num_threads = settings.num_threads;
         lm.min_area_fraction = kStepMinAreaFraction;
+        lm.hand_over_contraction = hand_over_contraction;
+        if (resume_damping > 0) lm.lm_initial = resume_damping;
         lm.progress = settings.progress;
         lm.progress_label = settings.progress_label + " lm";
         lm.stop = settings.stop;
@@ -279,6 +284,8 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
                     report.stop == NewtonStop::kAssemblyFailed;
         if (lm_failed) result.failure = report.stop_reason;
         lm_stopped = report.stop == NewtonStop::kStopped;
+        lm_handed_over = report.stop == NewtonStop::kHandedOver;
+        lm_damping = report.final_damping;
       } else {
         SolverSettings lm = settings;
         lm.gradient_tolerance = lm_tolerance;
@@ -303,10 +310,16 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
       result.stages.push_back(stage);
     };
     double threshold = input.newton_from;
-    for (int attempt = 0;; ++attempt) {
+    // The early hand-over (newton_contraction) is tried once: its Newton
+    // stage is a probe of the basin, and where it stops short, LM goes on
+    // down to the threshold as if it had not been tried.
+    bool early = engine_lm && input.newton_contraction > 0;
+    for (int attempt = 0;;) {
       const bool newton = threshold > settings.gradient_tolerance &&
                           attempt < GeodesicInput::kMaxNewtonAttempts;
-      run_lm(newton ? threshold : settings.gradient_tolerance);
+      lm_handed_over = false;
+      run_lm(newton ? threshold : settings.gradient_tolerance,
+             newton && early ? input.newton_contraction : 0.0);
       if (!newton || result.final_gradient <= tolerance || lm_failed ||
           lm_stopped) {
         break;
@@ -328,6 +341,9 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
         polish.max_steps = std::min(4 * polish.max_steps, lm_left);
       }
       polish.min_area_fraction = kStepMinAreaFraction;
+      const bool probe = lm_handed_over;
+      if (probe) polish.basin_ratio = kNewtonBasinRatio;
+      early = false;
       polish.stop = settings.stop;
       const PathNewtonReport report =
           PolishPathNewton(space, input.fixed_vertices, polish, &result.path);
@@ -346,6 +362,12 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
           report.stop == NewtonStop::kStopped) {
         break;
       }
+      if (probe) {  // LM on to the threshold; not an attempt
+        resume_damping = lm_damping;
+        continue;
+      }
+      resume_damping = 0;
+      ++attempt;
       threshold *= 0.1;  // not yet in Newton's basin: more LM first
     }
     result.initial_gradient = g0;

@@ -84,6 +84,11 @@ enum class GeodesicNewton { kTrustRegion, kLineSearch };
 // triangle's area in the current path, or turns it over.
 inline constexpr double kStepMinAreaFraction = 0.1;
 
+// The ratio rho (actual / predicted decrease) below which a Newton step
+// taken after an early hand-over (GeodesicInput::newton_contraction) shows
+// that Newton's basin is not reached yet (NewtonSettings::tr_basin_ratio).
+inline constexpr double kNewtonBasinRatio = 0.5;
+
 struct GeodesicInput {
   // The geodesic of `steps` steps from `start` to `end`, other fields at
   // their defaults.
@@ -115,6 +120,15 @@ struct GeodesicInput {
   // continues to a ten times smaller gradient and Newton tries again, at
   // most kMaxNewtonAttempts times; then LM alone. 0 disables Newton.
   double newton_from = 1e-3;
+  // Newton also takes over earlier, on the first attempt, after an LM step
+  // of the library's engine (GeodesicLm) that divided the gradient by at
+  // least newton_contraction (NewtonSettings::hand_over_contraction: a
+  // Gauss-Newton step that good leaves little for the exact Hessian to
+  // add). On a problem that is nearly quadratic from the start -- the
+  // cactus 10-ring, K = 8: 0.061 -> 0.0043 in its first LM step -- this
+  // saves the LM steps down to newton_from; where the rule hands over too
+  // early, Newton stops short and LM continues as above. 0: off.
+  double newton_contraction = 10;
   // The linear solver of the Newton steps (path_newton.h; kAuto: by size).
   PathLinearSolver linear_solver = PathLinearSolver::kAuto;
   static constexpr int kMaxNewtonAttempts = 3;

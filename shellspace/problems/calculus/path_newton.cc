@@ -230,6 +230,8 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
   newton.merit_round_off = 1e-10;
   newton.max_shifts = settings.max_shifts;
   newton.stop = settings.stop;
+  newton.hand_over_contraction = settings.hand_over_contraction;
+  newton.tr_basin_ratio = settings.basin_ratio;
   newton.globalisation = settings.globalisation;
   if (levenberg_marquardt) {
     newton.lm_initial = settings.lm_initial;

@@ -84,6 +84,10 @@ struct PathNewtonSettings {
   // and 48 CG iterations), and the faces geodesic 62.8 s (1e-2) against
   // 52.6 s (1e-1).
   double forcing = 1e-1;
+  // NewtonSettings::hand_over_contraction (0: off).
+  double hand_over_contraction = 0;
+  // NewtonSettings::tr_basin_ratio (kTrustRegion; 0: off).
+  double basin_ratio = 0;
   // The step limit of every trial path (0: off): a trial in which a
   // triangle of an inner shape keeps less than this fraction of its area in
   // the current path, or turns over against it (normals with a negative dot

@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <iostream>
 
 #include "shellspace/geometry/procedural_shapes.h"
 #include "shellspace/geometry/rigid_alignment.h"
@@ -185,6 +186,44 @@ TEST(TrustRegionNewtonTest, StepCountDoesNotGrowOnRefinementsOfThePlate) {
   EXPECT_LE(*hi - *lo, 2) << newton_steps[0] << " " << newton_steps[1] << " "
                           << newton_steps[2];
   EXPECT_GE(*lo, 1);
+}
+
+// A sheet rolled onto a cylinder, stretched along x by 80 % with a small
+// ripple: from the linear start an LM step cuts the gradient more than
+// tenfold, Newton takes over right there (the LM stage ends "gradient
+// contracting: handed over") and converges, with fewer LM steps than
+// without the early hand-over and the same E_K.
+TEST(NewtonHandOverTest, AStretchedCylinderHandsOverAtAContractingLmStep) {
+  const Mesh sheet = MakeEquilateralSheet(12, 8, 0.125);
+  std::vector<int> row;
+  for (int v = 0; v < 13; ++v) row.push_back(v);
+  const ShellSpace space(sheet, Topology::Build(sheet),
+                         ShellMaterial{1, 1, 0.01});
+  const Positions rolled = RollOntoCylinder(sheet.positions, 1.0);
+  Positions stretched = rolled;
+  for (int v = 0; v < rolled.rows(); ++v) {
+    const double x = rolled(v, 0), y = rolled(v, 1);
+    stretched(v, 0) = 1.8 * x;
+    stretched(v, 2) += 0.24 * std::sin(2 * x) * std::cos(3 * y);
+  }
+  GeodesicInput input = GeodesicInput::Between(rolled, stretched, 4);
+  input.fixed_vertices = row;
+  input.lm = GeodesicLm::kEngine;
+  const GeodesicResult early = SolveGeodesic(space, input, Tight());
+  input.newton_contraction = 0;
+  const GeodesicResult late = SolveGeodesic(space, input, Tight());
+  ASSERT_TRUE(early.converged);
+  ASSERT_TRUE(late.converged);
+  ASSERT_EQ(early.stages.size(), 2u);
+  EXPECT_EQ(early.stages[0].termination, "gradient contracting: handed over");
+  EXPECT_EQ(early.stages[1].method, GeodesicStage::Method::kNewton);
+  ASSERT_FALSE(late.stages.empty());
+  EXPECT_NE(late.stages[0].termination, "gradient contracting: handed over");
+  std::cout << "LM + Newton steps: early hand-over " << early.stages[0].iterations
+            << " + " << early.newton.steps << ", without "
+            << late.stages[0].iterations << " + " << late.newton.steps << "\n";
+  EXPECT_LT(early.stages[0].iterations, late.stages[0].iterations);
+  EXPECT_NEAR(early.path_energy, late.path_energy, 1e-10 * late.path_energy);
 }
 
 // An input sliver (a vertex moved next to the opposite edge of one
