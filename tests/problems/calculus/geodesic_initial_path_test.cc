@@ -4,6 +4,8 @@
 // removed before interpolating, the LΘA path, a prolongation worse than the
 // fine start rejected, Newton steps that do not grow under refinement, a
 // sliver input.
+#include "shellspace/problems/calculus/geodesic_initial_path.h"
+
 #include <gtest/gtest.h>
 
 #include <Eigen/Geometry>
@@ -17,7 +19,6 @@
 #include "shellspace/geometry/subdivision.h"
 #include "shellspace/geometry/validation.h"
 #include "shellspace/problems/calculus/geodesic.h"
-#include "shellspace/problems/calculus/geodesic_initial_path.h"
 #include "shellspace/problems/calculus/ltheta_reconstruction.h"
 #include "shellspace/problems/calculus/multiresolution.h"
 
@@ -219,9 +220,10 @@ TEST(NewtonHandOverTest, AStretchedCylinderHandsOverAtAContractingLmStep) {
   EXPECT_EQ(early.stages[1].method, GeodesicStage::Method::kNewton);
   ASSERT_FALSE(late.stages.empty());
   EXPECT_NE(late.stages[0].termination, "gradient contracting: handed over");
-  std::cout << "LM + Newton steps: early hand-over " << early.stages[0].iterations
-            << " + " << early.newton.steps << ", without "
-            << late.stages[0].iterations << " + " << late.newton.steps << "\n";
+  std::cout << "LM + Newton steps: early hand-over "
+            << early.stages[0].iterations << " + " << early.newton.steps
+            << ", without " << late.stages[0].iterations << " + "
+            << late.newton.steps << "\n";
   EXPECT_LT(early.stages[0].iterations, late.stages[0].iterations);
   EXPECT_NEAR(early.path_energy, late.path_energy, 1e-10 * late.path_energy);
 }

@@ -10,12 +10,12 @@
 #include <stdexcept>
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
-#include "shellspace/runtime/parallel_for.h"
 #include "shellspace/geometry/procedural_shapes.h"
 #include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/problems/calculus/path_hessian.h"
+#include "shellspace/runtime/parallel_for.h"
 #include "shellspace/solvers/gauge_reduced_solve.h"
 #include "shellspace/solvers/reusable_cholesky.h"
 #include "shellspace/solvers/space_time_ordering.h"
@@ -310,9 +310,8 @@ TEST(PathHessianReuseTest, AReusedAssemblerGivesTheFreshHessians) {
     const SparseMatrix first = kept.Assemble(a, bases, threads);
     const SparseMatrix second = kept.Assemble(b, bases, threads);
     const SparseMatrix again = kept.Assemble(a, bases, threads);
-    EXPECT_TRUE(SameMatrix(second,
-                           PathHessianAssembler(space).Assemble(b, bases,
-                                                                threads)));
+    EXPECT_TRUE(SameMatrix(
+        second, PathHessianAssembler(space).Assemble(b, bases, threads)));
     EXPECT_TRUE(SameMatrix(again, first));
     // The check tells the two paths' Hessians apart.
     EXPECT_FALSE(SameMatrix(second, first));
