@@ -29,39 +29,54 @@ bool VisitGroupsUntilFailure(const ElementSet& set, Visitor&& visit) {
 bool TryEnergyGradient(const ShellSpace& space, const Positions& reference,
                        const Positions& deformed, ShellSide side,
                        Eigen::VectorXd* gradient, ElementFailure* failure) {
+  const bool of_reference = side == ShellSide::kReference;
+  return TryEnergyGradients(space, reference, deformed,
+                            of_reference ? gradient : nullptr,
+                            of_reference ? nullptr : gradient, failure);
+}
+
+bool TryEnergyGradients(const ShellSpace& space, const Positions& reference,
+                        const Positions& deformed,
+                        Eigen::VectorXd* of_reference,
+                        Eigen::VectorXd* of_deformed,
+                        ElementFailure* failure) {
   const ElementSet& set = space.elements();
-  gradient->setZero(3 * space.num_vertices);
-  const bool want_ref = side == ShellSide::kReference;
-  const bool ok = VisitGroupsUntilFailure(set, [&](const auto& group) {
+  if (of_reference) of_reference->setZero(3 * space.num_vertices);
+  if (of_deformed) of_deformed->setZero(3 * space.num_vertices);
+  return VisitGroupsUntilFailure(set, [&](const auto& group) {
     using Group = std::decay_t<decltype(group)>;
     using E = typename Group::Element;
     constexpr int kV = Group::kVertices;
     typename E::template Jacobian<double> jac_ref, jac_def;
     double r[E::kNumResiduals];
     Vec3<double> x_ref[kV], x_def[kV];
-    for (int e = 0; e < group.size(); ++e) {
-      const auto& vs = group.stencils[e];
-      GatherVertices(reference, vs, x_ref);
-      GatherVertices(deformed, vs, x_def);
-      if (!group.element.Evaluate(x_ref, x_def, r,
-                                  want_ref ? &jac_ref : nullptr,
-                                  want_ref ? nullptr : &jac_def)) {
-        set.Fail(group.first_element + e, failure);
-        return false;
-      }
-      const auto& jac = want_ref ? jac_ref : jac_def;
+    // (*out)(3 v_a + c) += sum_i jac(i, 3 a + c) r_i.
+    const auto add = [&](const auto& jac, const auto& vs,
+                         Eigen::VectorXd* out) {
       for (int a = 0; a < kV; ++a) {
         for (int c = 0; c < 3; ++c) {
           double g = 0;
           for (int i = 0; i < E::kNumResiduals; ++i)
             g += jac(i, 3 * a + c) * r[i];
-          (*gradient)(3 * vs[a] + c) += g;
+          (*out)(3 * vs[a] + c) += g;
         }
       }
+    };
+    for (int e = 0; e < group.size(); ++e) {
+      const auto& vs = group.stencils[e];
+      GatherVertices(reference, vs, x_ref);
+      GatherVertices(deformed, vs, x_def);
+      if (!group.element.Evaluate(x_ref, x_def, r,
+                                  of_reference ? &jac_ref : nullptr,
+                                  of_deformed ? &jac_def : nullptr)) {
+        set.Fail(group.first_element + e, failure);
+        return false;
+      }
+      if (of_reference) add(jac_ref, vs, of_reference);
+      if (of_deformed) add(jac_def, vs, of_deformed);
     }
     return true;
   });
-  return ok;
 }
 
 Eigen::VectorXd EnergyGradient(const ShellSpace& space,

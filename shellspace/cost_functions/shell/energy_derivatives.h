@@ -30,6 +30,16 @@ bool TryEnergyGradient(const ShellSpace& space, const Positions& reference,
                        const Positions& deformed, ShellSide side,
                        Eigen::VectorXd* gradient,
                        ElementFailure* failure = nullptr);
+// Both gradients in one pass over the elements, each element evaluated once
+// with both Jacobians (for a path, whose inner shapes are the deformed shell
+// of one term and the reference of the next): *of_reference = D_1 W,
+// *of_deformed = D_2 W (either may be null), the same digits as
+// TryEnergyGradient for each side.
+bool TryEnergyGradients(const ShellSpace& space, const Positions& reference,
+                        const Positions& deformed,
+                        Eigen::VectorXd* of_reference,
+                        Eigen::VectorXd* of_deformed,
+                        ElementFailure* failure = nullptr);
 
 // d/de D W[reference + e p, deformed] (moved kReference) or
 // d/de D W[reference, deformed + e p] (moved kDeformed) at e = 0, with D =

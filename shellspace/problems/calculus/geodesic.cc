@@ -176,16 +176,24 @@ bool ForEachInnerShapeGradient(
     const ShellSpace& space, const ShellPath& path, int threads,
     const std::function<void(int, const Eigen::VectorXd&)>& use) {
   const int K = static_cast<int>(path.size()) - 1;
-  std::vector<char> ok(K - 1, 1);
-  ParallelFor(K - 1, threads, [&](int i) {
-    Eigen::VectorXd gradient;
-    if (!TryInnerShapeGradient(space, path, i + 1, &gradient)) {
-      ok[i] = 0;
-      return;
-    }
-    use(i, gradient);
+  if (K < 2) return true;
+  // Term by term, W[s_k, s_{k+1}] once for both of its inner shapes (the
+  // ends need no gradient): K element passes instead of 2 (K - 1), the
+  // same digits as TryInnerShapeGradient.
+  std::vector<Eigen::VectorXd> of_reference(K), of_deformed(K);
+  std::vector<char> ok(K, 1);
+  ParallelFor(K, threads, [&](int k) {
+    ok[k] = TryEnergyGradients(space, path[k], path[k + 1],
+                               k > 0 ? &of_reference[k] : nullptr,
+                               k + 1 < K ? &of_deformed[k] : nullptr);
   });
-  return std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; });
+  if (!std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; })) {
+    return false;
+  }
+  ParallelFor(K - 1, threads, [&](int i) {
+    use(i, double(K) * (of_deformed[i] + of_reference[i + 1]));
+  });
+  return true;
 }
 
 double PathGradientNorm(const ShellSpace& space, const GeodesicInput& input,

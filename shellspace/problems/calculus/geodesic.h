@@ -41,9 +41,11 @@ std::optional<double> TryPathEnergy(
 bool TryInnerShapeGradient(const ShellSpace& space, const ShellPath& path,
                            int k, Eigen::VectorXd* gradient);
 
-// TryInnerShapeGradient for every inner shape k = 1 .. K - 1, in parallel
-// (ParallelFor over `threads`): calls use(k - 1, G_k) for each shape whose
-// gradient exists. False if an element of any W is degenerate.
+// TryInnerShapeGradient for every inner shape k = 1 .. K - 1, with each
+// term W[s_k, s_{k+1}] evaluated once for both its shells (TryEnergyGradients),
+// the terms and then the calls in parallel (ParallelFor over `threads`):
+// calls use(k - 1, G_k) for every inner shape once all gradients exist.
+// False (and no call) if an element of any W is degenerate.
 bool ForEachInnerShapeGradient(
     const ShellSpace& space, const ShellPath& path, int threads,
     const std::function<void(int, const Eigen::VectorXd&)>& use);

@@ -124,6 +124,7 @@ MultiresolutionResult SolveGeodesicMultiresolution(
     coarse_input.steps = input.steps;
     coarse_input.pin_gauge = input.pin_gauge;
     coarse_input.newton_from = input.newton_from;
+    coarse_input.newton_contraction = input.newton_contraction;
     coarse_input.linear_solver = input.linear_solver;
     coarse_input.lm = input.lm;
     coarse_input.init = input.init;

@@ -322,6 +322,44 @@ TEST(PathHessianReuseTest, AReusedAssemblerGivesTheFreshHessians) {
   }
 }
 
+// The path gradient evaluates each term W[s_k, s_{k+1}] once for both of
+// its shells (TryEnergyGradients); its G_k are those of
+// TryInnerShapeGradient (two one-sided passes), bit for bit, and so are the
+// one-pass gradients of one W against TryEnergyGradient side by side.
+// Procedural: a rolled sheet.
+TEST(PathGradientTest, OnePassPerTermGivesTheOneSidedDigits) {
+  const Mesh sheet = MakeEquilateralSheet(10, 6, 0.15);
+  const ShellSpace space(sheet, Topology::Build(sheet),
+                         ShellMaterial{1, 1, 0.01});
+  const int K = 5;
+  const ShellPath path = PerturbedLinearPath(
+      sheet.positions, RollOntoCylinder(sheet.positions, 0.9), K, 1e-3, 3);
+  Eigen::VectorXd of_reference, of_deformed, reference_only, deformed_only;
+  ASSERT_TRUE(TryEnergyGradients(space, path[1], path[2], &of_reference,
+                                 &of_deformed));
+  ASSERT_TRUE(TryEnergyGradient(space, path[1], path[2],
+                                ShellSide::kReference, &reference_only));
+  ASSERT_TRUE(TryEnergyGradient(space, path[1], path[2], ShellSide::kDeformed,
+                                &deformed_only));
+  EXPECT_EQ(of_reference, reference_only);
+  EXPECT_EQ(of_deformed, deformed_only);
+  std::vector<Eigen::VectorXd> fused(K - 1);
+  for (int threads : {1, 2}) {
+    ASSERT_TRUE(ForEachInnerShapeGradient(
+        space, path, threads,
+        [&](int i, const Eigen::VectorXd& g) { fused[i] = g; }));
+    for (int k = 1; k < K; ++k) {
+      Eigen::VectorXd separate;
+      ASSERT_TRUE(TryInnerShapeGradient(space, path, k, &separate));
+      EXPECT_EQ(fused[k - 1], separate) << k;
+      // The comparison tells neighbouring shapes' gradients apart.
+      if (k > 1) {
+        EXPECT_NE(fused[k - 2], separate) << k;
+      }
+    }
+  }
+}
+
 TEST(PathHessianAssemblerTest, DegenerateTriangleThrowsInputError) {
   const Mesh a = testing::LoadData("plate/plate121.ply");
   const ShellSpace space = testing::MakeSpace(a);
