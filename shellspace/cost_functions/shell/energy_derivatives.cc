@@ -38,8 +38,7 @@ bool TryEnergyGradient(const ShellSpace& space, const Positions& reference,
 bool TryEnergyGradients(const ShellSpace& space, const Positions& reference,
                         const Positions& deformed,
                         Eigen::VectorXd* of_reference,
-                        Eigen::VectorXd* of_deformed,
-                        ElementFailure* failure) {
+                        Eigen::VectorXd* of_deformed, ElementFailure* failure) {
   const ElementSet& set = space.elements();
   if (of_reference) of_reference->setZero(3 * space.num_vertices);
   if (of_deformed) of_deformed->setZero(3 * space.num_vertices);

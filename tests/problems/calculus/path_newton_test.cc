@@ -335,10 +335,10 @@ TEST(PathGradientTest, OnePassPerTermGivesTheOneSidedDigits) {
   const ShellPath path = PerturbedLinearPath(
       sheet.positions, RollOntoCylinder(sheet.positions, 0.9), K, 1e-3, 3);
   Eigen::VectorXd of_reference, of_deformed, reference_only, deformed_only;
-  ASSERT_TRUE(TryEnergyGradients(space, path[1], path[2], &of_reference,
-                                 &of_deformed));
-  ASSERT_TRUE(TryEnergyGradient(space, path[1], path[2],
-                                ShellSide::kReference, &reference_only));
+  ASSERT_TRUE(
+      TryEnergyGradients(space, path[1], path[2], &of_reference, &of_deformed));
+  ASSERT_TRUE(TryEnergyGradient(space, path[1], path[2], ShellSide::kReference,
+                                &reference_only));
   ASSERT_TRUE(TryEnergyGradient(space, path[1], path[2], ShellSide::kDeformed,
                                 &deformed_only));
   EXPECT_EQ(of_reference, reference_only);
