@@ -294,17 +294,27 @@ bool SameMatrix(const SparseMatrix& a, const SparseMatrix& b) {
          std::equal(a.valuePtr(), a.valuePtr() + a.nonZeros(), b.valuePtr());
 }
 
-TEST(PathHessianReuseTest, AReusedAssemblerGivesTheFreshHessians) {
+// A 10 x 6 sheet (h = 0.15) and its shell space (eta = 0.01), for the
+// procedural tests below; Path: a perturbed linear path of K steps to the
+// sheet rolled onto a cylinder of `radius`.
+struct RolledSheet {
   const Mesh sheet = MakeEquilateralSheet(10, 6, 0.15);
-  const ShellSpace space(sheet, Topology::Build(sheet),
-                         ShellMaterial{1, 1, 0.01});
+  const ShellSpace space{sheet, Topology::Build(sheet),
+                         ShellMaterial{1, 1, 0.01}};
+  ShellPath Path(double radius, int K, int seed) const {
+    return PerturbedLinearPath(sheet.positions,
+                               RollOntoCylinder(sheet.positions, radius), K,
+                               1e-3, seed);
+  }
+};
+
+TEST(PathHessianReuseTest, AReusedAssemblerGivesTheFreshHessians) {
+  const RolledSheet rolled;
+  const ShellSpace& space = rolled.space;
   const int K = 4;
-  const ShellPath a = PerturbedLinearPath(
-      sheet.positions, RollOntoCylinder(sheet.positions, 0.8), K, 1e-3, 1);
-  const ShellPath b = PerturbedLinearPath(
-      sheet.positions, RollOntoCylinder(sheet.positions, 1.3), K, 1e-3, 2);
+  const ShellPath a = rolled.Path(0.8, K, 1), b = rolled.Path(1.3, K, 2);
   const std::vector<SparseMatrix> bases(
-      K - 1, FreeVertexBasis(sheet.num_vertices(), {0, 1, 2}));
+      K - 1, FreeVertexBasis(rolled.sheet.num_vertices(), {0, 1, 2}));
   const PathHessianAssembler kept(space);
   for (int threads : {1, 2}) {
     const SparseMatrix first = kept.Assemble(a, bases, threads);
@@ -328,12 +338,10 @@ TEST(PathHessianReuseTest, AReusedAssemblerGivesTheFreshHessians) {
 // one-pass gradients of one W against TryEnergyGradient side by side.
 // Procedural: a rolled sheet.
 TEST(PathGradientTest, OnePassPerTermGivesTheOneSidedDigits) {
-  const Mesh sheet = MakeEquilateralSheet(10, 6, 0.15);
-  const ShellSpace space(sheet, Topology::Build(sheet),
-                         ShellMaterial{1, 1, 0.01});
+  const RolledSheet rolled;
+  const ShellSpace& space = rolled.space;
   const int K = 5;
-  const ShellPath path = PerturbedLinearPath(
-      sheet.positions, RollOntoCylinder(sheet.positions, 0.9), K, 1e-3, 3);
+  const ShellPath path = rolled.Path(0.9, K, 3);
   Eigen::VectorXd of_reference, of_deformed, reference_only, deformed_only;
   ASSERT_TRUE(
       TryEnergyGradients(space, path[1], path[2], &of_reference, &of_deformed));
