@@ -140,12 +140,14 @@ NewtonStepOutcome TrustRegionStrategy::Step(const NewtonIteration& it) {
              (ratio >= settings.tr_accept ||
               trial.max_norm < current.max_norm);
     }
-    // The basin probe: anything but a full step of a good model ends it.
+    // The basin probe: anything but a full step of a good model ends it (a
+    // step whose decrease is below round-off, taken because the residual
+    // fell, counts as good: its rho is noise).
     const bool outside_basin =
         settings.tr_basin_ratio > 0 &&
         (!take || on_boundary ||
          step.stop == SteihaugResult::Stop::kNegativeCurvature ||
-         !(ratio >= settings.tr_basin_ratio));
+         (!(ratio >= settings.tr_basin_ratio) && !residual_decides));
     // The radius: shrink to a quarter of the step on a poor model (or a
     // trial that cannot be evaluated), double it after a good step that the
     // boundary cut short.
