@@ -188,9 +188,10 @@ struct NewtonSettings {
   // good model -- a rejected trial (not taken), or one that ended on the
   // boundary or along negative curvature or whose ratio rho is below
   // tr_basin_ratio (taken if acceptable; a decrease below the merit's
-  // round-off taken on a smaller residual is not judged by its rho). Near a minimiser rho -> 1; a
-  // caller that handed over early (hand_over_contraction) goes back to its
-  // first method there instead of globalising Newton far from the basin.
+  // round-off taken on a smaller residual is not judged by its rho). Near a
+  // minimiser rho -> 1; a caller that handed over early (hand_over_contraction)
+  // goes back to its first method there instead of globalising Newton far from
+  // the basin.
   double tr_basin_ratio = 0;
 
   // Stall rules (0: off).
