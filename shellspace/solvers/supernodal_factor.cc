@@ -126,27 +126,22 @@ bool SupernodalFactor<Stored>::Pack(const unsigned char* values,
 }
 
 template <typename Stored>
-SupernodalFactor<Stored>::SupernodalFactor(
-    std::shared_ptr<const SupernodalPattern> pattern, cholmod_factor* factor)
-    : pattern_(std::move(pattern)) {
-  if (!pattern_ || pattern_->size == 0 || factor == nullptr ||
-      !factor->is_super || !factor->is_ll || factor->xtype != CHOLMOD_REAL ||
-      factor->itype != CHOLMOD_INT || factor->x == nullptr ||
-      static_cast<int>(factor->n) != pattern_->size ||
-      static_cast<int>(factor->nsuper) != pattern_->supernodes() ||
-      factor->minor != factor->n ||
-      !ChooseScale(static_cast<const double*>(factor->x))) {
-    return;
+SupernodalFactor<Stored> SupernodalFactor<Stored>::TakeOver(
+    std::shared_ptr<const SupernodalPattern> pattern, double* values) {
+  SupernodalFactor factor;
+  factor.pattern_ = std::move(pattern);
+  if (!factor.pattern_ || factor.pattern_->size == 0 || values == nullptr ||
+      !factor.ChooseScale(values)) {
+    std::free(values);
+    return factor;
   }
-  // CHOLMOD's buffer comes from SuiteSparse's malloc (the C library's):
-  // ours to free with std::free once taken.
-  unsigned char* bytes = static_cast<unsigned char*>(factor->x);
-  factor->x = nullptr;
-  valid_ = Pack(bytes, reinterpret_cast<Stored*>(bytes));
-  value_count_ = pattern_->packed_values();
-  const size_t kept = sizeof(Stored) * static_cast<size_t>(value_count_);
+  unsigned char* bytes = reinterpret_cast<unsigned char*>(values);
+  factor.valid_ = factor.Pack(bytes, reinterpret_cast<Stored*>(bytes));
+  factor.value_count_ = factor.pattern_->packed_values();
+  const size_t kept = sizeof(Stored) * static_cast<size_t>(factor.value_count_);
   void* shrunk = std::realloc(bytes, std::max<size_t>(kept, 1));
-  values_.reset(static_cast<Stored*>(shrunk ? shrunk : bytes));
+  factor.values_.reset(static_cast<Stored*>(shrunk ? shrunk : bytes));
+  return factor;
 }
 
 template <typename Stored>

@@ -1,4 +1,4 @@
-// A supernodal Cholesky factor copied out of CHOLMOD, stored in double or in
+// A supernodal Cholesky factor in CHOLMOD's pattern, stored in double or in
 // single precision and solved in double precision: in single precision half
 // the memory and half the memory traffic of CHOLMOD's factor (the solves of
 // a preconditioner are bound by reading the factor).
@@ -57,15 +57,14 @@ template <typename Stored>
 class SupernodalFactor {
  public:
   SupernodalFactor() = default;
-  // Takes the values of `factor`, a numeric supernodal L L^T whose pattern
-  // is `pattern`, over: they are converted in place, CHOLMOD's value buffer
-  // becomes this factor's packed storage (shrunk to it) and factor->x is
-  // set to null (cholmod_free_factor frees the rest), so a slice never
-  // holds CHOLMOD's values and their copy at once. valid() is false (and
-  // `factor` untouched) for any other factor, an unfinished one (minor <
-  // n) or a value not finite; false also for a diagonal entry not positive.
-  SupernodalFactor(std::shared_ptr<const SupernodalPattern> pattern,
-                   cholmod_factor_struct* factor);
+  // Takes `values` over: pattern->values() doubles in CHOLMOD's layout (a
+  // numeric L L^T of this pattern, e.g. SupernodalCholesky's) allocated with
+  // std::malloc. They are converted in place and the buffer shrunk to this
+  // factor's packed storage, so a slice never holds the double values and
+  // their copy at once. valid() is false (the buffer freed) for a value not
+  // finite or a diagonal entry not positive.
+  static SupernodalFactor TakeOver(
+      std::shared_ptr<const SupernodalPattern> pattern, double* values);
   // A copy of values in CHOLMOD's layout (pattern->values() of them).
   SupernodalFactor(std::shared_ptr<const SupernodalPattern> pattern,
                    const double* values);

@@ -1,15 +1,13 @@
 #include "shellspace/solvers/time_coupled_preconditioner.h"
 
-#include <cholmod.h>
-
-#include <algorithm>
-#include <cstring>
-#include <random>
-
 #include <Eigen/Cholesky>
+#include <algorithm>
+#include <cstdlib>
+#include <random>
 
 #include "shellspace/runtime/parallel_for.h"
 #include "shellspace/solvers/block_tridiagonal_product.h"
+#include "shellspace/solvers/supernodal_cholesky.h"
 #include "shellspace/solvers/supernodal_factor.h"
 
 namespace shellspace {
@@ -17,25 +15,6 @@ namespace shellspace {
 using SparseMatrix = Eigen::SparseMatrix<double>;
 
 namespace {
-
-// CHOLMOD's view of the lower triangle of a compressed, sorted block.
-cholmod_sparse LowerView(const SparseMatrix& block) {
-  cholmod_sparse view;
-  std::memset(&view, 0, sizeof(view));
-  view.nrow = block.rows();
-  view.ncol = block.cols();
-  view.nzmax = block.nonZeros();
-  view.p = const_cast<int*>(block.outerIndexPtr());
-  view.i = const_cast<int*>(block.innerIndexPtr());
-  view.x = const_cast<double*>(block.valuePtr());
-  view.stype = -1;  // symmetric, lower triangle stored
-  view.itype = CHOLMOD_INT;
-  view.xtype = CHOLMOD_REAL;
-  view.dtype = CHOLMOD_DOUBLE;
-  view.sorted = 1;
-  view.packed = 1;
-  return view;
-}
 
 // The sparsity pattern of a compressed block, without its values.
 struct BlockPattern {
@@ -65,46 +44,29 @@ Eigen::MatrixXd TwiceInverseTimeMatrix(const std::vector<double>& theta) {
 
 }  // namespace
 
-// The slices' factors, sharing one pattern, in the chosen precision (the
-// CHOLMOD factors are released as soon as they are copied), and the
-// symbolic analysis they came from.
+// The slices' factors, sharing one pattern, in the chosen precision, and
+// the analysis they came from.
 struct TimeCoupledPreconditioner::Factors {
-  // The ordering and supernodes of one block pattern (cholmod_analyze),
-  // kept for the next Factorize of the same pattern: a Newton or LM solve
-  // factorises one pattern at every refactorisation, and a shifted retry
-  // again (the analysis is a deterministic function of the pattern, so
-  // the factors are the same as with a fresh one).
+  // The ordering and supernodes of one block pattern and the numeric
+  // factorisation on them (SupernodalCholesky, with its scatter map of the
+  // pattern), kept for the next Factorize of the same pattern: a
+  // Newton or LM solve factorises one pattern at every refactorisation,
+  // and a shifted retry again (the analysis is a deterministic function of
+  // the pattern, so the factors are the same as with a fresh one).
   struct Analysis {
-    explicit Analysis(const SparseMatrix& front) : of(front) {
-      cholmod_start(&common);
-      common.print = 0;
-      common.supernodal = CHOLMOD_SUPERNODAL;
-      // The ordering with the least fill of AMD and METIS' nested
-      // dissection (on the cactus x4 slices, 59,508 unknowns: nnz(L) 14.9M
-      // AMD, 13.0M METIS, factorisation 1.12 s against 0.97 s; on small
-      // slices AMD wins). Both are deterministic.
-      common.nmethods = 2;
-      common.method[0].ordering = CHOLMOD_AMD;
-      common.method[1].ordering = CHOLMOD_METIS;
-      cholmod_sparse first = LowerView(front);
-      symbolic = cholmod_analyze(&first, &common);
-      pattern = std::make_shared<const SupernodalPattern>(
-          symbolic ? SupernodalPattern::Of(*symbolic) : SupernodalPattern());
+    explicit Analysis(const SparseMatrix& front)
+        : of(front),
+          pattern(std::make_shared<const SupernodalPattern>(
+              SupernodalCholesky::Analyse(front))),
+          cholesky(std::make_unique<const SupernodalCholesky>(pattern, front)) {
     }
-    ~Analysis() {
-      if (symbolic) cholmod_free_factor(&symbolic, &common);
-      cholmod_finish(&common);
-    }
-    Analysis(const Analysis&) = delete;
-    Analysis& operator=(const Analysis&) = delete;
     bool valid() const {
-      return symbolic != nullptr && pattern->size == static_cast<int>(of.rows);
+      return pattern->size == static_cast<int>(of.rows) && cholesky->valid();
     }
 
     const BlockPattern of;
-    cholmod_common common;
-    cholmod_factor* symbolic = nullptr;
     std::shared_ptr<const SupernodalPattern> pattern;
+    std::unique_ptr<const SupernodalCholesky> cholesky;
   };
 
   std::shared_ptr<const SupernodalPattern> pattern;
@@ -158,15 +120,49 @@ TimeCoupledPreconditioner::Status TimeCoupledPreconditioner::Factorize(
     return Status::kNotPositive;
   }
   const BlockPattern& front_pattern = analysis->of;
-  const cholmod_factor* const symbolic = analysis->symbolic;
-  const std::shared_ptr<const SupernodalPattern> pattern = analysis->pattern;
-  // Each slice: a copy of the symbolic factor, factorised, converted, freed.
-  // A cholmod_common is not shared between threads.
+  const SupernodalCholesky& cholesky = *analysis->cholesky;
+  std::shared_ptr<const SupernodalPattern> pattern = analysis->pattern;
+  // Memory. A slice in flight needs a double buffer in CHOLMOD's layout
+  // (`in_flight` bytes) and its packed factor `kept` bytes. The slices go
+  // in waves of up to `threads`, a wave of width w after `done` slices only
+  // if done kept + w in_flight <= (count - 1) kept + in_flight: the
+  // factorisation never needs more memory than the last slice factorised
+  // alone (cactus x16, 7 slices, 2 threads: waves of 2, 2, 1, 1, 1). Each
+  // wave's slot keeps its buffer for the next wave's slot (fresh pages are
+  // costly to touch: on the cactus 10-ring problem, zeroing them took a
+  // third of the factorisation) and packs a copy, while that also fits in
+  // the bound; a buffer not needed again is packed in place, its packed
+  // factor taking it over (SupernodalFactor::TakeOver). The factors do not
+  // depend on the waves.
   const bool single = precision_ == FactorPrecision::kSingle;
+  const double value_bytes = single ? sizeof(float) : sizeof(double);
+  const double kept =
+      value_bytes * static_cast<double>(pattern->packed_values());
+  const double in_flight =
+      sizeof(double) * static_cast<double>(pattern->values());
+  const double bound = (count - 1) * kept + in_flight;
+  std::vector<int> widths;
+  for (int done = 0; done < count;) {
+    int width = 1;
+    while (width < threads && done + width < count &&
+           done * kept + (width + 1) * in_flight <= bound) {
+      ++width;
+    }
+    widths.push_back(width);
+    done += width;
+  }
+  struct FreeBuffer {
+    void operator()(double* p) const { std::free(p); }
+  };
+  using Buffer = std::unique_ptr<double[], FreeBuffer>;
+  std::vector<Buffer> buffers;
+  const size_t buffer_size =
+      sizeof(double) * static_cast<size_t>(std::max(1L, pattern->values()));
   std::vector<SupernodalFactor<float>> single_slices(single ? count : 0);
   std::vector<SupernodalFactor<double>> full_slices(single ? 0 : count);
   std::vector<char> valid(count, 0), same_pattern(count, 1);
-  const auto factorize_slice = [&](int i) {
+  // Slice i in `buffer`; `keep`: pack a copy and keep the buffer.
+  const auto factorize_slice = [&](int i, Buffer* buffer, bool keep) {
     SparseMatrix own_block;
     if (i > 0) {
       block_source(i, &own_block);
@@ -178,52 +174,37 @@ TimeCoupledPreconditioner::Status TimeCoupledPreconditioner::Factorize(
     // Slice 0 takes the analysed block over (its values are not needed
     // after its factorisation; the others compare with its pattern).
     if (i == 0) own_block = std::move(front);
-    const SparseMatrix& block = own_block;
-    cholmod_common own;
-    cholmod_start(&own);
-    own.print = 0;  // an indefinite block is an answer
-    own.supernodal = CHOLMOD_SUPERNODAL;
-    own.final_asis = 1;  // keep the supernodal L L^T
-    cholmod_factor* factor =
-        cholmod_copy_factor(const_cast<cholmod_factor*>(symbolic), &own);
-    cholmod_sparse view = LowerView(block);
-    const bool factorized = factor && cholmod_factorize(&view, factor, &own);
-    own_block = SparseMatrix();  // not needed for the copy
-    if (factorized && own.status == CHOLMOD_OK && factor->minor == factor->n) {
-      if (single) {
-        single_slices[i] = SupernodalFactor<float>(pattern, factor);
-        valid[i] = single_slices[i].valid();
-      } else {
-        full_slices[i] = SupernodalFactor<double>(pattern, factor);
-        valid[i] = full_slices[i].valid();
-      }
+    if (!*buffer) {
+      buffer->reset(static_cast<double*>(std::malloc(buffer_size)));
+      if (!*buffer) return;
     }
-    if (factor) cholmod_free_factor(&factor, &own);
-    cholmod_finish(&own);
+    const bool factorized = cholesky.Factorize(own_block, buffer->get());
+    own_block = SparseMatrix();  // not needed for the packing
+    if (!factorized) return;
+    if (single) {
+      single_slices[i] =
+          keep ? SupernodalFactor<float>(pattern, buffer->get())
+               : SupernodalFactor<float>::TakeOver(pattern, buffer->release());
+      valid[i] = single_slices[i].valid();
+    } else {
+      full_slices[i] =
+          keep ? SupernodalFactor<double>(pattern, buffer->get())
+               : SupernodalFactor<double>::TakeOver(pattern, buffer->release());
+      valid[i] = full_slices[i].valid();
+    }
   };
-  // In waves of up to `threads` slices. A slice in flight holds CHOLMOD's
-  // factor (double, CHOLMOD's layout: `in_flight` bytes), which becomes its
-  // packed copy in place (SupernodalFactor), `kept` bytes, when done. A
-  // wave of width w starts after `done` slices only if done kept + w
-  // in_flight <= (count - 1) kept + in_flight: the factorisation never
-  // needs more memory than the last slice factorised alone (cactus x16, 7
-  // slices, 2 threads: waves of 2, 2, 1, 1, 1). The factors do not depend
-  // on the waves.
-  const double value_bytes = single ? sizeof(float) : sizeof(double);
-  const double kept =
-      value_bytes * static_cast<double>(pattern->packed_values());
-  const double in_flight =
-      sizeof(double) * static_cast<double>(pattern->values());
-  const double bound = (count - 1) * kept + in_flight;
-  for (int done = 0; done < count;) {
-    int width = 1;
-    while (width < threads && done + width < count &&
-           done * kept + (width + 1) * in_flight <= bound) {
-      ++width;
-    }
-    ParallelFor(width, width, [&](int t) { factorize_slice(done + t); });
+  for (size_t wave = 0, done = 0; wave < widths.size(); ++wave) {
+    const int width = widths[wave];
+    const int next = wave + 1 < widths.size() ? widths[wave + 1] : 0;
+    const bool copies_fit = done * kept + width * (in_flight + kept) <= bound;
+    buffers.resize(width);
+    ParallelFor(width, width, [&](int t) {
+      factorize_slice(static_cast<int>(done) + t, &buffers[t],
+                      copies_fit && t < next);
+    });
     done += width;
   }
+  buffers.clear();
   const auto all = [](const std::vector<char>& v) {
     return std::all_of(v.begin(), v.end(), [](char c) { return c != 0; });
   };
