@@ -1,25 +1,68 @@
 #include "shellspace/runtime/heap_reuse.h"
 
+#include <algorithm>
+#include <cstdint>
 #include <cstdlib>
 #include <cstring>
 #include <limits>
 
 #if defined(__GLIBC__)
 #include <malloc.h>
+#include <sys/mman.h>
+#include <unistd.h>
 #endif
 
 namespace shellspace {
 
+namespace {
+
+#if defined(__GLIBC__)
+// Reserves the heap's next `bytes` of address space in one extension of
+// the main arena (glibc's top pad: virtual only, no page is touched) and
+// asks the kernel to back that range with transparent huge pages. The
+// reservation stays (the trim threshold is at its maximum), so every later
+// allocation from the main arena inside it gets huge pages. False if the
+// heap did not grow (e.g. no room for it: glibc then maps its blocks, and
+// nothing changes).
+bool ReserveHugePageHeap(size_t bytes) {
+  const uintptr_t huge = uintptr_t{2} << 20;
+  mallopt(M_TOP_PAD, static_cast<int>(bytes));
+  char* const before = static_cast<char*>(sbrk(0));
+  // Larger than any free block of the young heap, below the mmap threshold:
+  // served by extending the heap, by itself plus the top pad.
+  void* const probe = std::malloc(size_t{4} << 20);
+  char* const after = static_cast<char*>(sbrk(0));
+  std::free(probe);
+  mallopt(M_TOP_PAD, 128 << 10);  // glibc's default again
+  const uintptr_t from =
+      (reinterpret_cast<uintptr_t>(before) + huge - 1) & ~(huge - 1);
+  const uintptr_t to = reinterpret_cast<uintptr_t>(after) & ~(huge - 1);
+  if (probe == nullptr || after == before || to <= from) return false;
+  return madvise(reinterpret_cast<void*>(from), to - from, MADV_HUGEPAGE) == 0;
+}
+#endif
+
+}  // namespace
+
 void KeepFreedHeapForReuse() {
 #if defined(__GLIBC__)
   const char* tunables = std::getenv("GLIBC_TUNABLES");
-  if ((tunables != nullptr && std::strstr(tunables, "glibc.malloc") != nullptr) ||
+  if ((tunables != nullptr &&
+       std::strstr(tunables, "glibc.malloc") != nullptr) ||
       std::getenv("MALLOC_MMAP_THRESHOLD_") != nullptr ||
-      std::getenv("MALLOC_TRIM_THRESHOLD_") != nullptr) {
+      std::getenv("MALLOC_TRIM_THRESHOLD_") != nullptr ||
+      std::getenv("MALLOC_TOP_PAD_") != nullptr) {
     return;
   }
   mallopt(M_MMAP_THRESHOLD, 32 << 20);
   mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());
+  // A quarter of the physical memory, at most 1 GB, at least 64 MB.
+  const long pages = sysconf(_SC_PHYS_PAGES), page = sysconf(_SC_PAGESIZE);
+  const double physical =
+      pages > 0 && page > 0 ? static_cast<double>(pages) * page : 0;
+  const double reserve =
+      std::min(double{1 << 30}, std::max(double{64 << 20}, physical / 4));
+  ReserveHugePageHeap(static_cast<size_t>(reserve));
 #endif
 }
 
