@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <utility>
 
 namespace shellspace {
@@ -77,17 +78,26 @@ bool SupernodalFactor<Stored>::ChooseScale(const double* values) {
   const SupernodalPattern& p = *pattern_;
   // A power of two near the largest |L_ij| of the stored lower parts (the
   // strict upper part of each diagonal triangle is not L).
+  // (Branch-free: the loops vectorise. A NaN fails the comparison with
+  // the largest double, as an infinity exceeds it.)
+  constexpr double kLargest = std::numeric_limits<double>::max();
   double largest = 0;
   bool finite = true;
   for (int s = 0; s < p.supernodes(); ++s) {
     const Supernode node(p, s);
     const double* block = values + node.value_begin;
     for (int j = 0; j < node.columns; ++j) {
-      for (long i = j; i < node.rows; ++i) {
-        const double v = block[i + j * node.rows];
-        finite = finite && std::isfinite(v);
-        largest = std::max(largest, std::abs(v));
+      const double* column = block + j + j * node.rows;
+      const long length = node.rows - j;
+      double column_largest = 0;
+      bool column_finite = true;
+      for (long i = 0; i < length; ++i) {
+        const double a = std::abs(column[i]);
+        column_largest = a > column_largest ? a : column_largest;
+        column_finite &= a <= kLargest;
       }
+      largest = std::max(largest, column_largest);
+      finite = finite && column_finite;
     }
   }
   if (!finite || !(largest > 0)) return false;
@@ -102,19 +112,28 @@ bool SupernodalFactor<Stored>::Pack(const unsigned char* values,
                                     Stored* out) const {
   const SupernodalPattern& p = *pattern_;
   const double inverse_scale = 1 / scale_;  // exact: a power of two
-  std::vector<double> column;
+  // Where out aliases values, a column is copied out first (memcpy: its
+  // bytes may be overwritten by the packed values).
+  const bool aliased = static_cast<const void*>(out) == values;
+  std::vector<double> copy;
   bool positive = true;
   for (int s = 0; s < p.supernodes(); ++s) {
     const Supernode node(p, s);
     for (int j = 0; j < node.columns; ++j) {
-      // Rows j .. rows - 1 of column j, copied out first (memcpy: the
-      // bytes may be overwritten below when out aliases values).
+      // Rows j .. rows - 1 of column j.
       const long length = node.rows - j;
-      column.resize(static_cast<size_t>(length));
-      std::memcpy(column.data(),
-                  values + sizeof(double) * static_cast<size_t>(
-                               node.value_begin + j + j * node.rows),
-                  sizeof(double) * static_cast<size_t>(length));
+      const unsigned char* bytes =
+          values + sizeof(double) * static_cast<size_t>(node.value_begin + j +
+                                                        j * node.rows);
+      const double* column;
+      if (aliased) {
+        copy.resize(static_cast<size_t>(length));
+        std::memcpy(copy.data(), bytes,
+                    sizeof(double) * static_cast<size_t>(length));
+        column = copy.data();
+      } else {
+        column = reinterpret_cast<const double*>(bytes);
+      }
       Stored* packed = out + node.packed_begin + node.Column(j);
       for (long i = 0; i < length; ++i) {
         packed[i] = static_cast<Stored>(column[i] * inverse_scale);
