@@ -1,6 +1,7 @@
 #include "shellspace/runtime/heap_reuse.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
@@ -46,6 +47,8 @@ bool ReserveHugePageHeap(size_t bytes) {
 
 void KeepFreedHeapForReuse() {
 #if defined(__GLIBC__)
+  static std::atomic<bool> done{false};  // once per process
+  if (done.exchange(true)) return;
   const char* tunables = std::getenv("GLIBC_TUNABLES");
   if ((tunables != nullptr &&
        std::strstr(tunables, "glibc.malloc") != nullptr) ||

@@ -29,7 +29,8 @@ namespace shellspace {
 // host's allocator alone). Does nothing where the user set them
 // (GLIBC_TUNABLES naming glibc.malloc, or MALLOC_MMAP_THRESHOLD_,
 // MALLOC_TRIM_THRESHOLD_ or MALLOC_TOP_PAD_ in the environment) or on
-// another C library. Changes only memory reuse, never a result.
+// another C library, and on a second call. Changes only memory reuse,
+// never a result.
 void KeepFreedHeapForReuse();
 
 }  // namespace shellspace
