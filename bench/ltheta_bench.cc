@@ -1,4 +1,4 @@
-// LΘA spline timing (issue 4): the spline through cactus0, cactus6, cactus12,
+// LΘA spline timing: the spline through cactus0, cactus6, cactus12,
 // cactus18 at 0, 2, 4, 6 with K = 6 (natural ends; periodic:0), and the closed
 // variant with K = 8 (periodic:1), default solver settings.
 // One run; reports the spline and reconstruction times, LM iterations per

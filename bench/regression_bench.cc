@@ -1,4 +1,4 @@
-// Shape regression on the cactus (issue 4, item 3): the poses cactus0, 3, 6,
+// Shape regression on the cactus: the poses cactus0, 3, 6,
 // ..., 18 observed at path indices k_j = 0, 1, ..., 6 (K = 6), minimising
 //   R[s] = sum_j W[S_j, s_{k_j}] + sigma F_K[s]
 // for growing sigma, each solve warm-started from the previous one (the first

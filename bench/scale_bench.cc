@@ -1,6 +1,6 @@
-// Geodesic interpolation at production scale (issue "Geodesic calculus at
-// production scale"): K = 8, from the linear path to a relative gradient of
-// 1e-8, one run per case, each with multiresolution off (levels:0) or on.
+// Geodesic interpolation at production scale: K = 8, from the linear path to a
+// relative gradient of 1e-8, one run per case, each with multiresolution off
+// (levels:0) or on.
 //
 //   finger_ring   finger0 -> finger1, a 10-ring mask around the base vertex
 //                 nearest the centroid of finger_mask.txt, eta = 3.3e-4

@@ -1,4 +1,4 @@
-// The statistics workloads of issue 4, one run each, single-threaded (heavy:
+// The statistics workloads (mean, PCA), one run each, single-threaded (heavy:
 // not part of the test suite):
 //  - the elastic mean of the 4 faces (7118 vertices), LM alone (arg 0) and LM
 //    with the Newton finish (arg 1), both to the default relative gradient

@@ -1,6 +1,5 @@
 #!/usr/bin/env bash
-# The headline workflows on the shared meshes (issue "The headline workflows
-# on real data"), each a CLI run under /usr/bin/time -v, with the defaults a
+# The headline workflows on the shared meshes, each a CLI run under /usr/bin/time -v, with the defaults a
 # new user gets (the scale-aware material: eta = 1e-4 x the first input's
 # area) unless a row says otherwise. Prints a Markdown table: wall time,
 # CPU time (user + sys), peak RSS, exit code, whether the verb's criterion

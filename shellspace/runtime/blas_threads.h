@@ -1,6 +1,6 @@
 // The thread count of the optimised BLAS (OpenBLAS) behind CHOLMOD, set for
 // a scope: its worker threads spin between small factorisations, where they
-// only cost CPU (issue 13, "no idle spinning"). Measured on 2 idle cores:
+// only cost CPU. Measured on 2 idle cores:
 // `energy --bending shape-operator-edge-angles` on the faces subdivided once
 // (28k vertices; two edge-angle fits) took 15.2 s wall / 24.4 s CPU with 2
 // BLAS threads and 15.1 s / 15.0 s with 1; the finger geodesic pays for

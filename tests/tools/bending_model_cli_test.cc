@@ -1,4 +1,4 @@
-// The --bending flag of the CLI (issue 18): every verb with material flags
+// The --bending flag of the CLI: every verb with material flags
 // accepts it and reports `bending_model` in --json; `energy --bending both`
 // reports both models' W_bend, each equal to the library's value, and the
 // edge-angle variant (energy only; every other verb refuses it); a geodesic

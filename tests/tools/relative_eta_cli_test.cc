@@ -1,4 +1,4 @@
-// The scale-aware default material of the CLI (issue 14, item 5): with the
+// The scale-aware default material of the CLI: with the
 // default --relative_eta, a mesh and the same mesh scaled by 1000 have the
 // same geodesic up to the scale (E_K scaled by 1000^2); with one absolute
 // --eta they do not (the negative twin: the check below can fail). Every

@@ -1,6 +1,6 @@
 // The two r = 2 cells with straight interfaces (spec branching.md, "KM
 // family"): the Kohn–Müller psi-junction cell ("km") and the needle cell
-// ("needle", the T2 topology that the code called km before issue 17).
+// ("needle", the T2 topology that the code formerly called km).
 // Units: period h; coordinates s, eta of cell_pattern.h. Both start from the
 // laminate -1 on [0, 1/4), +1 on [1/4, 3/4), -1 on [3/4, 1) and end (s = 1)
 // in the laminate of period 1/2.
@@ -39,7 +39,8 @@
 //   optimal per-column shift:  A = int_0^1 (s/8 - s^2/16) ds = 1/24,
 //   B = 2 * 4 = 8;  A_0 B^2 = 4, A B^2 = 8/3:
 //   C_KM (u = 0 on cell edges) = 3 (1 + 2 cos(pi/9)) = 8.638155724715...,
-//   C_KM (optimal shift)       = 3 (2/3)^(1/3) (1 + 2 cos(pi/9)) = 7.546124092461...
+//   C_KM (optimal shift)       = 3 (2/3)^(1/3) (1 + 2 cos(pi/9))
+//   = 7.546124092461...
 // The needle value is C_KM(u = 0) / 2^(1/3).
 #ifndef SHELLSPACE_PROBLEMS_BRANCHING_KM_FAMILY_H_
 #define SHELLSPACE_PROBLEMS_BRANCHING_KM_FAMILY_H_

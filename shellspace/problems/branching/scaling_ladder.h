@@ -10,9 +10,10 @@
 // underestimates the sharp constant by an amount depending only on
 // delta / eps^(1/3)); dy = delta / 3 (ny = ceil(3 H / delta), even), i.e.
 // dy <= delta / 2.5; the x-grid is graded, x_i = L (i/nx)^2, with nx fixed.
-// Each rung takes the minimum over needle (T2; "km" before issue 17) initialisations with the two period
-// counts floor / ceil of H / h0*(eps) (the integer number of periods in H is
-// the one thing that breaks the exact scaling invariance).
+// Each rung takes the minimum over needle (T2; formerly called "km")
+// initialisations with the two period counts floor / ceil of H / h0*(eps) (the
+// integer number of periods in H is the one thing that breaks the exact scaling
+// invariance).
 #ifndef SHELLSPACE_PROBLEMS_BRANCHING_SCALING_LADDER_H_
 #define SHELLSPACE_PROBLEMS_BRANCHING_SCALING_LADDER_H_
 

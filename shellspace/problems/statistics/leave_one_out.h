@@ -1,5 +1,5 @@
 // Leave-one-out evaluation of shell PCA against Procrustes PCA (calculus.md,
-// "Elastic mean and shell PCA"; issue 4): for each held-out shape S_h, build
+// "Elastic mean and shell PCA"): for each held-out shape S_h, build
 // both models from the other shapes and reconstruct S_h from their first m
 // modes.
 //   shell:      s_bar = elastic mean of the others, v = LOG_K(s_bar -> S_h),

@@ -184,8 +184,8 @@ TEST(BranchingLens, ReferenceConstants) {
               lens.constant);
 }
 
-// Free generation lengths: K_3^free / K_3 = 6.3343959 / 6.4588370 (issue
-// 17), the lengths sum to L, the energy equals C eps^(2/3) L^(1/3), and
+// Free generation lengths: K_3^free / K_3 = 6.3343959 / 6.4588370, the
+// lengths sum to L, the energy equals C eps^(2/3) L^(1/3), and
 // moving length between two generations (sum fixed) raises the energy.
 TEST(BranchingSeries, FreeLengths) {
   const double K3 = SeriesConstant(1.0, 1.0, 3, OptimalTheta(3));

@@ -132,7 +132,7 @@ TEST(BranchingRelaxed, SolveRefinesTowardAustenite) {
   EXPECT_LT(constant, 6.9);
 }
 
-// Issue 17: on 32 x 64 the first continuation stage (delta = 4 delta_t)
+// On 32 x 64 the first continuation stage (delta = 4 delta_t)
 // used to decay to u ~ 0 (max |u_y| -> 0, energy 3 eps L / (4 delta)) and
 // the next stages stalled at that saddle. Now the collapsed stage is
 // re-solved from its start at half the width; no stage ends collapsed.
