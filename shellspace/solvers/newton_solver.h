@@ -104,7 +104,8 @@ struct NewtonSettings {
   // Also accept a trial whose residual max_norm is smaller than the current
   // one (strictly), in minimisation only when the merit changes by at most
   // merit_round_off |merit| (the merit decrease is below round-off and the
-  // gradient decides).
+  // gradient decides; in the trust region the gradient alone then decides,
+  // so a step that raises it is not taken whatever its rho).
   bool accept_smaller_max_norm = false;
   double merit_round_off = 1e-10;
   // Also accept a trial whose residual two_norm is smaller (strictly).
@@ -162,12 +163,14 @@ struct NewtonSettings {
   //    (along a direction of negative curvature where H has one). The
   //    radius starts at tr_initial_radius (+inf: the first step is the
   //    Newton step); rho = actual / predicted decrease; rho >= tr_accept
-  //    accepts (or, with accept_smaller_max_norm, a merit change below
-  //    round-off with a smaller residual max_norm); rho < 1/4 or a trial
-  //    that cannot be evaluated sets the radius to |p|_M / 4; rho > 3/4 on a
-  //    step at the boundary doubles it. At most tr_max_rejections rejected
-  //    trials in a row, then kLineSearchFailed. The line-search, shift and
-  //    LM settings are not used.
+  //    accepts, except where the merit changes by less than its round-off
+  //    (with accept_smaller_max_norm, or where the predicted decrease is
+  //    below it too): there rho is noise, and the trial is accepted if and
+  //    only if its residual max_norm is smaller; rho < 1/4, a trial that
+  //    cannot be evaluated or one not taken sets the radius to |p|_M / 4;
+  //    rho > 3/4 on a step at the boundary doubles it. At most
+  //    tr_max_rejections rejected trials in a row, then kLineSearchFailed. The
+  //    line-search, shift and LM settings are not used.
   enum class Globalisation { kLineSearch, kLevenbergMarquardt, kTrustRegion };
   Globalisation globalisation = Globalisation::kLineSearch;
   double lm_initial = 1e-4;

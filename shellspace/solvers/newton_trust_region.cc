@@ -126,8 +126,10 @@ NewtonStepOutcome TrustRegionStrategy::Step(const NewtonIteration& it) {
                     settings.merit_round_off * std::abs(merit);
       }
     }
-    // Where the predicted decrease itself is below the merit's round-off,
-    // rho is noise: the residual decides (as with accept_smaller_max_norm).
+    // Where the merit changes by less than its round-off (with
+    // accept_smaller_max_norm, or where the predicted decrease itself is
+    // below it), rho is noise: the residual alone decides, and a step that
+    // raises its max norm is not taken however good its rho.
     const bool model_at_round_off =
         step.model_decrease <= settings.merit_round_off * std::abs(merit);
     const bool residual_decides =
@@ -137,8 +139,8 @@ NewtonStepOutcome TrustRegionStrategy::Step(const NewtonIteration& it) {
     if (ratio >= settings.tr_accept || residual_decides) {
       take = problem->Residual(NewtonPoint::kTrial, &trial) ==
                  EvaluationStatus::kOk &&
-             (ratio >= settings.tr_accept ||
-              trial.max_norm < current.max_norm);
+             (residual_decides ? trial.max_norm < current.max_norm
+                               : ratio >= settings.tr_accept);
     }
     // The basin probe: anything but a full step of a good model ends it (a
     // step whose decrease is below round-off, taken because the residual
@@ -148,10 +150,11 @@ NewtonStepOutcome TrustRegionStrategy::Step(const NewtonIteration& it) {
         (!take || on_boundary ||
          step.stop == SteihaugResult::Stop::kNegativeCurvature ||
          (!(ratio >= settings.tr_basin_ratio) && !residual_decides));
-    // The radius: shrink to a quarter of the step on a poor model (or a
-    // trial that cannot be evaluated), double it after a good step that the
-    // boundary cut short.
-    if (!(ratio >= 0.25) && !(take && round_off)) {
+    // The radius: shrink to a quarter of the step on a poor model, a trial
+    // that cannot be evaluated or one not taken (below round-off, a good
+    // rho does not take a step that raises the residual), double it after a
+    // good step that the boundary cut short.
+    if (!take || (!(ratio >= 0.25) && !round_off)) {
       *radius = 0.25 * step.step_norm;
     } else if (ratio > 0.75 && on_boundary) {
       *radius = 2 * *radius;

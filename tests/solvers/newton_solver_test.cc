@@ -920,6 +920,61 @@ TEST(NewtonTrustRegionTest, BasinProbeStopsAtTheFirstStepThatIsNotANewtonStep) {
   EXPECT_EQ(convex.iterates, plain.iterates);
 }
 
+// Below the merit's round-off rho is noise, and the gradient decides. The
+// saddle above, shifted and scaled, f = 1 + scale (x^2/2 + (y^2 - 1)^2/4),
+// from (0, 1e-3): the negative-curvature step in y lowers f but raises the
+// gradient (|g_y| = scale |y (y^2 - 1)| grows up to y = 3^-1/2). With scale
+// 1e-12 every change of f is below 1e-10 |f| (merit_round_off, with
+// accept_smaller_max_norm as the path finish sets it): no such step is
+// taken, however good its computed rho, and the solve ends where it
+// started. The twin with scale 1, the same steps in exact arithmetic but
+// far above round-off, takes them and reaches a minimiser.
+TEST(NewtonTrustRegionTest, BelowRoundOffTheGradientDecides) {
+  const auto saddle = [](double scale) {
+    Callbacks c;
+    c.merit = [scale](const Eigen::VectorXd& x) {
+      return 1 +
+             scale * (0.5 * x[0] * x[0] + 0.25 * std::pow(x[1] * x[1] - 1, 2));
+    };
+    c.residual = [scale](const Eigen::VectorXd& x) {
+      return Eigen::VectorXd(
+          scale *
+          (Eigen::VectorXd(2) << x[0], x[1] * (x[1] * x[1] - 1)).finished());
+    };
+    c.jacobian = [scale](const Eigen::VectorXd& x) {
+      Eigen::MatrixXd h = Eigen::MatrixXd::Zero(2, 2);
+      h(0, 0) = scale;
+      h(1, 1) = scale * (3 * x[1] * x[1] - 1);
+      return h;
+    };
+    return c;
+  };
+  // Each to 1e-8 of its initial gradient, scale 1e-3.
+  NewtonSettings settings = TrustRegion(1e-23, 60);
+  settings.accept_smaller_max_norm = true;
+  settings.merit_round_off = 1e-10;
+  Eigen::VectorXd x0(2);
+  x0 << 0, 1e-3;
+  FunctionProblem flat(saddle(1e-12), x0, true);
+  ReusableCholesky cholesky;
+  const NewtonReport stayed = SolveNewton(&flat, &cholesky, settings);
+  EXPECT_FALSE(stayed.converged);
+  EXPECT_EQ(flat.iterates.size(), 1u);  // no step taken
+  EXPECT_GE(stayed.rejected_trials, 1);
+  // Some of its trials did lower f, by less than its round-off.
+  const double f0 = saddle(1e-12).merit(x0);
+  EXPECT_TRUE(std::any_of(flat.trial_merits.begin(), flat.trial_merits.end(),
+                          [f0](double f) { return f < f0; }));
+
+  settings.tolerance = 1e-11;
+  FunctionProblem steep(saddle(1), x0, true);
+  ReusableCholesky cholesky2;
+  const NewtonReport moved = SolveNewton(&steep, &cholesky2, settings);
+  EXPECT_TRUE(moved.converged) << moved.stop_reason;
+  EXPECT_NEAR(std::abs(steep.x()[1]), 1, 1e-10);
+  EXPECT_GE(moved.negative_curvature_steps, 1);
+}
+
 // Infeasible trials (outside |x|_inf < 3 here) shrink the region: the trust
 // region never accepts one and still converges.
 TEST(NewtonTrustRegionTest, AnInfeasibleTrialShrinksTheRegion) {
