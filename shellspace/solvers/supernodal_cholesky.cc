@@ -2,9 +2,9 @@
 
 #include <cholmod.h>
 
+#include <Eigen/CholmodSupport>
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <numeric>
 #include <utility>
 
@@ -113,20 +113,8 @@ SupernodalPattern SupernodalCholesky::Analyse(
   common.nmethods = 2;
   common.method[0].ordering = CHOLMOD_AMD;
   common.method[1].ordering = CHOLMOD_METIS;
-  cholmod_sparse view;
-  std::memset(&view, 0, sizeof(view));
-  view.nrow = lower.rows();
-  view.ncol = lower.cols();
-  view.nzmax = lower.nonZeros();
-  view.p = const_cast<int*>(lower.outerIndexPtr());
-  view.i = const_cast<int*>(lower.innerIndexPtr());
-  view.x = const_cast<double*>(lower.valuePtr());
-  view.stype = -1;  // symmetric, lower triangle stored
-  view.itype = CHOLMOD_INT;
-  view.xtype = CHOLMOD_REAL;
-  view.dtype = CHOLMOD_DOUBLE;
-  view.sorted = 1;
-  view.packed = 1;
+  cholmod_sparse view =
+      Eigen::viewAsCholmod(lower.selfadjointView<Eigen::Lower>());
   cholmod_factor* symbolic = cholmod_analyze(&view, &common);
   SupernodalPattern pattern =
       symbolic ? SupernodalPattern::Of(*symbolic) : SupernodalPattern();
