@@ -38,6 +38,9 @@ class BlockJacobiSolver : public LinearSolver, public Preconditioner {
   // A later Solve on the same blocks reuses them as its stale factors.
   bool Factorize(const LinearSystem& system) override;
   Eigen::VectorXd Apply(const Eigen::VectorXd& r) const override;
+  // Drops the held factors (the next Solve factorises); the blocks'
+  // pattern analysis is kept.
+  void ForgetFactors() { factored_offsets_.clear(); }
   Preconditioner* preconditioner() override { return this; }
   void CountCg(int iterations, double seconds) override {
     stats_.cg_iterations += iterations;

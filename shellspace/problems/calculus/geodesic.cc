@@ -263,6 +263,9 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
     // After a basin probe LM resumes with the damping it had reached, so
     // that it goes on as if it had not been interrupted.
     double lm_damping = 0, resume_damping = 0;
+    // The engine's stages share their linear solvers: the pattern analysis
+    // is done once, and a Newton stage starts on the last LM factorisation.
+    PathLinearSolvers solvers;
     // LM down to `relative` (or the tolerance), continuing from where it is.
     const auto run_lm = [&](double relative, double hand_over_contraction) {
       GeodesicStage stage;
@@ -282,6 +285,7 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
         lm.progress = settings.progress;
         lm.progress_label = settings.progress_label + " lm";
         lm.stop = settings.stop;
+        lm.solvers = &solvers;
         const PathNewtonReport report = PolishPathNewton(
             space, input.fixed_vertices, lm, &result.path);
         stage.termination = report.stop_reason;
@@ -353,6 +357,7 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
       if (probe) polish.basin_ratio = kNewtonBasinRatio;
       early = false;
       polish.stop = settings.stop;
+      polish.solvers = &solvers;
       const PathNewtonReport report =
           PolishPathNewton(space, input.fixed_vertices, polish, &result.path);
       result.newton.Append(report);

@@ -200,6 +200,15 @@ PathLinearSolver ChooseLinearSolver(PathLinearSolver choice, int unknowns) {
                                               : PathLinearSolver::kDirect;
 }
 
+PathLinearSolvers::PathLinearSolvers() = default;
+PathLinearSolvers::~PathLinearSolvers() = default;
+
+BlockJacobiSolver& PathLinearSolvers::block_jacobi() {
+  if (!block_jacobi_) block_jacobi_ = std::make_unique<BlockJacobiSolver>();
+  return *block_jacobi_;
+}
+
+
 PathNewtonReport PolishPathNewton(const ShellSpace& space,
                                   const std::vector<int>& fixed_vertices,
                                   const PathNewtonSettings& settings,
@@ -260,13 +269,19 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
                    r.factorization_seconds, r.cg_iterations, r.cg_seconds);
     };
   }
+  // The block-Jacobi solver of the stage before (settings.solvers: its
+  // analysis kept, its factors dropped) or of this stage alone.
+  PathLinearSolvers own_solvers;
+  PathLinearSolvers& solvers =
+      settings.solvers != nullptr ? *settings.solvers : own_solvers;
   if (ChooseLinearSolver(settings.linear_solver, problem.unknowns()) ==
       PathLinearSolver::kBlockJacobi) {
     // The blocks' factorisations and solves run in parallel over the
     // slices; OpenBLAS inside each with one thread (two levels of threads
     // would only spin).
     const ScopedBlasThreads one_blas_thread(1);
-    BlockJacobiSolver linear_solver;
+    BlockJacobiSolver& linear_solver = solvers.block_jacobi();
+    linear_solver.ForgetFactors();
     linear_solver.threads = std::max(1, settings.num_threads);
     linear_solver.time_coupling = settings.time_coupled_preconditioner;
     return SolveNewton(&problem, &linear_solver, newton);

@@ -3,6 +3,7 @@
 #ifndef SHELLSPACE_PROBLEMS_CALCULUS_PATH_NEWTON_H_
 #define SHELLSPACE_PROBLEMS_CALCULUS_PATH_NEWTON_H_
 
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -45,6 +46,29 @@ inline constexpr int kBlockJacobiFromUnknowns = 20000;
 // unknowns in all (the rule of kAuto; `choice` other than kAuto is
 // returned as it is).
 PathLinearSolver ChooseLinearSolver(PathLinearSolver choice, int unknowns);
+
+class BlockJacobiSolver;
+
+// The block-Jacobi solver of consecutive PolishPathNewton stages on one path
+// problem (the same K and free vertices; PathNewtonSettings::solvers),
+// kept from one stage to the next so that a stage starts with the blocks'
+// pattern analysis (fill-reducing orderings, supernodes) of the stage
+// before. Every stage factorises afresh: the last factorisation of a
+// Levenberg-Marquardt stage (of its damped Gauss-Newton matrix) is a poor
+// preconditioner for the exact Hessian's tight solves (cactus 10-ring,
+// K = 8: 113 CG iterations on it where a fresh factor needs 4).
+class PathLinearSolvers {
+ public:
+  PathLinearSolvers();
+  ~PathLinearSolvers();
+  PathLinearSolvers(const PathLinearSolvers&) = delete;
+  PathLinearSolvers& operator=(const PathLinearSolvers&) = delete;
+
+  BlockJacobiSolver& block_jacobi();
+
+ private:
+  std::unique_ptr<BlockJacobiSolver> block_jacobi_;
+};
 
 // At most this many shifted Hessians H + lambda I per Newton iteration
 // (NewtonSettings::max_shifts): where H is not positive definite or the
@@ -97,6 +121,9 @@ struct PathNewtonSettings {
   // compresses gets there, if at all, through steps the energy accepts one
   // by one, never by jumping across the barrier of the membrane energy.
   double min_area_fraction = 0;
+  // The solvers of the stage before on the same path problem (its pattern
+  // analysis reused), or nullptr: solvers of this stage alone.
+  PathLinearSolvers* solvers = nullptr;
   int num_threads = 2;  // Hessian blocks are assembled in parallel
   bool progress = false;
   std::string progress_label = "newton";
