@@ -20,6 +20,7 @@ struct VertexColumns {
   int first = -1;
   int count = 0;
   double t[9] = {0, 0, 0, 0, 0, 0, 0, 0, 0};
+  bool identity = false;  // count 3 and t = I (a free vertex of a mask)
 };
 
 std::vector<VertexColumns> VertexLayout(const Eigen::SparseMatrix<double>& basis,
@@ -37,12 +38,21 @@ std::vector<VertexColumns> VertexLayout(const Eigen::SparseMatrix<double>& basis
     for (; it; ++it) vc.t[3 * vc.count + it.row() % 3] = it.value();
     ++vc.count;
   }
+  for (VertexColumns& vc : layout) {
+    vc.identity = vc.count == 3;
+    for (int e = 0; e < 9; ++e) {
+      vc.identity = vc.identity && vc.t[e] == (e % 4 == 0 ? 1.0 : 0.0);
+    }
+  }
   return layout;
 }
 
-// (T_v^T B T_w)(i, j) for a row-major 3 x 3 block B.
+// (T_v^T B T_w)(i, j) for a row-major 3 x 3 block B (B(i, j) itself where
+// both are the identity: the same value as the sum below, whose other
+// terms are exact zeros, for finite B).
 double ReducedEntry(const VertexColumns& v, int i, const double* b,
                     const VertexColumns& w, int j) {
+  if (v.identity && w.identity) return b[3 * i + j];
   double sum = 0;
   for (int r = 0; r < 3; ++r) {
     const double tv = v.t[3 * i + r];
