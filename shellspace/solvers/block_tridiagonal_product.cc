@@ -37,23 +37,26 @@ bool BlockTridiagonalProduct(const Eigen::SparseMatrix<double>& lower,
       const double dj = d(j);
       double sum = 0;
       const int stop = nonzeros ? outer[j] + nonzeros[j] : outer[j + 1];
-      for (int p = outer[j]; p < stop; ++p) {
+      // The column's rows ascend: above the diagonal (skipped), the
+      // diagonal, rows of this slice, rows of the next.
+      int p = outer[j];
+      while (p < stop && inner[p] < j) ++p;
+      if (p < stop && inner[p] == j) sum += value[p++] * dj;
+      for (; p < stop && inner[p] < end; ++p) {
         const int i = inner[p];
         const double v = value[p];
-        if (i < j) continue;  // above the diagonal
-        if (i == j) {
-          sum += v * dj;
-          continue;
-        }
         sum += v * d(i);
-        if (i < end) {
-          own[i] += v * dj;
-        } else if (i < next_end) {
-          next[i - end] += v * dj;
-        } else {
-          coupled_further = true;
-          return;
-        }
+        own[i] += v * dj;
+      }
+      for (; p < stop && inner[p] < next_end; ++p) {
+        const int i = inner[p];
+        const double v = value[p];
+        sum += v * d(i);
+        next[i - end] += v * dj;
+      }
+      if (p < stop) {
+        coupled_further = true;
+        return;
       }
       own[j] += sum;
     }

@@ -11,8 +11,9 @@
 namespace shellspace {
 
 // y = H d, H symmetric, given by its lower triangle `lower` (compressed
-// columns; entries above the diagonal are ignored, as by Eigen's
-// selfadjointView<Lower>), whose rows and columns fall into the slices
+// columns, rows ascending in each column as Eigen keeps them; entries
+// above the diagonal are ignored, as by Eigen's selfadjointView<Lower>),
+// whose rows and columns fall into the slices
 // [offsets[c], offsets[c + 1]). Slice c's columns write y's rows of slice c
 // and a spill into slice c + 1's rows, added afterwards slice by slice: the
 // slices run in parallel (`threads` at a time) and the result does not
