@@ -6,7 +6,6 @@
 #include <random>
 
 #include "shellspace/runtime/parallel_for.h"
-#include "shellspace/solvers/block_tridiagonal_product.h"
 #include "shellspace/solvers/supernodal_cholesky.h"
 #include "shellspace/solvers/supernodal_factor.h"
 
@@ -15,6 +14,40 @@ namespace shellspace {
 using SparseMatrix = Eigen::SparseMatrix<double>;
 
 namespace {
+
+// (H w)_j for a w that vanishes outside slice `from` = j - 1 or j + 1 (w_from
+// its values there; slices of m rows): the coupling block between the two
+// slices times w_from -- columns of the lower slice, rows of the upper one,
+// in `lower`, H's lower triangle with rows ascending in each column. The
+// same nonzero terms in the same order as BlockTridiagonalProduct's
+// (whose other terms are products with the zeros of w): the same value.
+Eigen::VectorXd CouplingProduct(const SparseMatrix& lower, int m, int j,
+                                int from, const Eigen::VectorXd& w_from) {
+  Eigen::VectorXd out = Eigen::VectorXd::Zero(m);
+  const int column_slice = std::min(j, from);
+  const long row_begin = static_cast<long>(column_slice + 1) * m;
+  const long row_end = row_begin + m;
+  for (int c = 0; c < m; ++c) {
+    const long column = static_cast<long>(column_slice) * m + c;
+    if (from < j) {  // H_{j, j-1} w_{j-1}: scatter column c into the rows
+      const double wc = w_from(c);
+      for (SparseMatrix::InnerIterator it(lower, column); it; ++it) {
+        if (it.row() < row_begin) continue;
+        if (it.row() >= row_end) break;
+        out(it.row() - row_begin) += it.value() * wc;
+      }
+    } else {  // H_{j, j+1} w_{j+1} = (H_{j+1, j})^T w_{j+1}: gather
+      double sum = 0;
+      for (SparseMatrix::InnerIterator it(lower, column); it; ++it) {
+        if (it.row() < row_begin) continue;
+        if (it.row() >= row_end) break;
+        sum += it.value() * w_from(it.row() - row_begin);
+      }
+      out(c) = sum;
+    }
+  }
+  return out;
+}
 
 // The sparsity pattern of a compressed block, without its values.
 struct BlockPattern {
@@ -249,21 +282,18 @@ void TimeCoupledPreconditioner::FitCouplings(const SparseMatrix& lower,
   std::vector<double> trace(count - 1, 0.0);
   std::vector<int> samples(count - 1, 0);
   std::vector<double> frobenius(count - 1, 0.0);
-  std::vector<int> offsets(count + 1);
-  for (int i = 0; i <= count; ++i) offsets[i] = i * m;
   std::mt19937 generator(20261202u);
   for (int probe = 0; probe < probes; ++probe) {
     Eigen::VectorXd z(m);
     for (int k = 0; k < m; ++k) z(k) = (generator() & 1u) ? 1.0 : -1.0;
     for (int colour = 0; colour < 3 && colour < count; ++colour) {
-      Eigen::VectorXd w = Eigen::VectorXd::Zero(lower.rows());
+      std::vector<Eigen::VectorXd> w(count);  // C_i^-T z on coloured slices
       std::vector<int> coloured;
       for (int i = colour; i < count; i += 3) coloured.push_back(i);
       ParallelFor(static_cast<int>(coloured.size()), threads, [&](int c) {
         const int i = coloured[c];
-        w.segment(static_cast<Eigen::Index>(i) * m, m) = Colour(i, z);
+        w[i] = Colour(i, z);
       });
-      const Eigen::VectorXd hw = SymmetricProduct(lower, offsets, w, threads);
       std::vector<double> value(count, 0.0), square(count, 0.0);
       std::vector<int> pair(count, -1);  // coupling index of slice j's probe
       for (int j = 0; j < count; ++j) {
@@ -273,8 +303,10 @@ void TimeCoupledPreconditioner::FitCouplings(const SparseMatrix& lower,
       }
       ParallelFor(count, threads, [&](int j) {
         if (pair[j] < 0) return;
+        // (H w)_j: only the coupling to the coloured neighbour.
+        const int from = pair[j] == j ? j + 1 : j - 1;
         const Eigen::VectorXd ez =
-            Whiten(j, hw.segment(static_cast<Eigen::Index>(j) * m, m));
+            Whiten(j, CouplingProduct(lower, m, j, from, w[from]));
         value[j] = z.dot(ez);
         square[j] = ez.squaredNorm();
       });
