@@ -208,7 +208,6 @@ BlockJacobiSolver& PathLinearSolvers::block_jacobi() {
   return *block_jacobi_;
 }
 
-
 PathNewtonReport PolishPathNewton(const ShellSpace& space,
                                   const std::vector<int>& fixed_vertices,
                                   const PathNewtonSettings& settings,
