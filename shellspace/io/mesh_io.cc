@@ -1,6 +1,7 @@
 #include "shellspace/io/mesh_io.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cstdint>
 #include <filesystem>
 #include <iomanip>
@@ -85,10 +86,20 @@ StreamWriter MeshWriter(const Mesh& mesh, const std::string& path) {
     } else if (ext == "off") {
       out << "OFF\n" << n << " " << m << " 0\n";
     }
+    // Coordinates as printf's %.17g (what the stream would print at
+    // precision 17: exact round trips), by std::to_chars, several times
+    // faster than the stream's formatting.
+    char line[3 * 32 + 8];
     for (int i = 0; i < n; ++i) {
-      if (ext == "obj") out << "v ";
-      out << mesh.positions(i, 0) << " " << mesh.positions(i, 1) << " "
-          << mesh.positions(i, 2) << "\n";
+      char* end = line;
+      if (ext == "obj") *end++ = 'v', *end++ = ' ';
+      for (int c = 0; c < 3; ++c) {
+        end = std::to_chars(end, line + sizeof(line) - 2, mesh.positions(i, c),
+                            std::chars_format::general, 17)
+                  .ptr;
+        *end++ = c < 2 ? ' ' : '\n';
+      }
+      out.write(line, end - line);
     }
     for (int f = 0; f < m; ++f) {
       const int base = ext == "obj" ? 1 : 0;
