@@ -1,17 +1,74 @@
 #include "shellspace/geometry/topology.h"
 
-#include <map>
+#include <algorithm>
+#include <cstdint>
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace shellspace {
+
+namespace {
+
+// A map from vertex pairs (a, b), a, b >= 0, to ints: open addressing with
+// linear probing in one flat table sized for `capacity` pairs (load at most
+// 1/2), no erase. On a mesh's 3 #F half-edges it replaces std::map's node
+// per pair (an allocation and a cache miss per lookup).
+class PairTable {
+ public:
+  explicit PairTable(size_t capacity) {
+    int bits = 4;
+    while ((size_t{1} << bits) < 2 * capacity) ++bits;
+    shift_ = 64 - bits;
+    keys_.assign(size_t{1} << bits, kEmpty);
+    values_.resize(keys_.size());
+  }
+  // The value of (a, b), or nullptr if absent.
+  const int* Find(int a, int b) const {
+    const uint64_t key = Key(a, b);
+    for (size_t i = Home(key);; i = (i + 1) & (keys_.size() - 1)) {
+      if (keys_[i] == key) return &values_[i];
+      if (keys_[i] == kEmpty) return nullptr;
+    }
+  }
+  // Stores (a, b) -> value unless (a, b) is present; the stored value, and
+  // whether it was inserted.
+  std::pair<int*, bool> Emplace(int a, int b, int value) {
+    const uint64_t key = Key(a, b);
+    for (size_t i = Home(key);; i = (i + 1) & (keys_.size() - 1)) {
+      if (keys_[i] == key) return {&values_[i], false};
+      if (keys_[i] == kEmpty) {
+        keys_[i] = key;
+        values_[i] = value;
+        return {&values_[i], true};
+      }
+    }
+  }
+
+ private:
+  static constexpr uint64_t kEmpty = ~uint64_t{0};
+  static uint64_t Key(int a, int b) {
+    return (uint64_t{static_cast<uint32_t>(a)} << 32) |
+           static_cast<uint32_t>(b);
+  }
+  size_t Home(uint64_t key) const {  // Fibonacci hashing
+    return static_cast<size_t>((key * 0x9E3779B97F4A7C15ull) >> shift_);
+  }
+  int shift_ = 60;
+  std::vector<uint64_t> keys_;
+  std::vector<int> values_;
+};
+
+}  // namespace
 
 Topology Topology::Build(const Mesh& mesh) {
   Topology topo;
   const int n = mesh.num_vertices();
   topo.vertex_faces.assign(n, {});
+  const size_t half_edge_count = 3 * static_cast<size_t>(mesh.num_faces());
   // Directed half-edge (a, b) -> face containing it with that orientation.
-  std::map<std::pair<int, int>, int> half_edges;
-  std::map<std::pair<int, int>, int> edge_index;
+  PairTable half_edges(half_edge_count);
+  PairTable edge_index(half_edge_count);
   for (int f = 0; f < mesh.num_faces(); ++f) {
     for (int c = 0; c < 3; ++c) {
       const int v = mesh.faces(f, c);
@@ -29,20 +86,21 @@ Topology Topology::Build(const Mesh& mesh) {
     for (int v : {a, b, c}) topo.vertex_faces[v].push_back(f);
     for (int s = 0; s < 3; ++s) {
       const int u = mesh.faces(f, s), w = mesh.faces(f, (s + 1) % 3);
-      if (!half_edges.emplace(std::make_pair(u, w), f).second) {
+      const auto half_edge = half_edges.Emplace(u, w, f);
+      if (!half_edge.second) {
         throw InputError("non-manifold or inconsistently oriented edge (" +
                          std::to_string(u) + ", " + std::to_string(w) +
-                         ") in faces " + std::to_string(half_edges[{u, w}]) +
+                         ") in faces " + std::to_string(*half_edge.first) +
                          " and " + std::to_string(f));
       }
       const auto key = std::make_pair(std::min(u, w), std::max(u, w));
-      auto it = edge_index.find(key);
-      if (it == edge_index.end()) {
-        edge_index.emplace(key, static_cast<int>(topo.edges.size()));
+      const auto edge = edge_index.Emplace(
+          key.first, key.second, static_cast<int>(topo.edges.size()));
+      if (edge.second) {
         topo.edges.push_back({key.first, key.second});
         topo.edge_faces.push_back({f, -1});
       } else {
-        auto& ef = topo.edge_faces[it->second];
+        auto& ef = topo.edge_faces[*edge.first];
         if (ef[1] != -1) {
           throw InputError("non-manifold edge (" + std::to_string(key.first) +
                            ", " + std::to_string(key.second) +
@@ -69,7 +127,8 @@ Topology Topology::Build(const Mesh& mesh) {
     // Orient i -> j as in face_0.
     int f0 = ef[0], f1 = ef[1];
     int i = u, j = w;
-    if (half_edges.count({u, w}) && half_edges.at({u, w}) == f0) {
+    const int* face_of_uw = half_edges.Find(u, w);
+    if (face_of_uw != nullptr && *face_of_uw == f0) {
       i = u, j = w;
     } else {
       i = w, j = u;
