@@ -25,23 +25,29 @@ Eigen::VectorXd CouplingProduct(const SparseMatrix& lower, int m, int j,
                                 int from, const Eigen::VectorXd& w_from) {
   Eigen::VectorXd out = Eigen::VectorXd::Zero(m);
   const int column_slice = std::min(j, from);
-  const long row_begin = static_cast<long>(column_slice + 1) * m;
-  const long row_end = row_begin + m;
+  const int row_begin = (column_slice + 1) * m;
+  const int row_end = row_begin + m;
+  const int* outer = lower.outerIndexPtr();
+  const int* inner = lower.innerIndexPtr();
+  const int* nonzeros = lower.innerNonZeroPtr();  // null when compressed
+  const double* value = lower.valuePtr();
   for (int c = 0; c < m; ++c) {
-    const long column = static_cast<long>(column_slice) * m + c;
+    const int column = column_slice * m + c;
+    const int* first = inner + outer[column];
+    const int* last =
+        inner + (nonzeros ? outer[column] + nonzeros[column] : outer[column + 1]);
+    // The column's rows in the other slice: a range of its ascending rows.
+    const int* p = std::lower_bound(first, last, row_begin);
+    const double* v = value + (p - inner);
     if (from < j) {  // H_{j, j-1} w_{j-1}: scatter column c into the rows
       const double wc = w_from(c);
-      for (SparseMatrix::InnerIterator it(lower, column); it; ++it) {
-        if (it.row() < row_begin) continue;
-        if (it.row() >= row_end) break;
-        out(it.row() - row_begin) += it.value() * wc;
+      for (; p < last && *p < row_end; ++p, ++v) {
+        out(*p - row_begin) += *v * wc;
       }
     } else {  // H_{j, j+1} w_{j+1} = (H_{j+1, j})^T w_{j+1}: gather
       double sum = 0;
-      for (SparseMatrix::InnerIterator it(lower, column); it; ++it) {
-        if (it.row() < row_begin) continue;
-        if (it.row() >= row_end) break;
-        sum += it.value() * w_from(it.row() - row_begin);
+      for (; p < last && *p < row_end; ++p, ++v) {
+        sum += *v * w_from(*p - row_begin);
       }
       out(c) = sum;
     }
