@@ -94,8 +94,8 @@ Topology Topology::Build(const Mesh& mesh) {
                          " and " + std::to_string(f));
       }
       const auto key = std::make_pair(std::min(u, w), std::max(u, w));
-      const auto edge = edge_index.Emplace(
-          key.first, key.second, static_cast<int>(topo.edges.size()));
+      const auto edge = edge_index.Emplace(key.first, key.second,
+                                           static_cast<int>(topo.edges.size()));
       if (edge.second) {
         topo.edges.push_back({key.first, key.second});
         topo.edge_faces.push_back({f, -1});

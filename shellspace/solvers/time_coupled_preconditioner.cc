@@ -34,8 +34,8 @@ Eigen::VectorXd CouplingProduct(const SparseMatrix& lower, int m, int j,
   for (int c = 0; c < m; ++c) {
     const int column = column_slice * m + c;
     const int* first = inner + outer[column];
-    const int* last =
-        inner + (nonzeros ? outer[column] + nonzeros[column] : outer[column + 1]);
+    const int* last = inner + (nonzeros ? outer[column] + nonzeros[column]
+                                        : outer[column + 1]);
     // The column's rows in the other slice: a range of its ascending rows.
     const int* p = std::lower_bound(first, last, row_begin);
     const double* v = value + (p - inner);
