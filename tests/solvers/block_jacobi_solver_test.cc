@@ -123,6 +123,37 @@ TEST(BlockJacobiSolverTest, RefactorisesOnlyBeyondTheIterationBudget) {
   EXPECT_EQ(no_reuse.stats().factorizations, 2);
 }
 
+// ForgetFactors drops the factors but not the pattern analysis: the next
+// solve factorises H afresh and answers exactly as a new solver does (same
+// ordering and supernodes, same bits). Its twin: without ForgetFactors the
+// stale factors of H0 precondition, and the answer differs in its last bits.
+TEST(BlockJacobiSolverTest, ForgottenFactorsAreRefactorisedAsByANewSolver) {
+  const SparseMatrix g = PlateMetric(0.1);
+  const LinearSystem h0 = KroneckerSystem(g, 8);
+  const LinearSystem near = KroneckerSystem(g, 8, 1.01);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(h0.matrix.rows(), 1, -1);
+  BlockJacobiSolver fresh;
+  Eigen::VectorXd expected;
+  ASSERT_TRUE(fresh.Solve(near, b, 1e-10, &expected));
+  const auto second_solve = [&](bool forget, int* factorizations) {
+    BlockJacobiSolver solver;
+    Eigen::VectorXd x;
+    EXPECT_TRUE(solver.Solve(h0, b, 1e-10, &x));
+    if (forget) solver.ForgetFactors();
+    EXPECT_TRUE(solver.Solve(near, b, 1e-10, &x));
+    *factorizations = solver.stats().factorizations;
+    return x;
+  };
+  int factorizations = 0;
+  const Eigen::VectorXd forgotten = second_solve(true, &factorizations);
+  EXPECT_EQ(factorizations, 2);
+  EXPECT_EQ((forgotten - expected).cwiseAbs().maxCoeff(), 0.0);
+  const Eigen::VectorXd stale = second_solve(false, &factorizations);
+  EXPECT_EQ(factorizations, 1);
+  EXPECT_LT(RelativeResidual(near, stale, b), 1e-10);
+  EXPECT_GT((stale - expected).cwiseAbs().maxCoeff(), 0.0);
+}
+
 TEST(BlockJacobiSolverTest, NotPositiveDefiniteAndBadBlocksAreFailures) {
   const LinearSystem system = KroneckerSystem(PlateMetric(0.1), 8);
   const Eigen::VectorXd b = Eigen::VectorXd::Ones(system.matrix.rows());

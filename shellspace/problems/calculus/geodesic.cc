@@ -263,8 +263,8 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
     // After a basin probe LM resumes with the damping it had reached, so
     // that it goes on as if it had not been interrupted.
     double lm_damping = 0, resume_damping = 0;
-    // The engine's stages share their linear solvers: the pattern analysis
-    // is done once, and a Newton stage starts on the last LM factorisation.
+    // The engine's stages share their block-Jacobi solver: the slices'
+    // pattern analysis is done once (every stage still factorises afresh).
     PathLinearSolvers solvers;
     // LM down to `relative` (or the tolerance), continuing from where it is.
     const auto run_lm = [&](double relative, double hand_over_contraction) {
