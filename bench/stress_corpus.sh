@@ -21,6 +21,11 @@
 #                        rigid:45 rigid:150)
 #   CORPUS_VERBS         default "geodesic shoot transport mean"
 #   CORPUS_CAP           --time_limit of each run in seconds (default 600)
+#   CORPUS_SEED          the first pose's seed (default 1); each further
+#                        pose takes the next. A table's rows of one mesh
+#                        are remade alone by listing only that mesh and
+#                        starting at the seed it had there (its position,
+#                        counted in poses)
 set -uo pipefail
 
 build="${1:-build}"
@@ -84,7 +89,8 @@ run() {
   echo "| ${name} | ${vertices} | ${posename} | ${verb} | ${converged:-no} | ${code} | ${iterations:-} | ${wall} | ${cpu} | ${rss} | ${start} |"
 }
 
-seed=1
+seed="${CORPUS_SEED:-1}"
+[[ "${seed}" =~ ^[0-9]+$ ]] || { echo "$0: CORPUS_SEED must be a number" >&2; exit 2; }
 for mesh in "${meshes[@]}"; do
   name="$(basename "${mesh%.*}")"
   if [[ "${mesh}" == *.ply ]]; then
