@@ -195,11 +195,12 @@ PathHessianAssembler::PathHessianAssembler(const ShellSpace& space,
   });
 }
 
-bool PathHessianAssembler::AddElementBlocks(
-    const Positions& reference, const Positions& deformed, double weight,
-    BlockArray* d22, BlockArray* d11, BlockArray* mixed_transposed,
-    BlockArray* mixed, ElementFailure* failure,
-    BlockArray* reference_mixed) const {
+bool PathHessianAssembler::AddElementBlocks(const Positions& reference,
+                                            const Positions& deformed,
+                                            double weight, BlockArray* d22,
+                                            BlockArray* mixed_transposed,
+                                            BlockArray* mixed,
+                                            ElementFailure* failure) const {
   const ElementSet& set = space_.elements();
   bool ok = true;
   size_t next_slot = 0;
@@ -208,6 +209,11 @@ bool PathHessianAssembler::AddElementBlocks(
     constexpr int count = std::decay_t<decltype(group)>::kVertices;
     ElementSecondDerivatives<count> d;
     using Rows = typename ElementSecondDerivatives<count>::Rows;
+    // d_grad_reference (the mixed block) only where it is scattered.
+    const Rows rows = mixed_transposed == nullptr && mixed == nullptr
+                          ? Rows::kDeformed
+                      : d22 == nullptr ? Rows::kReference
+                                       : Rows::kBoth;
     double ref[3 * count], def[3 * count];
     for (int e = 0; e < group.size(); ++e) {
       GatherCoordinates(reference, group.stencils[e], ref);
@@ -235,48 +241,94 @@ bool PathHessianAssembler::AddElementBlocks(
           }
         }
       };
-      if (d22 != nullptr || mixed_transposed != nullptr || mixed != nullptr) {
-        // d_grad_reference (the mixed block) only where it is scattered.
-        const Rows rows = mixed_transposed == nullptr && mixed == nullptr
-                              ? Rows::kDeformed
-                              : d22 == nullptr ? Rows::kReference
-                                               : Rows::kBoth;
-        if (!d.ComputeModel(model_, group.element, ref, def,
-                            ShellSide::kDeformed, weight, rows)) {
-          set.Fail(group.first_element + e, failure);
-          ok = false;
-          return;
-        }
-        if (d22 != nullptr) {
-          scatter(d.d_grad_deformed, d22, false, /*lower_only=*/true);
-        }
-        if (mixed_transposed != nullptr) {
-          scatter(d.d_grad_reference, mixed_transposed, /*transposed=*/true);
-        }
-        if (mixed != nullptr) scatter(d.d_grad_reference, mixed);
+      if (!d.ComputeModel(model_, group.element, ref, def, ShellSide::kDeformed,
+                          weight, rows)) {
+        set.Fail(group.first_element + e, failure);
+        ok = false;
+        return;
       }
-      if (d11 != nullptr || reference_mixed != nullptr) {
-        const Rows rows = reference_mixed == nullptr ? Rows::kReference
-                          : d11 == nullptr           ? Rows::kDeformed
-                                                     : Rows::kBoth;
-        if (!d.ComputeModel(model_, group.element, ref, def,
-                            ShellSide::kReference, weight, rows)) {
-          set.Fail(group.first_element + e, failure);
-          ok = false;
-          return;
+      if (d22 != nullptr) {
+        scatter(d.d_grad_deformed, d22, false, /*lower_only=*/true);
+      }
+      if (mixed_transposed != nullptr) {
+        scatter(d.d_grad_reference, mixed_transposed, /*transposed=*/true);
+      }
+      if (mixed != nullptr) scatter(d.d_grad_reference, mixed);
+    }
+  });
+  return ok;
+}
+
+bool PathHessianAssembler::AddSliceBlocks(
+    const Positions& previous, const Positions& shape, const Positions& next,
+    double weight, BlockArray* diagonal, BlockArray* coupling,
+    SliceStatus* before, SliceStatus* after) const {
+  const ElementSet& set = space_.elements();
+  size_t next_slot = 0;
+  set.ForEachGroup([&](const auto& group) {
+    constexpr int count = std::decay_t<decltype(group)>::kVertices;
+    constexpr int n = 3 * count;
+    using Derivatives = ElementSecondDerivatives<count>;
+    using Rows = typename Derivatives::Rows;
+    Derivatives d_before, d_after;
+    Eigen::Matrix<double, n, n, Eigen::RowMajor> sum;
+    double prev[n], own[n], succ[n];
+    for (int e = 0; e < group.size(); ++e) {
+      const int* slot = &slots_[next_slot];
+      next_slot += count * count;
+      if (!before->ok && !after->ok) continue;
+      const auto& stencil = group.stencils[e];
+      GatherCoordinates(shape, stencil, own);
+      bool have_before = false, have_after = false;
+      if (before->ok) {
+        GatherCoordinates(previous, stencil, prev);
+        have_before = d_before.ComputeModel(model_, group.element, prev, own,
+                                            ShellSide::kDeformed, weight,
+                                            Rows::kDeformed);
+        if (!have_before) {
+          set.Fail(group.first_element + e, &before->failure);
+          before->ok = false;
         }
-        if (d11 != nullptr) {
-          scatter(d.d_grad_reference, d11, false, /*lower_only=*/true);
+      }
+      if (after->ok) {
+        GatherCoordinates(next, stencil, succ);
+        have_after = d_after.ComputeModel(
+            model_, group.element, own, succ, ShellSide::kReference, weight,
+            coupling != nullptr ? Rows::kBoth : Rows::kReference);
+        if (!have_after) {
+          set.Fail(group.first_element + e, &after->failure);
+          after->ok = false;
         }
-        // d_grad_deformed with the reference active: rows deformed, columns
-        // reference, as the scatter's slot(a, b) = (row a, column b) wants.
-        if (reference_mixed != nullptr) {
-          scatter(d.d_grad_deformed, reference_mixed);
+      }
+      if (!have_before || !have_after) continue;  // the slice fails anyway
+      // D_2^2 W[previous, shape] + D_1^2 W[shape, next]: one scatter of
+      // their sum, on and below the diagonal (row vertex >= column vertex).
+      sum.noalias() = d_before.d_grad_deformed + d_after.d_grad_reference;
+      for (int a = 0; a < count; ++a) {
+        for (int b = 0; b < count; ++b) {
+          if (stencil[a] < stencil[b]) continue;
+          double* block = diagonal->data() + 9 * slot[a * count + b];
+          for (int i = 0; i < 3; ++i) {
+            for (int j = 0; j < 3; ++j)
+              block[3 * i + j] += sum(3 * a + i, 3 * b + j);
+          }
+        }
+      }
+      if (coupling == nullptr) continue;
+      // D_2 D_1 W[shape, next] (rows next, columns shape).
+      for (int a = 0; a < count; ++a) {
+        for (int b = 0; b < count; ++b) {
+          double* block = coupling->data() + 9 * slot[a * count + b];
+          for (int i = 0; i < 3; ++i) {
+            for (int j = 0; j < 3; ++j) {
+              block[3 * i + j] += d_after.d_grad_deformed(3 * a + i, 3 * b + j);
+            }
+          }
         }
       }
     }
   });
-  return ok;
+  return before->ok && after->ok;
 }
 
 bool PathHessianAssembler::TryAssemble(
@@ -298,10 +350,10 @@ bool PathHessianAssembler::TryAssemble(
   // Every array has one writer, and only `threads` slices' arrays exist at
   // a time (on the cactus x16 a slice's two arrays are about 0.2 GB).
   std::vector<BlockArray> diagonal_blocks(inner), lower(inner);
-  // Per term W[s_{k-1}, s_k] (index k - 1): its deformed and its reference
-  // side, each evaluated by one task.
-  std::vector<ElementFailure> deformed_failure(K), reference_failure(K);
-  std::vector<char> deformed_ok(K, 1), reference_ok(K, 1);
+  // Per term W[s_{k-1}, s_k] (index k - 1): its deformed side (slice k -
+  // 1's task) and its reference side (slice k - 2's task). A failed side
+  // names the first degenerate element of its term.
+  std::vector<SliceStatus> deformed(K), reference(K);
   std::vector<std::vector<const BlockArray*>> diagonal(inner);
   std::vector<const BlockArray*> below(inner, nullptr);
   for (int i = 0; i < inner; ++i) {
@@ -313,14 +365,9 @@ bool PathHessianAssembler::TryAssemble(
     diagonal_blocks[i].assign(block_values, 0.0);
     BlockArray* coupling = nullptr;
     if (i + 1 < inner) (coupling = &lower[i])->assign(block_values, 0.0);
-    deformed_ok[k - 1] =
-        AddElementBlocks(path[k - 1], path[k], K, &diagonal_blocks[i],
-                         nullptr, nullptr, nullptr, &deformed_failure[k - 1]);
-    reference_ok[k] =
-        deformed_ok[k - 1] &&
-        AddElementBlocks(path[k], path[k + 1], K, nullptr, &diagonal_blocks[i],
-                         nullptr, nullptr, &reference_failure[k], coupling);
-    return deformed_ok[k - 1] && reference_ok[k];
+    return AddSliceBlocks(path[k - 1], path[k], path[k + 1], K,
+                          &diagonal_blocks[i], coupling, &deformed[k - 1],
+                          &reference[k]);
   };
   const auto release_slice = [&](int i) {
     BlockArray().swap(diagonal_blocks[i]);
@@ -329,10 +376,11 @@ bool PathHessianAssembler::TryAssemble(
   Compress(diagonal, below, bases, threads, hessian, release_slice,
            compute_slice);
   for (int term = 0; term < K; ++term) {
-    const bool deformed = !deformed_ok[term];
-    if (deformed || !reference_ok[term]) {
+    const SliceStatus& side =
+        !deformed[term].ok ? deformed[term] : reference[term];
+    if (!side.ok) {
       if (failure) {
-        *failure = deformed ? deformed_failure[term] : reference_failure[term];
+        *failure = side.failure;
         failure->description = "W[s_" + std::to_string(term) + ", s_" +
                                std::to_string(term + 1) + "]: " +
                                failure->description;
@@ -368,7 +416,7 @@ bool PathHessianAssembler::TryAssembleDeformedSum(
     sums[part].assign(block_values, 0.0);
     for (size_t i = part; i < references.size(); i += parts) {
       ok[i] = AddElementBlocks(references[i], deformed, 1.0, &sums[part],
-                               nullptr, nullptr, nullptr, &failures[i]);
+                               nullptr, nullptr, &failures[i]);
       if (!ok[i]) return;
     }
   });
@@ -420,12 +468,11 @@ bool PathHessianAssembler::TryAssembleMixed(
     Eigen::SparseMatrix<double>* out, ElementFailure* failure) const {
   const int n = space_.num_vertices;
   BlockArray blocks(9 * pair_row_.size(), 0.0);
-  const bool ok =
-      rows == ShellSide::kReference
-          ? AddElementBlocks(reference, deformed, 1.0, nullptr, nullptr,
-                             nullptr, &blocks, failure)
-          : AddElementBlocks(reference, deformed, 1.0, nullptr, nullptr,
-                             &blocks, nullptr, failure);
+  const bool ok = rows == ShellSide::kReference
+                      ? AddElementBlocks(reference, deformed, 1.0, nullptr,
+                                         nullptr, &blocks, failure)
+                      : AddElementBlocks(reference, deformed, 1.0, nullptr,
+                                         &blocks, nullptr, failure);
   if (!ok) return false;
   const std::vector<VertexColumns> row_layout = VertexLayout(row_basis, n, 0);
   const std::vector<VertexColumns> col_layout = VertexLayout(col_basis, n, 0);

@@ -97,21 +97,40 @@ class PathHessianAssembler {
  private:
   // 3 x 3 blocks (row-major), one per vertex pair, for one slice.
   using BlockArray = std::vector<double>;
-  // Adds weight times the blocks of W[reference, deformed] to the non-null
-  // arrays: D_2^2 W, D_1^2 W, the mixed block with rows deformed
-  // (mixed_transposed, from the pass with the deformed side active;
-  // reference_mixed, from the reference-active pass that also gives
-  // D_1^2 W) and with rows reference (mixed), element by element in the
-  // set's order. False (arrays partly filled) at the first degenerate
-  // element, named in *failure if given. d22 and d11 receive the blocks on
-  // and below the diagonal only (row vertex >= column vertex: the only ones
-  // Compress reads of a diagonal block); the mixed arrays receive all.
+  // Adds weight times the blocks of W[reference, deformed] (the pass with
+  // the deformed side active) to the non-null arrays: D_2^2 W (d22), the
+  // mixed block with rows deformed (mixed_transposed) and with rows
+  // reference (mixed), element by element in the set's order. False
+  // (arrays partly filled) at the first degenerate element, named in
+  // *failure if given. d22 receives the blocks on and below the diagonal
+  // only (row vertex >= column vertex: the only ones Compress reads of a
+  // diagonal block); the mixed arrays receive all.
   bool AddElementBlocks(const Positions& reference, const Positions& deformed,
-                        double weight, BlockArray* d22, BlockArray* d11,
-                        BlockArray* mixed_transposed,
-                        BlockArray* mixed = nullptr,
-                        ElementFailure* failure = nullptr,
-                        BlockArray* reference_mixed = nullptr) const;
+                        double weight, BlockArray* d22,
+                        BlockArray* mixed_transposed, BlockArray* mixed,
+                        ElementFailure* failure) const;
+
+  // Whether one side of a term W[s_{k-1}, s_k] was assembled, and if not,
+  // its first degenerate element.
+  struct SliceStatus {
+    bool ok = true;
+    ElementFailure failure;
+  };
+  // One inner shape's part of the path Hessian, element by element in the
+  // set's order: weight times D_2^2 W[previous, shape] + D_1^2 W[shape,
+  // next] into `diagonal` (one scatter of the two elements' sum, on and
+  // below the diagonal), and, if `coupling` is not null, weight times
+  // D_2 D_1 W[shape, next] (rows next, columns shape), from the same
+  // reference-active pass as D_1^2 W. A side that is not ok on entry is
+  // skipped; a side's first degenerate element makes it not ok (*before:
+  // W[previous, shape], *after: W[shape, next]), and its status names it;
+  // the other side goes on, so each status names its term's first
+  // degenerate element. True if both sides are ok (then the arrays hold
+  // the slice's sums).
+  bool AddSliceBlocks(const Positions& previous, const Positions& shape,
+                      const Positions& next, double weight,
+                      BlockArray* diagonal, BlockArray* coupling,
+                      SliceStatus* before, SliceStatus* after) const;
 
   // *out = T^T H T (lower triangle) from the diagonal blocks of each slice
   // (the sum of the arrays diagonal[i]) and the blocks below the diagonal

@@ -403,6 +403,67 @@ TEST(PathHessianAssemblerTest, DegenerateTriangleIsAStatusOfTryAssemble) {
   EXPECT_EQ(RelativeDifference(h, assembler.Assemble(good, bases, 2)), 0.0);
 }
 
+// Each inner shape's task sees two terms: W[s_{k-1}, s_k] (its deformed
+// side) and W[s_k, s_{k+1}] (its reference side). The status names the
+// first degenerate element of the lowest failing term, whichever side finds
+// it. Collapsing a triangle degenerates it and its edge neighbours: the
+// first of them is the one named. A triangle collapsed in s_1 near the end
+// of the face list (term 0: found by slice 1's deformed side, which must go
+// on past its reference side's failure at face 0, collapsed in s_2), and a
+// triangle collapsed in the end shape s_3 (term 2: only slice 2's
+// reference side sees it).
+TEST(PathHessianAssemblerTest,
+     StatusNamesTheLowestTermsFirstDegenerateElement) {
+  const Mesh a = testing::LoadData("plate/plate121.ply");
+  const ShellSpace space = testing::MakeSpace(a);
+  const std::vector<SparseMatrix> bases(2, RigidGaugeBasis(a.positions));
+  const PathHessianAssembler assembler(space);
+  const auto collapse = [&](ShellPath* path, int shape, int face) {
+    const int v0 = a.faces(face, 0);
+    (*path)[shape].row(a.faces(face, 1)) = (*path)[shape].row(v0);
+    (*path)[shape].row(a.faces(face, 2)) = (*path)[shape].row(v0);
+  };
+  // The first face with two vertices of `face` (itself or a neighbour).
+  const auto first_degenerate = [&](int face) {
+    for (int f = 0; f < a.faces.rows(); ++f) {
+      int shared = 0;
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) shared += a.faces(f, i) == a.faces(face, j);
+      }
+      if (shared >= 2) return f;
+    }
+    return -1;
+  };
+  const auto status = [&](const ShellPath& path) {
+    SparseMatrix h;
+    ElementFailure failure;
+    EXPECT_FALSE(assembler.TryAssemble(path, bases, 1, &h, &failure));
+    return failure.description;
+  };
+  const auto names = [](const std::string& description, int term, int face) {
+    return description.rfind("W[s_" + std::to_string(term) + ", s_" +
+                                 std::to_string(term + 1) +
+                                 "]: membrane element of triangle " +
+                                 std::to_string(face) + " ",
+                             0) == 0;
+  };
+  const int late = static_cast<int>(a.faces.rows()) - 1;
+  ASSERT_GT(first_degenerate(late), 0);
+  ShellPath two = LinearPath(a.positions, a.positions, 3);
+  collapse(&two, 2, 0);
+  collapse(&two, 1, late);
+  EXPECT_TRUE(names(status(two), 0, first_degenerate(late))) << status(two);
+  ShellPath last = LinearPath(a.positions, a.positions, 3);
+  collapse(&last, 3, late);
+  EXPECT_EQ(status(last).rfind("W[s_2, s_3]: ", 0), 0u) << status(last);
+  // Twin: without s_1's collapse the lowest failing term is W[s_1, s_2] at
+  // face 0, so the check tells the terms and the faces apart.
+  ShellPath one = LinearPath(a.positions, a.positions, 3);
+  collapse(&one, 2, 0);
+  EXPECT_TRUE(names(status(one), 1, 0)) << status(one);
+  EXPECT_FALSE(names(status(one), 0, first_degenerate(late)));
+}
+
 // A 1D Laplacian in time (3 slices) of 2D grid Laplacians, shifted to be SPD:
 // the structure of a path Hessian.
 SparseMatrix SpaceTimeLaplacian(int side, int slices, double shift,
