@@ -31,6 +31,8 @@ namespace {
 
 static_assert(HasAnalyticSecondDerivatives<MembraneElement>::value, "");
 static_assert(HasAnalyticSecondDerivatives<BendingElement>::value, "");
+static_assert(HasSliceSecondDerivatives<MembraneElement>::value, "");
+static_assert(HasSliceSecondDerivatives<BendingElement>::value, "");
 
 struct Pair {
   const char* reference;
@@ -613,6 +615,68 @@ TEST_P(ElementHessianTest, WeightScalesLinearly) {
   });
 }
 
+// One inner shape's blocks from an element (ElementSliceSecondDerivatives):
+// the element's SliceSecondDerivatives, which shares X's geometry between
+// its two terms, against ComputeBySides (the two SecondDerivatives passes,
+// added), with X between the pair's shapes P = reference and N = deformed.
+// The largest normwise relative difference of the diagonal and the
+// coupling blocks.
+template <int kV>
+double SliceDifference(const ElementSliceSecondDerivatives<kV>& a,
+                       const ElementSliceSecondDerivatives<kV>& b) {
+  return std::max(testing::NormwiseRelativeError(a.diagonal, b.diagonal),
+                  testing::NormwiseRelativeError(a.coupling, b.coupling));
+}
+
+template <int kV>
+Eigen::Matrix<double, 3 * kV, 1> Between(const Sample<kV>& s) {
+  Eigen::Matrix<double, 3 * kV, 1> x = 0.5 * (s.ref + s.def);
+  for (int j = 0; j < 3 * kV; ++j) x(j) += 0.05 * s.edge * std::sin(1.7 * j);
+  return x;
+}
+
+TEST_P(ElementHessianTest, SliceBlocksEqualTheTwoTermsAdded) {
+  double worst = 0;
+  int elements = 0;
+  ForSampledElements(GetParam(), 12, [&](const auto& element, const auto& s) {
+    constexpr int kV = std::decay_t<decltype(element)>::kNumVertices;
+    const Eigen::Matrix<double, 3 * kV, 1> x = Between(s);
+    for (const bool coupling : {true, false}) {
+      ElementSliceSecondDerivatives<kV> shared, sides;
+      shared.Compute(HessianModel::kExact, element, s.ref.data(), x.data(),
+                     s.def.data(), 3.0, coupling);
+      sides.ComputeBySides(HessianModel::kExact, element, s.ref.data(),
+                           x.data(), s.def.data(), 3.0, coupling);
+      ASSERT_TRUE(shared.before_ok && shared.after_ok);
+      ASSERT_TRUE(sides.before_ok && sides.after_ok);
+      if (!coupling) sides.coupling = shared.coupling;  // not computed
+      worst = std::max(worst, SliceDifference(shared, sides));
+      // Twin: one diagonal entry off by 1e-6 of the block's scale.
+      ElementSliceSecondDerivatives<kV> wrong = sides;
+      wrong.diagonal(1, 2) += 1e-6 * sides.diagonal.cwiseAbs().maxCoeff();
+      EXPECT_GT(SliceDifference(shared, wrong), 1e-8);
+    }
+    ++elements;
+  });
+  EXPECT_GT(elements, 10);
+  EXPECT_LT(worst, 1e-12);
+}
+
+// The Gauss-Newton model has no shared form: Compute is ComputeBySides, bit
+// for bit.
+TEST_P(ElementHessianTest, GaussNewtonSliceBlocksAreTheTwoTermsAdded) {
+  ForSampledElements(GetParam(), 4, [&](const auto& element, const auto& s) {
+    constexpr int kV = std::decay_t<decltype(element)>::kNumVertices;
+    const Eigen::Matrix<double, 3 * kV, 1> x = Between(s);
+    ElementSliceSecondDerivatives<kV> model, sides;
+    model.Compute(HessianModel::kGaussNewton, element, s.ref.data(), x.data(),
+                  s.def.data(), 2.0, true);
+    sides.ComputeBySides(HessianModel::kGaussNewton, element, s.ref.data(),
+                         x.data(), s.def.data(), 2.0, true);
+    EXPECT_EQ(SliceDifference(model, sides), 0.0);
+  });
+}
+
 INSTANTIATE_TEST_SUITE_P(
     RealMeshes, ElementHessianTest,
     ::testing::Values(Pair{"cactus/cactus0.ply", "cactus/cactus1.ply"},
@@ -643,6 +707,37 @@ TEST(ElementHessianDegenerateTest, SameVerdictAsEvaluate) {
     EXPECT_FALSE(b.ComputeWithDualNumbers(bending, flap_bad, flap, side, 1.0));
     EXPECT_TRUE(b.Compute(bending, flap, flap, side, 1.0));
   }
+}
+
+// A slice's verdicts are each side's: a degenerate P fails only the term
+// before X, a degenerate N only the term after it, a degenerate X both.
+TEST(ElementHessianDegenerateTest, SliceVerdictsAreThoseOfEachSide) {
+  const MembraneElement membrane;
+  const BendingElement bending;
+  const double tri[9] = {0, 0, 0, 1, 0, 0, 0.2, 0.9, 0};
+  const double tri_bad[9] = {0, 0, 0, 1, 0, 0, 0, 0, 0};
+  const double flap[12] = {0, 0, 0, 1, 0, 0, 0.3, 0.8, 0.1, 0.6, -0.9, 0.2};
+  const double flap_bad[12] = {0, 0, 0, 1, 0, 0, 0, 0, 0, 0.6, -0.9, 0.2};
+  const auto verdicts = [](const auto& element, const double* p,
+                           const double* x, const double* n) {
+    constexpr int kV = std::decay_t<decltype(element)>::kNumVertices;
+    ElementSliceSecondDerivatives<kV> shared, sides;
+    shared.Compute(HessianModel::kExact, element, p, x, n, 1.0, true);
+    sides.ComputeBySides(HessianModel::kExact, element, p, x, n, 1.0, true);
+    EXPECT_EQ(shared.before_ok, sides.before_ok);
+    EXPECT_EQ(shared.after_ok, sides.after_ok);
+    return std::make_pair(shared.before_ok, shared.after_ok);
+  };
+  using Verdicts = std::pair<bool, bool>;
+  EXPECT_EQ(verdicts(membrane, tri_bad, tri, tri), Verdicts(false, true));
+  EXPECT_EQ(verdicts(membrane, tri, tri, tri_bad), Verdicts(true, false));
+  EXPECT_EQ(verdicts(membrane, tri, tri_bad, tri), Verdicts(false, false));
+  EXPECT_EQ(verdicts(membrane, tri, tri, tri), Verdicts(true, true));
+  // The bending element checks its reference flap: P for the term before,
+  // X for the term after.
+  EXPECT_EQ(verdicts(bending, flap_bad, flap, flap), Verdicts(false, true));
+  EXPECT_EQ(verdicts(bending, flap, flap_bad, flap), Verdicts(true, false));
+  EXPECT_EQ(verdicts(bending, flap, flap, flap), Verdicts(true, true));
 }
 
 }  // namespace

@@ -46,6 +46,59 @@ struct BendingElement {
           area1(ref[1], ref[0], ref[3]),
           angle(def[0], def[1], def[2], def[3]),
           angle_bar(ref[0], ref[1], ref[2], ref[3]) {
+      Finish(ref, eta);
+    }
+    // The same with the two dihedral angles already computed (of def and of
+    // ref; a shape's angle is shared by the two terms it is part of).
+    Stencil(const Vec3<T>* ref, const DihedralAngle<T>& angle_def,
+            const DihedralAngle<T>& angle_ref, double eta)
+        : area0(ref[0], ref[1], ref[2]),
+          area1(ref[1], ref[0], ref[3]),
+          angle(angle_def),
+          angle_bar(angle_ref) {
+      Finish(ref, eta);
+    }
+
+    // d2 wbar / dXbar2 (12 x 12) from d_area (WeightGradient):
+    //   3 d2|Ebar|^2 / A - 3 (d|Ebar|^2 dA^T + dA d|Ebar|^2^T) / A^2
+    //   + 6 |Ebar|^2 dA dA^T / A^3 - 3 |Ebar|^2 d2A / A^2.
+    Eigen::Matrix<T, 12, 12> WeightHessian(const Vec3<T>* d_area) const {
+      using Mat12 = Eigen::Matrix<T, 12, 12>;
+      using Vec12 = Eigen::Matrix<T, 12, 1>;
+      Eigen::Matrix<T, 9, 9> h0, h1;
+      area0.Hessian(&h0);
+      area1.Hessian(&h1);
+      Mat12 d2_area = Mat12::Zero();
+      const int map0[3] = {0, 1, 2}, map1[3] = {1, 0, 3};
+      for (int a = 0; a < 3; ++a) {
+        for (int b = 0; b < 3; ++b) {
+          d2_area.template block<3, 3>(3 * map0[a], 3 * map0[b]) +=
+              h0.template block<3, 3>(3 * a, 3 * b);
+          d2_area.template block<3, 3>(3 * map1[a], 3 * map1[b]) +=
+              h1.template block<3, 3>(3 * a, 3 * b);
+        }
+      }
+      Vec12 d_a = Vec12::Zero(), d_edge_sq = Vec12::Zero();
+      for (int v = 0; v < 4; ++v) d_a.template segment<3>(3 * v) = d_area[v];
+      d_edge_sq.template segment<3>(0) = T(-2) * edge;
+      d_edge_sq.template segment<3>(3) = T(2) * edge;
+      const T area = area_sum;
+      const T area2 = area * area;
+      const Mat12 cross = d_edge_sq * d_a.transpose();
+      Mat12 d2_wbar =
+          (T(6) * edge_sq / (area2 * area)) * d_a * d_a.transpose() -
+          (T(3) / area2) * (cross + cross.transpose()) -
+          (T(3) * edge_sq / area2) * d2_area;
+      for (int c = 0; c < 3; ++c) {
+        d2_wbar(c, c) += T(6) / area;
+        d2_wbar(3 + c, 3 + c) += T(6) / area;
+        d2_wbar(c, 3 + c) -= T(6) / area;
+        d2_wbar(3 + c, c) -= T(6) / area;
+      }
+      return d2_wbar;
+    }
+
+    void Finish(const Vec3<T>* ref, double eta) {
       area_sum = area0.area + area1.area;
       if (!(ScalarValue(area0.area) > 0.0 && ScalarValue(area1.area) > 0.0)) {
         return;
@@ -173,36 +226,7 @@ struct BendingElement {
             (weight * 2 * eta) * (d_theta * mixed_left().transpose());
       }
       if (want_ref) {
-        // d2 wbar.
-        Eigen::Matrix<double, 9, 9> h0, h1;
-        s.area0.Hessian(&h0);
-        s.area1.Hessian(&h1);
-        Mat12 d2_area = Mat12::Zero();
-        const int map0[3] = {0, 1, 2}, map1[3] = {1, 0, 3};
-        for (int a = 0; a < 3; ++a) {
-          for (int b = 0; b < 3; ++b) {
-            d2_area.block<3, 3>(3 * map0[a], 3 * map0[b]) +=
-                h0.block<3, 3>(3 * a, 3 * b);
-            d2_area.block<3, 3>(3 * map1[a], 3 * map1[b]) +=
-                h1.block<3, 3>(3 * a, 3 * b);
-          }
-        }
-        Vec12 d_a = Vec12::Zero(), d_edge_sq = Vec12::Zero();
-        for (int v = 0; v < 4; ++v) d_a.segment<3>(3 * v) = d_area[v];
-        d_edge_sq.segment<3>(0) = -2 * s.edge;
-        d_edge_sq.segment<3>(3) = 2 * s.edge;
-        const double area = s.area_sum;
-        const double area2 = area * area;
-        const Mat12 cross = d_edge_sq * d_a.transpose();
-        Mat12 d2_wbar = (6 * s.edge_sq / (area2 * area)) * d_a * d_a.transpose() -
-                        (3 / area2) * (cross + cross.transpose()) -
-                        (3 * s.edge_sq / area2) * d2_area;
-        for (int c = 0; c < 3; ++c) {
-          d2_wbar(c, c) += 6 / area;
-          d2_wbar(3 + c, 3 + c) += 6 / area;
-          d2_wbar(c, 3 + c) -= 6 / area;
-          d2_wbar(3 + c, c) -= 6 / area;
-        }
+        const Mat12 d2_wbar = s.WeightHessian(d_area);
         Mat12 h_bar;
         s.angle_bar.Hessian(&h_bar);
         const Mat12 wt = d_wbar * d_theta_bar.transpose();
@@ -214,6 +238,58 @@ struct BendingElement {
       }
     }
     return true;
+  }
+
+  // ElementSliceSecondDerivatives (element_hessian.h) for the exact model,
+  // with X's dihedral angle (and its Hessian H_X) computed once. With wbar_A,
+  // delta_A of e[P, X] and wbar_B, delta_B, dwbar_B of e[X, N] (wbar_B and
+  // its derivatives from X's areas), dX = dtheta(X), dN = dtheta(N), the
+  // two blocks of SecondDerivatives add up to
+  //   diagonal = weight eta (2 (wbar_A + wbar_B) dX dX^T
+  //              + 2 (wbar_A delta_A - wbar_B delta_B) H_X
+  //              + delta_B^2 d2wbar_B - 2 delta_B (dwbar_B dX^T + dX
+  //              dwbar_B^T)),
+  //   coupling = 2 weight eta dN (delta_B dwbar_B - wbar_B dX)^T.
+  void SliceSecondDerivatives(const double* previous, const double* own,
+                              const double* next, double weight,
+                              bool want_coupling,
+                              ElementSliceSecondDerivatives<4>* out) const {
+    using Vec12 = Eigen::Matrix<double, 12, 1>;
+    using Mat12 = Eigen::Matrix<double, 12, 12>;
+    const StencilPositions<4> px(previous, own), xn(own, next);
+    const Vec3<double>*p = px.ref, *x = px.def, *n = xn.def;
+    const DihedralAngle<double> angle_p(p[0], p[1], p[2], p[3]);
+    const DihedralAngle<double> angle_x(x[0], x[1], x[2], x[3]);
+    const DihedralAngle<double> angle_n(n[0], n[1], n[2], n[3]);
+    const Stencil<double> before(p, angle_x, angle_p, eta);
+    const Stencil<double> after(x, angle_n, angle_x, eta);
+    out->before_ok = before.ok;
+    out->after_ok = after.ok;
+    if (!after.ok) return;
+    Vec12 d_x, d_wbar;
+    Vec3<double> d_area[4], d_weight[4];
+    after.WeightGradient(d_area, d_weight);
+    for (int v = 0; v < 4; ++v) {
+      d_x.segment<3>(3 * v) = angle_x.grad[v];
+      d_wbar.segment<3>(3 * v) = d_weight[v];
+    }
+    if (want_coupling) {
+      Vec12 d_n;
+      for (int v = 0; v < 4; ++v) d_n.segment<3>(3 * v) = angle_n.grad[v];
+      out->coupling =
+          (weight * 2 * eta) *
+          (d_n * (after.delta * d_wbar - after.weight * d_x).transpose());
+    }
+    if (!before.ok) return;
+    Mat12 h;
+    angle_x.Hessian(&h);
+    const Mat12 wt = d_wbar * d_x.transpose();
+    out->diagonal =
+        (weight * eta) *
+        (2 * (before.weight + after.weight) * d_x * d_x.transpose() +
+         2 * (before.weight * before.delta - after.weight * after.delta) * h +
+         after.delta * after.delta * after.WeightHessian(d_area) -
+         2 * after.delta * (wt + wt.transpose()));
   }
 
   // The unweighted term (theta - thetabar)^2 |Ebar|^2 / dbar_E, dbar_E =

@@ -195,6 +195,83 @@ struct ElementSecondDerivatives {
   }
 };
 
+template <int kVertices>
+struct ElementSliceSecondDerivatives;
+
+template <class Element, class = void>
+struct HasSliceSecondDerivatives : std::false_type {};
+template <class Element>
+struct HasSliceSecondDerivatives<
+    Element,
+    std::void_t<decltype(std::declval<const Element&>().SliceSecondDerivatives(
+        std::declval<const double*>(), std::declval<const double*>(),
+        std::declval<const double*>(), 1.0, true,
+        std::declval<
+            ElementSliceSecondDerivatives<Element::kNumVertices>*>()))>>
+    : std::true_type {};
+
+// One element's share of one inner shape's blocks of a path Hessian
+// (problems/calculus/path_hessian.h). With X = `own` (the shape's stencil
+// positions, 3 kVertices doubles as in Compute), P = `previous` and N =
+// `next` (its neighbours on the path), e[., .] the element's energy:
+//   diagonal = weight (D_2^2 e[P, X] + D_1^2 e[X, N])         (n x n),
+//   coupling = weight D_2 D_1 e[X, N]   (rows N, columns X; if wanted),
+// for `model`. before_ok (after_ok) is false exactly when e[P, X] (e[X, N])
+// is degenerate, ComputeModel's verdict; the blocks are set only when both
+// are true (the coupling when after_ok is).
+//
+// An element type may provide, for the exact model,
+//   void SliceSecondDerivatives(const double* previous, const double* own,
+//       const double* next, double weight, bool want_coupling,
+//       ElementSliceSecondDerivatives<kNumVertices>* out) const;
+// computing what X's two terms share once -- the second derivatives of both
+// terms w.r.t. X go through X's own geometry (its dihedral angle, its first
+// fundamental form), so they are added before that last chain rule.
+// Otherwise, and for the Gauss-Newton model, ComputeBySides: the two
+// ComputeModel passes, added.
+template <int kVertices>
+struct ElementSliceSecondDerivatives {
+  static constexpr int n = 3 * kVertices;
+  using Matrix = Eigen::Matrix<double, n, n, Eigen::RowMajor>;
+  Matrix diagonal, coupling;
+  bool before_ok = false, after_ok = false;
+
+  template <class Element>
+  void Compute(HessianModel model, const Element& element,
+               const double* previous, const double* own, const double* next,
+               double weight, bool want_coupling) {
+    if constexpr (HasSliceSecondDerivatives<Element>::value) {
+      if (model == HessianModel::kExact) {
+        element.SliceSecondDerivatives(previous, own, next, weight,
+                                       want_coupling, this);
+        return;
+      }
+    }
+    ComputeBySides(model, element, previous, own, next, weight, want_coupling);
+  }
+
+  // The reference the element's SliceSecondDerivatives is tested against.
+  template <class Element>
+  void ComputeBySides(HessianModel model, const Element& element,
+                      const double* previous, const double* own,
+                      const double* next, double weight, bool want_coupling) {
+    using D = ElementSecondDerivatives<kVertices>;
+    before_ok =
+        before_.ComputeModel(model, element, previous, own,
+                             ShellSide::kDeformed, weight, D::Rows::kDeformed);
+    after_ok = after_.ComputeModel(
+        model, element, own, next, ShellSide::kReference, weight,
+        want_coupling ? D::Rows::kBoth : D::Rows::kReference);
+    if (before_ok && after_ok) {
+      diagonal.noalias() = before_.d_grad_deformed + after_.d_grad_reference;
+    }
+    if (after_ok && want_coupling) coupling = after_.d_grad_deformed;
+  }
+
+ private:
+  ElementSecondDerivatives<kVertices> before_, after_;
+};
+
 }  // namespace shellspace
 
 #endif  // SHELLSPACE_COST_FUNCTIONS_SHELL_ELEMENT_HESSIAN_H_

@@ -125,6 +125,50 @@ struct MembraneElement {
     return true;
   }
 
+  // ElementSliceSecondDerivatives (element_hessian.h) for the exact model.
+  // Both second derivatives w.r.t. X go through X's form x = (g11, g12, g22)
+  // (J_x = dx/dX): D_2^2 e[P, X] = FormHessian(J_x, F_qq^A, F_q^A) and
+  // D_1^2 e[X, N] = FormHessian(J_x, F_pp^B, F_p^B), and FormHessian is
+  // linear in its last two arguments, so
+  //   diagonal = weight FormHessian(J_x, F_qq^A + F_pp^B, F_q^A + F_p^B),
+  //   coupling = weight J_n^T (F_pq^B)^T J_x     (rows N, columns X).
+  void SliceSecondDerivatives(const double* previous, const double* own,
+                              const double* next, double weight,
+                              bool want_coupling,
+                              ElementSliceSecondDerivatives<3>* out) const {
+    using Mat39 = Eigen::Matrix<double, 3, 9>;
+    const StencilPositions<3> px(previous, own), xn(own, next);
+    const FirstFundamentalForm<double> gp(px.ref[0], px.ref[1], px.ref[2]);
+    const FirstFundamentalForm<double> gx(px.def[0], px.def[1], px.def[2]);
+    const FirstFundamentalForm<double> gn(xn.def[0], xn.def[1], xn.def[2]);
+    const double p[3] = {gp.g11, gp.g12, gp.g22};
+    const double x[3] = {gx.g11, gx.g12, gx.g22};
+    const double n[3] = {gn.g11, gn.g12, gn.g22};
+    MembraneFormDerivatives before, after;
+    out->before_ok =
+        before.Compute(law.mu, law.lambda, p, x, false, true, false);
+    out->after_ok =
+        after.Compute(law.mu, law.lambda, x, n, true, false, want_coupling);
+    if (!out->after_ok) return;
+    Mat39 jx;
+    for (int m = 0; m < 3; ++m) {
+      for (int v = 0; v < 3; ++v)
+        jx.block<1, 3>(m, 3 * v) = gx.grad[m][v].transpose();
+    }
+    if (want_coupling) {
+      Mat39 jn;
+      for (int m = 0; m < 3; ++m) {
+        for (int v = 0; v < 3; ++v) {
+          jn.block<1, 3>(m, 3 * v) = gn.grad[m][v].transpose();
+        }
+      }
+      out->coupling = weight * (jn.transpose() * after.h_pq.transpose() * jx);
+    }
+    if (!out->before_ok) return;
+    out->diagonal = weight * FormHessian(jx, before.h_qq + after.h_pp,
+                                         before.grad_q + after.grad_p);
+  }
+
   // J^T H J + sum_m G_m d2(form entry m)/dX2 for a first fundamental form
   // with Jacobian J (3 x 9), its Hessian H and gradient G w.r.t. the entries.
   static Eigen::Matrix<double, 9, 9> FormHessian(

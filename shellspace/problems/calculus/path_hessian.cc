@@ -4,10 +4,11 @@
 #include <array>
 #include <functional>
 #include <limits>
-#include <type_traits>
 #include <stdexcept>
+#include <type_traits>
 
 #include "shellspace/cost_functions/shell/element_set.h"
+#include "shellspace/geometry/locality_order.h"
 #include "shellspace/runtime/parallel_for.h"
 
 namespace shellspace {
@@ -161,8 +162,7 @@ void StartColumn(const VertexColumns& cw, int jw, int column, Sink& sink) {
 PathHessianAssembler::PathHessianAssembler(const ShellSpace& space,
                                            HessianModel model)
     : space_(space), model_(model) {
-  // The vertex pairs of the elements of space.elements(), in its
-  // enumeration order.
+  // The vertex pairs of the elements of space.elements().
   const ElementSet& set = space.elements();
   const int n = space.num_vertices;
   std::vector<std::vector<int>> rows(n);
@@ -173,16 +173,25 @@ PathHessianAssembler::PathHessianAssembler(const ShellSpace& space,
       }
     }
   });
-  pair_start_.assign(n + 1, 0);
   for (int w = 0; w < n; ++w) {
     std::sort(rows[w].begin(), rows[w].end());
     rows[w].erase(std::unique(rows[w].begin(), rows[w].end()), rows[w].end());
-    pair_start_[w + 1] = pair_start_[w] + static_cast<int>(rows[w].size());
-    pair_row_.insert(pair_row_.end(), rows[w].begin(), rows[w].end());
+  }
+  // Columns stored in the Cuthill-McKee order of the pair graph, elements
+  // visited by their first vertex in it: an element's blocks lie in a few
+  // neighbouring columns, near the previous element's.
+  rank_ = CuthillMcKeeRanks(rows);
+  std::vector<int> by_rank(n);
+  for (int w = 0; w < n; ++w) by_rank[rank_[w]] = w;
+  pair_start_.assign(n + 1, 0);
+  for (int r = 0; r < n; ++r) {
+    const std::vector<int>& column = rows[by_rank[r]];
+    pair_start_[r + 1] = pair_start_[r] + static_cast<int>(column.size());
+    pair_row_.insert(pair_row_.end(), column.begin(), column.end());
   }
   auto slot = [&](int v, int w) {
-    const auto first = pair_row_.begin() + pair_start_[w];
-    const auto last = pair_row_.begin() + pair_start_[w + 1];
+    const auto first = pair_row_.begin() + pair_start_[rank_[w]];
+    const auto last = pair_row_.begin() + pair_start_[rank_[w] + 1];
     return static_cast<int>(std::lower_bound(first, last, v) -
                             pair_row_.begin());
   };
@@ -192,7 +201,21 @@ PathHessianAssembler::PathHessianAssembler(const ShellSpace& space,
         for (int b : stencil) slots_.push_back(slot(a, b));
       }
     }
+    std::vector<std::pair<int, int>> keys(group.size());
+    for (int e = 0; e < group.size(); ++e) {
+      int first = n;
+      for (int v : group.stencils[e]) first = std::min(first, rank_[v]);
+      keys[e] = {first, e};
+    }
+    std::sort(keys.begin(), keys.end());
+    for (const auto& key : keys) visit_.push_back(key.second);
   });
+}
+
+void PathHessianAssembler::SliceStatus::Fail(const ElementSet& set,
+                                             int element) {
+  if (ok || element < failure.element) set.Fail(element, &failure);
+  ok = false;
 }
 
 bool PathHessianAssembler::AddElementBlocks(const Positions& reference,
@@ -202,10 +225,9 @@ bool PathHessianAssembler::AddElementBlocks(const Positions& reference,
                                             BlockArray* mixed,
                                             ElementFailure* failure) const {
   const ElementSet& set = space_.elements();
-  bool ok = true;
-  size_t next_slot = 0;
+  SliceStatus status;
+  size_t group_slots = 0, group_visits = 0;
   set.ForEachGroup([&](const auto& group) {
-    if (!ok) return;
     constexpr int count = std::decay_t<decltype(group)>::kVertices;
     ElementSecondDerivatives<count> d;
     using Rows = typename ElementSecondDerivatives<count>::Rows;
@@ -215,15 +237,20 @@ bool PathHessianAssembler::AddElementBlocks(const Positions& reference,
                       : d22 == nullptr ? Rows::kReference
                                        : Rows::kBoth;
     double ref[3 * count], def[3 * count];
-    for (int e = 0; e < group.size(); ++e) {
-      GatherCoordinates(reference, group.stencils[e], ref);
-      GatherCoordinates(deformed, group.stencils[e], def);
-      const int* slot = &slots_[next_slot];
-      next_slot += count * count;
+    for (int k = 0; k < group.size(); ++k) {
+      const int e = visit_[group_visits + k];
+      const auto& stencil = group.stencils[e];
+      const int* slot = &slots_[group_slots + count * count * e];
+      GatherCoordinates(reference, stencil, ref);
+      GatherCoordinates(deformed, stencil, def);
+      if (!d.ComputeModel(model_, group.element, ref, def, ShellSide::kDeformed,
+                          weight, rows)) {
+        status.Fail(set, group.first_element + e);
+      }
+      if (!status.ok) continue;  // the others only for the first failure
       // out[slot(a, b)](i, j) += m(3a + i, 3b + j), or with `transposed`
       // out[slot(b, a)](j, i) += m(3a + i, 3b + j) (rows deformed, columns
       // reference).
-      const auto& stencil = group.stencils[e];
       auto scatter = [&](const auto& m, BlockArray* out,
                          bool transposed = false, bool lower_only = false) {
         for (int a = 0; a < count; ++a) {
@@ -241,12 +268,6 @@ bool PathHessianAssembler::AddElementBlocks(const Positions& reference,
           }
         }
       };
-      if (!d.ComputeModel(model_, group.element, ref, def, ShellSide::kDeformed,
-                          weight, rows)) {
-        set.Fail(group.first_element + e, failure);
-        ok = false;
-        return;
-      }
       if (d22 != nullptr) {
         scatter(d.d_grad_deformed, d22, false, /*lower_only=*/true);
       }
@@ -255,8 +276,11 @@ bool PathHessianAssembler::AddElementBlocks(const Positions& reference,
       }
       if (mixed != nullptr) scatter(d.d_grad_reference, mixed);
     }
+    group_slots += static_cast<size_t>(count * count) * group.size();
+    group_visits += group.size();
   });
-  return ok;
+  if (!status.ok && failure != nullptr) *failure = status.failure;
+  return status.ok;
 }
 
 bool PathHessianAssembler::AddSliceBlocks(
@@ -264,53 +288,36 @@ bool PathHessianAssembler::AddSliceBlocks(
     double weight, BlockArray* diagonal, BlockArray* coupling,
     SliceStatus* before, SliceStatus* after) const {
   const ElementSet& set = space_.elements();
-  size_t next_slot = 0;
+  size_t group_slots = 0, group_visits = 0;
   set.ForEachGroup([&](const auto& group) {
     constexpr int count = std::decay_t<decltype(group)>::kVertices;
     constexpr int n = 3 * count;
-    using Derivatives = ElementSecondDerivatives<count>;
-    using Rows = typename Derivatives::Rows;
-    Derivatives d_before, d_after;
-    Eigen::Matrix<double, n, n, Eigen::RowMajor> sum;
+    ElementSliceSecondDerivatives<count> d;
     double prev[n], own[n], succ[n];
-    for (int e = 0; e < group.size(); ++e) {
-      const int* slot = &slots_[next_slot];
-      next_slot += count * count;
-      if (!before->ok && !after->ok) continue;
+    for (int k = 0; k < group.size(); ++k) {
+      const int e = visit_[group_visits + k];
       const auto& stencil = group.stencils[e];
+      const int* slot = &slots_[group_slots + count * count * e];
+      GatherCoordinates(previous, stencil, prev);
       GatherCoordinates(shape, stencil, own);
-      bool have_before = false, have_after = false;
-      if (before->ok) {
-        GatherCoordinates(previous, stencil, prev);
-        have_before = d_before.ComputeModel(model_, group.element, prev, own,
-                                            ShellSide::kDeformed, weight,
-                                            Rows::kDeformed);
-        if (!have_before) {
-          set.Fail(group.first_element + e, &before->failure);
-          before->ok = false;
-        }
-      }
-      if (after->ok) {
-        GatherCoordinates(next, stencil, succ);
-        have_after = d_after.ComputeModel(
-            model_, group.element, own, succ, ShellSide::kReference, weight,
-            coupling != nullptr ? Rows::kBoth : Rows::kReference);
-        if (!have_after) {
-          set.Fail(group.first_element + e, &after->failure);
-          after->ok = false;
-        }
-      }
-      if (!have_before || !have_after) continue;  // the slice fails anyway
+      GatherCoordinates(next, stencil, succ);
+      d.Compute(model_, group.element, prev, own, succ, weight,
+                coupling != nullptr);
+      if (!d.before_ok) before->Fail(set, group.first_element + e);
+      if (!d.after_ok) after->Fail(set, group.first_element + e);
+      // After a failure the slice fails; the other elements are still
+      // evaluated, for each side's first failure in the set's order.
+      if (!before->ok || !after->ok) continue;
       // D_2^2 W[previous, shape] + D_1^2 W[shape, next]: one scatter of
       // their sum, on and below the diagonal (row vertex >= column vertex).
-      sum.noalias() = d_before.d_grad_deformed + d_after.d_grad_reference;
       for (int a = 0; a < count; ++a) {
         for (int b = 0; b < count; ++b) {
           if (stencil[a] < stencil[b]) continue;
           double* block = diagonal->data() + 9 * slot[a * count + b];
           for (int i = 0; i < 3; ++i) {
-            for (int j = 0; j < 3; ++j)
-              block[3 * i + j] += sum(3 * a + i, 3 * b + j);
+            for (int j = 0; j < 3; ++j) {
+              block[3 * i + j] += d.diagonal(3 * a + i, 3 * b + j);
+            }
           }
         }
       }
@@ -321,12 +328,14 @@ bool PathHessianAssembler::AddSliceBlocks(
           double* block = coupling->data() + 9 * slot[a * count + b];
           for (int i = 0; i < 3; ++i) {
             for (int j = 0; j < 3; ++j) {
-              block[3 * i + j] += d_after.d_grad_deformed(3 * a + i, 3 * b + j);
+              block[3 * i + j] += d.coupling(3 * a + i, 3 * b + j);
             }
           }
         }
       }
     }
+    group_slots += static_cast<size_t>(count * count) * group.size();
+    group_visits += group.size();
   });
   return before->ok && after->ok;
 }
@@ -482,7 +491,8 @@ bool PathHessianAssembler::TryAssembleMixed(
       const VertexColumns& cw = col_layout[w];
       for (int jw = 0; jw < cw.count; ++jw, ++column) {
         StartColumn(cw, jw, column, sink);
-        for (int p = pair_start_[w]; p < pair_start_[w + 1]; ++p) {
+        for (int p = pair_start_[rank_[w]]; p < pair_start_[rank_[w] + 1];
+             ++p) {
           const VertexColumns& cv = row_layout[pair_row_[p]];
           for (int iv = 0; iv < cv.count; ++iv) {
             double value = 0;
@@ -529,7 +539,8 @@ void PathHessianAssembler::Compress(
       const VertexColumns& cw = layout[i][w];
       for (int jw = 0; jw < cw.count; ++jw, ++column) {
         StartColumn(cw, jw, column, sink);
-        for (int p = pair_start_[w]; p < pair_start_[w + 1]; ++p) {
+        for (int p = pair_start_[rank_[w]]; p < pair_start_[rank_[w] + 1];
+             ++p) {
           const VertexColumns& cv = layout[i][pair_row_[p]];
           if (cv.count == 0 || cv.first + cv.count <= column) continue;
           if constexpr (kValues) {
@@ -550,7 +561,8 @@ void PathHessianAssembler::Compress(
           }
         }
         if (lower[i] == nullptr) continue;
-        for (int p = pair_start_[w]; p < pair_start_[w + 1]; ++p) {
+        for (int p = pair_start_[rank_[w]]; p < pair_start_[rank_[w] + 1];
+             ++p) {
           const VertexColumns& cv = layout[i + 1][pair_row_[p]];
           for (int iv = 0; iv < cv.count; ++iv) {
             double value = 0;

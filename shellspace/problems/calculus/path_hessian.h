@@ -27,7 +27,9 @@ namespace shellspace {
 // membrane, and interior edge flaps, bending) adds, for each ordered pair
 // (a, b) of its stencil's vertices, a 3 x 3 block to the vertex
 // pair (v_a, v_b). The pairs of the mesh are enumerated once (CSR over the
-// column vertex) and every element knows the slot of each of its pairs, so
+// column vertex, the columns in a Cuthill-McKee order of the mesh, whatever
+// the file's vertex numbering) and every element knows the slot of each of
+// its pairs; the elements are visited in that order too, so
 // one assembly is: per element, the second derivatives of its energy
 // (ElementSecondDerivatives: the elements' hand-derived second derivatives,
 // from the same stencil as the cost functions; dual numbers over the
@@ -115,6 +117,8 @@ class PathHessianAssembler {
   struct SliceStatus {
     bool ok = true;
     ElementFailure failure;
+    // Records a failing element (enumeration index): the lowest one is kept.
+    void Fail(const ElementSet& set, int element);
   };
   // One inner shape's part of the path Hessian, element by element in the
   // set's order: weight times D_2^2 W[previous, shape] + D_1^2 W[shape,
@@ -152,10 +156,20 @@ class PathHessianAssembler {
 
   const ShellSpace& space_;
   HessianModel model_ = HessianModel::kExact;
-  std::vector<int> pair_start_;  // pairs with column vertex w: [start_w, start_w+1)
-  std::vector<int> pair_row_;    // their row vertices, ascending
-  std::vector<int> slots_;       // per element (set order), count^2 slots
-                                 // (a, b) -> pair
+  // Vertex w's position in the Cuthill-McKee order of the pair graph
+  // (geometry/locality_order.h): the columns' order in the block arrays.
+  std::vector<int> rank_;
+  // The pairs with column vertex w: [pair_start_[rank_[w]],
+  // pair_start_[rank_[w] + 1]).
+  std::vector<int> pair_start_;
+  std::vector<int> pair_row_;  // their row vertices, ascending
+  std::vector<int> slots_;     // per element (set order), count^2 slots
+                               // (a, b) -> pair
+  // Per group (set order), the order its elements are visited in: by their
+  // first vertex in rank_ (then by index), so consecutive elements scatter
+  // into nearby blocks. A sum over elements is taken in this order; a
+  // failure still names the first failing element of the set's order.
+  std::vector<int> visit_;
 };
 
 }  // namespace shellspace
