@@ -157,6 +157,8 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
   LinearSystem system;
   const std::unique_ptr<NewtonStepStrategy> strategy =
       MakeNewtonStepStrategy(settings, linear_solver);
+  // max_norm after each accepted step (the stall rule).
+  std::vector<double> accepted_norms;
   while (true) {
     if (report.final_gradient <= settings.tolerance * current.scale) {
       finish(NewtonStop::kConverged);
@@ -239,6 +241,17 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
         !(norm <= settings.tolerance * current.scale)) {
       finish(NewtonStop::kHandedOver);
       break;
+    }
+    if (minimize && settings.stall_steps > 0) {
+      accepted_norms.push_back(norm);
+      const size_t steps = accepted_norms.size();
+      if (steps > static_cast<size_t>(settings.stall_steps) &&
+          !(norm <= settings.stall_factor *
+                        accepted_norms[steps - 1 - settings.stall_steps]) &&
+          !(norm <= settings.tolerance * current.scale)) {
+        finish(NewtonStop::kNoProgress);
+        break;
+      }
     }
     if (settings.progress_steps > 0 && report.steps >= settings.progress_steps &&
         !(norm <= settings.progress_factor * report.initial_gradient)) {

@@ -216,6 +216,14 @@ struct NewtonSettings {
   // method on the exact Hessian can take over. Deterministic: it reads
   // norms, no clock.
   double hand_over_contraction = 0;
+  // Stall (minimisation; 0: off): stop (kNoProgress) once the residual's
+  // max_norm after an accepted step is above stall_factor times its value
+  // stall_steps accepted steps before. Meant for a Levenberg-Marquardt stage
+  // whose Gauss-Newton model has stopped explaining the problem (its rate
+  // tends to 1): its caller tries the exact Hessian instead of spending the
+  // iteration budget. Deterministic: it reads norms, no clock.
+  int stall_steps = 0;
+  double stall_factor = 0.5;
 
   // Called after every line search (accepted or not), for progress lines.
   std::function<void(const NewtonReport& report, double merit,

@@ -418,7 +418,11 @@ TEST(RegressWorkflowTest, EqualsTheCliDigitsAndIsNotConverged) {
 // nonlinear: exit 4 (3 L-BFGS iterations), "spline_energy":
 // 0.0006148546899275184, energy_split "membrane": 9.933615809719777e-05;
 // ltheta: exit 0, "spline_energy": 0.0006193429321353981, "membrane":
-// 9.954466905005312e-05.
+// 9.954466905005312e-05. The nonlinear digits agree to 1e-10 since the
+// path Hessian sums an element's two diagonal contributions before
+// scattering them, in a locality order of the elements (the same matrix up
+// to round-off, which three L-BFGS iterations from an unconverged start
+// carry to about 1e-11 relative); the ltheta ones still to 1e-12.
 workflows::SplineOptions ThreeKeyframes(const std::string& method) {
   const workflows::PcaOptions sheets = FourSheets();
   workflows::SplineOptions options;
@@ -446,12 +450,13 @@ TEST(SplineWorkflowTest, EqualsTheCliDigitsForBothMethods) {
     std::string method;
     double spline_energy, membrane;
     SolveStatus::Code code;
+    double tolerance;  // relative
   };
   const std::vector<Case> cases = {
       {"nonlinear", 0.0006148546899275184, 9.933615809719777e-05,
-       SolveStatus::Code::kNotConverged},
+       SolveStatus::Code::kNotConverged, 1e-10},
       {"ltheta", 0.0006193429321353981, 9.954466905005312e-05,
-       SolveStatus::Code::kConverged},
+       SolveStatus::Code::kConverged, 1e-12},
   };
   for (const Case& c : cases) {
     const workflows::SplineResult result =
@@ -461,9 +466,10 @@ TEST(SplineWorkflowTest, EqualsTheCliDigitsForBothMethods) {
     EXPECT_TRUE(result.energy_evaluated);
     EXPECT_EQ(result.optimised, c.method == "nonlinear");
     EXPECT_NEAR(result.spline.spline_energy, c.spline_energy,
-                1e-12 * c.spline_energy)
+                c.tolerance * c.spline_energy)
         << c.method;
-    EXPECT_NEAR(result.energy_split.membrane, c.membrane, 1e-12 * c.membrane)
+    EXPECT_NEAR(result.energy_split.membrane, c.membrane,
+                c.tolerance * c.membrane)
         << c.method;
     EXPECT_FALSE(workflows::ToJson(result, 0).value().ContainsRaw());
   }

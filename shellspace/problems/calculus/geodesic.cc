@@ -281,6 +281,11 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
         lm.num_threads = settings.num_threads;
         lm.min_area_fraction = kStepMinAreaFraction;
         lm.hand_over_contraction = hand_over_contraction;
+        // A Newton attempt follows: LM stalled for kLmStallSteps steps
+        // hands over to it instead of spending the budget.
+        if (relative > settings.gradient_tolerance) {
+          lm.stall_steps = kLmStallSteps;
+        }
         if (resume_damping > 0) lm.lm_initial = resume_damping;
         lm.progress = settings.progress;
         lm.progress_label = settings.progress_label + " lm";

@@ -171,6 +171,14 @@ struct GeodesicStage {
   std::string solver;
 };
 
+// An LM stage of the engine that a Newton attempt follows stops once its
+// gradient max norm has not halved in this many steps (stalled: the
+// Gauss-Newton model no longer explains the problem, as next to a sliver
+// the step limit holds back) and the attempt comes at once; where Newton
+// stops short, LM goes on down to a ten times smaller threshold as after
+// any failed attempt.
+inline constexpr int kLmStallSteps = 20;
+
 // A discrete geodesic has (nearly) equal step energies W[s_{k-1}, s_k]
 // (calculus.md: E_K = K sum_k W is minimal among paths of equal length at
 // constant speed). A result whose largest step energy exceeds this factor

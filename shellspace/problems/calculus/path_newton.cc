@@ -239,6 +239,7 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
   newton.max_shifts = settings.max_shifts;
   newton.stop = settings.stop;
   newton.hand_over_contraction = settings.hand_over_contraction;
+  newton.stall_steps = settings.stall_steps;
   newton.tr_basin_ratio = settings.basin_ratio;
   newton.globalisation = settings.globalisation;
   if (levenberg_marquardt) {

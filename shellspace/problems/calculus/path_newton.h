@@ -110,6 +110,8 @@ struct PathNewtonSettings {
   double forcing = 1e-1;
   // NewtonSettings::hand_over_contraction (0: off).
   double hand_over_contraction = 0;
+  // NewtonSettings::stall_steps (0: off; stall_factor 0.5).
+  int stall_steps = 0;
   // NewtonSettings::tr_basin_ratio (kTrustRegion; 0: off).
   double basin_ratio = 0;
   // The step limit of every trial path (0: off): a trial in which a

@@ -304,11 +304,14 @@ TEST_F(SplineTest, RegressionWithSmallSigmaInterpolates) {
 // is measured in the first round's variables in both (the same initial norm,
 // to the bit); the rounds meet the criterion, with the reported final
 // gradient below the target, in fewer iterations than the one round needs to
-// come within 1e-6 of their objective.
+// come within 1e-6 of their objective. The criterion is 1e-5 relative: the
+// rounds' line search ends on a zero step (the objective's noise from the
+// inner midpoint solves) between about 0.9e-6 and 1.3e-6, whichever the
+// round-off of the metrics' sums; one round stays near 0.3.
 TEST_F(SplineTest, RegressionInRoundsBeatsOneRound) {
   SplineSettings settings;
   settings.inner = TightInner();
-  settings.gradient_tolerance = 1e-6;
+  settings.gradient_tolerance = 1e-5;
   settings.function_tolerance = 0;  // stop on the gradient alone
   settings.max_iterations = 150;
   const std::vector<Positions> data = {a_.positions, b_.positions,
@@ -329,7 +332,9 @@ TEST_F(SplineTest, RegressionInRoundsBeatsOneRound) {
   EXPECT_GT(rounds.rounds, 1);
   EXPECT_EQ(one.initial_gradient_norm, rounds.initial_gradient_norm);
   EXPECT_TRUE(rounds.gradient_criterion_met);
-  EXPECT_LE(rounds.final_gradient_norm, 1e-6 * rounds.initial_gradient_norm);
+  EXPECT_LE(rounds.final_gradient_norm, 1e-5 * rounds.initial_gradient_norm);
+  // Twin: one round, through the same criterion, does not meet it.
+  EXPECT_FALSE(one.gradient_criterion_met);
   EXPECT_LT(rounds.iterations, one.iterations);
   EXPECT_GT(one.objective, rounds.objective * (1 + 1e-6));
 }
