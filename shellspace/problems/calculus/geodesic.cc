@@ -266,6 +266,7 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
     // The engine's stages share their block-Jacobi solver: the slices'
     // pattern analysis is done once (every stage still factorises afresh).
     PathLinearSolvers solvers;
+    bool newton_ran = false;  // a Newton stage (attempt or probe) has run
     // LM down to `relative` (or the tolerance), continuing from where it is.
     const auto run_lm = [&](double relative, double hand_over_contraction) {
       GeodesicStage stage;
@@ -281,9 +282,10 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
         lm.num_threads = settings.num_threads;
         lm.min_area_fraction = kStepMinAreaFraction;
         lm.hand_over_contraction = hand_over_contraction;
-        // A Newton attempt follows: LM stalled for kLmStallSteps steps
-        // hands over to it instead of spending the budget.
-        if (relative > settings.gradient_tolerance) {
+        // After a Newton stage stopped short, with another attempt to
+        // follow: LM stalled for kLmStallSteps steps hands over to it
+        // instead of spending the budget.
+        if (newton_ran && relative > settings.gradient_tolerance) {
           lm.stall_steps = kLmStallSteps;
         }
         if (resume_damping > 0) lm.lm_initial = resume_damping;
@@ -365,6 +367,7 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
       polish.solvers = &solvers;
       const PathNewtonReport report =
           PolishPathNewton(space, input.fixed_vertices, polish, &result.path);
+      newton_ran = true;
       result.newton.Append(report);
       result.iterations += report.steps;
       lm_left -= report.steps;

@@ -171,12 +171,15 @@ struct GeodesicStage {
   std::string solver;
 };
 
-// An LM stage of the engine that a Newton attempt follows stops once its
+// An LM stage of the engine that resumes after a Newton stage stopped short
+// (a probe or an attempt), with another attempt to follow, stops once its
 // gradient max norm has not halved in this many steps (stalled: the
 // Gauss-Newton model no longer explains the problem, as next to a sliver
 // the step limit holds back) and the attempt comes at once; where Newton
 // stops short, LM goes on down to a ten times smaller threshold as after
-// any failed attempt.
+// any failed attempt. The first LM stage runs to its threshold as before
+// (on the triceratops twisted by 180 degrees of the stress corpus a stall
+// hand-over there cost 29 more steps).
 inline constexpr int kLmStallSteps = 20;
 
 // A discrete geodesic has (nearly) equal step energies W[s_{k-1}, s_k]
