@@ -242,7 +242,7 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
       finish(NewtonStop::kHandedOver);
       break;
     }
-    if (minimize && settings.stall_steps > 0) {
+    if (settings.stall_steps > 0) {
       accepted_norms.push_back(norm);
       const size_t steps = accepted_norms.size();
       if (steps > static_cast<size_t>(settings.stall_steps) &&

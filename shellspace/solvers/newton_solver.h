@@ -216,7 +216,7 @@ struct NewtonSettings {
   // method on the exact Hessian can take over. Deterministic: it reads
   // norms, no clock.
   double hand_over_contraction = 0;
-  // Stall (minimisation; 0: off): stop (kNoProgress) once the residual's
+  // Stall (0: off): stop (kNoProgress) once the residual's
   // max_norm after an accepted step is above stall_factor times its value
   // stall_steps accepted steps before. Meant for a Levenberg-Marquardt stage
   // whose Gauss-Newton model has stopped explaining the problem (its rate

@@ -490,6 +490,28 @@ TEST(NewtonSolverTest, NoProgressRuleStopsACrawl) {
   EXPECT_FALSE(r.converged);
 }
 
+// The stall rule compares each accepted step's max norm with the one
+// stall_steps accepted steps before: 0.25 is half of 0.5 (two steps
+// before), 0.2 is more than half of 0.3, so the fourth step stops.
+TEST(NewtonSolverTest, StallRuleStopsWhereTheNormDidNotHalfInTheWindow) {
+  const std::vector<double> norms = {1, 0.5, 0.3, 0.25, 0.2, 0.19, 1e-13};
+  ScriptedProblem problem(norms);
+  NewtonSettings s = RootFinding();
+  s.stall_steps = 2;
+  s.stall_factor = 0.5;
+  SparseLu lu;
+  const NewtonReport r = SolveNewton(&problem, &lu, s);
+  EXPECT_EQ(r.stop, NewtonStop::kNoProgress);
+  EXPECT_EQ(r.steps, 4);
+  EXPECT_EQ(r.final_gradient, 0.2);
+  EXPECT_FALSE(r.converged);
+  // Twin: without the rule the same script converges.
+  ScriptedProblem again(norms);
+  const NewtonReport full = SolveNewton(&again, &lu, RootFinding());
+  EXPECT_TRUE(full.converged);
+  EXPECT_EQ(full.steps, 6);
+}
+
 // f(x) = sum_i sqrt(1 + x_i^2) (Hyperbola in each coordinate), minimiser 0:
 // from (3, -2.5, 2) the Newton step and its half both raise f.
 Callbacks Hyperbolas() {
