@@ -152,6 +152,31 @@ void StartColumn(const VertexColumns& cw, int jw, int column, Sink& sink) {
   sink.Column();
 }
 
+// One element's count x count vertex blocks of m (3 count square) added to
+// the block array `out` at the element's pair slots slot[a count + b]:
+// out[slot(a, b)](i, j) += m(3a + i, 3b + j), or with kTransposed
+// out[slot(b, a)](j, i) += m(3a + i, 3b + j) (a mixed block with rows and
+// columns swapped); with kLowerOnly only the pairs with stencil[a] >=
+// stencil[b] (the only ones Compress reads of a diagonal block).
+template <bool kTransposed, bool kLowerOnly, std::size_t count, class Matrix>
+void ScatterBlocks(const Matrix& m, const std::array<int, count>& stencil,
+                   const int* slot, std::vector<double>* out) {
+  constexpr int c = static_cast<int>(count);
+  for (int a = 0; a < c; ++a) {
+    for (int b = 0; b < c; ++b) {
+      if (kLowerOnly && stencil[a] < stencil[b]) continue;
+      double* block =
+          out->data() + 9 * slot[kTransposed ? b * c + a : a * c + b];
+      for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) {
+          block[kTransposed ? 3 * j + i : 3 * i + j] +=
+              m(3 * a + i, 3 * b + j);
+        }
+      }
+    }
+  }
+}
+
 [[noreturn]] void ThrowDegenerate(const ElementFailure& failure) {
   throw InputError("degenerate element while assembling a Hessian of W: " +
                    failure.description);
@@ -248,33 +273,16 @@ bool PathHessianAssembler::AddElementBlocks(const Positions& reference,
         status.Fail(set, group.first_element + e);
       }
       if (!status.ok) continue;  // the others only for the first failure
-      // out[slot(a, b)](i, j) += m(3a + i, 3b + j), or with `transposed`
-      // out[slot(b, a)](j, i) += m(3a + i, 3b + j) (rows deformed, columns
-      // reference).
-      auto scatter = [&](const auto& m, BlockArray* out,
-                         bool transposed = false, bool lower_only = false) {
-        for (int a = 0; a < count; ++a) {
-          for (int b = 0; b < count; ++b) {
-            if (lower_only && stencil[a] < stencil[b]) continue;
-            double* block =
-                out->data() +
-                9 * slot[transposed ? b * count + a : a * count + b];
-            for (int i = 0; i < 3; ++i) {
-              for (int j = 0; j < 3; ++j) {
-                block[transposed ? 3 * j + i : 3 * i + j] +=
-                    m(3 * a + i, 3 * b + j);
-              }
-            }
-          }
-        }
-      };
       if (d22 != nullptr) {
-        scatter(d.d_grad_deformed, d22, false, /*lower_only=*/true);
+        ScatterBlocks<false, true>(d.d_grad_deformed, stencil, slot, d22);
       }
       if (mixed_transposed != nullptr) {
-        scatter(d.d_grad_reference, mixed_transposed, /*transposed=*/true);
+        ScatterBlocks<true, false>(d.d_grad_reference, stencil, slot,
+                                   mixed_transposed);
       }
-      if (mixed != nullptr) scatter(d.d_grad_reference, mixed);
+      if (mixed != nullptr) {
+        ScatterBlocks<false, false>(d.d_grad_reference, stencil, slot, mixed);
+      }
     }
     group_slots += static_cast<size_t>(count * count) * group.size();
     group_visits += group.size();
@@ -309,29 +317,11 @@ bool PathHessianAssembler::AddSliceBlocks(
       // evaluated, for each side's first failure in the set's order.
       if (!before->ok || !after->ok) continue;
       // D_2^2 W[previous, shape] + D_1^2 W[shape, next]: one scatter of
-      // their sum, on and below the diagonal (row vertex >= column vertex).
-      for (int a = 0; a < count; ++a) {
-        for (int b = 0; b < count; ++b) {
-          if (stencil[a] < stencil[b]) continue;
-          double* block = diagonal->data() + 9 * slot[a * count + b];
-          for (int i = 0; i < 3; ++i) {
-            for (int j = 0; j < 3; ++j) {
-              block[3 * i + j] += d.diagonal(3 * a + i, 3 * b + j);
-            }
-          }
-        }
-      }
-      if (coupling == nullptr) continue;
-      // D_2 D_1 W[shape, next] (rows next, columns shape).
-      for (int a = 0; a < count; ++a) {
-        for (int b = 0; b < count; ++b) {
-          double* block = coupling->data() + 9 * slot[a * count + b];
-          for (int i = 0; i < 3; ++i) {
-            for (int j = 0; j < 3; ++j) {
-              block[3 * i + j] += d.coupling(3 * a + i, 3 * b + j);
-            }
-          }
-        }
+      // their sum, on and below the diagonal; D_2 D_1 W[shape, next] (rows
+      // next, columns shape).
+      ScatterBlocks<false, true>(d.diagonal, stencil, slot, diagonal);
+      if (coupling != nullptr) {
+        ScatterBlocks<false, false>(d.coupling, stencil, slot, coupling);
       }
     }
     group_slots += static_cast<size_t>(count * count) * group.size();
