@@ -1,7 +1,5 @@
 #include "tests/testing/test_support.h"
 
-#include "tests/testing/cli_output.h"
-
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -9,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <numeric>
 #include <random>
 #include <sstream>
 
@@ -17,6 +16,7 @@
 #include "shellspace/geometry/procedural_shapes.h"
 #include "shellspace/geometry/validation.h"
 #include "shellspace/io/mesh_io.h"
+#include "tests/testing/cli_output.h"
 
 namespace shellspace::testing {
 
@@ -37,6 +37,26 @@ Mesh LoadData(const std::string& relative) {
 
 ShellSpace MakeSpace(const Mesh& mesh, const ShellMaterial& material) {
   return ShellSpace(mesh, Topology::Build(mesh), material);
+}
+
+Mesh ShuffledNumbering(const Mesh& mesh, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::vector<int> label(mesh.num_vertices()), order(mesh.num_faces());
+  std::iota(label.begin(), label.end(), 0);
+  std::iota(order.begin(), order.end(), 0);
+  std::shuffle(label.begin(), label.end(), rng);
+  std::shuffle(order.begin(), order.end(), rng);
+  Mesh out;
+  out.positions.resize(mesh.num_vertices(), 3);
+  for (int v = 0; v < mesh.num_vertices(); ++v) {
+    out.positions.row(label[v]) = mesh.positions.row(v);
+  }
+  out.faces.resize(mesh.num_faces(), 3);
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    for (int c = 0; c < 3; ++c)
+      out.faces(f, c) = label[mesh.faces(order[f], c)];
+  }
+  return out;
 }
 
 ShellMaterial CliDefaultMaterial(const Mesh& reference, BendingModel bending) {

@@ -73,6 +73,11 @@ struct BumpySheetPair {
 };
 BumpySheetPair MakeBumpySheetPair();
 
+// `mesh` with its vertices renamed and its faces reordered at random (fixed
+// seed; each face keeps its vertices' cyclic order), as a mesh file may
+// number them: the same shell, scattered over its arrays.
+Mesh ShuffledNumbering(const Mesh& mesh, unsigned seed);
+
 // A random rigid motion (rotation by a random unit quaternion, translation
 // with entries in [-1, 1]) applied to `p`, with a fixed seed.
 Positions RandomRigidMotion(const Positions& p, unsigned seed);

@@ -6,7 +6,8 @@
 namespace shellspace {
 
 ElementSet::ElementSet(const Faces& faces, const Topology& topology,
-                       const ShellMaterial& material)
+                       const ShellMaterial& material,
+                       const ElementLabels& labels)
     : material_(material),
       num_faces_(static_cast<int>(faces.rows())),
       num_interior_edges_(static_cast<int>(topology.interior_edges.size())) {
@@ -21,6 +22,7 @@ ElementSet::ElementSet(const Faces& faces, const Topology& topology,
   for (int f = 0; f < faces.rows(); ++f) {
     membrane.stencils[f] = {faces(f, 0), faces(f, 1), faces(f, 2)};
   }
+  membrane.labels = labels.faces;
   Add(std::move(membrane));
 
   // 2. Bending, weight eta, by the material's bending model.
@@ -36,15 +38,24 @@ ElementSet::ElementSet(const Faces& faces, const Topology& topology,
       for (const EdgeFlap& flap : topology.interior_edges) {
         bending.stencils.push_back({flap.i, flap.j, flap.k, flap.l});
       }
+      bending.labels = labels.interior_edges;
       Add(std::move(bending));
       break;
     }
     case BendingModel::kShapeOperator:
-      AddShapeOperatorGroups(faces, topology, material);
+      AddShapeOperatorGroups(faces, topology, material, labels.faces);
       break;
     default:
       throw InputError("material: unknown bending model " +
                        std::to_string(static_cast<int>(material.bending_model)));
+  }
+  if (!labels.vertices.empty()) {
+    const auto vertex_labels =
+        std::make_shared<const std::vector<int>>(labels.vertices);
+    for (AnyElementGroup& any : groups_) {
+      std::visit([&](auto& group) { group.vertex_labels = vertex_labels; },
+                 any);
+    }
   }
 }
 
@@ -70,7 +81,8 @@ ElementGroup<ShapeOperatorElement<kInterior>> ShapeOperatorGroup(
 
 void ElementSet::AddShapeOperatorGroups(const Faces& faces,
                                         const Topology& topology,
-                                        const ShellMaterial& material) {
+                                        const ShellMaterial& material,
+                                        const std::vector<int>& face_labels) {
   // Directed edge (u, w) of a face -> the vertex across it.
   std::unordered_map<long long, int> across;
   const long long n = static_cast<long long>(topology.vertex_faces.size()) + 1;
@@ -83,6 +95,7 @@ void ElementSet::AddShapeOperatorGroups(const Faces& faces,
   auto g1 = ShapeOperatorGroup<1>(material);
   auto g0 = ShapeOperatorGroup<0>(material);
   for (int f = 0; f < faces.rows(); ++f) {
+    const int label = face_labels.empty() ? f : face_labels[f];
     const int x[3] = {faces(f, 0), faces(f, 1), faces(f, 2)};
     int opposite[3];  // vertex across the edge opposite x[i], or -1
     int count = 0;
@@ -105,19 +118,19 @@ void ElementSet::AddShapeOperatorGroups(const Faces& faces,
     switch (count) {
       case 3:
         g3.stencils.push_back({a, b, c, pa, pb, opposite[(r + 2) % 3]});
-        g3.labels.push_back(f);
+        g3.labels.push_back(label);
         break;
       case 2:
         g2.stencils.push_back({a, b, c, pa, pb});
-        g2.labels.push_back(f);
+        g2.labels.push_back(label);
         break;
       case 1:
         g1.stencils.push_back({a, b, c, pa});
-        g1.labels.push_back(f);
+        g1.labels.push_back(label);
         break;
       default:
         g0.stencils.push_back({a, b, c});
-        g0.labels.push_back(f);
+        g0.labels.push_back(label);
     }
   }
   Add(std::move(g3));

@@ -63,6 +63,7 @@
 #define SHELLSPACE_COST_FUNCTIONS_SHELL_ELEMENT_SET_H_
 
 #include <array>
+#include <memory>
 #include <string>
 #include <variant>
 #include <vector>
@@ -96,6 +97,9 @@ struct ElementGroup {
   // The id of element i that Describe names (e.g. its face), if not empty;
   // else i.
   std::vector<int> labels;
+  // The id Describe names for vertex v of a stencil (ElementLabels::
+  // vertices), if set and not empty; else v.
+  std::shared_ptr<const std::vector<int>> vertex_labels;
   // Index of stencils[0] in the set's enumeration; -1 if the term has weight
   // 0 (not a term of W; only EvaluateDeformationEnergy reports its value).
   int first_element = -1;
@@ -108,7 +112,11 @@ struct ElementGroup {
                       std::to_string(labels.empty() ? i : labels[i]) +
                       " (vertices";
     for (int a = 0; a < kVertices; ++a) {
-      out += (a ? ", " : " ") + std::to_string(stencils[i][a]);
+      const int v = stencils[i][a];
+      out += (a ? ", " : " ") +
+             std::to_string(vertex_labels && !vertex_labels->empty()
+                                ? (*vertex_labels)[v]
+                                : v);
     }
     return out + ")";
   }
@@ -133,7 +141,7 @@ class ElementSet {
  public:
   // Throws InputError for an unknown material.bending_model.
   ElementSet(const Faces& faces, const Topology& topology,
-             const ShellMaterial& material);
+             const ShellMaterial& material, const ElementLabels& labels = {});
 
   // Calls visit(group) (a generic callable over ElementGroup<E>) for every
   // term of W, in the enumeration order.
@@ -173,7 +181,8 @@ class ElementSet {
   template <class E>
   void Add(ElementGroup<E> group);
   void AddShapeOperatorGroups(const Faces& faces, const Topology& topology,
-                              const ShellMaterial& material);
+                              const ShellMaterial& material,
+                              const std::vector<int>& face_labels);
 
   std::vector<AnyElementGroup> groups_;
   int num_elements_ = 0;

@@ -72,6 +72,15 @@ ShellSpace::ShellSpace(const Mesh& mesh, const Topology& topo,
       num_vertices(mesh.num_vertices()),
       elements_(std::make_shared<const ElementSet>(faces, topology, material)) {}
 
+ShellSpace::ShellSpace(const Mesh& mesh, const Topology& topo,
+                       const ShellMaterial& mat, const ElementLabels& labels)
+    : faces(mesh.faces),
+      topology(topo),
+      material(mat),
+      num_vertices(mesh.num_vertices()),
+      elements_(std::make_shared<const ElementSet>(faces, topology, material,
+                                                   labels)) {}
+
 const ElementSet& ShellSpace::elements() const {
   if (!elements_) {
     throw std::logic_error("ShellSpace: default-constructed space has no elements");

@@ -7,6 +7,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 #include "shellspace/cost_functions/shell/bending_element.h"
 #include "shellspace/cost_functions/shell/membrane_element.h"
@@ -69,6 +70,14 @@ struct ShellMaterial {
   void Validate() const;
 };
 
+// The ids an element set's descriptions name, for a space whose numbering is
+// not the caller's (shell_space_renumbering.h): vertices[v], faces[f] and
+// interior_edges[e] are the caller's ids of the space's vertex v, face f and
+// interior edge e. An empty list names the space's own ids.
+struct ElementLabels {
+  std::vector<int> vertices, faces, interior_edges;
+};
+
 class ElementSet;
 
 // The space of shells with one connectivity: faces, their topology, the
@@ -85,6 +94,9 @@ struct ShellSpace {
 
   ShellSpace() = default;
   ShellSpace(const Mesh& mesh, const Topology& topo, const ShellMaterial& mat);
+  // The same with the ids its element descriptions name (ElementLabels).
+  ShellSpace(const Mesh& mesh, const Topology& topo, const ShellMaterial& mat,
+             const ElementLabels& labels);
 
   // The element set of W on this space. Throws std::logic_error for a
   // default-constructed space or one whose members were changed after

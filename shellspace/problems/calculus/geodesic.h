@@ -259,6 +259,12 @@ struct GeodesicResult {
 // rigid motions of every inner shape are pinned (rigid_gauge.h) at three
 // vertices of the initial path (Ceres' LM) or removed by the rigid-gauge
 // basis of each shape (the engine's stages and the Newton finish).
+// The engine's stages run in the space renumbered for memory locality
+// (RenumberForLocality, shell_space_renumbering.h; the path is mapped back,
+// the gauge pinned at the caller's vertices): the result is the caller's
+// numbering's to round-off, and a degenerate element they report is named
+// by the caller's face, edge and vertex ids (the first in the renumbered
+// order where several are).
 GeodesicResult SolveGeodesic(const ShellSpace& space,
                              const GeodesicInput& input,
                              const SolverSettings& settings);

@@ -29,15 +29,27 @@ struct ReducedCoordinates {
   int size = 0;
 };
 
+// ChooseGaugeVertices of `shape` in the caller's numbering, as vertices of
+// the solve's space (PathNewtonSettings::renumbering; null: the same).
+std::array<int, 3> GaugeVertices(const Positions& shape,
+                                 const RenumberedShellSpace* renumbering) {
+  if (renumbering == nullptr) return ChooseGaugeVertices(shape);
+  std::array<int, 3> vertices =
+      ChooseGaugeVertices(renumbering->ToOriginal(shape));
+  for (int& v : vertices) v = renumbering->new_vertex[v];
+  return vertices;
+}
+
 // Without a mask: one choice of gauge vertices for every inner shape (those
 // of the middle one), so that all slices have the same free coordinates and
 // their Hessian blocks one pattern (the time-coupled preconditioner needs
 // it); none if a, b, c are nearly collinear in some inner shape (c closer
 // than 1e-3 |ab| to the line ab), and each shape then gets its own.
-std::optional<std::array<int, 3>> SharedGaugeVertices(const ShellPath& path) {
+std::optional<std::array<int, 3>> SharedGaugeVertices(
+    const ShellPath& path, const RenumberedShellSpace* renumbering) {
   const int K = static_cast<int>(path.size()) - 1;
   if (K < 2) return std::nullopt;
-  const std::array<int, 3> vertices = ChooseGaugeVertices(path[K / 2]);
+  const std::array<int, 3> vertices = GaugeVertices(path[K / 2], renumbering);
   const auto [a, b, c] = vertices;
   for (int k = 1; k < K; ++k) {
     const Eigen::Vector3d ab = (path[k].row(b) - path[k].row(a)).transpose();
@@ -51,14 +63,16 @@ std::optional<std::array<int, 3>> SharedGaugeVertices(const ShellPath& path) {
 
 ReducedCoordinates MakeReducedCoordinates(
     const ShellSpace& space, const std::vector<int>& fixed,
-    const ShellPath& path, const std::optional<std::array<int, 3>>& gauge) {
+    const ShellPath& path, const std::optional<std::array<int, 3>>& gauge,
+    const RenumberedShellSpace* renumbering) {
   ReducedCoordinates r;
   const int K = static_cast<int>(path.size()) - 1;
   for (int k = 1; k < K; ++k) {
     r.basis.push_back(
         !fixed.empty() ? FreeVertexBasis(space.num_vertices, fixed)
-        : gauge       ? RigidGaugeBasis(path[k], *gauge)
-                      : RigidGaugeBasis(path[k]));
+        : gauge
+            ? RigidGaugeBasis(path[k], *gauge)
+            : RigidGaugeBasis(path[k], GaugeVertices(path[k], renumbering)));
     r.offset.push_back(r.size);
     const std::vector<int> vertices = BasisColumnVertices(r.basis.back());
     r.vertex_of.insert(r.vertex_of.end(), vertices.begin(), vertices.end());
@@ -98,15 +112,18 @@ class PathEnergyProblem : public NewtonProblem {
  public:
   PathEnergyProblem(const ShellSpace& space, const std::vector<int>& fixed,
                     int threads, HessianModel model, double min_area_fraction,
-                    ShellPath* path)
+                    const RenumberedShellSpace* renumbering, ShellPath* path)
       : space_(space),
         min_area_fraction_(min_area_fraction),
         fixed_(fixed),
         threads_(threads),
         assembler_(space, model),
         path_(path),
-        gauge_(fixed.empty() ? SharedGaugeVertices(*path) : std::nullopt),
-        reduced_(MakeReducedCoordinates(space, fixed, *path, gauge_)) {}
+        renumbering_(renumbering),
+        gauge_(fixed.empty() ? SharedGaugeVertices(*path, renumbering)
+                             : std::nullopt),
+        reduced_(
+            MakeReducedCoordinates(space, fixed, *path, gauge_, renumbering)) {}
 
   EvaluationStatus Merit(NewtonPoint point, double* merit) override {
     const ShellPath& path = point == NewtonPoint::kCurrent ? *path_ : trial_;
@@ -122,7 +139,8 @@ class PathEnergyProblem : public NewtonProblem {
   EvaluationStatus Residual(NewtonPoint point,
                             NewtonResidual* residual) override {
     if (point == NewtonPoint::kTrial) {
-      trial_reduced_ = MakeReducedCoordinates(space_, fixed_, trial_, gauge_);
+      trial_reduced_ =
+          MakeReducedCoordinates(space_, fixed_, trial_, gauge_, renumbering_);
     }
     const ShellPath& path = point == NewtonPoint::kCurrent ? *path_ : trial_;
     const ReducedCoordinates& r =
@@ -185,6 +203,7 @@ class PathEnergyProblem : public NewtonProblem {
   const int threads_;
   const PathHessianAssembler assembler_;
   ShellPath* path_;
+  const RenumberedShellSpace* renumbering_;
   // The gauge vertices of every inner shape (no mask), chosen once.
   const std::optional<std::array<int, 3>> gauge_;
   ReducedCoordinates reduced_;
@@ -226,7 +245,7 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
   PathEnergyProblem problem(
       space, fixed_vertices, std::max(1, settings.num_threads),
       levenberg_marquardt ? settings.model : HessianModel::kExact,
-      settings.min_area_fraction, path);
+      settings.min_area_fraction, settings.renumbering, path);
   NewtonSettings newton;
   newton.mode = NewtonMode::kMinimize;
   newton.max_steps = settings.max_steps;

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "shellspace/cost_functions/shell/shell_space.h"
+#include "shellspace/cost_functions/shell/shell_space_renumbering.h"
 #include "shellspace/solvers/newton_solver.h"
 
 namespace shellspace {
@@ -126,6 +127,13 @@ struct PathNewtonSettings {
   // The solvers of the stage before on the same path problem (its pattern
   // analysis reused), or nullptr: solvers of this stage alone.
   PathLinearSolvers* solvers = nullptr;
+  // The solve runs in a renumbered space (`space` is renumbering->space;
+  // shell_space_renumbering.h), or nullptr. Without a mask the rigid gauge
+  // is then pinned at the vertices ChooseGaugeVertices picks in the caller's
+  // numbering, so that the result is the caller's solve's up to round-off
+  // (on a symmetric mesh the farthest vertices tie, and the ties go to the
+  // lower index).
+  const RenumberedShellSpace* renumbering = nullptr;
   int num_threads = 2;  // Hessian blocks are assembled in parallel
   bool progress = false;
   std::string progress_label = "newton";
