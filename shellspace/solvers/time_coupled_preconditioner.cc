@@ -274,6 +274,10 @@ Eigen::VectorXd TimeCoupledPreconditioner::Colour(
                                   : factors_->single[slice].Colour(z);
 }
 
+int FitProbes(int block_size) {
+  return block_size >= kOneFitProbeFromUnknowns ? 1 : 2;
+}
+
 void TimeCoupledPreconditioner::FitCouplings(const SparseMatrix& lower,
                                              int threads, int probes) {
   const int count = slices();
@@ -281,6 +285,7 @@ void TimeCoupledPreconditioner::FitCouplings(const SparseMatrix& lower,
   if (count < 2 || lower.rows() != static_cast<Eigen::Index>(count) * m) {
     return;
   }
+  if (probes <= 0) probes = FitProbes(m);
   // Each probe z is used in three colourings: w = C^-T z on the slices
   // i = c (mod 3), zero elsewhere. A slice next to a coloured one has only
   // that neighbour coloured, so z^T C_j^-1 (H w)_j is the probe of the

@@ -11,6 +11,8 @@
 #include <algorithm>
 #include <array>
 #include <iostream>
+#include <random>
+#include <utility>
 
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/problems/calculus/path_hessian.h"
@@ -113,6 +115,73 @@ TEST(TimeCoupledPreconditionerTest, FittedCouplingsOfScaledKroneckerModels) {
             TimeCoupledPreconditioner::Status::kFactorized);
   p.FitCouplings(flipped, 2);
   for (double theta : p.couplings()) EXPECT_EQ(theta, 0.0);
+}
+
+// A path model of 3 slices of m = 101^2 unknowns (a grid Laplacian plus I
+// as the metric G) whose couplings are not the model's: -K (0.8 G + 0.3 R),
+// R with G's off-diagonal pattern and random signs (fixed seed). By default
+// (FitProbes: one probe from 10,000 unknowns) the fitted thetas are those
+// of 64 probes within 0.01 (the bound of FitProbes' comment: 3 standard
+// deviations are 0.013 x theta / 2), and 64 probes give theta near 0.8
+// (the pairs are kept and the fit measures something). Below 10,000
+// unknowns the default is two probes.
+TEST(TimeCoupledPreconditionerTest, OneProbeFitsTheCouplingsOfLargeSlices) {
+  EXPECT_EQ(FitProbes(kOneFitProbeFromUnknowns - 1), 2);
+  EXPECT_EQ(FitProbes(kOneFitProbeFromUnknowns), 1);
+  const int side = 101, m = side * side, K = 4;
+  ASSERT_GE(m, kOneFitProbeFromUnknowns);
+  std::vector<Eigen::Triplet<double>> g_entries, r_entries;
+  std::mt19937 generator(7);
+  for (int y = 0; y < side; ++y) {
+    for (int x = 0; x < side; ++x) {
+      const int v = y * side + x;
+      int degree = 0;
+      for (const auto [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+        if (x + dx < 0 || x + dx >= side || y + dy < 0 || y + dy >= side) {
+          continue;
+        }
+        const int w = (y + dy) * side + x + dx;
+        g_entries.emplace_back(v, w, -1.0);
+        r_entries.emplace_back(v, w, (generator() & 1u) ? 1.0 : -1.0);
+        ++degree;
+      }
+      g_entries.emplace_back(v, v, degree + 1.0);
+    }
+  }
+  SparseMatrix g(m, m), r(m, m);
+  g.setFromTriplets(g_entries.begin(), g_entries.end());
+  r.setFromTriplets(r_entries.begin(), r_entries.end());
+  const SparseMatrix diagonal = SparseMatrix(2.0 * K * g);
+  const SparseMatrix coupling = SparseMatrix(-K * (0.8 * g + 0.3 * r));
+  std::vector<Eigen::Triplet<double>> h;
+  for (int i = 0; i < 3; ++i) {
+    for (int c = 0; c < m; ++c) {
+      for (SparseMatrix::InnerIterator it(diagonal, c); it; ++it) {
+        if (it.row() >= c)
+          h.emplace_back(i * m + it.row(), i * m + c, it.value());
+      }
+      if (i == 2) continue;  // rows of slice i + 1, columns of slice i
+      for (SparseMatrix::InnerIterator it(coupling, c); it; ++it) {
+        h.emplace_back((i + 1) * m + it.row(), i * m + c, it.value());
+      }
+    }
+  }
+  SparseMatrix lower(3 * m, 3 * m);
+  lower.setFromTriplets(h.begin(), h.end());
+  const auto fitted = [&](int probes) {
+    TimeCoupledPreconditioner p;
+    EXPECT_EQ(p.Factorize(DiagonalBlocks(lower, m), 2),
+              TimeCoupledPreconditioner::Status::kFactorized);
+    p.FitCouplings(lower, 2, probes);
+    return p.couplings();
+  };
+  const std::vector<double> one = fitted(0), many = fitted(64);
+  ASSERT_EQ(one.size(), 2u);
+  for (int i = 0; i < 2; ++i) {
+    EXPECT_NEAR(many[i], 0.8, 0.05) << i;
+    EXPECT_NEAR(one[i], many[i], 0.01) << i;
+    EXPECT_NE(one[i], many[i]) << i;  // it is an estimate
+  }
 }
 
 TEST(TimeCoupledPreconditionerTest, SymmetricPositiveAndThreadIndependent) {
