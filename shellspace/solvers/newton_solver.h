@@ -140,10 +140,12 @@ struct NewtonSettings {
   //    decrease -q(p) the model predicts (rho = actual / predicted);
   //    lambda starts at lm_initial, and after an accepted step becomes
   //    lambda max(1/3, 1 - (2 rho - 1)^3) (nu = 2), after a rejected one
-  //    lambda nu (nu doubles) -- Nielsen's rule, as Ceres' LM. With
-  //    accept_smaller_max_norm, a step whose merit change is below
-  //    merit_round_off |merit| is also accepted if it lowers the residual's
-  //    max_norm (near the minimiser the ratio is round-off). A step whose
+  //    lambda nu (nu doubles) -- Nielsen's rule, as Ceres' LM. Where the
+  //    merit changes by less than merit_round_off |merit| (with
+  //    accept_smaller_max_norm, or where the predicted decrease is below
+  //    that too) rho is round-off: the step is accepted if and only if it
+  //    lowers the residual's max_norm, whatever rho, and lambda stays. A
+  //    step whose
   //    predicted decrease is not positive is rejected without a trial. At
   //    most lm_max_rejections rejected steps in a row, then
   //    kLineSearchFailed. The line-search and shift settings above are not

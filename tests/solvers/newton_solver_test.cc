@@ -731,6 +731,64 @@ TEST(NewtonSolverTest, LevenbergMarquardtRejectsRisingStepsAndRaisesLambda) {
   EXPECT_LT(problem.x().cwiseAbs().maxCoeff(), 1e-11);
 }
 
+// Below round-off the residual decides in LM too (as in the trust region):
+// on a saddle scaled by 1e-6 every damped step from (0, 1e-3) towards the
+// valleys x_1 = +-1 lowers f by about 1e-12 (below merit_round_off = 1e-10
+// of f = 1, so does the model's predicted decrease) with a ratio near 1 --
+// a ratio rule would take it -- but raises the gradient: no step is taken,
+// and LM gives up after its rejection limit. The twin, the same saddle
+// unscaled, moves by the ratio and converges to a valley.
+TEST(NewtonSolverTest, LevenbergMarquardtBelowRoundOffTheGradientDecides) {
+  const auto saddle = [](double scale) {
+    Callbacks c;
+    c.merit = [scale](const Eigen::VectorXd& x) {
+      return 1 +
+             scale * (0.5 * x[0] * x[0] + 0.25 * std::pow(x[1] * x[1] - 1, 2));
+    };
+    c.residual = [scale](const Eigen::VectorXd& x) {
+      return Eigen::VectorXd(
+          scale *
+          (Eigen::VectorXd(2) << x[0], x[1] * (x[1] * x[1] - 1)).finished());
+    };
+    c.jacobian = [scale](const Eigen::VectorXd& x) {
+      Eigen::MatrixXd h = Eigen::MatrixXd::Zero(2, 2);
+      h(0, 0) = scale;
+      h(1, 1) = scale * (3 * x[1] * x[1] - 1);
+      return h;
+    };
+    return c;
+  };
+  NewtonSettings settings = LevenbergMarquardt(1e-20, 60);
+  settings.merit_round_off = 1e-10;
+  settings.lm_max_rejections = 8;
+  Eigen::VectorXd x0(2);
+  x0 << 0, 1e-3;
+  FunctionProblem flat(saddle(1e-6), x0, true);
+  ReusableCholesky cholesky;
+  const NewtonReport stayed = SolveNewton(&flat, &cholesky, settings);
+  EXPECT_FALSE(stayed.converged);
+  EXPECT_EQ(stayed.stop, NewtonStop::kLineSearchFailed);
+  EXPECT_EQ(flat.iterates.size(), 1u);  // no step taken
+  // Its trials did lower f, by less than its round-off and not by nothing.
+  const double f0 = saddle(1e-6).merit(x0);
+  int lower = 0;
+  for (double f : flat.trial_merits) {
+    if (f < f0) {
+      ++lower;
+      EXPECT_GT(f0 - f, 1e-15);
+      EXPECT_LT(f0 - f, 1e-10);
+    }
+  }
+  EXPECT_GE(lower, 1);
+
+  settings.tolerance = 1e-11;
+  FunctionProblem steep(saddle(1), x0, true);
+  ReusableCholesky cholesky2;
+  const NewtonReport moved = SolveNewton(&steep, &cholesky2, settings);
+  EXPECT_TRUE(moved.converged) << moved.stop_reason;
+  EXPECT_NEAR(std::abs(steep.x()[1]), 1, 1e-10);
+}
+
 // lm_max_rejections rejected steps in a row end the solve with
 // kLineSearchFailed: with the gradient's sign flipped every model step goes
 // uphill; 1 + lm_max_rejections trials, each raising f, none accepted.
