@@ -731,6 +731,29 @@ TEST(NewtonSolverTest, LevenbergMarquardtRejectsRisingStepsAndRaisesLambda) {
   EXPECT_LT(problem.x().cwiseAbs().maxCoeff(), 1e-11);
 }
 
+// f(x) = 1 + scale (x_0^2 / 2 + (x_1^2 - 1)^2 / 4): a saddle at the origin,
+// valleys at x_1 = +-1, its gradient and Hessian; scaled small, f changes
+// only below its round-off near the saddle.
+Callbacks ScaledSaddle(double scale) {
+  Callbacks c;
+  c.merit = [scale](const Eigen::VectorXd& x) {
+    return 1 +
+           scale * (0.5 * x[0] * x[0] + 0.25 * std::pow(x[1] * x[1] - 1, 2));
+  };
+  c.residual = [scale](const Eigen::VectorXd& x) {
+    return Eigen::VectorXd(
+        scale *
+        (Eigen::VectorXd(2) << x[0], x[1] * (x[1] * x[1] - 1)).finished());
+  };
+  c.jacobian = [scale](const Eigen::VectorXd& x) {
+    Eigen::MatrixXd h = Eigen::MatrixXd::Zero(2, 2);
+    h(0, 0) = scale;
+    h(1, 1) = scale * (3 * x[1] * x[1] - 1);
+    return h;
+  };
+  return c;
+}
+
 // Below round-off the residual decides in LM too (as in the trust region):
 // on a saddle scaled by 1e-6 every damped step from (0, 1e-3) towards the
 // valleys x_1 = +-1 lowers f by about 1e-12 (below merit_round_off = 1e-10
@@ -739,38 +762,19 @@ TEST(NewtonSolverTest, LevenbergMarquardtRejectsRisingStepsAndRaisesLambda) {
 // and LM gives up after its rejection limit. The twin, the same saddle
 // unscaled, moves by the ratio and converges to a valley.
 TEST(NewtonSolverTest, LevenbergMarquardtBelowRoundOffTheGradientDecides) {
-  const auto saddle = [](double scale) {
-    Callbacks c;
-    c.merit = [scale](const Eigen::VectorXd& x) {
-      return 1 +
-             scale * (0.5 * x[0] * x[0] + 0.25 * std::pow(x[1] * x[1] - 1, 2));
-    };
-    c.residual = [scale](const Eigen::VectorXd& x) {
-      return Eigen::VectorXd(
-          scale *
-          (Eigen::VectorXd(2) << x[0], x[1] * (x[1] * x[1] - 1)).finished());
-    };
-    c.jacobian = [scale](const Eigen::VectorXd& x) {
-      Eigen::MatrixXd h = Eigen::MatrixXd::Zero(2, 2);
-      h(0, 0) = scale;
-      h(1, 1) = scale * (3 * x[1] * x[1] - 1);
-      return h;
-    };
-    return c;
-  };
   NewtonSettings settings = LevenbergMarquardt(1e-20, 60);
   settings.merit_round_off = 1e-10;
   settings.lm_max_rejections = 8;
   Eigen::VectorXd x0(2);
   x0 << 0, 1e-3;
-  FunctionProblem flat(saddle(1e-6), x0, true);
+  FunctionProblem flat(ScaledSaddle(1e-6), x0, true);
   ReusableCholesky cholesky;
   const NewtonReport stayed = SolveNewton(&flat, &cholesky, settings);
   EXPECT_FALSE(stayed.converged);
   EXPECT_EQ(stayed.stop, NewtonStop::kLineSearchFailed);
   EXPECT_EQ(flat.iterates.size(), 1u);  // no step taken
   // Its trials did lower f, by less than its round-off and not by nothing.
-  const double f0 = saddle(1e-6).merit(x0);
+  const double f0 = ScaledSaddle(1e-6).merit(x0);
   int lower = 0;
   for (double f : flat.trial_merits) {
     if (f < f0) {
@@ -782,7 +786,7 @@ TEST(NewtonSolverTest, LevenbergMarquardtBelowRoundOffTheGradientDecides) {
   EXPECT_GE(lower, 1);
 
   settings.tolerance = 1e-11;
-  FunctionProblem steep(saddle(1), x0, true);
+  FunctionProblem steep(ScaledSaddle(1), x0, true);
   ReusableCholesky cholesky2;
   const NewtonReport moved = SolveNewton(&steep, &cholesky2, settings);
   EXPECT_TRUE(moved.converged) << moved.stop_reason;
@@ -1010,44 +1014,25 @@ TEST(NewtonTrustRegionTest, BasinProbeStopsAtTheFirstStepThatIsNotANewtonStep) {
 // started. The twin with scale 1, the same steps in exact arithmetic but
 // far above round-off, takes them and reaches a minimiser.
 TEST(NewtonTrustRegionTest, BelowRoundOffTheGradientDecides) {
-  const auto saddle = [](double scale) {
-    Callbacks c;
-    c.merit = [scale](const Eigen::VectorXd& x) {
-      return 1 +
-             scale * (0.5 * x[0] * x[0] + 0.25 * std::pow(x[1] * x[1] - 1, 2));
-    };
-    c.residual = [scale](const Eigen::VectorXd& x) {
-      return Eigen::VectorXd(
-          scale *
-          (Eigen::VectorXd(2) << x[0], x[1] * (x[1] * x[1] - 1)).finished());
-    };
-    c.jacobian = [scale](const Eigen::VectorXd& x) {
-      Eigen::MatrixXd h = Eigen::MatrixXd::Zero(2, 2);
-      h(0, 0) = scale;
-      h(1, 1) = scale * (3 * x[1] * x[1] - 1);
-      return h;
-    };
-    return c;
-  };
   // Each to 1e-8 of its initial gradient, scale 1e-3.
   NewtonSettings settings = TrustRegion(1e-23, 60);
   settings.accept_smaller_max_norm = true;
   settings.merit_round_off = 1e-10;
   Eigen::VectorXd x0(2);
   x0 << 0, 1e-3;
-  FunctionProblem flat(saddle(1e-12), x0, true);
+  FunctionProblem flat(ScaledSaddle(1e-12), x0, true);
   ReusableCholesky cholesky;
   const NewtonReport stayed = SolveNewton(&flat, &cholesky, settings);
   EXPECT_FALSE(stayed.converged);
   EXPECT_EQ(flat.iterates.size(), 1u);  // no step taken
   EXPECT_GE(stayed.rejected_trials, 1);
   // Some of its trials did lower f, by less than its round-off.
-  const double f0 = saddle(1e-12).merit(x0);
+  const double f0 = ScaledSaddle(1e-12).merit(x0);
   EXPECT_TRUE(std::any_of(flat.trial_merits.begin(), flat.trial_merits.end(),
                           [f0](double f) { return f < f0; }));
 
   settings.tolerance = 1e-11;
-  FunctionProblem steep(saddle(1), x0, true);
+  FunctionProblem steep(ScaledSaddle(1), x0, true);
   ReusableCholesky cholesky2;
   const NewtonReport moved = SolveNewton(&steep, &cholesky2, settings);
   EXPECT_TRUE(moved.converged) << moved.stop_reason;
