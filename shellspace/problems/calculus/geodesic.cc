@@ -254,10 +254,10 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
         (input.lm == GeodesicLm::kAuto &&
          !FindSliverFaces(Mesh{input.start, space.faces}).faces.empty());
     // The engine's stages run in the space renumbered for locality
-    // (shell_space_renumbering.h: on the GOAST cactus 10 % less CPU) and the
-    // path is mapped back at the end; Ceres' stages, and a Newton finish
-    // after them, work on the caller's path, whose coordinates Ceres'
-    // problem holds.
+    // (shell_space_renumbering.h: on the GOAST cactus about 10 % less CPU)
+    // and the path is mapped back at the end; Ceres' stages, and a Newton
+    // finish after them, work on the caller's path, whose coordinates
+    // Ceres' problem holds.
     std::optional<RenumberedShellSpace> renumbered;
     const ShellSpace* solve_space = &space;
     const std::vector<int>* solve_mask = &input.fixed_vertices;
