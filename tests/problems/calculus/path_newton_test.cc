@@ -848,7 +848,7 @@ TEST(PathNewtonTest, BlockJacobiPolishIsDeterministicAcrossRunsAndThreads) {
 // PathNewtonSettings::renumbering the renumbered solve picks its gauge
 // vertices among the ellipsoid's tied farthest vertices in its own
 // numbering, pins others, and its path lands elsewhere.
-TEST(PathNewtonTest, ARenumberedSolveIsTheCallersSolve) {
+TEST(RenumberedSolveTest, IsTheCallersSolve) {
   // (With this random numbering the tie between the two ends of the long
   // axis goes to the other end than in the Cuthill-McKee numbering; so it
   // does for 6 of the seeds 1-12.)
