@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The stress corpus: single-pose public meshes (../shared/data/cgal) and the
-# shared poses, each with a second pose made by bench/stress_pose (a bend
-# along the longest axis, a twist about it, a local pull, each followed by a
+# cactus, each with a second pose made by bench/stress_pose (a bend along
+# the longest axis, a twist about it, a local pull, each followed by a
 # random rigid motion of 30 degrees, or a rigid motion alone), run through
 # the CLI with default settings as a new user would:
 #   geodesic  START -> POSE, K = 8
@@ -11,14 +11,15 @@
 # Each run under /usr/bin/time -v; prints a Markdown table: converged
 # (the verb's own criterion, exit 0), exit code, iterations, wall, CPU
 # (user + sys), peak RSS, and the geodesic's initial path and
-# multiresolution start.
+# multiresolution start, and the stages that ran (L: LM, N: exact Newton,
+# P: projected Newton, each with its iterations).
 #
 # Usage: bench/stress_corpus.sh [BUILD_DIR] [OUT_DIR]
 # Environment:
-#   CORPUS_MESHES        mesh files (default: every cgal mesh)
-#   CORPUS_DEFORMATIONS  KIND:STRENGTH list (default: bend:30 bend:75
-#                        bend:120 twist:60 twist:180 pull:0.05 pull:0.15
-#                        rigid:45 rigid:150)
+#   CORPUS_MESHES        mesh files (default: every cgal mesh and
+#                        cactus/cactus0.ply)
+#   CORPUS_DEFORMATIONS  KIND:STRENGTH list (default: bend:75 bend:120
+#                        twist:60 twist:180 pull:0.15)
 #   CORPUS_VERBS         default "geodesic shoot transport mean"
 #   CORPUS_CAP           --time_limit of each run in seconds (default 600)
 #   CORPUS_SEED          the first pose's seed (default 1); each further
@@ -35,11 +36,11 @@ out="${2:-$(mktemp -d "${TMPDIR:-/tmp}/shellspace-corpus.XXXXXX")}"
 data="$(cd "$(dirname "${BASH_SOURCE[0]}")/../../shared/data" && pwd)"
 cap="${CORPUS_CAP:-600}"
 verbs="${CORPUS_VERBS:-geodesic shoot transport mean}"
-deformations="${CORPUS_DEFORMATIONS:-bend:30 bend:75 bend:120 twist:60 twist:180 pull:0.05 pull:0.15 rigid:45 rigid:150}"
+deformations="${CORPUS_DEFORMATIONS:-bend:75 bend:120 twist:60 twist:180 pull:0.15}"
 if [[ -n "${CORPUS_MESHES:-}" ]]; then
   read -r -a meshes <<<"${CORPUS_MESHES}"
 else
-  meshes=("${data}"/cgal/*.off)
+  meshes=("${data}"/cgal/*.off "${data}/cactus/cactus0.ply")
 fi
 for tool in "${cli}" "${pose}"; do
   [[ -x "${tool}" ]] || { echo "$0: ${tool} not found (build first)" >&2; exit 2; }
@@ -62,6 +63,20 @@ for k in sys.argv[2].split("."):
 print(v)' "$1" "$2"
 }
 
+# stage_list FILE: the geodesic's stages as "L12 N4 P20 N3" (method letter,
+# iterations; "" if none).
+stage_list() {
+  python3 -c 'import json,sys
+try:
+    d = json.load(open(sys.argv[1]))
+except Exception:
+    print(""); sys.exit()
+letters = {"levenberg-marquardt": "L", "newton": "N", "projected-newton": "P"}
+stages = d.get("stages") or []
+print(" ".join(letters.get(s.get("method"), "?") + str(s.get("iterations", ""))
+               for s in stages if isinstance(s, dict)))' "$1"
+}
+
 # run NAME VERTICES POSE VERB JSON ARGS...: one CLI run, one table row.
 run() {
   local name="$1" vertices="$2" posename="$3" verb="$4" json="$5"
@@ -79,7 +94,7 @@ run() {
   converged=$(json_field "${json}" converged)
   iterations=$(json_field "${json}" iterations)
   if [[ "${verb}" == geodesic ]]; then
-    start="$(json_field "${json}" init.used)"
+    start="$(json_field "${json}" init.used) [$(stage_list "${json}")]"
     local prolongated
     prolongated=$(json_field "${json}" prolongation.used)
     [[ "$(json_field "${json}" prolongation.checked)" == True ]] &&

@@ -6,8 +6,19 @@
 
 namespace shellspace {
 
-// The rigid motion x -> R x + t (det R = +1) minimising sum_i |R p_i + t -
-// q_i|^2 over the vertices, applied to `source`; `target` is q.
+// A rigid motion x -> R x + t (det R = +1), applied to the rows of a
+// #V x 3 array.
+struct RigidMotion {
+  Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
+  Eigen::RowVector3d translation = Eigen::RowVector3d::Zero();
+  Positions Apply(const Positions& x) const;
+};
+
+// The rigid motion minimising sum_i |R p_i + t - q_i|^2 over the vertices
+// (Kabsch), p = `source`, q = `target` (#V x 3 each).
+RigidMotion FitRigidMotion(const Positions& source, const Positions& target);
+
+// FitRigidMotion(source, target) applied to `source`.
 Positions AlignRigidly(const Positions& source, const Positions& target);
 
 // max_i |p_i - q_i| after AlignRigidly(p, q), divided by the diameter of q's

@@ -28,13 +28,18 @@ JsonObject PathEnergySplitJson(const ShellSpace& space, const ShellPath& path) {
 std::vector<JsonObject> GeodesicStages(const GeodesicResult& result) {
   std::vector<JsonObject> stages;
   for (const GeodesicStage& stage : result.stages) {
-    const bool newton = stage.method == GeodesicStage::Method::kNewton;
+    using Method = GeodesicStage::Method;
+    static constexpr NamedValue<Method> kNames[] = {
+        {Method::kLevenbergMarquardt, "levenberg-marquardt"},
+        {Method::kNewton, "newton"},
+        {Method::kProjectedNewton, "projected-newton"}};
     stages.push_back(
         JsonObject()
-            .Add("method", newton ? "newton" : "levenberg-marquardt")
+            .Add("method", NameOf(kNames, stage.method))
             .Add("solver", stage.solver)
             .Add("iterations", stage.iterations)
             .Add("final_gradient_norm", stage.final_gradient)
+            .Add("best_iterate_restored", stage.restored_best)
             .Add("termination", stage.termination));
   }
   return stages;
@@ -105,10 +110,12 @@ JsonObject GeodesicJson(const GeodesicResult& result) {
       .Add("final_gradient_norm", result.final_gradient)
       .Add("relative_gradient_norm", relative)
       .Add("converged", result.converged)
-      .Add("termination", result.stages.empty()
+      .Add("termination", !result.stall.empty() ? result.stall
+                          : result.stages.empty()
                               ? std::string("no unknowns")
                               : result.stages.back().termination)
       .Add("stages", GeodesicStages(result))
+      .Add("best_iterate_restored", result.best_iterate_restored)
       .Add("newton_steps", result.newton.steps)
       .Add("newton_seconds", result.newton.seconds)
       .Add("factorizations", result.newton.factorizations)

@@ -79,6 +79,7 @@ void NewtonReport::Append(const NewtonReport& later) {
   converged = later.converged;
   stop = later.stop;
   stop_reason = later.stop_reason;
+  restored_best = restored_best || later.restored_best;
 }
 
 namespace {

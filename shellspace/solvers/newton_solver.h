@@ -287,6 +287,9 @@ struct NewtonReport {
   // kLevenbergMarquardt: the lambda the next step would have started from
   // (lm_initial for a solve that continues this one).
   double final_damping = 0;
+  // The caller put back an earlier iterate with a smaller residual max_norm
+  // than the last one (final_gradient and final_merit are that iterate's).
+  bool restored_best = false;
 
   // Adds a later solve: counts and times summed, the rest from `later`
   // (initial_gradient stays the first solve's).

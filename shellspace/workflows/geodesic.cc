@@ -18,8 +18,9 @@ std::string GradientFailure(const shellspace::GeodesicResult& g,
          " above the target " + ShortNumber(g.gradient_target) +
          " (tolerance x max(1, |grad_0|)) after " +
          std::to_string(g.iterations) + " iterations (" +
-         (g.stages.empty() ? std::string("no stages")
-                           : g.stages.back().termination) +
+         (!g.stall.empty()    ? g.stall
+          : g.stages.empty() ? std::string("no stages")
+                             : g.stages.back().termination) +
          ")";
 }
 

@@ -13,6 +13,7 @@
 #include <type_traits>
 #include <utility>
 
+#include "shellspace/cost_functions/shell/psd_projection.h"
 #include "shellspace/geometry/scalar_traits.h"
 
 namespace shellspace {
@@ -24,9 +25,18 @@ enum class ShellSide { kReference, kDeformed };
 // residuals, J = dr/dY):
 //   kExact:       the Hessian J^T J + sum_i r_i d^2 r_i;
 //   kGaussNewton: its Gauss-Newton part J^T J -- positive semidefinite, equal
-//                 to the Hessian at r = 0 (the rest state, shells.md), the
-//                 model Ceres' Levenberg-Marquardt minimises.
-enum class HessianModel { kExact, kGaussNewton };
+//                 to the Hessian at r = 0 (the rest state, docs/math.md), the
+//                 model Ceres' Levenberg-Marquardt minimises;
+//   kProjected:   the exact Hessian of each element term projected onto the
+//                 positive semidefinite cone (psd_projection.h): equal to the
+//                 exact one wherever that is positive semidefinite, so the
+//                 assembled matrix is positive semidefinite and keeps the
+//                 exact curvature where it is positive (projected Newton).
+//                 In a one-sided pass (ComputeModel) the active side's block
+//                 D_active^2 e is projected, the mixed blocks stay exact; in
+//                 a path the whole Hessian of each term e[s_{k-1}, s_k] in
+//                 its free shapes (ElementTermSecondDerivatives).
+enum class HessianModel { kExact, kGaussNewton, kProjected };
 
 // For an element with kVertices vertices (3: membrane, 4: bending), with
 // n = 3 kVertices:
@@ -122,6 +132,18 @@ struct ElementSecondDerivatives {
                     ShellSide active, double weight, Rows rows = Rows::kBoth) {
     if (model == HessianModel::kExact) {
       return Compute(element, reference, deformed, active, weight, rows);
+    }
+    if (model == HessianModel::kProjected) {
+      if (!Compute(element, reference, deformed, active, weight, rows)) {
+        return false;
+      }
+      if (active == ShellSide::kDeformed && WantsDeformed(rows)) {
+        ProjectToPositiveSemidefinite(&d_grad_deformed);
+      }
+      if (active == ShellSide::kReference && WantsReference(rows)) {
+        ProjectToPositiveSemidefinite(&d_grad_reference);
+      }
+      return true;
     }
     static_assert(Element::kNumVertices == kVertices,
                   "ElementSecondDerivatives: stencil size mismatch");
@@ -229,6 +251,8 @@ struct HasSliceSecondDerivatives<
 // fundamental form), so they are added before that last chain rule.
 // Otherwise, and for the Gauss-Newton model, ComputeBySides: the two
 // ComputeModel passes, added.
+// (The projected model is not a slice computation: each term is projected
+// as a whole, ElementTermSecondDerivatives.)
 template <int kVertices>
 struct ElementSliceSecondDerivatives {
   static constexpr int n = 3 * kVertices;
@@ -270,6 +294,75 @@ struct ElementSliceSecondDerivatives {
 
  private:
   ElementSecondDerivatives<kVertices> before_, after_;
+};
+
+// One element term e[A, B] of a path (A = s_{k-1}, B = s_k) with its Hessian
+// in the shapes that are free projected onto the positive semidefinite cone
+// (HessianModel::kProjected, psd_projection.h): with both free the
+// 2n x 2n matrix
+//   [D_1^2 e     D_1 D_2 e]
+//   [D_2 D_1 e   D_2^2 e  ]   (rows and columns A, then B)
+// is projected as a whole and split into aa (A, A), bb (B, B) and ba (rows B,
+// columns A); with A an end of the path (a_free false) only bb = P(D_2^2 e),
+// with B an end only aa = P(D_1^2 e). The path Hessian assembled from these
+// blocks is the sum of the projected terms: positive semidefinite, and the
+// exact Hessian wherever every term is convex. Compute returns false exactly
+// when the element is degenerate (ComputeModel's verdict); `projected` says
+// whether the projection changed the matrix.
+template <int kVertices>
+struct ElementTermSecondDerivatives {
+  static constexpr int n = 3 * kVertices;
+  using Matrix = Eigen::Matrix<double, n, n, Eigen::RowMajor>;
+  Matrix aa, bb, ba;
+  bool projected = false;
+
+  template <class Element>
+  bool Compute(const Element& element, const double* a, const double* b,
+               double weight, bool a_free, bool b_free) {
+    using D = ElementSecondDerivatives<kVertices>;
+    if (a_free && b_free) {
+      if (!a_active_.ComputeModel(HessianModel::kExact, element, a, b,
+                                  ShellSide::kReference, weight,
+                                  D::Rows::kBoth) ||
+          !b_active_.ComputeModel(HessianModel::kExact, element, a, b,
+                                  ShellSide::kDeformed, weight,
+                                  D::Rows::kDeformed)) {
+        return false;
+      }
+      term_.template topLeftCorner<n, n>() = a_active_.d_grad_reference;
+      term_.template bottomLeftCorner<n, n>() = a_active_.d_grad_deformed;
+      term_.template topRightCorner<n, n>() =
+          a_active_.d_grad_deformed.transpose();
+      term_.template bottomRightCorner<n, n>() = b_active_.d_grad_deformed;
+      projected = ProjectToPositiveSemidefinite(&term_);
+      aa = term_.template topLeftCorner<n, n>();
+      bb = term_.template bottomRightCorner<n, n>();
+      ba = term_.template bottomLeftCorner<n, n>();
+      return true;
+    }
+    if (a_free) {
+      if (!a_active_.ComputeModel(HessianModel::kExact, element, a, b,
+                                  ShellSide::kReference, weight,
+                                  D::Rows::kReference)) {
+        return false;
+      }
+      aa = a_active_.d_grad_reference;
+      projected = ProjectToPositiveSemidefinite(&aa);
+      return true;
+    }
+    if (!b_active_.ComputeModel(HessianModel::kExact, element, a, b,
+                                ShellSide::kDeformed, weight,
+                                D::Rows::kDeformed)) {
+      return false;
+    }
+    bb = b_active_.d_grad_deformed;
+    projected = ProjectToPositiveSemidefinite(&bb);
+    return true;
+  }
+
+ private:
+  ElementSecondDerivatives<kVertices> a_active_, b_active_;
+  Eigen::Matrix<double, 2 * n, 2 * n> term_;
 };
 
 }  // namespace shellspace

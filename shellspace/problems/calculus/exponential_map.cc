@@ -6,6 +6,7 @@
 
 #include "shellspace/cost_functions/gradient_field_residual.h"
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
+#include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/runtime/blas_threads.h"
 #include "shellspace/problems/calculus/exp_step_newton.h"
 #include "shellspace/solvers/rigid_gauge.h"
@@ -19,6 +20,9 @@ namespace {
 constexpr double kExpNewtonTolerance = 1e-11;
 constexpr double kExpNewtonAccept = kExpStepAcceptance;
 constexpr int kMaxExpNewtonSteps = 20;
+// a to b is a rigid motion when, after the best rigid fit, no vertex is
+// farther than this fraction of b's bounding-box diagonal from its place.
+constexpr double kRigidStepTolerance = 1e-12;
 }  // namespace
 
 ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
@@ -48,7 +52,36 @@ ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
   };
 
   ExpStepResult result;
+  // A rigid step (a to b a rigid motion M to round-off, no mask): the step
+  // beyond b is M(b) exactly -- W[b, M(b)] = 0 at its minimum and
+  // D_2 W[a, b] = 0 -- with no iteration.
+  if (fixed_vertices.empty() &&
+      RelativeDistanceUpToRigidMotion(a, b) <= kRigidStepTolerance) {
+    // (Backward, a = s_{k+1} and b = s_k: the same motion continued.)
+    const RigidMotion motion = FitRigidMotion(a, b);
+    result.shape = motion.Apply(b);
+    result.residual_norm = residual_norm(result.shape);
+    result.residual_scale = 0;
+    result.relative_residual = 0;
+    result.solved = true;
+    result.method = ExpStepResult::Method::kNewton;
+    result.summary.termination_type = ceres::CONVERGENCE;
+    result.summary.message = "rigid step: the rigid motion continued";
+    return result;
+  }
+  // The initial guess: 2 b - a, or the rotation-corrected extrapolation
+  // b + R (b - a) (R the rotation of the rigid fit of a onto b; the two
+  // agree without rotation) where its residual is smaller: along a path
+  // that turns, 2 b - a shrinks the shape.
   result.shape = 2 * b - a;
+  {
+    const RigidMotion motion = FitRigidMotion(a, b);
+    Positions turned = b + (b - a) * motion.rotation.transpose();
+    for (int v : fixed_vertices) turned.row(v) = result.shape.row(v);
+    if (residual_norm(turned) < residual_norm(result.shape)) {
+      result.shape = std::move(turned);
+    }
+  }
   if (alternative_start != nullptr) {
     Positions alternative = *alternative_start;
     for (int v : fixed_vertices) alternative.row(v) = result.shape.row(v);

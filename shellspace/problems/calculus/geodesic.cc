@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 
 #include "shellspace/cost_functions/deformation_energy_residuals.h"
@@ -210,229 +211,388 @@ double LinearPathGradient(const ShellSpace& space, const GeodesicInput& input) {
                              /*threads=*/2);
 }
 
+namespace {
+
+// One geodesic solve as a pipeline of named stages (SolveGeodesic):
+//   Start        the initial path (MakeGeodesicInitialPath, or the given one);
+//   Prepare      the space the engine's stages run in (renumbered for
+//                locality) or Ceres' problem;
+//   Globalise    LM stages and exact Newton attempts, then, once an exact
+//                attempt has stopped short, projected-Newton stages with
+//                exact Newton probes (GeodesicGlobalisation);
+//   Finish       the path mapped back to the caller's numbering;
+//   Report       E_K, its steps, the smallest triangle, converged.
+// Every stage's iterations are counted in result.iterations and listed in
+// result.stages. The globalising stages (LM, projected Newton) never raise
+// E_K; an exact Newton stage (attempt or probe), meant to finish where the
+// exact Hessian is a good model, that stops short hands on its iterate with
+// the smallest gradient max norm (PathNewtonSettings::keep_best_iterate),
+// never a larger gradient than it received. A solve that ends unconverged
+// reports the path with the smallest gradient it met (Finish).
+class GeodesicSolve {
+ public:
+  GeodesicSolve(const ShellSpace& space, const GeodesicInput& input,
+                const SolverSettings& settings, GeodesicResult* result)
+      : space_(space), input_(input), settings_(settings), result_(*result) {}
+
+  void Start();
+  void Prepare();
+  void Globalise();
+  void Finish();
+  void Report();
+
+ private:
+  // The engine settings shared by every stage it runs.
+  PathNewtonSettings EngineStage(const std::string& label);
+  // LM down to `relative` x max(1, g_0) (or the tolerance), from where the
+  // path is.
+  void RunLmStage(double relative, double hand_over_contraction);
+  void RunEngineLm(double target, double hand_over_contraction,
+                   GeodesicStage* stage);
+  void RunCeresLm(double relative, GeodesicStage* stage);
+  // A Newton stage of the engine on `model`: the trust region, to the
+  // tolerance, as a basin probe if `probe`.
+  PathNewtonReport RunNewtonStage(HessianModel model, bool probe);
+  // The projected phase: projected-Newton stages, each followed by an exact
+  // probe, until converged, stopped, the budget is spent or a round lowers
+  // the gradient by less than half.
+  void RunProjectedPhase();
+  void Record(GeodesicStage stage);
+  bool Converged() const { return result_.final_gradient <= tolerance_; }
+
+  const ShellSpace& space_;
+  const GeodesicInput& input_;
+  const SolverSettings& settings_;
+  GeodesicResult& result_;
+  double g0_ = 0, tolerance_ = 0;
+  int budget_ = 0;  // iterations left of settings.max_iterations
+  bool engine_lm_ = false;
+  std::optional<RenumberedShellSpace> renumbered_;
+  const ShellSpace* solve_space_ = nullptr;
+  const std::vector<int>* solve_mask_ = nullptr;
+  ShellPath* solve_path_ = nullptr;
+  ShellPath renumbered_path_;
+  std::vector<int> renumbered_mask_;
+  std::unique_ptr<ceres::Problem> problem_;  // Ceres' LM stages only
+  PathLinearSolvers solvers_;
+  bool lm_failed_ = false, stopped_ = false, lm_handed_over_ = false;
+  double lm_damping_ = 0, resume_damping_ = 0;
+  bool newton_ran_ = false;  // a Newton stage (attempt or probe) has run
+  // The path with the smallest gradient max norm after a stage, and that
+  // norm (Finish).
+  ShellPath best_path_;
+  double best_gradient_ = HUGE_VAL;
+};
+
+void GeodesicSolve::Start() {
+  if (input_.steps < 1) {
+    throw InputError(
+        "geodesic: the number of steps K must be at least 1, got " +
+        std::to_string(input_.steps));
+  }
+  if (input_.initial.empty()) {
+    result_.path = MakeGeodesicInitialPath(
+        space_, input_.start, input_.end, input_.steps, input_.fixed_vertices,
+        input_.init, settings_, &result_.init);
+  } else {
+    result_.path = input_.initial;
+    result_.init.requested = input_.init;
+    result_.init.reason = "given";
+  }
+  if (static_cast<int>(result_.path.size()) != input_.steps + 1) {
+    throw InputError("geodesic: the initial path must have K + 1 = " +
+                     std::to_string(input_.steps + 1) + " shapes, got " +
+                     std::to_string(result_.path.size()));
+  }
+  result_.path.front() = input_.start;
+  result_.path.back() = input_.end;
+}
+
+void GeodesicSolve::Prepare() {
+  result_.final_gradient = PathGradientMaxNorm(space_, input_, result_.path,
+                                               settings_.num_threads);
+  g0_ = input_.reference_gradient >= 0 ? input_.reference_gradient
+                                       : result_.final_gradient;
+  tolerance_ = settings_.gradient_tolerance * std::max(1.0, g0_);
+  result_.gradient_target = tolerance_;
+  result_.initial_gradient = g0_;
+  budget_ = settings_.max_iterations;
+  // Slivers of the input: the engine's LM, whose trials respect the step
+  // limit (kStepMinAreaFraction); Ceres' LM may crush a sliver and crawl.
+  engine_lm_ =
+      ChooseGeodesicLm(input_.lm, input_.linear_solver,
+                       PathUnknowns(space_, input_)) == GeodesicLm::kEngine ||
+      (input_.lm == GeodesicLm::kAuto &&
+       !FindSliverFaces(Mesh{input_.start, space_.faces}).faces.empty());
+  solve_space_ = &space_;
+  solve_mask_ = &input_.fixed_vertices;
+  solve_path_ = &result_.path;
+  if (engine_lm_) {
+    // The engine's stages run in the space renumbered for locality
+    // (shell_space_renumbering.h: on the GOAST cactus about 10 % less CPU);
+    // the path is mapped back in Finish.
+    renumbered_ = RenumberForLocality(space_);
+    for (const Positions& shape : result_.path) {
+      renumbered_path_.push_back(renumbered_->ToRenumbered(shape));
+    }
+    renumbered_mask_ = renumbered_->ToRenumbered(input_.fixed_vertices);
+    solve_space_ = &renumbered_->space;
+    solve_mask_ = &renumbered_mask_;
+    solve_path_ = &renumbered_path_;
+  } else {
+    // Ceres' stages, and the engine's stages after them, work on the
+    // caller's path, whose coordinates Ceres' problem holds; built once.
+    problem_ = std::make_unique<ceres::Problem>();
+    BuildPathProblem(space_, input_, &result_.path, problem_.get());
+  }
+  if (input_.keep_best_iterate) {
+    best_gradient_ = result_.final_gradient;
+    best_path_ = *solve_path_;
+  }
+}
+
+PathNewtonSettings GeodesicSolve::EngineStage(const std::string& label) {
+  PathNewtonSettings stage;
+  stage.linear_solver = input_.linear_solver;
+  stage.gradient_tolerance = tolerance_;
+  stage.num_threads = settings_.num_threads;
+  stage.min_area_fraction = kStepMinAreaFraction;
+  stage.progress = settings_.progress;
+  stage.progress_label = settings_.progress_label + " " + label;
+  stage.stop = settings_.stop;
+  stage.solvers = &solvers_;
+  stage.keep_best_iterate = false;  // RunNewtonStage: exact stages only
+  stage.renumbering = renumbered_ ? &*renumbered_ : nullptr;
+  return stage;
+}
+
+void GeodesicSolve::Record(GeodesicStage stage) {
+  stage.final_gradient = result_.final_gradient;
+  result_.iterations += stage.iterations;
+  budget_ -= stage.iterations;
+  result_.stages.push_back(stage);
+  if (result_.final_gradient < best_gradient_ && input_.keep_best_iterate) {
+    best_gradient_ = result_.final_gradient;
+    best_path_ = *solve_path_;
+  }
+}
+
+void GeodesicSolve::RunEngineLm(double target, double hand_over_contraction,
+                                GeodesicStage* stage) {
+  PathNewtonSettings lm = EngineStage("lm");
+  lm.globalisation = NewtonSettings::Globalisation::kLevenbergMarquardt;
+  lm.model = HessianModel::kGaussNewton;
+  lm.gradient_tolerance = target;
+  lm.max_steps = std::max(0, budget_);
+  lm.hand_over_contraction = hand_over_contraction;
+  // After a Newton stage stopped short, with another attempt to follow: LM
+  // stalled for kLmStallSteps steps hands over to it instead of spending
+  // the budget.
+  if (newton_ran_ && target > tolerance_) lm.stall_steps = kLmStallSteps;
+  if (resume_damping_ > 0) lm.lm_initial = resume_damping_;
+  const PathNewtonReport report =
+      PolishPathNewton(*solve_space_, *solve_mask_, lm, solve_path_);
+  stage->termination = report.stop_reason;
+  stage->iterations = report.steps;
+  stage->solver = report.linear_solver;
+  stage->restored_best = report.restored_best;
+  result_.final_gradient = report.final_gradient;
+  lm_failed_ = report.stop == NewtonStop::kInfeasibleStart ||
+               report.stop == NewtonStop::kAssemblyFailed;
+  if (lm_failed_) result_.failure = report.stop_reason;
+  stopped_ = report.stop == NewtonStop::kStopped;
+  lm_handed_over_ = report.stop == NewtonStop::kHandedOver;
+  lm_damping_ = report.final_damping;
+}
+
+void GeodesicSolve::RunCeresLm(double relative, GeodesicStage* stage) {
+  SolverSettings lm = settings_;
+  lm.gradient_tolerance = relative;
+  lm.max_iterations = std::max(0, budget_);
+  result_.summary = SolveWithSettings(problem_.get(), lm, g0_);
+  stage->termination =
+      ceres::TerminationTypeToString(result_.summary.termination_type);
+  stage->solver = "ceres";
+  if (!result_.summary.iterations.empty()) {
+    stage->iterations =
+        static_cast<int>(result_.summary.iterations.size()) - 1;
+    result_.final_gradient =
+        result_.summary.iterations.back().gradient_max_norm;
+  }
+  lm_failed_ = result_.summary.termination_type == ceres::FAILURE;
+  if (lm_failed_) result_.failure = result_.summary.message;
+  stopped_ = StoppedByRequest(result_.summary);
+}
+
+void GeodesicSolve::RunLmStage(double relative, double hand_over_contraction) {
+  GeodesicStage stage;
+  const double lm_relative = std::max(settings_.gradient_tolerance, relative);
+  lm_handed_over_ = false;
+  if (engine_lm_) {
+    RunEngineLm(lm_relative * std::max(1.0, g0_), hand_over_contraction,
+                &stage);
+  } else {
+    RunCeresLm(lm_relative, &stage);
+  }
+  Record(stage);
+}
+
+PathNewtonReport GeodesicSolve::RunNewtonStage(HessianModel model,
+                                               bool probe) {
+  const bool projected = model == HessianModel::kProjected;
+  PathNewtonSettings newton = EngineStage(projected ? "projected" : "newton");
+  newton.max_steps = std::min(newton.max_steps, budget_);
+  if (engine_lm_ || projected ||
+      input_.newton == GeodesicNewton::kTrustRegion) {
+    // The trust region with Steihaug-Toint CG: the inexact Newton step
+    // wherever CG stays inside the region, steps to its boundary (along
+    // negative curvature on the exact Hessian) elsewhere.
+    newton.globalisation = NewtonSettings::Globalisation::kTrustRegion;
+    newton.model = model;
+    newton.max_steps = std::min(4 * newton.max_steps, budget_);
+  }
+  if (probe) newton.basin_ratio = kNewtonBasinRatio;
+  newton.keep_best_iterate = !projected && input_.keep_best_iterate;
+  if (projected) {
+    // Away from the geodesic, projected Newton converges linearly where
+    // terms are not convex: the stage ends at a tenth of the gradient it
+    // received (or a step that cuts it tenfold), and an exact probe tries
+    // the quadratic finish from there; a stage whose gradient has not
+    // halved in kLmStallSteps steps ends too.
+    newton.gradient_tolerance =
+        std::max(tolerance_, kProjectedStageContraction * result_.final_gradient);
+    newton.hand_over_contraction = input_.newton_contraction;
+    newton.stall_steps = kLmStallSteps;
+    newton.max_steps = budget_;
+  }
+  const PathNewtonReport report =
+      PolishPathNewton(*solve_space_, *solve_mask_, newton, solve_path_);
+  newton_ran_ = true;
+  result_.newton.Append(report);
+  result_.final_gradient = report.final_gradient;
+  stopped_ = stopped_ || report.stop == NewtonStop::kStopped;
+  GeodesicStage stage;
+  stage.method = projected ? GeodesicStage::Method::kProjectedNewton
+                           : GeodesicStage::Method::kNewton;
+  stage.solver = report.linear_solver;
+  stage.iterations = report.steps;
+  stage.termination = report.stop_reason;
+  stage.restored_best = report.restored_best;
+  Record(stage);
+  return report;
+}
+
+void GeodesicSolve::RunProjectedPhase() {
+  while (!Converged() && !stopped_ && budget_ > 0) {
+    const double round_start = result_.final_gradient;
+    const std::optional<double> energy_start =
+        TryPathEnergy(*solve_space_, *solve_path_);
+    const PathNewtonReport projected =
+        RunNewtonStage(HessianModel::kProjected, /*probe=*/false);
+    if (Converged() || stopped_ || budget_ <= 0) return;
+    if (projected.stop == NewtonStop::kInfeasibleStart ||
+        projected.stop == NewtonStop::kAssemblyFailed) {
+      result_.failure = projected.stop_reason;
+      return;
+    }
+    RunNewtonStage(HessianModel::kExact, /*probe=*/true);
+    if (Converged() || stopped_) return;
+    const std::optional<double> energy_end =
+        TryPathEnergy(*solve_space_, *solve_path_);
+    const bool energy_fell =
+        energy_start && energy_end &&
+        *energy_end < (1 - kRoundEnergyProgress) * *energy_start;
+    if (!(result_.final_gradient <= kRoundProgress * round_start) &&
+        !energy_fell) {
+      char text[240];
+      std::snprintf(text, sizeof text,
+                    "no progress: a projected-Newton stage and an exact "
+                    "Newton probe left |grad| at %.3g from %.3g and E_K "
+                    "within %.0e of its value",
+                    result_.final_gradient, round_start,
+                    kRoundEnergyProgress);
+      result_.stall = text;
+      return;
+    }
+  }
+}
+
+void GeodesicSolve::Globalise() {
+  double threshold = input_.newton_from;
+  // The early hand-over (newton_contraction) is tried once: its Newton
+  // stage is a probe of the basin, and where it stops short, LM goes on
+  // down to the threshold as if it had not been tried.
+  bool early = engine_lm_ && input_.newton_contraction > 0;
+  for (int attempt = 0;;) {
+    const bool newton = threshold > settings_.gradient_tolerance &&
+                        attempt < GeodesicInput::kMaxNewtonAttempts;
+    RunLmStage(newton ? threshold : settings_.gradient_tolerance,
+               newton && early ? input_.newton_contraction : 0.0);
+    if (!newton || Converged() || lm_failed_ || stopped_ || budget_ <= 0) {
+      return;
+    }
+    const bool probe = lm_handed_over_;
+    early = false;
+    const PathNewtonReport report =
+        RunNewtonStage(HessianModel::kExact, probe);
+    if (report.converged || budget_ <= 0 || stopped_) return;
+    if (probe) {  // LM on to the threshold; not an attempt
+      resume_damping_ = lm_damping_;
+      continue;
+    }
+    if (input_.globalisation == GeodesicGlobalisation::kProjectedNewton) {
+      RunProjectedPhase();
+      return;
+    }
+    resume_damping_ = 0;
+    ++attempt;
+    threshold *= 0.1;  // not yet in Newton's basin: more LM first
+  }
+}
+
+void GeodesicSolve::Finish() {
+  if (!Converged() && !best_path_.empty() &&
+      best_gradient_ < result_.final_gradient) {
+    // Unconverged: the path with the smallest gradient the solve met, not
+    // its last (whose E_K may be lower, its gradient larger).
+    for (int k = 1; k < input_.steps; ++k) (*solve_path_)[k] = best_path_[k];
+    result_.final_gradient = best_gradient_;
+    result_.best_iterate_restored = true;
+  }
+  if (renumbered_) {
+    for (int k = 1; k < input_.steps; ++k) {
+      result_.path[k] = renumbered_->ToOriginal(renumbered_path_[k]);
+    }
+  }
+  result_.converged = Converged();
+}
+
+void GeodesicSolve::Report() {
+  result_.path_energy =
+      PathEnergy(space_, result_.path, &result_.step_energies);
+  result_.step_energy_ratio = StepEnergyRatio(result_.step_energies);
+  result_.uneven_steps = result_.step_energy_ratio > kUnevenStepEnergyRatio;
+  result_.smallest_face_area = SmallestFaceAreaRatio(space_.faces, result_.path);
+  result_.collapsing_faces =
+      result_.smallest_face_area.ratio < kCollapsingFaceAreaRatio;
+}
+
+}  // namespace
+
 GeodesicResult SolveGeodesic(const ShellSpace& space,
                              const GeodesicInput& input,
                              const SolverSettings& settings) {
-  if (input.steps < 1) {
-    throw InputError(
-        "geodesic: the number of steps K must be at least 1, got " +
-        std::to_string(input.steps));
-  }
   GeodesicResult result;
-  if (input.initial.empty()) {
-    result.path = MakeGeodesicInitialPath(space, input.start, input.end,
-                                          input.steps, input.fixed_vertices,
-                                          input.init, settings, &result.init);
-  } else {
-    result.path = input.initial;
-    result.init.requested = input.init;
-    result.init.reason = "given";
-  }
-  if (static_cast<int>(result.path.size()) != input.steps + 1) {
-    throw InputError("geodesic: the initial path must have K + 1 = " +
-                     std::to_string(input.steps + 1) + " shapes, got " +
-                     std::to_string(result.path.size()));
-  }
-  result.path.front() = input.start;
-  result.path.back() = input.end;
-  const int K = input.steps;
-  if (K >= 2) {
-    result.final_gradient =
-        PathGradientMaxNorm(space, input, result.path, settings.num_threads);
-    const double g0 = input.reference_gradient >= 0 ? input.reference_gradient
-                                                    : result.final_gradient;
-    const double tolerance = settings.gradient_tolerance * std::max(1.0, g0);
-    result.gradient_target = tolerance;
-    // Iterations left of settings.max_iterations (LM iterations and Newton
-    // steps of all stages).
-    int lm_left = settings.max_iterations;
-    // Slivers of the input: the engine's LM, whose trials respect the step
-    // limit (kStepMinAreaFraction); Ceres' LM may crush a sliver and crawl.
-    const bool engine_lm =
-        ChooseGeodesicLm(input.lm, input.linear_solver,
-                         PathUnknowns(space, input)) == GeodesicLm::kEngine ||
-        (input.lm == GeodesicLm::kAuto &&
-         !FindSliverFaces(Mesh{input.start, space.faces}).faces.empty());
-    // The engine's stages run in the space renumbered for locality
-    // (shell_space_renumbering.h: on the GOAST cactus about 10 % less CPU)
-    // and the path is mapped back at the end; Ceres' stages, and a Newton
-    // finish after them, work on the caller's path, whose coordinates
-    // Ceres' problem holds.
-    std::optional<RenumberedShellSpace> renumbered;
-    const ShellSpace* solve_space = &space;
-    const std::vector<int>* solve_mask = &input.fixed_vertices;
-    ShellPath* solve_path = &result.path;
-    ShellPath renumbered_path;
-    std::vector<int> renumbered_mask;
-    if (engine_lm) {
-      renumbered = RenumberForLocality(space);
-      for (const Positions& shape : result.path) {
-        renumbered_path.push_back(renumbered->ToRenumbered(shape));
-      }
-      renumbered_mask = renumbered->ToRenumbered(input.fixed_vertices);
-      solve_space = &renumbered->space;
-      solve_mask = &renumbered_mask;
-      solve_path = &renumbered_path;
-    }
-    const RenumberedShellSpace* renumbering =
-        renumbered ? &*renumbered : nullptr;
-    // Ceres' LM problem, built once for all its stages (only if Ceres runs
-    // them: the engine needs no residual blocks).
-    std::unique_ptr<ceres::Problem> problem;
-    if (!engine_lm) {
-      problem = std::make_unique<ceres::Problem>();
-      BuildPathProblem(space, input, &result.path, problem.get());
-    }
-    bool lm_failed = false, lm_stopped = false, lm_handed_over = false;
-    // After a basin probe LM resumes with the damping it had reached, so
-    // that it goes on as if it had not been interrupted.
-    double lm_damping = 0, resume_damping = 0;
-    // The engine's stages share their block-Jacobi solver: the slices'
-    // pattern analysis is done once (every stage still factorises afresh).
-    PathLinearSolvers solvers;
-    bool newton_ran = false;  // a Newton stage (attempt or probe) has run
-    // LM down to `relative` (or the tolerance), continuing from where it is.
-    const auto run_lm = [&](double relative, double hand_over_contraction) {
-      GeodesicStage stage;
-      const double lm_tolerance =
-          std::max(settings.gradient_tolerance, relative);
-      if (engine_lm) {
-        PathNewtonSettings lm;
-        lm.globalisation = NewtonSettings::Globalisation::kLevenbergMarquardt;
-        lm.model = HessianModel::kGaussNewton;
-        lm.linear_solver = input.linear_solver;
-        lm.gradient_tolerance = lm_tolerance * std::max(1.0, g0);
-        lm.max_steps = std::max(0, lm_left);
-        lm.num_threads = settings.num_threads;
-        lm.min_area_fraction = kStepMinAreaFraction;
-        lm.hand_over_contraction = hand_over_contraction;
-        // After a Newton stage stopped short, with another attempt to
-        // follow: LM stalled for kLmStallSteps steps hands over to it
-        // instead of spending the budget.
-        if (newton_ran && relative > settings.gradient_tolerance) {
-          lm.stall_steps = kLmStallSteps;
-        }
-        if (resume_damping > 0) lm.lm_initial = resume_damping;
-        lm.progress = settings.progress;
-        lm.progress_label = settings.progress_label + " lm";
-        lm.stop = settings.stop;
-        lm.solvers = &solvers;
-        lm.renumbering = renumbering;
-        const PathNewtonReport report =
-            PolishPathNewton(*solve_space, *solve_mask, lm, solve_path);
-        stage.termination = report.stop_reason;
-        stage.iterations = report.steps;
-        stage.solver = report.linear_solver;
-        result.final_gradient = report.final_gradient;
-        lm_failed = report.stop == NewtonStop::kInfeasibleStart ||
-                    report.stop == NewtonStop::kAssemblyFailed;
-        if (lm_failed) result.failure = report.stop_reason;
-        lm_stopped = report.stop == NewtonStop::kStopped;
-        lm_handed_over = report.stop == NewtonStop::kHandedOver;
-        lm_damping = report.final_damping;
-      } else {
-        SolverSettings lm = settings;
-        lm.gradient_tolerance = lm_tolerance;
-        lm.max_iterations = std::max(0, lm_left);
-        result.summary = SolveWithSettings(problem.get(), lm, g0);
-        stage.termination =
-            ceres::TerminationTypeToString(result.summary.termination_type);
-        stage.solver = "ceres";
-        if (!result.summary.iterations.empty()) {
-          stage.iterations =
-              static_cast<int>(result.summary.iterations.size()) - 1;
-          result.final_gradient =
-              result.summary.iterations.back().gradient_max_norm;
-        }
-        lm_failed = result.summary.termination_type == ceres::FAILURE;
-        if (lm_failed) result.failure = result.summary.message;
-        lm_stopped = StoppedByRequest(result.summary);
-      }
-      stage.final_gradient = result.final_gradient;
-      result.iterations += stage.iterations;
-      lm_left -= stage.iterations;
-      result.stages.push_back(stage);
-    };
-    double threshold = input.newton_from;
-    // The early hand-over (newton_contraction) is tried once: its Newton
-    // stage is a probe of the basin, and where it stops short, LM goes on
-    // down to the threshold as if it had not been tried.
-    bool early = engine_lm && input.newton_contraction > 0;
-    for (int attempt = 0;;) {
-      const bool newton = threshold > settings.gradient_tolerance &&
-                          attempt < GeodesicInput::kMaxNewtonAttempts;
-      lm_handed_over = false;
-      run_lm(newton ? threshold : settings.gradient_tolerance,
-             newton && early ? input.newton_contraction : 0.0);
-      if (!newton || result.final_gradient <= tolerance || lm_failed ||
-          lm_stopped) {
-        break;
-      }
-      if (lm_left <= 0) break;  // the budget is spent
-      PathNewtonSettings polish;
-      polish.linear_solver = input.linear_solver;
-      polish.gradient_tolerance = tolerance;
-      polish.num_threads = settings.num_threads;
-      polish.progress = settings.progress;
-      polish.progress_label = settings.progress_label + " newton";
-      polish.max_steps = std::min(polish.max_steps, lm_left);
-      if (engine_lm || input.newton == GeodesicNewton::kTrustRegion) {
-        // The trust region on the exact Hessian with Steihaug-Toint CG: the
-        // inexact Newton step wherever CG stays inside the region, steps
-        // to its boundary along negative curvature elsewhere.
-        polish.globalisation = NewtonSettings::Globalisation::kTrustRegion;
-        polish.model = HessianModel::kExact;
-        polish.max_steps = std::min(4 * polish.max_steps, lm_left);
-      }
-      polish.min_area_fraction = kStepMinAreaFraction;
-      const bool probe = lm_handed_over;
-      if (probe) polish.basin_ratio = kNewtonBasinRatio;
-      early = false;
-      polish.stop = settings.stop;
-      polish.solvers = &solvers;
-      polish.renumbering = renumbering;
-      const PathNewtonReport report =
-          PolishPathNewton(*solve_space, *solve_mask, polish, solve_path);
-      newton_ran = true;
-      result.newton.Append(report);
-      result.iterations += report.steps;
-      lm_left -= report.steps;
-      result.final_gradient = report.final_gradient;
-      GeodesicStage stage;
-      stage.method = GeodesicStage::Method::kNewton;
-      stage.solver = report.linear_solver;
-      stage.iterations = report.steps;
-      stage.final_gradient = report.final_gradient;
-      stage.termination = report.stop_reason;
-      result.stages.push_back(stage);
-      if (report.converged || lm_left <= 0 ||
-          report.stop == NewtonStop::kStopped) {
-        break;
-      }
-      if (probe) {  // LM on to the threshold; not an attempt
-        resume_damping = lm_damping;
-        continue;
-      }
-      resume_damping = 0;
-      ++attempt;
-      threshold *= 0.1;  // not yet in Newton's basin: more LM first
-    }
-    if (renumbered) {
-      for (int k = 1; k < K; ++k) {
-        result.path[k] = renumbered->ToOriginal(renumbered_path[k]);
-      }
-    }
-    result.initial_gradient = g0;
-    result.converged = result.final_gradient <= tolerance;
+  GeodesicSolve solve(space, input, settings, &result);
+  solve.Start();
+  if (input.steps >= 2) {
+    solve.Prepare();
+    solve.Globalise();
+    solve.Finish();
   } else {
     result.converged = true;  // K = 1: no unknowns
   }
-  result.path_energy = PathEnergy(space, result.path, &result.step_energies);
-  result.step_energy_ratio = StepEnergyRatio(result.step_energies);
-  result.uneven_steps = result.step_energy_ratio > kUnevenStepEnergyRatio;
-  result.smallest_face_area = SmallestFaceAreaRatio(space.faces, result.path);
-  result.collapsing_faces =
-      result.smallest_face_area.ratio < kCollapsingFaceAreaRatio;
+  solve.Report();
   return result;
 }
 

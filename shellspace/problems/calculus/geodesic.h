@@ -81,6 +81,36 @@ GeodesicLm ChooseGeodesicLm(GeodesicLm choice, PathLinearSolver linear_solver,
 //    H + lambda I where it cannot be used.
 enum class GeodesicNewton { kTrustRegion, kLineSearch };
 
+// What globalises a geodesic solve once an exact Newton attempt after the
+// first LM stage has stopped short (the Hessian indefinite: not yet in
+// Newton's basin):
+//  - kProjectedNewton: projected-Newton stages (the trust region on the
+//    path Hessian with every element term's Hessian projected onto the
+//    positive semidefinite cone, HessianModel::kProjected: a model that is
+//    never indefinite, equal to the exact Hessian where the terms are
+//    convex), each ended by a tenfold gradient cut
+//    (kProjectedStageContraction), a stall or the budget, and followed by
+//    an exact Newton probe of the basin (the exact Hessian's
+//    quadratic convergence near the geodesic); the phase ends when a round
+//    of the two lowers the gradient by less than kRoundProgress;
+//  - kLevenbergMarquardt: LM resumes to a ten times smaller gradient and
+//    the exact Newton attempt is repeated, at most kMaxNewtonAttempts
+//    times, then LM alone.
+enum class GeodesicGlobalisation { kProjectedNewton, kLevenbergMarquardt };
+
+// A round of the projected phase (a projected-Newton stage and an exact
+// probe) that leaves the gradient max norm above kRoundProgress times its
+// value at the round's start and E_K above (1 - kRoundEnergyProgress) times
+// its value ends the solve: neither method makes progress, and the result
+// says so (GeodesicResult::stall).
+inline constexpr double kRoundProgress = 0.5;
+inline constexpr double kRoundEnergyProgress = 1e-4;
+
+// A projected-Newton stage ends once the gradient max norm is this fraction
+// of the one it received (or at the tolerance), and an exact Newton probe
+// follows.
+inline constexpr double kProjectedStageContraction = 0.1;
+
 // The step limit of every stage run by the engine (PathNewtonSettings::
 // min_area_fraction): no trial keeps less than this fraction of a
 // triangle's area in the current path, or turns it over.
@@ -137,6 +167,11 @@ struct GeodesicInput {
   // Who runs the LM stages (GeodesicLm).
   GeodesicLm lm = GeodesicLm::kAuto;
   GeodesicNewton newton = GeodesicNewton::kTrustRegion;
+  GeodesicGlobalisation globalisation =
+      GeodesicGlobalisation::kProjectedNewton;
+  // PathNewtonSettings::keep_best_iterate of every stage the engine runs
+  // (false only to show what the rule prevents).
+  bool keep_best_iterate = true;
   // The gradient max norm g_0 that the relative tolerance refers to
   // (stop at |grad| <= tolerance * max(1, g_0)); negative: the initial
   // path's. A solve started from a prolongated coarse solution passes the
@@ -160,7 +195,7 @@ double PathGradientNorm(const ShellSpace& space, const GeodesicInput& input,
 // One stage of a geodesic solve: an LM run or a Newton polish, in the order
 // they ran.
 struct GeodesicStage {
-  enum class Method { kLevenbergMarquardt, kNewton };
+  enum class Method { kLevenbergMarquardt, kNewton, kProjectedNewton };
   Method method = Method::kLevenbergMarquardt;
   int iterations = 0;         // LM iterations (not Ceres' iteration 0) or
                               // accepted Newton steps
@@ -169,6 +204,9 @@ struct GeodesicStage {
   // What ran: "ceres" (Ceres' LM) or the engine's linear solver
   // ("block-jacobi", "direct") for engine LM and Newton stages.
   std::string solver;
+  // The stage ended on an earlier iterate than its last, with a smaller
+  // gradient (PathNewtonSettings::keep_best_iterate).
+  bool restored_best = false;
 };
 
 // An LM stage of the engine that resumes after a Newton stage stopped short
@@ -221,6 +259,12 @@ struct GeodesicResult {
   // Not empty if an LM stage could not run at all (Ceres' FAILURE, or the
   // engine's degenerate start): what happened.
   std::string failure;
+  // Not empty if the solve ended because neither the projected-Newton
+  // stages nor the exact probes made progress (kRoundProgress): one line.
+  std::string stall;
+  // Unconverged, the solve reports the path with the smallest gradient max
+  // norm it met after a stage, not its last one.
+  bool best_iterate_restored = false;
   PathNewtonReport newton;            // the Newton stage(s), summed
   std::vector<GeodesicStage> stages;  // every stage, in order
   int iterations = 0;           // sum of stages[i].iterations (LM + Newton)

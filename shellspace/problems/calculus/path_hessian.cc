@@ -330,6 +330,81 @@ bool PathHessianAssembler::AddSliceBlocks(
   return before->ok && after->ok;
 }
 
+bool PathHessianAssembler::AddTermBlocks(const Positions& a,
+                                         const Positions& b, bool a_free,
+                                         bool b_free, double weight,
+                                         BlockArray* aa, BlockArray* bb,
+                                         BlockArray* ba,
+                                         SliceStatus* status) const {
+  const ElementSet& set = space_.elements();
+  size_t group_slots = 0, group_visits = 0;
+  set.ForEachGroup([&](const auto& group) {
+    constexpr int count = std::decay_t<decltype(group)>::kVertices;
+    constexpr int n = 3 * count;
+    ElementTermSecondDerivatives<count> d;
+    double ref[n], def[n];
+    for (int k = 0; k < group.size(); ++k) {
+      const int e = visit_[group_visits + k];
+      const auto& stencil = group.stencils[e];
+      const int* slot = &slots_[group_slots + count * count * e];
+      GatherCoordinates(a, stencil, ref);
+      GatherCoordinates(b, stencil, def);
+      if (!d.Compute(group.element, ref, def, weight, a_free, b_free)) {
+        status->Fail(set, group.first_element + e);
+      }
+      if (!status->ok) continue;  // the others only for the first failure
+      if (a_free) ScatterBlocks<false, true>(d.aa, stencil, slot, aa);
+      if (b_free) ScatterBlocks<false, true>(d.bb, stencil, slot, bb);
+      if (a_free && b_free) ScatterBlocks<false, false>(d.ba, stencil, slot, ba);
+    }
+    group_slots += static_cast<size_t>(count * count) * group.size();
+    group_visits += group.size();
+  });
+  return status->ok;
+}
+
+bool PathHessianAssembler::TryAssembleProjected(
+    const std::vector<Positions>& path,
+    const std::vector<Eigen::SparseMatrix<double>>& bases, int threads,
+    Eigen::SparseMatrix<double>* hessian, ElementFailure* failure) const {
+  const int K = static_cast<int>(path.size()) - 1;
+  const int inner = K - 1;
+  const size_t block_values = 9 * pair_row_.size();
+  // Term t = W[s_t, s_{t+1}] (t = 0 .. K - 1), each projected once: its
+  // (A, A) blocks go to slice t - 1 (s_t), its (B, B) blocks to slice t
+  // (s_{t+1}), its (B, A) blocks below the diagonal between them.
+  std::vector<BlockArray> aa(K), bb(K), ba(K);
+  std::vector<SliceStatus> status(K);
+  std::vector<char> ok(K, 1);
+  ParallelFor(K, threads, [&](int t) {
+    const bool a_free = t >= 1, b_free = t + 1 <= inner;
+    if (a_free) aa[t].assign(block_values, 0.0);
+    if (b_free) bb[t].assign(block_values, 0.0);
+    if (a_free && b_free) ba[t].assign(block_values, 0.0);
+    ok[t] = AddTermBlocks(path[t], path[t + 1], a_free, b_free, K, &aa[t],
+                          &bb[t], &ba[t], &status[t]);
+  });
+  for (int t = 0; t < K; ++t) {
+    if (ok[t]) continue;
+    if (failure) {
+      *failure = status[t].failure;
+      failure->description = "W[s_" + std::to_string(t) + ", s_" +
+                             std::to_string(t + 1) + "]: " +
+                             failure->description;
+    }
+    *hessian = Eigen::SparseMatrix<double>();
+    return false;
+  }
+  std::vector<std::vector<const BlockArray*>> diagonal(inner);
+  std::vector<const BlockArray*> below(inner, nullptr);
+  for (int i = 0; i < inner; ++i) {  // slice i: s_{i+1}
+    diagonal[i] = {&bb[i], &aa[i + 1]};
+    if (i + 1 < inner) below[i] = &ba[i + 1];
+  }
+  Compress(diagonal, below, bases, threads, hessian);
+  return true;
+}
+
 bool PathHessianAssembler::TryAssemble(
     const std::vector<Positions>& path,
     const std::vector<Eigen::SparseMatrix<double>>& bases, int threads,
@@ -338,6 +413,9 @@ bool PathHessianAssembler::TryAssemble(
   const int inner = K - 1;
   if (inner < 1 || static_cast<int>(bases.size()) != inner) {
     throw std::invalid_argument("PathHessianAssembler: need K >= 2 and K - 1 bases");
+  }
+  if (model_ == HessianModel::kProjected) {
+    return TryAssembleProjected(path, bases, threads, hessian, failure);
   }
   const size_t block_values = 9 * pair_row_.size();
   // One task per inner shape s_k (slice i = k - 1), inside the filling pass

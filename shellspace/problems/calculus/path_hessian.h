@@ -41,7 +41,9 @@ class PathHessianAssembler {
  public:
   // model: every element's second derivatives by `model` (element_hessian.h;
   // kGaussNewton: the Gauss-Newton matrix J^T J of the residuals, the
-  // Levenberg-Marquardt model, positive semidefinite).
+  // Levenberg-Marquardt model, positive semidefinite; kProjected: each
+  // term's exact Hessian projected onto the positive semidefinite cone, the
+  // projected-Newton model, positive semidefinite).
   explicit PathHessianAssembler(const ShellSpace& space,
                                 HessianModel model = HessianModel::kExact);
   HessianModel model() const { return model_; }
@@ -135,6 +137,23 @@ class PathHessianAssembler {
                       const Positions& next, double weight,
                       BlockArray* diagonal, BlockArray* coupling,
                       SliceStatus* before, SliceStatus* after) const;
+
+  // The projected model (HessianModel::kProjected): weight times the blocks
+  // of the term W[a, b] with its Hessian in its free arguments projected as
+  // a whole (ElementTermSecondDerivatives): (a, a) into *aa if a_free,
+  // (b, b) into *bb if b_free (on and below the diagonal), (rows b,
+  // columns a) into *ba if both are free. False at the first degenerate
+  // element, named in *status.
+  bool AddTermBlocks(const Positions& a, const Positions& b, bool a_free,
+                     bool b_free, double weight, BlockArray* aa,
+                     BlockArray* bb, BlockArray* ba,
+                     SliceStatus* status) const;
+  // TryAssemble for the projected model: the K terms in parallel, each
+  // projected once, then compressed (memory: three block arrays per term).
+  bool TryAssembleProjected(const std::vector<Positions>& path,
+                            const std::vector<Eigen::SparseMatrix<double>>& bases,
+                            int threads, Eigen::SparseMatrix<double>* hessian,
+                            ElementFailure* failure) const;
 
   // *out = T^T H T (lower triangle) from the diagonal blocks of each slice
   // (the sum of the arrays diagonal[i]) and the blocks below the diagonal

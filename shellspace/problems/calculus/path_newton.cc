@@ -150,6 +150,11 @@ class PathEnergyProblem : public NewtonProblem {
       return EvaluationStatus::kInfeasible;
     }
     *residual = NewtonResidual::OfReduced(g);
+    if (point == NewtonPoint::kTrial) {
+      trial_norm_ = residual->max_norm;
+    } else if (!(current_norm_ >= 0)) {
+      current_norm_ = best_norm_ = residual->max_norm;  // the stage's start
+    }
     return EvaluationStatus::kOk;
   }
   EvaluationStatus Assemble(LinearSystem* system) override {
@@ -189,12 +194,30 @@ class PathEnergyProblem : public NewtonProblem {
     trial_ = StepPath(*path_, reduced_, step);
   }
   void AcceptTrial() override {
+    // Leaving the best iterate for a worse one: keep a copy of it.
+    if (current_is_best_ && !(trial_norm_ < best_norm_)) best_ = *path_;
     // Copy into the existing shapes: a ceres::Problem may hold pointers to
     // their coordinates.
     const int K = static_cast<int>(path_->size()) - 1;
     for (int k = 1; k < K; ++k) (*path_)[k] = trial_[k];
     reduced_ = std::move(trial_reduced_);
+    current_norm_ = trial_norm_;
+    current_is_best_ = current_norm_ < best_norm_;
+    if (current_is_best_) best_norm_ = current_norm_;
   }
+  // The best-iterate rule: if an accepted step has left the iterate with the
+  // smallest gradient max norm (the stage's start included) for a worse one,
+  // puts that iterate back into the path and returns its norm; otherwise
+  // returns a negative number (the path is the best iterate).
+  double RestoreBestIterate() {
+    if (current_is_best_ || best_.empty()) return -1;
+    const int K = static_cast<int>(path_->size()) - 1;
+    for (int k = 1; k < K; ++k) (*path_)[k] = best_[k];
+    current_is_best_ = true;
+    current_norm_ = best_norm_;
+    return best_norm_;
+  }
+  double current_norm() const { return current_norm_; }
 
  private:
   const ShellSpace& space_;
@@ -209,7 +232,39 @@ class PathEnergyProblem : public NewtonProblem {
   ReducedCoordinates reduced_;
   ShellPath trial_;
   ReducedCoordinates trial_reduced_;
+  // Gradient max norms: of the last trial evaluated, of the current point,
+  // of the best point so far (-1: not yet evaluated); the best point's path
+  // while the current point is another.
+  double trial_norm_ = -1, current_norm_ = -1, best_norm_ = -1;
+  bool current_is_best_ = true;
+  ShellPath best_;
 };
+
+}  // namespace
+
+namespace {
+
+// PathNewtonSettings::keep_best_iterate: where the stage ended above the
+// smallest gradient it met, that iterate is put back and reported.
+PathNewtonReport KeepBestIterate(const PathNewtonSettings& settings,
+                                 PathEnergyProblem* problem,
+                                 PathNewtonReport report) {
+  if (!settings.keep_best_iterate || report.converged) return report;
+  const double last = report.final_gradient;
+  const double best = problem->RestoreBestIterate();
+  if (best < 0) return report;
+  double merit = 0;
+  problem->Merit(NewtonPoint::kCurrent, &merit);
+  report.final_gradient = best;
+  report.final_merit = merit;
+  report.restored_best = true;
+  char text[160];
+  std::snprintf(text, sizeof text,
+                "; the best iterate kept (|grad| %.3g, the last %.3g)", best,
+                last);
+  report.stop_reason += text;
+  return report;
+}
 
 }  // namespace
 
@@ -242,9 +297,12 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
   const bool levenberg_marquardt =
       settings.globalisation ==
       NewtonSettings::Globalisation::kLevenbergMarquardt;
+  // The line search always runs on the exact Hessian (with its shifts).
+  const bool line_search =
+      settings.globalisation == NewtonSettings::Globalisation::kLineSearch;
   PathEnergyProblem problem(
       space, fixed_vertices, std::max(1, settings.num_threads),
-      levenberg_marquardt ? settings.model : HessianModel::kExact,
+      line_search ? HessianModel::kExact : settings.model,
       settings.min_area_fraction, settings.renumbering, path);
   NewtonSettings newton;
   newton.mode = NewtonMode::kMinimize;
@@ -303,10 +361,12 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
     linear_solver.ForgetFactors();
     linear_solver.threads = std::max(1, settings.num_threads);
     linear_solver.time_coupling = settings.time_coupled_preconditioner;
-    return SolveNewton(&problem, &linear_solver, newton);
+    return KeepBestIterate(settings, &problem,
+                           SolveNewton(&problem, &linear_solver, newton));
   }
   ReusableCholesky linear_solver;
-  return SolveNewton(&problem, &linear_solver, newton);
+  return KeepBestIterate(settings, &problem,
+                         SolveNewton(&problem, &linear_solver, newton));
 }
 
 }  // namespace shellspace

@@ -124,6 +124,12 @@ struct PathNewtonSettings {
   // compresses gets there, if at all, through steps the energy accepts one
   // by one, never by jumping across the barrier of the membrane energy.
   double min_area_fraction = 0;
+  // The best-iterate rule: a stage that ends short of its tolerance with a
+  // larger gradient max norm than an iterate it met (its start included)
+  // leaves that iterate in the path, not the last one, and says so in its
+  // stop reason (NewtonReport::restored_best). A stage never hands on a
+  // path with a larger gradient than the one it received.
+  bool keep_best_iterate = true;
   // The solvers of the stage before on the same path problem (its pattern
   // analysis reused), or nullptr: solvers of this stage alone.
   PathLinearSolvers* solvers = nullptr;

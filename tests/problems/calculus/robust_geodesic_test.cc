@@ -1,0 +1,171 @@
+// What keeps geodesic solves and EXP steps from going astray on ordinary
+// deformations:
+//   - EXP along a rigid motion is the rigid motion, exactly and with no
+//     iteration (the step beyond b of a rigid step a -> b is M(b));
+//   - the best-iterate rule: an exact Newton stage that stops short ends on
+//     the iterate with its smallest gradient, and an unconverged solve
+//     reports the path with the smallest gradient it met, not its last.
+// Each with a negative twin.
+#include <gtest/gtest.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "shellspace/geometry/procedural_shapes.h"
+#include "shellspace/geometry/rigid_alignment.h"
+#include "shellspace/problems/calculus/exponential_map.h"
+#include "shellspace/problems/calculus/geodesic.h"
+#include "tests/testing/test_support.h"
+
+namespace shellspace {
+namespace {
+
+// max_v |p_v - q_v| / the diameter of q's bounding box.
+double RelativeDistance(const Positions& p, const Positions& q) {
+  const double diameter =
+      (q.colwise().maxCoeff() - q.colwise().minCoeff()).norm();
+  return (p - q).rowwise().norm().maxCoeff() / diameter;
+}
+
+// A rotation by 30 degrees about an oblique axis and a translation.
+RigidMotion ThirtyDegrees() {
+  RigidMotion m;
+  m.rotation = Eigen::AngleAxisd(M_PI / 6, Eigen::Vector3d(1, 2, 2).normalized())
+                   .toRotationMatrix();
+  m.translation = Eigen::RowVector3d(0.3, -0.2, 0.5);
+  return m;
+}
+
+TEST(RigidExpTest, TheStepBeyondARigidStepIsTheRigidMotionWithNoIteration) {
+  const Mesh finger = MakeFinger(0.5, 4.0, 16, 12, 4);
+  const ShellSpace space = testing::MakeSpace(finger);
+  const RigidMotion m = ThirtyDegrees();
+  const Positions a = finger.positions;
+  const Positions b = m.Apply(a);
+  for (const StepDirection direction :
+       {StepDirection::kForward, StepDirection::kBackward}) {
+    const ExpStepResult step =
+        ExpStep(space, a, b, direction, {}, testing::TightSettings(1e-10));
+    EXPECT_TRUE(step.solved);
+    EXPECT_EQ(step.newton_steps, 0);
+    EXPECT_EQ(step.lm_iterations, 0);
+    EXPECT_LE(RelativeDistance(step.shape, m.Apply(b)), 1e-10);
+  }
+  // Twin: the linear extrapolation 2 b - a, the old first guess, is not.
+  EXPECT_GT(RelativeDistance(2 * b - a, m.Apply(b)), 1e-2);
+}
+
+TEST(RigidExpTest, ShootingAlongARigidMotionReproducesIt) {
+  const Mesh finger = MakeFinger(0.5, 4.0, 16, 12, 4);
+  const ShellSpace space = testing::MakeSpace(finger);
+  const RigidMotion m = ThirtyDegrees();
+  const ShellPath path =
+      Shoot(space, finger.positions, m.Apply(finger.positions), 8,
+            StepDirection::kForward, {}, testing::TightSettings(1e-10));
+  ASSERT_EQ(path.size(), 9u);
+  Positions expected = finger.positions;
+  for (int k = 0; k <= 8; ++k) {
+    EXPECT_LE(RelativeDistance(path[k], expected), 1e-10) << "frame " << k;
+    expected = m.Apply(expected);
+  }
+}
+
+TEST(RigidExpTest, ANearlyRigidStepStillSolvesItsEquation) {
+  // A rigid motion plus a small bend: not rigid, so Newton runs, from the
+  // rotation-corrected guess, to the acceptance.
+  const Mesh finger = MakeFinger(0.5, 4.0, 16, 12, 4);
+  const ShellSpace space = testing::MakeSpace(finger);
+  const RigidMotion m = ThirtyDegrees();
+  const Positions a = finger.positions;
+  const Positions b = m.Apply(BendAlongY(a, 4.0, 0.05));
+  const ExpStepResult step = ExpStep(space, a, b, StepDirection::kForward, {},
+                                     testing::TightSettings(1e-10));
+  EXPECT_TRUE(step.solved);
+  EXPECT_GT(step.newton_steps, 0);
+  EXPECT_LE(step.relative_residual, kExpStepAcceptance);
+}
+
+// A finger bent by `degrees` at K = 4 from the linear path (no mask, the
+// gauge pinned): far from the geodesic, where exact Newton's trust-region
+// steps along negative curvature lower E_K and may raise the gradient.
+struct BentFinger {
+  Mesh mesh = MakeFinger(0.5, 4.0, 12, 10, 3);
+  ShellSpace space = testing::MakeSpace(mesh);
+  Positions end;
+  ShellPath path;
+  explicit BentFinger(double degrees) {
+    end = BendAlongY(mesh.positions, 4.0, degrees * M_PI / 180);
+    path = LinearPath(mesh.positions, end, 4);
+  }
+  GeodesicInput Input() const {
+    GeodesicInput input = GeodesicInput::Between(mesh.positions, end, 4);
+    input.initial = path;
+    return input;
+  }
+};
+
+// The exact trust-region Newton stage of `steps` steps from the finger's
+// linear path (the best-iterate rule on or off); *path is its result.
+PathNewtonReport ExactStage(const BentFinger& f, int steps, bool keep_best,
+                            ShellPath* path) {
+  PathNewtonSettings settings;
+  settings.globalisation = NewtonSettings::Globalisation::kTrustRegion;
+  settings.model = HessianModel::kExact;
+  settings.max_steps = steps;
+  settings.gradient_tolerance = 1e-12;
+  settings.keep_best_iterate = keep_best;
+  *path = f.path;
+  return PolishPathNewton(f.space, {}, settings, path);
+}
+
+TEST(BestIterateTest, AStageEndsOnItsSmallestGradient) {
+  const BentFinger f(150);
+  // The gradients of the stage's iterates, step by step (the rule off; the
+  // engine's own measure: the reduced gradient's max norm).
+  std::vector<double> norms;
+  for (int steps = 0; steps <= 3; ++steps) {
+    ShellPath path;
+    norms.push_back(ExactStage(f, steps, false, &path).final_gradient);
+  }
+  const auto smallest = std::min_element(norms.begin(), norms.end());
+  const int at = static_cast<int>(smallest - norms.begin());
+  // The case is one the rule is for: the stage ends above an iterate it met
+  // after its start (the twin, the rule off).
+  ASSERT_GT(norms.back(), 1.5 * *smallest);
+  ASSERT_GT(at, 0);
+  ShellPath kept_path, best_path;
+  const PathNewtonReport kept = ExactStage(f, 3, true, &kept_path);
+  ExactStage(f, at, false, &best_path);
+  EXPECT_TRUE(kept.restored_best);
+  EXPECT_EQ(kept.final_gradient, *smallest);
+  EXPECT_NE(kept.stop_reason.find("best iterate kept"), std::string::npos);
+  for (int k = 0; k <= 4; ++k) EXPECT_EQ(kept_path[k], best_path[k]);
+}
+
+TEST(BestIterateTest, AnUnconvergedSolveReportsTheBestPathItMet) {
+  const BentFinger f(150);
+  for (const bool keep_best : {true, false}) {
+    GeodesicInput input = f.Input();
+    input.lm = GeodesicLm::kEngine;
+    input.newton_from = 0.5;  // a Newton attempt far from the geodesic
+    input.newton_contraction = 0;
+    input.keep_best_iterate = keep_best;
+    SolverSettings settings = testing::TightSettings(1e-8);
+    settings.max_iterations = 2;  // one LM step, one Newton step
+    const GeodesicResult r = SolveGeodesic(f.space, input, settings);
+    ASSERT_EQ(r.stages.size(), 2u);
+    ASSERT_FALSE(r.converged);
+    // The Newton step raised the gradient the LM stage had reached.
+    ASSERT_GT(r.stages[1].final_gradient, r.stages[0].final_gradient);
+    if (keep_best) {
+      EXPECT_TRUE(r.best_iterate_restored);
+      EXPECT_EQ(r.final_gradient, r.stages[0].final_gradient);
+    } else {  // the twin: the last path
+      EXPECT_FALSE(r.best_iterate_restored);
+      EXPECT_EQ(r.final_gradient, r.stages[1].final_gradient);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace shellspace
