@@ -94,6 +94,33 @@ TEST(PsdProjectionTest, PositiveSemidefiniteMatricesAreLeftExactly) {
   EXPECT_LE(n.cwiseAbs().maxCoeff(), 1e-12 * psd.cwiseAbs().maxCoeff());
 }
 
+TEST(PsdProjectionTest, ModuloTranslationsEqualsTheFullProjection) {
+  // A random indefinite matrix of two 4-vertex stencils that annihilates
+  // each stencil's translations: Z S Z^T, Z the complement basis.
+  const auto z = TranslationComplementBasis<4, 2>();
+  ASSERT_LE((z.transpose() * z - Eigen::Matrix<double, 18, 18>::Identity())
+                .cwiseAbs()
+                .maxCoeff(),
+            1e-15);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  Eigen::Matrix<double, 18, 18> s;
+  for (int i = 0; i < 18; ++i)
+    for (int j = 0; j <= i; ++j) s(i, j) = s(j, i) = u(rng);
+  const Eigen::Matrix<double, 24, 24> a = z * s * z.transpose();
+  Eigen::Matrix<double, 24, 24> full = a, reduced = a;
+  ASSERT_TRUE(ProjectToPositiveSemidefinite(&full));
+  EXPECT_TRUE((ProjectToPositiveSemidefiniteModuloTranslations<4, 2>(&reduced)));
+  EXPECT_LE(RelativeDifference(reduced, full), 1e-13);
+  // Twin: a matrix that moves a translation is not projected alike.
+  Eigen::Matrix<double, 24, 24> b = a, b_full = a;
+  b(0, 0) += 1;
+  b_full(0, 0) += 1;
+  ProjectToPositiveSemidefinite(&b_full);
+  ProjectToPositiveSemidefiniteModuloTranslations<4, 2>(&b);
+  EXPECT_GT(RelativeDifference(b, b_full), 1e-3);
+}
+
 // The Hessian of E_K in the inner shapes (all 3n coordinates each) with
 // every term's Hessian projected on its own: each element of each term
 // W[s_{k-1}, s_k] (weight K) differentiated in both arguments (the exact

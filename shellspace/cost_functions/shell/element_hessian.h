@@ -308,7 +308,9 @@ struct ElementSliceSecondDerivatives {
 // blocks is the sum of the projected terms: positive semidefinite, and the
 // exact Hessian wherever every term is convex. Compute returns false exactly
 // when the element is degenerate (ComputeModel's verdict); `projected` says
-// whether the projection changed the matrix.
+// whether the projection changed the matrix. The projection works in the
+// complement of each shape's translations, which every term's Hessian
+// annihilates (ProjectToPositiveSemidefiniteModuloTranslations).
 template <int kVertices>
 struct ElementTermSecondDerivatives {
   static constexpr int n = 3 * kVertices;
@@ -334,7 +336,9 @@ struct ElementTermSecondDerivatives {
       term_.template topRightCorner<n, n>() =
           a_active_.d_grad_deformed.transpose();
       term_.template bottomRightCorner<n, n>() = b_active_.d_grad_deformed;
-      projected = ProjectToPositiveSemidefinite(&term_);
+      projected =
+          ProjectToPositiveSemidefiniteModuloTranslations<kVertices, 2>(
+              &term_);
       aa = term_.template topLeftCorner<n, n>();
       bb = term_.template bottomRightCorner<n, n>();
       ba = term_.template bottomLeftCorner<n, n>();
@@ -347,7 +351,8 @@ struct ElementTermSecondDerivatives {
         return false;
       }
       aa = a_active_.d_grad_reference;
-      projected = ProjectToPositiveSemidefinite(&aa);
+      projected =
+          ProjectToPositiveSemidefiniteModuloTranslations<kVertices, 1>(&aa);
       return true;
     }
     if (!b_active_.ComputeModel(HessianModel::kExact, element, a, b,
@@ -356,7 +361,8 @@ struct ElementTermSecondDerivatives {
       return false;
     }
     bb = b_active_.d_grad_deformed;
-    projected = ProjectToPositiveSemidefinite(&bb);
+    projected =
+        ProjectToPositiveSemidefiniteModuloTranslations<kVertices, 1>(&bb);
     return true;
   }
 

@@ -23,6 +23,7 @@
 #include <Eigen/Core>
 #include <Eigen/Eigenvalues>
 #include <algorithm>
+#include <cmath>
 
 namespace shellspace {
 
@@ -51,6 +52,51 @@ bool ProjectToPositiveSemidefinite(Matrix* a) {
   const auto clamped = eigen.eigenvalues().cwiseMax(0.0);
   *a = eigen.eigenvectors() * clamped.asDiagonal() *
        eigen.eigenvectors().transpose();
+  return true;
+}
+
+// The same projection for the Hessian of an element term, a function of
+// `kShapes` shapes' stencils of kVertices vertices each (a is n x n, n =
+// 3 kVertices kShapes, the shapes' coordinates one after the other, vertex
+// after vertex) that does not change when any one shape is translated: a
+// annihilates those 3 kShapes translations, so a = Z m Z^T with
+// m = Z^T a Z and Z the orthonormal basis of their complement, and
+// P(a) = Z P(m) Z^T. The eigen-decomposition is that of m, of size
+// n - 3 kShapes (18 instead of 24 for a hinge term in both of its shapes:
+// about 2.4 times less work; 12 instead of 18 for a triangle's). Z is
+// block-diagonal, C (x) I_3 per shape, C the kVertices x (kVertices - 1)
+// Helmert contrasts (orthonormal columns orthogonal to (1, ..., 1)).
+// Returns true if *a was changed; a positive semidefinite m leaves *a
+// exactly as it is.
+template <int kVertices, int kShapes>
+Eigen::Matrix<double, 3 * kVertices * kShapes, 3 * (kVertices - 1) * kShapes>
+TranslationComplementBasis() {
+  constexpr int n = 3 * kVertices, m = 3 * (kVertices - 1);
+  Eigen::Matrix<double, 3 * kVertices * kShapes, m * kShapes> z;
+  z.setZero();
+  for (int shape = 0; shape < kShapes; ++shape) {
+    for (int j = 1; j < kVertices; ++j) {
+      const double norm = std::sqrt(double(j) * (j + 1));
+      for (int i = 0; i <= j; ++i) {
+        const double c = i < j ? 1.0 / norm : -double(j) / norm;
+        for (int d = 0; d < 3; ++d) {
+          z(shape * n + 3 * i + d, shape * m + 3 * (j - 1) + d) = c;
+        }
+      }
+    }
+  }
+  return z;
+}
+
+template <int kVertices, int kShapes, class Matrix>
+bool ProjectToPositiveSemidefiniteModuloTranslations(Matrix* a) {
+  static const auto z = TranslationComplementBasis<kVertices, kShapes>();
+  constexpr int m = 3 * (kVertices - 1) * kShapes;
+  if (!a->allFinite()) return false;
+  Eigen::Matrix<double, m, m> reduced = z.transpose() * (*a) * z;
+  reduced = 0.5 * (reduced + reduced.transpose()).eval();
+  if (!ProjectToPositiveSemidefinite(&reduced)) return false;
+  *a = z * reduced * z.transpose();
   return true;
 }
 
