@@ -1071,7 +1071,7 @@ def pca(shapes, F, client=None, mean=None, modes=3, log_steps=2,
 # physical memory at this much per worker (the CLI's bound too).
 LOCAL_WORKER_BYTES = 512 * 2 ** 20
 # Seconds to wait for a scheduler to answer, and for workers to register.
-CONNECT_TIMEOUT = 5
+CONNECT_TIMEOUT = 3
 WORKERS_TIMEOUT = 60
 
 
@@ -1147,12 +1147,45 @@ def _client_for(scheduler):
                 f"--scheduler {scheduler}: its {value} workers did not start "
                 f"within {WORKERS_TIMEOUT} s ({_one_line(error)})") from None
         return client, cluster
+    # A plain TCP connection first: a refused address is an error at once
+    # (Dask's own connect retries for its whole timeout).
+    address = value.split("://", 1)[-1]
+    host, _, port = address.rpartition(":")
     try:
+        import socket
+        socket.create_connection((host.strip("[]"), int(port)),
+                                 timeout=CONNECT_TIMEOUT).close()
         return Client(value, timeout=CONNECT_TIMEOUT), None
     except Exception as error:  # OSError, TimeoutError, ValueError
         raise shellspace.InputError(
             f"--scheduler {scheduler}: no scheduler answered within "
             f"{CONNECT_TIMEOUT} s ({_one_line(error)})") from None
+
+
+def _split_inputs(inputs):
+    """The paths of a comma-separated list; an empty item (",,", a trailing
+    comma) is an InputError."""
+    paths = inputs.split(",")
+    if any(not p.strip() for p in paths):
+        raise shellspace.InputError(
+            f"--inputs '{inputs}' has an empty item"
+            + (" (a trailing comma)" if inputs.endswith(",") else ""))
+    return paths
+
+
+def _read_collection(inputs):
+    """(paths, shapes, F) of a comma-separated list of meshes with one
+    connectivity."""
+    paths = _split_inputs(inputs)
+    if len(paths) < 2:
+        raise shellspace.InputError("--inputs needs at least 2 meshes")
+    meshes = [shellspace.read_mesh(p) for p in paths]
+    F = meshes[0][1]
+    for p, (V, faces) in zip(paths, meshes):
+        if faces.shape != F.shape or not np.array_equal(faces, F):
+            raise shellspace.InputError(
+                f"{p}: another connectivity than {paths[0]}")
+    return paths, np.stack([V for V, _ in meshes]), F
 
 
 def _parser():
