@@ -278,12 +278,18 @@ int RunSimulate() {
   // The exit code says what the summary says: a last stage that did not
   // converge (NO_CONVERGENCE after --lm_iterations) is exit 4.
   RunStatus status("branching simulate");
-  status.Require(result.converged,
-                 "the last stage ended " + result.termination + " after " +
-                     std::to_string(result.iterations) +
-                     " LM iterations (--lm_iterations " +
-                     std::to_string(FLAGS_lm_iterations) + " per stage)");
-  summary.Add("converged", result.converged);
+  const std::string last =
+      result.stages.empty() ? "" : result.stages.back().termination;
+  const bool converged = last == "CONVERGENCE";
+  status.Require(converged, "the last stage ended " + last + " after " +
+                                std::to_string(result.stages.empty()
+                                                   ? 0
+                                                   : result.stages.back()
+                                                         .iterations) +
+                                " LM iterations (--lm_iterations " +
+                                std::to_string(FLAGS_lm_iterations) +
+                                " per stage)");
+  summary.Add("converged", converged);
   if (FLAGS_delta_extrapolation >= 2 && ObservedStop() == StopCause::kNone) {
     const DeltaExtrapolation ex = ExtrapolateDelta(
         s, ExtrapolationWidths(result.delta, FLAGS_delta_extrapolation),
