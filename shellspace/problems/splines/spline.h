@@ -48,7 +48,7 @@ struct SplineResult {
 // the initial gradient. Without it a start at a stationary point (constant
 // keyframes: initial gradient exactly 0) could never meet the relative
 // criterion, and a run whose gradient is 2.7e-15 reported "not converged".
-inline constexpr double kAbsoluteGradientFloor = 1e-12;
+inline constexpr double kAbsoluteGradientFloor = 1e-10;
 
 // Settings of the outer L-BFGS loop.
 struct SplineSettings {
