@@ -69,6 +69,7 @@ py::object GeodesicPy(const py::object& start_v, const py::object& end_v,
                       const MaterialArgs& material_args,
                       const SolverOptions& solver) {
   const auto clock = Clock::now();
+  CheckOutputs(output, png, gltf);
   const workflows::GeodesicOptions options =
       GeodesicOptionsOf(start_v, end_v, F, steps, mask, multires,
                         linear_solver, lm, init, material_args, solver,
@@ -81,12 +82,13 @@ py::object GeodesicPy(const py::object& start_v, const py::object& end_v,
   if (report)
     py::print(result.geodesic().summary.FullReport(),
               py::arg("file") = py::module_::import("sys").attr("stderr"));
-  if (!result.status.failed()) {
-    WritePath(output, png, gltf, result.start.faces, result.path());
-  }
-  const py::object summary =
-      WorkflowSummary(workflows::ToJson(result), result.material, result.start,
+  const JsonObject json =
+      WorkflowJson(workflows::ToJson(result), result.material, result.start,
                       Seconds(clock), solver, output);
+  if (!result.status.failed()) {
+    WritePath(output, png, gltf, result.start.faces, result.path(), json);
+  }
+  const py::object summary = ToDict(json);
   py::object value = FromPath(result.path());
   return FinishResult(solver, "geodesic", std::move(result), std::move(value),
                       summary);
@@ -100,6 +102,7 @@ py::object LogPy(const py::object& start_v, const py::object& end_v,
                  const MaterialArgs& material_args,
                  const SolverOptions& solver) {
   const auto clock = Clock::now();
+  CheckOutputFile(output);
   const workflows::GeodesicOptions options =
       GeodesicOptionsOf(start_v, end_v, F, steps, mask, multires,
                         linear_solver, lm, init, material_args, solver, "log");
@@ -133,6 +136,7 @@ py::object ShootPy(const py::object& first_v, const py::object& second_v,
                    const SolverOptions& solver) {
   const auto clock = Clock::now();
   CheckAtLeast("steps", steps, 1);
+  CheckOutputs(output, png, gltf);
   Shell first = MakeShell(first_v, F, "first");
   workflows::ShootOptions options;
   options.second = CompatiblePositions(second_v, first, "second");
@@ -152,10 +156,11 @@ py::object ShootPy(const py::object& first_v, const py::object& second_v,
     result = workflows::RunShoot(options);
   }
   // An EXP step without a root is the CLI's unsolved step (exit 4).
-  WritePath(output, png, gltf, result.first.faces, result.path());
-  const py::object summary =
-      WorkflowSummary(workflows::ToJson(result), result.material, result.first,
+  const JsonObject json =
+      WorkflowJson(workflows::ToJson(result), result.material, result.first,
                       Seconds(clock), solver, output);
+  WritePath(output, png, gltf, result.first.faces, result.path(), json);
+  const py::object summary = ToDict(json);
   py::object value = FromPath(result.path());
   return FinishResult(solver, "shoot", std::move(result), std::move(value),
                       summary);
@@ -174,6 +179,7 @@ py::object TransportPy(const py::object& path_object,
   if (!(epsilon > 0) || !std::isfinite(epsilon)) {
     throw InputError("epsilon must be > 0, got " + std::to_string(epsilon));
   }
+  CheckOutputs(output, png, gltf);
   const std::vector<Positions> frames = ShapeListArgument(path_object, "path");
   if (frames.size() < 2) throw InputError("path: need at least 2 frames");
   Shell first = MakeShell(frames[0], F, "path[0]");
@@ -195,10 +201,11 @@ py::object TransportPy(const py::object& path_object,
     SolveControl::Solving solving(*solver.control);
     result = workflows::RunTransport(options);
   }
-  WritePath(output, png, gltf, result.first.faces, result.shapes());
-  const py::object summary =
-      WorkflowSummary(workflows::ToJson(result), result.material, result.first,
+  const JsonObject json =
+      WorkflowJson(workflows::ToJson(result), result.material, result.first,
                       Seconds(clock), solver, output);
+  WritePath(output, png, gltf, result.first.faces, result.shapes(), json);
+  const py::object summary = ToDict(json);
   py::object value = FromPath(result.shapes());
   return FinishResult(solver, "transport", std::move(result), std::move(value),
                       summary);

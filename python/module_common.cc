@@ -9,6 +9,8 @@
 #include "shellspace/io/atomic_file.h"
 #include "shellspace/io/frame_sequence.h"
 #include "shellspace/io/gltf_writer.h"
+#include "shellspace/io/output_directory.h"
+#include "shellspace/io/output_paths.h"
 #include "shellspace/io/png_writer.h"
 #include "shellspace/render/film_strip.h"
 #include "shellspace/reports/shape_reports.h"
@@ -195,17 +197,48 @@ void CheckSteps(const std::string& name, long steps, long min, double bytes,
               model);
 }
 
+void CheckOutputs(const std::optional<std::string>& output,
+                  const std::optional<std::string>& png,
+                  const std::optional<std::string>& gltf,
+                  const std::vector<std::pair<std::string, std::string>>&
+                      inputs) {
+  OutputPaths paths;
+  for (const auto& [name, path] : inputs) paths.InputFile(name, path);
+  if (output) {
+    if (output->empty()) throw InputError("output: an empty path");
+    paths.OutputDirectory("output", *output);
+  }
+  if (png) {
+    if (png->empty()) throw InputError("png: an empty path");
+    paths.OutputFile("png", *png);
+  }
+  if (gltf) {
+    if (gltf->empty()) throw InputError("gltf: an empty path");
+    paths.OutputGlb("gltf", *gltf);
+  }
+  paths.Check();
+}
+
+void CheckOutputFile(const std::optional<std::string>& output) {
+  if (!output) return;
+  if (output->empty()) throw InputError("output: an empty path");
+  OutputPaths().OutputFile("output", *output).Check();
+}
+
 void WritePath(const std::optional<std::string>& output,
                const std::optional<std::string>& png,
                const std::optional<std::string>& gltf, const Faces& faces,
-               const std::vector<Positions>& path) {
+               const std::vector<Positions>& path, const JsonObject& summary) {
+  if (!output && !png && !gltf) return;
   RenderOptions options;
   if (png) ValidateRenderOptions(options);
-  AtomicFileSet files;  // all together or none, as the CLI
-  if (gltf) files.Add(*gltf, EncodeGltfMorphAnimation(path, faces));
-  if (png) files.Add(*png, EncodePng(RenderFilmStrip(path, faces, options)));
-  if (output) AddFrames(*output, faces, path, &files);
-  files.Commit();
+  // All together or none, as the CLI: the directory staged and replaced
+  // whole with its summary.json, the files outside renamed with it.
+  StagedRun run(output.value_or(""));
+  if (gltf) run.AddOutside(*gltf, EncodeGltfMorphAnimation(path, faces));
+  if (png) run.AddOutside(*png, EncodePng(RenderFilmStrip(path, faces, options)));
+  if (output) WriteFrames(run.staging(), faces, path);
+  run.Commit(summary.str());
 }
 
 JsonObject& AddOutput(JsonObject& json,
@@ -214,15 +247,25 @@ JsonObject& AddOutput(JsonObject& json,
   return json;
 }
 
+JsonObject WorkflowJson(JsonObject json,
+                        const workflows::MaterialChoice& material,
+                        const Mesh& reference, std::optional<double> seconds,
+                        const SolverOptions& solver,
+                        const std::optional<std::string>& output) {
+  json.Add("material", MaterialRecord(material, reference));
+  if (seconds) json.Add("seconds", *seconds);
+  AddStopFields(json, *solver.control);
+  AddOutput(json, output);
+  return json;
+}
+
 py::object WorkflowSummary(JsonObject json,
                            const workflows::MaterialChoice& material,
                            const Mesh& reference, std::optional<double> seconds,
                            const SolverOptions& solver,
                            const std::optional<std::string>& output) {
-  json.Add("material", MaterialRecord(material, reference));
-  if (seconds) json.Add("seconds", *seconds);
-  AddStopFields(json, *solver.control);
-  return ToDict(AddOutput(json, output));
+  return ToDict(WorkflowJson(std::move(json), material, reference, seconds,
+                             solver, output));
 }
 
 ShapeSet MakeShapeSet(const py::object& list, const py::object& F,

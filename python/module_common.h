@@ -171,21 +171,41 @@ inline constexpr const char* kPathModel = "64 MB + 200 B x #V x (K + 1)";
 
 // ---- Outputs ------------------------------------------------------------
 
-// What a path verb writes: `output` (a directory of shape_000.ply ...),
+// The outputs of a call, checked before any work by the one policy of
+// every front end (io/output_paths.h): `output` a directory replaced whole,
+// `png` and `gltf` files (gltf named .glb), none an existing input, no two
+// naming one file, each writable and not too long a name. `inputs`: the
+// files the call reads (name, path).
+void CheckOutputs(const std::optional<std::string>& output,
+                  const std::optional<std::string>& png,
+                  const std::optional<std::string>& gltf,
+                  const std::vector<std::pair<std::string, std::string>>&
+                      inputs = {});
+
+// `output` a file (a mesh) checked as CheckOutputs checks its files.
+void CheckOutputFile(const std::optional<std::string>& output);
+
+// What a path verb writes, as the CLI: `output` (a directory of
+// shape_000.ply ... and summary.json, `summary`'s text, replaced whole),
 // `png` (a film strip) and `gltf` (a .glb morph animation,
-// io/gltf_writer.h), each if given (not None).
+// io/gltf_writer.h), each if given (not None), all together or none.
 void WritePath(const std::optional<std::string>& output,
                const std::optional<std::string>& png,
                const std::optional<std::string>& gltf, const Faces& faces,
-               const std::vector<Positions>& path);
+               const std::vector<Positions>& path, const JsonObject& summary);
 
 JsonObject& AddOutput(JsonObject& json,
                       const std::optional<std::string>& output);
 
-// A workflow's summary dict: its JSON, then the keys every front-end
+// A workflow's summary: its JSON, then the keys every front-end
 // summary ends with: material (as resolved for `reference`), seconds (when
 // given: the workflows that do not print it themselves), the stop fields,
-// output.
+// output. WorkflowSummary: as a dict.
+JsonObject WorkflowJson(JsonObject json,
+                        const workflows::MaterialChoice& material,
+                        const Mesh& reference, std::optional<double> seconds,
+                        const SolverOptions& solver,
+                        const std::optional<std::string>& output);
 py::object WorkflowSummary(JsonObject json,
                            const workflows::MaterialChoice& material,
                            const Mesh& reference, std::optional<double> seconds,

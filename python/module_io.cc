@@ -1,5 +1,7 @@
 // The module's mesh files: read_mesh, write_mesh, read_mask, write_gltf.
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "python/array_arguments.h"
 #include "python/module_common.h"
@@ -7,6 +9,7 @@
 #include "shellspace/geometry/validation.h"
 #include "shellspace/io/gltf_writer.h"
 #include "shellspace/io/mesh_io.h"
+#include "shellspace/io/output_paths.h"
 
 namespace shellspace {
 namespace pymodule {
@@ -37,9 +40,34 @@ void WriteGltfPy(const std::string& path, const py::object& frames_object,
   WriteGltfMorphAnimation(path, frames.shapes, frames.faces, options);
 }
 
+using NamedPaths = std::vector<std::pair<std::string, std::string>>;
+
+// The library's output-path policy (io/output_paths.h) for the Python
+// front ends that write their own files (shellspace.collections).
+void CheckOutputPathsPy(const NamedPaths& inputs, const NamedPaths& files,
+                        const NamedPaths& directories) {
+  OutputPaths paths;
+  for (const auto& [name, path] : inputs) paths.InputFile(name, path);
+  for (const auto& [name, path] : files) {
+    if (path.empty()) throw InputError(name + ": an empty path");
+    paths.OutputFile(name, path);
+  }
+  for (const auto& [name, path] : directories) {
+    if (path.empty()) throw InputError(name + ": an empty path");
+    paths.OutputDirectory(name, path);
+  }
+  paths.Check();
+}
+
 }  // namespace
 
 void RegisterIo(py::module_& m) {
+  m.def("_check_output_paths", &CheckOutputPathsPy, py::arg("inputs"),
+        py::arg("output_files"), py::arg("output_directories") = NamedPaths{},
+        "The output-path policy of every front end, checked before any work: "
+        "lists of (name, path); raises InputError (one line) for an output "
+        "that is an input under any spelling, two outputs naming one file, "
+        "an output that cannot be written or named.");
   m.def("read_mesh", &ReadMeshPy, py::arg("path"),
         WithParameters(
             "read_mesh",

@@ -73,6 +73,7 @@ py::object SplinePy(const py::object& keyframes_object,
     throw InputError("method must be nonlinear or ltheta");
   }
   CheckAtLeast("steps", steps, 2);
+  CheckOutputs(output, png, gltf);
   const auto clock = Clock::now();
   const ShapeSet set = MakeShapeSet(keyframes_object, F, "keyframes");
   CheckPathSteps(steps, 2, set.first.mesh.num_vertices());
@@ -94,10 +95,12 @@ py::object SplinePy(const py::object& keyframes_object,
     SolveControl::Solving solving(*solver.control);
     result = workflows::RunSpline(options);
   }
-  WritePath(output, png, gltf, set.first.mesh.faces, result.path());
-  const py::object summary = WorkflowSummary(
+  const JsonObject json =
+      WorkflowJson(
       workflows::ToJson(result, Seconds(clock)), result.material,
       set.first.mesh, std::nullopt, solver, output);
+  WritePath(output, png, gltf, set.first.mesh.faces, result.path(), json);
+  const py::object summary = ToDict(json);
   py::object value = FromPath(result.path());
   return FinishResult(solver, "spline", std::move(result), std::move(value),
                       summary);
@@ -116,6 +119,7 @@ py::object RegressPy(const py::object& inputs_object,
   if (!(sigma >= 0) || !std::isfinite(sigma)) {
     throw InputError("sigma must be >= 0, got " + std::to_string(sigma));
   }
+  CheckOutputs(output, png, gltf);
   const auto clock = Clock::now();
   const ShapeSet set = MakeShapeSet(inputs_object, F, "inputs");
   CheckPathSteps(steps, 2, set.first.mesh.num_vertices());
@@ -133,10 +137,12 @@ py::object RegressPy(const py::object& inputs_object,
     SolveControl::Solving solving(*solver.control);
     result = workflows::RunRegress(options);
   }
-  WritePath(output, png, gltf, set.first.mesh.faces, result.path());
-  const py::object summary = WorkflowSummary(
+  const JsonObject json =
+      WorkflowJson(
       workflows::ToJson(result, Seconds(clock)), result.material,
       set.first.mesh, std::nullopt, solver, output);
+  WritePath(output, png, gltf, set.first.mesh.faces, result.path(), json);
+  const py::object summary = ToDict(json);
   py::object value = FromPath(result.path());
   return FinishResult(solver, "regress", std::move(result), std::move(value),
                       summary);

@@ -12,6 +12,7 @@
 #include "shellspace/io/atomic_file.h"
 #include "shellspace/io/frame_sequence.h"
 #include "shellspace/io/mesh_io.h"
+#include "shellspace/io/output_directory.h"
 #include "shellspace/problems/statistics/elastic_mean.h"
 #include "shellspace/problems/statistics/leave_one_out.h"
 #include "shellspace/problems/statistics/procrustes_pca.h"
@@ -46,6 +47,7 @@ py::object MeanPy(const py::object& inputs_object, const py::object& F,
                   const MaterialArgs& material_args,
                   const SolverOptions& solver) {
   const auto clock = Clock::now();
+  CheckOutputFile(output);
   const ShapeSet set = MakeShapeSet(inputs_object, F, "inputs");
   const auto options = OptionsOfInputs<workflows::MeanOptions>(
       set, material_args, solver, "mean");
@@ -76,17 +78,13 @@ void WritePcaFiles(const workflows::PcaResult& result, const Faces& faces,
                    const std::optional<std::string>& output,
                    const std::optional<std::string>& png) {
   if (output) {
-    MakeDirectory(*output);
-    AtomicFileSet files;
-    std::vector<Mesh> meshes;
-    meshes.reserve(result.shapes.size());
+    // Replaced whole, with its summary.json, as the CLI's directory.
+    StagedRun run(*output);
     for (const auto& [name, positions] : result.shapes) {
-      meshes.push_back(Mesh{positions, faces});
-      const std::string path = *output + "/" + name + ".ply";
-      files.Add(path, MeshWriter(meshes.back(), path));
+      WriteMesh(Mesh{positions, faces}, run.File(name + ".ply"));
     }
-    files.Add(*output + "/pca.json", json.str() + "\n");
-    files.Commit();
+    WriteFileAtomically(run.File("pca.json"), json.str() + "\n");
+    run.Commit(json.str());
   }
   if (png && result.stopped_in.empty()) {
     std::vector<Positions> strip;
@@ -125,6 +123,7 @@ py::object PcaPy(const py::object& inputs_object, const py::object& F,
   if (!(amplitude >= 0) || !std::isfinite(amplitude)) {
     throw InputError("amplitude must be >= 0");
   }
+  CheckOutputs(output, png, std::nullopt);
   const ShellPcaOptions pca = MakeShellPcaOptions(
       log_steps, exp_steps, max_exp_steps, displacement, "");
   const auto clock = Clock::now();

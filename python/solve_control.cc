@@ -7,6 +7,7 @@
 #include <exception>
 #include <mutex>
 #include <sstream>
+#include <utility>
 
 #include "shellspace/geometry/mesh.h"
 
@@ -20,6 +21,7 @@ static_assert(std::atomic<unsigned>::is_always_lock_free,
 
 constexpr int kTimeLimit = 1;
 constexpr int kInterrupt = 2;
+constexpr int kRaised = 3;
 
 // shellspace.NotConvergedError (a new reference kept for the process).
 PyObject* g_not_converged = nullptr;
@@ -119,6 +121,8 @@ void RegisterNotConvergedError(py::module_& module) {
 SolveControl::SolveControl(std::optional<double> time_limit)
     : state_(std::make_shared<State>()) {
   state_->sigint_count = g_sigint_count.load();
+  state_->caller = std::this_thread::get_id();
+  state_->next_signal_check = std::chrono::steady_clock::now();
   if (!time_limit) return;
   const double seconds = *time_limit;
   if (std::isnan(seconds) || seconds < 0) {
@@ -144,6 +148,10 @@ SolveControl::SolveControl(std::optional<double> time_limit)
 }
 
 SolveControl::~SolveControl() {
+  Py_XDECREF(state_->raised_type);
+  Py_XDECREF(state_->raised_value);
+  Py_XDECREF(state_->raised_trace);
+  state_->raised_type = state_->raised_value = state_->raised_trace = nullptr;
   if (pending_type_ == nullptr) return;
   // Not raised (the call failed otherwise after its solves): the
   // interrupt is delivered again, so that it is not lost.
@@ -164,10 +172,23 @@ StopPoll SolveControl::Poll() const {
       state->cause.compare_exchange_strong(none, kInterrupt);
       return true;
     }
-    if (state->has_deadline &&
-        std::chrono::steady_clock::now() >= state->deadline) {
+    const auto now = std::chrono::steady_clock::now();
+    if (state->has_deadline && now >= state->deadline) {
       state->cause.compare_exchange_strong(none, kTimeLimit);
       return true;
+    }
+    // Python's handlers of other signals, from the calling thread (the
+    // only one they run in), at most every 100 ms.
+    if (std::this_thread::get_id() == state->caller &&
+        now >= state->next_signal_check && Py_IsInitialized()) {
+      state->next_signal_check = now + std::chrono::milliseconds(100);
+      py::gil_scoped_acquire gil;
+      if (PyErr_CheckSignals() != 0) {
+        PyErr_Fetch(&state->raised_type, &state->raised_value,
+                    &state->raised_trace);
+        state->cause.compare_exchange_strong(none, kRaised);
+        return true;
+      }
     }
     return false;
   };
@@ -184,6 +205,8 @@ std::string SolveControl::stop_reason() const {
     }
     case kInterrupt:
       return "SIGINT";
+    case kRaised:
+      return "a signal handler raised";
     default:
       return "";
   }
@@ -200,6 +223,14 @@ SolveControl::Solving::~Solving() {
   // An exception leaving the solve: the interpreter handles the signal at
   // its next check.
   if (std::uncaught_exceptions() > 0 || control_.pending_type_ != nullptr) {
+    return;
+  }
+  State& state = *control_.state_;
+  if (state.raised_type != nullptr) {
+    // What a signal handler raised in a poll: raised by Finish.
+    control_.pending_type_ = std::exchange(state.raised_type, nullptr);
+    control_.pending_value_ = std::exchange(state.raised_value, nullptr);
+    control_.pending_trace_ = std::exchange(state.raised_trace, nullptr);
     return;
   }
   if (PyErr_CheckSignals() != 0) {

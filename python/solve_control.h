@@ -9,6 +9,11 @@
 // reads two atomics and the clock: any thread may call it, without the GIL,
 // and a run it does not stop computes the same digits as without it.
 //
+// Other signals: the polls of the calling thread run Python's signal
+// handlers every 100 ms (the GIL taken for that moment); a handler that
+// raises (a SIGALRM handler's TimeoutError) stops the solves, and the call
+// raises that exception with its result attached, as for SIGINT.
+//
 // SIGINT: while a solve runs (the GIL released) a C handler chained in
 // front of Python's own counts the signal and calls Python's handler, so
 // the interpreter sees the signal as always. After the solves the call
@@ -32,6 +37,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "shellspace/solvers/solver_settings.h"
@@ -88,8 +94,17 @@ class SolveControl {
 
  private:
   struct State {
-    std::atomic<int> cause{0};  // 0 none, 1 time limit, 2 SIGINT
+    std::atomic<int> cause{0};  // 0 none, 1 time limit, 2 SIGINT, 3 raised
     unsigned sigint_count = 0;  // the count when the call began
+    // The thread of the call: its polls run Python's signal handlers
+    // (PyErr_CheckSignals, the GIL taken) at most every 100 ms, so that a
+    // handler (SIGALRM, SIGTERM, ...) runs within a second during a solve;
+    // what a handler raised stops the solves and is raised by Finish.
+    std::thread::id caller;
+    std::chrono::steady_clock::time_point next_signal_check;
+    PyObject* raised_type = nullptr;
+    PyObject* raised_value = nullptr;
+    PyObject* raised_trace = nullptr;
     bool has_deadline = false;
     std::chrono::steady_clock::time_point deadline;
   };

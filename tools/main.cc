@@ -9,7 +9,12 @@
 #include <gflags/gflags.h>
 #include <glog/logging.h>
 
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <exception>
@@ -31,6 +36,9 @@
 #include "tools/verbs/verb.h"
 
 namespace shellspace {
+
+std::string MainVerbName();
+int RunMain(int argc, char** argv);
 
 std::map<std::string, Verb>& VerbRegistry() {
   static std::map<std::string, Verb> registry;
@@ -349,11 +357,68 @@ int RunVerb(const Verb& verb) {
   }
 }
 
+// Standard output and error closed when the process started: each gets a
+// read-only /dev/null in its place, so that no file the run opens takes
+// descriptor 1 or 2 (and receives the report), and every write to it
+// fails, which CheckedExit reports.
+void ReserveStandardDescriptors() {
+  for (int fd = 0; fd <= 2; ++fd) {
+    if (::fcntl(fd, F_GETFD) != -1 || errno != EBADF) continue;
+    const int null = ::open("/dev/null", fd == 0 ? O_WRONLY : O_RDONLY);
+    if (null >= 0 && null != fd) {
+      ::dup2(null, fd);
+      ::close(null);
+    }
+  }
+}
+
+// `code`, unless standard output or error could not be written, flushed
+// or closed: then one line on stderr (if it can still be written) and
+// exit 1 (or `code` if that already says failure). A report to /dev/full
+// or to a closed stdout is a failed run, not exit 0.
+int CheckedExit(const std::string& name, int code) {
+  std::cout.flush();
+  const bool out_failed = !std::cout.good() || std::fflush(stdout) != 0 ||
+                          std::ferror(stdout) != 0;
+  const int out_error = errno;
+  const bool out_closed = out_failed ? false : ::close(1) != 0 &&
+                                                   errno != EBADF;
+  if (out_failed || out_closed) {
+    std::cerr << "shellspace" << (name.empty() ? "" : " " + name)
+              << ": error: cannot write standard output ("
+              << std::strerror(out_failed ? out_error : errno) << ")\n";
+    code = code == 0 ? 1 : code;
+  }
+  std::cerr.flush();
+  if (!std::cerr.good() || std::fflush(stderr) != 0 ||
+      std::ferror(stderr) != 0) {
+    code = code == 0 ? 1 : code;
+  }
+  return code;
+}
+
 }  // namespace
 }  // namespace shellspace
 
-// The verb, its flags (parsed and validated), then the verb's run.
+// The verb, its flags (parsed and validated), then the verb's run; the
+// exit code says failure also when the report could not be written.
 int main(int argc, char** argv) {
+  shellspace::ReserveStandardDescriptors();
+  const int code = shellspace::RunMain(argc, argv);
+  return shellspace::CheckedExit(shellspace::MainVerbName(), code);
+}
+
+namespace shellspace {
+namespace {
+std::string& VerbNameStorage() {
+  static std::string name;
+  return name;
+}
+}  // namespace
+
+std::string MainVerbName() { return VerbNameStorage(); }
+
+int RunMain(int argc, char** argv) {
   shellspace::SetRunCommandLine(argc, argv);
   shellspace::SerialOpenMpInThisThread();
   shellspace::KeepFreedHeapForReuse();
@@ -363,6 +428,7 @@ int main(int argc, char** argv) {
       code >= 0) {
     return code;
   }
+  VerbNameStorage() = name;
   const shellspace::Verb& verb = shellspace::VerbRegistry().at(name);
   if (const int code = shellspace::ParseVerbFlags(verb, argc, argv, first_flag);
       code >= 0) {
@@ -371,3 +437,5 @@ int main(int argc, char** argv) {
   shellspace::QuietCeresLogging(argv[0]);
   return shellspace::RunVerb(verb);
 }
+
+}  // namespace shellspace

@@ -38,6 +38,7 @@ import ctypes
 import hashlib
 import math
 import os
+import signal
 import sys
 import tempfile
 import time
@@ -201,6 +202,72 @@ def transfer_task(shapes, F, source, detail, j, options):
 
 # ---- running tasks in-process or on Dask ----------------------------------
 
+class Stopped(BaseException):
+    """SIGTERM or SIGINT arrived while the command line ran a verb (its
+    handlers raise this): `signal_name`, `exit_code` (143, 130) and, once a
+    verb function passed it on, `partial` (its result so far)."""
+
+    def __init__(self, number):
+        super().__init__(signal.Signals(number).name)
+        self.signal_name = signal.Signals(number).name
+        self.exit_code = 128 + int(number)
+        self.partial = None
+
+
+class TimeLimitError(shellspace.NotConvergedError):
+    """The time limit passed before anything could be computed (e.g. the
+    scheduler had no workers)."""
+
+
+def _deadline(time_limit, name="time_limit"):
+    """The monotonic deadline of `time_limit` seconds (None or 0: none);
+    a negative, NaN or non-number limit is an InputError."""
+    if time_limit is None:
+        return None
+    if isinstance(time_limit, bool) or not isinstance(
+            time_limit, (int, float, np.integer, np.floating)):
+        raise shellspace.InputError(
+            f"{name} must be a number of seconds, got "
+            f"{type(time_limit).__name__}")
+    if not time_limit >= 0:
+        raise shellspace.InputError(
+            f"{name} must be >= 0 seconds (0 or None: no limit), got "
+            f"{time_limit}")
+    if time_limit == 0 or math.isinf(time_limit):
+        return None
+    return time.monotonic() + float(time_limit)
+
+
+def _check_count(name, value, minimum):
+    """A count keyword: an int (not a bool) >= minimum."""
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)):
+        raise shellspace.InputError(
+            f"{name} must be an integer, got {type(value).__name__} {value!r}")
+    if value < minimum:
+        raise shellspace.InputError(f"{name} must be >= {minimum}, got {value}")
+
+
+def _await_workers(client, deadline):
+    """True once `client`'s scheduler has a worker; False if `deadline`
+    passed first; without a deadline an InputError after WORKERS_TIMEOUT
+    seconds (tasks would wait for workers forever)."""
+    try:
+        if client.scheduler_info().get("workers"):
+            return True
+    except Exception:
+        pass
+    timeout = (WORKERS_TIMEOUT if deadline is None
+               else max(0.0, deadline - time.monotonic()))
+    try:
+        client.wait_for_workers(1, timeout=timeout)
+        return True
+    except Exception:
+        if deadline is not None:
+            return False
+        raise shellspace.InputError(
+            f"the scheduler has no workers (none registered within "
+            f"{WORKERS_TIMEOUT} s)") from None
+
 class _Progress:
     """A counter on stderr (or a callable progress(done, total, failed))."""
 
@@ -225,8 +292,12 @@ def _run(function, items, shapes, F, client, on_result, time_limit, extra):
     """Calls function(shapes, F, *item, *extra) for every item, in-process
     (client None) or as one Dask task each with the shapes scattered once;
     on_result(result) on this thread as results arrive. Returns the items
-    not finished (time_limit seconds passed)."""
-    deadline = None if not time_limit else time.monotonic() + time_limit
+    not finished (the deadline passed). `time_limit`: seconds, or a
+    ("deadline", monotonic time) pair shared by the stages of a verb."""
+    if isinstance(time_limit, tuple):
+        deadline = time_limit[1]
+    else:
+        deadline = _deadline(time_limit)
     items = list(items)
     if client is None:
         for n, item in enumerate(items):
@@ -235,6 +306,8 @@ def _run(function, items, shapes, F, client, on_result, time_limit, extra):
             on_result(function(shapes, F, *item, *extra))
         return []
     from distributed import as_completed
+    if not _await_workers(client, deadline):
+        return items
     shapes_future = client.scatter(shapes, broadcast=True, hash=False)
     faces_future = client.scatter(F, broadcast=True, hash=False)
     futures = {}
@@ -275,7 +348,23 @@ def _digest(shapes, F, options):
     return h.hexdigest()
 
 
+def _umask():
+    """The process's umask (read from /proc, else set and restored)."""
+    try:
+        with open("/proc/self/status") as status:
+            for line in status:
+                if line.startswith("Umask:"):
+                    return int(line.split()[1], 8)
+    except (OSError, ValueError, IndexError):
+        pass
+    mask = os.umask(0o022)
+    os.umask(mask)
+    return mask
+
+
 def _write_npz_atomically(path, **arrays):
+    """Staged beside `path` and renamed into place, with the mode a new
+    file gets (0666 less the umask; mkstemp's is 0600)."""
     directory = os.path.dirname(os.path.abspath(path))
     handle, temporary = tempfile.mkstemp(
         prefix=f".{os.path.basename(path)}.", suffix=".tmp", dir=directory)
@@ -283,6 +372,7 @@ def _write_npz_atomically(path, **arrays):
         with os.fdopen(handle, "wb") as out:
             np.savez(out, **arrays)
             out.flush()
+            os.fchmod(out.fileno(), 0o666 & ~_umask())
             os.fsync(out.fileno())
         os.replace(temporary, path)
     except BaseException:
@@ -356,11 +446,14 @@ def _load_cache(path, n, digest):
             for (i, j), text in zip(data["message_pairs"].tolist(),
                                     data["message_texts"].tolist()):
                 result.messages[(i, j)] = text
-    except (KeyError, ValueError, OSError) as error:
-        if isinstance(error, shellspace.InputError):
-            raise
+    except shellspace.InputError:
+        raise
+    except Exception as error:  # BadZipFile, EOFError, a foreign .npz, ...
+        text = str(error).splitlines()[0] if str(error) else ""
         raise shellspace.InputError(
-            f"cache {path} is not a distance cache: {error}") from None
+            f"cache {path} is not a distance cache (corrupt or another "
+            f"file: {type(error).__name__}{': ' + text if text else ''}); "
+            "remove it or give another --cache") from None
     return result
 
 
@@ -402,6 +495,9 @@ def distance_matrix(shapes, F, client=None, steps=4, cache=None,
     an unconverged pair is NOT_CONVERGED with NaN distance)."""
     shapes, F = _check_collection(shapes, F)
     n = shapes.shape[0]
+    _check_count("steps", steps, 1)
+    deadline = _deadline(time_limit)
+    _deadline(pair_time_limit, "pair_time_limit")
     options = dict(geodesic_kwargs, steps=steps, threads=threads, quiet=True,
                    time_limit=pair_time_limit, blas_threads=blas_threads)
     digest = _digest(shapes, F, {k: v for k, v in options.items()
@@ -437,7 +533,10 @@ def distance_matrix(shapes, F, client=None, steps=4, cache=None,
 
     try:
         left = _run(geodesic_task, todo, shapes, F, client, on_result,
-                    time_limit, (options, tuple(fail_pairs)))
+                    ("deadline", deadline), (options, tuple(fail_pairs)))
+    except Stopped as stop:
+        stop.partial = result
+        raise
     finally:
         save()
     for i, j in left:
@@ -672,7 +771,13 @@ def elastic_mean(shapes, F, client=None, tolerance=1e-8, max_iterations=100,
         shapes_per_task = max(1, math.ceil(n / 64))
     if int(shapes_per_task) < 1:
         raise shellspace.InputError("shapes_per_task must be >= 1")
-    deadline = None if not time_limit else time.monotonic() + time_limit
+    if isinstance(time_limit, tuple):  # ("deadline", t) of a verb's stages
+        deadline = time_limit[1]
+    else:
+        deadline = _deadline(time_limit)
+    if client is not None and not _await_workers(client, deadline):
+        raise TimeLimitError("elastic mean: the time limit passed before "
+                             "the scheduler had a worker")
     if initial is None:
         s = shapes[0].copy()
         for i in range(1, n):
@@ -697,63 +802,70 @@ def elastic_mean(shapes, F, client=None, tolerance=1e-8, max_iterations=100,
     shift = 0.0
     termination = "max iterations"
     iterations = 0
-    while True:
-        G = current["gradient"]
-        E = float(current["energies"].sum())
-        gnorm = float(np.abs(G).max())
-        if progress is True:
-            print(f"\relastic mean: step {iterations} |G| {gnorm:.3e} "
-                  f"(target {target:.1e})", end="", file=sys.stderr,
-                  flush=True)
-        elif callable(progress):
-            progress(iterations, gnorm, target)
-        if gnorm <= target:
-            termination = "converged"
-            break
-        if iterations >= max_iterations:
-            break
-        if deadline is not None and time.monotonic() >= deadline:
-            termination = "time limit"
-            break
-        iterations += 1
-        rows, cols, vals = current["hessian"]
-        unit = float(np.abs(vals[rows == cols]).mean())
-        for _ in range(30):
-            p, positive = shellspace.solve_modulo_rigid_motions(
-                rows, cols, vals, -G, s, shift=shift * unit)
-            slope = float(np.dot(G.ravel(), p.ravel()))
-            if positive and slope < 0:
+
+    try:
+        while True:
+            G = current["gradient"]
+            E = float(current["energies"].sum())
+            gnorm = float(np.abs(G).max())
+            if progress is True:
+                print(f"\relastic mean: step {iterations} |G| {gnorm:.3e} "
+                      f"(target {target:.1e})", end="", file=sys.stderr,
+                      flush=True)
+            elif callable(progress):
+                progress(iterations, gnorm, target)
+            if gnorm <= target:
+                termination = "converged"
                 break
-            shift = max(1e-3, 10 * shift)
-        else:
-            termination = "no descent direction"
-            break
-        trial = s + p
-        candidate = terms(trial)
-        accepted = False
-        if not candidate["infeasible"]:
-            E_t = float(candidate["energies"].sum())
-            accepted = (E_t <= E + 1e-4 * slope or
-                        (np.linalg.norm(candidate["gradient"]) <
-                         np.linalg.norm(G) and E_t <= E + 1e-10 * abs(E)))
-        history.append((gnorm, E, shift, accepted))
-        if accepted:
-            s, current = trial, candidate
-            shift = 0.0 if shift <= 1e-3 else shift / 10
-        else:
-            shift = max(1e-3, 10 * shift)
-    if progress is True:
-        print(file=sys.stderr)
-    result.mean = shellspace.align_rigidly(s, shapes[0])
-    result.energies = current["energies"]
-    result.energy = float(current["energies"].sum())
-    result.gradient_norm = float(np.abs(current["gradient"]).max())
-    result.gradient_target = target
-    result.converged = termination == "converged"
-    result.termination = termination
-    result.iterations = iterations
-    result.rounds = terms.rounds
-    result.history = history
+            if iterations >= max_iterations:
+                break
+            if deadline is not None and time.monotonic() >= deadline:
+                termination = "time limit"
+                break
+            iterations += 1
+            rows, cols, vals = current["hessian"]
+            unit = float(np.abs(vals[rows == cols]).mean())
+            for _ in range(30):
+                p, positive = shellspace.solve_modulo_rigid_motions(
+                    rows, cols, vals, -G, s, shift=shift * unit)
+                slope = float(np.dot(G.ravel(), p.ravel()))
+                if positive and slope < 0:
+                    break
+                shift = max(1e-3, 10 * shift)
+            else:
+                termination = "no descent direction"
+                break
+            trial = s + p
+            candidate = terms(trial)
+            accepted = False
+            if not candidate["infeasible"]:
+                E_t = float(candidate["energies"].sum())
+                accepted = (E_t <= E + 1e-4 * slope or
+                            (np.linalg.norm(candidate["gradient"]) <
+                             np.linalg.norm(G) and E_t <= E + 1e-10 * abs(E)))
+            history.append((gnorm, E, shift, accepted))
+            if accepted:
+                s, current = trial, candidate
+                shift = 0.0 if shift <= 1e-3 else shift / 10
+            else:
+                shift = max(1e-3, 10 * shift)
+    except Stopped as stop:
+        termination = f"stopped ({stop.signal_name})"
+        stop.partial = result
+        raise
+    finally:
+        if progress is True:
+            print(file=sys.stderr)
+        result.mean = shellspace.align_rigidly(s, shapes[0])
+        result.energies = current["energies"]
+        result.energy = float(current["energies"].sum())
+        result.gradient_norm = float(np.abs(current["gradient"]).max())
+        result.gradient_target = target
+        result.converged = termination == "converged"
+        result.termination = termination
+        result.iterations = iterations
+        result.rounds = terms.rounds
+        result.history = history
     return result
 
 
@@ -825,7 +937,7 @@ class ShellPca:
 def pca(shapes, F, client=None, mean=None, modes=3, log_steps=2,
         exp_steps=4, max_exp_steps=16, amplitude=1.0, mode_shapes=True,
         tolerance=1e-8, max_iterations=200, threads=1, blas_threads=1,
-        progress=False, shapes_per_task=None, **material):
+        progress=False, shapes_per_task=None, time_limit=None, **material):
     """Shell PCA of `shapes` at their elastic mean, as shellspace.pca: the
     metric g(u, w) = 1/2 u^T D_2^2 W[mean, mean] w, the displacements v_i =
     LOG_K(mean -> S_i) (K = log_steps, S_i aligned rigidly to the mean)
@@ -834,16 +946,19 @@ def pca(shapes, F, client=None, mean=None, modes=3, log_steps=2,
     sqrt(lambda_j) w_j) for the first `modes` modes, one task each. mean:
     given (#V x 3), or None: elastic_mean(shapes, F, client, ...). A
     failed LOG leaves its shape out of the Gram matrix (its status and
-    message say why). Returns a ShellPca; the same digits in-process and on
-    any cluster."""
+    message say why). time_limit: seconds for every stage (the mean, the
+    LOGs, the shots); the LOGs and shots it leaves are PENDING (out.pending
+    True) and the model is that of the finished LOGs. Returns a ShellPca;
+    the same digits in-process and on any cluster."""
     shapes, F = _check_collection(shapes, F)
     n = len(shapes)
+    deadline = _deadline(time_limit)
     if n < 2:
         raise shellspace.InputError(f"pca needs at least 2 shapes, got {n}")
     for name, value in (("modes", modes), ("log_steps", log_steps),
-                        ("exp_steps", exp_steps)):
-        if int(value) < 1:
-            raise shellspace.InputError(f"{name} must be >= 1")
+                        ("exp_steps", exp_steps),
+                        ("max_exp_steps", max_exp_steps)):
+        _check_count(name, value, 1)
     if modes > n - 1:
         raise shellspace.InputError(
             f"modes must be at most {n - 1} (inputs - 1), got {modes}")
@@ -855,7 +970,8 @@ def pca(shapes, F, client=None, mean=None, modes=3, log_steps=2,
     if mean is None:
         out.mean_result = elastic_mean(
             shapes, F, client=client, tolerance=tolerance,
-            shapes_per_task=shapes_per_task, progress=progress, **material)
+            shapes_per_task=shapes_per_task, progress=progress,
+            time_limit=("deadline", deadline), **material)
         if not out.mean_result.converged:
             raise shellspace.NotConvergedError(
                 f"elastic mean: |G| {out.mean_result.gradient_norm:.3g} above "
@@ -883,8 +999,11 @@ def pca(shapes, F, client=None, mean=None, modes=3, log_steps=2,
             found[i] = (status, v, message)
         counter.step(found[i][0] != OK)
 
-    _run(log_task, [(i, mean) for i in range(n)], shapes, F, client, on_log,
-         None, (options,))
+    left = _run(log_task, [(i, mean) for i in range(n)], shapes, F, client,
+                on_log, ("deadline", deadline), (options,))
+    out.pending = bool(left)
+    for i, _ in left:
+        found[i] = (PENDING, None, "not computed: the time limit came first")
     out.status = np.array([found[i][0] for i in range(n)], dtype=np.int8)
     out.messages = {i: found[i][2] for i in range(n) if found[i][2]}
     used = [i for i in range(n) if found[i][0] == OK]
@@ -936,8 +1055,11 @@ def pca(shapes, F, client=None, mean=None, modes=3, log_steps=2,
                     out.messages[name] = message
             counter.step(name not in out.mode_shapes)
 
-        _run(shoot_task, shots, shapes, F, client, on_shot, None,
-             (shot_options,))
+        left = _run(shoot_task, shots, shapes, F, client, on_shot,
+                    ("deadline", deadline), (shot_options,))
+        for name, _, _ in left:
+            out.pending = True
+            out.messages[name] = "not computed: the time limit came first"
         out.mode_shapes = {name: out.mode_shapes[name]
                            for name, _, _ in shots if name in out.mode_shapes}
     return out
@@ -945,26 +1067,116 @@ def pca(shapes, F, client=None, mean=None, modes=3, log_steps=2,
 
 # ---- the command line -----------------------------------------------------
 
+# A local worker's memory: local:N is bounded by the cores and by the
+# physical memory at this much per worker (the CLI's bound too).
+LOCAL_WORKER_BYTES = 512 * 2 ** 20
+# Seconds to wait for a scheduler to answer, and for workers to register.
+CONNECT_TIMEOUT = 3
+WORKERS_TIMEOUT = 60
+
+
+def most_local_workers():
+    """The most workers local:N starts on this machine: one per core (at
+    least 2), and LOCAL_WORKER_BYTES of physical memory each."""
+    cores = os.cpu_count() or 1
+    most = max(2, cores)
+    try:
+        memory = os.sysconf("SC_PHYS_PAGES") * os.sysconf("SC_PAGE_SIZE")
+        most = min(most, max(1, memory // LOCAL_WORKER_BYTES))
+    except (ValueError, OSError, AttributeError):
+        pass
+    return int(most)
+
+
+def _parse_scheduler(scheduler):
+    """('none', None), ('local', N) or ('address', ADDRESS) of a --scheduler
+    value; InputError (one line) for anything else."""
+    if scheduler in (None, "", "none"):
+        return "none", None
+    if not isinstance(scheduler, str):
+        raise shellspace.InputError(
+            f"scheduler: expected a string, got {type(scheduler).__name__}")
+    most = most_local_workers()
+    if scheduler == "local":
+        return "local", min(2, most)
+    if scheduler.startswith("local:"):
+        count = scheduler[6:]
+        if not count.isdigit() or not count.isascii() or int(count) < 1:
+            raise shellspace.InputError(
+                f"--scheduler: local:N needs a worker count N in 1..{most}, "
+                f"got '{scheduler}'")
+        if int(count) > most:
+            raise shellspace.InputError(
+                f"--scheduler {scheduler}: this machine holds at most {most} "
+                "local workers (one per core, 512 MiB each)")
+        return "local", int(count)
+    address = scheduler
+    for scheme in ("tcp://", "tls://"):
+        if address.startswith(scheme):
+            address = address[len(scheme):]
+    host, _, port = address.rpartition(":")
+    if (not host or not port.isdigit() or not port.isascii()
+            or not 1 <= int(port) <= 65535 or "://" in address
+            or any(c in host for c in " \t\n,/")):
+        raise shellspace.InputError(
+            "--scheduler: expected none, local, local:N or a scheduler "
+            f"address HOST:PORT (tcp://HOST:8786, PORT 1..65535), got "
+            f"'{scheduler}'")
+    return "address", scheduler
+
+
 def _client_for(scheduler):
     """(client, cluster or None) for local[:N] or a scheduler address; None
-    for 'none' (in-process)."""
-    if scheduler in (None, "", "none"):
+    for 'none' (in-process). A local cluster is returned once its workers
+    registered; a scheduler that does not answer within CONNECT_TIMEOUT
+    seconds is one InputError."""
+    kind, value = _parse_scheduler(scheduler)
+    if kind == "none":
         return None, None
     from distributed import Client, LocalCluster
-    if scheduler == "local" or scheduler.startswith("local:"):
-        workers = 2 if scheduler == "local" else int(scheduler[6:])
-        if workers < 1:
-            raise shellspace.InputError("--scheduler local:N needs N >= 1")
-        cluster = LocalCluster(n_workers=workers, threads_per_worker=1,
+    if kind == "local":
+        cluster = LocalCluster(n_workers=value, threads_per_worker=1,
                                processes=True, dashboard_address=None)
-        return Client(cluster), cluster
-    return Client(scheduler), None
+        client = Client(cluster)
+        try:
+            client.wait_for_workers(value, timeout=WORKERS_TIMEOUT)
+        except Exception as error:
+            client.close()
+            cluster.close()
+            raise shellspace.InputError(
+                f"--scheduler {scheduler}: its {value} workers did not start "
+                f"within {WORKERS_TIMEOUT} s ({_one_line(error)})") from None
+        return client, cluster
+    # A plain TCP connection first: a refused address is an error at once
+    # (Dask's own connect retries for its whole timeout).
+    address = value.split("://", 1)[-1]
+    host, _, port = address.rpartition(":")
+    try:
+        import socket
+        socket.create_connection((host.strip("[]"), int(port)),
+                                 timeout=CONNECT_TIMEOUT).close()
+        return Client(value, timeout=CONNECT_TIMEOUT), None
+    except Exception as error:  # OSError, TimeoutError, ValueError
+        raise shellspace.InputError(
+            f"--scheduler {scheduler}: no scheduler answered within "
+            f"{CONNECT_TIMEOUT} s ({_one_line(error)})") from None
+
+
+def _split_inputs(inputs):
+    """The paths of a comma-separated list; an empty item (",,", a trailing
+    comma) is an InputError."""
+    paths = inputs.split(",")
+    if any(not p.strip() for p in paths):
+        raise shellspace.InputError(
+            f"--inputs '{inputs}' has an empty item"
+            + (" (a trailing comma)" if inputs.endswith(",") else ""))
+    return paths
 
 
 def _read_collection(inputs):
     """(paths, shapes, F) of a comma-separated list of meshes with one
     connectivity."""
-    paths = [p for p in inputs.split(",") if p]
+    paths = _split_inputs(inputs)
     if len(paths) < 2:
         raise shellspace.InputError("--inputs needs at least 2 meshes")
     meshes = [shellspace.read_mesh(p) for p in paths]
@@ -1021,50 +1233,118 @@ def _parser():
     return parser
 
 
+def _on_stop_signal(number, frame):
+    raise Stopped(number)
+
+
+def _quiet_dask():
+    """Dask's own log lines off (a stop or a closed cluster prints none)."""
+    import logging
+    for name in ("distributed", "tornado", "asyncio"):
+        logging.getLogger(name).setLevel(logging.CRITICAL)
+
+
+def _check_paths(args):
+    """The output-path policy of every front end (the library's,
+    io/output_paths.h), before anything is read or solved."""
+    if args.verb in ("distances", "pca") and \
+            not args.output.endswith(".npz"):
+        raise shellspace.InputError("--output must end in .npz")
+    if args.verb == "mean" and not args.output.lower().endswith(
+            (".ply", ".obj", ".off")):
+        raise shellspace.InputError("--output must end in .ply, .obj or "
+                                    ".off")
+    outputs = [("--output", args.output)]
+    if args.verb == "distances":
+        args.cache = args.cache or args.output[:-4] + ".cache.npz"
+        if not args.cache.endswith(".npz"):
+            raise shellspace.InputError("--cache must end in .npz")
+        outputs.append(("--cache", args.cache))
+    shellspace._check_output_paths(
+        [("--inputs", p) for p in _split_inputs(args.inputs)], outputs)
+
+
 def main(argv=None):
+    """The command line; SIGTERM and SIGINT write what is finished (the
+    distance matrix with its pending pairs, the mean so far), print one
+    line and exit 143 / 130."""
     args = _parser().parse_args(argv)
+    previous = {number: signal.signal(number, _on_stop_signal)
+                for number in (signal.SIGTERM, signal.SIGINT)}
+    client = cluster = None
     try:
-        if args.verb in ("distances", "pca") and \
-                not args.output.endswith(".npz"):
-            raise shellspace.InputError("--output must end in .npz")
-        if args.verb == "mean" and not args.output.lower().endswith(
-                (".ply", ".obj", ".off")):
-            raise shellspace.InputError("--output must end in .ply, .obj or "
-                                        ".off")
-        if args.time_limit is not None and not args.time_limit >= 0:
-            raise shellspace.InputError("--time_limit must be >= 0")
-        if args.eta is not None and args.relative_eta is not None:
-            raise shellspace.InputError(
-                "--eta and --relative_eta: give one, not both")
-        args.material = {k: v for k, v in (
-            ("mu", args.mu), ("lambda_", args.lambda_), ("eta", args.eta),
-            ("relative_eta", args.relative_eta), ("bending", args.bending))
-            if v is not None}
-        paths, shapes, F = _read_collection(args.inputs)
-        client, cluster = _client_for(args.scheduler)
         try:
+            for name in ("time_limit", "pair_time_limit"):
+                _deadline(getattr(args, name, None), "--" + name)
+            if args.eta is not None and args.relative_eta is not None:
+                raise shellspace.InputError(
+                    "--eta and --relative_eta: give one, not both")
+            _check_paths(args)
+            _parse_scheduler(args.scheduler)
+            args.material = {k: v for k, v in (
+                ("mu", args.mu), ("lambda_", args.lambda_), ("eta", args.eta),
+                ("relative_eta", args.relative_eta),
+                ("bending", args.bending)) if v is not None}
+            paths, shapes, F = _read_collection(args.inputs)
+            args.deadline = _deadline(args.time_limit)
+            client, cluster = _client_for(args.scheduler)
             if args.verb == "distances":
                 return _main_distances(args, paths, shapes, F, client)
             if args.verb == "mean":
                 return _main_mean(args, paths, shapes, F, client)
             return _main_pca(args, paths, shapes, F, client)
         finally:
-            if client is not None:
-                client.close()
-            if cluster is not None:
-                cluster.close()
+            if client is not None or cluster is not None:
+                _quiet_dask()
+                for closing in (client, cluster):
+                    try:
+                        if closing is not None:
+                            closing.close()
+                    except (Exception, Stopped):
+                        pass
+    except Stopped as stop:
+        wrote = _write_partial(args, stop.partial)
+        print(f"shellspace.collections: stopped ({stop.signal_name}): "
+              + (f"wrote what is finished to {args.output}, marked partial"
+                 if wrote else "no output"), file=sys.stderr)
+        return stop.exit_code
+    except TimeLimitError as error:
+        print(f"shellspace.collections: {_one_line(error)}; no output",
+              file=sys.stderr)
+        return 124
     except (shellspace.InputError, ValueError, OSError) as error:
         print(f"shellspace.collections: {error}", file=sys.stderr)
         return 1
     except shellspace.NotConvergedError as error:
         print(f"shellspace.collections: {_one_line(error)}", file=sys.stderr)
         return 4
+    finally:
+        for number, handler in previous.items():
+            signal.signal(number, handler)
+
+
+def _write_partial(args, partial):
+    """The partial result of a stopped verb written as its output; False
+    if there is none to write."""
+    try:
+        if isinstance(partial, DistanceMatrix):
+            _write_npz_atomically(
+                args.output,
+                inputs=np.array(_split_inputs(args.inputs), dtype=str),
+                partial=np.array(True), **partial.arrays())
+            return True
+        if isinstance(partial, ElasticMean) and hasattr(partial, "mean"):
+            V, F = shellspace.read_mesh(_split_inputs(args.inputs)[0])
+            shellspace.write_mesh(args.output, partial.mean, F)
+            return True
+    except (Exception, Stopped):
+        return False
+    return False
 
 
 def _main_distances(args, paths, shapes, F, client):
-    cache = args.cache or args.output[:-4] + ".cache.npz"
     result = distance_matrix(
-        shapes, F, client=client, steps=args.steps, cache=cache,
+        shapes, F, client=client, steps=args.steps, cache=args.cache,
         progress=not args.quiet, time_limit=args.time_limit,
         pair_time_limit=args.pair_time_limit, tolerance=args.tolerance,
         max_iterations=args.max_iterations or 200, **args.material)
@@ -1086,7 +1366,7 @@ def _main_distances(args, paths, shapes, F, client):
 def _main_mean(args, paths, shapes, F, client):
     result = elastic_mean(shapes, F, client=client, tolerance=args.tolerance,
                           max_iterations=args.max_iterations or 100,
-                          time_limit=args.time_limit,
+                          time_limit=("deadline", args.deadline),
                           progress=not args.quiet, **args.material)
     shellspace.write_mesh(args.output, result.mean, F)
     if not args.quiet:
@@ -1106,19 +1386,23 @@ def _main_pca(args, paths, shapes, F, client):
             f"--modes must be in 1..{len(paths) - 1} (inputs - 1), got "
             f"{args.modes}")
     mean = elastic_mean(shapes, F, client=client, tolerance=args.tolerance,
-                        time_limit=args.time_limit, progress=not args.quiet,
-                        **args.material)
+                        time_limit=("deadline", args.deadline),
+                        progress=not args.quiet, **args.material)
     if not mean.converged:
         print(f"shellspace.collections: elastic mean: |G| "
               f"{mean.gradient_norm:.3g} above {mean.gradient_target:.3g} "
               f"({mean.termination}); no output", file=sys.stderr)
         return 124 if mean.termination == "time limit" else 4
+    # The time limit holds through every stage: the LOGs and the shots.
+    remaining = (None if args.deadline is None
+                 else max(1e-9, args.deadline - time.monotonic()))
     model = pca(shapes, F, client=client, mean=mean.mean, modes=args.modes,
                 log_steps=args.log_steps, exp_steps=args.exp_steps,
                 max_exp_steps=args.max_exp_steps, amplitude=args.amplitude,
                 tolerance=args.tolerance,
                 max_iterations=args.max_iterations or 200,
-                progress=not args.quiet, **args.material)
+                progress=not args.quiet, time_limit=remaining,
+                **args.material)
     names = sorted(model.mode_shapes)
     _write_npz_atomically(
         args.output, inputs=np.array(paths, dtype=str), faces=F,
@@ -1129,14 +1413,18 @@ def _main_pca(args, paths, shapes, F, client):
         mode_shape_names=np.array(names, dtype=str),
         mode_shapes=np.array([model.mode_shapes[k] for k in names]),
         message_keys=np.array([str(k) for k in model.messages], dtype=str),
-        message_texts=np.array(list(model.messages.values()), dtype=str))
+        message_texts=np.array(list(model.messages.values()), dtype=str),
+        partial=np.array(model.pending))
     failed = int(np.sum(model.status != OK)) + (
         2 * min(args.modes, len(model.modes)) - len(names))
     if not args.quiet:
         values = ", ".join(f"{v:.4g}" for v in model.eigenvalues[:args.modes])
         print(f"pca: {len(paths)} shapes, {len(model.modes)} modes, "
-              f"eigenvalues {values}, {failed} failed -> {args.output}",
-              file=sys.stderr)
+              f"eigenvalues {values}, {failed} failed"
+              f"{' (time limit: partial)' if model.pending else ''} -> "
+              f"{args.output}", file=sys.stderr)
+    if model.pending:
+        return 124
     return 4 if failed else 0
 
 

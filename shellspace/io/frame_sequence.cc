@@ -29,6 +29,21 @@ std::string Trim(const std::string& text) {
   return text.substr(begin, text.find_last_not_of(" \t") - begin + 1);
 }
 
+// The number of a frame name "shape_NNN.ply" (at least three digits, as
+// the runs write them), or -1.
+long FrameNumber(const std::string& name) {
+  static const std::string prefix = "shape_";
+  const size_t dot = name.rfind('.');
+  if (name.compare(0, prefix.size(), prefix) != 0 || dot == std::string::npos ||
+      dot < prefix.size() + 3 || dot - prefix.size() > 9 ||
+      name.substr(dot) != ".ply") {
+    return -1;
+  }
+  const std::string digits = name.substr(prefix.size(), dot - prefix.size());
+  if (digits.find_first_not_of("0123456789") != std::string::npos) return -1;
+  return std::stol(digits);
+}
+
 std::vector<std::string> ListDirectory(const std::string& dir) {
   std::vector<std::string> files;
   std::error_code error;
@@ -36,16 +51,46 @@ std::vector<std::string> ListDirectory(const std::string& dir) {
        it.increment(error)) {
     std::error_code type_error;
     const std::string name = it->path().filename().string();
-    if (it->is_regular_file(type_error) && HasMeshExtension(it->path()) &&
-        name[0] != '.' && !IsTemporaryName(name)) {
-      files.push_back(it->path().string());
+    if (!HasMeshExtension(it->path()) || name[0] == '.' ||
+        IsTemporaryName(name)) {
+      continue;
     }
+    if (it->is_symlink(type_error) && !it->exists(type_error)) {
+      // A frame that is not there: refused, not skipped.
+      throw InputError(it->path().string() +
+                       " is a broken symbolic link (its target " +
+                       fs::read_symlink(it->path(), type_error).string() +
+                       " does not exist)");
+    }
+    if (it->is_regular_file(type_error)) files.push_back(it->path().string());
   }
   if (error) throw InputError("cannot list directory " + dir);
   if (files.empty()) {
     throw InputError("no .ply, .obj or .off meshes in directory " + dir);
   }
   std::sort(files.begin(), files.end(), NaturalLess);
+  // A directory of numbered frames (shape_000.ply ...: a path a run wrote)
+  // is read whole or not at all: a gap is a missing frame.
+  std::vector<long> numbers;
+  for (const std::string& file : files) {
+    numbers.push_back(FrameNumber(fs::path(file).filename().string()));
+  }
+  if (std::all_of(numbers.begin(), numbers.end(),
+                  [](long n) { return n >= 0; })) {
+    for (size_t k = 0; k < numbers.size(); ++k) {
+      if (k > 0 && numbers[k] == numbers[k - 1]) {
+        throw InputError(dir + " holds frame " + std::to_string(numbers[k]) +
+                         " twice (" + files[k - 1] + ", " + files[k] + ")");
+      }
+      if (numbers[k] != static_cast<long>(k)) {
+        char name[32];
+        std::snprintf(name, sizeof(name), "shape_%03zu", k);
+        throw InputError(dir + ": frame " + name +
+                         " is missing (the frames are numbered from 0 "
+                         "without gaps)");
+      }
+    }
+  }
   return files;
 }
 

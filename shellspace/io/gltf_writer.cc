@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "shellspace/geometry/named_values.h"
+#include "shellspace/io/ascii_lowercase.h"
 #include "shellspace/io/atomic_file.h"
 
 namespace shellspace {
@@ -75,10 +76,24 @@ class GltfBuilder {
   tinygltf::Model* model_;
 };
 
-std::vector<float> ToFloats(const Positions& positions) {
+
+// The float32 of `value`, refused if not finite (beyond float's range).
+float ToFloat32(double value, const std::string& what) {
+  const float single = static_cast<float>(value);
+  if (!std::isfinite(single)) {
+    std::ostringstream text;
+    text << "glTF export: " << what << " " << value
+         << " is beyond float32's range (glTF stores float32)";
+    throw InputError(text.str());
+  }
+  return single;
+}
+
+std::vector<float> ToFloats(const Positions& positions, size_t frame) {
   std::vector<float> out(positions.size());
   for (Eigen::Index i = 0; i < positions.size(); ++i) {
-    out[i] = static_cast<float>(positions.data()[i]);
+    out[i] = ToFloat32(positions.data()[i],
+                       "frame " + std::to_string(frame) + " coordinate");
   }
   return out;
 }
@@ -129,7 +144,23 @@ std::string EncodeGltfMorphAnimation(const std::vector<Positions>& frames,
 
   tinygltf::Primitive primitive;
   primitive.mode = TINYGLTF_MODE_TRIANGLES;
-  const std::vector<float> base = ToFloats(frames[0]);
+  const std::vector<float> base = ToFloats(frames[0], 0);
+  // Every float32 value checked before any is encoded: the deltas and the
+  // key times too.
+  std::vector<std::vector<float>> deltas;
+  for (size_t k = 1; k < frames.size(); ++k) {
+    ToFloats(frames[k], k);
+    std::vector<float> delta(base.size());
+    for (size_t i = 0; i < base.size(); ++i) {
+      delta[i] = ToFloat32(frames[k].data()[i] - static_cast<double>(base[i]),
+                           "frame " + std::to_string(k) + " morph delta");
+    }
+    deltas.push_back(std::move(delta));
+  }
+  std::vector<float> times(frames.size());
+  for (size_t k = 0; k < frames.size(); ++k) {
+    times[k] = ToFloat32(k / options.frames_per_second, "key time (s)");
+  }
   primitive.attributes["POSITION"] = builder.AddAccessor(
       base, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, 3,
       TINYGLTF_TARGET_ARRAY_BUFFER, true);
@@ -146,12 +177,7 @@ std::string EncodeGltfMorphAnimation(const std::vector<Positions>& frames,
   for (int t = 0; t < targets; ++t) {
     // Deltas against the float32 base: base + delta is frames[t + 1] up to
     // the rounding of delta and of the sum.
-    std::vector<float> delta(base.size());
-    const Positions& frame = frames[t + 1];
-    for (size_t i = 0; i < base.size(); ++i) {
-      delta[i] = static_cast<float>(frame.data()[i] -
-                                    static_cast<double>(base[i]));
-    }
+    const std::vector<float>& delta = deltas[t];
     std::map<std::string, int> target;
     target["POSITION"] = builder.AddAccessor(
         delta, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, 3,
@@ -183,11 +209,9 @@ std::string EncodeGltfMorphAnimation(const std::vector<Positions>& frames,
   model.defaultScene = 0;
 
   if (targets > 0) {
-    std::vector<float> times(frames.size());
     std::vector<float> weights(frames.size() * targets, 0.0f);
-    for (size_t k = 0; k < frames.size(); ++k) {
-      times[k] = static_cast<float>(k / options.frames_per_second);
-      if (k > 0) weights[k * targets + (k - 1)] = 1.0f;
+    for (size_t k = 1; k < frames.size(); ++k) {
+      weights[k * targets + (k - 1)] = 1.0f;
     }
     tinygltf::AnimationSampler sampler;
     sampler.input = builder.AddAccessor(times, TINYGLTF_COMPONENT_TYPE_FLOAT,
@@ -217,10 +241,23 @@ std::string EncodeGltfMorphAnimation(const std::vector<Positions>& frames,
   return stream.str();
 }
 
+void CheckGltfFileName(const std::string& path, const std::string& name) {
+  const std::string lower = AsciiLowercase(path);
+  if (lower.size() <= 4 || lower.compare(lower.size() - 4, 4, ".glb") != 0) {
+    throw InputError(name + " " + path +
+                     ": the file written is binary glTF; name it .glb" +
+                     (lower.size() > 5 &&
+                              lower.compare(lower.size() - 5, 5, ".gltf") == 0
+                          ? " (.gltf is the JSON container)"
+                          : ""));
+  }
+}
+
 void WriteGltfMorphAnimation(const std::string& path,
                              const std::vector<Positions>& frames,
                              const Faces& faces,
                              const GltfAnimationOptions& options) {
+  CheckGltfFileName(path, "glTF export:");
   WriteFileAtomically(path, EncodeGltfMorphAnimation(frames, faces, options));
 }
 

@@ -35,10 +35,17 @@ GltfAnimationOptions::Interpolation ParseGltfInterpolation(
 // frames_per_second whose weights are one-hot (key 0 all zero, key k the
 // target k - 1 at 1). Target names "shape_001" ... in the mesh's
 // extras.targetNames. Throws InputError for no frames, frames of different
-// vertex counts, a face index out of range, or a non-finite coordinate.
+// vertex counts, a face index out of range, or a coordinate, morph delta or
+// key time that is not finite as float32 (|x| beyond 3.4e38: glTF cannot
+// hold it), before any byte is encoded.
 std::string EncodeGltfMorphAnimation(const std::vector<Positions>& frames,
                                      const Faces& faces,
                                      const GltfAnimationOptions& options = {});
+
+// The files written here are binary glTF (.glb): a name that does not end
+// in ".glb" (any case; a ".gltf" name promises the JSON container) throws
+// InputError naming `name` (the caller's name of the option).
+void CheckGltfFileName(const std::string& path, const std::string& name);
 
 // Writes EncodeGltfMorphAnimation's bytes to `path` atomically
 // (io/atomic_file.h). Throws InputError as it does, or if the file cannot

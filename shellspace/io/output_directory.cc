@@ -252,4 +252,21 @@ void StagedDirectory::Commit() {
   RemoveLeftoversOfEndedRuns(target_, true);
 }
 
+StagedRun::StagedRun(const std::string& dir) {
+  if (!dir.empty()) staged_.emplace(dir);
+}
+
+void StagedRun::AddOutside(const std::string& path,
+                           const std::string& content) {
+  outside_.Add(NormalOutputPath(path), content);
+}
+
+void StagedRun::Commit(const std::string& summary) {
+  if (staged_) {
+    WriteFileAtomically(staged_->File("summary.json"), summary + "\n");
+    staged_->Commit();
+  }
+  outside_.Commit();
+}
+
 }  // namespace shellspace

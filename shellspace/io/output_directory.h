@@ -26,7 +26,10 @@
 #ifndef SHELLSPACE_IO_OUTPUT_DIRECTORY_H_
 #define SHELLSPACE_IO_OUTPUT_DIRECTORY_H_
 
+#include <optional>
 #include <string>
+
+#include "shellspace/io/atomic_file.h"
 
 namespace shellspace {
 
@@ -58,6 +61,31 @@ class StagedDirectory {
   std::string shown_;   // dir as given (without trailing slashes)
   std::string staging_;
   bool committed_ = false;
+};
+
+// The outputs of one run, committed together: an output directory written
+// whole (a StagedDirectory; none if `dir` is "") and files outside it (a
+// film strip, a .glb: an AtomicFileSet at their NormalOutputPath). Commit
+// writes the summary as summary.json into the directory, moves the
+// directory into place, then renames the outside files into place.
+// Destroyed without Commit, nothing is left behind. Every front end writes
+// a run's directory through it (the CLI's verbs, the Python functions'
+// output=DIR), so a directory holds exactly one run and its summary.json.
+class StagedRun {
+ public:
+  explicit StagedRun(const std::string& dir);
+  bool has_directory() const { return staged_.has_value(); }
+  // A file in the staging directory, and the directory (has_directory()).
+  std::string File(const std::string& name) const { return staged_->File(name); }
+  const std::string& staging() const { return staged_->staging(); }
+  void AddOutside(const std::string& path, const std::string& content);
+  // `summary` (a JSON text) as summary.json (if a directory), then the
+  // moves.
+  void Commit(const std::string& summary);
+
+ private:
+  std::optional<StagedDirectory> staged_;
+  AtomicFileSet outside_;
 };
 
 // Why `dir` may not be replaced by a run's output, or "" if it may: it

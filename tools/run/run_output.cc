@@ -61,10 +61,4 @@ std::string RunDirectory::Commit(JsonObject summary) {
   return text;
 }
 
-void RunDirectory::CommitSummary(const std::string& text) {
-  WriteFileAtomically(staged_.File("summary.json"), text + "\n");
-  staged_.Commit();
-  outside_.Commit();
-}
-
 }  // namespace shellspace

@@ -27,29 +27,17 @@ const std::string& RunCommandLine();
 // "time limit 10 s") to `json`.
 JsonObject& AddRunFields(JsonObject& json);
 
-// An output directory of one run: files go into File(name) (the staging
-// directory, created by the constructor: construct it after the solves);
-// files outside it (a --png film strip, a --gltf file) by AddOutside, at
-// their NormalOutputPath (io/output_directory.h); Commit writes
-// summary.json, moves the directory into place and then renames the outside
-// files into place. Destroyed without Commit, nothing is left behind.
-class RunDirectory {
+// An output directory of one run (io/output_directory.h StagedRun: the
+// staging directory is created by the constructor, so construct it after
+// the solves), committed with the run fields in its summary.json.
+class RunDirectory : public StagedRun {
  public:
-  explicit RunDirectory(const std::string& dir) : staged_(dir) {}
-  std::string File(const std::string& name) const { return staged_.File(name); }
-  const std::string& staging() const { return staged_.staging(); }
-  void AddOutside(const std::string& path, const std::string& content) {
-    outside_.Add(NormalOutputPath(path), content);
-  }
+  explicit RunDirectory(const std::string& dir) : StagedRun(dir) {}
   // AddRunFields(summary), then CommitSummary. Returns the summary's text.
   std::string Commit(JsonObject summary);
   // `text` (a JSON object with the run fields) as summary.json, then the
   // moves.
-  void CommitSummary(const std::string& text);
-
- private:
-  StagedDirectory staged_;
-  AtomicFileSet outside_;
+  void CommitSummary(const std::string& text) { StagedRun::Commit(text); }
 };
 
 }  // namespace shellspace

@@ -1,50 +1,53 @@
-// The files a verb run reads and writes, checked before any work: no output
-// is an input (after resolving symbolic links and `..`; hard links by
-// inode), no output directory holds an input, no two outputs coincide, an
-// output file is not inside an output directory (which is replaced as a
-// whole), an existing output directory is replaceable (the output of an
-// earlier run, io/output_directory.h), and every output can be written
-// (its parent directory exists and is writable; an existing output file is
-// writable). Each failure is one InputError naming the flags. Paths are
-// compared as written (io/output_directory.h NormalOutputPath: "out/../out",
-// "./out" and "out/" are "out"), so two spellings of one file are one
-// file. Once every check passed, the temporaries of killed runs beside each
-// output are removed (RemoveLeftoversOfEndedRuns).
+// The files a verb run reads and writes, named by their flags and checked
+// before any work by the library's one policy (io/output_paths.h): no
+// output is an input under any spelling, no two outputs name one file, an
+// output directory is replaceable, every output can be written and named.
 #ifndef SHELLSPACE_TOOLS_RUN_RUN_PATHS_H_
 #define SHELLSPACE_TOOLS_RUN_RUN_PATHS_H_
 
 #include <string>
-#include <vector>
+
+#include "shellspace/io/output_paths.h"
 
 namespace shellspace {
 
 class RunPaths {
  public:
   // An input file (empty `path`: the flag is not set, ignored).
-  RunPaths& InputFile(const std::string& flag, const std::string& path);
-  // A comma-separated list of input files.
-  RunPaths& InputList(const std::string& flag, const std::string& list);
-  // A directory of frames or a comma list (io/frame_sequence.h): the
-  // directory itself and every frame file in it.
-  RunPaths& InputFrames(const std::string& flag, const std::string& input);
+  RunPaths& InputFile(const std::string& flag, const std::string& path) {
+    paths_.InputFile("--" + flag, path);
+    return *this;
+  }
+  // A comma-separated list of input files (no empty item).
+  RunPaths& InputList(const std::string& flag, const std::string& list) {
+    paths_.InputList("--" + flag, list);
+    return *this;
+  }
+  // A directory of frames or a comma list (io/frame_sequence.h).
+  RunPaths& InputFrames(const std::string& flag, const std::string& input) {
+    paths_.InputFrames("--" + flag, input);
+    return *this;
+  }
   // An output file (PLY, PNG, ...), written atomically.
-  RunPaths& OutputFile(const std::string& flag, const std::string& path);
+  RunPaths& OutputFile(const std::string& flag, const std::string& path) {
+    paths_.OutputFile("--" + flag, path);
+    return *this;
+  }
+  // An output file of binary glTF (named .glb).
+  RunPaths& OutputGlb(const std::string& flag, const std::string& path) {
+    paths_.OutputGlb("--" + flag, path);
+    return *this;
+  }
   // An output directory, written whole (io/output_directory.h).
-  RunPaths& OutputDirectory(const std::string& flag, const std::string& path);
-
-  // Throws InputError for the first problem (see the file comment).
-  void Check() const;
+  RunPaths& OutputDirectory(const std::string& flag, const std::string& path) {
+    paths_.OutputDirectory("--" + flag, path);
+    return *this;
+  }
+  // Throws InputError for the first problem (io/output_paths.h).
+  void Check() const { paths_.Check(); }
 
  private:
-  struct Entry {
-    std::string flag, path;
-  };
-  // Appends (flag, path) to `entries` unless `path` is empty (the flag is
-  // not set).
-  RunPaths& Add(std::vector<Entry>* entries, const std::string& flag,
-                const std::string& path);
-
-  std::vector<Entry> input_files_, input_dirs_, output_files_, output_dirs_;
+  OutputPaths paths_;
 };
 
 }  // namespace shellspace

@@ -137,6 +137,9 @@ std::vector<std::string> SplitList(const std::string& list,
     items.push_back(item);
   }
   if (items.empty()) throw InputError("--" + flag + " is empty");
+  if (list.back() == ',') {
+    throw InputError("--" + flag + " has an empty item (a trailing comma)");
+  }
   return items;
 }
 

@@ -37,6 +37,7 @@
 #include "tools/run/memory_limits.h"
 #include "tools/run/run_output.h"
 #include "tools/run/run_paths.h"
+#include "tools/run/run_status.h"
 #include "tools/run/stop_request.h"
 #include "shellspace/io/json_writer.h"
 #include "shellspace/reports/branching_reports.h"
@@ -274,6 +275,21 @@ int RunSimulate() {
   const double scale = std::pow(s.epsilon, 2.0 / 3.0) * std::cbrt(s.length);
 
   JsonObject summary = SimulationJson(s, result);
+  // The exit code says what the summary says: a last stage that did not
+  // converge (NO_CONVERGENCE after --lm_iterations) is exit 4.
+  RunStatus status("branching simulate");
+  const std::string last =
+      result.stages.empty() ? "" : result.stages.back().termination;
+  const bool converged = last == "CONVERGENCE";
+  status.Require(converged, "the last stage ended " + last + " after " +
+                                std::to_string(result.stages.empty()
+                                                   ? 0
+                                                   : result.stages.back()
+                                                         .iterations) +
+                                " LM iterations (--lm_iterations " +
+                                std::to_string(FLAGS_lm_iterations) +
+                                " per stage)");
+  summary.Add("converged", converged);
   if (FLAGS_delta_extrapolation >= 2 && ObservedStop() == StopCause::kNone) {
     const DeltaExtrapolation ex = ExtrapolateDelta(
         s, ExtrapolationWidths(result.delta, FLAGS_delta_extrapolation),
@@ -308,6 +324,8 @@ int RunSimulate() {
       std::cerr << "\n";
     }
     summary.Add("extrapolation", DeltaExtrapolationJson(ex));
+    status.Require(ex.all_converged,
+                   "delta extrapolation: not every width converged");
   }
 
   const int width_px = 800;
@@ -329,7 +347,7 @@ int RunSimulate() {
               << result.interfaces.back() << ", near x = 0: "
               << result.interfaces.front() << "; wrote " << dir << "\n";
   }
-  return 0;
+  return status.Finish();
 }
 
 int RunGeneral(double epsilon, const std::string& dir) {

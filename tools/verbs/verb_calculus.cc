@@ -128,7 +128,7 @@ int RunShoot() {
       .InputFile("mask", FLAGS_mask)
       .OutputDirectory("output", FLAGS_output)
       .OutputFile("png", FLAGS_png)
-      .OutputFile("gltf", FLAGS_gltf)
+      .OutputGlb("gltf", FLAGS_gltf)
       .Check();
   const auto [first, second] = LoadShellPair(FLAGS_first, FLAGS_second);
   CheckMemory(PathBytes(first.mesh.num_vertices(), FLAGS_steps + 1),
@@ -185,7 +185,7 @@ int RunTransport() {
       .InputFile("mask", FLAGS_mask)
       .OutputDirectory("output", FLAGS_output)
       .OutputFile("png", FLAGS_png)
-      .OutputFile("gltf", FLAGS_gltf)
+      .OutputGlb("gltf", FLAGS_gltf)
       .Check();
   const std::vector<std::string> files = ListFrameFiles(FLAGS_path);
   if (files.size() < 2) {

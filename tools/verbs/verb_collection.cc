@@ -9,6 +9,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 #include <cstring>
@@ -16,6 +17,8 @@
 #include <vector>
 
 #include "shellspace/geometry/mesh.h"
+#include "shellspace/io/ascii_lowercase.h"
+#include "tools/run/run_paths.h"
 #include "tools/verbs/verb.h"
 
 DECLARE_string(inputs);
@@ -50,23 +53,63 @@ DEFINE_string(cache, "", "collection distances: the resumable cache");
 namespace shellspace {
 namespace {
 
-// none, local, local:N (N >= 1) or an address (HOST:PORT, tcp://...).
+// The most local workers this machine holds: one per core (each runs one
+// solver thread), and each with kLocalWorkerBytes of memory.
+constexpr double kLocalWorkerBytes = 512.0 * (1 << 20);
+
+int MostLocalWorkers() {
+  const long cores = ::sysconf(_SC_NPROCESSORS_ONLN);
+  const double memory = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
+                        static_cast<double>(::sysconf(_SC_PAGE_SIZE));
+  long most = std::max(2L, cores > 0 ? cores : 1L);
+  if (memory > 0) {
+    most = std::min(most, std::max(1L, static_cast<long>(
+                                           memory / kLocalWorkerBytes)));
+  }
+  return static_cast<int>(most);
+}
+
+// none, local, local:N (1 <= N <= MostLocalWorkers) or an address
+// ([tcp://|tls://]HOST:PORT, PORT in 1..65535).
 void CheckScheduler(const std::string& value) {
   if (value == "none" || value == "local") return;
   if (value.rfind("local:", 0) == 0) {
     const std::string count = value.substr(6);
     char* end = nullptr;
+    errno = 0;
     const long n = std::strtol(count.c_str(), &end, 10);
-    if (count.empty() || *end != '\0' || n < 1 || n > 4096) {
-      throw InputError("local:N needs a worker count N in 1..4096, got '" +
-                       value + "'");
+    const int most = MostLocalWorkers();
+    if (count.empty() || *end != '\0' || errno != 0 || n < 1 ||
+        count.find_first_not_of("0123456789") != std::string::npos) {
+      throw InputError("local:N needs a worker count N in 1.." +
+                       std::to_string(most) + ", got '" + value + "'");
+    }
+    if (n > most) {
+      throw InputError("local:" + count + ": this machine holds at most " +
+                       std::to_string(most) +
+                       " local workers (one per core, 512 MiB each)");
     }
     return;
   }
-  if (value.empty() || value.find(':') == std::string::npos ||
-      value.find_first_of(" \t\n,") != std::string::npos) {
+  std::string address = value;
+  for (const char* scheme : {"tcp://", "tls://"}) {
+    if (address.rfind(scheme, 0) == 0) address = address.substr(6);
+  }
+  const size_t colon = address.rfind(':');
+  const std::string host =
+      colon == std::string::npos ? "" : address.substr(0, colon);
+  const std::string port =
+      colon == std::string::npos ? "" : address.substr(colon + 1);
+  const bool port_ok =
+      !port.empty() && port.size() <= 5 &&
+      port.find_first_not_of("0123456789") == std::string::npos &&
+      std::stol(port) >= 1 && std::stol(port) <= 65535;
+  if (host.empty() || !port_ok ||
+      host.find_first_of(" \t\n,/") != std::string::npos ||
+      address.find("://") != std::string::npos) {
     throw InputError("expected none, local, local:N or a scheduler address "
-                     "HOST:PORT (tcp://HOST:8786), got '" + value + "'");
+                     "HOST:PORT (tcp://HOST:8786, PORT 1..65535), got '" +
+                     value + "'");
   }
 }
 
@@ -133,8 +176,43 @@ std::string Number(double value) {
   return text;
 }
 
-// Becomes python3 -m shellspace.collections VERB with the flags.
+// The output's extension fits the verb: .npz, or a mesh for mean.
+void CheckOutputName(const std::string& verb) {
+  const std::string lower = AsciiLowercase(FLAGS_output);
+  auto ends = [&](const std::string& tail) {
+    return lower.size() > tail.size() &&
+           lower.compare(lower.size() - tail.size(), tail.size(), tail) == 0;
+  };
+  if (verb == "mean") {
+    if (!ends(".ply") && !ends(".obj") && !ends(".off")) {
+      throw InputError("--output must end in .ply, .obj or .off");
+    }
+  } else if (!ends(".npz") || FLAGS_output.compare(FLAGS_output.size() - 4, 4,
+                                                   ".npz") != 0) {
+    throw InputError("--output must end in .npz");
+  }
+  if (verb == "distances" && !FLAGS_cache.empty() &&
+      (FLAGS_cache.size() <= 4 ||
+       FLAGS_cache.compare(FLAGS_cache.size() - 4, 4, ".npz") != 0)) {
+    throw InputError("--cache must end in .npz");
+  }
+}
+
+// Becomes python3 -m shellspace.collections VERB with the flags, once the
+// paths passed the output policy (io/output_paths.h): nothing is solved
+// for a run that could not write its output.
 int RunCollection(const std::string& verb) {
+  CheckOutputName(verb);
+  RunPaths paths;
+  paths.InputList("inputs", FLAGS_inputs).OutputFile("output", FLAGS_output);
+  if (verb == "distances") {
+    paths.OutputFile("cache",
+                     FLAGS_cache.empty()
+                         ? FLAGS_output.substr(0, FLAGS_output.size() - 4) +
+                               ".cache.npz"
+                         : FLAGS_cache);
+  }
+  paths.Check();
   std::vector<std::string> args = {
       SHELLSPACE_PYTHON_EXECUTABLE, "-m", "shellspace.collections", verb,
       "--inputs", FLAGS_inputs, "--output", FLAGS_output, "--scheduler",

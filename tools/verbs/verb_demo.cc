@@ -57,7 +57,7 @@ int RunDemo() {
   const std::string dir = FLAGS_output;
   RunPaths()
       .OutputDirectory("output", dir)
-      .OutputFile("gltf", FLAGS_gltf)
+      .OutputGlb("gltf", FLAGS_gltf)
       .Check();
   const auto clock = std::chrono::steady_clock::now();
   const Mesh finger = MakeFinger();

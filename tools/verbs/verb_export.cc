@@ -46,7 +46,7 @@ int RunExport() {
       ParseGltfInterpolation(FLAGS_interpolation, "--interpolation");
   RunPaths()
       .InputFrames("input", FLAGS_input)
-      .OutputFile("output", FLAGS_output)
+      .OutputGlb("output", FLAGS_output)
       .Check();
   const FrameSequence sequence = ReadFrameSequence(FLAGS_input);
   WriteGltfMorphAnimation(FLAGS_output, sequence.frames, sequence.faces,

@@ -48,7 +48,7 @@ int RunGeodesic() {
   GeodesicInputPaths()
       .OutputDirectory("output", FLAGS_output)
       .OutputFile("png", FLAGS_png)
-      .OutputFile("gltf", FLAGS_gltf)
+      .OutputGlb("gltf", FLAGS_gltf)
       .Check();
   const workflows::GeodesicResult result =
       workflows::RunGeodesic(GeodesicOptionsFromFlags("geodesic"));

@@ -207,7 +207,7 @@ int RunSpline() {
       .InputList("keyframes", FLAGS_keyframes)
       .OutputDirectory("output", FLAGS_output)
       .OutputFile("png", FLAGS_png)
-      .OutputFile("gltf", FLAGS_gltf)
+      .OutputGlb("gltf", FLAGS_gltf)
       .Check();
   const ShellSet set = LoadShellList(FLAGS_keyframes, "keyframes");
   workflows::SplineOptions options;
@@ -258,7 +258,7 @@ int RunRegress() {
       .InputList("inputs", FLAGS_inputs)
       .OutputDirectory("output", FLAGS_output)
       .OutputFile("png", FLAGS_png)
-      .OutputFile("gltf", FLAGS_gltf)
+      .OutputGlb("gltf", FLAGS_gltf)
       .Check();
   const ShellSet set = LoadShellList(FLAGS_inputs, "inputs");
   workflows::RegressOptions options;

@@ -272,7 +272,12 @@ SplineResult Run(const ShellSpace& space, SplineSpec spec,
       reference_scale = scale;
       scaled.set_reference(preconditioner.get(), scale);
       result.initial_gradient_norm = result.final_gradient_norm = norm / scale;
-      target = settings.gradient_tolerance * std::max(norm, 1e-300) / scale;
+      // The relative criterion, with an absolute floor: a start at a
+      // stationary point (constant keyframes: initial gradient 0) has met
+      // it, however the round-off of later evaluations moves the gradient.
+      target = std::max(settings.gradient_tolerance * norm,
+                        kAbsoluteGradientFloor) /
+               scale;
     }
     ceres::GradientProblemSolver::Options options;
     options.line_search_direction_type = ceres::LBFGS;
@@ -310,7 +315,9 @@ SplineResult Run(const ShellSpace& space, SplineSpec spec,
         result.initial_gradient_norm > 0
             ? result.final_gradient_norm / result.initial_gradient_norm
             : 0.0;
-    result.gradient_criterion_met = result.final_gradient_norm <= target;
+    result.gradient_criterion_met =
+        result.final_gradient_norm <= target ||
+        result.final_gradient_norm * reference_scale <= kAbsoluteGradientFloor;
     result.converged = result.gradient_criterion_met ||
                        result.summary.termination_type == ceres::CONVERGENCE;
   }

@@ -21,8 +21,10 @@ struct SplineResult {
   int rounds = 0;  // L-BFGS rounds (SplineSettings::preconditioner_refresh)
   SplineTimings timings;  // where the evaluations spent their time
   // Max norm of the L-BFGS gradient (in the first round's preconditioned,
-  // scaled variables) at the start and at the end; their ratio; whether it met
-  // relative <= settings.gradient_tolerance; and converged: that, or Ceres'
+  // scaled variables) at the start and at the end; their ratio (0 for an
+  // initial gradient 0); whether it met relative <= settings.
+  // gradient_tolerance or the absolute floor kAbsoluteGradientFloor; and
+  // converged: that, or Ceres'
   // function-tolerance stop (relative change of the objective below
   // settings.function_tolerance) -- unlike the Newton-finished geodesic and
   // mean, the spline's gradient carries the error of the inner midpoint
@@ -40,6 +42,13 @@ struct SplineResult {
   // (never evaluated).
   bool evaluated = true;
 };
+
+// The absolute floor of the spline's gradient criterion: a max-norm of the
+// gradient of F_K (unscaled) at or below it has met the criterion whatever
+// the initial gradient. Without it a start at a stationary point (constant
+// keyframes: initial gradient exactly 0) could never meet the relative
+// criterion, and a run whose gradient is 2.7e-15 reported "not converged".
+inline constexpr double kAbsoluteGradientFloor = 1e-10;
 
 // Settings of the outer L-BFGS loop.
 struct SplineSettings {
