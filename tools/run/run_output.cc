@@ -62,6 +62,12 @@ std::string RunDirectory::Commit(JsonObject summary) {
 }
 
 void RunDirectory::CommitSummary(const std::string& text) {
+  for (const auto& [path, make] : outside_of_summary_) {
+    outside_.Add(path, make(text));
+  }
+  for (const auto& [name, make] : inside_of_summary_) {
+    WriteFileAtomically(staged_.File(name), make(text));
+  }
   WriteFileAtomically(staged_.File("summary.json"), text + "\n");
   staged_.Commit();
   outside_.Commit();

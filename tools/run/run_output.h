@@ -4,7 +4,10 @@
 #ifndef SHELLSPACE_TOOLS_RUN_RUN_OUTPUT_H_
 #define SHELLSPACE_TOOLS_RUN_RUN_OUTPUT_H_
 
+#include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "shellspace/io/atomic_file.h"
 #include "shellspace/io/json_writer.h"
@@ -30,16 +33,27 @@ JsonObject& AddRunFields(JsonObject& json);
 // An output directory of one run: files go into File(name) (the staging
 // directory, created by the constructor: construct it after the solves);
 // files outside it (a --png film strip, a --gltf file) by AddOutside, at
-// their NormalOutputPath (io/output_directory.h); Commit writes
+// their NormalOutputPath (io/output_directory.h), or by AddOutsideOfSummary
+// when they show the summary (an --html page); Commit writes
 // summary.json, moves the directory into place and then renames the outside
 // files into place. Destroyed without Commit, nothing is left behind.
 class RunDirectory {
  public:
+  using SummaryPage = std::function<std::string(const std::string& summary)>;
   explicit RunDirectory(const std::string& dir) : staged_(dir) {}
   std::string File(const std::string& name) const { return staged_.File(name); }
   const std::string& staging() const { return staged_.staging(); }
   void AddOutside(const std::string& path, const std::string& content) {
     outside_.Add(NormalOutputPath(path), content);
+  }
+  // The file at `path` is make(the summary's text), made at Commit.
+  void AddOutsideOfSummary(const std::string& path, SummaryPage make) {
+    outside_of_summary_.emplace_back(NormalOutputPath(path), std::move(make));
+  }
+  // The file `name` in the directory is make(the summary's text), made at
+  // Commit.
+  void AddFileOfSummary(const std::string& name, SummaryPage make) {
+    inside_of_summary_.emplace_back(name, std::move(make));
   }
   // AddRunFields(summary), then CommitSummary. Returns the summary's text.
   std::string Commit(JsonObject summary);
@@ -50,6 +64,8 @@ class RunDirectory {
  private:
   StagedDirectory staged_;
   AtomicFileSet outside_;
+  std::vector<std::pair<std::string, SummaryPage>> outside_of_summary_;
+  std::vector<std::pair<std::string, SummaryPage>> inside_of_summary_;
 };
 
 }  // namespace shellspace
