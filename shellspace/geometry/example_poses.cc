@@ -41,9 +41,10 @@ Positions RotatedAboutY(const Positions& shape, double angle) {
 }
 
 // BendAlongY toward the direction at `side` radians from +x about the y
-// axis.
+// axis (`shape` itself for angle 0).
 Positions BentToward(const Positions& shape, double length, double angle,
                      double side) {
+  if (angle == 0) return shape;
   return RotatedAboutY(BendAlongY(RotatedAboutY(shape, side), length, angle),
                        -side);
 }

@@ -1,6 +1,8 @@
 #include "shellspace/render/html_viewer.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstdint>
 #include <cstring>
 
@@ -63,6 +65,13 @@ std::string ScriptSafeJson(const std::string& json) {
     }
   }
   return out;
+}
+
+// `value` with 17 significant digits.
+std::string Number(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.17g", value);
+  return text;
 }
 
 const char kStyle[] = R"(
@@ -139,21 +148,11 @@ const char kScript[] = R"(
     tr.appendChild(a); tr.appendChild(b); table.appendChild(tr);
   });
 
-  // Per frame: positions, normals, colours (distance from frame 0 over the
-  // largest such distance, through the ramp of the film strips, given as
-  // stops 0-255).
+  // Per frame (made when it is first shown): positions, normals, colours
+  // (distance from frame 0 over the largest such distance of all frames,
+  // through the ramp of the film strips, given as stops 0-255).
   function frame(k) { return all.subarray(3 * n * k, 3 * n * (k + 1)); }
-  var maxDistance = 0;
-  var distances = [];
-  for (var k = 0; k < frameCount; ++k) {
-    var p = frame(k), p0 = frame(0), d = new Float32Array(n);
-    for (var i = 0; i < n; ++i) {
-      var dx = p[3 * i] - p0[3 * i], dy = p[3 * i + 1] - p0[3 * i + 1], dz = p[3 * i + 2] - p0[3 * i + 2];
-      d[i] = Math.sqrt(dx * dx + dy * dy + dz * dz);
-      if (d[i] > maxDistance) maxDistance = d[i];
-    }
-    distances.push(d);
-  }
+  var maxDistance = +meta.getAttribute('data-max-distance');
   document.getElementById('rampMax').textContent = num(maxDistance);
   var ramp = meta.getAttribute('data-ramp').split(';').map(function (stop) {
     return stop.split(',').map(Number);
@@ -161,9 +160,11 @@ const char kScript[] = R"(
   document.getElementById('ramp').style.background = 'linear-gradient(90deg,' +
     ramp.map(function (c) { return 'rgb(' + c.join(',') + ')'; }).join(',') + ')';
   function colours(k) {
-    var d = distances[k], c = new Float32Array(3 * n);
+    var p = frame(k), p0 = frame(0), c = new Float32Array(3 * n);
     for (var i = 0; i < n; ++i) {
-      var t = maxDistance > 0 ? d[i] / maxDistance * (ramp.length - 1) : 0;
+      var dx = p[3 * i] - p0[3 * i], dy = p[3 * i + 1] - p0[3 * i + 1], dz = p[3 * i + 2] - p0[3 * i + 2];
+      var d = Math.sqrt(dx * dx + dy * dy + dz * dz);
+      var t = maxDistance > 0 ? Math.min(d / maxDistance, 1) * (ramp.length - 1) : 0;
       var j = Math.min(Math.floor(t), ramp.length - 2), f = t - j;
       for (var e = 0; e < 3; ++e) c[3 * i + e] = (ramp[j][e] * (1 - f) + ramp[j + 1][e] * f) / 255;
     }
@@ -184,16 +185,10 @@ const char kScript[] = R"(
     return m;
   }
 
-  // The camera: the bounding box of all frames.
-  var lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
-  for (var i = 0; i < all.length; i += 3) {
-    for (var e = 0; e < 3; ++e) {
-      if (all[i + e] < lo[e]) lo[e] = all[i + e];
-      if (all[i + e] > hi[e]) hi[e] = all[i + e];
-    }
-  }
-  var centre = [0, 1, 2].map(function (e) { return 0.5 * (lo[e] + hi[e]); });
-  var radius = 0.5 * Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]) || 1;
+  // The camera: the bounding box of all frames, its centre and half its
+  // diagonal.
+  var centre = meta.getAttribute('data-centre').split(',').map(Number);
+  var radius = +meta.getAttribute('data-radius') || 1;
   var yaw = 0.5, pitch = 0.35, distance = 2.8 * radius;
 
   var canvas = document.getElementById('canvas');
@@ -349,9 +344,24 @@ std::string EncodeHtmlViewer(const std::vector<Positions>& frames,
       ramp += e < 2 ? "," : j + 1 < kRampStops ? ";" : "";
     }
   }
+  // The camera's box and the colours' scale over all frames.
+  Eigen::RowVector3d lo = frames[0].colwise().minCoeff();
+  Eigen::RowVector3d hi = frames[0].colwise().maxCoeff();
+  double max_distance = 0;
+  for (const Positions& frame : frames) {
+    lo = lo.cwiseMin(frame.colwise().minCoeff());
+    hi = hi.cwiseMax(frame.colwise().maxCoeff());
+    max_distance = std::max(
+        max_distance, (frame - frames[0]).rowwise().norm().maxCoeff());
+  }
+  const Eigen::RowVector3d centre = 0.5 * (lo + hi);
   page += "<div id=\"mesh\" hidden data-vertices=\"" + std::to_string(n) +
           "\" data-frames=\"" + std::to_string(frames.size()) +
-          "\" data-ramp=\"" + ramp + "\"></div>\n";
+          "\" data-ramp=\"" + ramp + "\" data-centre=\"" +
+          Number(centre(0)) + "," + Number(centre(1)) + "," +
+          Number(centre(2)) + "\" data-radius=\"" +
+          Number(0.5 * (hi - lo).norm()) + "\" data-max-distance=\"" +
+          Number(max_distance) + "\"></div>\n";
   page += "<script type=\"application/json\" id=\"summary\">" +
           ScriptSafeJson(summary_json) + "</script>\n";
   page += "<script type=\"application/octet-stream\" id=\"positions\">";

@@ -89,9 +89,10 @@ TEST(ExamplePosesTest, TheCollectionBendsFurtherPoseByPose) {
     EXPECT_GT(moved, last) << set.shapes[k].first;
     last = moved;
   }
-  // The base rings (the mask) do not move.
+  // The bottom ring (y = 0, in the mask) does not move.
   for (size_t k = 1; k < set.shapes.size(); ++k) {
     for (const int v : set.mask) {
+      if (set.shapes[0].second(v, 1) != 0.0) continue;
       EXPECT_NEAR((set.shapes[k].second.row(v) - set.shapes[0].second.row(v)).norm(),
                   0, 1e-12);
     }
