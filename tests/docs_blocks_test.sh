@@ -6,7 +6,8 @@
 # that holds only `build` (a link to BUILD_DIR): what a reader of a bare
 # clone has after the two commands. Shell blocks (indented by four spaces,
 # or fenced as sh/bash/console) run in bash with -e; ```python blocks run in
-# python3 with PYTHONPATH=build/python. The two set-up commands
+# $PYTHON (default python3; CTest passes the one the module is built for)
+# with PYTHONPATH=build/python. The two set-up commands
 # (scripts/demo.sh, scripts/test.sh) are what made BUILD_DIR and are not run
 # again. Any failing block fails the test, naming its page and line.
 # --self-test first checks that a page with a failing block fails.
@@ -71,7 +72,7 @@ run_pages() {
       where=$(head -1 "$block" | cut -c3-)
       local start=$SECONDS
       if [[ "$block" == *.py ]]; then
-        (cd "$work" && PYTHONPATH=build/python python3 "$block") >"$blocks/log" 2>&1
+        (cd "$work" && PYTHONPATH=build/python "${PYTHON:-python3}" "$block") >"$blocks/log" 2>&1
       else
         (cd "$work" && bash -e "$block") >"$blocks/log" 2>&1
       fi || {
