@@ -17,6 +17,7 @@
 #include "shellspace/geometry/named_values.h"
 #include "shellspace/io/ascii_lowercase.h"
 #include "shellspace/io/atomic_file.h"
+#include "shellspace/io/frame_set_check.h"
 
 namespace shellspace {
 namespace {
@@ -98,27 +99,6 @@ std::vector<float> ToFloats(const Positions& positions, size_t frame) {
   return out;
 }
 
-void CheckFrames(const std::vector<Positions>& frames, const Faces& faces) {
-  if (frames.empty()) throw InputError("glTF export: no frames");
-  const Eigen::Index n = frames[0].rows();
-  for (size_t k = 0; k < frames.size(); ++k) {
-    if (frames[k].rows() != n) {
-      throw InputError("glTF export: frame " + std::to_string(k) + " has " +
-                       std::to_string(frames[k].rows()) +
-                       " vertices, frame 0 has " + std::to_string(n));
-    }
-    if (!frames[k].allFinite()) {
-      throw InputError("glTF export: frame " + std::to_string(k) +
-                       " has a non-finite coordinate");
-    }
-  }
-  if (faces.rows() == 0) throw InputError("glTF export: no faces");
-  if (faces.minCoeff() < 0 || faces.maxCoeff() >= n) {
-    throw InputError("glTF export: a face index is outside [0, " +
-                     std::to_string(n) + ")");
-  }
-}
-
 }  // namespace
 
 GltfAnimationOptions::Interpolation ParseGltfInterpolation(
@@ -132,7 +112,7 @@ GltfAnimationOptions::Interpolation ParseGltfInterpolation(
 std::string EncodeGltfMorphAnimation(const std::vector<Positions>& frames,
                                      const Faces& faces,
                                      const GltfAnimationOptions& options) {
-  CheckFrames(frames, faces);
+  CheckFrameSet(frames, faces, "glTF export");
   if (!(options.frames_per_second > 0) ||
       !std::isfinite(options.frames_per_second)) {
     throw InputError("glTF export: frames per second must be > 0");

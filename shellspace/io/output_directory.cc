@@ -74,7 +74,10 @@ bool IsRunFileName(const std::string& name) {
       R"(shape_[0-9]+\.ply|summary\.json|pca\.json|mean\.ply|)"
       R"(mode_[0-9]+_(minus|plus)\.ply|procrustes_mean\.ply|)"
       R"(procrustes_mode_[0-9]+_(minus|plus)\.ply|u\.csv|uy\.png|)"
-      R"(interfaces\.csv|pattern\.png|pattern\.txt|film_strip\.png)");
+      R"(interfaces\.csv|pattern\.png|pattern\.txt|film_strip\.png|viewer\.html|)"
+      // The example sets (geometry/example_poses.h).
+      R"((finger|plate|cylinder|pose)[0-9]*(_var)?\.ply|)"
+      R"((finger|plate|cylinder|collection)_mask\.txt)");
   return std::regex_match(name, known) || IsTemporaryName(name);
 }
 

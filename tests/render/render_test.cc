@@ -468,7 +468,7 @@ TEST(FilmStripTest, RejectsBadInput) {
   Positions nan = square.positions;
   nan(0, 0) = std::nan("");
   EXPECT_THROW(RenderFilmStrip({nan}, square.faces, options), InputError);
-  for (auto [w, h] : {std::pair{-1, 10}, {10, -1}, {100000, 10}, {10, 9000}}) {
+  for (const auto& [w, h] : {std::pair{-1, 10}, {10, -1}, {100000, 10}, {10, 9000}}) {
     options = Options(w, h);
     EXPECT_THROW(RenderFilmStrip({square.positions}, square.faces, options),
                  InputError);

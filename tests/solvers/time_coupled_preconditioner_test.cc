@@ -136,7 +136,7 @@ TEST(TimeCoupledPreconditionerTest, OneProbeFitsTheCouplingsOfLargeSlices) {
     for (int x = 0; x < side; ++x) {
       const int v = y * side + x;
       int degree = 0;
-      for (const auto [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
+      for (const auto& [dx, dy] : {std::pair{1, 0}, {-1, 0}, {0, 1}, {0, -1}}) {
         if (x + dx < 0 || x + dx >= side || y + dy < 0 || y + dy >= side) {
           continue;
         }

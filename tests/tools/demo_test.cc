@@ -1,5 +1,5 @@
 // The README's demo: the procedural finger geodesic plus extrapolation writes
-// 13 frames, a JSON summary and a PNG film strip, with near-equal geodesic
+// 13 frames, a JSON summary, a PNG film strip and the viewer page, with near-equal geodesic
 // steps; and the procedural shapes are valid shells.
 #include <gtest/gtest.h>
 
@@ -55,6 +55,18 @@ TEST(DemoTest, WritesFramesSummaryAndFilmStrip) {
   std::stringstream text;
   text << json.rdbuf();
   EXPECT_NE(text.str().find("\"converged\": true"), std::string::npos);
+  // The viewer page carries the 13 frames of 721 vertices and the summary
+  // itself (its run id).
+  std::ifstream page_file(dir + "/viewer.html");
+  std::stringstream page;
+  page << page_file.rdbuf();
+  EXPECT_NE(page.str().find("data-vertices=\"721\" data-frames=\"13\""),
+            std::string::npos);
+  const std::string run_id = "\"run_id\": \"";
+  const auto id = text.str().find(run_id);
+  ASSERT_NE(id, std::string::npos);
+  EXPECT_NE(page.str().find(text.str().substr(id, run_id.size() + 16)),
+            std::string::npos);
   // The geodesic's 8 step energies agree to a few percent (equal steps).
   const std::string key = "\"step_energies\": [";
   const auto begin = text.str().find(key);

@@ -22,6 +22,7 @@ DEFINE_double(relative_eta, shellspace::kDefaultRelativeEta,
 DEFINE_string(bending, "discrete-shells", SHELLSPACE_PER_VERB);
 DEFINE_string(png, "", SHELLSPACE_PER_VERB);
 DEFINE_string(gltf, "", SHELLSPACE_PER_VERB);
+DEFINE_string(html, "", SHELLSPACE_PER_VERB);
 DEFINE_string(reference, "", SHELLSPACE_PER_VERB);
 DEFINE_string(mask, "", SHELLSPACE_PER_VERB);
 DEFINE_int32(steps, 8, SHELLSPACE_PER_VERB);

@@ -21,6 +21,7 @@ DECLARE_double(relative_eta);
 DECLARE_string(bending);
 DECLARE_string(png);
 DECLARE_string(gltf);
+DECLARE_string(html);
 DECLARE_string(reference);
 DECLARE_string(mask);
 DECLARE_int32(steps);

@@ -61,4 +61,14 @@ std::string RunDirectory::Commit(JsonObject summary) {
   return text;
 }
 
+void RunDirectory::CommitSummary(const std::string& text) {
+  for (const auto& [path, make] : outside_of_summary_) {
+    AddOutside(path, make(text));
+  }
+  for (const auto& [name, make] : inside_of_summary_) {
+    WriteFileAtomically(File(name), make(text));
+  }
+  StagedRun::Commit(text);
+}
+
 }  // namespace shellspace

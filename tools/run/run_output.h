@@ -4,7 +4,10 @@
 #ifndef SHELLSPACE_TOOLS_RUN_RUN_OUTPUT_H_
 #define SHELLSPACE_TOOLS_RUN_RUN_OUTPUT_H_
 
+#include <functional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "shellspace/io/atomic_file.h"
 #include "shellspace/io/json_writer.h"
@@ -29,15 +32,31 @@ JsonObject& AddRunFields(JsonObject& json);
 
 // An output directory of one run (io/output_directory.h StagedRun: the
 // staging directory is created by the constructor, so construct it after
-// the solves), committed with the run fields in its summary.json.
+// the solves), committed with the run fields in its summary.json. Files
+// that show the summary (an --html page) are made from its text at Commit:
+// outside the directory by AddOutsideOfSummary, inside by AddFileOfSummary.
 class RunDirectory : public StagedRun {
  public:
+  using SummaryPage = std::function<std::string(const std::string& summary)>;
   explicit RunDirectory(const std::string& dir) : StagedRun(dir) {}
+  // The file at `path` is make(the summary's text), made at Commit.
+  void AddOutsideOfSummary(const std::string& path, SummaryPage make) {
+    outside_of_summary_.emplace_back(path, std::move(make));
+  }
+  // The file `name` in the directory is make(the summary's text), made at
+  // Commit.
+  void AddFileOfSummary(const std::string& name, SummaryPage make) {
+    inside_of_summary_.emplace_back(name, std::move(make));
+  }
   // AddRunFields(summary), then CommitSummary. Returns the summary's text.
   std::string Commit(JsonObject summary);
   // `text` (a JSON object with the run fields) as summary.json, then the
   // moves.
-  void CommitSummary(const std::string& text) { StagedRun::Commit(text); }
+  void CommitSummary(const std::string& text);
+
+ private:
+  std::vector<std::pair<std::string, SummaryPage>> outside_of_summary_;
+  std::vector<std::pair<std::string, SummaryPage>> inside_of_summary_;
 };
 
 }  // namespace shellspace

@@ -5,9 +5,11 @@
 #include <utility>
 
 #include "shellspace/io/atomic_file.h"
+#include "shellspace/io/frame_set_check.h"
 #include "shellspace/io/gltf_writer.h"
 #include "shellspace/io/png_writer.h"
 #include "shellspace/render/film_strip.h"
+#include "shellspace/render/html_viewer.h"
 #include "tools/run/common_flags.h"
 #include "tools/verbs/film_strip_flags.h"
 #include "tools/run/shell_inputs.h"
@@ -19,6 +21,25 @@ FlagSpec GltfFlag() {
                   "also write the frames as one glTF 2.0 file (.glb): the "
                   "first frame the base mesh, the others morph targets, "
                   "animated at 4 frames per second");
+}
+
+FlagSpec HtmlFlag() {
+  return TextFlag("html",
+                  "also write the frames as one self-contained HTML page "
+                  "(.html, works offline): WebGL view with a frame slider, "
+                  "play, orbit, colour by distance from frame 0 and the "
+                  "summary's numbers");
+}
+
+void AddViewerPage(RunDirectory* out, const Faces& faces,
+                   const std::vector<Positions>& frames) {
+  if (FLAGS_html.empty()) return;
+  // Checked now, written at Commit.
+  CheckFrameSet(frames, faces, "--html");
+  out->AddOutsideOfSummary(
+      FLAGS_html, [faces, frames](const std::string& summary) {
+        return EncodeHtmlViewer(frames, faces, FLAGS_output, summary);
+      });
 }
 
 void CheckGeodesic(const GeodesicResult& result, const std::string& what,
@@ -93,6 +114,7 @@ void WritePathOutputs(RunDirectory* out, const Faces& faces,
     out->AddOutside(FLAGS_png,
                     EncodePng(RenderFilmStrip(path, faces, options)));
   }
+  AddViewerPage(out, faces, path);
   WriteFrames(out->staging(), faces, path);
 }
 

@@ -18,6 +18,14 @@ namespace shellspace {
 
 // The --gltf flag of the verbs that write frames.
 FlagSpec GltfFlag();
+// The --html flag of the verbs that write frames: the viewer page
+// (render/html_viewer.h) of the frames with the run's summary.
+FlagSpec HtmlFlag();
+
+// With --html, adds the viewer page of `frames` and the run's summary to
+// `out`'s outside files (written at Commit with the rest, or not at all).
+void AddViewerPage(RunDirectory* out, const Faces& faces,
+                   const std::vector<Positions>& frames);
 
 // Records in `status` whether the geodesic met its stopping criterion
 // (naming `what`, e.g. "geodesic") and warns about uneven step energies.
@@ -41,8 +49,9 @@ int FailedSolveExit(const std::string& verb,
 void CheckShoot(const ShootResult& result, RunStatus* status);
 
 // Writes shape_000.ply ... into the run's output directory and adds, if
-// --png is set, the film strip and, if --gltf is set, the frames as one
-// glTF 2.0 morph animation (io/gltf_writer.h) to its outside files
+// --png is set, the film strip, if --gltf is set, the frames as one
+// glTF 2.0 morph animation (io/gltf_writer.h) and, if --html is set, their
+// viewer page (AddViewerPage) to its outside files
 // (tools/run/run_output.h): all appear together at Commit or none.
 void WritePathOutputs(RunDirectory* out, const Faces& faces,
                       const ShellPath& path);

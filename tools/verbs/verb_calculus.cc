@@ -69,6 +69,7 @@ FlagTable ShootFlags() {
            PngFlag(),
            AllowUnsolvedFlag(),
            GltfFlag(),
+           HtmlFlag(),
        },
        MaterialFlags(),
        SolverFlags(),
@@ -112,6 +113,7 @@ FlagTable TransportFlags() {
            PngFlag(),
            AllowUnsolvedFlag(),
            GltfFlag(),
+           HtmlFlag(),
        },
        MaterialFlags(),
        SolverFlags(),
@@ -129,6 +131,7 @@ int RunShoot() {
       .OutputDirectory("output", FLAGS_output)
       .OutputFile("png", FLAGS_png)
       .OutputGlb("gltf", FLAGS_gltf)
+      .OutputFile("html", FLAGS_html)
       .Check();
   const auto [first, second] = LoadShellPair(FLAGS_first, FLAGS_second);
   CheckMemory(PathBytes(first.mesh.num_vertices(), FLAGS_steps + 1),
@@ -186,6 +189,7 @@ int RunTransport() {
       .OutputDirectory("output", FLAGS_output)
       .OutputFile("png", FLAGS_png)
       .OutputGlb("gltf", FLAGS_gltf)
+      .OutputFile("html", FLAGS_html)
       .Check();
   const std::vector<std::string> files = ListFrameFiles(FLAGS_path);
   if (files.size() < 2) {
@@ -220,7 +224,7 @@ int RunTransport() {
 SHELLSPACE_REGISTER_VERB(
     "shoot",
     "shoot --first S0.ply --second S1.ply --steps K --output DIR [--backward] "
-    "[--mask M.txt] [--json] [--png strip.png] [--gltf path.glb]",
+    "[--mask M.txt] [--json] [--png strip.png] [--gltf path.glb] [--html path.html]",
     shellspace::ShootFlags(), shellspace::RunShoot);
 SHELLSPACE_REGISTER_VERB(
     "log",
@@ -230,5 +234,5 @@ SHELLSPACE_REGISTER_VERB(
 SHELLSPACE_REGISTER_VERB(
     "transport",
     "transport --path DIR --variation P0.ply --output DIR [--epsilon 1] "
-    "[--json] [--png strip.png] [--gltf path.glb]",
+    "[--json] [--png strip.png] [--gltf path.glb] [--html path.html]",
     shellspace::TransportFlags(), shellspace::RunTransport);

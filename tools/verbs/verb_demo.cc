@@ -1,7 +1,8 @@
 // `shellspace demo`: the built-in example. A procedural finger and the same
 // finger bent by 90 degrees; the discrete geodesic between them (K = 8, base
 // held fixed), extrapolated 4 more steps by the exponential map; PLY frames,
-// a JSON summary and a PNG film strip in --output (default ./demo-output).
+// a JSON summary, a PNG film strip and the viewer page (viewer.html) in
+// --output (default ./demo-output).
 #include <gflags/gflags.h>
 
 #include <chrono>
@@ -15,6 +16,7 @@
 #include "shellspace/geometry/procedural_shapes.h"
 #include "shellspace/problems/calculus/exponential_map.h"
 #include "shellspace/render/film_strip.h"
+#include "shellspace/render/html_viewer.h"
 #include "shellspace/reports/relative_gradient.h"
 #include "tools/run/common_flags.h"
 #include "tools/verbs/film_strip_flags.h"
@@ -37,8 +39,8 @@ const char* const kDemoPathModel = "64 MB + 200 B x #V x (K + E + 1)";
 FlagTable DemoFlags() {
   return Flags({{
                     TextFlag("output",
-                             "directory of frames/, film_strip.png and "
-                             "summary.json")
+                             "directory of frames/, film_strip.png, "
+                             "viewer.html and summary.json")
                         .Default("demo-output"),
                     IntegerFlag("steps",
                                 "time steps K of the geodesic (K + 1 shapes)" +
@@ -110,6 +112,10 @@ int RunDemo() {
   CheckGeodesic(geodesic, "demo: the geodesic", &status);
   CheckShoot(shot, &status);
   RunDirectory output(dir);
+  output.AddFileOfSummary(
+      "viewer.html", [&finger, &frames](const std::string& text) {
+        return EncodeHtmlViewer(frames, finger.faces, "shellspace demo", text);
+      });
   WriteFrames(output.File("frames"), finger.faces, frames);
   if (!FLAGS_gltf.empty()) {
     output.AddOutside(FLAGS_gltf,
@@ -151,6 +157,7 @@ int RunDemo() {
       .Add("frames_dir", dir + "/frames")
       .Add("film_strip", dir + "/film_strip.png");
   if (!FLAGS_gltf.empty()) summary.Add("gltf", FLAGS_gltf);
+  summary.Add("viewer", dir + "/viewer.html");
   const std::string json = output.Commit(summary);
   std::cout << json << "\n";
   return status.Finish();

@@ -33,6 +33,7 @@ FlagTable GeodesicFlags() {
                     "interpolated positions"),
            TextFlag("png", "also write a PNG film strip of the frames here"),
            GltfFlag(),
+           HtmlFlag(),
            TextFlag("report", "print Ceres' full report on stderr"),
            MultiresFlag(),
            LinearSolverFlag(),
@@ -49,6 +50,7 @@ int RunGeodesic() {
       .OutputDirectory("output", FLAGS_output)
       .OutputFile("png", FLAGS_png)
       .OutputGlb("gltf", FLAGS_gltf)
+      .OutputFile("html", FLAGS_html)
       .Check();
   const workflows::GeodesicResult result =
       workflows::RunGeodesic(GeodesicOptionsFromFlags("geodesic"));
@@ -82,5 +84,5 @@ SHELLSPACE_REGISTER_VERB(
     "geodesic --start A.ply --end B.ply --steps K --output DIR [--mask M.txt] "
     "[--eta E] [--multires auto|off|LEVELS] "
     "[--linear_solver auto|direct|block-jacobi] [--json] [--png strip.png] "
-    "[--gltf path.glb]",
+    "[--gltf path.glb] [--html path.html]",
     shellspace::GeodesicFlags(), shellspace::RunGeodesic);

@@ -52,6 +52,7 @@ FlagTable PathFlags(int steps) {
           .Required(),
       TextFlag("png", "also write a PNG film strip of the frames here"),
       GltfFlag(),
+      HtmlFlag(),
   };
 }
 
@@ -208,6 +209,7 @@ int RunSpline() {
       .OutputDirectory("output", FLAGS_output)
       .OutputFile("png", FLAGS_png)
       .OutputGlb("gltf", FLAGS_gltf)
+      .OutputFile("html", FLAGS_html)
       .Check();
   const ShellSet set = LoadShellList(FLAGS_keyframes, "keyframes");
   workflows::SplineOptions options;
@@ -259,6 +261,7 @@ int RunRegress() {
       .OutputDirectory("output", FLAGS_output)
       .OutputFile("png", FLAGS_png)
       .OutputGlb("gltf", FLAGS_gltf)
+      .OutputFile("html", FLAGS_html)
       .Check();
   const ShellSet set = LoadShellList(FLAGS_inputs, "inputs");
   workflows::RegressOptions options;
@@ -286,10 +289,10 @@ SHELLSPACE_REGISTER_VERB(
     "spline",
     "spline --keyframes a.ply,b.ply,c.ply --at 0,4,8 --steps 8 --output DIR "
     "[--method nonlinear|ltheta] [--init ltheta|geodesic] [--energy=false] "
-    "[--periodic] [--json] [--png strip.png] [--gltf path.glb]",
+    "[--periodic] [--json] [--png strip.png] [--gltf path.glb] [--html path.html]",
     shellspace::SplineFlags(), shellspace::RunSpline);
 SHELLSPACE_REGISTER_VERB(
     "regress",
     "regress --inputs a.ply,b.ply,... --at 0,3,... --steps K --sigma S "
-    "--output DIR [--json] [--png strip.png] [--gltf path.glb]",
+    "--output DIR [--json] [--png strip.png] [--gltf path.glb] [--html path.html]",
     shellspace::RegressFlags(), shellspace::RunRegress);

@@ -102,6 +102,7 @@ FlagTable PcaFlags() {
                .Default(workflows::PcaOptions().displacement),
            TextFlag("png",
                     "also write a PNG film strip of the mean and the modes"),
+           HtmlFlag(),
            TextFlag("mean",
                     "an elastic mean of the inputs computed before (e.g. by "
                     "`shellspace mean`): the mean solve starts there and "
@@ -228,6 +229,7 @@ workflows::PcaOptions PcaOptionsFromFlags(ShellSet* inputs) {
       .InputList("inputs", FLAGS_inputs)
       .OutputDirectory("output", FLAGS_output)
       .OutputFile("png", FLAGS_png)
+      .OutputFile("html", FLAGS_html)
       .Check();
   *inputs = LoadInputs(FLAGS_loo ? 3 : 2);
   workflows::PcaOptions options =
@@ -257,7 +259,7 @@ workflows::PcaOptions PcaOptionsFromFlags(ShellSet* inputs) {
 // The directory of a pca run (`summary` its summary with the run fields):
 // every shape of the result as NAME.ply, pca.json and summary.json (the
 // same object) whole, and the film strip of the mean and the shell mode
-// shapes (not after a stop).
+// shapes and their viewer page (not after a stop).
 void WritePcaRun(const workflows::PcaResult& result, const Faces& faces,
                  const JsonObject& summary) {
   RunDirectory output(FLAGS_output);
@@ -269,6 +271,7 @@ void WritePcaRun(const workflows::PcaResult& result, const Faces& faces,
     }
   }
   WriteFileAtomically(output.File("pca.json"), summary.str() + "\n");
+  if (result.stopped_in.empty()) AddViewerPage(&output, faces, strip);
   if (!FLAGS_png.empty() && result.stopped_in.empty()) {
     const RenderOptions render = FilmStripOptionsFromFlags();
     output.AddOutside(FLAGS_png,
@@ -340,5 +343,5 @@ SHELLSPACE_REGISTER_VERB(
     "procrustes] [--loo] [--amplitude t] [--log_steps K] [--exp_steps K] "
     "[--max_exp_steps K] [--displacement log|difference] [--mean M.ply] "
     "[--threads N] "
-    "[--json] [--png strip.png]",
+    "[--json] [--png strip.png] [--html page.html]",
     shellspace::PcaFlags(), shellspace::RunPca);
