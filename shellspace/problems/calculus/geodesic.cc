@@ -217,18 +217,18 @@ namespace {
 //   Start        the initial path (MakeGeodesicInitialPath, or the given one);
 //   Prepare      the space the engine's stages run in (renumbered for
 //                locality) or Ceres' problem;
-//   Globalise    LM stages and exact Newton attempts, then, once an exact
-//                attempt has stopped short, projected-Newton stages with
-//                exact Newton probes (GeodesicGlobalisation);
+//   Globalise    LM stages and exact Newton attempts, then, once the exact
+//                attempts are spent, projected-Newton stages with exact
+//                Newton probes (GeodesicGlobalisation) instead of LM alone;
 //   Finish       the path mapped back to the caller's numbering;
 //   Report       E_K, its steps, the smallest triangle, converged.
 // Every stage's iterations are counted in result.iterations and listed in
 // result.stages. The globalising stages (LM, projected Newton) never raise
-// E_K; an exact Newton stage (attempt or probe), meant to finish where the
-// exact Hessian is a good model, that stops short hands on its iterate with
-// the smallest gradient max norm (PathNewtonSettings::keep_best_iterate),
-// never a larger gradient than it received. A solve that ends unconverged
-// reports the path with the smallest gradient it met (Finish).
+// E_K; an exact Newton probe of the projected phase that stops short hands
+// on its iterate with the smallest gradient max norm
+// (PathNewtonSettings::keep_best_iterate), never a larger gradient than it
+// received. A solve that ends unconverged reports the path with the
+// smallest gradient it met (Finish).
 class GeodesicSolve {
  public:
   GeodesicSolve(const ShellSpace& space, const GeodesicInput& input,
@@ -278,6 +278,7 @@ class GeodesicSolve {
   bool lm_failed_ = false, stopped_ = false, lm_handed_over_ = false;
   double lm_damping_ = 0, resume_damping_ = 0;
   bool newton_ran_ = false;  // a Newton stage (attempt or probe) has run
+  bool projected_phase_ = false;  // RunProjectedPhase has begun
   // The path with the smallest gradient max norm after a stage, and that
   // norm (Finish).
   ShellPath best_path_;
@@ -452,7 +453,11 @@ PathNewtonReport GeodesicSolve::RunNewtonStage(HessianModel model,
     newton.max_steps = std::min(4 * newton.max_steps, budget_);
   }
   if (probe) newton.basin_ratio = kNewtonBasinRatio;
-  newton.keep_best_iterate = !projected && input_.keep_best_iterate;
+  // The probes of the projected phase keep their best iterate; the exact
+  // attempts between LM stages hand on their last one, as LM resumes from
+  // there.
+  newton.keep_best_iterate =
+      !projected && projected_phase_ && input_.keep_best_iterate;
   if (projected) {
     // Away from the geodesic, projected Newton converges linearly where
     // terms are not convex: the stage ends at a tenth of the gradient it
@@ -483,6 +488,7 @@ PathNewtonReport GeodesicSolve::RunNewtonStage(HessianModel model,
 }
 
 void GeodesicSolve::RunProjectedPhase() {
+  projected_phase_ = true;
   while (!Converged() && !stopped_ && budget_ > 0) {
     const double round_start = result_.final_gradient;
     const std::optional<double> energy_start =
@@ -526,6 +532,12 @@ void GeodesicSolve::Globalise() {
   for (int attempt = 0;;) {
     const bool newton = threshold > settings_.gradient_tolerance &&
                         attempt < GeodesicInput::kMaxNewtonAttempts;
+    if (!newton && newton_ran_ &&
+        input_.globalisation == GeodesicGlobalisation::kProjectedNewton) {
+      // The exact attempts are spent: projected Newton instead of LM alone.
+      RunProjectedPhase();
+      return;
+    }
     RunLmStage(newton ? threshold : settings_.gradient_tolerance,
                newton && early ? input_.newton_contraction : 0.0);
     if (!newton || Converged() || lm_failed_ || stopped_ || budget_ <= 0) {
@@ -539,10 +551,6 @@ void GeodesicSolve::Globalise() {
     if (probe) {  // LM on to the threshold; not an attempt
       resume_damping_ = lm_damping_;
       continue;
-    }
-    if (input_.globalisation == GeodesicGlobalisation::kProjectedNewton) {
-      RunProjectedPhase();
-      return;
     }
     resume_damping_ = 0;
     ++attempt;

@@ -81,8 +81,9 @@ GeodesicLm ChooseGeodesicLm(GeodesicLm choice, PathLinearSolver linear_solver,
 //    H + lambda I where it cannot be used.
 enum class GeodesicNewton { kTrustRegion, kLineSearch };
 
-// What globalises a geodesic solve once an exact Newton attempt after the
-// first LM stage has stopped short (the Hessian indefinite: not yet in
+// What globalises a geodesic solve once its exact Newton attempts are spent
+// (kMaxNewtonAttempts attempts, each after an LM stage to a ten times
+// smaller gradient, stopped short: the Hessian indefinite, not yet in
 // Newton's basin):
 //  - kProjectedNewton: projected-Newton stages (the trust region on the
 //    path Hessian with every element term's Hessian projected onto the
@@ -90,12 +91,12 @@ enum class GeodesicNewton { kTrustRegion, kLineSearch };
 //    never indefinite, equal to the exact Hessian where the terms are
 //    convex), each ended by a tenfold gradient cut
 //    (kProjectedStageContraction), a stall or the budget, and followed by
-//    an exact Newton probe of the basin (the exact Hessian's
-//    quadratic convergence near the geodesic); the phase ends when a round
-//    of the two lowers the gradient by less than kRoundProgress;
-//  - kLevenbergMarquardt: LM resumes to a ten times smaller gradient and
-//    the exact Newton attempt is repeated, at most kMaxNewtonAttempts
-//    times, then LM alone.
+//    an exact Newton probe of the basin (the exact Hessian's quadratic
+//    convergence near the geodesic); the phase ends when a round of the two
+//    makes no progress (kRoundProgress, kRoundEnergyProgress);
+//  - kLevenbergMarquardt: LM alone to the tolerance or the budget.
+// The stages before are the same for both: a solve that converges within
+// its exact attempts does not depend on the choice.
 enum class GeodesicGlobalisation { kProjectedNewton, kLevenbergMarquardt };
 
 // A round of the projected phase (a projected-Newton stage and an exact
