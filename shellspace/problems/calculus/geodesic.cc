@@ -217,9 +217,10 @@ namespace {
 //   Start        the initial path (MakeGeodesicInitialPath, or the given one);
 //   Prepare      the space the engine's stages run in (renumbered for
 //                locality) or Ceres' problem;
-//   Globalise    LM stages and exact Newton attempts, then, once the exact
-//                attempts are spent, projected-Newton stages with exact
-//                Newton probes (GeodesicGlobalisation) instead of LM alone;
+//   Globalise    LM stages and exact Newton attempts, LM alone once the
+//                attempts are spent, and where that stops short with
+//                budget left, projected-Newton stages with exact Newton
+//                probes (GeodesicGlobalisation);
 //   Finish       the path mapped back to the caller's numbering;
 //   Report       E_K, its steps, the smallest triangle, converged.
 // Every stage's iterations are counted in result.iterations and listed in
@@ -532,14 +533,16 @@ void GeodesicSolve::Globalise() {
   for (int attempt = 0;;) {
     const bool newton = threshold > settings_.gradient_tolerance &&
                         attempt < GeodesicInput::kMaxNewtonAttempts;
-    if (!newton && newton_ran_ &&
+    RunLmStage(newton ? threshold : settings_.gradient_tolerance,
+               newton && early ? input_.newton_contraction : 0.0);
+    if (!newton && !Converged() && !lm_failed_ && !stopped_ && budget_ > 0 &&
         input_.globalisation == GeodesicGlobalisation::kProjectedNewton) {
-      // The exact attempts are spent: projected Newton instead of LM alone.
+      // The exact attempts are spent and LM alone stopped short of the
+      // tolerance with budget left (Ceres' cost no longer decreasing, or
+      // the engine's LM rejecting its steps): projected Newton goes on.
       RunProjectedPhase();
       return;
     }
-    RunLmStage(newton ? threshold : settings_.gradient_tolerance,
-               newton && early ? input_.newton_contraction : 0.0);
     if (!newton || Converged() || lm_failed_ || stopped_ || budget_ <= 0) {
       return;
     }
