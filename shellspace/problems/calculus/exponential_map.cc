@@ -69,19 +69,7 @@ ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
     result.summary.message = "rigid step: the rigid motion continued";
     return result;
   }
-  // The initial guess: 2 b - a, or the rotation-corrected extrapolation
-  // b + R (b - a) (R the rotation of the rigid fit of a onto b; the two
-  // agree without rotation) where its residual is smaller: along a path
-  // that turns, 2 b - a shrinks the shape.
   result.shape = 2 * b - a;
-  {
-    const RigidMotion motion = FitRigidMotion(a, b);
-    Positions turned = b + (b - a) * motion.rotation.transpose();
-    for (int v : fixed_vertices) turned.row(v) = result.shape.row(v);
-    if (residual_norm(turned) < residual_norm(result.shape)) {
-      result.shape = std::move(turned);
-    }
-  }
   if (alternative_start != nullptr) {
     Positions alternative = *alternative_start;
     for (int v : fixed_vertices) alternative.row(v) = result.shape.row(v);

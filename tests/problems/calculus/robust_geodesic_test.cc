@@ -71,8 +71,8 @@ TEST(RigidExpTest, ShootingAlongARigidMotionReproducesIt) {
 }
 
 TEST(RigidExpTest, ANearlyRigidStepStillSolvesItsEquation) {
-  // A rigid motion plus a small bend: not rigid, so Newton runs, from the
-  // rotation-corrected guess, to the acceptance.
+  // A rigid motion plus a small bend: not rigid, so Newton runs to the
+  // acceptance.
   const Mesh finger = MakeFinger(0.5, 4.0, 16, 12, 4);
   const ShellSpace space = testing::MakeSpace(finger);
   const RigidMotion m = ThirtyDegrees();
