@@ -16,6 +16,8 @@
 #
 # Usage: bench/stress_corpus.sh [BUILD_DIR] [OUT_DIR]
 # Environment:
+#   SHELLSPACE_DATA      the meshes' folder (default ../shared/data beside
+#                        the checkout)
 #   CORPUS_MESHES        mesh files (default: every cgal mesh and
 #                        cactus/cactus0.ply)
 #   CORPUS_DEFORMATIONS  KIND:STRENGTH list (default: bend:75 bend:120
@@ -33,7 +35,7 @@ build="${1:-build}"
 cli="${build}/shellspace"
 pose="${build}/bench/stress_pose"
 out="${2:-$(mktemp -d "${TMPDIR:-/tmp}/shellspace-corpus.XXXXXX")}"
-data="$(cd "$(dirname "${BASH_SOURCE[0]}")/../../shared/data" && pwd)"
+data="${SHELLSPACE_DATA:-$(cd "$(dirname "${BASH_SOURCE[0]}")/../../shared/data" && pwd)}"
 cap="${CORPUS_CAP:-600}"
 verbs="${CORPUS_VERBS:-geodesic shoot transport mean}"
 deformations="${CORPUS_DEFORMATIONS:-bend:75 bend:120 twist:60 twist:180 pull:0.15}"
