@@ -149,7 +149,8 @@ def test_a_time_limit_stops_pca_with_the_mean_alone(tmp_path):
     assert list(shapes) == ["mean"]
     assert summary["partial"] and summary["modes"] == 0
     assert summary["stopped_in"] == "mean"
-    assert sorted(os.listdir(tmp_path / "pca")) == ["mean.ply", "pca.json"]
+    assert sorted(os.listdir(tmp_path / "pca")) == ["mean.ply", "pca.json",
+                                                    "summary.json"]
 
 
 # ---- KeyboardInterrupt ---------------------------------------------------
@@ -173,8 +174,12 @@ def test_keyboard_interrupt_writes_the_partial_frames(tmp_path):
         long_shoot(output=str(tmp_path / "out"))
     path, summary = error.value.result
     assert summary["output"] == str(tmp_path / "out")
-    written = os.listdir(tmp_path / "out")
+    listing = os.listdir(tmp_path / "out")
+    # The frames and, as the CLI writes it, the summary.
+    assert "summary.json" in listing
+    written = [name for name in listing if name.startswith("shape_")]
     assert len(written) == path.shape[0]
+    assert len(listing) == path.shape[0] + 1
     # By frame number (shape_1000.ply sorts before shape_999.ply by name).
     last_name = max(written, key=lambda n: int("".join(filter(str.isdigit, n))))
     last, _ = shellspace.read_mesh(str(tmp_path / "out" / last_name))
