@@ -41,6 +41,10 @@ JsonObject SimulationJson(const SimulationSettings& s,
     stages.push_back(o);
   }
   summary.Add("stages", stages);
+  // Converged: the last stage's LM met Ceres' convergence criterion.
+  summary.Add("converged", !result.stages.empty() &&
+                               result.stages.back().termination ==
+                                   "CONVERGENCE");
   std::vector<double> x;
   for (size_t k = 0; k < result.interfaces.size(); ++k) {
     x.push_back(result.field.grid.x(static_cast<int>(k) + 1));

@@ -289,7 +289,6 @@ int RunSimulate() {
                                 " LM iterations (--lm_iterations " +
                                 std::to_string(FLAGS_lm_iterations) +
                                 " per stage)");
-  summary.Add("converged", converged);
   if (FLAGS_delta_extrapolation >= 2 && ObservedStop() == StopCause::kNone) {
     const DeltaExtrapolation ex = ExtrapolateDelta(
         s, ExtrapolationWidths(result.delta, FLAGS_delta_extrapolation),
