@@ -425,6 +425,7 @@ TEST(CliTest, HelpListsOnlyTheVerbsFlags) {
                                           "mask",
                                           "png",
                                           "gltf",
+                                          "html",
                                           "report",
                                           "mu",
                                           "lambda",
