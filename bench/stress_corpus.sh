@@ -52,31 +52,24 @@ mkdir -p "${out}"
 echo "| mesh | vertices | pose | verb | converged | exit | iterations | wall s | CPU s | peak RSS MB | start |"
 echo "|---|---|---|---|---|---|---|---|---|---|---|"
 
-# json_field FILE KEY: the first value of "KEY": in a JSON file ("" if none).
+# json_field FILE KEY: the first value of "KEY": in a JSON file ("" if
+# none); KEY "stages" gives the geodesic's stages as "L12 N4 P20 N3"
+# (method letter, iterations).
 json_field() {
   python3 -c 'import json,sys
 try:
     d = json.load(open(sys.argv[1]))
 except Exception:
     print(""); sys.exit()
+if sys.argv[2] == "stages":
+    letters = {"levenberg-marquardt": "L", "newton": "N", "projected-newton": "P"}
+    print(" ".join(letters.get(s.get("method"), "?") + str(s.get("iterations", ""))
+                   for s in d.get("stages") or [] if isinstance(s, dict)))
+    sys.exit()
 v = d
 for k in sys.argv[2].split("."):
     v = v.get(k, "") if isinstance(v, dict) else ""
 print(v)' "$1" "$2"
-}
-
-# stage_list FILE: the geodesic's stages as "L12 N4 P20 N3" (method letter,
-# iterations; "" if none).
-stage_list() {
-  python3 -c 'import json,sys
-try:
-    d = json.load(open(sys.argv[1]))
-except Exception:
-    print(""); sys.exit()
-letters = {"levenberg-marquardt": "L", "newton": "N", "projected-newton": "P"}
-stages = d.get("stages") or []
-print(" ".join(letters.get(s.get("method"), "?") + str(s.get("iterations", ""))
-               for s in stages if isinstance(s, dict)))' "$1"
 }
 
 # run NAME VERTICES POSE VERB JSON ARGS...: one CLI run, one table row.
@@ -96,7 +89,7 @@ run() {
   converged=$(json_field "${json}" converged)
   iterations=$(json_field "${json}" iterations)
   if [[ "${verb}" == geodesic ]]; then
-    start="$(json_field "${json}" init.used) [$(stage_list "${json}")]"
+    start="$(json_field "${json}" init.used) [$(json_field "${json}" stages)]"
     local prolongated
     prolongated=$(json_field "${json}" prolongation.used)
     [[ "$(json_field "${json}" prolongation.checked)" == True ]] &&
