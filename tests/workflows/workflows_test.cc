@@ -422,7 +422,10 @@ TEST(RegressWorkflowTest, EqualsTheCliDigitsAndIsNotConverged) {
 // path Hessian sums an element's two diagonal contributions before
 // scattering them, in a locality order of the elements (the same matrix up
 // to round-off, which three L-BFGS iterations from an unconverged start
-// carry to about 1e-11 relative); the ltheta ones still to 1e-12.
+// carry to about 1e-11 relative); the ltheta ones to 1e-11: its energy's
+// midpoints are geodesic solves to |grad| 1e-10, which since the staged
+// globalisation of SolveGeodesic reach that tolerance by another route of
+// LM and Newton steps than that CLI's (2.5e-12 relative apart).
 workflows::SplineOptions ThreeKeyframes(const std::string& method) {
   const workflows::PcaOptions sheets = FourSheets();
   workflows::SplineOptions options;
@@ -456,7 +459,7 @@ TEST(SplineWorkflowTest, EqualsTheCliDigitsForBothMethods) {
       {"nonlinear", 0.0006148546899275184, 9.933615809719777e-05,
        SolveStatus::Code::kNotConverged, 1e-10},
       {"ltheta", 0.0006193429321353981, 9.954466905005312e-05,
-       SolveStatus::Code::kConverged, 1e-12},
+       SolveStatus::Code::kConverged, 1e-11},
   };
   for (const Case& c : cases) {
     const workflows::SplineResult result =

@@ -536,6 +536,7 @@ void GeodesicSolve::Globalise() {
     RunLmStage(newton ? threshold : settings_.gradient_tolerance,
                newton && early ? input_.newton_contraction : 0.0);
     if (!newton && !Converged() && !lm_failed_ && !stopped_ && budget_ > 0 &&
+        input_.newton_from > 0 &&
         input_.globalisation == GeodesicGlobalisation::kProjectedNewton) {
       // The exact attempts are spent and LM alone stopped short of the
       // tolerance with budget left (Ceres' cost no longer decreasing, or

@@ -156,7 +156,9 @@ struct GeodesicInput {
   // converges only linearly near a geodesic. If Newton stops short of the
   // tolerance (Hessian not positive definite: not yet in its basin), LM
   // continues to a ten times smaller gradient and Newton tries again, at
-  // most kMaxNewtonAttempts times; then LM alone. 0 disables Newton.
+  // most kMaxNewtonAttempts times; then LM alone (and, with
+  // GeodesicGlobalisation::kProjectedNewton, projected Newton where LM
+  // stops short). 0 disables Newton, exact and projected: LM alone.
   double newton_from = 1e-3;
   // Newton also takes over earlier, on the first attempt, after an LM step
   // of the library's engine (GeodesicLm) that divided the gradient by at
