@@ -454,6 +454,7 @@ PathNewtonReport GeodesicSolve::RunNewtonStage(HessianModel model,
     newton.max_steps = std::min(4 * newton.max_steps, budget_);
   }
   if (probe) newton.basin_ratio = kNewtonBasinRatio;
+  if (!projected && !probe) newton.stall_steps = kNewtonStallSteps;
   // The probes of the projected phase keep their best iterate; the exact
   // attempts between LM stages hand on their last one, as LM resumes from
   // there.

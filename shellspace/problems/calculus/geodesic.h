@@ -228,6 +228,14 @@ struct GeodesicStage {
 // hand-over there cost 29 more steps).
 inline constexpr int kLmStallSteps = 20;
 
+// An exact Newton attempt between LM stages (trust region on the exact,
+// possibly indefinite Hessian) ends as stalled once its gradient max norm
+// has not halved in this many accepted steps: in Newton's basin each step
+// at least halves it, so such a stage is not in the basin, and its steps
+// along negative curvature would spend the budget (and the time limit) at
+// up to 4 x 8 steps per attempt. LM resumes from its last iterate.
+inline constexpr int kNewtonStallSteps = 8;
+
 // A discrete geodesic has (nearly) equal step energies W[s_{k-1}, s_k]
 // (calculus.md: E_K = K sum_k W is minimal among paths of equal length at
 // constant speed). A result whose largest step energy exceeds this factor

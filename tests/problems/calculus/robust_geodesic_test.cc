@@ -107,8 +107,9 @@ struct BentFinger {
 // The exact trust-region Newton stage of `steps` steps from the finger's
 // linear path (the best-iterate rule on or off); *path is its result.
 PathNewtonReport ExactStage(const BentFinger& f, int steps, bool keep_best,
-                            ShellPath* path) {
+                            ShellPath* path, int stall_steps = 0) {
   PathNewtonSettings settings;
+  settings.stall_steps = stall_steps;
   settings.globalisation = NewtonSettings::Globalisation::kTrustRegion;
   settings.model = HessianModel::kExact;
   settings.max_steps = steps;
@@ -165,6 +166,39 @@ TEST(BestIterateTest, AnUnconvergedSolveReportsTheBestPathItMet) {
       EXPECT_EQ(r.final_gradient, r.stages[1].final_gradient);
     }
   }
+}
+
+// An exact Newton attempt outside the basin ends once kNewtonStallSteps
+// accepted steps have not halved its gradient, not at its step cap.
+TEST(NewtonStallTest, AnAttemptOutsideTheBasinEndsWhenItsGradientStalls) {
+  // At 170 degrees (150 converges in 14 steps, the rule never firing).
+  const BentFinger f(170);
+  constexpr int kCap = 4 * 8;  // the exact attempts' step cap
+  ShellPath path;
+  const PathNewtonReport stalled =
+      ExactStage(f, kCap, false, &path, kNewtonStallSteps);
+  ASSERT_FALSE(stalled.converged);
+  EXPECT_EQ(stalled.stop, NewtonStop::kNoProgress) << stalled.stop_reason;
+  const int n = stalled.steps;
+  ASSERT_GT(n, kNewtonStallSteps);
+  ASSERT_LT(n, kCap);
+  // The criterion, from the same stage replayed without the rule: after n
+  // steps the gradient is above half of its value kNewtonStallSteps steps
+  // before, and every earlier window had halved it.
+  std::vector<double> norms;
+  for (int steps = 0; steps <= n; ++steps) {
+    ShellPath replay;
+    norms.push_back(ExactStage(f, steps, false, &replay).final_gradient);
+  }
+  EXPECT_EQ(norms[n], stalled.final_gradient);
+  EXPECT_GT(norms[n], 0.5 * norms[n - kNewtonStallSteps]);
+  for (int m = kNewtonStallSteps + 1; m < n; ++m) {
+    EXPECT_LE(norms[m], 0.5 * norms[m - kNewtonStallSteps]) << m;
+  }
+  // The twin: without the rule the stage runs on to its cap.
+  const PathNewtonReport capped = ExactStage(f, kCap, false, &path);
+  EXPECT_FALSE(capped.converged);
+  EXPECT_EQ(capped.steps, kCap) << capped.stop_reason;
 }
 
 }  // namespace
