@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <utility>
 
+#include "shellspace/geometry/validation.h"
 #include "shellspace/problems/calculus/exponential_map.h"
 #include "shellspace/reports/path_reports.h"
 #include "shellspace/reports/solve_choices.h"
@@ -48,6 +49,37 @@ std::vector<std::string> PathWarnings(const shellspace::GeodesicResult& g) {
   return warnings;
 }
 
+// GeodesicResult::sliver_swelling of the solved path.
+void MeasureSliverSwelling(GeodesicResult* result) {
+  const ShellPath& path = result->path();
+  const Faces& faces = result->start.faces;
+  for (const int f : result->slivers.faces) {
+    const double reference = FaceNormal(faces, path.front(), f).norm();
+    if (!(reference > 0)) continue;
+    for (size_t k = 1; k < path.size(); ++k) {
+      const double ratio = FaceNormal(faces, path[k], f).norm() / reference;
+      if (ratio > result->sliver_swelling) {
+        result->sliver_swelling = ratio;
+        result->sliver_swelling_face = f;
+        result->sliver_swelling_shape = static_cast<int>(k);
+      }
+    }
+  }
+}
+
+// The input's slivers and folds and how the path treats the slivers.
+JsonObject SliverJson(const GeodesicResult& result) {
+  const SliverFaces& s = result.slivers;
+  return JsonObject()
+      .Add("faces", s.faces)
+      .Add("smallest_area_fraction", s.smallest_area_fraction)
+      .Add("smallest_angle_degrees", s.smallest_degrees)
+      .Add("folded_edges", static_cast<int>(s.folds.size()))
+      .Add("largest_swelling", result.sliver_swelling)
+      .Add("largest_swelling_face", result.sliver_swelling_face)
+      .Add("largest_swelling_shape", result.sliver_swelling_shape);
+}
+
 GeodesicResult Solve(const GeodesicOptions& options, const std::string& what) {
   if (options.steps < 1) {
     throw InputError(options.option_prefix + "steps must be >= 1, got " +
@@ -86,6 +118,7 @@ GeodesicResult Solve(const GeodesicOptions& options, const std::string& what) {
     return result;
   }
   result.energy_split = PathEnergySplit(space, g.path);
+  MeasureSliverSwelling(&result);
   result.warnings = PathWarnings(g);
   std::vector<std::string> failures;
   if (!g.converged) failures.push_back(GradientFailure(g, what));
@@ -103,7 +136,8 @@ JsonObject ToJson(const GeodesicResult& result) {
   JsonObject json = GeodesicJson(result.geodesic());
   json.Add("multires_levels", MultiresolutionJson(result.solve))
       .Add("prolongation", ProlongationJson(result.solve.prolongation))
-      .Add("energy_split", EnergySplitJson(result.energy_split));
+      .Add("energy_split", EnergySplitJson(result.energy_split))
+      .Add("input_slivers", SliverJson(result));
   return json;
 }
 

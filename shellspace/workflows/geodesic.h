@@ -57,6 +57,11 @@ struct GeodesicResult {
   EnergySplit energy_split;  // of the path, computed once
   MaterialChoice material;   // as resolved
   SliverFaces slivers;       // of s_0 (and its folds), before the solve
+  // The largest area ratio |f(s_k)| / |f(s_0)| of a sliver face of s_0 over
+  // the path's shapes, and where (1, -1, -1 without slivers): how much the
+  // path swells the slivers of the input.
+  double sliver_swelling = 1;
+  int sliver_swelling_face = -1, sliver_swelling_shape = -1;
   // Lines about the path (uneven step energies, a collapsing triangle).
   std::vector<std::string> warnings;
   bool stopped = false;  // the stop request cut a solve short

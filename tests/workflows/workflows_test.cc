@@ -98,6 +98,72 @@ workflows::MeanOptions MeanOfFourSheets() {
 constexpr double kCliPathEnergy = 0.0013510370561477059;
 constexpr double kCliMembrane = 9.137474658097428e-05;
 
+// The summary reports the input's slivers and the largest area ratio
+// |f(s_k)| / |f(s_0)| of one of them along the path, recomputed here from
+// the frames; the twin, the sheet without slivers, reports none.
+TEST(GeodesicWorkflowTest, TheSummaryReportsHowThePathSwellsTheSlivers) {
+  workflows::GeodesicOptions options = BentSheetGeodesic();
+  // Vertex 8 (interior) towards the midpoint of the opposite edge of its
+  // first triangle: that triangle becomes a sliver, inside its star.
+  const int v = 8;
+  int a = -1, b = -1;
+  for (int f = 0; f < options.start.num_faces() && a < 0; ++f) {
+    for (int c = 0; c < 3; ++c) {
+      if (options.start.faces(f, c) == v) {
+        a = options.start.faces(f, (c + 1) % 3);
+        b = options.start.faces(f, (c + 2) % 3);
+      }
+    }
+  }
+  ASSERT_GE(a, 0);
+  const Eigen::RowVector3d mid =
+      0.5 * (options.start.positions.row(a) + options.start.positions.row(b));
+  options.start.positions.row(v) =
+      mid + 0.005 * (options.start.positions.row(v) - mid);
+  options.end = RollOntoCylinder(options.start.positions, 0.6);
+  const workflows::GeodesicResult r = workflows::RunGeodesic(options);
+  ASSERT_FALSE(r.slivers.faces.empty());
+  const auto area = [&](const Positions& x, int f) {
+    const Eigen::Vector3d p = x.row(options.start.faces(f, 0)),
+                          q = x.row(options.start.faces(f, 1)),
+                          w = x.row(options.start.faces(f, 2));
+    return 0.5 * (q - p).cross(w - p).norm();
+  };
+  double largest = 1;
+  int face = -1, shape = -1;
+  for (const int f : r.slivers.faces) {
+    for (size_t k = 1; k < r.path().size(); ++k) {
+      const double ratio = area(r.path()[k], f) / area(r.path()[0], f);
+      if (ratio > largest) {
+        largest = ratio;
+        face = f;
+        shape = static_cast<int>(k);
+      }
+    }
+  }
+  ASSERT_GT(largest, 1);  // the roll stretches the sliver: a real maximum
+  EXPECT_NEAR(r.sliver_swelling, largest, 1e-12 * largest);
+  EXPECT_EQ(r.sliver_swelling_face, face);
+  EXPECT_EQ(r.sliver_swelling_shape, shape);
+  const std::string json = workflows::ToJson(r).str();
+  EXPECT_NE(json.find("\"input_slivers\": {\"faces\": [" +
+                      std::to_string(r.slivers.faces.front())),
+            std::string::npos)
+      << json;
+  EXPECT_NE(json.find("\"largest_swelling\": " + JsonObject::Number(largest)),
+            std::string::npos);
+  // The twin.
+  const workflows::GeodesicResult clean =
+      workflows::RunGeodesic(BentSheetGeodesic());
+  EXPECT_TRUE(clean.slivers.faces.empty());
+  EXPECT_EQ(clean.sliver_swelling, 1);
+  EXPECT_EQ(clean.sliver_swelling_face, -1);
+  EXPECT_NE(workflows::ToJson(clean).str().find(
+                "\"input_slivers\": {\"faces\": []"),
+            std::string::npos)
+      << workflows::ToJson(clean).str();
+}
+
 TEST(GeodesicWorkflowTest, EqualsTheCliDigitsAndItsSplitSumsToTheEnergy) {
   const workflows::GeodesicResult result =
       workflows::RunGeodesic(BentSheetGeodesic());
