@@ -225,13 +225,17 @@ void CheckOutputFile(const std::optional<std::string>& output) {
   OutputPaths().OutputFile("output", *output).Check();
 }
 
+void CheckPngMemory(const std::optional<std::string>& png, int frames) {
+  if (png) CheckFilmStripMemory(frames, RenderOptions(), "png");
+}
+
 void WritePath(const std::optional<std::string>& output,
                const std::optional<std::string>& png,
                const std::optional<std::string>& gltf, const Faces& faces,
                const std::vector<Positions>& path, const JsonObject& summary) {
   if (!output && !png && !gltf) return;
   RenderOptions options;
-  if (png) ValidateRenderOptions(options);
+  CheckPngMemory(png, static_cast<int>(path.size()));
   // All together or none, as the CLI: the directory staged and replaced
   // whole with its summary.json, the files outside renamed with it.
   StagedRun run(output.value_or(""));

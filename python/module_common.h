@@ -182,6 +182,10 @@ void CheckOutputs(const std::optional<std::string>& output,
                   const std::vector<std::pair<std::string, std::string>>&
                       inputs = {});
 
+// With `png`, the film strip of `frames` frames against the CLI's memory
+// bound (tools/run/memory_limits.h CheckFilmStripMemory), before the solve.
+void CheckPngMemory(const std::optional<std::string>& png, int frames);
+
 // `output` a file (a mesh) checked as CheckOutputs checks its files.
 void CheckOutputFile(const std::optional<std::string>& output);
 
