@@ -1096,6 +1096,17 @@ def _parse_scheduler(scheduler):
     if not isinstance(scheduler, str):
         raise shellspace.InputError(
             f"scheduler: expected a string, got {type(scheduler).__name__}")
+    lower = scheduler.lower()
+    if lower != scheduler and (lower in ("none", "local") or
+                               lower.startswith(("local:", "none:"))):
+        raise shellspace.InputError(
+            f"--scheduler '{scheduler}': the keywords none, local and local:N "
+            f"are lower-case (did you mean '{lower}'?); an address is "
+            "HOST:PORT")
+    if scheduler.startswith("none:"):
+        raise shellspace.InputError(
+            f"--scheduler '{scheduler}': none takes no count (none, local, "
+            "local:N or a scheduler address HOST:PORT)")
     most = most_local_workers()
     if scheduler == "local":
         return "local", min(2, most)
@@ -1133,7 +1144,13 @@ def _client_for(scheduler):
     kind, value = _parse_scheduler(scheduler)
     if kind == "none":
         return None, None
-    from distributed import Client, LocalCluster
+    try:
+        from distributed import Client, LocalCluster
+    except ImportError as error:
+        raise shellspace.InputError(
+            f"--scheduler {scheduler} needs Dask's distributed package "
+            f"({_one_line(error)}); --scheduler none runs in this process"
+        ) from None
     if kind == "local":
         cluster = LocalCluster(n_workers=value, threads_per_worker=1,
                                processes=True, dashboard_address=None)
@@ -1163,13 +1180,27 @@ def _client_for(scheduler):
 
 
 def _split_inputs(inputs):
-    """The paths of a comma-separated list; an empty item (",,", a trailing
-    comma) is an InputError."""
+    """The paths of a comma-separated list. An empty item (",,", ", ,", a
+    leading or trailing comma) is an InputError naming its position, and so
+    is an item that names no file and begins or ends with white space ("a,
+    b.ply"), as the CLI's lists (io/output_paths.h)."""
     paths = inputs.split(",")
-    if any(not p.strip() for p in paths):
-        raise shellspace.InputError(
-            f"--inputs '{inputs}' has an empty item"
-            + (" (a trailing comma)" if inputs.endswith(",") else ""))
+    for k, p in enumerate(paths):
+        position = f"item {k + 1} of {len(paths)}"
+        empty = f"--inputs '{inputs}' has an empty item: {position}"
+        if not p:
+            raise shellspace.InputError(empty + (
+                " (a trailing comma)" if k + 1 == len(paths) else
+                " (a leading comma)" if k == 0 else
+                " (two commas in a row)"))
+        if not p.strip(" \t"):
+            raise shellspace.InputError(
+                empty + " (only white space between commas)")
+        if p != p.strip() and not os.path.exists(p):
+            raise shellspace.InputError(
+                f"--inputs '{inputs}': {position}, '{p}', begins or ends "
+                "with white space and names no file (items are split at the "
+                "commas only: no space after a comma)")
     return paths
 
 
