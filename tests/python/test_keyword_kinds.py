@@ -2,7 +2,8 @@
 options class: a bool is not a count or a number (python/strict_numbers.h,
 python/module_options.h), eta and relative_eta are one or the other, the
 arrays of a solving function's result are read-only, a film strip too
-large is refused up front.
+large is refused up front, and branching_simulate raises what the CLI
+exits 4 for.
 """
 import pickle
 import re
@@ -194,8 +195,27 @@ def test_result_arrays_are_read_only():
     assert_read_only(model.mean)
     assert model.shapes and all(not a.flags.writeable
                                 for a in model.shapes.values())
+    u, _ = shellspace.branching_simulate(nx=8, ny=32, continuation=1,
+                                         allow_unconverged=True)
+    assert_read_only(u)
     # Arrays that are not results stay the caller's: read_mesh, gradients.
     assert shellspace.energy_gradient(V, end, F).flags.writeable
+
+
+def test_branching_simulate_raises_what_the_cli_exits_four_for():
+    # Two LM iterations per stage: the last stage stops short, as the CLI's
+    # `branching simulate --lm_iterations 2` (exit 4).
+    with pytest.raises(shellspace.NotConvergedError,
+                       match="the last stage ended"):
+        shellspace.branching_simulate(nx=8, ny=32, continuation=1,
+                                      lm_iterations=2)
+    u, summary = shellspace.branching_simulate(
+        nx=8, ny=32, continuation=1, lm_iterations=2, allow_unconverged=True)
+    assert summary["converged"] is False
+    # The twin: enough iterations, converged, no error.
+    u, summary = shellspace.branching_simulate(nx=8, ny=32, continuation=1,
+                                               lm_iterations=200)
+    assert summary["converged"] is True
 
 
 def test_a_film_strip_too_large_is_refused_before_drawing(tmp_path):

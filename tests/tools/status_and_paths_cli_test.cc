@@ -292,6 +292,43 @@ TEST(StatusAndPathsCliTest, MistypedSchedulersAndListItemsAreOneLine) {
             (std::vector<std::string>{"bent.ply", "flat.ply"}));
 }
 
+// The value of the first "key": true|false of `json` (the summary's own
+// key comes before the nested ones of its stages and widths).
+bool FirstBool(const std::string& json, const std::string& key) {
+  const std::string needle = "\"" + key + "\": ";
+  const size_t at = json.find(needle);
+  return at != std::string::npos &&
+         json.compare(at + needle.size(), 4, "true") == 0;
+}
+
+// The summary's converged is what the exit code says: a delta
+// extrapolation with a width short of convergence (the fourth and fifth
+// widths stop at 30 LM iterations, the simulation itself converges) is
+// "converged": false and exit 4 -- it was true beside exit 4. Three widths,
+// all converged: true and exit 0.
+TEST(StatusAndPathsCliTest, BranchingExtrapolationConvergedIsTheExitCode) {
+  for (const int widths : {5, 3}) {
+    SCOPED_TRACE(widths);
+    const std::string dir = TempDir() + "/br";
+    std::string out, err;
+    const int code = RunCli(
+        "branching simulate --quiet --json --nx 8 --ny 32 --continuation 1 "
+        "--lm_iterations 30 --delta_extrapolation " +
+            std::to_string(widths) + " --output " + dir,
+        &out, &err);
+    const bool all = widths == 3;
+    EXPECT_EQ(code, all ? 0 : 4) << err;
+    EXPECT_EQ(FirstBool(out, "all_converged"), all) << out;
+    EXPECT_EQ(FirstBool(out, "converged"), all) << out;
+    EXPECT_EQ(FirstBool(Slurp(dir + "/summary.json"), "converged"), all);
+    if (!all) {
+      EXPECT_NE(err.find("delta extrapolation: not every width converged"),
+                std::string::npos)
+          << err;
+    }
+  }
+}
+
 TEST(StatusAndPathsCliTest, ACappedBranchingSimulationExitsFour) {
   const std::string dir = TempDir() + "/br";
   std::string out, err;
