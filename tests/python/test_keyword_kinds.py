@@ -2,8 +2,8 @@
 options class: a bool is not a count or a number (python/strict_numbers.h,
 python/module_options.h), eta and relative_eta are one or the other, the
 arrays of a solving function's result are read-only, a film strip too
-large is refused up front, and branching_simulate raises what the CLI
-exits 4 for.
+large is refused up front, branching_simulate raises what the CLI exits 4
+for, and docstrings say what the functions do.
 """
 import pickle
 import re
@@ -236,3 +236,32 @@ def test_a_film_strip_too_large_is_refused_before_drawing(tmp_path):
     # The twin: a small strip is drawn.
     shellspace.write_film_strip(str(target), [V, bent(V)], F, width=64)
     assert target.exists()
+
+
+def test_solve_modulo_rigid_motions_does_what_its_docstring_says():
+    doc = shellspace.solve_modulo_rigid_motions.__doc__
+    V, F = plate(4)
+    end = bent(V)
+    rows, cols, vals = shellspace.energy_hessian(V, end, F)
+    rhs = shellspace.energy_gradient(V, end, F)
+    # rhs is #V x 3; a flat 3#V vector is refused, as the docstring says.
+    assert "rhs: the right-hand side, #V x 3" in doc
+    assert "3#V or" not in doc
+    p, positive = shellspace.solve_modulo_rigid_motions(rows, cols, vals,
+                                                        rhs, end, 1e-6)
+    assert p.shape == V.shape and np.all(np.isfinite(p))
+    with pytest.raises(shellspace.InputError, match="rhs"):
+        shellspace.solve_modulo_rigid_motions(rows, cols, vals, rhs.ravel(),
+                                              end)
+    # Indices outside [0, 3#V) and a negative shift: InputError.
+    assert "integers in [0, 3#V)" in doc
+    with pytest.raises(shellspace.InputError, match="outside"):
+        shellspace.solve_modulo_rigid_motions(rows + 3 * len(V), cols, vals,
+                                              rhs, end)
+    assert "(finite, >= 0)" in doc
+    with pytest.raises(shellspace.InputError, match="shift"):
+        shellspace.solve_modulo_rigid_motions(rows, cols, vals, rhs, end, -1)
+    # H = 0: not positive definite, as documented.
+    z, positive = shellspace.solve_modulo_rigid_motions(
+        rows, cols, 0 * vals, rhs, end)
+    assert not positive
