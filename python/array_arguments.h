@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "python/strict_numbers.h"
 #include "shellspace/geometry/mesh.h"
 
 namespace shellspace {

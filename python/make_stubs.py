@@ -67,18 +67,27 @@ SPECIFIC = {
     ("write_film_strip", "path"): "the PNG file to write",
     ("write_gltf", "path"): "the .glb file to write",
     ("align_rigidly", "source"): "#V x 3 positions to move",
+    ("compare", "a"): "the first shell (#V x 3) or path (K x #V x 3, or a "
+                      "list of #V x 3 arrays)",
+    ("compare", "b"): "the second shell or path, as a (as many frames as "
+                      "a)",
     ("align_rigidly", "target"): "#V x 3 positions to fit them to",
     ("solve_modulo_rigid_motions", "rows"): "row indices of the triplets of "
-                                            "H (3#V x 3#V)",
-    ("solve_modulo_rigid_motions", "cols"): "column indices of the triplets",
+                                            "H (3#V x 3#V): integers in "
+                                            "[0, 3#V)",
+    ("solve_modulo_rigid_motions", "cols"): "column indices of the "
+                                            "triplets: integers in [0, 3#V)",
     ("solve_modulo_rigid_motions", "vals"): "values of the triplets "
                                             "(duplicates summed)",
-    ("solve_modulo_rigid_motions", "rhs"): "the right-hand side, 3#V or "
-                                           "#V x 3",
+    ("solve_modulo_rigid_motions", "rhs"): "the right-hand side, #V x 3 "
+                                           "(row v, column c: coordinate "
+                                           "3 v + c; a flat 3#V vector is "
+                                           "refused)",
     ("solve_modulo_rigid_motions", "shape"): "#V x 3 positions whose rigid "
                                              "motions are factored out",
     ("solve_modulo_rigid_motions", "shift"): "added to the diagonal of the "
-                                             "reduced Hessian",
+                                             "reduced Hessian (finite, "
+                                             ">= 0)",
     ("energy_gradient", "side"): "the side differentiated: 'reference' or "
                                  "'deformed'",
     ("energy_hessian", "rows"): "the side of the rows: 'reference' or "

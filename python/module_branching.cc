@@ -48,7 +48,7 @@ py::object BranchingSimulatePy(double epsilon, double length, double height,
                   " (" + std::to_string(static_cast<long>(nodes)) + " nodes)",
               "16 MB + 3 KB x (nx + 1) x ny");
   std::optional<SimulationResult> simulation;
-  JsonObject summary;
+  std::optional<DeltaExtrapolation> extrapolation;
   {
     SolveControl::Solving solving(control);
     simulation.emplace(RunSimulation(s));
@@ -56,16 +56,19 @@ py::object BranchingSimulatePy(double epsilon, double length, double height,
     if (const std::string why = SimulationBreakdown(result); !why.empty()) {
       throw InputError("branching simulate: " + why);
     }
-    summary = SimulationJson(s, result);
     if (delta_extrapolation >= 2 && !control.stopped()) {
-      summary.Add("extrapolation",
-                  DeltaExtrapolationJson(ExtrapolateDelta(
-                      s, ExtrapolationWidths(result.delta,
-                                             delta_extrapolation))));
+      extrapolation.emplace(ExtrapolateDelta(
+          s, ExtrapolationWidths(result.delta, delta_extrapolation)));
     }
   }
-  AddStopFields(summary, control);
   const SimulationResult& result = *simulation;
+  const DeltaExtrapolation* ex = extrapolation ? &*extrapolation : nullptr;
+  JsonObject summary = SimulationJson(s, result, ex);
+  AddStopFields(summary, control);
+  // What the summary's converged judges, as the CLI's exit 4: raised as
+  // NotConvergedError unless allow_unconverged (a stopped run: partial).
+  std::vector<std::string> failures =
+      SimulationFailures(s, result, ex, "lm_iterations");
   const RelaxedGrid& g = result.field.grid;
   py::array_t<double> u(
       {static_cast<py::ssize_t>(g.nx + 1), static_cast<py::ssize_t>(g.ny)});
@@ -75,9 +78,9 @@ py::object BranchingSimulatePy(double epsilon, double length, double height,
     }
   }
   const py::object dict = ToDict(summary);
-  // The CLI judges no convergence here: only a time limit raises.
-  return control.Finish(py::make_tuple(u, dict), dict, "branching simulate",
-                        {}, allow_unconverged);
+  return control.Finish(py::make_tuple(ReadOnlyArrays(u), dict), dict,
+                        "branching simulate", std::move(failures),
+                        allow_unconverged);
 }
 
 // `branching construct`: the self-similar constructions. Returns the
@@ -142,9 +145,12 @@ void RegisterBranching(py::module_& m) {
         WithParameters(
             "branching_simulate",
             "The relaxed Kohn-Mueller simulation (`branching simulate`): "
-            "returns (u (nx + 1) x ny, summary). Writes no files. time_limit: "
-            "seconds, then the field so far, partial (NotConvergedError unless "
-            "allow_unconverged).")
+            "returns (u (nx + 1) x ny, read-only; summary). Writes no files. "
+            "A last stage short of convergence (lm_iterations per stage), or "
+            "a width of the delta extrapolation that did not converge, raises "
+            "NotConvergedError unless allow_unconverged (the CLI's exit 4); "
+            "time_limit: seconds, then the field so far, partial (the same "
+            "error unless allow_unconverged).")
             .c_str());
   m.def("branching_construct", &BranchingConstructPy,
         py::arg("epsilon") = 0.001, py::arg("length") = 1.0,

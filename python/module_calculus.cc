@@ -74,6 +74,7 @@ py::object GeodesicPy(const py::object& start_v, const py::object& end_v,
       GeodesicOptionsOf(start_v, end_v, F, steps, mask, multires,
                         linear_solver, lm, init, material_args, solver,
                         "geodesic");
+  CheckPngMemory(png, steps + 1);
   workflows::GeodesicResult result;
   {
     SolveControl::Solving solving(*solver.control);
@@ -144,6 +145,7 @@ py::object ShootPy(const py::object& first_v, const py::object& second_v,
   const int vertices = first.mesh.num_vertices();
   CheckSteps("steps", steps, 1, PathBytes(vertices, steps + 1), vertices,
              kPathModel);
+  CheckPngMemory(png, steps + 1);
   options.fixed_vertices = MaskArgument(mask, vertices);
   options.first = std::move(first.mesh);
   options.topology = std::move(first.topology);
@@ -182,6 +184,7 @@ py::object TransportPy(const py::object& path_object,
   CheckOutputs(output, png, gltf);
   const std::vector<Positions> frames = ShapeListArgument(path_object, "path");
   if (frames.size() < 2) throw InputError("path: need at least 2 frames");
+  CheckPngMemory(png, static_cast<int>(frames.size()));
   Shell first = MakeShell(frames[0], F, "path[0]");
   workflows::TransportOptions options;
   options.path = {first.mesh.positions};

@@ -55,6 +55,17 @@ py::array_t<double> FromPath(const std::vector<Positions>& path) {
   return out;
 }
 
+py::object ReadOnlyArrays(py::object value) {
+  if (py::isinstance<py::array>(value)) {
+    value.attr("setflags")(py::arg("write") = false);
+  } else if (py::isinstance<py::dict>(value)) {
+    for (const auto& item : py::reinterpret_borrow<py::dict>(value)) {
+      ReadOnlyArrays(py::reinterpret_borrow<py::object>(item.second));
+    }
+  }
+  return value;
+}
+
 py::object ToPython(const JsonValue& value) {
   using Kind = JsonValue::Kind;
   switch (value.kind()) {
@@ -118,6 +129,26 @@ Positions CompatiblePositions(const Positions& positions, const Shell& like,
 Positions CompatiblePositions(const py::object& V, const Shell& like,
                               const std::string& name) {
   return CompatiblePositions(PositionsArgument(V, name), like, name);
+}
+
+const py::object& DefaultRelativeEtaObject() {
+  // Made once, with the GIL held (at the module's import), and kept for the
+  // life of the process.
+  static const py::object* object =
+      new py::object(py::float_(kDefaultRelativeEta));
+  return *object;
+}
+
+MaterialArgs MakeMaterialArgs(double mu, double lambda,
+                              std::optional<double> eta,
+                              const RelativeEtaArg& relative_eta,
+                              const std::string& bending) {
+  if (eta && relative_eta.given) {
+    throw InputError(
+        "eta and relative_eta: give one of them (eta is absolute, "
+        "relative_eta is multiplied by the reference's area)");
+  }
+  return MaterialArgs{mu, lambda, eta, relative_eta.value, bending};
 }
 
 ShellMaterial Material(const MaterialArgs& args, const Mesh& reference) {
@@ -225,13 +256,17 @@ void CheckOutputFile(const std::optional<std::string>& output) {
   OutputPaths().OutputFile("output", *output).Check();
 }
 
+void CheckPngMemory(const std::optional<std::string>& png, int frames) {
+  if (png) CheckFilmStripMemory(frames, RenderOptions(), "png");
+}
+
 void WritePath(const std::optional<std::string>& output,
                const std::optional<std::string>& png,
                const std::optional<std::string>& gltf, const Faces& faces,
                const std::vector<Positions>& path, const JsonObject& summary) {
   if (!output && !png && !gltf) return;
   RenderOptions options;
-  if (png) ValidateRenderOptions(options);
+  CheckPngMemory(png, static_cast<int>(path.size()));
   // All together or none, as the CLI: the directory staged and replaced
   // whole with its summary.json, the files outside renamed with it.
   StagedRun run(output.value_or(""));

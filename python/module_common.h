@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "python/solve_control.h"
+#include "python/strict_numbers.h"
 #include "shellspace/cost_functions/shell/relative_bending_weight.h"
 #include "shellspace/cost_functions/shell/shell_space.h"
 #include "shellspace/geometry/mesh.h"
@@ -48,6 +49,12 @@ py::array_t<double> FromPositions(const Positions& positions);
 py::array_t<long long> FromFaces(const Faces& faces);
 // A path as a (K + 1) x #V x 3 array.
 py::array_t<double> FromPath(const std::vector<Positions>& path);
+// `value` with its arrays made read-only (writeable=False): a NumPy array,
+// or each array value of a dict. The arrays of a solving function's result
+// (a path, a log, a mean, the PCA's shapes, the branching field) are what
+// the call computed: they are read, not written into (copy() for a
+// scratch array).
+py::object ReadOnlyArrays(py::object value);
 // The summary tree as Python values (dict, list, float, int, bool, str,
 // None for null and non-finite numbers), built directly; a raw text member
 // (JsonValue::Raw) is parsed by json.loads.
@@ -95,6 +102,24 @@ struct MaterialArgs {
 };
 
 ShellMaterial Material(const MaterialArgs& args, const Mesh& reference);
+
+// The relative_eta keyword as the functions receive it: its value and
+// whether the caller gave it. Its default in every signature is the one
+// float object DefaultRelativeEtaObject() (SHELLSPACE_MATERIAL_ARGS; the
+// options classes keep that object as their default too), so that a value
+// passed, even one equal to the default, is told from the default.
+struct RelativeEtaArg {
+  double value = kDefaultRelativeEta;
+  bool given = false;
+};
+const py::object& DefaultRelativeEtaObject();
+
+// The material keywords gathered; eta together with a given relative_eta
+// is an InputError (as the CLI's --eta with --relative_eta: one of them).
+MaterialArgs MakeMaterialArgs(double mu, double lambda,
+                              std::optional<double> eta,
+                              const RelativeEtaArg& relative_eta,
+                              const std::string& bending);
 
 // The material as resolved for `reference` (the CLI's "material" record).
 JsonObject MaterialRecord(const ShellSpace& space, const Mesh& reference,
@@ -182,6 +207,10 @@ void CheckOutputs(const std::optional<std::string>& output,
                   const std::vector<std::pair<std::string, std::string>>&
                       inputs = {});
 
+// With `png`, the film strip of `frames` frames against the CLI's memory
+// bound (tools/run/memory_limits.h CheckFilmStripMemory), before the solve.
+void CheckPngMemory(const std::optional<std::string>& png, int frames);
+
 // `output` a file (a mesh) checked as CheckOutputs checks its files.
 void CheckOutputFile(const std::optional<std::string>& output);
 
@@ -234,16 +263,17 @@ Frames FramesArgument(const py::object& frames_object, const py::object& F);
 template <class Own, class Result, class... Params, size_t... I>
 auto GatherMaterialArgs(Result (*f)(Params...), std::index_sequence<I...>) {
   return [f](std::tuple_element_t<I, Own>... args, double mu, double lambda,
-             std::optional<double> eta, double relative_eta,
+             std::optional<double> eta, const RelativeEtaArg& relative_eta,
              const std::string& bending) {
-    return f(args..., MaterialArgs{mu, lambda, eta, relative_eta, bending});
+    return f(args...,
+             MakeMaterialArgs(mu, lambda, eta, relative_eta, bending));
   };
 }
 template <class Own, class Result, class... Params, size_t... I>
 auto GatherMaterialAndSolverArgs(Result (*f)(Params...),
                                  std::index_sequence<I...>) {
   return [f](std::tuple_element_t<I, Own>... args, double mu, double lambda,
-             std::optional<double> eta, double relative_eta,
+             std::optional<double> eta, const RelativeEtaArg& relative_eta,
              const std::string& bending, double tolerance, int max_iterations,
              int threads, bool quiet, std::optional<double> time_limit,
              bool allow_unconverged) {
@@ -253,7 +283,9 @@ auto GatherMaterialAndSolverArgs(Result (*f)(Params...),
     SerialOpenMpInThisThread();
     // The time limit counts from the call.
     auto control = std::make_shared<SolveControl>(time_limit);
-    return f(args..., MaterialArgs{mu, lambda, eta, relative_eta, bending},
+    const MaterialArgs material =
+        MakeMaterialArgs(mu, lambda, eta, relative_eta, bending);
+    return f(args..., material,
              SolverOptions{tolerance, max_iterations, threads, quiet,
                            allow_unconverged, std::move(control)});
   };
@@ -295,7 +327,7 @@ void RegisterRender(py::module_& m);
 #define SHELLSPACE_MATERIAL_ARGS                                            \
   py::arg("mu") = ShellMaterial().mu,                                       \
   py::arg("lambda_") = ShellMaterial().lambda, py::arg("eta") = py::none(), \
-  py::arg("relative_eta") = kDefaultRelativeEta,                            \
+  py::arg("relative_eta") = DefaultRelativeEtaObject(),                     \
   py::arg("bending") =                                                      \
       std::string(BendingModelName(ShellMaterial().bending_model))
 #define SHELLSPACE_SOLVER_ARGS                                                 \
@@ -317,5 +349,30 @@ void RegisterRender(py::module_& m);
 #define SHELLSPACE_FRAME_OUTPUT_ARGS                              \
   py::arg("output") = py::none(), py::arg("png") = py::none(), \
       py::arg("gltf") = py::none()
+
+// relative_eta: a float (strict_numbers.h), shown as one in signatures,
+// given unless it is the default object itself.
+namespace pybind11 {
+namespace detail {
+template <>
+struct type_caster<shellspace::pymodule::RelativeEtaArg> {
+  PYBIND11_TYPE_CASTER(shellspace::pymodule::RelativeEtaArg,
+                       const_name("float"));
+  bool load(handle src, bool convert) {
+    make_caster<double> number;
+    if (!number.load(src, convert)) return false;
+    value.value = cast_op<double>(number);
+    value.given = !src.is(shellspace::pymodule::DefaultRelativeEtaObject());
+    return true;
+  }
+  static handle cast(const shellspace::pymodule::RelativeEtaArg& arg,
+                     return_value_policy /* policy */, handle /* parent */) {
+    return arg.given
+               ? PyFloat_FromDouble(arg.value)
+               : shellspace::pymodule::DefaultRelativeEtaObject().inc_ref();
+  }
+};
+}  // namespace detail
+}  // namespace pybind11
 
 #endif  // SHELLSPACE_PYTHON_MODULE_COMMON_H_

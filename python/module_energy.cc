@@ -165,12 +165,15 @@ void RegisterEnergy(py::module_& m) {
         py::arg("shape"), py::arg("shift") = 0.0,
         WithParameters(
             "solve_modulo_rigid_motions",
-            "p with (H + shift) p = rhs modulo rigid motions: H the 3#V x 3#V "
+            "p solving H p = rhs modulo rigid motions: H the 3#V x 3#V "
             "triplets (rows, cols, vals; duplicates summed) of a rigidly "
             "invariant energy's Hessian at `shape`, p = T q with T the "
-            "coordinates left by the rigid gauge of `shape` and (T^T H T + "
-            "shift I) q = T^T rhs (sparse LDL^T). Returns (p #V x 3, "
-            "positive_definite).")
+            "coordinates left by the rigid gauge of `shape` (three gauge "
+            "vertices pinned) and (T^T H T + shift I) q = T^T rhs (sparse "
+            "LDL^T). Returns (p #V x 3, positive_definite): "
+            "positive_definite is True when the factorisation succeeded, "
+            "every pivot of the reduced matrix is > 0 and p is finite; when "
+            "the factorisation fails p is all zeros (and False).")
             .c_str());
   m.def(
       "align_rigidly",

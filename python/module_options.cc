@@ -6,24 +6,49 @@ namespace shellspace {
 namespace pymodule {
 namespace {
 
-// Whether `value` is of the kind of `default_value` (module_options.h).
-bool OfKind(const py::handle& default_value, const py::handle& value) {
+// The options whose default is None and what else they take: a real
+// number (eta, time_limit) or a path (output, png, gltf: a str). Any other
+// None option (mask) takes anything its function takes.
+bool RealOrNone(const std::string& name) {
+  return name == "eta" || name == "time_limit";
+}
+bool PathOrNone(const std::string& name) {
+  return name == "output" || name == "png" || name == "gltf";
+}
+
+bool IsReal(PyObject* v) {
+  return !IsBoolLike(v) && !PyUnicode_Check(v) && !PyBytes_Check(v) &&
+         (PyFloat_Check(v) || PyIndex_Check(v) ||
+          PyObject_HasAttrString(v, "__float__"));
+}
+
+// Whether `value` is of the kind of the option `name`, whose default is
+// `default_value` (module_options.h).
+bool OfKind(const std::string& name, const py::handle& default_value,
+            const py::handle& value) {
   PyObject* d = default_value.ptr();
   PyObject* v = value.ptr();
-  if (d == Py_None) return true;
-  if (PyBool_Check(d)) return PyBool_Check(v);
-  if (PyLong_Check(d)) return !PyBool_Check(v) && PyIndex_Check(v);
-  if (PyFloat_Check(d)) {
-    return !PyBool_Check(v) && !PyUnicode_Check(v) &&
-           (PyFloat_Check(v) || PyIndex_Check(v) ||
-            PyObject_HasAttrString(v, "__float__"));
+  if (d == Py_None) {
+    if (v == Py_None) return true;
+    if (RealOrNone(name)) return IsReal(v);
+    if (PathOrNone(name)) return PyUnicode_Check(v);
+    return true;
   }
+  if (PyBool_Check(d)) return PyBool_Check(v);
+  if (PyLong_Check(d)) return !IsBoolLike(v) && PyIndex_Check(v);
+  if (PyFloat_Check(d)) return IsReal(v);
   if (PyUnicode_Check(d)) return PyUnicode_Check(v);
   return true;
 }
 
-std::string KindName(const py::handle& default_value) {
+std::string KindName(const std::string& name,
+                     const py::handle& default_value) {
   PyObject* d = default_value.ptr();
+  if (d == Py_None) {
+    if (RealOrNone(name)) return "None or a real number";
+    if (PathOrNone(name)) return "None or a str (a path)";
+    return "any value";
+  }
   if (PyBool_Check(d)) return "a bool";
   if (PyLong_Check(d)) return "an integer";
   if (PyFloat_Check(d)) return "a real number";
@@ -98,14 +123,26 @@ void RegisterOptionsClass(py::module_& m, const char* class_name,
       throw py::attribute_error(name + " has no option '" + key +
                                 "' (its options: " + Names(keywords) + ")");
     }
-    if (!OfKind(k->value, value)) {
+    if (!OfKind(key, k->value, value)) {
       throw py::type_error(
-          name + "." + key + " takes " + KindName(k->value) + ", got " +
+          name + "." + key + " takes " + KindName(key, k->value) + ", got " +
           std::string(py::str(py::type::handle_of(value).attr("__name__"))));
     }
+    // A value equal to the default (of its type) is kept as the default
+    // object itself: a function tells a given relative_eta from its default
+    // by that object (module_common.h RelativeEtaArg), and an options
+    // object unpickled, copied or built from to_dict() keeps its defaults
+    // as defaults.
+    py::handle stored = value;
+    if (!value.is(k->value) && k->value.ptr() != Py_None &&
+        py::type::handle_of(value).is(py::type::handle_of(k->value)) &&
+        PyObject_RichCompareBool(value.ptr(), k->value.ptr(), Py_EQ) == 1) {
+      stored = k->value;
+    }
+    PyErr_Clear();
     const py::object object_type = py::reinterpret_borrow<py::object>(
         reinterpret_cast<PyObject*>(&PyBaseObject_Type));
-    object_type.attr("__setattr__")(self, key, value);
+    object_type.attr("__setattr__")(self, key, stored);
   };
   cls.attr("__setattr__") =
       py::cpp_function([set](py::handle self, const std::string& key,

@@ -18,9 +18,12 @@
 // class is an attribute of the module). Unknown names raise TypeError (in
 // the constructor) or AttributeError (on assignment); a value of the wrong
 // kind for its default raises TypeError: a bool option takes a bool, an
-// int option an integer (not a bool), a float option a real number, a str
-// option a str; an option whose default is None takes anything the
-// function takes (checked by the function).
+// int option an integer (not a bool), a float option a real number (not a
+// bool), a str option a str; of the options whose default is None, eta and
+// time_limit take None or a real number, output, png and gltf None or a
+// str, mask anything the function takes (checked by the function). A value
+// equal to its option's default is stored as the default itself, so that a
+// relative_eta left at its default is not "given" beside an eta.
 //
 // This binds the front end's options, not the library's Options structs
 // (shellspace/workflows/): those also hold the validated inputs and the
@@ -34,6 +37,8 @@
 #include <string>
 #include <utility>
 #include <vector>
+
+#include "python/strict_numbers.h"
 
 namespace shellspace {
 namespace pymodule {

@@ -5,6 +5,7 @@
 #include "python/module_common.h"
 #include "python/parameter_docs.h"
 #include "shellspace/render/film_strip.h"
+#include "tools/run/memory_limits.h"
 
 namespace shellspace {
 namespace pymodule {
@@ -25,6 +26,8 @@ void WriteFilmStripPy(const std::string& path, const py::object& frames_object,
   options.color = ParseSurfaceColor(color);
   options.shading = ParseShading(shading);
   const Frames frames = FramesArgument(frames_object, F);
+  CheckFilmStripMemory(static_cast<int>(frames.shapes.size()), options,
+                       "write_film_strip");
   WriteFilmStrip(frames.shapes, frames.faces, options, path);
 }
 
@@ -41,7 +44,10 @@ void RegisterRender(py::module_& m) {
             "Writes frames as a PNG film strip, as `shellspace render` does: "
             "width the whole image (0: 320 per column), height per frame (0: "
             "square), up auto|x|y|z|-x|-y|-z, labels under the frames, color "
-            "plain|displacement.")
+            "plain|displacement. A strip beyond the CLI's bounds (a frame "
+            "wider or higher than 8192 pixels; an estimated memory of 6 B x "
+            "width x height + 128 B x frame pixels above half the physical "
+            "memory) is an InputError before anything is drawn.")
             .c_str());
 }
 

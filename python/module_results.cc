@@ -199,7 +199,10 @@ void BindCalculusResults(py::module_& m) {
       .def_property_readonly("log_max_norm",
                              [](const Log& r) { return r.run.log_max_norm; })
       .def_property_readonly(
-          "path", [](const Log& r) { return FromPath(r.run.geodesic.path()); })
+          "path",
+          [](const Log& r) {
+            return ReadOnlyArrays(FromPath(r.run.geodesic.path()));
+          })
       .def_property_readonly(
           "path_energy",
           [](const Log& r) { return r.run.geodesic.path_energy(); })
@@ -328,7 +331,10 @@ void BindStatisticsResults(py::module_& m) {
       "failed_shapes, far_inputs. Unpacks as (shapes, summary).",
       "shapes", {"eigenvalues"})
       .def_property_readonly(
-          "mean", [](const Pca& r) { return FromPositions(r.run.mean.mean); })
+          "mean",
+          [](const Pca& r) {
+            return ReadOnlyArrays(FromPositions(r.run.mean.mean));
+          })
       .def_property_readonly("eigenvalues",
                              [](const Pca& r) {
                                return r.run.model

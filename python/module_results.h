@@ -21,6 +21,7 @@
 #include <vector>
 
 #include "python/module_common.h"
+#include "python/strict_numbers.h"
 #include "shellspace/workflows/geodesic.h"
 #include "shellspace/workflows/mean.h"
 #include "shellspace/workflows/pca.h"
@@ -46,7 +47,8 @@ struct BoundResult {
 // The Python object of a result (its class registered by RegisterResults).
 template <class Run>
 py::object MakeResult(Run run, py::object value, py::object summary) {
-  return py::cast(BoundResult<Run>{std::move(run), std::move(value),
+  return py::cast(BoundResult<Run>{std::move(run),
+                                   ReadOnlyArrays(std::move(value)),
                                    py::dict(std::move(summary))},
                   py::return_value_policy::move);
 }

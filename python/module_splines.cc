@@ -77,6 +77,7 @@ py::object SplinePy(const py::object& keyframes_object,
   const auto clock = Clock::now();
   const ShapeSet set = MakeShapeSet(keyframes_object, F, "keyframes");
   CheckPathSteps(steps, 2, set.first.mesh.num_vertices());
+  CheckPngMemory(png, steps + 1);
   workflows::SplineOptions options;
   options.at = Indices(at_object, steps, set.shapes.size(), "keyframes");
   options.material = MaterialChoiceOf(material_args, set.first.mesh);
@@ -123,6 +124,7 @@ py::object RegressPy(const py::object& inputs_object,
   const auto clock = Clock::now();
   const ShapeSet set = MakeShapeSet(inputs_object, F, "inputs");
   CheckPathSteps(steps, 2, set.first.mesh.num_vertices());
+  CheckPngMemory(png, steps + 1);
   workflows::RegressOptions options;
   options.at = Indices(at_object, steps, set.shapes.size(), "inputs");
   options.reference = set.first.mesh;

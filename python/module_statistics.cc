@@ -93,6 +93,7 @@ void WritePcaFiles(const workflows::PcaResult& result, const Faces& faces,
         strip.push_back(positions);
       }
     }
+    CheckPngMemory(png, static_cast<int>(strip.size()));
     WriteFilmStrip(strip, faces, RenderOptions(), *png);
   }
 }
@@ -135,6 +136,7 @@ py::object PcaPy(const py::object& inputs_object, const py::object& F,
                      " shells, got " + std::to_string(n));
   }
   CheckPcaModeCount(modes, n, loo, "");
+  CheckPngMemory(png, 1 + 2 * modes);  // the mean and the mode shapes
   const int vertices = set.first.mesh.num_vertices();
   CheckSteps("log_steps", log_steps, 1, GeodesicBytes(vertices, log_steps),
              vertices, kGeodesicModel);

@@ -28,6 +28,7 @@
 #include "python/module_common.h"
 #include "python/module_results.h"
 #include "python/solve_control.h"
+#include "python/strict_numbers.h"
 #include "shellspace/cost_functions/shell/relative_bending_weight.h"
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/runtime/openmp_threads.h"

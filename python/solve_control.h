@@ -40,6 +40,7 @@
 #include <thread>
 #include <vector>
 
+#include "python/strict_numbers.h"
 #include "shellspace/solvers/solver_settings.h"
 
 namespace shellspace {

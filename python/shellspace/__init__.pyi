@@ -65,7 +65,7 @@ class GeodesicOptions:
         init: auto|linear|ltheta: the initial path; linear: positions interpolated after removing the rigid motion between the ends (none with --mask, or below 1 degree); ltheta: shells reconstructed from interpolated edge lengths, areas and dihedral angles; auto: linear unless a triangle of it keeps less than 0.1 of its area or turns over, then ltheta (default 'auto')
         report: print Ceres' full report on stderr (default False)
         output: directory of the frames shape_000.ply ... (default None)
-        png: also write a PNG film strip of the frames here (default None)
+        png: also write a PNG film strip of the frames here (frames of 320 pixels, 6 a row); the strip's estimated memory, 6 B x width x height + 128 B x frame width x frame height, within half the physical memory (default None)
         gltf: also write the frames as one glTF 2.0 file (.glb): the first frame the base mesh, the others morph targets, animated at 4 frames per second (default None)
         mu: membrane Lame weight mu (default 1.0)
         lambda_: membrane Lame weight lambda (default 1.0)
@@ -255,7 +255,7 @@ class LogResult:
     @property
     def log_max_norm(self) -> float: ...
     @property
-    def path(self) -> numpy.ndarray[numpy.float64]: ...
+    def path(self) -> NDArray[np.float64]: ...
     @property
     def path_energy(self) -> float: ...
     @property
@@ -381,7 +381,7 @@ class PcaOptions:
         max_exp_steps: largest K of the EXP safeguard (>= --exp_steps) (default 16)
         displacement: 'log' (v_i = LOG_K(mean -> S_i)) or 'difference' (v_i = S_i - mean after rigid alignment) (default 'log')
         output: directory of mean.ply, mode_J_{minus,plus}.ply, pca.json (default None)
-        png: also write a PNG film strip of the mean and the modes (default None)
+        png: also write a PNG film strip of the mean and the modes here (frames of 320 pixels, 6 a row); the strip's estimated memory, 6 B x width x height + 128 B x frame width x frame height, within half the physical memory (default None)
         mu: membrane Lame weight mu (default 1.0)
         lambda_: membrane Lame weight lambda (default 1.0)
         eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
@@ -462,7 +462,7 @@ class PcaResult:
     @property
     def material(self) -> Material: ...
     @property
-    def mean(self) -> numpy.ndarray[numpy.float64]: ...
+    def mean(self) -> NDArray[np.float64]: ...
     @property
     def eigenvalues(self) -> list[float]: ...
     @property
@@ -482,7 +482,7 @@ class RegressOptions:
         steps: number of time steps K (K + 1 shapes); at most 100000 and an estimated memory of 64 MB + 24 B x (K + 1)^2 + 20 KB x #V x (K + 1) within half the physical memory (default 8)
         sigma: weight of the spline energy F_K (default 1.0)
         output: directory of the frames shape_000.ply ... (default None)
-        png: also write a PNG film strip of the frames here (default None)
+        png: also write a PNG film strip of the frames here (frames of 320 pixels, 6 a row); the strip's estimated memory, 6 B x width x height + 128 B x frame width x frame height, within half the physical memory (default None)
         gltf: also write the frames as one glTF 2.0 file (.glb): the first frame the base mesh, the others morph targets, animated at 4 frames per second (default None)
         mu: membrane Lame weight mu (default 1.0)
         lambda_: membrane Lame weight lambda (default 1.0)
@@ -579,7 +579,7 @@ class ShootOptions:
         backward: extrapolate backward in time, before s_0 (default False)
         mask: vertex indices held fixed, or the path of a mask file (default None)
         output: directory of the frames shape_000.ply ... (default None)
-        png: also write a PNG film strip of the frames here (default None)
+        png: also write a PNG film strip of the frames here (frames of 320 pixels, 6 a row); the strip's estimated memory, 6 B x width x height + 128 B x frame width x frame height, within half the physical memory (default None)
         gltf: also write the frames as one glTF 2.0 file (.glb): the first frame the base mesh, the others morph targets, animated at 4 frames per second (default None)
         mu: membrane Lame weight mu (default 1.0)
         lambda_: membrane Lame weight lambda (default 1.0)
@@ -684,7 +684,7 @@ class SplineOptions:
         init: the initial path of --method nonlinear: ltheta (the LTheta spline) or geodesic (the piecewise geodesic through the keyframes: no LM reconstructions, zero acceleration between keyframes; try it when keyframes are far apart and the LTheta frames stop at their iteration cap). Either start's solves (LM per LTheta frame, or per geodesic segment) stop at --tolerance, 200 iterations each at most (default 'ltheta')
         periodic: closed path (indices mod K) (default False)
         output: directory of the frames shape_000.ply ... (default None)
-        png: also write a PNG film strip of the frames here (default None)
+        png: also write a PNG film strip of the frames here (frames of 320 pixels, 6 a row); the strip's estimated memory, 6 B x width x height + 128 B x frame width x frame height, within half the physical memory (default None)
         gltf: also write the frames as one glTF 2.0 file (.glb): the first frame the base mesh, the others morph targets, animated at 4 frames per second (default None)
         mu: membrane Lame weight mu (default 1.0)
         lambda_: membrane Lame weight lambda (default 1.0)
@@ -782,7 +782,7 @@ class TransportOptions:
         epsilon: transport step epsilon: 1 transports a finite shape difference, small values the tangent vector (default 1.0)
         mask: vertex indices held fixed, or the path of a mask file (default None)
         output: directory of the transported shapes s_k + eps xi_k (default None)
-        png: also write a PNG film strip of the frames here (default None)
+        png: also write a PNG film strip of the frames here (frames of 320 pixels, 6 a row); the strip's estimated memory, 6 B x width x height + 128 B x frame width x frame height, within half the physical memory (default None)
         gltf: also write the frames as one glTF 2.0 file (.glb): the first frame the base mesh, the others morph targets, animated at 4 frames per second (default None)
         mu: membrane Lame weight mu (default 1.0)
         lambda_: membrane Lame weight lambda (default 1.0)
@@ -926,7 +926,7 @@ def branching_simulate(
     time_limit: Optional[float] = ...,
     allow_unconverged: bool = ...,
 ) -> Any:
-    """The relaxed Kohn-Mueller simulation (`branching simulate`): returns (u (nx + 1) x ny, summary). Writes no files. time_limit: seconds, then the field so far, partial (NotConvergedError unless allow_unconverged).
+    """The relaxed Kohn-Mueller simulation (`branching simulate`): returns (u (nx + 1) x ny, read-only; summary). Writes no files. A last stage short of convergence (lm_iterations per stage), or a width of the delta extrapolation that did not converge, raises NotConvergedError unless allow_unconverged (the CLI's exit 4); time_limit: seconds, then the field so far, partial (the same error unless allow_unconverged).
 
     Parameters:
         epsilon: twin-boundary (interfacial) energy per length (default 0.001)
@@ -962,8 +962,8 @@ def compare(
     """Two shells (#V x 3 arrays) or two paths (sequences of them) up to rigid motion per frame: the `compare` verb's summary (max and mean vertex distance per frame, E_K of each path or W[a, b], `equal` against the tolerances).
 
     Parameters:
-        a: #V x 3 positions of the first shape
-        b: #V x 3 positions of the second shape
+        a: the first shell (#V x 3) or path (K x #V x 3, or a list of #V x 3 arrays)
+        b: the second shell or path, as a (as many frames as a)
         F: #F x 3 integer faces (0-based vertex indices)
         tolerance: largest vertex distance after rigid alignment, relative to the bounding-box diagonal of a's first frame, that still counts as equal (default 1e-06)
         energy_tolerance: paths: largest |E_K(a) - E_K(b)| / max(E_K) that still counts as equal (default 1e-06)
@@ -1093,7 +1093,7 @@ def geodesic(
         init: auto|linear|ltheta: the initial path; linear: positions interpolated after removing the rigid motion between the ends (none with --mask, or below 1 degree); ltheta: shells reconstructed from interpolated edge lengths, areas and dihedral angles; auto: linear unless a triangle of it keeps less than 0.1 of its area or turns over, then ltheta (default 'auto')
         report: print Ceres' full report on stderr (default False)
         output: directory of the frames shape_000.ply ... (default None)
-        png: also write a PNG film strip of the frames here (default None)
+        png: also write a PNG film strip of the frames here (frames of 320 pixels, 6 a row); the strip's estimated memory, 6 B x width x height + 128 B x frame width x frame height, within half the physical memory (default None)
         gltf: also write the frames as one glTF 2.0 file (.glb): the first frame the base mesh, the others morph targets, animated at 4 frames per second (default None)
         mu: membrane Lame weight mu (default 1.0)
         lambda_: membrane Lame weight lambda (default 1.0)
@@ -1236,7 +1236,7 @@ def pca(
         max_exp_steps: largest K of the EXP safeguard (>= --exp_steps) (default 16)
         displacement: 'log' (v_i = LOG_K(mean -> S_i)) or 'difference' (v_i = S_i - mean after rigid alignment) (default 'log')
         output: directory of mean.ply, mode_J_{minus,plus}.ply, pca.json (default None)
-        png: also write a PNG film strip of the mean and the modes (default None)
+        png: also write a PNG film strip of the mean and the modes here (frames of 320 pixels, 6 a row); the strip's estimated memory, 6 B x width x height + 128 B x frame width x frame height, within half the physical memory (default None)
         mu: membrane Lame weight mu (default 1.0)
         lambda_: membrane Lame weight lambda (default 1.0)
         eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
@@ -1303,7 +1303,7 @@ def regress(
         steps: number of time steps K (K + 1 shapes); at most 100000 and an estimated memory of 64 MB + 24 B x (K + 1)^2 + 20 KB x #V x (K + 1) within half the physical memory (default 8)
         sigma: weight of the spline energy F_K (default 1.0)
         output: directory of the frames shape_000.ply ... (default None)
-        png: also write a PNG film strip of the frames here (default None)
+        png: also write a PNG film strip of the frames here (frames of 320 pixels, 6 a row); the strip's estimated memory, 6 B x width x height + 128 B x frame width x frame height, within half the physical memory (default None)
         gltf: also write the frames as one glTF 2.0 file (.glb): the first frame the base mesh, the others morph targets, animated at 4 frames per second (default None)
         mu: membrane Lame weight mu (default 1.0)
         lambda_: membrane Lame weight lambda (default 1.0)
@@ -1351,7 +1351,7 @@ def shoot(
         backward: extrapolate backward in time, before s_0 (default False)
         mask: vertex indices held fixed, or the path of a mask file (default None)
         output: directory of the frames shape_000.ply ... (default None)
-        png: also write a PNG film strip of the frames here (default None)
+        png: also write a PNG film strip of the frames here (frames of 320 pixels, 6 a row); the strip's estimated memory, 6 B x width x height + 128 B x frame width x frame height, within half the physical memory (default None)
         gltf: also write the frames as one glTF 2.0 file (.glb): the first frame the base mesh, the others morph targets, animated at 4 frames per second (default None)
         mu: membrane Lame weight mu (default 1.0)
         lambda_: membrane Lame weight lambda (default 1.0)
@@ -1375,15 +1375,15 @@ def solve_modulo_rigid_motions(
     shape: ArrayLike,
     shift: float = ...,
 ) -> tuple[Any, ...]:
-    """p with (H + shift) p = rhs modulo rigid motions: H the 3#V x 3#V triplets (rows, cols, vals; duplicates summed) of a rigidly invariant energy's Hessian at `shape`, p = T q with T the coordinates left by the rigid gauge of `shape` and (T^T H T + shift I) q = T^T rhs (sparse LDL^T). Returns (p #V x 3, positive_definite).
+    """p solving H p = rhs modulo rigid motions: H the 3#V x 3#V triplets (rows, cols, vals; duplicates summed) of a rigidly invariant energy's Hessian at `shape`, p = T q with T the coordinates left by the rigid gauge of `shape` (three gauge vertices pinned) and (T^T H T + shift I) q = T^T rhs (sparse LDL^T). Returns (p #V x 3, positive_definite): positive_definite is True when the factorisation succeeded, every pivot of the reduced matrix is > 0 and p is finite; when the factorisation fails p is all zeros (and False).
 
     Parameters:
-        rows: row indices of the triplets of H (3#V x 3#V)
-        cols: column indices of the triplets
+        rows: row indices of the triplets of H (3#V x 3#V): integers in [0, 3#V)
+        cols: column indices of the triplets: integers in [0, 3#V)
         vals: values of the triplets (duplicates summed)
-        rhs: the right-hand side, 3#V or #V x 3
+        rhs: the right-hand side, #V x 3 (row v, column c: coordinate 3 v + c; a flat 3#V vector is refused)
         shape: #V x 3 positions whose rigid motions are factored out
-        shift: added to the diagonal of the reduced Hessian (default 0.0)
+        shift: added to the diagonal of the reduced Hessian (finite, >= 0) (default 0.0)
     """
 
 
@@ -1421,7 +1421,7 @@ def spline(
         init: the initial path of --method nonlinear: ltheta (the LTheta spline) or geodesic (the piecewise geodesic through the keyframes: no LM reconstructions, zero acceleration between keyframes; try it when keyframes are far apart and the LTheta frames stop at their iteration cap). Either start's solves (LM per LTheta frame, or per geodesic segment) stop at --tolerance, 200 iterations each at most (default 'ltheta')
         periodic: closed path (indices mod K) (default False)
         output: directory of the frames shape_000.ply ... (default None)
-        png: also write a PNG film strip of the frames here (default None)
+        png: also write a PNG film strip of the frames here (frames of 320 pixels, 6 a row); the strip's estimated memory, 6 B x width x height + 128 B x frame width x frame height, within half the physical memory (default None)
         gltf: also write the frames as one glTF 2.0 file (.glb): the first frame the base mesh, the others morph targets, animated at 4 frames per second (default None)
         mu: membrane Lame weight mu (default 1.0)
         lambda_: membrane Lame weight lambda (default 1.0)
@@ -1467,7 +1467,7 @@ def transport(
         epsilon: transport step epsilon: 1 transports a finite shape difference, small values the tangent vector (default 1.0)
         mask: vertex indices held fixed, or the path of a mask file (default None)
         output: directory of the transported shapes s_k + eps xi_k (default None)
-        png: also write a PNG film strip of the frames here (default None)
+        png: also write a PNG film strip of the frames here (frames of 320 pixels, 6 a row); the strip's estimated memory, 6 B x width x height + 128 B x frame width x frame height, within half the physical memory (default None)
         gltf: also write the frames as one glTF 2.0 file (.glb): the first frame the base mesh, the others morph targets, animated at 4 frames per second (default None)
         mu: membrane Lame weight mu (default 1.0)
         lambda_: membrane Lame weight lambda (default 1.0)
@@ -1495,7 +1495,7 @@ def write_film_strip(
     color: str = ...,
     shading: str = ...,
 ) -> None:
-    """Writes frames as a PNG film strip, as `shellspace render` does: width the whole image (0: 320 per column), height per frame (0: square), up auto|x|y|z|-x|-y|-z, labels under the frames, color plain|displacement.
+    """Writes frames as a PNG film strip, as `shellspace render` does: width the whole image (0: 320 per column), height per frame (0: square), up auto|x|y|z|-x|-y|-z, labels under the frames, color plain|displacement. A strip beyond the CLI's bounds (a frame wider or higher than 8192 pixels; an estimated memory of 6 B x width x height + 128 B x frame pixels above half the physical memory) is an InputError before anything is drawn.
 
     Parameters:
         path: the PNG file to write

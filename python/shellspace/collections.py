@@ -247,6 +247,38 @@ def _check_count(name, value, minimum):
         raise shellspace.InputError(f"{name} must be >= {minimum}, got {value}")
 
 
+def _read_only(*arrays):
+    """The arrays of a result made read-only (writeable=False), as the
+    module's results: copy() for a scratch array."""
+    for array in arrays:
+        if isinstance(array, np.ndarray):
+            array.flags.writeable = False
+
+
+def _check_counts(minimum=1, optional=(), **values):
+    """_check_count of each keyword; those named in `optional` may be
+    None."""
+    for name, value in values.items():
+        if value is None and name in optional:
+            continue
+        _check_count(name, value, minimum)
+
+
+def _check_real(name, value, positive=True):
+    """A real keyword: a number (not a bool), finite, > 0 (positive) or
+    >= 0."""
+    if isinstance(value, (bool, np.bool_)) or not isinstance(
+            value, (int, float, np.integer, np.floating)):
+        raise shellspace.InputError(
+            f"{name} must be a real number, got {type(value).__name__} "
+            f"{value!r}")
+    if not math.isfinite(value) or not (value > 0 if positive
+                                        else value >= 0):
+        raise shellspace.InputError(
+            f"{name} must be finite and {'> 0' if positive else '>= 0'}, "
+            f"got {value}")
+
+
 def _await_workers(client, deadline):
     """True once `client`'s scheduler has a worker; False if `deadline`
     passed first; without a deadline an InputError after WORKERS_TIMEOUT
@@ -495,7 +527,9 @@ def distance_matrix(shapes, F, client=None, steps=4, cache=None,
     an unconverged pair is NOT_CONVERGED with NaN distance)."""
     shapes, F = _check_collection(shapes, F)
     n = shapes.shape[0]
-    _check_count("steps", steps, 1)
+    _check_counts(steps=steps, threads=threads, blas_threads=blas_threads,
+                  batch_size=batch_size, optional=("batch_size",))
+    _check_eta_pair(geodesic_kwargs)
     deadline = _deadline(time_limit)
     _deadline(pair_time_limit, "pair_time_limit")
     options = dict(geodesic_kwargs, steps=steps, threads=threads, quiet=True,
@@ -550,6 +584,7 @@ def map_geodesics(shapes, F, pairs, client=None, steps=4, progress=False,
     pairs, one task each: a list of (status, path or None, E_K, message) in
     the order of pairs."""
     shapes, F = _check_collection(shapes, F)
+    _check_counts(steps=steps, threads=threads, blas_threads=blas_threads)
     pairs = [(int(i), int(j)) for i, j in pairs]
     for i, j in pairs:
         if not (0 <= i < len(shapes) and 0 <= j < len(shapes)):
@@ -587,6 +622,9 @@ def transfer(detail, source, shapes, F, client=None, steps=4, epsilon=1.0,
     detail = detail[0]
     if detail.shape != shapes[0].shape:
         raise shellspace.InputError("detail: not the shapes' vertex count")
+    _check_counts(steps=steps, threads=threads, blas_threads=blas_threads)
+    _check_count("source", source, 0)
+    _check_real("epsilon", epsilon)
     if not 0 <= source < len(shapes):
         raise shellspace.InputError(f"source {source} outside the shapes")
     options = dict(solver_kwargs, steps=steps, threads=threads, quiet=True,
@@ -629,6 +667,16 @@ def transfer(detail, source, shapes, F, client=None, steps=4, epsilon=1.0,
 _MATERIAL_KEYS = ("mu", "lambda_", "eta", "relative_eta", "bending")
 
 
+def _check_eta_pair(kwargs):
+    """eta and relative_eta are one or the other (as the module's
+    functions and the CLI's flags)."""
+    if kwargs.get("eta") is not None and \
+            kwargs.get("relative_eta") is not None:
+        raise shellspace.InputError(
+            "eta and relative_eta: give one of them (eta is absolute, "
+            "relative_eta is multiplied by the first shape's area)")
+
+
 def _material(shapes, F, kwargs):
     """The material keywords with eta resolved once from shapes[0] (as
     shellspace.mean and shellspace.pca do): energy_gradient and log would
@@ -638,6 +686,7 @@ def _material(shapes, F, kwargs):
         raise shellspace.InputError(
             f"unknown keyword(s): {', '.join(unknown)}")
     material = dict(kwargs)
+    _check_eta_pair(material)
     if material.get("eta") is None:
         probe = shellspace.energy(shapes[0], shapes[0], F, **material)
         material["eta"] = float(probe["eta"])
@@ -766,6 +815,10 @@ def elastic_mean(shapes, F, client=None, tolerance=1e-8, max_iterations=100,
     ElasticMean; the same digits in-process and on any cluster."""
     shapes, F = _check_collection(shapes, F)
     n = len(shapes)
+    _check_counts(max_iterations=max_iterations,
+                  shapes_per_task=shapes_per_task,
+                  optional=("shapes_per_task",))
+    _check_real("tolerance", tolerance)
     material = _material(shapes, F, material)
     if shapes_per_task is None:
         shapes_per_task = max(1, math.ceil(n / 64))
@@ -866,6 +919,7 @@ def elastic_mean(shapes, F, client=None, tolerance=1e-8, max_iterations=100,
         result.iterations = iterations
         result.rounds = terms.rounds
         result.history = history
+        _read_only(result.mean, result.energies)
     return result
 
 
@@ -959,6 +1013,11 @@ def pca(shapes, F, client=None, mean=None, modes=3, log_steps=2,
                         ("exp_steps", exp_steps),
                         ("max_exp_steps", max_exp_steps)):
         _check_count(name, value, 1)
+    _check_counts(max_iterations=max_iterations, threads=threads,
+                  blas_threads=blas_threads, shapes_per_task=shapes_per_task,
+                  optional=("shapes_per_task",))
+    _check_real("tolerance", tolerance)
+    _check_real("amplitude", amplitude, positive=False)
     if modes > n - 1:
         raise shellspace.InputError(
             f"modes must be at most {n - 1} (inputs - 1), got {modes}")
@@ -1062,6 +1121,8 @@ def pca(shapes, F, client=None, mean=None, modes=3, log_steps=2,
             out.messages[name] = "not computed: the time limit came first"
         out.mode_shapes = {name: out.mode_shapes[name]
                            for name, _, _ in shots if name in out.mode_shapes}
+    _read_only(out.mean, out.displacements, out.gram, out.eigenvalues,
+               *out.modes, *out.mode_shapes.values())
     return out
 
 
@@ -1096,6 +1157,17 @@ def _parse_scheduler(scheduler):
     if not isinstance(scheduler, str):
         raise shellspace.InputError(
             f"scheduler: expected a string, got {type(scheduler).__name__}")
+    lower = scheduler.lower()
+    if lower != scheduler and (lower in ("none", "local") or
+                               lower.startswith(("local:", "none:"))):
+        raise shellspace.InputError(
+            f"--scheduler '{scheduler}': the keywords none, local and local:N "
+            f"are lower-case (did you mean '{lower}'?); an address is "
+            "HOST:PORT")
+    if scheduler.startswith("none:"):
+        raise shellspace.InputError(
+            f"--scheduler '{scheduler}': none takes no count (none, local, "
+            "local:N or a scheduler address HOST:PORT)")
     most = most_local_workers()
     if scheduler == "local":
         return "local", min(2, most)
@@ -1133,7 +1205,13 @@ def _client_for(scheduler):
     kind, value = _parse_scheduler(scheduler)
     if kind == "none":
         return None, None
-    from distributed import Client, LocalCluster
+    try:
+        from distributed import Client, LocalCluster
+    except ImportError as error:
+        raise shellspace.InputError(
+            f"--scheduler {scheduler} needs Dask's distributed package "
+            f"({_one_line(error)}); --scheduler none runs in this process"
+        ) from None
     if kind == "local":
         cluster = LocalCluster(n_workers=value, threads_per_worker=1,
                                processes=True, dashboard_address=None)
@@ -1163,13 +1241,27 @@ def _client_for(scheduler):
 
 
 def _split_inputs(inputs):
-    """The paths of a comma-separated list; an empty item (",,", a trailing
-    comma) is an InputError."""
+    """The paths of a comma-separated list. An empty item (",,", ", ,", a
+    leading or trailing comma) is an InputError naming its position, and so
+    is an item that names no file and begins or ends with white space ("a,
+    b.ply"), as the CLI's lists (io/output_paths.h)."""
     paths = inputs.split(",")
-    if any(not p.strip() for p in paths):
-        raise shellspace.InputError(
-            f"--inputs '{inputs}' has an empty item"
-            + (" (a trailing comma)" if inputs.endswith(",") else ""))
+    for k, p in enumerate(paths):
+        position = f"item {k + 1} of {len(paths)}"
+        empty = f"--inputs '{inputs}' has an empty item: {position}"
+        if not p:
+            raise shellspace.InputError(empty + (
+                " (a trailing comma)" if k + 1 == len(paths) else
+                " (a leading comma)" if k == 0 else
+                " (two commas in a row)"))
+        if not p.strip(" \t"):
+            raise shellspace.InputError(
+                empty + " (only white space between commas)")
+        if p != p.strip() and not os.path.exists(p):
+            raise shellspace.InputError(
+                f"--inputs '{inputs}': {position}, '{p}', begins or ends "
+                "with white space and names no file (items are split at the "
+                "commas only: no space after a comma)")
     return paths
 
 

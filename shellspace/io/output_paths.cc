@@ -178,19 +178,42 @@ OutputPaths& OutputPaths::InputFile(const std::string& name,
 OutputPaths& OutputPaths::InputList(const std::string& name,
                                     const std::string& list) {
   if (list.empty()) return *this;
-  size_t start = 0;
-  while (true) {
+  std::vector<std::string> items;
+  for (size_t start = 0;;) {
     const size_t comma = list.find(',', start);
-    const std::string item = list.substr(
-        start, comma == std::string::npos ? std::string::npos : comma - start);
-    if (item.find_first_not_of(" \t") == std::string::npos) {
-      throw InputError(name + " '" + list + "' has an empty item" +
-                       (comma == std::string::npos ? " (a trailing comma)"
-                                                   : ""));
-    }
-    InputFile(name, item);
+    items.push_back(list.substr(
+        start, comma == std::string::npos ? std::string::npos : comma - start));
     if (comma == std::string::npos) break;
     start = comma + 1;
+  }
+  const std::string count = std::to_string(items.size());
+  for (size_t k = 0; k < items.size(); ++k) {
+    const std::string& item = items[k];
+    const std::string position =
+        "item " + std::to_string(k + 1) + " of " + count;
+    const std::string empty =
+        name + " '" + list + "' has an empty item: " + position;
+    if (item.empty()) {
+      const char* why = k + 1 == items.size() ? " (a trailing comma)"
+                        : k == 0              ? " (a leading comma)"
+                                              : " (two commas in a row)";
+      throw InputError(empty + why);
+    }
+    if (item.find_first_not_of(" \t") == std::string::npos) {
+      throw InputError(empty + " (only white space between commas)");
+    }
+    const auto space = [](char c) {
+      return std::isspace(static_cast<unsigned char>(c)) != 0;
+    };
+    struct stat info {};
+    const bool padded = space(item.front()) || space(item.back());
+    if (padded && ::stat(item.c_str(), &info) != 0) {
+      throw InputError(name + " '" + list + "': " + position + ", '" + item +
+                       "', begins or ends with white space and names no "
+                       "file (items are split at the commas only: no space "
+                       "after a comma)");
+    }
+    InputFile(name, item);
   }
   return *this;
 }

@@ -39,7 +39,12 @@ class OutputPaths {
  public:
   // An input file (an empty `path`: not given, ignored).
   OutputPaths& InputFile(const std::string& name, const std::string& path);
-  // A comma-separated list of input files; an empty item is an InputError.
+  // A comma-separated list of input files. An empty item (nothing, or only
+  // spaces and tabs, between two commas, before the first or after the
+  // last) is an InputError naming its position ("has an empty item: item
+  // 2 of 3 (two commas in a row)"),
+  // and so is an item that names no file and begins or ends with a space
+  // or tab ("a, b.ply": items are split at the commas only).
   OutputPaths& InputList(const std::string& name, const std::string& list);
   // A directory of frames or a comma list (io/frame_sequence.h): the
   // directory itself and every frame file in it.

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <limits>
 
 #include "shellspace/geometry/named_values.h"
 #include "shellspace/io/ascii_lowercase.h"
@@ -191,9 +192,26 @@ FilmStripLayout LayoutFilmStrip(int count, const RenderOptions& options) {
   layout.legend_height =
       options.color == SurfaceColor::kDisplacement ? 14 * layout.text_scale
                                                    : 0;
-  layout.height = layout.rows * (layout.frame_height + layout.label_height) +
-                  layout.legend_height;
+  const long long height =
+      static_cast<long long>(layout.rows) *
+          (layout.frame_height + layout.label_height) +
+      layout.legend_height;
+  if (height > std::numeric_limits<int>::max()) {
+    throw InputError("a film strip of " + std::to_string(count) +
+                     " frames would be " + std::to_string(height) +
+                     " pixels high, more than an image holds");
+  }
+  layout.height = static_cast<int>(height);
   return layout;
+}
+
+double FilmStripBytes(int count, const RenderOptions& options) {
+  const FilmStripLayout layout = LayoutFilmStrip(count, options);
+  const double samples = static_cast<double>(options.supersample) *
+                         options.supersample;
+  return 6.0 * layout.width * static_cast<double>(layout.height) +
+         32.0 * samples * layout.frame_width *
+             static_cast<double>(layout.frame_height);
 }
 
 std::string FrameLabel(int k, int count) {

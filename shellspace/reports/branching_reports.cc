@@ -17,8 +17,30 @@ JsonObject BranchingEnergyJson(double elastic, double interfacial) {
   return e;
 }
 
+std::vector<std::string> SimulationFailures(
+    const SimulationSettings& s, const SimulationResult& result,
+    const DeltaExtrapolation* extrapolation,
+    const std::string& iterations_label) {
+  std::vector<std::string> failures;
+  const std::string last =
+      result.stages.empty() ? "" : result.stages.back().termination;
+  if (last != "CONVERGENCE") {
+    failures.push_back(
+        "the last stage ended " + last + " after " +
+        std::to_string(result.stages.empty() ? 0
+                                             : result.stages.back().iterations) +
+        " LM iterations (" + iterations_label + " " +
+        std::to_string(s.max_iterations) + " per stage)");
+  }
+  if (extrapolation && !extrapolation->all_converged) {
+    failures.push_back("delta extrapolation: not every width converged");
+  }
+  return failures;
+}
+
 JsonObject SimulationJson(const SimulationSettings& s,
-                          const SimulationResult& result) {
+                          const SimulationResult& result,
+                          const DeltaExtrapolation* extrapolation) {
   const double scale = std::pow(s.epsilon, 2.0 / 3.0) * std::cbrt(s.length);
   JsonObject summary;
   summary.Add("command", "branching simulate")
@@ -41,15 +63,17 @@ JsonObject SimulationJson(const SimulationSettings& s,
     stages.push_back(o);
   }
   summary.Add("stages", stages);
-  // Converged: the last stage's LM met Ceres' convergence criterion.
-  summary.Add("converged", !result.stages.empty() &&
-                               result.stages.back().termination ==
-                                   "CONVERGENCE");
+  // Converged: what SimulationFailures judges.
+  summary.Add("converged",
+              SimulationFailures(s, result, extrapolation, "").empty());
   std::vector<double> x;
   for (size_t k = 0; k < result.interfaces.size(); ++k) {
     x.push_back(result.field.grid.x(static_cast<int>(k) + 1));
   }
   summary.Add("x", x).Add("interfaces", result.interfaces);
+  if (extrapolation) {
+    summary.Add("extrapolation", DeltaExtrapolationJson(*extrapolation));
+  }
   return summary;
 }
 

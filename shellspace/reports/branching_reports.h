@@ -5,6 +5,9 @@
 #ifndef SHELLSPACE_REPORTS_BRANCHING_REPORTS_H_
 #define SHELLSPACE_REPORTS_BRANCHING_REPORTS_H_
 
+#include <string>
+#include <vector>
+
 #include "shellspace/io/json_writer.h"
 #include "shellspace/problems/branching/construction_optimizer.h"
 #include "shellspace/problems/branching/general_search.h"
@@ -19,9 +22,25 @@ JsonObject BranchingEnergyJson(double elastic, double interfacial);
 // A relaxed simulation with settings `s`: command, epsilon, length, height,
 // nx, ny, grading, delta, init, periods, energy, energy_over_eps23_L13
 // (E / (eps^2/3 L^1/3)), km_constant, iterations, seconds, stages (per
-// continuation stage), x and interfaces (interface counts per node row).
-JsonObject SimulationJson(const branching::SimulationSettings& s,
-                          const branching::SimulationResult& result);
+// continuation stage), converged, x and interfaces (interface counts per
+// node row), and with `extrapolation` its DeltaExtrapolationJson last.
+// converged: the last stage's LM met Ceres' convergence criterion and, with
+// an extrapolation, every width of it converged (all_converged) -- what the
+// front ends' verdicts judge (the CLI's exit 4, NotConvergedError).
+JsonObject SimulationJson(
+    const branching::SimulationSettings& s,
+    const branching::SimulationResult& result,
+    const branching::DeltaExtrapolation* extrapolation = nullptr);
+
+// The verdicts behind SimulationJson's converged, one line each ("" for
+// none): the last stage's ("the last stage ended NO_CONVERGENCE after 40
+// LM iterations (LABEL 40 per stage)", LABEL naming the per-stage limit as
+// the front end calls it) and the extrapolation's.
+std::vector<std::string> SimulationFailures(
+    const branching::SimulationSettings& s,
+    const branching::SimulationResult& result,
+    const branching::DeltaExtrapolation* extrapolation,
+    const std::string& iterations_label);
 
 // The delta -> 0 extrapolation: delta, ny, nx, constant (per width), widths
 // (per width: delta, nx, ny, constant, elastic, interfacial, iterations,

@@ -133,6 +133,43 @@ TEST_F(OutputPathsTest, EmptyListItemsAreRefused) {
   }
 }
 
+// The message names the empty item's position and why it is empty; an
+// item padded with white space that names no file ("a.ply, b.ply") is
+// refused too, while a file whose name does end with a space is taken.
+TEST_F(OutputPathsTest, ListItemsAreNamedByPosition) {
+  const std::string a = base_ + "/a.ply", b = base_ + "/b.ply";
+  const struct {
+    std::string list, message;
+  } cases[] = {
+      {a + ", ," + b,
+       "has an empty item: item 2 of 3 (only white space between commas)"},
+      {a + ",\t," + b, "has an empty item: item 2 of 3 (only white space"},
+      {a + ",," + b, "has an empty item: item 2 of 3 (two commas in a row)"},
+      {"," + a, "has an empty item: item 1 of 2 (a leading comma)"},
+      {a + "," + b + ",",
+       "has an empty item: item 3 of 3 (a trailing comma)"},
+      {a + ", " + b, "item 2 of 2, ' " + b +
+                         "', begins or ends with white space and names no "
+                         "file"},
+      {a + " ," + b, "item 1 of 2, '" + a + " ', begins or ends"},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.list);
+    try {
+      OutputPaths().InputList("inputs", c.list);
+      ADD_FAILURE() << "passed";
+    } catch (const InputError& error) {
+      EXPECT_NE(std::string(error.what()).find(c.message), std::string::npos)
+          << error.what();
+    }
+  }
+  // The twins: the same items without the stray commas and spaces, and an
+  // item whose file does end with a space.
+  Touch(a + " ");
+  EXPECT_NO_THROW(OutputPaths().InputList("inputs", a + "," + b));
+  EXPECT_NO_THROW(OutputPaths().InputList("inputs", a + " ," + b));
+}
+
 TEST_F(OutputPathsTest, AGltfOutputMustBeNamedGlb) {
   for (const char* name : {"/x.gltf", "/x.GLTF", "/x.ply", "/x"}) {
     OutputPaths paths;

@@ -152,6 +152,74 @@ TEST(RunLimitsCliTest, StepsAreBoundedBeforeAnyWorkInEveryVerb) {
   Report("steps bounds", tried, held);
 }
 
+// The pixels of a film strip (render --width/--height, --png of the verbs
+// that write frames) against the memory bound before anything is
+// allocated: one line naming the size and "needs about", exit 1, nothing
+// written, at once -- never std::bad_alloc (exit 3) after the solve. 600
+// frames at 49152 x 8192 (100 rows of six 8192-pixel frames) need about
+// 250 GB; 100001 frames of the default 320-pixel columns about 66 GB (a
+// machine of less than twice that refuses them).
+TEST(RunLimitsCliTest, FilmStripSizesAreBoundedBeforeAnyWork) {
+  const std::string base = TempDir();
+  std::string many;
+  for (int k = 0; k < 600; ++k) many += (k ? "," : "") + kSquare;
+  const std::string render = "render --input " + many + " --output " + base +
+                             "/strip.png";
+  const std::string out = " --output " + base + "/out --png " + base +
+                          "/strip.png";
+  const struct {
+    std::string args, message;
+  } cases[] = {
+      {render + " --width 49152 --height 8192",
+       "--width 49152 --height 8192: a film strip of 600 frame(s)"},
+      {render + " --width 65536 --height 8192",
+       "frame width at most 8192 pixels, got 10922"},
+      {render + " --width 49152", "needs about"},
+      {render + " --width 12288 --height 8192", "needs about"},
+      {"shoot --steps 100000 --first " + kSquare + " --second " + kBent + out,
+       "--png: a film strip of 100001 frame(s)"},
+      {"shoot --steps 60000 --first " + kSquare + " --second " + kBent + out +
+           " --labels=false --color displacement",
+       "--png: a film strip of 60001 frame(s)"},
+      // The path's own bound or the strip's, whichever this machine's
+      // memory meets first.
+      {"demo --steps 2 --extrapolate 100000 --output " + base + "/demo",
+       "needs about"},
+      // Not a memory question: a frame wider than 8192 pixels, one line too.
+      {"render --input " + kSquare + " --output " + base +
+           "/strip.png --width 49152 --height 8192",
+       "frame width at most 8192 pixels, got 49152"},
+  };
+  int tried = 0, held = 0;
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.args);
+    std::string err;
+    ++tried;
+    const auto start = std::chrono::steady_clock::now();
+    const int code = RunCli(c.args, nullptr, &err);
+    const double seconds = std::chrono::duration<double>(
+                               std::chrono::steady_clock::now() - start)
+                               .count();
+    const bool ok = code == 1 && Lines(err) == 1 &&
+                    err.find(c.message) != std::string::npos &&
+                    err.find("bad_alloc") == std::string::npos &&
+                    seconds < 20 && DirectoryListing(base).empty();
+    EXPECT_TRUE(ok) << "exit " << code << " after " << seconds << " s: "
+                    << err;
+    held += ok;
+  }
+  Report("film strip bounds", tried, held);
+  // The help states the bound.
+  std::string help, help_err;
+  RunCli("render --help", &help, &help_err);
+  help += help_err;
+  EXPECT_NE(help.find("at most 8192 per column; the strip's estimated "
+                      "memory, 6 B x width x height + 128 B x frame width x "
+                      "frame height, within half the physical memory"),
+            std::string::npos)
+      << help;
+}
+
 TEST(RunLimitsCliTest, AFlagGivenTwiceIsRefused) {
   const std::string base = TempDir();
   const std::string run = "geodesic --start " + kSquare + " --end " + kBent;

@@ -123,7 +123,7 @@ TEST(StatusAndPathsCliTest, GltfExportRefusesWhatFloat32CannotHold) {
   EXPECT_NE(err.find("morph delta"), std::string::npos) << err;
   EXPECT_FALSE(fs::exists(s.dir + "/y.glb"));
   // A .gltf name (JSON glTF) for the binary file: refused before reading.
-  for (const std::string& name : {"/z.gltf", "/z.GLTF", "/z.ply"}) {
+  for (const char* name : {"/z.gltf", "/z.GLTF", "/z.ply"}) {
     EXPECT_EQ(RunCli("export --input " + s.flat + "," + s.bent +
                          " --output " + s.dir + name,
                      &out, &err),
@@ -240,6 +240,93 @@ TEST(StatusAndPathsCliTest, CollectionVerbsRefuseBeforeRunning) {
   EXPECT_EQ(testing::DirectoryListing(s.dir),
             (std::vector<std::string>{"bent.ply", "flat.ply", "hard.ply",
                                       "sub"}));
+}
+
+// A scheduler keyword in another case is a mistyped keyword, not a host
+// named LOCAL (which Python then failed to resolve); an empty or padded
+// list item is named by its position. One line, exit 1, before Python
+// starts, nothing written.
+TEST(StatusAndPathsCliTest, MistypedSchedulersAndListItemsAreOneLine) {
+  const Sheets s = MakeSheets();
+  const std::string output = " --output " + s.dir + "/d.npz";
+  const std::string inputs = " --inputs " + s.flat + "," + s.bent;
+  const struct {
+    std::string args, message;
+  } cases[] = {
+      {"distances" + inputs + output + " --scheduler LOCAL:2",
+       "did you mean 'local:2'?"},
+      {"distances" + inputs + output + " --scheduler Local",
+       "did you mean 'local'?"},
+      {"mean" + inputs + " --output " + s.dir + "/m.ply --scheduler NONE",
+       "did you mean 'none'?"},
+      {"pca" + inputs + " --output " + s.dir + "/p.npz --scheduler lOcAl:1",
+       "did you mean 'local:1'?"},
+      {"distances" + inputs + output + " --scheduler none:1",
+       "none takes no count"},
+      {"distances --inputs '" + s.flat + ", ," + s.bent + "'" + output,
+       "has an empty item: item 2 of 3 (only white space between commas)"},
+      {"distances --inputs '" + s.flat + ",," + s.bent + "'" + output,
+       "has an empty item: item 2 of 3 (two commas in a row)"},
+      {"distances --inputs '," + s.flat + "," + s.bent + "'" + output,
+       "has an empty item: item 1 of 3 (a leading comma)"},
+      {"distances --inputs '" + s.flat + ", " + s.bent + "'" + output,
+       "begins or ends with white space and names no file"},
+  };
+  for (const auto& c : cases) {
+    std::string out, err;
+    EXPECT_EQ(RunCli("collection " + c.args, &out, &err), 1) << c.args;
+    EXPECT_EQ(Lines(err), 1) << c.args << "\n" << err;
+    EXPECT_NE(err.find(c.message), std::string::npos) << c.args << "\n"
+                                                      << err;
+    EXPECT_EQ(err.find("Traceback"), std::string::npos) << err;
+  }
+  // The same list items in a verb of its own.
+  std::string out, err;
+  EXPECT_EQ(RunCli("mean --inputs '" + s.flat + ", ," + s.bent +
+                       "' --output " + s.dir + "/m.ply",
+                   &out, &err),
+            1);
+  EXPECT_NE(err.find("has an empty item: item 2 of 3"), std::string::npos)
+      << err;
+  EXPECT_EQ(testing::DirectoryListing(s.dir),
+            (std::vector<std::string>{"bent.ply", "flat.ply"}));
+}
+
+// The value of the first "key": true|false of `json` (the summary's own
+// key comes before the nested ones of its stages and widths).
+bool FirstBool(const std::string& json, const std::string& key) {
+  const std::string needle = "\"" + key + "\": ";
+  const size_t at = json.find(needle);
+  return at != std::string::npos &&
+         json.compare(at + needle.size(), 4, "true") == 0;
+}
+
+// The summary's converged is what the exit code says: a delta
+// extrapolation with a width short of convergence (the fourth and fifth
+// widths stop at 30 LM iterations, the simulation itself converges) is
+// "converged": false and exit 4 -- it was true beside exit 4. Three widths,
+// all converged: true and exit 0.
+TEST(StatusAndPathsCliTest, BranchingExtrapolationConvergedIsTheExitCode) {
+  for (const int widths : {5, 3}) {
+    SCOPED_TRACE(widths);
+    const std::string dir = TempDir() + "/br";
+    std::string out, err;
+    const int code = RunCli(
+        "branching simulate --quiet --json --nx 8 --ny 32 --continuation 1 "
+        "--lm_iterations 30 --delta_extrapolation " +
+            std::to_string(widths) + " --output " + dir,
+        &out, &err);
+    const bool all = widths == 3;
+    EXPECT_EQ(code, all ? 0 : 4) << err;
+    EXPECT_EQ(FirstBool(out, "all_converged"), all) << out;
+    EXPECT_EQ(FirstBool(out, "converged"), all) << out;
+    EXPECT_EQ(FirstBool(Slurp(dir + "/summary.json"), "converged"), all);
+    if (!all) {
+      EXPECT_NE(err.find("delta extrapolation: not every width converged"),
+                std::string::npos)
+          << err;
+    }
+  }
 }
 
 TEST(StatusAndPathsCliTest, ACappedBranchingSimulationExitsFour) {

@@ -49,6 +49,24 @@ void CheckMemory(double estimate, const std::string& what,
                    " (half the physical memory)");
 }
 
+void CheckFilmStripMemory(int frames, const RenderOptions& options,
+                          const std::string& what) {
+  const FilmStripLayout layout = LayoutFilmStrip(frames, options);
+  CheckMemory(FilmStripBytes(frames, options),
+              what + ": a film strip of " + std::to_string(frames) +
+                  " frame(s), " + std::to_string(layout.width) + " x " +
+                  std::to_string(layout.height) + " pixels (frames " +
+                  std::to_string(layout.frame_width) + " x " +
+                  std::to_string(layout.frame_height) + ")",
+              kFilmStripModel);
+}
+
+std::string FilmStripBoundText() {
+  return std::string("; the strip's estimated memory, ") + kFilmStripModel +
+         ", within half the physical memory (" +
+         Gigabytes(MemoryLimitBytes()) + " here)";
+}
+
 std::string StepsBoundText(const std::string& model) {
   return "; at most " + std::to_string(kMaxSteps) +
          " and an estimated memory of " + model +

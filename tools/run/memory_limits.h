@@ -8,6 +8,8 @@
 
 #include <string>
 
+#include "shellspace/render/film_strip.h"
+
 namespace shellspace {
 
 // The largest --steps of any verb (also bounded by the estimates below).
@@ -39,10 +41,29 @@ double SplineBytes(int vertices, int steps);
 // (measured 18 MB at 2,112 nodes, 101 MB at 33,024).
 double BranchingBytes(double nodes);
 
+// A film strip (render; --png of the verbs that write frames): FilmStripBytes
+// of the library (render/film_strip.h), 6 B x W x H + 32 B x s^2 x frame
+// pixels, s the supersampling (2): the 49152 x 8192 strip of 6 square
+// frames needs about 11 GB.
+inline constexpr const char* kFilmStripModel =
+    "6 B x width x height + 128 B x frame width x frame height";
+
+// CheckMemory of the film strip of `frames` frames drawn with `options`,
+// before anything is rendered; `what` names the output (e.g. "--png").
+// Also throws as LayoutFilmStrip (a width below one pixel per column, a
+// frame wider than 8192 pixels).
+void CheckFilmStripMemory(int frames, const RenderOptions& options,
+                          const std::string& what);
+
 // Throws InputError "<what> needs about X GB (<model>), above the limit
 // Y GB (half the physical memory)" if estimate > MemoryLimitBytes().
 void CheckMemory(double estimate, const std::string& what,
                  const std::string& model);
+
+// The --help text of the bound of a film strip's size: "; the strip's
+// estimated memory, kFilmStripModel, within half the physical memory (X GB
+// here)".
+std::string FilmStripBoundText();
 
 // The --help text of the bound of --steps for a verb whose estimate is
 // `model`.

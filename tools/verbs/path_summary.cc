@@ -11,10 +11,17 @@
 #include "shellspace/render/film_strip.h"
 #include "shellspace/render/html_viewer.h"
 #include "tools/run/common_flags.h"
+#include "tools/run/memory_limits.h"
 #include "tools/verbs/film_strip_flags.h"
 #include "tools/run/shell_inputs.h"
 
 namespace shellspace {
+
+FlagSpec PngFlag(const std::string& what) {
+  return TextFlag("png", "also write a PNG film strip of " + what +
+                             " here (frames of 320 pixels, 6 a row)" +
+                             FilmStripBoundText());
+}
 
 FlagSpec GltfFlag() {
   return TextFlag("gltf",
@@ -101,10 +108,17 @@ void CheckShoot(const ShootResult& result, RunStatus* status) {
   }
 }
 
+void CheckPngMemory(int frames) {
+  if (FLAGS_png.empty()) return;
+  CheckFilmStripMemory(frames, FilmStripOptionsFromFlags(), "--png");
+}
+
 void WritePathOutputs(RunDirectory* out, const Faces& faces,
                       const ShellPath& path) {
   const RenderOptions options = FilmStripOptionsFromFlags();
-  if (!FLAGS_png.empty()) ValidateRenderOptions(options);
+  // Checked before the solve with the frames it was to write; a stopped
+  // run writes fewer.
+  CheckPngMemory(static_cast<int>(path.size()));
   // The film strip and the .glb are files outside the directory: they are
   // renamed into place with it at Commit (or not at all).
   if (!FLAGS_gltf.empty()) {

@@ -16,6 +16,9 @@
 
 namespace shellspace {
 
+// The --png flag of the verbs that write frames: a film strip of `what`
+// ("the frames") at the default size, with its memory bound.
+FlagSpec PngFlag(const std::string& what = "the frames");
 // The --gltf flag of the verbs that write frames.
 FlagSpec GltfFlag();
 // The --html flag of the verbs that write frames: the viewer page
@@ -47,6 +50,12 @@ int FailedSolveExit(const std::string& verb,
 
 // Records each unsolved EXP step of the shot in `status`.
 void CheckShoot(const ShootResult& result, RunStatus* status);
+
+// With --png, the film strip of `frames` frames (--up, --labels, --color)
+// against the memory bound (tools/run/memory_limits.h
+// CheckFilmStripMemory): called before the solve with the frames it will
+// write, so that a strip too large fails in one line before any work.
+void CheckPngMemory(int frames);
 
 // Writes shape_000.ply ... into the run's output directory and adds, if
 // --png is set, the film strip, if --gltf is set, the frames as one

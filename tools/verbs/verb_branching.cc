@@ -21,6 +21,7 @@
 #include <sstream>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -274,23 +275,9 @@ int RunSimulate() {
   }
   const double scale = std::pow(s.epsilon, 2.0 / 3.0) * std::cbrt(s.length);
 
-  JsonObject summary = SimulationJson(s, result);
-  // The exit code says what the summary says: a last stage that did not
-  // converge (NO_CONVERGENCE after --lm_iterations) is exit 4.
-  RunStatus status("branching simulate");
-  const std::string last =
-      result.stages.empty() ? "" : result.stages.back().termination;
-  const bool converged = last == "CONVERGENCE";
-  status.Require(converged, "the last stage ended " + last + " after " +
-                                std::to_string(result.stages.empty()
-                                                   ? 0
-                                                   : result.stages.back()
-                                                         .iterations) +
-                                " LM iterations (--lm_iterations " +
-                                std::to_string(FLAGS_lm_iterations) +
-                                " per stage)");
+  std::optional<DeltaExtrapolation> extrapolation;
   if (FLAGS_delta_extrapolation >= 2 && ObservedStop() == StopCause::kNone) {
-    const DeltaExtrapolation ex = ExtrapolateDelta(
+    const DeltaExtrapolation& ex = extrapolation.emplace(ExtrapolateDelta(
         s, ExtrapolationWidths(result.delta, FLAGS_delta_extrapolation),
         [](const DeltaWidth& w) {
           if (!FLAGS_quiet) {
@@ -301,7 +288,7 @@ int RunSimulate() {
                       << w.interfaces_far << ", max " << w.interfaces_max
                       << "\n";
           }
-        });
+        }));
     if (!FLAGS_quiet) {
       std::cerr << "  extrapolation: "
                 << (ex.all_converged ? "every width converged"
@@ -322,9 +309,16 @@ int RunSimulate() {
       }
       std::cerr << "\n";
     }
-    summary.Add("extrapolation", DeltaExtrapolationJson(ex));
-    status.Require(ex.all_converged,
-                   "delta extrapolation: not every width converged");
+  }
+  const DeltaExtrapolation* ex = extrapolation ? &*extrapolation : nullptr;
+  const JsonObject summary = SimulationJson(s, result, ex);
+  // The exit code says what the summary's converged says: a last stage that
+  // did not converge (NO_CONVERGENCE after --lm_iterations), or a width of
+  // the extrapolation that did not, is exit 4.
+  RunStatus status("branching simulate");
+  for (const std::string& failure :
+       SimulationFailures(s, result, ex, "--lm_iterations")) {
+    status.Require(false, failure);
   }
 
   const int width_px = 800;

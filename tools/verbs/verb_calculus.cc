@@ -44,10 +44,6 @@ FlagSpec MaskFlag() {
                   "comments): vertices held fixed");
 }
 
-FlagSpec PngFlag() {
-  return TextFlag("png", "also write a PNG film strip of the frames here");
-}
-
 FlagTable ShootFlags() {
   return Flags(
       {{
@@ -138,6 +134,7 @@ int RunShoot() {
               "--steps " + std::to_string(FLAGS_steps) + " on " +
                   std::to_string(first.mesh.num_vertices()) + " vertices",
               kPathModel);
+  CheckPngMemory(FLAGS_steps + 1);
   workflows::ShootOptions options;
   options.first = first.mesh;
   options.topology = first.topology;
@@ -195,6 +192,7 @@ int RunTransport() {
   if (files.size() < 2) {
     throw InputError(FLAGS_path + ": need at least 2 frames");
   }
+  CheckPngMemory(static_cast<int>(files.size()));
   const Shell first = LoadShell(files[0]);
   workflows::TransportOptions options;
   options.first = first.mesh;

@@ -70,9 +70,23 @@ int MostLocalWorkers() {
 }
 
 // none, local, local:N (1 <= N <= MostLocalWorkers) or an address
-// ([tcp://|tls://]HOST:PORT, PORT in 1..65535).
+// ([tcp://|tls://]HOST:PORT, PORT in 1..65535). A keyword in another case
+// ("LOCAL:2", "None") or none with a count is refused, not taken for a host
+// named local (shellspace.collections' _parse_scheduler says the same).
 void CheckScheduler(const std::string& value) {
   if (value == "none" || value == "local") return;
+  const std::string lower = AsciiLowercase(value);
+  if (lower != value && (lower == "none" || lower == "local" ||
+                         lower.rfind("local:", 0) == 0 ||
+                         lower.rfind("none:", 0) == 0)) {
+    throw InputError("'" + value + "': the keywords none, local and local:N "
+                     "are lower-case (did you mean '" + lower +
+                     "'?); an address is HOST:PORT");
+  }
+  if (value.rfind("none:", 0) == 0) {
+    throw InputError("'" + value + "': none takes no count (none, local, "
+                     "local:N or a scheduler address HOST:PORT)");
+  }
   if (value.rfind("local:", 0) == 0) {
     const std::string count = value.substr(6);
     char* end = nullptr;

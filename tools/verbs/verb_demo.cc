@@ -72,6 +72,11 @@ int RunDemo() {
               "--steps " + std::to_string(FLAGS_steps) + " --extrapolate " +
                   std::to_string(FLAGS_extrapolate) + size,
               kDemoPathModel);
+  RenderOptions options = FilmStripOptionsFromFlags();
+  options.view = ParseView("front");  // the bend lies in the x-y plane
+  options.max_per_row = 7;
+  CheckFilmStripMemory(FLAGS_steps + FLAGS_extrapolate + 1, options,
+                       "film_strip.png");
   const double pi = std::acos(-1.0);
   const Positions bent = BendAlongY(finger.positions, 4.0, 0.5 * pi);
   const ShellSpace space(finger, ValidateShell(finger, "procedural finger"),
@@ -121,9 +126,6 @@ int RunDemo() {
     output.AddOutside(FLAGS_gltf,
                       EncodeGltfMorphAnimation(frames, finger.faces));
   }
-  RenderOptions options = FilmStripOptionsFromFlags();
-  options.view = ParseView("front");  // the bend lies in the x-y plane
-  options.max_per_row = 7;
   WriteFilmStrip(frames, finger.faces, options, output.File("film_strip.png"));
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock)

@@ -31,7 +31,7 @@ FlagTable GeodesicFlags() {
                     "vertex mask file (one 0-based index per line, '#' "
                     "comments): vertices held at their linearly "
                     "interpolated positions"),
-           TextFlag("png", "also write a PNG film strip of the frames here"),
+           PngFlag(),
            GltfFlag(),
            HtmlFlag(),
            TextFlag("report", "print Ceres' full report on stderr"),
@@ -52,8 +52,10 @@ int RunGeodesic() {
       .OutputGlb("gltf", FLAGS_gltf)
       .OutputFile("html", FLAGS_html)
       .Check();
-  const workflows::GeodesicResult result =
-      workflows::RunGeodesic(GeodesicOptionsFromFlags("geodesic"));
+  const workflows::GeodesicOptions options =
+      GeodesicOptionsFromFlags("geodesic");
+  CheckPngMemory(FLAGS_steps + 1);
+  const workflows::GeodesicResult result = workflows::RunGeodesic(options);
   if (result.status.failed()) return FailedSolveExit("geodesic", result.status);
   const ceres::Solver::Summary& ceres = result.geodesic().summary;
   const bool ceres_ran = !ceres.iterations.empty();

@@ -12,6 +12,7 @@
 #include "shellspace/render/view.h"
 #include "tools/run/common_flags.h"
 #include "tools/verbs/film_strip_flags.h"
+#include "tools/run/memory_limits.h"
 #include "tools/run/run_paths.h"
 #include "tools/verbs/verb.h"
 
@@ -40,12 +41,15 @@ FlagTable RenderFlags() {
                        "column); with C columns (up to 6 frames per row) "
                        "each frame is floor(W / C) wide, the remainder "
                        "background at the sides",
-                       "0 (the default) or a whole number in [1, 65536]",
+                       "0 (the default) or a whole number in [1, 65536], "
+                       "at most 8192 per column" +
+                           FilmStripBoundText(),
                        [](double v) { return IsWholeOrZero(v, 65536); }),
            CheckedFlag("height",
                        "height of each frame's picture in pixels, not "
                        "counting its label (0: the frame's width)",
-                       "0 (the default) or a whole number in [1, 8192]",
+                       "0 (the default) or a whole number in [1, 8192]" +
+                           FilmStripBoundText(),
                        [](double v) { return IsWholeOrZero(v, 8192); }),
            TextFlag("view",
                     "front (along -z, +y up, for --up y), back, side "
@@ -89,6 +93,11 @@ int RunRender() {
       .InputFrames("input", FLAGS_input)
       .OutputFile("output", FLAGS_output)
       .Check();
+  // The pixels' memory against the bound before any mesh is read.
+  CheckFilmStripMemory(static_cast<int>(ListFrameFiles(FLAGS_input).size()),
+                       options, "--width " + std::to_string(options.width) +
+                                    " --height " +
+                                    std::to_string(options.height));
   const FrameSequence sequence = ReadFrameSequence(FLAGS_input);
   const RgbImage image =
       RenderFilmStrip(sequence.frames, sequence.faces, options);

@@ -50,7 +50,7 @@ FlagTable PathFlags(int steps) {
           .Default(FlagDefault(steps)),
       TextFlag("output", "directory of the frames shape_000.ply ...")
           .Required(),
-      TextFlag("png", "also write a PNG film strip of the frames here"),
+      PngFlag(),
       GltfFlag(),
       HtmlFlag(),
   };
@@ -122,6 +122,7 @@ void CheckSplineMemory(int vertices, const std::vector<int>& at,
   const std::string size = "--steps " + std::to_string(FLAGS_steps) + " on " +
                            std::to_string(vertices) + " vertices";
   CheckMemory(SplineBytes(vertices, FLAGS_steps), size, kSplineModel);
+  CheckPngMemory(FLAGS_steps + 1);
   if (!geodesic_init || at.empty()) return;
   int longest = FLAGS_periodic ? at.front() + FLAGS_steps - at.back() : 0;
   for (size_t i = 1; i < at.size(); ++i) {

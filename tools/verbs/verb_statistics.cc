@@ -20,6 +20,7 @@
 #include "shellspace/problems/statistics/shell_pca.h"
 #include "shellspace/render/film_strip.h"
 #include "tools/run/common_flags.h"
+#include "tools/run/memory_limits.h"
 #include "tools/verbs/film_strip_flags.h"
 #include "shellspace/io/json_writer.h"
 #include "shellspace/reports/shape_reports.h"
@@ -100,8 +101,7 @@ FlagTable PcaFlags() {
                     "'log' (v_i = LOG_K(mean -> S_i)) or 'difference' "
                     "(v_i = S_i - mean after rigid alignment)")
                .Default(workflows::PcaOptions().displacement),
-           TextFlag("png",
-                    "also write a PNG film strip of the mean and the modes"),
+           PngFlag("the mean and the modes"),
            HtmlFlag(),
            TextFlag("mean",
                     "an elastic mean of the inputs computed before (e.g. by "
@@ -232,6 +232,7 @@ workflows::PcaOptions PcaOptionsFromFlags(ShellSet* inputs) {
       .OutputFile("html", FLAGS_html)
       .Check();
   *inputs = LoadInputs(FLAGS_loo ? 3 : 2);
+  CheckPngMemory(1 + 2 * FLAGS_modes);  // the mean and the mode shapes
   workflows::PcaOptions options =
       OptionsOfInputs<workflows::PcaOptions>(*inputs, "pca");
   options.modes = FLAGS_modes;
@@ -274,6 +275,7 @@ void WritePcaRun(const workflows::PcaResult& result, const Faces& faces,
   if (result.stopped_in.empty()) AddViewerPage(&output, faces, strip);
   if (!FLAGS_png.empty() && result.stopped_in.empty()) {
     const RenderOptions render = FilmStripOptionsFromFlags();
+    CheckFilmStripMemory(static_cast<int>(strip.size()), render, "--png");
     output.AddOutside(FLAGS_png,
                       EncodePng(RenderFilmStrip(strip, faces, render)));
   }
