@@ -38,7 +38,7 @@ const char* PathLinearSolverName(PathLinearSolver solver);
 // `name` for anything else.
 GeodesicLm ParseGeodesicLm(const std::string& value, const std::string& name);
 
-// GeodesicInit of "auto", "linear", "ltheta". Throws InputError starting
+// GeodesicInit of "auto", "linear", "ltheta", "rotations". Throws InputError starting
 // with `name` for anything else.
 GeodesicInit ParseGeodesicInit(const std::string& value,
                                const std::string& name);

@@ -62,14 +62,19 @@ FlagSpec GeodesicInitFlag() {
   char ratio[16];
   std::snprintf(ratio, sizeof ratio, "%g", kDegenerateAreaRatio);
   return TextFlag("init",
-                  "auto|linear|ltheta: the initial path; linear: positions "
-                  "interpolated after removing the rigid motion between the "
-                  "ends (none with --mask, or below " +
+                  "auto|linear|ltheta|rotations: the initial path; linear: "
+                  "positions interpolated after removing the rigid motion "
+                  "between the ends (none with --mask, or below " +
                       std::to_string(static_cast<int>(kRigidBlendMinDegrees)) +
                       " degree); ltheta: shells reconstructed from "
                       "interpolated edge lengths, areas and dihedral angles; "
-                      "auto: linear unless a triangle of it keeps less than " +
-                      ratio + " of its area or turns over, then ltheta")
+                      "rotations: every triangle turned and stretched by the "
+                      "interpolated polar factors of its deformation "
+                      "gradient, the shell fitted to them; auto: linear "
+                      "unless a triangle of it keeps less than " +
+                      ratio +
+                      " of its area or turns over, then rotations unless the "
+                      "same holds of it, then ltheta")
       .Default(workflows::GeodesicOptions().init);
 }
 

@@ -14,6 +14,7 @@
 #include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/problems/calculus/ltheta_reconstruction.h"
+#include "shellspace/problems/calculus/rotation_blend_path.h"
 
 namespace shellspace {
 namespace {
@@ -176,17 +177,40 @@ ShellPath MakeGeodesicInitialPath(const ShellSpace& space,
   if (init == GeodesicInit::kLTheta) {
     r.used = GeodesicInit::kLTheta;
     r.reason = "ltheta (requested)";
+  } else if (init == GeodesicInit::kRotations) {
+    r.used = GeodesicInit::kRotations;
+    r.reason = "rotations (requested)";
   } else {
     r.linear = FindPathDegeneracy(space.faces, linear);
-    const bool use_ltheta = init == GeodesicInit::kAuto &&
-                            r.linear.degenerate() && steps >= 2;
-    r.used = use_ltheta ? GeodesicInit::kLTheta : GeodesicInit::kLinear;
-    r.reason = use_ltheta
-                   ? "ltheta (the linear path degenerates: " +
-                         r.linear.Describe() + ")"
-                   : std::string("linear (") +
-                         (init == GeodesicInit::kLinear ? "requested; " : "") +
-                         r.linear.Describe() + ")";
+    const bool replace = init == GeodesicInit::kAuto &&
+                         r.linear.degenerate() && steps >= 2;
+    r.used = GeodesicInit::kLinear;
+    r.reason = std::string("linear (") +
+               (init == GeodesicInit::kLinear ? "requested; " : "") +
+               r.linear.Describe() + ")";
+    if (replace) {
+      // Auto: the rotation blend when it does not degenerate itself (one
+      // factorisation), else the LΘA path (K - 1 nonlinear solves).
+      ShellPath blend = RotationBlendPath(space.faces, space.topology, start,
+                                          end, steps, fixed_vertices);
+      const PathDegeneracy blend_degeneracy =
+          blend.empty() ? PathDegeneracy() : FindPathDegeneracy(space.faces,
+                                                                blend);
+      if (!blend.empty() && !blend_degeneracy.degenerate() &&
+          TryPathEnergy(space, blend)) {
+        r.used = GeodesicInit::kRotations;
+        r.reason = "rotations (the linear path degenerates: " +
+                   r.linear.Describe() + ")";
+        path = std::move(blend);
+      } else {
+        r.used = GeodesicInit::kLTheta;
+        r.reason = "ltheta (the linear path degenerates: " +
+                   r.linear.Describe() + "; so does the rotation blend" +
+                   (blend.empty() ? std::string(": no factorisation")
+                                  : ": " + blend_degeneracy.Describe()) +
+                   ")";
+      }
+    }
   }
   if (r.rigid_motion_removed) {
     char rotation[48];
@@ -210,7 +234,15 @@ ShellPath MakeGeodesicInitialPath(const ShellSpace& space,
                   failure.description + "), linear used";
       path = std::move(linear);
     }
-  } else {
+  } else if (r.used == GeodesicInit::kRotations && path.empty()) {
+    path = RotationBlendPath(space.faces, space.topology, start, end, steps,
+                             fixed_vertices);
+    if (path.empty()) {
+      r.used = GeodesicInit::kLinear;
+      r.reason += "; the rotation blend could not be solved, linear used";
+      path = std::move(linear);
+    }
+  } else if (r.used == GeodesicInit::kLinear) {
     path = std::move(linear);
   }
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() -

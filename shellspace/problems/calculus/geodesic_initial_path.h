@@ -21,15 +21,18 @@ using ShellPath = std::vector<Positions>;
 // How the initial path is made:
 //  - kLinear: LinearPathWithoutRigidMotion;
 //  - kLTheta: LThetaPath;
-//  - kAuto: kLinear unless that path degenerates (DegenerateLinearPath),
-//    then kLTheta.
-enum class GeodesicInit { kAuto, kLinear, kLTheta };
+//  - kRotations: RotationBlendPath (rotation_blend_path.h);
+//  - kAuto: kLinear unless that path degenerates (FindPathDegeneracy),
+//    then kRotations unless that path degenerates too, then kLTheta.
+enum class GeodesicInit { kAuto, kLinear, kLTheta, kRotations };
 
-// The names "auto", "linear", "ltheta" (geometry/named_values.h).
+// The names "auto", "linear", "ltheta", "rotations"
+// (geometry/named_values.h).
 inline constexpr NamedValue<GeodesicInit> kGeodesicInitNames[] = {
     {GeodesicInit::kAuto, "auto"},
     {GeodesicInit::kLinear, "linear"},
-    {GeodesicInit::kLTheta, "ltheta"}};
+    {GeodesicInit::kLTheta, "ltheta"},
+    {GeodesicInit::kRotations, "rotations"}};
 const char* GeodesicInitName(GeodesicInit init);
 
 // Below this rotation between the end shapes (the Kabsch rotation of the
@@ -101,7 +104,7 @@ ShellPath LThetaPath(const ShellSpace& space, const Positions& start,
 // What MakeGeodesicInitialPath did.
 struct InitialPathReport {
   GeodesicInit requested = GeodesicInit::kAuto;
-  GeodesicInit used = GeodesicInit::kLinear;  // kLinear or kLTheta
+  GeodesicInit used = GeodesicInit::kLinear;  // kLinear, kLTheta, kRotations
   double rotation_degrees = 0;  // between the ends (Kabsch)
   bool rigid_motion_removed = false;
   // The linear path's degeneracy (found for kAuto and kLinear).

@@ -19,6 +19,32 @@ Eigen::Vector3d Vertex(const Positions& shape, int v) {
 
 }  // namespace
 
+RigidBlendFrame::RigidBlendFrame(const Positions& a, const Positions& b) {
+  const Eigen::Matrix3Xd a_t = a.transpose(), b_t = b.transpose();
+  const Eigen::Matrix4d to_a = Eigen::umeyama(b_t, a_t, false);
+  rotation_ = to_a.topLeftCorner<3, 3>();
+  const Eigen::Vector3d c = to_a.topRightCorner<3, 1>();
+  centroid_a_ = a_t.rowwise().mean();
+  centroid_b_ = b_t.rowwise().mean();
+  aligned_.resize(b.rows(), 3);
+  for (int v = 0; v < b.rows(); ++v) {
+    aligned_.row(v) = (rotation_ * Vertex(b, v) + c).transpose();
+  }
+}
+
+Positions RigidBlendFrame::Move(const Positions& x, double t) const {
+  const Eigen::Quaterniond partial = Eigen::Quaterniond::Identity().slerp(
+      t, Eigen::Quaterniond(Eigen::Matrix3d(rotation_.transpose())));
+  const Eigen::Matrix3d q = partial.toRotationMatrix();
+  const Eigen::Vector3d shift = t * (centroid_b_ - centroid_a_);
+  Positions moved(x.rows(), 3);
+  for (int v = 0; v < x.rows(); ++v) {
+    moved.row(v) =
+        (q * (Vertex(x, v) - centroid_a_) + centroid_a_ + shift).transpose();
+  }
+  return moved;
+}
+
 Positions BlendRigidly(const Positions& a, const Positions& b, double t) {
   if (t <= 0) return a;
   if (t >= 1) return b;

@@ -66,6 +66,26 @@ Positions ReconstructFromLTheta(const ShellSpace& space,
 // through a flat shape).
 Positions BlendRigidly(const Positions& a, const Positions& b, double t);
 
+// The rigid motion of BlendRigidly, for blends other than the linear one:
+// Aligned() is b moved onto a (b' = R b + c, Kabsch), Move(x, t) moves a
+// shape x given in a's frame by the fraction t of the motion back to b
+// (rotation slerped from I to R^T about a's centroid, centroid moved by
+// t (centroid_b - centroid_a)). BlendRigidly(a, b, t) is
+// Move((1 - t) a + t Aligned(), t) in exact arithmetic; it keeps its own
+// order of operations (the digits of the paths and splines made from it
+// would change with the compiler's contractions otherwise).
+class RigidBlendFrame {
+ public:
+  RigidBlendFrame(const Positions& a, const Positions& b);
+  const Positions& Aligned() const { return aligned_; }
+  Positions Move(const Positions& x, double t) const;
+
+ private:
+  Eigen::Matrix3d rotation_;  // R
+  Eigen::Vector3d centroid_a_, centroid_b_;
+  Positions aligned_;
+};
+
 }  // namespace shellspace
 
 #endif  // SHELLSPACE_PROBLEMS_CALCULUS_LTHETA_RECONSTRUCTION_H_

@@ -21,6 +21,7 @@
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/problems/calculus/ltheta_reconstruction.h"
 #include "shellspace/problems/calculus/multiresolution.h"
+#include "shellspace/problems/calculus/rotation_blend_path.h"
 
 namespace shellspace {
 namespace {
@@ -121,6 +122,115 @@ TEST_F(InitialPathTest, TheLThetaPathInterpolatesLengthsAndLeadsToTheGeodesic) {
   ASSERT_TRUE(a.converged && b.converged);
   EXPECT_NEAR(a.path_energy, b.path_energy, 1e-8 * b.path_energy);
   EXPECT_EQ(b.init.used, GeodesicInit::kLinear);
+}
+
+// The largest |l_e(s) - l_e(target)| / l_e(target) over the edges e.
+double LargestRelativeLengthError(const Topology& topology, const Positions& s,
+                                  const Eigen::VectorXd& target) {
+  double worst = 0;
+  for (size_t e = 0; e < topology.edges.size(); ++e) {
+    const auto [a, b] = topology.edges[e];
+    const double length = (s.row(a) - s.row(b)).norm();
+    worst = std::max(worst, std::abs(length - target[e]) / target[e]);
+  }
+  return worst;
+}
+
+Eigen::VectorXd EdgeLengths(const Topology& topology, const Positions& s) {
+  Eigen::VectorXd lengths(topology.edges.size());
+  for (size_t e = 0; e < topology.edges.size(); ++e) {
+    lengths[e] = (s.row(topology.edges[e][0]) - s.row(topology.edges[e][1]))
+                     .norm();
+  }
+  return lengths;
+}
+
+// A rigid motion by 130 degrees: every shape of the rotation blend is a
+// rigid motion of the start (to round-off), turned by k/K of the angle, and
+// the path ends on the given shapes. The twin: the plain linear path's
+// midpoint is not rigid.
+TEST_F(InitialPathTest, TheRotationBlendOfARigidMotionIsRigid) {
+  Positions end = Rotate(finger_.positions, 130, {0.3, 1, 0.2});
+  end.rowwise() += Eigen::RowVector3d(1, -2, 0.5);
+  const ShellPath path = RotationBlendPath(finger_.faces, space_.topology,
+                                           finger_.positions, end, 4, {});
+  ASSERT_EQ(path.size(), 5u);
+  EXPECT_LT((path[0] - finger_.positions).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_LT((path[4] - end).cwiseAbs().maxCoeff(), 1e-12);
+  for (int k = 0; k <= 4; ++k) {
+    EXPECT_LT(RelativeDistanceUpToRigidMotion(path[k], finger_.positions),
+              1e-12)
+        << k;
+    const RigidMotion m = FitRigidMotion(finger_.positions, path[k]);
+    EXPECT_NEAR(Eigen::AngleAxisd(m.rotation).angle() * 180 / M_PI,
+                130.0 * k / 4, 1e-9)
+        << k;
+  }
+  EXPECT_GT(RelativeDistanceUpToRigidMotion(
+                LinearPath(finger_.positions, end, 4)[2], finger_.positions),
+            0.1);
+}
+
+// A bend by 240 degrees of the finger held at its base (the inner side
+// shortened to 0.6 of its length): the linear path turns triangles over
+// and cuts the edges short; the rotation blend turns none and its midpoint
+// has (nearly) the mean edge lengths of the ends -- an edge along a
+// principal direction of the stretch has exactly the interpolated length.
+// Auto takes it, and the geodesic from it is the geodesic from the LΘA
+// path (E_K to 1e-8).
+TEST_F(InitialPathTest, TheRotationBlendFollowsABendTheLinearPathCutsShort) {
+  const Positions end = BendAlongY(finger_.positions, 3.0, 240 * M_PI / 180);
+  const std::vector<int> mask = FingerBaseVertices(10, 1);
+  const ShellPath linear =
+      LinearPathWithoutRigidMotion(finger_.positions, end, 4, mask);
+  const ShellPath blend = RotationBlendPath(finger_.faces, space_.topology,
+                                            finger_.positions, end, 4, mask);
+  const Eigen::VectorXd mean_lengths =
+      0.5 * (EdgeLengths(space_.topology, finger_.positions) +
+             EdgeLengths(space_.topology, end));
+  const double blend_error =
+      LargestRelativeLengthError(space_.topology, blend[2], mean_lengths);
+  const double linear_error =
+      LargestRelativeLengthError(space_.topology, linear[2], mean_lengths);
+  std::cout << "midpoint edge lengths off by " << blend_error
+            << " (rotation blend), " << linear_error << " (linear)\n";
+  EXPECT_LT(blend_error, 0.1);
+  EXPECT_GT(linear_error, 0.3);  // the twin
+  EXPECT_FALSE(FindPathDegeneracy(finger_.faces, blend).degenerate());
+  ASSERT_TRUE(FindPathDegeneracy(finger_.faces, linear).degenerate());
+
+  GeodesicInput input = GeodesicInput::Between(finger_.positions, end, 4);
+  input.fixed_vertices = mask;
+  const GeodesicResult from_blend = SolveGeodesic(space_, input, Tight());
+  EXPECT_EQ(from_blend.init.used, GeodesicInit::kRotations)
+      << from_blend.init.reason;
+  input.init = GeodesicInit::kLTheta;
+  const GeodesicResult from_ltheta = SolveGeodesic(space_, input, Tight());
+  ASSERT_TRUE(from_blend.converged) << from_blend.final_gradient;
+  ASSERT_TRUE(from_ltheta.converged) << from_ltheta.final_gradient;
+  std::cout << "iterations from the rotation blend " << from_blend.iterations
+            << " (" << from_blend.init.seconds << " s), from the LTheta path "
+            << from_ltheta.iterations << " (" << from_ltheta.init.seconds
+            << " s)\n";
+  EXPECT_NEAR(from_blend.path_energy, from_ltheta.path_energy,
+              1e-8 * from_ltheta.path_energy);
+}
+
+// With a mask the masked vertices keep their linear positions and nothing
+// is moved rigidly: the ends are the given shapes.
+TEST_F(InitialPathTest, TheRotationBlendHoldsTheMaskOnTheLinearPath) {
+  const Positions end = BendAlongY(finger_.positions, 3.0, 120 * M_PI / 180);
+  const std::vector<int> mask = FingerBaseVertices(10, 1);
+  const ShellPath blend = RotationBlendPath(finger_.faces, space_.topology,
+                                            finger_.positions, end, 4, mask);
+  const ShellPath linear = LinearPath(finger_.positions, end, 4);
+  for (int k = 0; k <= 4; ++k) {
+    for (int v : mask) {
+      EXPECT_LT((blend[k].row(v) - linear[k].row(v)).norm(), 1e-14) << k;
+    }
+  }
+  EXPECT_LT((blend[4] - end).cwiseAbs().maxCoeff(), 1e-10);
+  EXPECT_FALSE(FindPathDegeneracy(finger_.faces, blend).degenerate());
 }
 
 // A prolongation that turns a triangle over, or whose E_K exceeds the fine
