@@ -256,6 +256,18 @@ std::vector<int> IndexListArgument(const py::handle& object,
   return out;
 }
 
+std::vector<std::pair<std::string, std::string>> MaskInputPaths(
+    const py::handle& object) {
+  if (object.is_none()) return {};
+  const py::object path_like = py::module_::import("os").attr("PathLike");
+  if (!py::isinstance<py::str>(object) && !py::isinstance(object, path_like)) {
+    return {};
+  }
+  const py::object path = py::module_::import("os").attr("fspath")(object);
+  if (!py::isinstance<py::str>(path)) return {};  // MaskArgument says why
+  return {{"mask", path.cast<std::string>()}};
+}
+
 std::vector<int> MaskArgument(const py::handle& object, int num_vertices) {
   if (object.is_none()) return {};
   const py::object path_like = py::module_::import("os").attr("PathLike");

@@ -89,6 +89,12 @@ std::vector<int> IndexListArgument(const pybind11::handle& object,
 std::vector<int> MaskArgument(const pybind11::handle& object,
                               int num_vertices);
 
+// The mask file MaskArgument reads, as the input ("mask", path) the output
+// checks compare with (module_common.h CheckOutputs); none for None or
+// indices.
+std::vector<std::pair<std::string, std::string>> MaskInputPaths(
+    const pybind11::handle& object);
+
 }  // namespace shellspace
 
 #endif  // SHELLSPACE_PYTHON_ARRAY_ARGUMENTS_H_

@@ -69,7 +69,7 @@ py::object GeodesicPy(const py::object& start_v, const py::object& end_v,
                       const MaterialArgs& material_args,
                       const SolverOptions& solver) {
   const auto clock = Clock::now();
-  CheckOutputs(output, png, gltf);
+  CheckOutputs(output, png, gltf, MaskInputPaths(mask));
   const workflows::GeodesicOptions options =
       GeodesicOptionsOf(start_v, end_v, F, steps, mask, multires,
                         linear_solver, lm, init, material_args, solver,
@@ -103,7 +103,7 @@ py::object LogPy(const py::object& start_v, const py::object& end_v,
                  const MaterialArgs& material_args,
                  const SolverOptions& solver) {
   const auto clock = Clock::now();
-  CheckOutputFile(output);
+  CheckOutputFile(output, MaskInputPaths(mask));
   const workflows::GeodesicOptions options =
       GeodesicOptionsOf(start_v, end_v, F, steps, mask, multires,
                         linear_solver, lm, init, material_args, solver, "log");
@@ -137,7 +137,7 @@ py::object ShootPy(const py::object& first_v, const py::object& second_v,
                    const SolverOptions& solver) {
   const auto clock = Clock::now();
   CheckAtLeast("steps", steps, 1);
-  CheckOutputs(output, png, gltf);
+  CheckOutputs(output, png, gltf, MaskInputPaths(mask));
   Shell first = MakeShell(first_v, F, "first");
   workflows::ShootOptions options;
   options.second = CompatiblePositions(second_v, first, "second");
@@ -181,7 +181,7 @@ py::object TransportPy(const py::object& path_object,
   if (!(epsilon > 0) || !std::isfinite(epsilon)) {
     throw InputError("epsilon must be > 0, got " + std::to_string(epsilon));
   }
-  CheckOutputs(output, png, gltf);
+  CheckOutputs(output, png, gltf, MaskInputPaths(mask));
   const std::vector<Positions> frames = ShapeListArgument(path_object, "path");
   if (frames.size() < 2) throw InputError("path: need at least 2 frames");
   CheckPngMemory(png, static_cast<int>(frames.size()));

@@ -250,10 +250,14 @@ void CheckOutputs(const std::optional<std::string>& output,
   paths.Check();
 }
 
-void CheckOutputFile(const std::optional<std::string>& output) {
+void CheckOutputFile(const std::optional<std::string>& output,
+                     const std::vector<std::pair<std::string, std::string>>&
+                         inputs) {
   if (!output) return;
   if (output->empty()) throw InputError("output: an empty path");
-  OutputPaths().OutputFile("output", *output).Check();
+  OutputPaths paths;
+  for (const auto& [name, path] : inputs) paths.InputFile(name, path);
+  paths.OutputFile("output", *output).Check();
 }
 
 void CheckPngMemory(const std::optional<std::string>& png, int frames) {

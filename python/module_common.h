@@ -212,7 +212,9 @@ void CheckOutputs(const std::optional<std::string>& output,
 void CheckPngMemory(const std::optional<std::string>& png, int frames);
 
 // `output` a file (a mesh) checked as CheckOutputs checks its files.
-void CheckOutputFile(const std::optional<std::string>& output);
+void CheckOutputFile(const std::optional<std::string>& output,
+                     const std::vector<std::pair<std::string, std::string>>&
+                         inputs = {});
 
 // What a path verb writes, as the CLI: `output` (a directory of
 // shape_000.ply ... and summary.json, `summary`'s text, replaced whole),

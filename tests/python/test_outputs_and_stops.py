@@ -75,6 +75,35 @@ def test_outputs_are_checked_before_any_solve(tmp_path):
     assert sorted(os.listdir(tmp_path)) == ["a.ply", "mine", "sub"]
 
 
+def test_a_mask_given_by_its_path_is_an_input(tmp_path):
+    V, B, F = pair()
+    mask = tmp_path / "m.png"
+    mask.write_text("0\n4\n")
+    alias = tmp_path / "alias.txt"
+    os.link(mask, alias)
+    calls = [
+        lambda: shellspace.geodesic(V, B, F, steps=2, quiet=True,
+                                    mask=str(mask), png=str(mask)),
+        lambda: shellspace.geodesic(V, B, F, steps=2, quiet=True,
+                                    mask=mask, png=str(alias)),
+        lambda: shellspace.shoot(V, B, F, steps=2, quiet=True, mask=str(mask),
+                                 png=str(tmp_path / "sub" / ".." / "m.png")),
+        lambda: shellspace.log(V, B, F, steps=2, quiet=True, mask=str(alias),
+                               output=str(mask)),
+    ]
+    (tmp_path / "sub").mkdir()
+    for call in calls:
+        with pytest.raises(shellspace.InputError,
+                           match="is also the input mask"):
+            call()
+        assert mask.read_text() == "0\n4\n"
+    assert sorted(os.listdir(tmp_path)) == ["alias.txt", "m.png", "sub"]
+    # The twin: the same mask as indices is no file, and the call runs.
+    shellspace.geodesic(V, B, F, steps=2, quiet=True, mask=[0, 4],
+                        png=str(tmp_path / "s.png"))
+    assert (tmp_path / "s.png").stat().st_size > 0
+
+
 def test_a_sigalrm_handler_runs_during_a_solve():
     V, F = plate(24)
     B = V.copy()

@@ -199,6 +199,13 @@ TEST(OutputPathsCliTest, CollidingOutputsAreRefusedBeforeAnyWork) {
       {shoot + " --png a.ply", "is also the input --first"},
       {spline + " --gltf " + base + "/b.ply", "is also the input --keyframes"},
       {pca + " --png ./a.ply", "is also the input --inputs"},
+      // pca's --mean is an input too (a mean to start from).
+      {"pca --inputs a.ply,alias.ply --mean b.ply --output out --png "
+       "sub/../b.ply",
+       "is also the input --mean"},
+      {"pca --inputs a.ply,alias.ply --mean b.ply --output ./sub --html "
+       "b.ply",
+       "is also the input --mean"},
       {"log --start a.ply --end b.ply --output ./a.ply",
        "is also the input --start"},
       {"log --start a.ply --end b.ply --output sub/../b.ply",

@@ -227,6 +227,7 @@ workflows::PcaOptions PcaOptionsFromFlags(ShellSet* inputs) {
                           FLAGS_max_exp_steps, FLAGS_displacement, "--");
   RunPaths()
       .InputList("inputs", FLAGS_inputs)
+      .InputFile("mean", FLAGS_mean)
       .OutputDirectory("output", FLAGS_output)
       .OutputFile("png", FLAGS_png)
       .OutputFile("html", FLAGS_html)
