@@ -241,7 +241,7 @@ void CheckOutputs(const std::optional<std::string>& output,
   }
   if (png) {
     if (png->empty()) throw InputError("png: an empty path");
-    paths.OutputFile("png", *png);
+    paths.OutputPng("png", *png);
   }
   if (gltf) {
     if (gltf->empty()) throw InputError("gltf: an empty path");
@@ -257,7 +257,7 @@ void CheckOutputFile(const std::optional<std::string>& output,
   if (output->empty()) throw InputError("output: an empty path");
   OutputPaths paths;
   for (const auto& [name, path] : inputs) paths.InputFile(name, path);
-  paths.OutputFile("output", *output).Check();
+  paths.OutputMesh("output", *output).Check();
 }
 
 void CheckPngMemory(const std::optional<std::string>& png, int frames) {

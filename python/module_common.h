@@ -211,7 +211,8 @@ void CheckOutputs(const std::optional<std::string>& output,
 // bound (tools/run/memory_limits.h CheckFilmStripMemory), before the solve.
 void CheckPngMemory(const std::optional<std::string>& png, int frames);
 
-// `output` a file (a mesh) checked as CheckOutputs checks its files.
+// `output` a mesh file (.ply, .obj, .off) checked as CheckOutputs checks
+// its files.
 void CheckOutputFile(const std::optional<std::string>& output,
                      const std::vector<std::pair<std::string, std::string>>&
                          inputs = {});

@@ -140,6 +140,16 @@ std::string EncodeGltfMorphAnimation(const std::vector<Positions>& frames,
   std::vector<float> times(frames.size());
   for (size_t k = 0; k < frames.size(); ++k) {
     times[k] = ToFloat32(k / options.frames_per_second, "key time (s)");
+    // glTF's key times increase strictly; a rate so high that 1 / fps
+    // rounds to 0 (or two times to one float) cannot be played.
+    if (k > 0 && !(times[k] > times[k - 1])) {
+      std::ostringstream message;
+      message << "key times: frames " << k - 1 << " and " << k << " at "
+              << options.frames_per_second
+              << " frames per second fall on one float32 time (glTF needs "
+                 "increasing times); use a lower rate";
+      throw InputError(message.str());
+    }
   }
   primitive.attributes["POSITION"] = builder.AddAccessor(
       base, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, 3,

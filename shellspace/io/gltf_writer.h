@@ -37,7 +37,8 @@ GltfAnimationOptions::Interpolation ParseGltfInterpolation(
 // extras.targetNames. Throws InputError for no frames, frames of different
 // vertex counts, a face index out of range, or a coordinate, morph delta or
 // key time that is not finite as float32 (|x| beyond 3.4e38: glTF cannot
-// hold it), before any byte is encoded.
+// hold it), or two key times that are one float32 (a rate near 1e38 or
+// beyond), before any byte is encoded.
 std::string EncodeGltfMorphAnimation(const std::vector<Positions>& frames,
                                      const Faces& faces,
                                      const GltfAnimationOptions& options = {});

@@ -247,6 +247,31 @@ OutputPaths& OutputPaths::OutputGlb(const std::string& name,
   return Add(&output_files_, name, path);
 }
 
+OutputPaths& OutputPaths::AddNamed(const std::string& name,
+                                   const std::string& path,
+                                   std::vector<std::string> extensions,
+                                   const std::string& container) {
+  if (!path.empty()) {
+    named_files_.push_back({{name, path}, std::move(extensions), container});
+  }
+  return Add(&output_files_, name, path);
+}
+
+OutputPaths& OutputPaths::OutputPng(const std::string& name,
+                                    const std::string& path) {
+  return AddNamed(name, path, {".png"}, "a PNG image");
+}
+
+OutputPaths& OutputPaths::OutputHtml(const std::string& name,
+                                     const std::string& path) {
+  return AddNamed(name, path, {".html", ".htm"}, "an HTML page");
+}
+
+OutputPaths& OutputPaths::OutputMesh(const std::string& name,
+                                     const std::string& path) {
+  return AddNamed(name, path, {".ply", ".obj", ".off"}, "a mesh");
+}
+
 OutputPaths& OutputPaths::OutputDirectory(const std::string& name,
                                           const std::string& path) {
   return Add(&output_dirs_, name, path);
@@ -284,6 +309,12 @@ void OutputPaths::Check() const {
     std::error_code error;
     if (fs::is_directory(out.path, error)) {
       throw InputError(out.name + " " + out.path + " is a directory");
+    }
+    // A FIFO, socket or device: reading (a cache) would block and the
+    // staged rename would replace the node itself.
+    if (fs::exists(out.path, error) && !fs::is_regular_file(out.path, error)) {
+      throw InputError(out.name + " " + out.path +
+                       " is not a regular file (a FIFO, socket or device)");
     }
     CheckParentWritable(out.name, out.path);
     if (Exists(out.path) && ::access(out.path.c_str(), W_OK) != 0) {
@@ -336,6 +367,23 @@ void OutputPaths::Check() const {
     CheckLength(out.name, out.path);
   }
   for (const Entry& glb : glb_files_) CheckGltfFileName(glb.path, glb.name);
+  for (const NamedContainer& named : named_files_) {
+    const std::string lower = AsciiLowercase(named.entry.path);
+    bool matches = false;
+    std::string names;
+    for (const std::string& ext : named.extensions) {
+      matches = matches ||
+                (lower.size() > ext.size() &&
+                 lower.compare(lower.size() - ext.size(), ext.size(), ext) ==
+                     0);
+      names += (names.empty() ? "" : ", ") + ext;
+    }
+    if (!matches) {
+      throw InputError(named.entry.name + " " + named.entry.path +
+                       ": the file written is " + named.container +
+                       "; name it " + names);
+    }
+  }
   // Every output can be written: what killed runs left beside it goes
   // before the solves (a staging directory can be large).
   for (const std::vector<Entry>* outputs : {&output_files_, &output_dirs_}) {

@@ -13,12 +13,15 @@
 //    case), no output file lies inside an output directory (which is
 //    replaced as a whole), no two output directories overlap;
 //  - an existing output directory is replaceable (the output of an earlier
-//    run, io/output_directory.h), an output file is not a directory;
+//    run, io/output_directory.h), an existing output file is a regular file
+//    (not a directory, FIFO, socket or device);
 //  - every output can be written: its parent directory exists and is
 //    writable, an existing output is writable, and its name (with the
 //    suffix of the temporary it is staged under, io/atomic_file.h and
 //    io/output_directory.h) fits the file system's NAME_MAX and PATH_MAX;
-//  - an output's container matches its name (a .glb for glTF);
+//  - an output's container matches its name: a .glb for glTF, a .png for a
+//    film strip, a .html or .htm for a viewer page, a .ply, .obj or .off for
+//    a mesh (case does not matter);
 //  - a list of inputs has no empty item ("a.ply,,b.ply", "a.ply,b.ply,").
 //
 // Each failure is one InputError naming the item by the name its front end
@@ -54,6 +57,11 @@ class OutputPaths {
   // An output file written as binary glTF: also its name must end in .glb
   // (io/gltf_writer.h CheckGltfFileName), checked after the collisions.
   OutputPaths& OutputGlb(const std::string& name, const std::string& path);
+  // An output file of PNG (named .png), of a viewer page (.html, .htm) or
+  // of one mesh (.ply, .obj, .off): the name checked after the collisions.
+  OutputPaths& OutputPng(const std::string& name, const std::string& path);
+  OutputPaths& OutputHtml(const std::string& name, const std::string& path);
+  OutputPaths& OutputMesh(const std::string& name, const std::string& path);
   // An output directory, written whole (io/output_directory.h).
   OutputPaths& OutputDirectory(const std::string& name,
                                const std::string& path);
@@ -68,8 +76,20 @@ class OutputPaths {
   OutputPaths& Add(std::vector<Entry>* entries, const std::string& name,
                    const std::string& path);
 
+  // An output file whose name must end in one of `extensions`
+  // (lowercase, with the dot), `container` saying what is written.
+  struct NamedContainer {
+    Entry entry;
+    std::vector<std::string> extensions;
+    std::string container;
+  };
+  OutputPaths& AddNamed(const std::string& name, const std::string& path,
+                        std::vector<std::string> extensions,
+                        const std::string& container);
+
   std::vector<Entry> input_files_, input_dirs_, output_files_, output_dirs_,
       glb_files_;
+  std::vector<NamedContainer> named_files_;
 };
 
 // True if the file system of directory `dir` folds case (a name and its

@@ -216,6 +216,21 @@ TEST(GltfWriterTest, BadInputIsAnInputErrorAndWritesNothing) {
   zero_fps.frames_per_second = 0;
   EXPECT_THROW(WriteGltfMorphAnimation(dir + "/a.glb", frames, faces, zero_fps),
                InputError);
+  // 1 / 1e300 rounds to float32 0: every key time would be 0, which glTF
+  // refuses (times increase strictly). The twin: 1e30 frames per second
+  // still has increasing float32 times.
+  GltfAnimationOptions fast;
+  fast.frames_per_second = 1e300;
+  try {
+    EncodeGltfMorphAnimation(frames, faces, fast);
+    ADD_FAILURE() << "1e300 frames per second encoded";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("fall on one float32 time"),
+              std::string::npos)
+        << e.what();
+  }
+  fast.frames_per_second = 1e30;
+  EXPECT_FALSE(EncodeGltfMorphAnimation(frames, faces, fast).empty());
   EXPECT_TRUE(testing::DirectoryListing(dir).empty());
 }
 

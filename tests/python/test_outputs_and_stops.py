@@ -60,6 +60,7 @@ def test_outputs_are_checked_before_any_solve(tmp_path):
          "is inside output"),
         (dict(output=str(tmp_path / ("n" * 240))), "give a name of at most"),
         (dict(output=""), "empty path"),
+        (dict(png=str(tmp_path / "s.jpg")), "a PNG image; name it .png"),
     ]
     (tmp_path / "sub").mkdir()
     for keywords, text in cases:
@@ -71,6 +72,9 @@ def test_outputs_are_checked_before_any_solve(tmp_path):
         shellspace.spline([V, B], [0, 4], F, steps=4, quiet=True,
                           png=str(tmp_path / "y.png"),
                           gltf=str(tmp_path / "y.png"))
+    with pytest.raises(shellspace.InputError, match="name it .ply, .obj"):
+        shellspace.log(V, B, F, steps=2, quiet=True,
+                       output=str(tmp_path / "l.stl"))
     assert (notes / "notes.txt").read_text() == "keep"
     assert sorted(os.listdir(tmp_path)) == ["a.ply", "mine", "sub"]
 
@@ -193,6 +197,14 @@ def test_a_corrupt_or_foreign_cache_is_one_line(meshes):
         assert len(lines) == 1 and "not a distance cache" in lines[0], \
             run.stderr
         assert "Traceback" not in run.stderr
+    # A FIFO as the cache: refused at once, not read (which would block).
+    fifo = folder / "f.npz"
+    os.mkfifo(fifo)
+    run = module("distances", "--inputs", ",".join(paths), "--output",
+                 str(folder / "d.npz"), "--cache", str(fifo), "--quiet")
+    assert run.returncode == 1 and "not a regular file" in run.stderr, \
+        run.stderr
+    assert len(run.stderr.strip().splitlines()) == 1, run.stderr
     np.savez(str(folder / "c.npz"), other=np.zeros(3))
     with pytest.raises(shellspace.InputError, match="not a distance cache"):
         S, F = shapes()

@@ -8,6 +8,7 @@
 // the process that left it has ended. Each class prints its cases tried
 // and held.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -52,6 +53,8 @@ std::map<std::string, std::string> Tree(const std::string& dir) {
       tree[path.string()] = "-> " + fs::read_symlink(path).string();
     } else if (fs::is_directory(path)) {
       tree[path.string()] = "<dir>";
+    } else if (!fs::is_regular_file(path)) {
+      tree[path.string()] = "<special>";  // a FIFO is not read
     } else {
       tree[path.string()] = Slurp(path.string());
     }
@@ -154,6 +157,7 @@ TEST(OutputPathsCliTest, CollidingOutputsAreRefusedBeforeAnyWork) {
   fs::copy_file(kBent, base + "/b.ply");
   fs::create_symlink(base + "/a.ply", base + "/alias.ply");
   ASSERT_EQ(RunCli(Geodesic(2, base + "/path")), 0);
+  ASSERT_EQ(mkfifo((base + "/fifo.png").c_str(), 0644), 0);
   const std::string ends = " --start a.ply --end b.ply --output out";
   const std::string shoot = "shoot --first a.ply --second b.ply --output out";
   const std::string transport =
@@ -221,6 +225,16 @@ TEST(OutputPathsCliTest, CollidingOutputsAreRefusedBeforeAnyWork) {
        "is also the input --inputs"},
       {"deform --reference a.ply --mask m.txt --targets b.ply --output alias.ply",
        "is also the input --reference"},
+      // A container that does not match its name.
+      {"geodesic --html page.png" + ends, "is an HTML page; name it .html"},
+      {"geodesic --png strip.glb" + ends, "is a PNG image; name it .png"},
+      {"render --input path --output strip.jpg", "name it .png"},
+      {"view --input path --output page.png", "name it .html, .htm"},
+      {"log --start a.ply --end b.ply --output l.stl",
+       "is a mesh; name it .ply, .obj, .off"},
+      {"mean --inputs a.ply,b.ply --output m.stl", "name it .ply, .obj, .off"},
+      // An existing output that is no regular file.
+      {"geodesic --png fifo.png" + ends, "is not a regular file"},
       // An output directory that holds an input.
       {"transport --path path --variation b.ply --output ./path/",
        "--output ./path/ holds the input --path"},

@@ -33,6 +33,20 @@ class RunPaths {
     paths_.OutputFile("--" + flag, path);
     return *this;
   }
+  // An output file of PNG (named .png), of a viewer page (.html, .htm), of
+  // one mesh (.ply, .obj, .off).
+  RunPaths& OutputPng(const std::string& flag, const std::string& path) {
+    paths_.OutputPng("--" + flag, path);
+    return *this;
+  }
+  RunPaths& OutputHtml(const std::string& flag, const std::string& path) {
+    paths_.OutputHtml("--" + flag, path);
+    return *this;
+  }
+  RunPaths& OutputMesh(const std::string& flag, const std::string& path) {
+    paths_.OutputMesh("--" + flag, path);
+    return *this;
+  }
   // An output file of binary glTF (named .glb).
   RunPaths& OutputGlb(const std::string& flag, const std::string& path) {
     paths_.OutputGlb("--" + flag, path);

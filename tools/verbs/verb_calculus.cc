@@ -125,9 +125,9 @@ int RunShoot() {
       .InputFile("second", FLAGS_second)
       .InputFile("mask", FLAGS_mask)
       .OutputDirectory("output", FLAGS_output)
-      .OutputFile("png", FLAGS_png)
+      .OutputPng("png", FLAGS_png)
       .OutputGlb("gltf", FLAGS_gltf)
-      .OutputFile("html", FLAGS_html)
+      .OutputHtml("html", FLAGS_html)
       .Check();
   const auto [first, second] = LoadShellPair(FLAGS_first, FLAGS_second);
   CheckMemory(PathBytes(first.mesh.num_vertices(), FLAGS_steps + 1),
@@ -156,7 +156,7 @@ int RunShoot() {
 // Flags -> options -> the workflow -> the file and summary.
 int RunLog() {
   const auto clock = std::chrono::steady_clock::now();
-  GeodesicInputPaths().OutputFile("output", FLAGS_output).Check();
+  GeodesicInputPaths().OutputMesh("output", FLAGS_output).Check();
   const workflows::LogResult result =
       workflows::RunLog(GeodesicOptionsFromFlags("log"));
   const workflows::GeodesicResult& geodesic = result.geodesic;
@@ -184,9 +184,9 @@ int RunTransport() {
       .InputFile("variation", FLAGS_variation)
       .InputFile("mask", FLAGS_mask)
       .OutputDirectory("output", FLAGS_output)
-      .OutputFile("png", FLAGS_png)
+      .OutputPng("png", FLAGS_png)
       .OutputGlb("gltf", FLAGS_gltf)
-      .OutputFile("html", FLAGS_html)
+      .OutputHtml("html", FLAGS_html)
       .Check();
   const std::vector<std::string> files = ListFrameFiles(FLAGS_path);
   if (files.size() < 2) {

@@ -46,7 +46,7 @@ int RunDeform() {
       .InputFile("reference", FLAGS_reference)
       .InputFile("targets", FLAGS_targets)
       .InputFile("mask", FLAGS_mask)
-      .OutputFile("output", FLAGS_output)
+      .OutputMesh("output", FLAGS_output)
       .Check();
   const auto [reference, targets] =
       LoadShellPair(FLAGS_reference, FLAGS_targets);

@@ -48,9 +48,9 @@ int RunGeodesic() {
   const auto clock = std::chrono::steady_clock::now();
   GeodesicInputPaths()
       .OutputDirectory("output", FLAGS_output)
-      .OutputFile("png", FLAGS_png)
+      .OutputPng("png", FLAGS_png)
       .OutputGlb("gltf", FLAGS_gltf)
-      .OutputFile("html", FLAGS_html)
+      .OutputHtml("html", FLAGS_html)
       .Check();
   const workflows::GeodesicOptions options =
       GeodesicOptionsFromFlags("geodesic");

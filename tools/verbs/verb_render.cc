@@ -91,7 +91,7 @@ int RunRender() {
   options.shading = ParseShading(FLAGS_shading);
   RunPaths()
       .InputFrames("input", FLAGS_input)
-      .OutputFile("output", FLAGS_output)
+      .OutputPng("output", FLAGS_output)
       .Check();
   // The pixels' memory against the bound before any mesh is read.
   CheckFilmStripMemory(static_cast<int>(ListFrameFiles(FLAGS_input).size()),

@@ -208,9 +208,9 @@ int RunSpline() {
   RunPaths()
       .InputList("keyframes", FLAGS_keyframes)
       .OutputDirectory("output", FLAGS_output)
-      .OutputFile("png", FLAGS_png)
+      .OutputPng("png", FLAGS_png)
       .OutputGlb("gltf", FLAGS_gltf)
-      .OutputFile("html", FLAGS_html)
+      .OutputHtml("html", FLAGS_html)
       .Check();
   const ShellSet set = LoadShellList(FLAGS_keyframes, "keyframes");
   workflows::SplineOptions options;
@@ -260,9 +260,9 @@ int RunRegress() {
   RunPaths()
       .InputList("inputs", FLAGS_inputs)
       .OutputDirectory("output", FLAGS_output)
-      .OutputFile("png", FLAGS_png)
+      .OutputPng("png", FLAGS_png)
       .OutputGlb("gltf", FLAGS_gltf)
-      .OutputFile("html", FLAGS_html)
+      .OutputHtml("html", FLAGS_html)
       .Check();
   const ShellSet set = LoadShellList(FLAGS_inputs, "inputs");
   workflows::RegressOptions options;

@@ -159,7 +159,7 @@ int RunMean() {
   const auto clock = std::chrono::steady_clock::now();
   RunPaths()
       .InputList("inputs", FLAGS_inputs)
-      .OutputFile("output", FLAGS_output)
+      .OutputMesh("output", FLAGS_output)
       .Check();
   const ShellSet inputs = LoadInputs(1);
   const workflows::MeanResult result = workflows::RunMean(
@@ -229,8 +229,8 @@ workflows::PcaOptions PcaOptionsFromFlags(ShellSet* inputs) {
       .InputList("inputs", FLAGS_inputs)
       .InputFile("mean", FLAGS_mean)
       .OutputDirectory("output", FLAGS_output)
-      .OutputFile("png", FLAGS_png)
-      .OutputFile("html", FLAGS_html)
+      .OutputPng("png", FLAGS_png)
+      .OutputHtml("html", FLAGS_html)
       .Check();
   *inputs = LoadInputs(FLAGS_loo ? 3 : 2);
   CheckPngMemory(1 + 2 * FLAGS_modes);  // the mean and the mode shapes

@@ -61,7 +61,7 @@ std::string SummaryOf(const std::string& input) {
 int RunView() {
   RunPaths()
       .InputFrames("input", FLAGS_input)
-      .OutputFile("output", FLAGS_output)
+      .OutputHtml("output", FLAGS_output)
       .Check();
   const FrameSequence sequence = ReadFrameSequence(FLAGS_input);
   const std::string page = EncodeHtmlViewer(
