@@ -360,5 +360,27 @@ TEST(StatusAndPathsCliTest, ARegressionThroughConstantInputsConverges) {
   }
 }
 
+// Through one keyframe twice (the procedural finger): the LTheta start
+// differs from the keyframe by round-off, where no criterion relative to
+// |D_2 W| can be met; the midpoints of equal ends are their average, and
+// the spline (zero energy) converges at once.
+TEST(StatusAndPathsCliTest, ASplineThroughOneFingerTwiceConverges) {
+  const std::string dir = TempDir();
+  ASSERT_EQ(RunCli("example finger --output " + dir + "/f"), 0);
+  const std::string f = dir + "/f/finger0.ply";
+  for (const std::string& args :
+       {"spline --keyframes " + f + "," + f + " --at 0,4 --steps 4",
+        "regress --inputs " + f + "," + f + "," + f +
+            " --at 0,2,4 --steps 4"}) {
+    std::string out, err;
+    const std::string output = dir + "/" + args.substr(0, 6);
+    EXPECT_EQ(RunCli(args + " --quiet --output " + output, &out, &err), 0)
+        << args << ": " << err;
+    const std::string summary = Slurp(output + "/summary.json");
+    EXPECT_NE(summary.find("\"converged\": true"), std::string::npos)
+        << summary.substr(0, 300);
+  }
+}
+
 }  // namespace
 }  // namespace shellspace

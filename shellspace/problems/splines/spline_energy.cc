@@ -38,6 +38,9 @@ constexpr double kRoundOffFloor = 1e-8;
 // step: H_k of a thin shell is badly conditioned.)
 constexpr double kReuseHessianBelow = 1e-9;
 constexpr int kMaxNewtonSteps = 10;
+// Ends closer than this times the diagonal (max norm) are equal: their
+// midpoint is their average (SolveMidpoint).
+constexpr double kEqualEnds = 1e-12;
 // LM restarted from a warm start (Newton failed: a trial point of the line
 // search far from the last one) gets this many iterations; if the midpoint is
 // not found then, the trial point is rejected and the line search shrinks.
@@ -304,6 +307,24 @@ bool SplineObjective::SolveMidpoint(const Positions& a, const Positions& b,
     return summary.IsSolutionUsable();
   };
   mid->has_adjoint = false;
+  const double diagonal = (a.colwise().maxCoeff() - a.colwise().minCoeff())
+                              .norm();
+  if ((a - b).cwiseAbs().maxCoeff() <= kEqualEnds * diagonal) {
+    // Equal ends (to round-off; e.g. a path through one keyframe twice):
+    // W >= 0 and W[a, a] = 0, and W is quadratic about its rest, so
+    // m = (a + b) / 2 to O(|b - a|^2). No criterion relative to
+    // |D_2 W[a, m]| can be met there (every |G| is round-off).
+    mid->m = 0.5 * (a + b);
+    if (!adjoint) return true;
+    MidpointProblem problem(space_, *assembler_, a, b, /*threads=*/1, &mid->m,
+                            &mid->hessian, &mid->has_adjoint,
+                            &mid->newton_steps);
+    NewtonResidual g;
+    LinearSystem unused;
+    return problem.Residual(NewtonPoint::kCurrent, &g) ==
+               EvaluationStatus::kOk &&
+           problem.Assemble(&unused) == EvaluationStatus::kOk;
+  }
   if (mid->m.size() == 0 && !run_lm()) return false;
   const auto clock = std::chrono::steady_clock::now();
   const double lm_seconds_before = mid->lm_seconds;
