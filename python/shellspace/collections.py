@@ -335,7 +335,22 @@ def _run(function, items, shapes, F, client, on_result, time_limit, extra):
         for n, item in enumerate(items):
             if deadline is not None and time.monotonic() >= deadline:
                 return items[n:]
-            on_result(function(shapes, F, *item, *extra))
+            call_extra = extra
+            if deadline is not None and function in _SOLVE_TASKS:
+                # The solve itself stops at the deadline (its options' own
+                # time_limit, if shorter, still holds); one stopped by it is
+                # not finished.
+                options = dict(extra[0])
+                left = max(deadline - time.monotonic(), 1e-3)
+                if options.get("time_limit") in (None, 0):
+                    options["time_limit"] = left
+                else:
+                    options["time_limit"] = min(options["time_limit"], left)
+                call_extra = (options,) + tuple(extra[1:])
+            value = function(shapes, F, *item, *call_extra)
+            if deadline is not None and time.monotonic() >= deadline:
+                return items[n:]
+            on_result(value)
         return []
     from distributed import as_completed
     if not _await_workers(client, deadline):
@@ -977,6 +992,11 @@ def shoot_task(shapes, F, name, mean, variation, options):
                 steps *= 2
     except Exception as error:
         return (name, _status_of(error), None, _one_line(error))
+
+
+# The tasks whose first extra argument is a dict of solve keywords
+# (time_limit among them): _run caps their time_limit in-process.
+_SOLVE_TASKS = (geodesic_task, transfer_task, log_task, shoot_task)
 
 
 class ShellPca:

@@ -224,6 +224,26 @@ def test_npz_outputs_follow_the_umask(meshes):
         assert os.stat(cache).st_mode & 0o777 == mode
 
 
+def test_the_time_limit_stops_a_long_solve_in_process():
+    # One pair of a few seconds (a 30 x 30 plate rolled by 2.5 rad,
+    # K = 16), timed whole (the twin: it finishes); with a quarter of that
+    # as the limit its geodesic is stopped at the limit (it was checked
+    # only between pairs) and the pair stays pending.
+    V, F = plate(30)
+    B = V.copy()
+    t = 2.5 * V[:, 0]
+    B[:, 0], B[:, 2] = np.sin(t) / 2.5, (1 - np.cos(t)) / 2.5
+    S = np.stack([V, B])
+    start = time.monotonic()
+    full = sc.distance_matrix(S, F, steps=16)
+    whole = time.monotonic() - start
+    assert full.status[0, 1] == sc.OK
+    start = time.monotonic()
+    limited = sc.distance_matrix(S, F, steps=16, time_limit=whole / 4)
+    assert time.monotonic() - start < 0.75 * whole
+    assert limited.status[0, 1] == sc.PENDING
+
+
 def test_limits_and_schedulers_are_checked():
     S, F = shapes()
     for limit in (-1, float("nan"), "5", True):
