@@ -13,6 +13,7 @@ during PCA's LOGs; the verbs' files and their refusals.
 import os
 import signal
 import subprocess
+import time
 import sys
 
 import numpy as np
@@ -515,3 +516,28 @@ def test_cli_collection_refuses_bad_flags_in_one_line(meshes, args, code,
     lines = run.stderr.strip().splitlines()
     assert len(lines) == 1 and text in lines[0], run.stderr
     assert not os.path.exists(output)
+
+
+def test_a_stop_while_the_cli_starts_python_is_one_line(meshes, tmp_path):
+    # SIGINT / SIGTERM soon after `shellspace collection` execs the
+    # interpreter (while it imports numpy and the module): one line, exit
+    # 130 / 143, no traceback and no death by the signal. Before, a
+    # KeyboardInterrupt traceback or exit -2.
+    if not os.path.exists(CLI):
+        pytest.skip("no shellspace binary (SHELLSPACE_CLI)")
+    _, inputs = meshes
+    for number, code in ((signal.SIGINT, 130), (signal.SIGTERM, 143)):
+        for delay in (0.03, 0.08):
+            run = subprocess.Popen(
+                [CLI, "collection", "distances", "--inputs", inputs,
+                 "--output", str(tmp_path / "d.npz"), "--quiet"],
+                stderr=subprocess.PIPE, text=True)
+            time.sleep(delay)
+            run.send_signal(number)
+            err = run.communicate(timeout=120)[1]
+            if run.returncode == 0:
+                continue  # finished first (a fast machine): nothing to see
+            assert run.returncode == code, (delay, run.returncode, err)
+            assert "Traceback" not in err, err
+            assert len(err.strip().splitlines()) == 1, err
+            assert "stopped (" in err, err

@@ -6,6 +6,7 @@
 // one-line errors are the run's), with this build's module first on
 // PYTHONPATH (an installed module is on the interpreter's own path).
 #include <gflags/gflags.h>
+#include <signal.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -212,6 +213,27 @@ void CheckOutputName(const std::string& verb) {
   }
 }
 
+// What the interpreter runs: SIGINT and SIGTERM, blocked across the exec,
+// get a one-line handler before they are unblocked (a stop during start-up
+// is one line and 130 / 143, not a KeyboardInterrupt traceback or a death by
+// the signal), then the module as `python3 -m shellspace.collections`,
+// whose main installs the handlers that write partial results.
+constexpr const char* kCollectionsBootstrap =
+    "import os, signal, sys\n"
+    "def stopped(number, frame):\n"
+    "    name = 'SIGINT' if number == signal.SIGINT else 'SIGTERM'\n"
+    "    sys.stderr.write('shellspace.collections: stopped (' + name +\n"
+    "                     ') while starting: no output\\n')\n"
+    "    sys.stderr.flush()\n"
+    "    os._exit(130 if number == signal.SIGINT else 143)\n"
+    "signal.signal(signal.SIGINT, stopped)\n"
+    "signal.signal(signal.SIGTERM, stopped)\n"
+    "signal.pthread_sigmask(signal.SIG_UNBLOCK,\n"
+    "                       {signal.SIGINT, signal.SIGTERM})\n"
+    "import runpy\n"
+    "runpy.run_module('shellspace.collections', run_name='__main__',\n"
+    "                 alter_sys=True)\n";
+
 // Becomes python3 -m shellspace.collections VERB with the flags, once the
 // paths passed the output policy (io/output_paths.h): nothing is solved
 // for a run that could not write its output.
@@ -228,7 +250,7 @@ int RunCollection(const std::string& verb) {
   }
   paths.Check();
   std::vector<std::string> args = {
-      SHELLSPACE_PYTHON_EXECUTABLE, "-m", "shellspace.collections", verb,
+      SHELLSPACE_PYTHON_EXECUTABLE, "-c", kCollectionsBootstrap, verb,
       "--inputs", FLAGS_inputs, "--output", FLAGS_output, "--scheduler",
       FLAGS_scheduler, "--tolerance", Number(FLAGS_tolerance),
       "--max_iterations", std::to_string(FLAGS_max_iterations)};
@@ -277,7 +299,13 @@ int RunCollection(const std::string& verb) {
   std::vector<char*> argv;
   for (std::string& arg : args) argv.push_back(arg.data());
   argv.push_back(nullptr);
+  sigset_t stops;
+  sigemptyset(&stops);
+  sigaddset(&stops, SIGINT);
+  sigaddset(&stops, SIGTERM);
+  sigprocmask(SIG_BLOCK, &stops, nullptr);  // the bootstrap unblocks them
   execvp(argv[0], argv.data());
+  sigprocmask(SIG_UNBLOCK, &stops, nullptr);
   throw InputError(std::string("cannot run ") + argv[0] + ": " +
                    std::strerror(errno));
 }
