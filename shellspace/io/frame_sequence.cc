@@ -62,7 +62,17 @@ std::vector<std::string> ListDirectory(const std::string& dir) {
                        fs::read_symlink(it->path(), type_error).string() +
                        " does not exist)");
     }
-    if (it->is_regular_file(type_error)) files.push_back(it->path().string());
+    if (!it->is_regular_file(type_error)) {
+      // A directory, FIFO or socket named like a numbered frame
+      // (shape_003.ply) is refused, not skipped: the last frame would
+      // vanish unnoticed. Others (a folder sub.ply) are not frames.
+      if (FrameNumber(name) >= 0) {
+        throw InputError(it->path().string() +
+                         " is named like a mesh but is not a regular file");
+      }
+      continue;
+    }
+    files.push_back(it->path().string());
   }
   if (error) throw InputError("cannot list directory " + dir);
   if (files.empty()) {

@@ -3,6 +3,7 @@
 // user's own files is never replaced, two runs into one directory at once
 // never mix, and no temporary is left beside or inside it.
 #include <gtest/gtest.h>
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <cstdlib>
@@ -115,6 +116,38 @@ TEST(OutputDirectoryCliTest, FrameReadersSkipTemporariesAndHiddenFiles) {
             0)
       << err;
   EXPECT_NE(out.find("\"frames\": 3"), std::string::npos) << out;
+}
+
+// An entry named like the next frame that is a directory or a FIFO is
+// refused in one line, not skipped (the strip had 3 frames of 4 names,
+// exit 0). The twin is the test above: hidden files and temporaries are
+// skipped.
+TEST(OutputDirectoryCliTest, AFrameThatIsNoRegularFileIsRefused) {
+  const std::string base = TempDir();
+  const std::string dir = base + "/g";
+  ASSERT_EQ(RunCli(Geodesic(2, dir)), 0);
+  for (const std::string kind : {"directory", "fifo"}) {
+    const std::string odd = dir + "/shape_003.ply";
+    if (kind == "directory") {
+      std::filesystem::create_directory(odd);
+    } else {
+      ASSERT_EQ(mkfifo(odd.c_str(), 0644), 0);
+    }
+    for (const std::string verb : {"render --output " + base + "/s.png",
+                                   "export --output " + base + "/x.glb"}) {
+      std::string out, err;
+      EXPECT_EQ(RunCli(verb + " --input " + dir, &out, &err), 1)
+          << kind << " " << verb;
+      EXPECT_NE(err.find("shape_003.ply is named like a mesh but is not a "
+                         "regular file"),
+                std::string::npos)
+          << err;
+      EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
+      EXPECT_FALSE(std::filesystem::exists(base + "/s.png"));
+      EXPECT_FALSE(std::filesystem::exists(base + "/x.glb"));
+    }
+    std::filesystem::remove(odd);
+  }
 }
 
 }  // namespace
