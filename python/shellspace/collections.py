@@ -1464,15 +1464,14 @@ def _main_distances(args, paths, shapes, F, client):
                           **result.arrays())
     failed = result.failed_pairs()
     pending = [p for p in failed if result.status[p] == PENDING]
-    if not args.quiet:
+    code = 124 if pending else 4 if failed else 0
+    if not args.quiet or code != 0:  # a failure or stop is said even so
         print(f"distances: {len(paths)} shapes, "
               f"{len(paths) * (len(paths) - 1) // 2} pairs, "
               f"{result.computed} computed, {len(failed) - len(pending)} "
               f"failed, {len(pending)} pending -> {args.output}",
               file=sys.stderr)
-    if pending:
-        return 124
-    return 4 if failed else 0
+    return code
 
 
 def _main_mean(args, paths, shapes, F, client):
@@ -1481,15 +1480,15 @@ def _main_mean(args, paths, shapes, F, client):
                           time_limit=("deadline", args.deadline),
                           progress=not args.quiet, **args.material)
     shellspace.write_mesh(args.output, result.mean, F)
-    if not args.quiet:
+    code = (124 if result.termination == "time limit"
+            else 0 if result.converged else 4)
+    if not args.quiet or code != 0:  # a failure or stop is said even so
         print(f"mean: {len(paths)} shapes, {result.iterations} Newton steps "
               f"({result.rounds} rounds of tasks), |G| "
               f"{result.gradient_norm:.3g} (target "
               f"{result.gradient_target:.3g}), {result.termination} -> "
               f"{args.output}", file=sys.stderr)
-    if result.termination == "time limit":
-        return 124
-    return 0 if result.converged else 4
+    return code
 
 
 def _main_pca(args, paths, shapes, F, client):
@@ -1529,15 +1528,14 @@ def _main_pca(args, paths, shapes, F, client):
         partial=np.array(model.pending))
     failed = int(np.sum(model.status != OK)) + (
         2 * min(args.modes, len(model.modes)) - len(names))
-    if not args.quiet:
+    code = 124 if model.pending else 4 if failed else 0
+    if not args.quiet or code != 0:  # a failure or stop is said even so
         values = ", ".join(f"{v:.4g}" for v in model.eigenvalues[:args.modes])
         print(f"pca: {len(paths)} shapes, {len(model.modes)} modes, "
               f"eigenvalues {values}, {failed} failed"
               f"{' (time limit: partial)' if model.pending else ''} -> "
               f"{args.output}", file=sys.stderr)
-    if model.pending:
-        return 124
-    return 4 if failed else 0
+    return code
 
 
 if __name__ == "__main__":

@@ -541,3 +541,20 @@ def test_a_stop_while_the_cli_starts_python_is_one_line(meshes, tmp_path):
             assert "Traceback" not in err, err
             assert len(err.strip().splitlines()) == 1, err
             assert "stopped (" in err, err
+
+
+def test_cli_collection_failures_are_said_under_quiet(meshes):
+    # --quiet drops the progress and the summary of a run that succeeds; a
+    # run that does not (exit 4: the mean capped at one Newton step) still
+    # says so in one line, as the C++ verbs do.
+    folder, inputs = meshes
+    run = run_cli("mean", "--inputs", inputs, "--output",
+                  str(folder / "capped.ply"), "--max_iterations", "1",
+                  "--quiet")
+    assert run.returncode == 4, run.stderr
+    lines = run.stderr.strip().splitlines()
+    assert len(lines) == 1 and "max iterations" in lines[0], run.stderr
+    # The twin: a converged run under --quiet says nothing.
+    run = run_cli("mean", "--inputs", inputs, "--output",
+                  str(folder / "full.ply"), "--quiet")
+    assert run.returncode == 0 and run.stderr == "", run.stderr
