@@ -1091,7 +1091,7 @@ def pca(shapes, F, client=None, mean=None, modes=3, log_steps=2,
         (0,) + mean.shape)
     out.displacements = V
     rows, cols, vals = shellspace.energy_hessian(mean, mean, F, **material)
-    flat = V.reshape(len(used), -1)
+    flat = V.reshape(len(used), mean.size)  # (0, 3 #V) when none finished
     HV = np.stack([np.bincount(rows, weights=vals * f[cols],
                                minlength=flat.shape[1]) for f in flat]) \
         if used else flat

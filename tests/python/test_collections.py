@@ -558,3 +558,16 @@ def test_cli_collection_failures_are_said_under_quiet(meshes):
     run = run_cli("mean", "--inputs", inputs, "--output",
                   str(folder / "full.ply"), "--quiet")
     assert run.returncode == 0 and run.stderr == "", run.stderr
+
+
+def test_pca_stopped_before_any_log_returns_everything_pending():
+    # A time limit that ends the run before its first LOG: every shape
+    # PENDING, no mode, an empty Gram matrix (it raised ValueError from a
+    # reshape of no displacements). The twin: without the limit, modes.
+    mean = sc.elastic_mean(SHAPES, F).mean
+    stopped = sc.pca(SHAPES, F, mean=mean, modes=1, time_limit=1e-9)
+    assert stopped.pending
+    assert list(stopped.status) == [sc.PENDING] * len(SHAPES)
+    assert stopped.modes == [] and stopped.gram.shape == (0, 0)
+    full = sc.pca(SHAPES, F, mean=mean, modes=1)
+    assert not full.pending and len(full.modes) >= 1
