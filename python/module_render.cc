@@ -4,6 +4,7 @@
 #include "python/array_arguments.h"
 #include "python/module_common.h"
 #include "python/parameter_docs.h"
+#include "shellspace/io/output_paths.h"
 #include "shellspace/render/film_strip.h"
 #include "tools/run/memory_limits.h"
 
@@ -17,6 +18,8 @@ void WriteFilmStripPy(const std::string& path, const py::object& frames_object,
                       const std::string& view, const std::string& up,
                       bool labels, const std::string& color,
                       const std::string& shading) {
+  if (path.empty()) throw InputError("path: an empty path");
+  OutputPaths().OutputPng("path", path).Check();  // named .png, writable
   RenderOptions options;
   options.width = width;
   options.height = height;

@@ -72,6 +72,8 @@ def test_outputs_are_checked_before_any_solve(tmp_path):
         shellspace.spline([V, B], [0, 4], F, steps=4, quiet=True,
                           png=str(tmp_path / "y.png"),
                           gltf=str(tmp_path / "y.png"))
+    with pytest.raises(shellspace.InputError, match="name it .png"):
+        shellspace.write_film_strip(str(tmp_path / "s.jpg"), [V, B], F)
     with pytest.raises(shellspace.InputError, match="name it .ply, .obj"):
         shellspace.log(V, B, F, steps=2, quiet=True,
                        output=str(tmp_path / "l.stl"))
