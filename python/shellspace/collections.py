@@ -1300,12 +1300,20 @@ def _read_collection(inputs):
     return paths, np.stack([V for V, _ in meshes]), F
 
 
+class _OneLineParser(argparse.ArgumentParser):
+    """argparse with its errors in one line (exit 2), not the usage text."""
+
+    def error(self, message):
+        self.exit(2, f"{self.prog}: {message} (--help lists the flags)\n")
+
+
 def _parser():
-    parser = argparse.ArgumentParser(
+    parser = _OneLineParser(
         prog="python3 -m shellspace.collections",
         description="Solves over a collection of shapes with one "
                     "connectivity, in-process or on Dask.")
-    verbs = parser.add_subparsers(dest="verb", required=True)
+    verbs = parser.add_subparsers(dest="verb", required=True,
+                                  parser_class=_OneLineParser)
 
     def common(sub, what):
         sub.add_argument("--inputs", required=True,
@@ -1376,6 +1384,32 @@ def _check_paths(args):
         [("--inputs", p) for p in _split_inputs(args.inputs)], outputs)
 
 
+def _check_numbers(args):
+    """The counts and reals of the flags, before anything is read."""
+    positive = ["tolerance", "mu", "lambda_"]
+    counts = ["max_iterations"] + {
+        "distances": ["steps"],
+        "pca": ["modes", "log_steps", "exp_steps", "max_exp_steps"]}.get(
+            args.verb, [])
+    for name in positive + ["eta", "relative_eta"]:
+        value = getattr(args, name)
+        if value is not None and not (math.isfinite(value) and (
+                value > 0 if name in positive else value >= 0)):
+            flag = "--" + name.rstrip("_")
+            raise shellspace.InputError(
+                f"{flag} must be a finite number "
+                f"{'> 0' if name in positive else '>= 0'}, got {value}")
+    if args.bending not in ("discrete-shells", "shape-operator"):
+        raise shellspace.InputError(
+            f"unknown bending model '{args.bending}' (discrete-shells or "
+            "shape-operator)")
+    for name in counts:
+        value = getattr(args, name)
+        if value is not None and value < 1:
+            raise shellspace.InputError(
+                f"--{name} must be at least 1, got {value}")
+
+
 def main(argv=None):
     """The command line; SIGTERM and SIGINT write what is finished (the
     distance matrix with its pending pairs, the mean so far), print one
@@ -1391,6 +1425,7 @@ def main(argv=None):
             if args.eta is not None and args.relative_eta is not None:
                 raise shellspace.InputError(
                     "--eta and --relative_eta: give one, not both")
+            _check_numbers(args)
             _check_paths(args)
             _parse_scheduler(args.scheduler)
             args.material = {k: v for k, v in (

@@ -300,3 +300,32 @@ def test_sigterm_and_sigint_write_the_partial_result(meshes, tmp_path):
         with np.load(out) as data:
             assert bool(data["partial"])
             assert np.any(data["status"] == sc.PENDING)
+
+
+def test_module_flags_are_checked_in_one_line(meshes):
+    # python3 -m shellspace.collections: a bad value or an unknown flag is
+    # one line (argparse printed its usage text), counts and reals are
+    # checked before anything is read (--max_iterations 0 ran with 200,
+    # --tolerance -1 wrote a matrix of failed pairs), --bending is one of
+    # the two models.
+    folder, paths = meshes
+    inputs = ",".join(paths)
+    out = str(folder / "d.npz")
+    cases = [
+        (["distances", "--steps", "abc"], 2, "invalid int value"),
+        (["mean", "--bogus", "1"], 2, "unrecognized arguments"),
+        (["distances", "--bending", "foo"], 1, "unknown bending model"),
+        (["distances", "--max_iterations", "0"], 1, "at least 1"),
+        (["distances", "--tolerance", "-1"], 1, "--tolerance must be"),
+        (["distances", "--mu", "nan"], 1, "--mu must be"),
+        (["pca", "--modes", "0"], 1, "--modes must be at least 1"),
+    ]
+    for args, code, text in cases:
+        output = out if args[0] != "mean" else str(folder / "m.ply")
+        if args[0] == "pca":
+            output = str(folder / "p.npz")
+        run = module(*args, "--inputs", inputs, "--output", output)
+        assert run.returncode == code, (args, run.stderr)
+        lines = run.stderr.strip().splitlines()
+        assert len(lines) == 1 and text in lines[0], (args, run.stderr)
+        assert not os.path.exists(output)
