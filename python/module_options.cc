@@ -7,13 +7,20 @@ namespace pymodule {
 namespace {
 
 // The options whose default is None and what else they take: a real
-// number (eta, time_limit) or a path (output, png, gltf: a str). Any other
-// None option (mask) takes anything its function takes.
+// number (eta, time_limit), a path (output, png, gltf: a str) or a mask (a
+// path, str or os.PathLike, or a sequence of vertex indices: not a single
+// number). Any other None option takes anything its function takes.
 bool RealOrNone(const std::string& name) {
   return name == "eta" || name == "time_limit";
 }
 bool PathOrNone(const std::string& name) {
   return name == "output" || name == "png" || name == "gltf";
+}
+
+bool MaskOrNone(const std::string& name) { return name == "mask"; }
+bool IsMask(PyObject* v) {
+  return PyUnicode_Check(v) || PyObject_HasAttrString(v, "__fspath__") ||
+         (PySequence_Check(v) && !PyBytes_Check(v));
 }
 
 bool IsReal(PyObject* v) {
@@ -32,6 +39,7 @@ bool OfKind(const std::string& name, const py::handle& default_value,
     if (v == Py_None) return true;
     if (RealOrNone(name)) return IsReal(v);
     if (PathOrNone(name)) return PyUnicode_Check(v);
+    if (MaskOrNone(name)) return IsMask(v);
     return true;
   }
   if (PyBool_Check(d)) return PyBool_Check(v);
@@ -47,6 +55,9 @@ std::string KindName(const std::string& name,
   if (d == Py_None) {
     if (RealOrNone(name)) return "None or a real number";
     if (PathOrNone(name)) return "None or a str (a path)";
+    if (MaskOrNone(name)) {
+      return "None, a mask file's path or a sequence of vertex indices";
+    }
     return "any value";
   }
   if (PyBool_Check(d)) return "a bool";
@@ -148,6 +159,13 @@ void RegisterOptionsClass(py::module_& m, const char* class_name,
       py::cpp_function([set](py::handle self, const std::string& key,
                              py::handle value) { set(self, key, value); },
                        py::name("__setattr__"), py::is_method(cls));
+  // Every option always has a value: assign its default instead.
+  cls.attr("__delattr__") = py::cpp_function(
+      [name](py::handle, const std::string& key) {
+        throw py::attribute_error(name + "." + key +
+                                  " cannot be deleted (assign a value)");
+      },
+      py::name("__delattr__"), py::is_method(cls));
   // __new__, not __init__: pybind11 takes a function named __init__ for the
   // constructor of one of its own classes.
   cls.attr("__new__") = py::staticmethod(py::cpp_function(

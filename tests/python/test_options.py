@@ -109,15 +109,20 @@ def test_names_and_kinds_are_checked():
         shellspace.GeodesicOptions(4)
     for name, bad in [("steps", 2.5), ("steps", True), ("steps", "8"),
                       ("tolerance", "1e-8"), ("tolerance", False),
-                      ("quiet", 1), ("multires", 2)]:
+                      ("quiet", 1), ("multires", 2), ("mask", 3.5),
+                      ("mask", 7), ("mask", True), ("mask", b"m.txt")]:
         with pytest.raises(TypeError, match="GeodesicOptions.%s takes" % name):
             setattr(options, name, bad)
+    with pytest.raises(AttributeError, match="cannot be deleted"):
+        del options.steps
     assert options == shellspace.GeodesicOptions()  # nothing was set
     # Integers and reals of NumPy are integers and reals; None-default
     # options take what the function takes.
     options.steps = np.int64(3)
     options.tolerance = np.float32(1e-6)
     options.tolerance = 1  # an int is a real number
+    options.mask = "m.txt"
+    options.mask = np.array([0, 1])
     options.mask = [0, 1, 2]
     options.time_limit = 5
     assert options.steps == 3 and options.mask == [0, 1, 2]
