@@ -57,10 +57,19 @@ py::array_t<double> FromPath(const std::vector<Positions>& path) {
 
 py::object ReadOnlyArrays(py::object value) {
   if (py::isinstance<py::array>(value)) {
-    value.attr("setflags")(py::arg("write") = false);
-  } else if (py::isinstance<py::dict>(value)) {
-    for (const auto& item : py::reinterpret_borrow<py::dict>(value)) {
-      ReadOnlyArrays(py::reinterpret_borrow<py::object>(item.second));
+    // A view of immutable bytes: an array that owns its memory can be made
+    // writable again (setflags(write=True)), this one cannot.
+    const py::object numpy = py::module_::import("numpy");
+    return numpy
+        .attr("frombuffer")(value.attr("tobytes")(),
+                            py::arg("dtype") = value.attr("dtype"))
+        .attr("reshape")(value.attr("shape"));
+  }
+  if (py::isinstance<py::dict>(value)) {
+    py::dict dict = py::reinterpret_borrow<py::dict>(value);
+    for (const auto& item : py::dict(dict)) {  // a copy: values replaced
+      dict[item.first] =
+          ReadOnlyArrays(py::reinterpret_borrow<py::object>(item.second));
     }
   }
   return value;

@@ -49,8 +49,9 @@ py::array_t<double> FromPositions(const Positions& positions);
 py::array_t<long long> FromFaces(const Faces& faces);
 // A path as a (K + 1) x #V x 3 array.
 py::array_t<double> FromPath(const std::vector<Positions>& path);
-// `value` with its arrays made read-only (writeable=False): a NumPy array,
-// or each array value of a dict. The arrays of a solving function's result
+// `value` with its arrays made read-only for good: a NumPy array (returned
+// as a view of immutable bytes, so setflags(write=True) raises), or each
+// array value of a dict (replaced in it). The arrays of a solving function's result
 // (a path, a log, a mean, the PCA's shapes, the branching field) are what
 // the call computed: they are read, not written into (copy() for a
 // scratch array).

@@ -167,6 +167,9 @@ def assert_read_only(array):
     assert not array.flags.writeable
     with pytest.raises(ValueError, match="read-only"):
         array[(0,) * array.ndim] = 1.0
+    # Not undone by setflags: the memory is not the array's own.
+    with pytest.raises(ValueError, match="WRITEABLE"):
+        array.setflags(write=True)
 
 
 def test_result_arrays_are_read_only():
