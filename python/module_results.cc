@@ -118,8 +118,12 @@ py::class_<BoundResult<Run>> BindResult(py::module_& m, const char* name,
       .def_property_readonly("summary", [](const R& r) { return r.summary; })
       .def(
           "to_dict",
-          [](const R& r) { return py::dict(r.summary.attr("copy")()); },
-          "The summary dict (a copy): the CLI verb's --json keys.")
+          [](const R& r) {
+            return py::dict(
+                py::module_::import("copy").attr("deepcopy")(r.summary));
+          },
+          "The summary dict (a deep copy: writing into it changes nothing "
+          "else): the CLI verb's --json keys.")
       .def_property_readonly("status",
                              [](const R& r) { return StatusOfRun(r.run); })
       .def_property_readonly("converged",

@@ -121,6 +121,10 @@ def test_a_geodesic_result_carries_its_numbers_as_attributes():
     assert result.material.mu == summary["material"]["mu"]
     assert result.material.bending == "discrete-shells"
     assert result.to_dict() == summary and result.to_dict() is not summary
+    # A deep copy: writing into its nested dicts changes nothing else.
+    copied = result.to_dict()
+    copied["material"]["mu"] = -1.0
+    assert summary["material"]["mu"] == result.material.mu != -1.0
     assert repr(result).startswith("GeodesicResult(status='converged', "
                                    "path_energy=")
 
