@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <sstream>
 
 #include "shellspace/io/mesh_io.h"
@@ -256,27 +257,36 @@ std::vector<int> IndexListArgument(const py::handle& object,
   return out;
 }
 
-std::vector<std::pair<std::string, std::string>> MaskInputPaths(
-    const py::handle& object) {
-  if (object.is_none()) return {};
+namespace {
+
+// The mask file's path if `object` names one (a str or os.PathLike whose
+// fspath is a str); nothing for None or indices.
+std::optional<std::string> MaskFilePath(const py::handle& object) {
+  if (object.is_none()) return std::nullopt;
   const py::object path_like = py::module_::import("os").attr("PathLike");
   if (!py::isinstance<py::str>(object) && !py::isinstance(object, path_like)) {
-    return {};
+    return std::nullopt;
   }
   const py::object path = py::module_::import("os").attr("fspath")(object);
-  if (!py::isinstance<py::str>(path)) return {};  // MaskArgument says why
-  return {{"mask", path.cast<std::string>()}};
+  if (!py::isinstance<py::str>(path)) {
+    throw InputError("mask: a path must be a str, got " + TypeName(path));
+  }
+  return path.cast<std::string>();
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>> MaskInputPaths(
+    const py::handle& object) {
+  const std::optional<std::string> path = MaskFilePath(object);
+  if (!path) return {};
+  return {{"mask", *path}};
 }
 
 std::vector<int> MaskArgument(const py::handle& object, int num_vertices) {
   if (object.is_none()) return {};
-  const py::object path_like = py::module_::import("os").attr("PathLike");
-  if (py::isinstance<py::str>(object) || py::isinstance(object, path_like)) {
-    const py::object path = py::module_::import("os").attr("fspath")(object);
-    if (!py::isinstance<py::str>(path)) {
-      throw InputError("mask: a path must be a str, got " + TypeName(path));
-    }
-    return ReadMask(path.cast<std::string>(), num_vertices);
+  if (const std::optional<std::string> path = MaskFilePath(object)) {
+    return ReadMask(*path, num_vertices);
   }
   const IndexValues v = CheckedIndexArray(object, "mask", {{"#indices"}});
   std::vector<int> indices;
