@@ -12,7 +12,7 @@
 # (the verb's own criterion, exit 0), exit code, iterations, wall, CPU
 # (user + sys), peak RSS, and the geodesic's initial path and
 # multiresolution start, and the stages that ran (L: LM, N: exact Newton,
-# P: projected Newton, each with its iterations).
+# P: projected Newton, R: vertex relaxation, each with its iterations).
 #
 # Usage: bench/stress_corpus.sh [BUILD_DIR] [OUT_DIR]
 # Environment:
@@ -62,7 +62,8 @@ try:
 except Exception:
     print(""); sys.exit()
 if sys.argv[2] == "stages":
-    letters = {"levenberg-marquardt": "L", "newton": "N", "projected-newton": "P"}
+    letters = {"levenberg-marquardt": "L", "newton": "N", "projected-newton": "P",
+               "vertex-relaxation": "R"}
     print(" ".join(letters.get(s.get("method"), "?") + str(s.get("iterations", ""))
                    for s in d.get("stages") or [] if isinstance(s, dict)))
     sys.exit()

@@ -32,7 +32,8 @@ std::vector<JsonObject> GeodesicStages(const GeodesicResult& result) {
     static constexpr NamedValue<Method> kNames[] = {
         {Method::kLevenbergMarquardt, "levenberg-marquardt"},
         {Method::kNewton, "newton"},
-        {Method::kProjectedNewton, "projected-newton"}};
+        {Method::kProjectedNewton, "projected-newton"},
+        {Method::kVertexRelaxation, "vertex-relaxation"}};
     stages.push_back(
         JsonObject()
             .Add("method", NameOf(kNames, stage.method))
@@ -140,6 +141,9 @@ JsonObject GeodesicJson(const GeodesicResult& result) {
       .Add("smallest_face_area_shape", result.smallest_face_area.shape)
       .Add("smallest_face_area_face", result.smallest_face_area.face)
       .Add("collapsing_faces", result.collapsing_faces)
+      .Add("largest_gradient", result.gradient_peak.value)
+      .Add("largest_gradient_shape", result.gradient_peak.shape)
+      .Add("largest_gradient_vertex", result.gradient_peak.vertex)
       .Add("frames", static_cast<int>(result.path.size()));
   return json;
 }

@@ -49,6 +49,17 @@ void AddViewerPage(RunDirectory* out, const Faces& faces,
       });
 }
 
+namespace {
+
+// ", largest at vertex v of shape k" (nothing if unknown).
+std::string GradientPeakText(const GradientPeak& peak) {
+  if (peak.vertex < 0) return "";
+  return ", largest at vertex " + std::to_string(peak.vertex) + " of shape " +
+         std::to_string(peak.shape);
+}
+
+}  // namespace
+
 void CheckGeodesic(const GeodesicResult& result, const std::string& what,
                    RunStatus* status) {
   status->Require(result.converged,
@@ -59,7 +70,7 @@ void CheckGeodesic(const GeodesicResult& result, const std::string& what,
                       std::to_string(result.iterations) + " iterations (" +
                       (result.stages.empty() ? std::string("no stages")
                                              : result.stages.back().termination) +
-                      ")");
+                      ")" + GradientPeakText(result.gradient_peak));
   if (result.uneven_steps) {
     const auto [lo, hi] = std::minmax_element(result.step_energies.begin(),
                                               result.step_energies.end());

@@ -1,9 +1,12 @@
 #include "shellspace/problems/calculus/geodesic.h"
 
+#include "shellspace/problems/calculus/vertex_relaxation.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <memory>
 
 #include "shellspace/cost_functions/deformation_energy_residuals.h"
@@ -258,6 +261,9 @@ class GeodesicSolve {
   // probe, until converged, stopped, the budget is spent or a round lowers
   // the gradient by less than half.
   void RunProjectedPhase();
+  // A sweep of RelaxPeakVertices on the path (GeodesicInput::
+  // relax_peak_vertices), recorded as a stage.
+  void RelaxPeakVerticesStage();
   void Record(GeodesicStage stage);
   bool Converged() const { return result_.final_gradient <= tolerance_; }
 
@@ -489,9 +495,43 @@ PathNewtonReport GeodesicSolve::RunNewtonStage(HessianModel model,
   return report;
 }
 
+void GeodesicSolve::RelaxPeakVerticesStage() {
+  if (!input_.relax_peak_vertices || Converged() || stopped_ ||
+      budget_ <= 0) {
+    return;
+  }
+  const VertexRelaxationReport relaxed =
+      RelaxPeakVertices(*solve_space_, *solve_mask_, kRelaxationFraction,
+                        kRelaxationNewtonSteps, settings_.num_threads,
+                        solve_path_);
+  if (relaxed.vertices == 0) return;
+  GeodesicInput solve_input = input_;
+  solve_input.fixed_vertices = *solve_mask_;
+  result_.final_gradient = PathGradientMaxNorm(
+      *solve_space_, solve_input, *solve_path_, settings_.num_threads);
+  GeodesicStage stage;
+  stage.method = GeodesicStage::Method::kVertexRelaxation;
+  stage.iterations = 1;
+  stage.solver = "vertex-newton";
+  char text[160];
+  std::snprintf(text, sizeof text,
+                "%d vertices, %d Newton steps; E_K %.10g -> %.10g",
+                relaxed.vertices, relaxed.newton_steps, relaxed.energy_before,
+                relaxed.energy_after);
+  stage.termination = text;
+  if (settings_.progress) {
+    std::fprintf(stderr, "%s relax %s |grad| %.3e\n",
+                 settings_.progress_label.c_str(), text,
+                 result_.final_gradient);
+  }
+  Record(stage);
+}
+
 void GeodesicSolve::RunProjectedPhase() {
   projected_phase_ = true;
   while (!Converged() && !stopped_ && budget_ > 0) {
+    RelaxPeakVerticesStage();
+    if (Converged() || budget_ <= 0) return;
     const double round_start = result_.final_gradient;
     const std::optional<double> energy_start =
         TryPathEnergy(*solve_space_, *solve_path_);
@@ -560,6 +600,8 @@ void GeodesicSolve::Globalise() {
     resume_damping_ = 0;
     ++attempt;
     threshold *= 0.1;  // not yet in Newton's basin: more LM first
+    RelaxPeakVerticesStage();
+    if (Converged() || budget_ <= 0) return;
   }
 }
 
@@ -588,6 +630,8 @@ void GeodesicSolve::Report() {
   result_.smallest_face_area = SmallestFaceAreaRatio(space_.faces, result_.path);
   result_.collapsing_faces =
       result_.smallest_face_area.ratio < kCollapsingFaceAreaRatio;
+  result_.gradient_peak = LargestPathGradient(
+      space_, input_.fixed_vertices, result_.path, settings_.num_threads);
 }
 
 }  // namespace
@@ -607,6 +651,30 @@ GeodesicResult SolveGeodesic(const ShellSpace& space,
   }
   solve.Report();
   return result;
+}
+
+GradientPeak LargestPathGradient(const ShellSpace& space,
+                                 const std::vector<int>& fixed_vertices,
+                                 const ShellPath& path, int threads) {
+  const int K = static_cast<int>(path.size()) - 1;
+  GradientPeak peak;
+  if (K < 2) return peak;
+  std::vector<char> is_fixed(space.num_vertices, 0);
+  for (int v : fixed_vertices) is_fixed[v] = 1;
+  std::vector<GradientPeak> per_shape(K - 1);
+  const bool ok = ForEachInnerShapeGradient(
+      space, path, threads, [&](int i, const Eigen::VectorXd& g) {
+        GradientPeak& p = per_shape[i];
+        for (int v = 0; v < space.num_vertices; ++v) {
+          const double value = g.segment<3>(3 * v).cwiseAbs().maxCoeff();
+          if (!is_fixed[v] && value > p.value) p = {value, i + 1, v};
+        }
+      });
+  if (!ok) return peak;
+  for (const GradientPeak& p : per_shape) {
+    if (p.value > peak.value) peak = p;
+  }
+  return peak;
 }
 
 FaceAreaRatio SmallestFaceAreaRatio(const Faces& faces, const ShellPath& path) {

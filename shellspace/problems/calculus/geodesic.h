@@ -180,6 +180,11 @@ struct GeodesicInput {
   // PathNewtonSettings::keep_best_iterate of every stage the engine runs
   // (false only to show what the rule prevents).
   bool keep_best_iterate = true;
+  // After an exact Newton attempt that stops short, and before each round
+  // of the projected phase, a sweep of RelaxPeakVertices
+  // (vertex_relaxation.h) moves the vertices that hold the gradient, each
+  // alone (false only to show what it changes).
+  bool relax_peak_vertices = true;
   // The gradient max norm g_0 that the relative tolerance refers to
   // (stop at |grad| <= tolerance * max(1, g_0)); negative: the initial
   // path's. A solve started from a prolongated coarse solution passes the
@@ -203,7 +208,14 @@ double PathGradientNorm(const ShellSpace& space, const GeodesicInput& input,
 // One stage of a geodesic solve: an LM run or a Newton polish, in the order
 // they ran.
 struct GeodesicStage {
-  enum class Method { kLevenbergMarquardt, kNewton, kProjectedNewton };
+  // kVertexRelaxation: one sweep of RelaxPeakVertices (vertex_relaxation.h);
+  // its iterations are the vertices it moved.
+  enum class Method {
+    kLevenbergMarquardt,
+    kNewton,
+    kProjectedNewton,
+    kVertexRelaxation
+  };
   Method method = Method::kLevenbergMarquardt;
   int iterations = 0;         // LM iterations (not Ceres' iteration 0) or
                               // accepted Newton steps
@@ -227,6 +239,12 @@ struct GeodesicStage {
 // (on the triceratops twisted by 180 degrees of the stress corpus a stall
 // hand-over there cost 29 more steps).
 inline constexpr int kLmStallSteps = 20;
+
+// RelaxPeakVertices as a stage of the geodesic solve: the vertices whose
+// gradient max norm is at least this fraction of the path's largest, each
+// at most kRelaxationNewtonSteps local Newton steps.
+inline constexpr double kRelaxationFraction = 0.1;
+inline constexpr int kRelaxationNewtonSteps = 10;
 
 // An exact Newton attempt between LM stages (trust region on the exact,
 // possibly indefinite Hessian) ends as stalled once its gradient max norm
@@ -259,6 +277,19 @@ struct FaceAreaRatio {
   int shape = -1, face = -1;
 };
 FaceAreaRatio SmallestFaceAreaRatio(const Faces& faces, const ShellPath& path);
+
+// Where the gradient of E_K is largest on a path: the inner shape k and
+// vertex v whose |G_k(v)|_inf (G_k = dE_K/ds_k, 3 coordinates) is the
+// largest over the vertices a mask leaves free, and that value (-1 / 0 when
+// the path has no inner shape or an element is degenerate). Tells where an
+// unconverged solve is held back.
+struct GradientPeak {
+  double value = 0;
+  int shape = -1, vertex = -1;
+};
+GradientPeak LargestPathGradient(const ShellSpace& space,
+                                 const std::vector<int>& fixed_vertices,
+                                 const ShellPath& path, int threads);
 
 // max_k W_k / min_k W_k of step energies (1 for fewer than two steps; +inf
 // if the smallest is 0 and the largest is not).
@@ -302,6 +333,8 @@ struct GeodesicResult {
   // kCollapsingFaceAreaRatio.
   FaceAreaRatio smallest_face_area;
   bool collapsing_faces = false;
+  // LargestPathGradient of the result's path.
+  GradientPeak gradient_peak;
 };
 
 // Geodesic interpolation: minimises E_K over s_1..s_{K-1} by sparse LM

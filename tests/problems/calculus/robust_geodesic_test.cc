@@ -15,6 +15,7 @@
 #include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/problems/calculus/exponential_map.h"
 #include "shellspace/problems/calculus/geodesic.h"
+#include "shellspace/problems/calculus/vertex_relaxation.h"
 #include "tests/testing/test_support.h"
 
 namespace shellspace {
@@ -199,6 +200,87 @@ TEST(NewtonStallTest, AnAttemptOutsideTheBasinEndsWhenItsGradientStalls) {
   const PathNewtonReport capped = ExactStage(f, kCap, false, &path);
   EXPECT_FALSE(capped.converged);
   EXPECT_EQ(capped.steps, kCap) << capped.stop_reason;
+}
+
+// A vertex displaced from a converged geodesic, relaxed alone with every
+// other vertex at the geodesic: its local minimiser is its geodesic
+// position, and E_K returns to the geodesic's.
+TEST(VertexRelaxationTest, ADisplacedVertexReturnsToTheGeodesic) {
+  const BentFinger f(60);
+  const GeodesicResult geodesic = SolveGeodesic(
+      f.space, GeodesicInput::Between(f.mesh.positions, f.end, 4),
+      testing::TightSettings(1e-11));
+  ASSERT_TRUE(geodesic.converged);
+  const int kVertex = f.space.num_vertices / 2, kShape = 2;
+  ShellPath displaced = geodesic.path;
+  displaced[kShape].row(kVertex) += Eigen::RowVector3d(0.01, -0.02, 0.015);
+  ShellPath relaxed = displaced;
+  std::vector<std::vector<int>> chosen(5);
+  chosen[kShape] = {kVertex};
+  const VertexRelaxationReport report =
+      RelaxVertices(f.space, chosen, 20, 1, &relaxed);
+  ASSERT_EQ(report.vertices, 1);
+  EXPECT_GE(report.newton_steps, 2);
+  EXPECT_LT(report.energy_after, report.energy_before);
+  EXPECT_NEAR(report.energy_after, geodesic.path_energy,
+              1e-9 * geodesic.path_energy);
+  EXPECT_LT((relaxed[kShape].row(kVertex) - geodesic.path[kShape].row(kVertex))
+                .norm(),
+            1e-7);
+  relaxed[kShape].row(kVertex) = displaced[kShape].row(kVertex);
+  for (int k = 0; k <= 4; ++k) EXPECT_EQ(relaxed[k], displaced[k]) << k;
+}
+
+// RelaxPeakVertices moves the vertices whose gradient is near the path's
+// largest: with fraction 0.999 the one LargestPathGradient names, alone.
+TEST(VertexRelaxationTest, ThePeakVertexIsTheOneRelaxed) {
+  const BentFinger f(60);
+  ShellPath path = f.path;
+  const GradientPeak peak = LargestPathGradient(f.space, {}, path, 1);
+  ASSERT_GT(peak.vertex, -1);
+  const VertexRelaxationReport report =
+      RelaxPeakVertices(f.space, {}, 0.999, 10, 1, &path);
+  ASSERT_EQ(report.vertices, 1);
+  EXPECT_GE(report.newton_steps, 1);
+  for (int k = 0; k <= 4; ++k) {
+    for (int v = 0; v < path[k].rows(); ++v) {
+      if (k == peak.shape && v == peak.vertex) {
+        EXPECT_NE(path[k].row(v), f.path[k].row(v));
+      } else {
+        EXPECT_EQ(path[k].row(v), f.path[k].row(v)) << k << " " << v;
+      }
+    }
+  }
+  // The vertex is now stationary in its own coordinates (the path's largest
+  // gradient may move to a neighbour: E_K falls, the max norm need not).
+  Eigen::VectorXd before, after;
+  ASSERT_TRUE(TryInnerShapeGradient(f.space, f.path, peak.shape, &before));
+  ASSERT_TRUE(TryInnerShapeGradient(f.space, path, peak.shape, &after));
+  EXPECT_LT(after.segment<3>(3 * peak.vertex).norm(),
+            1e-8 * before.segment<3>(3 * peak.vertex).norm());
+  EXPECT_LT(report.energy_after, report.energy_before);
+}
+
+// E_K never rises, and the sweep's digits do not depend on the threads.
+TEST(VertexRelaxationTest, ASweepLowersTheEnergyWhateverTheThreads) {
+  const BentFinger f(120);  // the linear path, far from the geodesic
+  ShellPath one = f.path, two = f.path;
+  const VertexRelaxationReport a = RelaxPeakVertices(f.space, {}, 0.1, 10, 1, &one);
+  const VertexRelaxationReport b = RelaxPeakVertices(f.space, {}, 0.1, 10, 2, &two);
+  ASSERT_GT(a.vertices, 10);
+  EXPECT_LT(a.energy_after, a.energy_before);
+  EXPECT_EQ(a.vertices, b.vertices);
+  EXPECT_EQ(a.newton_steps, b.newton_steps);
+  for (int k = 0; k <= 4; ++k) EXPECT_EQ(one[k], two[k]) << k;
+  // The ends and a mask are never moved.
+  ShellPath masked = f.path;
+  const std::vector<int> mask = {0, 1, 2, 3, 4, 5};
+  RelaxPeakVertices(f.space, mask, 0.0, 10, 2, &masked);
+  EXPECT_EQ(masked.front(), f.path.front());
+  EXPECT_EQ(masked.back(), f.path.back());
+  for (int k = 1; k < 4; ++k) {
+    for (int v : mask) EXPECT_EQ(masked[k].row(v), f.path[k].row(v));
+  }
 }
 
 }  // namespace
