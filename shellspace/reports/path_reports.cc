@@ -92,9 +92,11 @@ JsonObject ProlongationJson(const ProlongationCheck& check) {
   JsonObject json;
   json.Add("checked", check.checked)
       .Add("used", check.used)
+      .Add("rotation_guided", check.rotation_guided)
       .Add("prolongated_energy", check.prolongated_energy)
       .Add("initial_energy", check.initial_energy)
       .Add("turned_faces", check.turned_faces)
+      .Add("initial_turned_faces", check.initial_turned_faces)
       .Add("smallest_face_area_ratio", check.smallest_face_area.ratio)
       .Add("reason", check.reason);
   return json;

@@ -41,6 +41,10 @@ class Prolongation {
   // coarse one; `coarse_deformed` is #survivors x 3.
   Positions Apply(const Positions& coarse_deformed) const;
 
+  // Per fine face, the coarse face whose deformation gradient it follows
+  // (the nearest to its centroid in the references).
+  const std::vector<int>& coarse_face_of() const { return coarse_face_of_; }
+
  private:
   struct Solver;
   Faces fine_faces_;

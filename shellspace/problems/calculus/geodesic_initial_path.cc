@@ -69,10 +69,14 @@ std::string PathDegeneracy::Describe() const {
   return "no degenerate triangle";
 }
 
-PathDegeneracy FindPathDegeneracy(const Faces& faces, const ShellPath& path) {
+PathDegeneracy FindPathDegeneracy(const Faces& faces, const ShellPath& path,
+                                  const std::vector<int>& ignored) {
   PathDegeneracy d;
   const int K = static_cast<int>(path.size()) - 1;
+  std::vector<char> skip(faces.rows(), 0);
+  for (int f : ignored) skip[f] = 1;
   for (int f = 0; f < faces.rows(); ++f) {
+    if (skip[f]) continue;
     const double reference =
         0.5 * std::min(FaceNormal(faces, path.front(), f).norm(),
                        FaceNormal(faces, path.back(), f).norm());

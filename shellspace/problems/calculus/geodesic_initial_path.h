@@ -77,7 +77,10 @@ struct PathDegeneracy {
   // between shapes 3 and 4" / "no degenerate triangle".
   std::string Describe() const;
 };
-PathDegeneracy FindPathDegeneracy(const Faces& faces, const ShellPath& path);
+// Faces listed in `ignored` (face ids, e.g. the slivers of the start,
+// whose normals a tiny move flips) are not counted.
+PathDegeneracy FindPathDegeneracy(const Faces& faces, const ShellPath& path,
+                                  const std::vector<int>& ignored = {});
 
 // The LΘA path: every inner shape s_k (t = k / K) reconstructed
 // (ReconstructFromLTheta) from the edge lengths, areas and dihedral angles

@@ -10,6 +10,8 @@
 
 #include "shellspace/geometry/validation.h"
 #include "shellspace/problems/calculus/deformation_transfer.h"
+#include "shellspace/problems/calculus/geodesic_initial_path.h"
+#include "shellspace/problems/calculus/rotation_blend_path.h"
 #include "shellspace/problems/calculus/shared_decimation.h"
 
 namespace shellspace {
@@ -56,27 +58,33 @@ ProlongationCheck CheckProlongation(const ShellSpace& space,
   check.initial_energy =
       initial_energy ? *initial_energy : std::numeric_limits<double>::infinity();
   check.smallest_face_area = SmallestFaceAreaRatio(space.faces, prolongated);
-  const int K = static_cast<int>(initial.size()) - 1;
-  for (int f = 0; f < space.faces.rows(); ++f) {
-    for (int k = 1; k < K; ++k) {
-      if (FaceNormal(space.faces, prolongated[k], f)
-              .dot(FaceNormal(space.faces, initial[k], f)) < 0) {
-        ++check.turned_faces;
-        break;
-      }
-    }
-  }
+  const FaceAreaRatio initial_smallest =
+      SmallestFaceAreaRatio(space.faces, initial);
+  // Triangles that turn over between consecutive shapes, on either path
+  // (FindPathDegeneracy, the test of --init auto): the fine start may turn
+  // some itself (a linear path through a large twist), so the prolongation
+  // is held to the start's count, not to its normals. The slivers of the
+  // start are not counted: a cap's normal flips when its apex crosses its
+  // long edge by a hair.
+  const std::vector<int> slivers =
+      FindSliverFaces(Mesh{initial.front(), space.faces}).faces;
+  check.turned_faces =
+      FindPathDegeneracy(space.faces, prolongated, slivers).turned_faces;
+  check.initial_turned_faces =
+      FindPathDegeneracy(space.faces, initial, slivers).turned_faces;
   const std::string versus = "E_K " + Number(check.prolongated_energy) +
                              " against " + Number(check.initial_energy) +
                              " of the " + GeodesicInitName(init.used) +
                              " path";
   if (!energy) {
     check.reason = "rejected: a degenerate element";
-  } else if (check.turned_faces > 0) {
+  } else if (check.turned_faces > check.initial_turned_faces) {
     check.reason = "rejected: " + std::to_string(check.turned_faces) +
-                   " triangles turned over against the " +
+                   " triangles turn over between its shapes, " +
+                   std::to_string(check.initial_turned_faces) + " on the " +
                    GeodesicInitName(init.used) + " path; " + versus;
-  } else if (check.smallest_face_area.ratio < kCollapsingFaceAreaRatio) {
+  } else if (check.smallest_face_area.ratio < kCollapsingFaceAreaRatio &&
+             check.smallest_face_area.ratio < initial_smallest.ratio) {
     check.reason = "rejected: triangle " +
                    std::to_string(check.smallest_face_area.face) +
                    " of shape " +
@@ -163,6 +171,34 @@ MultiresolutionResult SolveGeodesicMultiresolution(
     }
     result.prolongation =
         CheckProlongation(space, prolongated, fine.initial, fine_init);
+    // The fine shapes turned as the coarse geodesic turns its faces
+    // (RotationGuidedPath): where the decimation thinned out a part, the
+    // deformation transfer carries the coarse face's stretch onto fine
+    // triangles it does not fit, the rotations carry over.
+    std::vector<std::vector<Eigen::Matrix3d>> guide(K + 1);
+    for (int k = 0; k <= K; ++k) {
+      const std::vector<Eigen::Matrix3d> coarse_rotations = FaceRotations(
+          level.faces, coarse.geodesic.path[0], coarse.geodesic.path[k]);
+      guide[k].resize(space.faces.rows());
+      for (int f = 0; f < space.faces.rows(); ++f) {
+        guide[k][f] = coarse_rotations[from_start.coarse_face_of()[f]];
+      }
+    }
+    ShellPath guided = RotationGuidedPath(space.faces, input.start, input.end,
+                                          guide, prolongated,
+                                          input.fixed_vertices);
+    if (!guided.empty()) {
+      ProlongationCheck guided_check =
+          CheckProlongation(space, guided, fine.initial, fine_init);
+      if (guided_check.used &&
+          (!result.prolongation.used || guided_check.prolongated_energy <
+                                            result.prolongation.prolongated_energy)) {
+        guided_check.rotation_guided = true;
+        guided_check.reason = "rotation-guided; " + guided_check.reason;
+        result.prolongation = guided_check;
+        prolongated = std::move(guided);
+      }
+    }
     if (result.prolongation.used) fine.initial = std::move(prolongated);
     prolongation_seconds = SecondsSince(prolong_clock);
   }

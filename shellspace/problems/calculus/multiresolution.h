@@ -46,15 +46,25 @@ struct MultiresolutionLevel {
 struct ProlongationCheck {
   bool checked = false;        // a coarse level ran
   bool used = false;           // the fine solve started from the prolongation
+  // The prolongation used is RotationGuidedPath's, not the deformation
+  // transfer's (the one of lower E_K where both pass the check).
+  bool rotation_guided = false;
   double prolongated_energy = 0;  // E_K (+inf: a degenerate element)
   double initial_energy = 0;      // E_K of the fine level's initial path
-  int turned_faces = 0;        // against the initial path's shapes
+  // Triangles that turn over between consecutive shapes of the
+  // prolongation and of the initial path (FindPathDegeneracy).
+  int turned_faces = 0, initial_turned_faces = 0;
   FaceAreaRatio smallest_face_area;  // of the prolongated inner shapes
   std::string reason;          // one line: why it was used or rejected
 };
 
 // The ProlongationCheck of `prolongated` against `initial` (K + 1 shapes
-// each, the same ends), whose path `init` made.
+// each, the same ends), whose path `init` made. Used unless an element of
+// it is degenerate, more triangles turn over between its shapes than
+// between the initial path's (the slivers of the start, FindSliverFaces,
+// not counted), a triangle keeps less than
+// kCollapsingFaceAreaRatio of its area and less than on the initial path,
+// or its E_K is not below the initial path's.
 ProlongationCheck CheckProlongation(const ShellSpace& space,
                                     const ShellPath& prolongated,
                                     const ShellPath& initial,

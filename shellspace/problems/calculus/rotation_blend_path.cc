@@ -106,6 +106,100 @@ void UnwrapRotations(const Faces& faces, const Topology& topology,
   }
 }
 
+// The fit of step 3: the shape x minimising
+//   sum_f sum_{edges ab of f} |x_b - x_a - F_f (X_b - X_a)|^2 / |X_b - X_a|^2
+//   + eps sum_v |x_v - l_v|^2
+// for face gradients F_f and anchor positions l (masked vertices held at
+// l_v). The matrix depends on X and the mask only: factored once.
+class FaceGradientFit {
+ public:
+  FaceGradientFit(const Faces& faces, const Positions& start,
+                  const std::vector<int>& fixed_vertices)
+      : start_(start), unknown_(start.rows(), 0) {
+    const int n = static_cast<int>(start.rows());
+    for (int v : fixed_vertices) unknown_[v] = -1;
+    for (int v = 0; v < n; ++v) {
+      if (unknown_[v] >= 0) unknown_[v] = m_++;
+    }
+    // Edge weights 1 / |X_b - X_a|^2, one term per face edge.
+    edges_.reserve(3 * faces.rows());
+    double weight_sum = 0;
+    for (int f = 0; f < faces.rows(); ++f) {
+      for (int i = 0; i < 3; ++i) {
+        const int a = faces(f, i), b = faces(f, (i + 1) % 3);
+        const double length2 = (Row(start, b) - Row(start, a)).squaredNorm();
+        const double w = length2 > 0 ? 1 / length2 : 0;
+        edges_.push_back({f, a, b, w});
+        weight_sum += w;
+      }
+    }
+    eps_ = 1e-9 * weight_sum / std::max<size_t>(1, edges_.size());
+    std::vector<Eigen::Triplet<double>> triplets;
+    triplets.reserve(4 * edges_.size() + m_);
+    for (const FaceEdge& e : edges_) {
+      const int ia = unknown_[e.a], ib = unknown_[e.b];
+      if (ia >= 0) triplets.emplace_back(ia, ia, e.weight);
+      if (ib >= 0) triplets.emplace_back(ib, ib, e.weight);
+      if (ia >= 0 && ib >= 0) {
+        triplets.emplace_back(ia, ib, -e.weight);
+        triplets.emplace_back(ib, ia, -e.weight);
+      }
+    }
+    for (int i = 0; i < m_; ++i) triplets.emplace_back(i, i, eps_);
+    Eigen::SparseMatrix<double> matrix(m_, m_);
+    matrix.setFromTriplets(triplets.begin(), triplets.end());
+    factor_.compute(matrix);
+  }
+
+  bool ok() const { return factor_.info() == Eigen::Success; }
+
+  // `gradient`: F_f per face; `anchor`: l, #V x 3.
+  Positions Solve(const std::vector<Eigen::Matrix3d>& gradient,
+                  const Positions& anchor) const {
+    const int n = static_cast<int>(start_.rows());
+    Eigen::MatrixX3d rhs = Eigen::MatrixX3d::Zero(m_, 3);
+    for (const FaceEdge& e : edges_) {
+      const Eigen::RowVector3d d =
+          e.weight *
+          (gradient[e.face] * (Row(start_, e.b) - Row(start_, e.a)))
+              .transpose();
+      const int ia = unknown_[e.a], ib = unknown_[e.b];
+      if (ib >= 0) rhs.row(ib) += d;
+      if (ia >= 0) rhs.row(ia) -= d;
+      // A masked end moves to the right-hand side at its anchor.
+      if (ia >= 0 && ib < 0) rhs.row(ia) += e.weight * anchor.row(e.b);
+      if (ib >= 0 && ia < 0) rhs.row(ib) += e.weight * anchor.row(e.a);
+    }
+    for (int v = 0; v < n; ++v) {
+      if (unknown_[v] >= 0) rhs.row(unknown_[v]) += eps_ * anchor.row(v);
+    }
+    const Eigen::MatrixX3d solved = factor_.solve(rhs);
+    Positions shape = anchor;
+    for (int v = 0; v < n; ++v) {
+      if (unknown_[v] >= 0) shape.row(v) = solved.row(unknown_[v]);
+    }
+    return shape;
+  }
+
+ private:
+  struct FaceEdge {
+    int face, a, b;
+    double weight;
+  };
+  const Positions& start_;
+  std::vector<int> unknown_;  // per vertex: index among the unknowns, or -1
+  int m_ = 0;
+  std::vector<FaceEdge> edges_;
+  double eps_ = 0;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factor_;
+};
+
+Eigen::Matrix3d RotationMatrix(const Eigen::Vector3d& w, double t) {
+  const double angle = w.norm();
+  return angle > 0 ? Eigen::AngleAxisd(t * angle, w / angle).toRotationMatrix()
+                   : Eigen::Matrix3d::Identity();
+}
+
 }  // namespace
 
 std::vector<Positions> RotationBlendPath(
@@ -129,82 +223,72 @@ std::vector<Positions> RotationBlendPath(
   }
   UnwrapRotations(faces, topology, &motions);
 
-  // Unknowns: the unmasked vertices.
-  std::vector<int> unknown(n, 0);
-  for (int v : fixed_vertices) unknown[v] = -1;
-  int m = 0;
-  for (int v = 0; v < n; ++v) {
-    if (unknown[v] >= 0) unknown[v] = m++;
-  }
-  // Edge weights 1 / |X_b - X_a|^2, one term per face edge.
-  struct FaceEdge {
-    int face, a, b;
-    double weight;
-  };
-  std::vector<FaceEdge> edges;
-  edges.reserve(3 * num_faces);
-  double weight_sum = 0;
-  for (int f = 0; f < num_faces; ++f) {
-    for (int i = 0; i < 3; ++i) {
-      const int a = faces(f, i), b = faces(f, (i + 1) % 3);
-      const double length2 = (Row(start, b) - Row(start, a)).squaredNorm();
-      const double w = length2 > 0 ? 1 / length2 : 0;
-      edges.push_back({f, a, b, w});
-      weight_sum += w;
-    }
-  }
-  const double eps = 1e-9 * weight_sum / std::max<size_t>(1, edges.size());
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(4 * edges.size() + m);
-  for (const FaceEdge& e : edges) {
-    const int ia = unknown[e.a], ib = unknown[e.b];
-    if (ia >= 0) triplets.emplace_back(ia, ia, e.weight);
-    if (ib >= 0) triplets.emplace_back(ib, ib, e.weight);
-    if (ia >= 0 && ib >= 0) {
-      triplets.emplace_back(ia, ib, -e.weight);
-      triplets.emplace_back(ib, ia, -e.weight);
-    }
-  }
-  for (int i = 0; i < m; ++i) triplets.emplace_back(i, i, eps);
-  Eigen::SparseMatrix<double> matrix(m, m);
-  matrix.setFromTriplets(triplets.begin(), triplets.end());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factor(matrix);
-  if (factor.info() != Eigen::Success) return {};
-
+  const FaceGradientFit fit(faces, start, fixed_vertices);
+  if (!fit.ok()) return {};
   for (int k = 1; k < steps; ++k) {
     const double t = static_cast<double>(k) / steps;
     const Positions linear = (1 - t) * start + t * target;
     std::vector<Eigen::Matrix3d> gradient(num_faces);
     for (int f = 0; f < num_faces; ++f) {
-      const Eigen::Vector3d& w = motions[f].rotation;
-      const double angle = w.norm();
-      const Eigen::Matrix3d turn =
-          angle > 0 ? Eigen::AngleAxisd(t * angle, w / angle).toRotationMatrix()
-                    : Eigen::Matrix3d::Identity();
-      gradient[f] = turn * ((1 - t) * Eigen::Matrix3d::Identity() +
-                            t * motions[f].stretch);
+      gradient[f] = RotationMatrix(motions[f].rotation, t) *
+                    ((1 - t) * Eigen::Matrix3d::Identity() +
+                     t * motions[f].stretch);
     }
-    Eigen::MatrixX3d rhs = Eigen::MatrixX3d::Zero(m, 3);
-    for (const FaceEdge& e : edges) {
-      const Eigen::RowVector3d d =
-          e.weight *
-          (gradient[e.face] * (Row(start, e.b) - Row(start, e.a))).transpose();
-      const int ia = unknown[e.a], ib = unknown[e.b];
-      if (ib >= 0) rhs.row(ib) += d;
-      if (ia >= 0) rhs.row(ia) -= d;
-      // A masked end moves to the right-hand side at its linear position.
-      if (ia >= 0 && ib < 0) rhs.row(ia) += e.weight * linear.row(e.b);
-      if (ib >= 0 && ia < 0) rhs.row(ib) += e.weight * linear.row(e.a);
-    }
-    for (int v = 0; v < n; ++v) {
-      if (unknown[v] >= 0) rhs.row(unknown[v]) += eps * linear.row(v);
-    }
-    const Eigen::MatrixX3d solved = factor.solve(rhs);
-    Positions shape = linear;
-    for (int v = 0; v < n; ++v) {
-      if (unknown[v] >= 0) shape.row(v) = solved.row(unknown[v]);
-    }
+    const Positions shape = fit.Solve(gradient, linear);
     path[k] = rigid ? rigid->Move(shape, t) : shape;
+  }
+  return path;
+}
+
+std::vector<Eigen::Matrix3d> FaceRotations(const Faces& faces,
+                                           const Positions& from,
+                                           const Positions& to) {
+  std::vector<Eigen::Matrix3d> rotations(faces.rows());
+  for (int f = 0; f < faces.rows(); ++f) {
+    const int a = faces(f, 0), b = faces(f, 1), c = faces(f, 2);
+    rotations[f] = RotationMatrix(
+        PolarFactors(TriangleFrame(from, a, b, c), TriangleFrame(to, a, b, c))
+            .rotation,
+        1.0);
+  }
+  return rotations;
+}
+
+std::vector<Positions> RotationGuidedPath(
+    const Faces& faces, const Positions& start, const Positions& end,
+    const std::vector<std::vector<Eigen::Matrix3d>>& guide,
+    const std::vector<Positions>& anchors,
+    const std::vector<int>& fixed_vertices) {
+  const int steps = static_cast<int>(guide.size()) - 1;
+  const int num_faces = static_cast<int>(faces.rows());
+  std::vector<Positions> path(std::max(steps, 1) + 1);
+  path.front() = start;
+  path.back() = end;
+  if (steps < 2) return path;
+  // Per face: the stretch U_f of start -> end and the rotation d_f that
+  // carries the guide's last rotation G_f(K) onto the face's own, R_f =
+  // G_f(K) exp([d_f]x).
+  std::vector<FaceMotion> motions(num_faces);
+  std::vector<Eigen::Vector3d> residual(num_faces);
+  for (int f = 0; f < num_faces; ++f) {
+    const int a = faces(f, 0), b = faces(f, 1), c = faces(f, 2);
+    motions[f] = PolarFactors(TriangleFrame(start, a, b, c),
+                              TriangleFrame(end, a, b, c));
+    const Eigen::AngleAxisd d(guide[steps][f].transpose() *
+                              RotationMatrix(motions[f].rotation, 1.0));
+    residual[f] = d.angle() * d.axis();
+  }
+  const FaceGradientFit fit(faces, start, fixed_vertices);
+  if (!fit.ok()) return {};
+  for (int k = 1; k < steps; ++k) {
+    const double t = static_cast<double>(k) / steps;
+    std::vector<Eigen::Matrix3d> gradient(num_faces);
+    for (int f = 0; f < num_faces; ++f) {
+      gradient[f] = guide[k][f] * RotationMatrix(residual[f], t) *
+                    ((1 - t) * Eigen::Matrix3d::Identity() +
+                     t * motions[f].stretch);
+    }
+    path[k] = fit.Solve(gradient, anchors[k]);
   }
   return path;
 }

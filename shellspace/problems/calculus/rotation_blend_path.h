@@ -8,6 +8,7 @@
 #ifndef SHELLSPACE_PROBLEMS_CALCULUS_ROTATION_BLEND_PATH_H_
 #define SHELLSPACE_PROBLEMS_CALCULUS_ROTATION_BLEND_PATH_H_
 
+#include <Eigen/Core>
 #include <vector>
 
 #include "shellspace/geometry/mesh.h"
@@ -49,6 +50,31 @@ namespace shellspace {
 std::vector<Positions> RotationBlendPath(
     const Faces& faces, const Topology& topology, const Positions& start,
     const Positions& end, int steps, const std::vector<int>& fixed_vertices);
+
+// Per face of `faces`, the rotation factor R of the deformation gradient
+// F = [e1' e2' n'] [e1 e2 n]^-1 = R U from `from` to `to` (#V x 3 each;
+// the identity for a degenerate face of `from`).
+std::vector<Eigen::Matrix3d> FaceRotations(const Faces& faces,
+                                           const Positions& from,
+                                           const Positions& to);
+
+// A path from `start` to `end` (#V x 3 on `faces`, K = guide.size() - 1
+// steps) whose triangles turn as a guide says: guide[k][f] is the rotation
+// face f should have at s_k (k = 0..K; from a coarser geodesic, the rotation
+// of the coarse face nearest to f, FaceRotations). With R_f U_f the polar
+// factors of face f from start to end and d_f the rotation vector of
+// guide[K][f]^T R_f (what the guide misses of the face's own end rotation),
+// s_k (t = k / K) fits, as step 3 of RotationBlendPath,
+//   F_f(t) = guide[k][f] exp(t [d_f]x) ((1 - t) I + t U_f),
+// with anchors[k] (#V x 3) in place of the linear blend: the masked
+// vertices are held there and the eps term fixes the translation to it.
+// anchors[0] and anchors[K] are not used. Empty if the fit's matrix cannot
+// be factored.
+std::vector<Positions> RotationGuidedPath(
+    const Faces& faces, const Positions& start, const Positions& end,
+    const std::vector<std::vector<Eigen::Matrix3d>>& guide,
+    const std::vector<Positions>& anchors,
+    const std::vector<int>& fixed_vertices);
 
 }  // namespace shellspace
 

@@ -233,6 +233,66 @@ TEST_F(InitialPathTest, TheRotationBlendHoldsTheMaskOnTheLinearPath) {
   EXPECT_FALSE(FindPathDegeneracy(finger_.faces, blend).degenerate());
 }
 
+// Guided by the rotations of a rigid motion (every face turned by k/K of
+// it at s_k) and anchored on the rigidly moved shapes, the guided path is
+// that rigid motion: its shape to round-off; its translation, which only
+// the fit's eps term fixes, to 1e-5.
+TEST_F(InitialPathTest, ARotationGuidedPathFollowsARigidGuideExactly) {
+  const Eigen::Vector3d axis(0.3, 1, 0.2);
+  const Positions end = Rotate(finger_.positions, 130, axis);
+  std::vector<std::vector<Eigen::Matrix3d>> guide(5);
+  std::vector<Positions> anchors(5);
+  for (int k = 0; k <= 4; ++k) {
+    anchors[k] = Rotate(finger_.positions, 130.0 * k / 4, axis);
+    guide[k] = FaceRotations(finger_.faces, finger_.positions, anchors[k]);
+  }
+  const ShellPath path = RotationGuidedPath(finger_.faces, finger_.positions,
+                                            end, guide, anchors, {});
+  ASSERT_EQ(path.size(), 5u);
+  for (int k = 1; k < 4; ++k) {
+    const Eigen::RowVector3d shift =
+        (path[k] - anchors[k]).colwise().mean();
+    EXPECT_LT(shift.norm(), 1e-5) << k;
+    EXPECT_LT((path[k] - anchors[k]).rowwise().operator-(shift)
+                  .cwiseAbs().maxCoeff(),
+              1e-10)
+        << k;
+  }
+}
+
+// Guided by the rotations of a bent finger's geodesic (what a coarse level
+// hands on) the guided path lies near that geodesic: E_K within 20 % of
+// it, where the linear path's is several times larger, and no triangle
+// turns over. The twin: a guide that does not turn the faces before the
+// end (identities, and the geodesic's own rotations at s_K, so that no
+// face rotation is left to blend in) cuts the bend short.
+TEST_F(InitialPathTest, ARotationGuidedPathFollowsTheGuidesBend) {
+  const Positions end = BendAlongY(finger_.positions, 3.0, 150 * M_PI / 180);
+  const GeodesicResult geodesic = SolveGeodesic(
+      space_, GeodesicInput::Between(finger_.positions, end, 4), Tight());
+  ASSERT_TRUE(geodesic.converged);
+  std::vector<std::vector<Eigen::Matrix3d>> guide(5), still(5);
+  for (int k = 0; k <= 4; ++k) {
+    guide[k] = FaceRotations(finger_.faces, finger_.positions,
+                             geodesic.path[k]);
+    still[k].assign(finger_.faces.rows(), Eigen::Matrix3d::Identity());
+  }
+  still[4] = guide[4];
+  const ShellPath guided = RotationGuidedPath(
+      finger_.faces, finger_.positions, end, guide, geodesic.path, {});
+  const ShellPath unguided = RotationGuidedPath(
+      finger_.faces, finger_.positions, end, still, geodesic.path, {});
+  const double e_guided = PathEnergy(space_, guided);
+  const double e_linear =
+      PathEnergy(space_, LinearPath(finger_.positions, end, 4));
+  std::cout << "E_K guided " << e_guided << ", geodesic "
+            << geodesic.path_energy << ", linear " << e_linear << "\n";
+  EXPECT_LT(e_guided, 1.2 * geodesic.path_energy);
+  EXPECT_GT(e_linear, 3 * geodesic.path_energy);
+  EXPECT_EQ(FindPathDegeneracy(finger_.faces, guided).turned_faces, 0);
+  EXPECT_GT(PathEnergy(space_, unguided), 3 * geodesic.path_energy);
+}
+
 // A prolongation that turns a triangle over, or whose E_K exceeds the fine
 // start's, is rejected; the geodesic itself is accepted.
 TEST_F(InitialPathTest, AProlongationWorseThanTheFineStartIsRejected) {
