@@ -133,7 +133,7 @@ TEST(OutputDirectoryCliTest, AFrameThatIsNoRegularFileIsRefused) {
     } else {
       ASSERT_EQ(mkfifo(odd.c_str(), 0644), 0);
     }
-    for (const std::string verb : {"render --output " + base + "/s.png",
+    for (const std::string& verb : {"render --output " + base + "/s.png",
                                    "export --output " + base + "/x.glb"}) {
       std::string out, err;
       EXPECT_EQ(RunCli(verb + " --input " + dir, &out, &err), 1)

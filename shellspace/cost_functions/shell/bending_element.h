@@ -310,6 +310,9 @@ struct BendingElement {
   }
 };
 
+// Its second derivatives are compiled once, in bending_element.cc.
+SHELLSPACE_ELEMENT_HESSIAN_TEMPLATES(extern template, BendingElement);
+
 }  // namespace shellspace
 
 #endif  // SHELLSPACE_COST_FUNCTIONS_SHELL_BENDING_ELEMENT_H_

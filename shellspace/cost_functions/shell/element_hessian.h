@@ -4,16 +4,21 @@
 // by differentiating the element's analytic gradient (J^T r, the same stencil
 // as the cost functions) with forward-mode dual numbers (ceres::Jet). Both
 // exact to round-off; no finite differences.
+//
+// The member templates below are defined in element_hessian-inl.h and
+// compiled once per element type of the element set, in the cost_functions
+// library (SHELLSPACE_ELEMENT_HESSIAN_TEMPLATES at the end of this file):
+// each element type's header declares them, so that a file using them does
+// not compile them again (the dual numbers ceres::Jet<double, 3 kVertices>
+// through the element's Evaluate and the fixed-size projections of
+// psd_projection.h are minutes of compilation per file).
 #ifndef SHELLSPACE_COST_FUNCTIONS_SHELL_ELEMENT_HESSIAN_H_
 #define SHELLSPACE_COST_FUNCTIONS_SHELL_ELEMENT_HESSIAN_H_
-
-#include <ceres/jet.h>
 
 #include <Eigen/Core>
 #include <type_traits>
 #include <utility>
 
-#include "shellspace/cost_functions/shell/psd_projection.h"
 #include "shellspace/geometry/scalar_traits.h"
 
 namespace shellspace {
@@ -108,20 +113,12 @@ struct ElementSecondDerivatives {
   static bool WantsReference(Rows rows) { return rows != Rows::kDeformed; }
   static bool WantsDeformed(Rows rows) { return rows != Rows::kReference; }
 
+  // The derivatives of `element` as documented above: its
+  // SecondDerivatives if it has one, else ComputeWithDualNumbers.
   template <class Element>
   bool Compute(const Element& element, const double* reference,
                const double* deformed, ShellSide active, double weight,
-               Rows rows = Rows::kBoth) {
-    static_assert(Element::kNumVertices == kVertices,
-                  "ElementSecondDerivatives: stencil size mismatch");
-    if constexpr (HasAnalyticSecondDerivatives<Element>::value) {
-      return element.SecondDerivatives(reference, deformed, active, weight,
-                                       rows, this);
-    } else {
-      return ComputeWithDualNumbers(element, reference, deformed, active,
-                                    weight, rows);
-    }
-  }
+               Rows rows = Rows::kBoth);
 
   // Compute for `model`: kExact as Compute, kGaussNewton the same layout
   // (energy and gradients exact) with every second-derivative block replaced
@@ -129,92 +126,14 @@ struct ElementSecondDerivatives {
   template <class Element>
   bool ComputeModel(HessianModel model, const Element& element,
                     const double* reference, const double* deformed,
-                    ShellSide active, double weight, Rows rows = Rows::kBoth) {
-    if (model == HessianModel::kExact) {
-      return Compute(element, reference, deformed, active, weight, rows);
-    }
-    if (model == HessianModel::kProjected) {
-      if (!Compute(element, reference, deformed, active, weight, rows)) {
-        return false;
-      }
-      if (active == ShellSide::kDeformed && WantsDeformed(rows)) {
-        ProjectToPositiveSemidefinite(&d_grad_deformed);
-      }
-      if (active == ShellSide::kReference && WantsReference(rows)) {
-        ProjectToPositiveSemidefinite(&d_grad_reference);
-      }
-      return true;
-    }
-    static_assert(Element::kNumVertices == kVertices,
-                  "ElementSecondDerivatives: stencil size mismatch");
-    const StencilPositions<kVertices> x(reference, deformed);
-    constexpr int m = Element::kNumResiduals;
-    Eigen::Matrix<double, m, 1> r;
-    typename Element::template Jacobian<double> jac_ref, jac_def;
-    if (!element.Evaluate(x.ref, x.def, r.data(), &jac_ref, &jac_def)) {
-      return false;
-    }
-    energy = 0.5 * weight * r.squaredNorm();
-    const auto& jac_active =
-        active == ShellSide::kReference ? jac_ref : jac_def;
-    if (WantsReference(rows)) {
-      grad_reference = weight * jac_ref.transpose() * r;
-      d_grad_reference.noalias() = weight * jac_ref.transpose() * jac_active;
-    }
-    if (WantsDeformed(rows)) {
-      grad_deformed = weight * jac_def.transpose() * r;
-      d_grad_deformed.noalias() = weight * jac_def.transpose() * jac_active;
-    }
-    return true;
-  }
+                    ShellSide active, double weight, Rows rows = Rows::kBoth);
 
   // The dual-number path for any element (the reference the analytic
   // second derivatives are tested against).
   template <class Element>
   bool ComputeWithDualNumbers(const Element& element, const double* reference,
                               const double* deformed, ShellSide active,
-                              double weight, Rows rows = Rows::kBoth) {
-    using J = ceres::Jet<double, n>;
-    Vec3<J> ref[kVertices], def[kVertices];
-    for (int v = 0; v < kVertices; ++v) {
-      for (int c = 0; c < 3; ++c) {
-        ref[v](c) = J(reference[3 * v + c]);
-        def[v](c) = J(deformed[3 * v + c]);
-        if (active == ShellSide::kReference) {
-          ref[v](c).v[3 * v + c] = 1.0;
-        } else {
-          def[v](c).v[3 * v + c] = 1.0;
-        }
-      }
-    }
-    constexpr int m = Element::kNumResiduals;
-    J residuals[m];
-    typename Element::template Jacobian<J> jac_ref, jac_def;
-    const bool want_ref = WantsReference(rows);
-    const bool want_def = WantsDeformed(rows);
-    if (!element.Evaluate(ref, def, residuals, want_ref ? &jac_ref : nullptr,
-                          want_def ? &jac_def : nullptr)) {
-      return false;
-    }
-    energy = 0;
-    for (int i = 0; i < m; ++i)
-      energy += 0.5 * weight * residuals[i].a * residuals[i].a;
-    for (int col = 0; col < n; ++col) {
-      if (want_ref) {
-        J g(0.0);
-        for (int i = 0; i < m; ++i) g += jac_ref(i, col) * residuals[i];
-        grad_reference(col) = weight * g.a;
-        d_grad_reference.row(col) = weight * g.v.transpose();
-      }
-      if (want_def) {
-        J g(0.0);
-        for (int i = 0; i < m; ++i) g += jac_def(i, col) * residuals[i];
-        grad_deformed(col) = weight * g.a;
-        d_grad_deformed.row(col) = weight * g.v.transpose();
-      }
-    }
-    return true;
-  }
+                              double weight, Rows rows = Rows::kBoth);
 };
 
 template <int kVertices>
@@ -263,34 +182,13 @@ struct ElementSliceSecondDerivatives {
   template <class Element>
   void Compute(HessianModel model, const Element& element,
                const double* previous, const double* own, const double* next,
-               double weight, bool want_coupling) {
-    if constexpr (HasSliceSecondDerivatives<Element>::value) {
-      if (model == HessianModel::kExact) {
-        element.SliceSecondDerivatives(previous, own, next, weight,
-                                       want_coupling, this);
-        return;
-      }
-    }
-    ComputeBySides(model, element, previous, own, next, weight, want_coupling);
-  }
+               double weight, bool want_coupling);
 
   // The reference the element's SliceSecondDerivatives is tested against.
   template <class Element>
   void ComputeBySides(HessianModel model, const Element& element,
                       const double* previous, const double* own,
-                      const double* next, double weight, bool want_coupling) {
-    using D = ElementSecondDerivatives<kVertices>;
-    before_ok =
-        before_.ComputeModel(model, element, previous, own,
-                             ShellSide::kDeformed, weight, D::Rows::kDeformed);
-    after_ok = after_.ComputeModel(
-        model, element, own, next, ShellSide::kReference, weight,
-        want_coupling ? D::Rows::kBoth : D::Rows::kReference);
-    if (before_ok && after_ok) {
-      diagonal.noalias() = before_.d_grad_deformed + after_.d_grad_reference;
-    }
-    if (after_ok && want_coupling) coupling = after_.d_grad_deformed;
-  }
+                      const double* next, double weight, bool want_coupling);
 
  private:
   ElementSecondDerivatives<kVertices> before_, after_;
@@ -320,56 +218,36 @@ struct ElementTermSecondDerivatives {
 
   template <class Element>
   bool Compute(const Element& element, const double* a, const double* b,
-               double weight, bool a_free, bool b_free) {
-    using D = ElementSecondDerivatives<kVertices>;
-    if (a_free && b_free) {
-      if (!a_active_.ComputeModel(HessianModel::kExact, element, a, b,
-                                  ShellSide::kReference, weight,
-                                  D::Rows::kBoth) ||
-          !b_active_.ComputeModel(HessianModel::kExact, element, a, b,
-                                  ShellSide::kDeformed, weight,
-                                  D::Rows::kDeformed)) {
-        return false;
-      }
-      term_.template topLeftCorner<n, n>() = a_active_.d_grad_reference;
-      term_.template bottomLeftCorner<n, n>() = a_active_.d_grad_deformed;
-      term_.template topRightCorner<n, n>() =
-          a_active_.d_grad_deformed.transpose();
-      term_.template bottomRightCorner<n, n>() = b_active_.d_grad_deformed;
-      projected =
-          ProjectToPositiveSemidefiniteModuloTranslations<kVertices, 2>(
-              &term_);
-      aa = term_.template topLeftCorner<n, n>();
-      bb = term_.template bottomRightCorner<n, n>();
-      ba = term_.template bottomLeftCorner<n, n>();
-      return true;
-    }
-    if (a_free) {
-      if (!a_active_.ComputeModel(HessianModel::kExact, element, a, b,
-                                  ShellSide::kReference, weight,
-                                  D::Rows::kReference)) {
-        return false;
-      }
-      aa = a_active_.d_grad_reference;
-      projected =
-          ProjectToPositiveSemidefiniteModuloTranslations<kVertices, 1>(&aa);
-      return true;
-    }
-    if (!b_active_.ComputeModel(HessianModel::kExact, element, a, b,
-                                ShellSide::kDeformed, weight,
-                                D::Rows::kDeformed)) {
-      return false;
-    }
-    bb = b_active_.d_grad_deformed;
-    projected =
-        ProjectToPositiveSemidefiniteModuloTranslations<kVertices, 1>(&bb);
-    return true;
-  }
+               double weight, bool a_free, bool b_free);
 
  private:
   ElementSecondDerivatives<kVertices> a_active_, b_active_;
   Eigen::Matrix<double, 2 * n, 2 * n> term_;
 };
+
+// The specializations of the member templates above for the element type E:
+// with kind `extern template` their explicit instantiation declarations (in
+// E's header, after E), with kind `template` their definitions (in one .cc
+// of the library that includes element_hessian-inl.h).
+#define SHELLSPACE_ELEMENT_HESSIAN_TEMPLATES(kind, E)                         \
+  kind bool ElementSecondDerivatives<E::kNumVertices>::Compute<E>(            \
+      const E&, const double*, const double*, ShellSide, double,              \
+      ElementSecondDerivatives<E::kNumVertices>::Rows);                       \
+  kind bool ElementSecondDerivatives<E::kNumVertices>::ComputeModel<E>(       \
+      HessianModel, const E&, const double*, const double*, ShellSide,        \
+      double, ElementSecondDerivatives<E::kNumVertices>::Rows);               \
+  kind bool                                                                   \
+      ElementSecondDerivatives<E::kNumVertices>::ComputeWithDualNumbers<E>(   \
+          const E&, const double*, const double*, ShellSide, double,          \
+          ElementSecondDerivatives<E::kNumVertices>::Rows);                   \
+  kind void ElementSliceSecondDerivatives<E::kNumVertices>::Compute<E>(       \
+      HessianModel, const E&, const double*, const double*, const double*,    \
+      double, bool);                                                          \
+  kind void ElementSliceSecondDerivatives<E::kNumVertices>::ComputeBySides<E>( \
+      HessianModel, const E&, const double*, const double*, const double*,    \
+      double, bool);                                                          \
+  kind bool ElementTermSecondDerivatives<E::kNumVertices>::Compute<E>(        \
+      const E&, const double*, const double*, double, bool, bool)
 
 }  // namespace shellspace
 

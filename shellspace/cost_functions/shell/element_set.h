@@ -49,7 +49,10 @@
 // shape_operator.md, 3 residuals per face, stencil = the face and the
 // opposite vertices of its interior edges: up to 6 vertices)
 //   1. write its element class (cost_functions/shell/<model>_element.h) with
-//      the interface above, with its own FD Jacobian test and negative twin;
+//      the interface above, with its own FD Jacobian test and negative twin,
+//      and SHELLSPACE_ELEMENT_HESSIAN_TEMPLATES(extern template, E) after it,
+//      (template, E) in <model>_element.cc: its second derivatives compiled
+//      once (element_hessian.h);
 //   2. add a BendingModel value (shell_space.h);
 //   3. one entry in the set: its ElementGroup<E> in AnyElementGroup below and
 //      the case of its BendingModel in ElementSet's constructor

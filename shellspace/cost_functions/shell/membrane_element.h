@@ -209,6 +209,9 @@ struct MembraneElement {
   }
 };
 
+// Its second derivatives are compiled once, in membrane_element.cc.
+SHELLSPACE_ELEMENT_HESSIAN_TEMPLATES(extern template, MembraneElement);
+
 }  // namespace shellspace
 
 #endif  // SHELLSPACE_COST_FUNCTIONS_SHELL_MEMBRANE_ELEMENT_H_

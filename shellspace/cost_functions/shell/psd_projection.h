@@ -100,6 +100,42 @@ bool ProjectToPositiveSemidefiniteModuloTranslations(Matrix* a) {
   return true;
 }
 
+// The projections of the element set's matrices, for stencils of kVertices
+// = 3 .. 6 vertices (n = 3 kVertices): the one-sided blocks (n x n,
+// row-major: ElementSecondDerivatives::ComputeModel), the terms in one and
+// in both shapes (ProjectToPositiveSemidefiniteModuloTranslations
+// <kVertices, 1> of the n x n row-major block, <kVertices, 2> of the 2n x 2n
+// matrix: ElementTermSecondDerivatives) and the reduced matrices these
+// project (3 (kVertices - 1) kShapes square). With kind `extern template`
+// their explicit instantiation declarations (below), with kind `template`
+// their definitions, compiled once in psd_projection_<kVertices>.cc, each
+// with the sizes of reduced matrix listed under it.
+#define SHELLSPACE_PSD_PROJECTION_TEMPLATES_OF_SIZE(kind, n) \
+  kind bool ProjectToPositiveSemidefinite(Eigen::Matrix<double, n, n>*)
+#define SHELLSPACE_PSD_PROJECTION_TEMPLATES_OF_STENCIL(kind, k)    \
+  kind bool ProjectToPositiveSemidefinite(                         \
+      Eigen::Matrix<double, 3 * k, 3 * k, Eigen::RowMajor>*);      \
+  kind bool ProjectToPositiveSemidefiniteModuloTranslations<k, 1>( \
+      Eigen::Matrix<double, 3 * k, 3 * k, Eigen::RowMajor>*);      \
+  kind bool ProjectToPositiveSemidefiniteModuloTranslations<k, 2>( \
+      Eigen::Matrix<double, 6 * k, 6 * k>*)
+
+// psd_projection_3.cc
+SHELLSPACE_PSD_PROJECTION_TEMPLATES_OF_STENCIL(extern template, 3);
+SHELLSPACE_PSD_PROJECTION_TEMPLATES_OF_SIZE(extern template, 6);
+SHELLSPACE_PSD_PROJECTION_TEMPLATES_OF_SIZE(extern template, 9);
+// psd_projection_4.cc
+SHELLSPACE_PSD_PROJECTION_TEMPLATES_OF_STENCIL(extern template, 4);
+SHELLSPACE_PSD_PROJECTION_TEMPLATES_OF_SIZE(extern template, 12);
+SHELLSPACE_PSD_PROJECTION_TEMPLATES_OF_SIZE(extern template, 18);
+// psd_projection_5.cc
+SHELLSPACE_PSD_PROJECTION_TEMPLATES_OF_STENCIL(extern template, 5);
+SHELLSPACE_PSD_PROJECTION_TEMPLATES_OF_SIZE(extern template, 15);
+SHELLSPACE_PSD_PROJECTION_TEMPLATES_OF_SIZE(extern template, 24);
+// psd_projection_6.cc
+SHELLSPACE_PSD_PROJECTION_TEMPLATES_OF_STENCIL(extern template, 6);
+SHELLSPACE_PSD_PROJECTION_TEMPLATES_OF_SIZE(extern template, 30);
+
 }  // namespace shellspace
 
 #endif  // SHELLSPACE_COST_FUNCTIONS_SHELL_PSD_PROJECTION_H_

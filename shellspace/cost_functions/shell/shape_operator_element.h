@@ -7,6 +7,7 @@
 
 #include <cmath>
 
+#include "shellspace/cost_functions/shell/element_hessian.h"
 #include "shellspace/geometry/element_geometry.h"
 #include "shellspace/geometry/mid_edge_second_form.h"
 
@@ -156,6 +157,13 @@ struct ShapeOperatorElement {
     return true;
   }
 };
+
+// Their second derivatives are compiled once, in
+// shape_operator_element_<kInterior>.cc.
+SHELLSPACE_ELEMENT_HESSIAN_TEMPLATES(extern template, ShapeOperatorElement<3>);
+SHELLSPACE_ELEMENT_HESSIAN_TEMPLATES(extern template, ShapeOperatorElement<2>);
+SHELLSPACE_ELEMENT_HESSIAN_TEMPLATES(extern template, ShapeOperatorElement<1>);
+SHELLSPACE_ELEMENT_HESSIAN_TEMPLATES(extern template, ShapeOperatorElement<0>);
 
 }  // namespace shellspace
 
