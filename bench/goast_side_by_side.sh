@@ -23,6 +23,15 @@
 #   finger  finger0 -> finger1, 5 shapes (K = 4), ring around vertex 1302
 #   cactus  cactus0 -> cactus1, K = 8, ring around the vertex of
 #           cactus_bottom_mask.txt nearest to that mask's centroid
+# and three cases of the stress corpus (bench/stress_corpus.sh) that
+# shellspace's defaults do not converge on, as a masked problem both
+# programs can solve: the cgal mesh and its pose by bench/stress_pose
+# without the rigid motion (a geodesic does not depend on it), K = 8, the
+# ring around the vertex that moves least, eta = 1e-4 x the start's area
+# (shellspace's default relative_eta; GOAST's bendWeight is 3 eta):
+#   bull_bend120, triceratops_pull0.15, ChineseDragon_twist180
+# shellspace runs them twice, as GOAST (--init linear --multires off) and
+# with its defaults otherwise (ss_<problem>_defaults).
 # GOAST runs with OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1; shellspace with
 # --tolerance 1e-10 and its default, each with one thread and with the
 # default threads. shellspace also runs on the inputs rounded to float32,
@@ -37,9 +46,11 @@
 #              OUT_DIR/goast-build, frames, logs)
 # Environment: GOAST_BUILD (GOAST's build directory, default
 # OUT_DIR/goast-build), GOAST_TIMEOUT seconds per GOAST run (default 900;
-# a run stopped there is reported partial), JOBS (default 1), ONLY a
-# regular expression of the problems (default finger|cactus), TABLE_ONLY=1
-# prints the table of the runs already in OUT_DIR.
+# a run stopped there is reported partial; shellspace's runs of the corpus
+# problems get the same --time_limit), JOBS (default 1), ONLY a regular
+# expression of the problems (default finger|cactus; the corpus problems
+# by name, e.g. ONLY=bull), TABLE_ONLY=1 prints the table of the runs
+# already in OUT_DIR.
 set -uo pipefail
 
 goast="${1:?usage: bench/goast_side_by_side.sh GOAST_SRC [BUILD_DIR] [OUT_DIR]}"
@@ -207,8 +218,22 @@ nice -n 10 cmake --build "$side/build" -j"$jobs" > "$out/logs/side_build.log" 2>
 goast_run="$side/build/interpolation_args"
 pathcheck="$side/build/pathcheck"
 
+# --- the corpus problems' meshes -----------------------------------------
+corpus=()
+for entry in bull:bend:120 triceratops:pull:0.15 ChineseDragon-10kv:twist:180; do
+  IFS=: read -r mesh kind strength <<<"$entry"
+  problem="${mesh%%-*}_${kind}${strength}"
+  [[ "$problem" =~ $only ]] || continue
+  pose="$(dirname "$cli")/bench/stress_pose"
+  [ -x "$pose" ] || { echo "no $pose (build the target stress_pose)" >&2; exit 1; }
+  "$pose" "$data/cgal/$mesh.off" none 0 0 "$out/${problem}0.ply" norigid &&
+  "$pose" "$data/cgal/$mesh.off" "$kind" "$strength" 0 "$out/${problem}1.ply" norigid ||
+    { echo "stress_pose failed on $mesh" >&2; exit 1; }
+  corpus+=("$problem")
+done
+
 # --- masks, centre vertices and float32 copies of the inputs ---------------
-"$python" - "$data" "$out" <<'EOF' || exit 1
+"$python" - "$data" "$out" "${corpus[@]}" <<'EOF' || exit 1
 import sys
 from collections import deque
 data, out = sys.argv[1], sys.argv[2]
@@ -255,6 +280,18 @@ open(out + '/cactus.centre', 'w').write('%d\n' % centre)
 open(out + '/cactus_mask.txt', 'w').write(''.join('%d\n' % i for i in ring(F, len(V), centre, 10)))
 for name in ('finger/finger0', 'finger/finger1', 'cactus/cactus0', 'cactus/cactus1'):
     write_float32(data + '/' + name + '.ply', out + '/' + name.split('/')[1] + '_f32.ply')
+def cross(u, v): return [u[1]*v[2]-u[2]*v[1], u[2]*v[0]-u[0]*v[2], u[0]*v[1]-u[1]*v[0]]
+for problem in sys.argv[3:]:  # corpus problems: the ring where the pose moves least
+    A, F = read_ply(f'{out}/{problem}0.ply')
+    B, _ = read_ply(f'{out}/{problem}1.ply')
+    centre = min(range(len(A)), key=lambda i: sum((A[i][j] - B[i][j]) ** 2 for j in range(3)))
+    open(f'{out}/{problem}.centre', 'w').write('%d\n' % centre)
+    open(f'{out}/{problem}_mask.txt', 'w').write(''.join('%d\n' % i for i in ring(F, len(A), centre, 10)))
+    area = 0.0
+    for a, b, c in F:
+        n = cross([A[b][j] - A[a][j] for j in range(3)], [A[c][j] - A[a][j] for j in range(3)])
+        area += 0.5 * sum(x * x for x in n) ** 0.5
+    open(f'{out}/{problem}.eta', 'w').write('%.17g\n' % (1e-4 * area))
 EOF
 
 # --- runs -------------------------------------------------------------------
@@ -293,6 +330,25 @@ for problem in finger cactus; do
     --tolerance 1e-10 --threads 1 --output "$out/runs/ss_${problem}_f32_1e-10_1thread"
   for run in "$out"/runs/ss_"${problem}"_*; do
     [ -d "$run" ] && OMP_NUM_THREADS=1 "$pathcheck" "$run" "$steps" "$centre" 10 0.001 \
+      > "$out/logs/$(basename "$run").pathcheck" 2>&1
+  done
+done
+
+for problem in "${corpus[@]}"; do
+  centre="$(cat "$out/$problem.centre")" eta="$(cat "$out/$problem.eta")"
+  a="$out/${problem}0.ply" b="$out/${problem}1.ply"
+  weight=$("$python" -c "print(repr(3 * float('$eta')))")
+  (cd "$out/runs" && OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 \
+    timed "goast_$problem" timeout "$timeout_s" stdbuf -oL -eL \
+      "$goast_run" "$a" "$b" "$centre" 10 9 "$weight" "goast_$problem")
+  common=(geodesic --steps 8 --mask "$out/${problem}_mask.txt" --eta "$eta" --json
+          --time_limit "$timeout_s" --start "$a" --end "$b")
+  timed "ss_${problem}_as_goast" "$cli" "${common[@]}" --init linear --multires off \
+    --output "$out/runs/ss_${problem}_as_goast"
+  timed "ss_${problem}_defaults" "$cli" "${common[@]}" \
+    --output "$out/runs/ss_${problem}_defaults"
+  for run in "$out"/runs/ss_"${problem}"_*; do
+    [ -d "$run" ] && OMP_NUM_THREADS=1 "$pathcheck" "$run" 8 "$centre" 10 "$weight" \
       > "$out/logs/$(basename "$run").pathcheck" 2>&1
   done
 done
