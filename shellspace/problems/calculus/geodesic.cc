@@ -1,12 +1,9 @@
 #include "shellspace/problems/calculus/geodesic.h"
 
-#include "shellspace/problems/calculus/vertex_relaxation.h"
-
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 #include <memory>
 
 #include "shellspace/cost_functions/deformation_energy_residuals.h"
@@ -14,6 +11,7 @@
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
 #include "shellspace/cost_functions/shell/shell_space_renumbering.h"
 #include "shellspace/geometry/validation.h"
+#include "shellspace/problems/calculus/vertex_relaxation.h"
 #include "shellspace/runtime/parallel_for.h"
 #include "shellspace/solvers/rigid_gauge.h"
 
