@@ -6,9 +6,8 @@
 #include <cmath>
 #include <utility>
 
-#include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/cost_functions/shell/element_hessian.h"
-#include "shellspace/cost_functions/shell/energy_derivatives.h"
+#include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/runtime/parallel_for.h"
 
 namespace shellspace {
@@ -155,21 +154,6 @@ int RelaxVertex(const LocalEnergy& local, int k, int v, int max_steps,
   return accepted;
 }
 
-double PathEnergyOrZero(const ShellSpace& space,
-                        const std::vector<Positions>& path) {
-  const int K = static_cast<int>(path.size()) - 1;
-  double sum = 0;
-  for (int k = 1; k <= K; ++k) {
-    DeformationEnergy w;
-    if (!TryEvaluateDeformationEnergy(space, path[k - 1], path[k], &w,
-                                      nullptr)) {
-      return 0;
-    }
-    sum += w.total;
-  }
-  return K * sum;
-}
-
 }  // namespace
 
 VertexRelaxationReport RelaxPeakVertices(const ShellSpace& space,
@@ -182,27 +166,16 @@ VertexRelaxationReport RelaxPeakVertices(const ShellSpace& space,
   if (K < 2) return report;
   // The gradient max norm per vertex of each inner shape.
   std::vector<Eigen::VectorXd> peak(K - 1);
-  std::vector<char> ok(K - 1, 1);
-  ParallelFor(K - 1, threads, [&](int i) {
-    const int k = i + 1;
-    Eigen::VectorXd incoming, outgoing;
-    if (!TryEnergyGradient(space, (*path)[k - 1], (*path)[k],
-                           ShellSide::kDeformed, &incoming) ||
-        !TryEnergyGradient(space, (*path)[k], (*path)[k + 1],
-                           ShellSide::kReference, &outgoing)) {
-      ok[i] = 0;
-      return;
-    }
-    const Eigen::VectorXd g = double(K) * (incoming + outgoing);
-    peak[i] = Eigen::Map<const Eigen::MatrixXd>(g.data(), 3, space.num_vertices)
-                  .cwiseAbs()
-                  .colwise()
-                  .maxCoeff()
-                  .transpose();
-  });
-  if (!std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; })) {
-    return report;
-  }
+  const bool ok = ForEachInnerShapeGradient(
+      space, *path, threads, [&](int i, const Eigen::VectorXd& g) {
+        peak[i] = Eigen::Map<const Eigen::MatrixXd>(g.data(), 3,
+                                                    space.num_vertices)
+                      .cwiseAbs()
+                      .colwise()
+                      .maxCoeff()
+                      .transpose();
+      });
+  if (!ok) return report;
   std::vector<char> is_fixed(space.num_vertices, 0);
   for (int v : fixed_vertices) is_fixed[v] = 1;
   double largest = 0;
@@ -229,7 +202,7 @@ VertexRelaxationReport RelaxVertices(
   VertexRelaxationReport report;
   const int K = static_cast<int>(path->size()) - 1;
   if (K < 2) return report;
-  report.energy_before = PathEnergyOrZero(space, *path);
+  report.energy_before = TryPathEnergy(space, *path).value_or(0);
   const Incidence incidence = BuildIncidence(space);
   const LocalEnergy local(space, incidence, *path);
   std::vector<int> steps(K - 1, 0), count(K - 1, 0);
@@ -254,7 +227,7 @@ VertexRelaxationReport RelaxVertices(
     report.vertices += count[i];
     report.newton_steps += steps[i];
   }
-  report.energy_after = PathEnergyOrZero(space, *path);
+  report.energy_after = TryPathEnergy(space, *path).value_or(0);
   return report;
 }
 
