@@ -10,6 +10,13 @@ Positions RigidMotion::Apply(const Positions& x) const {
   return out;
 }
 
+RigidMotion RigidMotion::Inverse() const {
+  RigidMotion inverse;
+  inverse.rotation = rotation.transpose();
+  inverse.translation = -translation * rotation;
+  return inverse;
+}
+
 RigidMotion FitRigidMotion(const Positions& source, const Positions& target) {
   const Eigen::RowVector3d cs = source.colwise().mean();
   const Eigen::RowVector3d ct = target.colwise().mean();
@@ -35,6 +42,39 @@ Positions AlignRigidly(const Positions& source, const Positions& target) {
   Positions out = (source.rowwise() - cs) * motion.rotation.transpose();
   out.rowwise() += ct;
   return out;
+}
+
+Positions ComponentwiseRigidMotion::Apply(const Positions& x) const {
+  Positions out = x;
+  for (size_t g = 0; g < groups.size(); ++g) {
+    for (const int v : groups[g]) {
+      out.row(v) = x.row(v) * motions[g].rotation.transpose() +
+                   motions[g].translation;
+    }
+  }
+  return out;
+}
+
+ComponentwiseRigidMotion ComponentwiseRigidMotion::Inverse() const {
+  ComponentwiseRigidMotion inverse{groups, {}};
+  for (const RigidMotion& motion : motions)
+    inverse.motions.push_back(motion.Inverse());
+  return inverse;
+}
+
+ComponentwiseRigidMotion FitRigidMotions(
+    const Positions& source, const Positions& target,
+    const std::vector<std::vector<int>>& groups) {
+  ComponentwiseRigidMotion fitted{groups, {}};
+  for (const std::vector<int>& group : groups) {
+    Positions p(group.size(), 3), q(group.size(), 3);
+    for (size_t i = 0; i < group.size(); ++i) {
+      p.row(i) = source.row(group[i]);
+      q.row(i) = target.row(group[i]);
+    }
+    fitted.motions.push_back(FitRigidMotion(p, q));
+  }
+  return fitted;
 }
 
 double RelativeDistanceUpToRigidMotion(const Positions& p, const Positions& q) {

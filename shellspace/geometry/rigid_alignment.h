@@ -2,6 +2,8 @@
 #ifndef SHELLSPACE_GEOMETRY_RIGID_ALIGNMENT_H_
 #define SHELLSPACE_GEOMETRY_RIGID_ALIGNMENT_H_
 
+#include <vector>
+
 #include "shellspace/geometry/mesh.h"
 
 namespace shellspace {
@@ -12,6 +14,8 @@ struct RigidMotion {
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   Eigen::RowVector3d translation = Eigen::RowVector3d::Zero();
   Positions Apply(const Positions& x) const;
+  // x -> R^T (x - t): undoes this motion.
+  RigidMotion Inverse() const;
 };
 
 // The rigid motion minimising sum_i |R p_i + t - q_i|^2 over the vertices
@@ -20,6 +24,21 @@ RigidMotion FitRigidMotion(const Positions& source, const Positions& target);
 
 // FitRigidMotion(source, target) applied to `source`.
 Positions AlignRigidly(const Positions& source, const Positions& target);
+
+// One rigid motion per group of vertices (the connected components of a
+// mesh with several: each moves on its own without changing any energy).
+struct ComponentwiseRigidMotion {
+  std::vector<std::vector<int>> groups;  // vertex indices, disjoint
+  std::vector<RigidMotion> motions;      // one per group
+  Positions Apply(const Positions& x) const;  // rows outside every group stay
+  ComponentwiseRigidMotion Inverse() const;
+};
+
+// FitRigidMotion of each group's rows of `source` onto the same rows of
+// `target`.
+ComponentwiseRigidMotion FitRigidMotions(
+    const Positions& source, const Positions& target,
+    const std::vector<std::vector<int>>& groups);
 
 // max_i |p_i - q_i| after AlignRigidly(p, q), divided by the diameter of q's
 // bounding box: a scale-free distance up to rigid motion.

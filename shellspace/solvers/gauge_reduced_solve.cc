@@ -13,25 +13,33 @@ Eigen::SparseMatrix<double> RigidGaugeBasis(const Positions& shape) {
 
 Eigen::SparseMatrix<double> RigidGaugeBasis(
     const Positions& shape, const std::array<int, 3>& vertices) {
+  return RigidGaugeBasis(shape, std::vector<std::array<int, 3>>{vertices});
+}
+
+Eigen::SparseMatrix<double> RigidGaugeBasis(
+    const Positions& shape, const std::vector<std::array<int, 3>>& triples) {
   const int n = static_cast<int>(shape.rows());
-  const RigidGauge gauge = MakeRigidGauge(shape, vertices);
-  const auto [a, b, c] = vertices;
-  const Eigen::Vector3d u = gauge.line;
-  const Eigen::Vector3d w = gauge.plane.col(1);
+  // Per vertex: the directions it keeps (0: held; none listed: all three).
+  std::vector<std::vector<Eigen::Vector3d>> kept(n);
+  std::vector<char> in_gauge(n, 0);
+  for (const std::array<int, 3>& vertices : triples) {
+    const RigidGauge gauge = MakeRigidGauge(shape, vertices);
+    const auto [a, b, c] = vertices;
+    in_gauge[a] = in_gauge[b] = in_gauge[c] = 1;
+    kept[b] = {gauge.line};                            // the line ab
+    kept[c] = {gauge.line, Eigen::Vector3d(gauge.plane.col(1))};  // plane abc
+  }
   std::vector<Eigen::Triplet<double>> t;
   int column = 0;
   for (int v = 0; v < n; ++v) {
-    if (v == a) continue;
-    if (v == b || v == c) {
-      const int directions = v == b ? 1 : 2;  // the line ab / the plane abc
-      for (int d = 0; d < directions; ++d) {
-        const Eigen::Vector3d& dir = d == 0 ? u : w;
-        for (int k = 0; k < 3; ++k) t.emplace_back(3 * v + k, column, dir(k));
-        ++column;
-      }
+    if (!in_gauge[v]) {
+      for (int k = 0; k < 3; ++k) t.emplace_back(3 * v + k, column++, 1.0);
       continue;
     }
-    for (int k = 0; k < 3; ++k) t.emplace_back(3 * v + k, column++, 1.0);
+    for (const Eigen::Vector3d& dir : kept[v]) {
+      for (int k = 0; k < 3; ++k) t.emplace_back(3 * v + k, column, dir(k));
+      ++column;
+    }
   }
   Eigen::SparseMatrix<double> basis(3 * n, column);
   basis.setFromTriplets(t.begin(), t.end());

@@ -25,6 +25,12 @@ Eigen::SparseMatrix<double> RigidGaugeBasis(const Positions& shape);
 Eigen::SparseMatrix<double> RigidGaugeBasis(
     const Positions& shape, const std::array<int, 3>& vertices);
 
+// The same for a shell of several connected components: one gauge triple
+// (a, b, c) per component (ChooseGaugeVertices(shape, components)), 6
+// coordinates removed in each.
+Eigen::SparseMatrix<double> RigidGaugeBasis(
+    const Positions& shape, const std::vector<std::array<int, 3>>& triples);
+
 // The mesh vertex of each column of such a basis (columns are supported on
 // the three coordinates of one vertex).
 std::vector<int> BasisColumnVertices(const Eigen::SparseMatrix<double>& basis);

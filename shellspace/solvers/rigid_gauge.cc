@@ -45,6 +45,36 @@ bool AffineSubspaceManifold::MinusJacobian(const double* /*x*/,
   return true;
 }
 
+std::array<int, 3> ChooseGaugeVertices(const Positions& shape,
+                                       const std::vector<int>& group) {
+  if (static_cast<Eigen::Index>(group.size()) == shape.rows())
+    return ChooseGaugeVertices(shape);  // the whole shape
+  Eigen::RowVector3d centroid = Eigen::RowVector3d::Zero();
+  for (const int v : group) centroid += shape.row(v);
+  centroid /= static_cast<double>(group.size());
+  // The first vertex of `group` farthest from `from` (its squared distance
+  // given by `distance`).
+  const auto farthest = [&](const auto& distance) {
+    int best_vertex = group.front();
+    double best = -1;
+    for (const int v : group) {
+      const double d = distance(v);
+      if (d > best) best = d, best_vertex = v;
+    }
+    return best_vertex;
+  };
+  const int a = farthest(
+      [&](int v) { return (shape.row(v) - centroid).squaredNorm(); });
+  const int b = farthest(
+      [&](int v) { return (shape.row(v) - shape.row(a)).squaredNorm(); });
+  const Eigen::Vector3d axis = (shape.row(b) - shape.row(a)).normalized();
+  const int c = farthest([&](int v) {
+    const Eigen::Vector3d d = (shape.row(v) - shape.row(a)).transpose();
+    return (d - d.dot(axis) * axis).squaredNorm();
+  });
+  return {a, b, c};
+}
+
 std::array<int, 3> ChooseGaugeVertices(const Positions& shape) {
   const Eigen::RowVector3d centroid = shape.colwise().mean();
   int a = 0, b = 0, c = 0;
@@ -58,6 +88,14 @@ std::array<int, 3> ChooseGaugeVertices(const Positions& shape) {
     if (dist > best) best = dist, c = i;
   }
   return {a, b, c};
+}
+
+std::vector<std::array<int, 3>> ChooseGaugeVertices(
+    const Positions& shape, const std::vector<std::vector<int>>& components) {
+  std::vector<std::array<int, 3>> vertices;
+  for (const std::vector<int>& group : components)
+    vertices.push_back(ChooseGaugeVertices(shape, group));
+  return vertices;
 }
 
 RigidGauge MakeRigidGauge(const Positions& shape) {
@@ -92,15 +130,32 @@ double GaugeFreeMaxNorm(const RigidGauge& gauge, const Eigen::VectorXd& g) {
   return norm;
 }
 
-std::array<int, 3> PinRigidMotions(Positions* shape, ceres::Problem* problem) {
-  const RigidGauge gauge = MakeRigidGauge(*shape);
+namespace {
+
+void PinRigidGauge(const RigidGauge& gauge, Positions* shape,
+                   ceres::Problem* problem) {
   const auto [a, b, c] = gauge.vertices;
   problem->SetParameterBlockConstant(shape->data() + 3 * a);
   problem->SetManifold(shape->data() + 3 * b,
                        new AffineSubspaceManifold(Eigen::MatrixXd(gauge.line)));
   problem->SetManifold(shape->data() + 3 * c,
                        new AffineSubspaceManifold(Eigen::MatrixXd(gauge.plane)));
+}
+
+}  // namespace
+
+std::array<int, 3> PinRigidMotions(Positions* shape, ceres::Problem* problem) {
+  const RigidGauge gauge = MakeRigidGauge(*shape);
+  PinRigidGauge(gauge, shape, problem);
   return gauge.vertices;
+}
+
+void PinRigidMotions(Positions* shape, ceres::Problem* problem,
+                     const std::vector<std::vector<int>>& components) {
+  for (const std::array<int, 3>& vertices :
+       ChooseGaugeVertices(*shape, components)) {
+    PinRigidGauge(MakeRigidGauge(*shape, vertices), shape, problem);
+  }
 }
 
 }  // namespace shellspace

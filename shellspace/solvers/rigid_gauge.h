@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <vector>
 
 #include "shellspace/geometry/mesh.h"
 
@@ -35,6 +36,15 @@ class AffineSubspaceManifold : public ceres::Manifold {
 // Three vertices far apart: a = the vertex farthest from the centroid, b = the
 // vertex farthest from a, c = the vertex farthest from the line ab.
 std::array<int, 3> ChooseGaugeVertices(const Positions& shape);
+// The same among the vertices of `group` (ascending; the whole shape: the
+// same three as above).
+std::array<int, 3> ChooseGaugeVertices(const Positions& shape,
+                                       const std::vector<int>& group);
+// A shell of several connected components (ConnectedComponents) moves
+// rigidly in each: three gauge vertices per component, in the order of
+// `components`.
+std::vector<std::array<int, 3>> ChooseGaugeVertices(
+    const Positions& shape, const std::vector<std::vector<int>>& components);
 
 // The gauge of PinRigidMotions on a shape: vertex a held, b on the line
 // through it along `line` (unit a -> b), c in the plane through it spanned by
@@ -63,6 +73,9 @@ double GaugeFreeMaxNorm(const RigidGauge& gauge, const Eigen::VectorXd& g);
 // removed; the energy at the optimum does not depend on the choice. Returns
 // the three vertices.
 std::array<int, 3> PinRigidMotions(Positions* shape, ceres::Problem* problem);
+// The same in each of `components` (6 degrees of freedom each).
+void PinRigidMotions(Positions* shape, ceres::Problem* problem,
+                     const std::vector<std::vector<int>>& components);
 
 }  // namespace shellspace
 

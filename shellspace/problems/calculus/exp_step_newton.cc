@@ -3,9 +3,11 @@
 #include <cmath>
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
+#include "shellspace/geometry/connected_components.h"
 #include "shellspace/solvers/gauge_reduced_solve.h"
 #include "shellspace/problems/calculus/path_hessian.h"
 #include "shellspace/solvers/newton_solver.h"
+#include "shellspace/solvers/rigid_gauge.h"
 #include "shellspace/solvers/sparse_lu.h"
 
 namespace shellspace {
@@ -87,7 +89,11 @@ class ExpStepProblem : public NewtonProblem {
         constant_(constant),
         is_fixed_(FixedFlags(space.num_vertices, fixed_vertices)),
         gauge_(fixed_vertices.empty()),
-        rows_(gauge_ ? RigidGaugeBasis(fixed)
+        components_(gauge_ ? ConnectedComponents(space.faces,
+                                                 space.num_vertices)
+                           : std::vector<std::vector<int>>{}),
+        rows_(gauge_ ? RigidGaugeBasis(
+                           fixed, ChooseGaugeVertices(fixed, components_))
                      : FreeVertexBasis(space.num_vertices, fixed_vertices)),
         assembler_(space),
         s_(s) {}
@@ -109,7 +115,9 @@ class ExpStepProblem : public NewtonProblem {
     return EvaluationStatus::kOk;
   }
   EvaluationStatus Assemble(LinearSystem* system) override {
-    columns_ = gauge_ ? RigidGaugeBasis(*s_) : rows_;
+    columns_ = gauge_ ? RigidGaugeBasis(
+                            *s_, ChooseGaugeVertices(*s_, components_))
+                      : rows_;
     // J = dF/ds: rows on the fixed shell's gradient, columns on s, reduced
     // to R^T J C straight from the element blocks.
     const bool ok =
@@ -134,6 +142,9 @@ class ExpStepProblem : public NewtonProblem {
   const Eigen::VectorXd& constant_;
   const std::vector<char> is_fixed_;
   const bool gauge_;
+  // Without a mask: the mesh's connected components, each with a rigid
+  // gauge of its own (a shell in two pieces moves rigidly in each).
+  const std::vector<std::vector<int>> components_;
   const SparseMatrix rows_;
   const PathHessianAssembler assembler_;
   Positions* s_;

@@ -6,6 +6,7 @@
 
 #include "shellspace/cost_functions/gradient_field_residual.h"
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
+#include "shellspace/geometry/connected_components.h"
 #include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/runtime/blas_threads.h"
 #include "shellspace/problems/calculus/exp_step_newton.h"
@@ -148,7 +149,10 @@ ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
     if (problem.HasParameterBlock(block))
       problem.SetParameterBlockConstant(block);
   }
-  if (fixed_vertices.empty()) PinRigidMotions(&result.shape, &problem);
+  if (fixed_vertices.empty()) {
+    PinRigidMotions(&result.shape, &problem,
+                    ConnectedComponents(space.faces, space.num_vertices));
+  }
   SolverSettings step_settings = settings;
   step_settings.gradient_tolerance =
       std::min(settings.gradient_tolerance, 1e-10);

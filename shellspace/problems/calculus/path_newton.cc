@@ -11,6 +11,7 @@
 #include "shellspace/runtime/blas_threads.h"
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/problems/calculus/path_hessian.h"
+#include "shellspace/geometry/connected_components.h"
 #include "shellspace/solvers/gauge_reduced_solve.h"
 #include "shellspace/solvers/block_jacobi_solver.h"
 #include "shellspace/solvers/reusable_cholesky.h"
@@ -29,50 +30,63 @@ struct ReducedCoordinates {
   int size = 0;
 };
 
-// ChooseGaugeVertices of `shape` in the caller's numbering, as vertices of
-// the solve's space (PathNewtonSettings::renumbering; null: the same).
-std::array<int, 3> GaugeVertices(const Positions& shape,
-                                 const RenumberedShellSpace* renumbering) {
-  if (renumbering == nullptr) return ChooseGaugeVertices(shape);
+using GaugeTriples = std::vector<std::array<int, 3>>;
+
+// ChooseGaugeVertices of `shape`, one triple per connected component of the
+// solve's space (`components`). One component: chosen in the caller's
+// numbering and given as vertices of the solve's space
+// (PathNewtonSettings::renumbering; null: the same).
+GaugeTriples GaugeVertices(const Positions& shape,
+                           const RenumberedShellSpace* renumbering,
+                           const std::vector<std::vector<int>>& components) {
+  if (components.size() > 1) return ChooseGaugeVertices(shape, components);
+  if (renumbering == nullptr) return {ChooseGaugeVertices(shape)};
   std::array<int, 3> vertices =
       ChooseGaugeVertices(renumbering->ToOriginal(shape));
   for (int& v : vertices) v = renumbering->new_vertex[v];
-  return vertices;
+  return {vertices};
 }
 
 // Without a mask: one choice of gauge vertices for every inner shape (those
 // of the middle one), so that all slices have the same free coordinates and
 // their Hessian blocks one pattern (the time-coupled preconditioner needs
-// it); none if a, b, c are nearly collinear in some inner shape (c closer
-// than 1e-3 |ab| to the line ab), and each shape then gets its own.
-std::optional<std::array<int, 3>> SharedGaugeVertices(
-    const ShellPath& path, const RenumberedShellSpace* renumbering) {
+// it); none if a, b, c of a triple are nearly collinear in some inner shape
+// (c closer than 1e-3 |ab| to the line ab), and each shape then gets its
+// own.
+std::optional<GaugeTriples> SharedGaugeVertices(
+    const ShellPath& path, const RenumberedShellSpace* renumbering,
+    const std::vector<std::vector<int>>& components) {
   const int K = static_cast<int>(path.size()) - 1;
   if (K < 2) return std::nullopt;
-  const std::array<int, 3> vertices = GaugeVertices(path[K / 2], renumbering);
-  const auto [a, b, c] = vertices;
-  for (int k = 1; k < K; ++k) {
-    const Eigen::Vector3d ab = (path[k].row(b) - path[k].row(a)).transpose();
-    const Eigen::Vector3d ac = (path[k].row(c) - path[k].row(a)).transpose();
-    if (!(ab.norm() > 0) || !(ab.cross(ac).norm() >= 1e-3 * ab.squaredNorm())) {
-      return std::nullopt;
+  const GaugeTriples triples =
+      GaugeVertices(path[K / 2], renumbering, components);
+  for (const auto& [a, b, c] : triples) {
+    for (int k = 1; k < K; ++k) {
+      const Eigen::Vector3d ab = (path[k].row(b) - path[k].row(a)).transpose();
+      const Eigen::Vector3d ac = (path[k].row(c) - path[k].row(a)).transpose();
+      if (!(ab.norm() > 0) ||
+          !(ab.cross(ac).norm() >= 1e-3 * ab.squaredNorm())) {
+        return std::nullopt;
+      }
     }
   }
-  return vertices;
+  return triples;
 }
 
 ReducedCoordinates MakeReducedCoordinates(
     const ShellSpace& space, const std::vector<int>& fixed,
-    const ShellPath& path, const std::optional<std::array<int, 3>>& gauge,
-    const RenumberedShellSpace* renumbering) {
+    const ShellPath& path, const std::optional<GaugeTriples>& gauge,
+    const RenumberedShellSpace* renumbering,
+    const std::vector<std::vector<int>>& components) {
   ReducedCoordinates r;
   const int K = static_cast<int>(path.size()) - 1;
   for (int k = 1; k < K; ++k) {
     r.basis.push_back(
         !fixed.empty() ? FreeVertexBasis(space.num_vertices, fixed)
-        : gauge
-            ? RigidGaugeBasis(path[k], *gauge)
-            : RigidGaugeBasis(path[k], GaugeVertices(path[k], renumbering)));
+        : gauge        ? RigidGaugeBasis(path[k], *gauge)
+                       : RigidGaugeBasis(path[k], GaugeVertices(path[k],
+                                                                renumbering,
+                                                                components)));
     r.offset.push_back(r.size);
     const std::vector<int> vertices = BasisColumnVertices(r.basis.back());
     r.vertex_of.insert(r.vertex_of.end(), vertices.begin(), vertices.end());
@@ -120,10 +134,14 @@ class PathEnergyProblem : public NewtonProblem {
         assembler_(space, model),
         path_(path),
         renumbering_(renumbering),
-        gauge_(fixed.empty() ? SharedGaugeVertices(*path, renumbering)
-                             : std::nullopt),
-        reduced_(
-            MakeReducedCoordinates(space, fixed, *path, gauge_, renumbering)) {}
+        components_(fixed.empty() ? ConnectedComponents(space.faces,
+                                                        space.num_vertices)
+                                  : std::vector<std::vector<int>>{}),
+        gauge_(fixed.empty()
+                   ? SharedGaugeVertices(*path, renumbering, components_)
+                   : std::nullopt),
+        reduced_(MakeReducedCoordinates(space, fixed, *path, gauge_,
+                                        renumbering, components_)) {}
 
   EvaluationStatus Merit(NewtonPoint point, double* merit) override {
     const ShellPath& path = point == NewtonPoint::kCurrent ? *path_ : trial_;
@@ -140,7 +158,8 @@ class PathEnergyProblem : public NewtonProblem {
                             NewtonResidual* residual) override {
     if (point == NewtonPoint::kTrial) {
       trial_reduced_ =
-          MakeReducedCoordinates(space_, fixed_, trial_, gauge_, renumbering_);
+          MakeReducedCoordinates(space_, fixed_, trial_, gauge_, renumbering_,
+                                 components_);
     }
     const ShellPath& path = point == NewtonPoint::kCurrent ? *path_ : trial_;
     const ReducedCoordinates& r =
@@ -227,8 +246,10 @@ class PathEnergyProblem : public NewtonProblem {
   const PathHessianAssembler assembler_;
   ShellPath* path_;
   const RenumberedShellSpace* renumbering_;
-  // The gauge vertices of every inner shape (no mask), chosen once.
-  const std::optional<std::array<int, 3>> gauge_;
+  // Without a mask: the solve space's connected components (a rigid gauge
+  // in each), and the gauge vertices of every inner shape, chosen once.
+  const std::vector<std::vector<int>> components_;
+  const std::optional<GaugeTriples> gauge_;
   ReducedCoordinates reduced_;
   ShellPath trial_;
   ReducedCoordinates trial_reduced_;

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
+#include "shellspace/geometry/connected_components.h"
 #include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/solvers/gauge_reduced_solve.h"
 #include "shellspace/problems/calculus/path_hessian.h"
@@ -88,7 +89,8 @@ double MeanEnergy(const ShellSpace& space,
 }
 
 // E(s) = sum_i W[S_i, s] over s for SolveNewton: merit E, residual G(s)
-// (norms on all 3n coordinates, reduced T^T G with T = RigidGaugeBasis(s)),
+// (norms on all 3n coordinates, reduced T^T G with T = RigidGaugeBasis(s)
+// with a gauge in each connected component),
 // H = T^T (sum_i D_2^2 W[S_i, s]) T by AssembleDeformedSum, retraction
 // s += T q (in place: the Ceres problem points into *s).
 class ElasticMeanProblem : public NewtonProblem {
@@ -97,6 +99,7 @@ class ElasticMeanProblem : public NewtonProblem {
                      const std::vector<Positions>& shapes, int threads,
                      Positions* s)
       : space_(space), shapes_(shapes), threads_(threads), assembler_(space),
+        components_(ConnectedComponents(space.faces, space.num_vertices)),
         s_(s) {}
 
   EvaluationStatus Merit(NewtonPoint point, double* merit) override {
@@ -113,7 +116,7 @@ class ElasticMeanProblem : public NewtonProblem {
     }
     SparseMatrix& basis =
         point == NewtonPoint::kCurrent ? basis_ : trial_basis_;
-    basis = RigidGaugeBasis(s);
+    basis = RigidGaugeBasis(s, ChooseGaugeVertices(s, components_));
     residual->reduced = basis.transpose() * g;
     residual->max_norm = g.cwiseAbs().maxCoeff();
     residual->two_norm = g.norm();
@@ -145,8 +148,10 @@ class ElasticMeanProblem : public NewtonProblem {
   const std::vector<Positions>& shapes_;
   const int threads_;
   const PathHessianAssembler assembler_;
+  // A rigid gauge in each connected component of the mesh.
+  const std::vector<std::vector<int>> components_;
   Positions* s_;
-  SparseMatrix basis_;  // RigidGaugeBasis(*s_)
+  SparseMatrix basis_;  // RigidGaugeBasis(*s_, its gauge vertices)
   Positions trial_;
   SparseMatrix trial_basis_;
 };
@@ -208,7 +213,8 @@ ElasticMeanResult ComputeElasticMean(const ShellSpace& space,
     AddDeformationEnergy(space, ShellArgument::Fixed(shape),
                          ShellArgument::Variable(&result.mean), 1.0, &problem);
   }
-  PinRigidMotions(&result.mean, &problem);
+  PinRigidMotions(&result.mean, &problem,
+                  ConnectedComponents(space.faces, space.num_vertices));
   // The absolute target of MakeSolverOptions, fixed by the initial guess.
   result.initial_gradient_norm = GradientMaxNorm(&problem);
   const double reference = std::max(1.0, result.initial_gradient_norm);
