@@ -21,8 +21,9 @@ namespace {
 constexpr double kExpNewtonTolerance = 1e-11;
 constexpr double kExpNewtonAccept = kExpStepAcceptance;
 constexpr int kMaxExpNewtonSteps = 20;
-// a to b is a rigid motion when, after the best rigid fit, no vertex is
-// farther than this fraction of b's bounding-box diagonal from its place.
+// a to b is a rigid motion (of each connected component) when, after the
+// best rigid fit, no vertex is farther than this fraction of b's
+// bounding-box diagonal from its place.
 constexpr double kRigidStepTolerance = 1e-12;
 }  // namespace
 
@@ -53,22 +54,28 @@ ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
   };
 
   ExpStepResult result;
-  // A rigid step (a to b a rigid motion M to round-off, no mask): the step
-  // beyond b is M(b) exactly -- W[b, M(b)] = 0 at its minimum and
-  // D_2 W[a, b] = 0 -- with no iteration.
-  if (fixed_vertices.empty() &&
-      RelativeDistanceUpToRigidMotion(a, b) <= kRigidStepTolerance) {
-    // (Backward, a = s_{k+1} and b = s_k: the same motion continued.)
-    const RigidMotion motion = FitRigidMotion(a, b);
-    result.shape = motion.Apply(b);
-    result.residual_norm = residual_norm(result.shape);
-    result.residual_scale = 0;
-    result.relative_residual = 0;
-    result.solved = true;
-    result.method = ExpStepResult::Method::kNewton;
-    result.summary.termination_type = ceres::CONVERGENCE;
-    result.summary.message = "rigid step: the rigid motion continued";
-    return result;
+  // A rigid step (a to b a rigid motion M of each connected component to
+  // round-off, no mask): the step beyond b is M(b) exactly -- W[b, M(b)] =
+  // 0 at its minimum and D_2 W[a, b] = 0 -- with no iteration.
+  if (fixed_vertices.empty()) {
+    const ComponentwiseRigidMotion motion = FitRigidMotions(
+        a, b, ConnectedComponents(space.faces, space.num_vertices));
+    const Positions moved = motion.Apply(a);
+    const double diameter =
+        (b.colwise().maxCoeff() - b.colwise().minCoeff()).norm();
+    if ((moved - b).rowwise().norm().maxCoeff() <=
+        kRigidStepTolerance * diameter) {
+      // (Backward, a = s_{k+1} and b = s_k: the same motion continued.)
+      result.shape = motion.Apply(b);
+      result.residual_norm = residual_norm(result.shape);
+      result.residual_scale = 0;
+      result.relative_residual = 0;
+      result.solved = true;
+      result.method = ExpStepResult::Method::kNewton;
+      result.summary.termination_type = ceres::CONVERGENCE;
+      result.summary.message = "rigid step: the rigid motion continued";
+      return result;
+    }
   }
   result.shape = 2 * b - a;
   if (alternative_start != nullptr) {

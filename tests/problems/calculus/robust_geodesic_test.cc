@@ -1,7 +1,8 @@
 // What keeps geodesic solves and EXP steps from going astray on ordinary
 // deformations:
 //   - EXP along a rigid motion is the rigid motion, exactly and with no
-//     iteration (the step beyond b of a rigid step a -> b is M(b));
+//     iteration (the step beyond b of a rigid step a -> b is M(b)), also
+//     along a motion of its own for each piece of a shell in pieces;
 //   - the best-iterate rule: an exact Newton stage that stops short ends on
 //     the iterate with its smallest gradient, and an unconverged solve
 //     reports the path with the smallest gradient it met, not its last.
@@ -54,6 +55,43 @@ TEST(RigidExpTest, TheStepBeyondARigidStepIsTheRigidMotionWithNoIteration) {
   }
   // Twin: the linear extrapolation 2 b - a, the old first guess, is not.
   EXPECT_GT(RelativeDistance(2 * b - a, m.Apply(b)), 1e-2);
+}
+
+// A shell in two pieces (two fingers side by side), each moved by a rigid
+// motion of its own: a rigid step too, continued exactly with no iteration.
+// Twin: no single rigid motion of the whole shell fits a -> b.
+TEST(RigidExpTest, EachPieceOfATwoPieceShellContinuesItsOwnMotion) {
+  const Mesh finger = MakeFinger(0.5, 4.0, 16, 12, 4);
+  const int n = finger.num_vertices();
+  Mesh two;
+  two.positions.resize(2 * n, 3);
+  two.positions.topRows(n) = finger.positions;
+  two.positions.bottomRows(n) = finger.positions;
+  two.positions.bottomRows(n).col(0).array() += 3.0;
+  two.faces.resize(2 * finger.num_faces(), 3);
+  two.faces.topRows(finger.num_faces()) = finger.faces;
+  two.faces.bottomRows(finger.num_faces()) = finger.faces.array() + n;
+  const ShellSpace space = testing::MakeSpace(two);
+  RigidMotion other;
+  other.rotation =
+      Eigen::AngleAxisd(-M_PI / 5, Eigen::Vector3d(0, 1, 0)).toRotationMatrix();
+  other.translation = Eigen::RowVector3d(-0.4, 0.1, 0.2);
+  const RigidMotion m = ThirtyDegrees();
+  const auto move = [&](const Positions& x) {
+    Positions y(x.rows(), 3);
+    y.topRows(n) = m.Apply(x.topRows(n));
+    y.bottomRows(n) = other.Apply(x.bottomRows(n));
+    return y;
+  };
+  const Positions a = two.positions;
+  const Positions b = move(a);
+  const ExpStepResult step = ExpStep(space, a, b, StepDirection::kForward, {},
+                                     testing::TightSettings(1e-10));
+  EXPECT_TRUE(step.solved);
+  EXPECT_EQ(step.newton_steps, 0);
+  EXPECT_EQ(step.lm_iterations, 0);
+  EXPECT_LE(RelativeDistance(step.shape, move(b)), 1e-10);
+  EXPECT_GT(RelativeDistanceUpToRigidMotion(a, b), 1e-2);
 }
 
 TEST(RigidExpTest, ShootingAlongARigidMotionReproducesIt) {
