@@ -10,13 +10,6 @@ Positions RigidMotion::Apply(const Positions& x) const {
   return out;
 }
 
-RigidMotion RigidMotion::Inverse() const {
-  RigidMotion inverse;
-  inverse.rotation = rotation.transpose();
-  inverse.translation = -translation * rotation;
-  return inverse;
-}
-
 RigidMotion FitRigidMotion(const Positions& source, const Positions& target) {
   const Eigen::RowVector3d cs = source.colwise().mean();
   const Eigen::RowVector3d ct = target.colwise().mean();
@@ -53,13 +46,6 @@ Positions ComponentwiseRigidMotion::Apply(const Positions& x) const {
     }
   }
   return out;
-}
-
-ComponentwiseRigidMotion ComponentwiseRigidMotion::Inverse() const {
-  ComponentwiseRigidMotion inverse{groups, {}};
-  for (const RigidMotion& motion : motions)
-    inverse.motions.push_back(motion.Inverse());
-  return inverse;
 }
 
 ComponentwiseRigidMotion FitRigidMotions(

@@ -14,8 +14,6 @@ struct RigidMotion {
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   Eigen::RowVector3d translation = Eigen::RowVector3d::Zero();
   Positions Apply(const Positions& x) const;
-  // x -> R^T (x - t): undoes this motion.
-  RigidMotion Inverse() const;
 };
 
 // The rigid motion minimising sum_i |R p_i + t - q_i|^2 over the vertices
@@ -31,7 +29,6 @@ struct ComponentwiseRigidMotion {
   std::vector<std::vector<int>> groups;  // vertex indices, disjoint
   std::vector<RigidMotion> motions;      // one per group
   Positions Apply(const Positions& x) const;  // rows outside every group stay
-  ComponentwiseRigidMotion Inverse() const;
 };
 
 // FitRigidMotion of each group's rows of `source` onto the same rows of

@@ -240,7 +240,7 @@ TEST(RunStatusCliTest, TransportNamesTheUnsolvedRung) {
   const std::vector<std::string> lines = Lines(err);
   ASSERT_EQ(lines.size(), 1u) << err;
   EXPECT_EQ(lines[0].rfind("shellspace transport: warning: not converged: "
-                           "rung 4 not solved",
+                           "rung 3 not solved",
                            0),
             0u)
       << err;

@@ -5,72 +5,24 @@
 #include <cstdio>
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
-#include "shellspace/geometry/connected_components.h"
-#include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/runtime/blas_threads.h"
 #include "shellspace/problems/calculus/geodesic.h"
 
 namespace shellspace {
-namespace {
-
-// Without fixed vertices every shape of a path is defined up to a rigid
-// motion of its own, one per connected component (the energies see only
-// lengths, angles and areas): two solves of one geodesic may return the
-// same shapes placed differently. The ladder's initial guesses (the average
-// of p_{k-1} and s_k, the carried variation) and its sub-steps (p - s
-// scaled) are not invariant under those motions, so the transport works on
-// the path with each shape aligned onto the one before it (Kabsch, per
-// component), keeps each transported shape aligned onto its base point,
-// and returns both in the caller's placement.
-class TransportGauge {
- public:
-  TransportGauge(const ShellSpace& space, const ShellPath& path, bool free)
-      : shapes_(path), to_path_(path.size()) {
-    if (!free) return;
-    components_ = ConnectedComponents(space.faces, space.num_vertices);
-    for (size_t k = 1; k < path.size(); ++k) {
-      const ComponentwiseRigidMotion motion =
-          FitRigidMotions(path[k], shapes_[k - 1], components_);
-      shapes_[k] = motion.Apply(path[k]);
-      to_path_[k] = motion.Inverse();
-    }
-  }
-  // s_0, and s_k aligned onto s_{k-1}
-  const ShellPath& shapes() const { return shapes_; }
-  // `shape` moved onto `target` (per component; unchanged if the gauge is
-  // fixed).
-  Positions Aligned(const Positions& shape, const Positions& target) const {
-    if (components_.empty()) return shape;
-    return FitRigidMotions(shape, target, components_).Apply(shape);
-  }
-  // `shape` (near shapes()[k]) in the placement of the caller's s_k.
-  Positions ToPath(const Positions& shape, size_t k) const {
-    return components_.empty() ? shape : to_path_[k].Apply(shape);
-  }
-
- private:
-  std::vector<std::vector<int>> components_;  // empty: the gauge is fixed
-  ShellPath shapes_;
-  std::vector<ComponentwiseRigidMotion> to_path_;
-};
-
-}  // namespace
 
 TransportResult ParallelTransport(const ShellSpace& space,
-                                  const ShellPath& given_path,
+                                  const ShellPath& path,
                                   const Positions& variation, double epsilon,
                                   const std::vector<int>& fixed_vertices,
                                   const SolverSettings& settings) {
   if (!(epsilon > 0)) throw InputError(
         "parallel transport: the step epsilon must be positive, got " +
         std::to_string(epsilon));
-  if (given_path.size() < 2)
+  if (path.size() < 2)
     throw InputError("transport needs a path of >= 2 shapes");
   // One BLAS thread for the rungs' midpoints and EXP steps (as ExpStep):
   // one-shape factorisations, where a second OpenBLAS thread spins.
   const ScopedBlasThreads blas(1);
-  const TransportGauge gauge(space, given_path, fixed_vertices.empty());
-  const ShellPath& path = gauge.shapes();
   TransportResult result;
   result.variations.push_back(variation);
   Positions p = path[0] + epsilon * variation;
@@ -129,11 +81,9 @@ TransportResult ParallelTransport(const ShellSpace& space,
         rung.relative_residual = step.relative_residual;
         rung.method = step.method;
         rung.divisor = divisor;
-        // Aligned before the scaling back: a rigid part of p'_k - s_k
-        // would not stay rigid when multiplied by the divisor.
-        const Positions shape = gauge.Aligned(step.shape, carried);
-        best = divisor == 1 ? shape
-                            : Positions(path[k] + divisor * (shape - path[k]));
+        best = divisor == 1
+                   ? step.shape
+                   : Positions(path[k] + divisor * (step.shape - path[k]));
         best_scale =
             EnergyGradient(space, path[k - 1], midpoint, ShellSide::kDeformed)
                 .cwiseAbs()
@@ -146,16 +96,13 @@ TransportResult ParallelTransport(const ShellSpace& space,
       result.all_solved = false;
       break;
     }
-    // The transported shape is defined up to a rigid motion: the one
-    // closest to its base point.
     p = best;
     result.exp_residuals.push_back(best_residual /
                                    std::max(best_scale, 1e-300));
     result.all_solved = result.all_solved && rung.solved;
     result.rungs.push_back(rung);
-    result.shapes.push_back(gauge.ToPath(p, k));
-    result.variations.push_back((result.shapes.back() - given_path[k]) /
-                                epsilon);
+    result.shapes.push_back(p);
+    result.variations.push_back((p - path[k]) / epsilon);
     if (settings.progress) {
       std::fprintf(stderr, "%s rung %zu of %zu  relative EXP residual %.3e\n",
                    settings.progress_label.c_str(), k, path.size() - 1,

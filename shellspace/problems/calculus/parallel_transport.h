@@ -59,12 +59,7 @@ inline constexpr int kRungFallbackLmIterations = 0;
 // gradient settings.gradient_tolerance); p_k = forward EXP step from
 // (s_{k-1}, m_k); xi_k = (p_k - s_k) / eps. eps = 1 transports a finite
 // shape difference (detail transfer); small eps the tangent vector.
-// `fixed_vertices` are held in the midpoint and EXP problems. Without
-// them each shape is defined up to a rigid motion of each connected
-// component: the ladder runs on the path with s_k aligned onto s_{k-1}
-// (Kabsch per component) and each p_k aligned onto its base point, and
-// returns p_k and xi_k in the placement of the given s_k, so two geodesics
-// that differ only in how their shapes are placed give the same transport.
+// `fixed_vertices` are held in the midpoint and EXP problems.
 // Sub-stepping: if rung k's EXP step is not solved (no root near the
 // initial guesses: the reflection of a large variation), the rung is
 // retried with the variation divided by n = 2, 4, ... 2^kMaxRungHalvings:
