@@ -12,7 +12,8 @@
 # (the verb's own criterion, exit 0), exit code, iterations, wall, CPU
 # (user + sys), peak RSS, and the geodesic's initial path and
 # multiresolution start, and the stages that ran (L: LM, N: exact Newton,
-# P: projected Newton, R: vertex relaxation, each with its iterations).
+# P: projected Newton, R: vertex relaxation, each with its iterations);
+# then per verb the runs, how many converged and their CPU seconds.
 #
 # Usage: bench/stress_corpus.sh [BUILD_DIR] [OUT_DIR]
 # Environment:
@@ -98,7 +99,13 @@ run() {
   fi
   [[ ${code} -ne 0 ]] && start+=" — $(grep -v '^\s' "${log}" | grep -v "^warning" | grep -v "^Command exited" | tail -n 1 | cut -c1-120)"
   echo "| ${name} | ${vertices} | ${posename} | ${verb} | ${converged:-no} | ${code} | ${iterations:-} | ${wall} | ${cpu} | ${rss} | ${start} |"
+  runs[${verb}]=$(( ${runs[${verb}]:-0} + 1 ))
+  cpu_total[${verb}]=$(awk -v a="${cpu_total[${verb}]:-0}" -v b="${cpu:-0}" 'BEGIN {printf "%.1f", a + b}')
+  [[ ${code} -eq 0 && "${converged}" == True ]] &&
+    met[${verb}]=$(( ${met[${verb}]:-0} + 1 ))
 }
+# Per verb: runs, runs that met the criterion (exit 0), CPU seconds.
+declare -A runs met cpu_total
 
 seed="${CORPUS_SEED:-1}"
 [[ "${seed}" =~ ^[0-9]+$ ]] || { echo "$0: CORPUS_SEED must be a number" >&2; exit 2; }
@@ -151,6 +158,12 @@ for mesh in "${meshes[@]}"; do
       esac
     done
   done
+done
+echo
+echo "| verb | runs | converged (exit 0) | CPU s |"
+echo "|---|---|---|---|"
+for verb in ${verbs}; do
+  echo "| ${verb} | ${runs[${verb}]:-0} | ${met[${verb}]:-0} | ${cpu_total[${verb}]:-0} |"
 done
 echo
 echo "outputs and logs: ${out}"
