@@ -10,6 +10,7 @@
 #include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/runtime/blas_threads.h"
 #include "shellspace/problems/calculus/exp_step_newton.h"
+#include "shellspace/problems/calculus/rotation_blend_path.h"
 #include "shellspace/solvers/rigid_gauge.h"
 
 namespace shellspace {
@@ -197,8 +198,14 @@ ShootResult ShootSteps(const ShellSpace& space, const Positions& s0,
       result.stopped = true;
       break;
     }
-    ExpStepResult step = ExpStep(space, path[k - 2], path[k - 1], direction,
-                                 fixed_vertices, settings);
+    // Besides 2 b - a, the rotation-blend continuation of a -> b
+    // (RotationBlendShapes at t = 2): a bend or a twist carried on as one.
+    const std::vector<Positions> turned =
+        RotationBlendShapes(space.faces, space.topology, path[k - 2],
+                            path[k - 1], {2.0}, fixed_vertices);
+    ExpStepResult step =
+        ExpStep(space, path[k - 2], path[k - 1], direction, fixed_vertices,
+                settings, turned.empty() ? nullptr : &turned.front());
     if (StoppedByRequest(step.summary)) {  // an unfinished step
       result.stopped = true;
       break;

@@ -202,15 +202,12 @@ Eigen::Matrix3d RotationMatrix(const Eigen::Vector3d& w, double t) {
 
 }  // namespace
 
-std::vector<Positions> RotationBlendPath(
+std::vector<Positions> RotationBlendShapes(
     const Faces& faces, const Topology& topology, const Positions& start,
-    const Positions& end, int steps, const std::vector<int>& fixed_vertices) {
+    const Positions& end, const std::vector<double>& times,
+    const std::vector<int>& fixed_vertices) {
   const int n = static_cast<int>(start.rows());
   const int num_faces = static_cast<int>(faces.rows());
-  std::vector<Positions> path(steps + 1);
-  path.front() = start;
-  path.back() = end;
-  if (steps < 2) return path;
   std::optional<RigidBlendFrame> rigid;
   if (fixed_vertices.empty() && n >= 3) rigid.emplace(start, end);
   const Positions& target = rigid ? rigid->Aligned() : end;
@@ -225,8 +222,8 @@ std::vector<Positions> RotationBlendPath(
 
   const FaceGradientFit fit(faces, start, fixed_vertices);
   if (!fit.ok()) return {};
-  for (int k = 1; k < steps; ++k) {
-    const double t = static_cast<double>(k) / steps;
+  std::vector<Positions> shapes;
+  for (const double t : times) {
     const Positions linear = (1 - t) * start + t * target;
     std::vector<Eigen::Matrix3d> gradient(num_faces);
     for (int f = 0; f < num_faces; ++f) {
@@ -235,8 +232,23 @@ std::vector<Positions> RotationBlendPath(
                      t * motions[f].stretch);
     }
     const Positions shape = fit.Solve(gradient, linear);
-    path[k] = rigid ? rigid->Move(shape, t) : shape;
+    shapes.push_back(rigid ? rigid->Move(shape, t) : shape);
   }
+  return shapes;
+}
+
+std::vector<Positions> RotationBlendPath(
+    const Faces& faces, const Topology& topology, const Positions& start,
+    const Positions& end, int steps, const std::vector<int>& fixed_vertices) {
+  if (steps < 2) return {start, end};
+  std::vector<double> times;
+  for (int k = 1; k < steps; ++k)
+    times.push_back(static_cast<double>(k) / steps);
+  std::vector<Positions> path =
+      RotationBlendShapes(faces, topology, start, end, times, fixed_vertices);
+  if (path.empty()) return {};
+  path.insert(path.begin(), start);
+  path.push_back(end);
   return path;
 }
 

@@ -51,6 +51,19 @@ std::vector<Positions> RotationBlendPath(
     const Faces& faces, const Topology& topology, const Positions& start,
     const Positions& end, int steps, const std::vector<int>& fixed_vertices);
 
+// The shapes of steps 3 and 4 of RotationBlendPath at the given times t,
+// any real t: t = 2 carries the motion from start to end on as far again
+// beyond the end (each face turned by twice its rotation, stretched by
+// 2 U_f - I; without a mask the rigid motion continued by slerp): the
+// initial guess of an EXP step that the linear extrapolation 2 end - start
+// would distort (a turn by an angle a carried on as a chord lengthens the
+// radius by sqrt(5 - 4 cos a)). Masked vertices are held at
+// (1 - t) start + t end. Empty if the fit's matrix cannot be factored.
+std::vector<Positions> RotationBlendShapes(
+    const Faces& faces, const Topology& topology, const Positions& start,
+    const Positions& end, const std::vector<double>& times,
+    const std::vector<int>& fixed_vertices);
+
 // Per face of `faces`, the rotation factor R of the deformation gradient
 // F = [e1' e2' n'] [e1 e2 n]^-1 = R U from `from` to `to` (#V x 3 each;
 // the identity for a degenerate face of `from`).

@@ -11,11 +11,14 @@
 
 #include <Eigen/Geometry>
 #include <cmath>
+#include <iostream>
 
 #include "shellspace/geometry/procedural_shapes.h"
+#include "shellspace/geometry/stress_deformations.h"
 #include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/problems/calculus/exponential_map.h"
 #include "shellspace/problems/calculus/geodesic.h"
+#include "shellspace/problems/calculus/rotation_blend_path.h"
 #include "shellspace/problems/calculus/vertex_relaxation.h"
 #include "tests/testing/test_support.h"
 
@@ -92,6 +95,34 @@ TEST(RigidExpTest, EachPieceOfATwoPieceShellContinuesItsOwnMotion) {
   EXPECT_EQ(step.lm_iterations, 0);
   EXPECT_LE(RelativeDistance(step.shape, move(b)), 1e-10);
   EXPECT_GT(RelativeDistanceUpToRigidMotion(a, b), 1e-2);
+}
+
+// The rotation blend at t = 2 carries a twist on as a twist: from a finger
+// and the finger twisted by 40 degrees about its axis, close to the finger
+// twisted by 80; the twin, the linear extrapolation 2 b - a, swells the
+// cross-sections (by sqrt(5 - 4 cos 40 deg) - 1 = 33 % at the top) and is
+// much farther. As the EXP step's second initial guess it is the one taken
+// (its residual is smaller), and the step is solved.
+TEST(RotationExtrapolationTest, TheRotationBlendAtTwoContinuesATwist) {
+  const Mesh finger = MakeFinger(0.5, 4.0, 16, 12, 4);
+  const ShellSpace space = testing::MakeSpace(finger);
+  const Positions a = finger.positions;
+  const Positions b = TwistAboutLongestAxis(a, 40);
+  const Positions twice = TwistAboutLongestAxis(a, 80);
+  const std::vector<Positions> turned =
+      RotationBlendShapes(finger.faces, space.topology, a, b, {2.0}, {});
+  ASSERT_EQ(turned.size(), 1u);
+  const double blend_error = RelativeDistance(turned[0], twice);
+  const double linear_error = RelativeDistance(2 * b - a, twice);
+  std::cout << "distance to the 80-degree twist: rotation blend "
+            << blend_error << ", linear " << linear_error << "\n";
+  EXPECT_LT(blend_error, 0.1 * linear_error);
+  EXPECT_GT(linear_error, 0.03);  // of the diagonal: a third of the radius
+  const ExpStepResult step =
+      ExpStep(space, a, b, StepDirection::kForward, {},
+              testing::TightSettings(1e-10), &turned[0]);
+  EXPECT_TRUE(step.solved);
+  EXPECT_EQ(step.lm_iterations, 0);
 }
 
 TEST(RigidExpTest, ShootingAlongARigidMotionReproducesIt) {
