@@ -98,6 +98,7 @@ run() {
       start+="; prolongation $([[ ${prolongated} == True ]] && echo used || echo rejected)"
   fi
   [[ ${code} -ne 0 ]] && start+=" — $(grep -v '^\s' "${log}" | grep -v "^warning" | grep -v "^Command exited" | tail -n 1 | cut -c1-120)"
+  start="${start//|/\\|}"  # a Markdown cell: "|grad|" in a message escaped
   echo "| ${name} | ${vertices} | ${posename} | ${verb} | ${converged:-no} | ${code} | ${iterations:-} | ${wall} | ${cpu} | ${rss} | ${start} |"
   runs[${verb}]=$(( ${runs[${verb}]:-0} + 1 ))
   cpu_total[${verb}]=$(awk -v a="${cpu_total[${verb}]:-0}" -v b="${cpu:-0}" 'BEGIN {printf "%.1f", a + b}')
