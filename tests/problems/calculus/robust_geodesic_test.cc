@@ -61,11 +61,9 @@ TEST(RigidExpTest, TheStepBeyondARigidStepIsTheRigidMotionWithNoIteration) {
   EXPECT_GT(RelativeDistance(2 * b - a, m.Apply(b)), 1e-2);
 }
 
-// A shell in two pieces (two fingers side by side), each moved by a rigid
-// motion of its own: a rigid step too, continued exactly with no iteration.
-// Twin: no single rigid motion of the whole shell fits a -> b.
-TEST(RigidExpTest, EachPieceOfATwoPieceShellContinuesItsOwnMotion) {
-  const Mesh finger = MakeFinger(0.5, 4.0, 16, 12, 4);
+// Two copies of `finger` (a shell in two pieces), the second moved by 3
+// along x: 2 #V x 3 positions, the faces of each copy on its own vertices.
+Mesh SideBySide(const Mesh& finger) {
   const int n = finger.num_vertices();
   Mesh two;
   two.positions.resize(2 * n, 3);
@@ -75,6 +73,16 @@ TEST(RigidExpTest, EachPieceOfATwoPieceShellContinuesItsOwnMotion) {
   two.faces.resize(2 * finger.num_faces(), 3);
   two.faces.topRows(finger.num_faces()) = finger.faces;
   two.faces.bottomRows(finger.num_faces()) = finger.faces.array() + n;
+  return two;
+}
+
+// A shell in two pieces (two fingers side by side), each moved by a rigid
+// motion of its own: a rigid step too, continued exactly with no iteration.
+// Twin: no single rigid motion of the whole shell fits a -> b.
+TEST(RigidExpTest, EachPieceOfATwoPieceShellContinuesItsOwnMotion) {
+  const Mesh finger = MakeFinger(0.5, 4.0, 16, 12, 4);
+  const int n = finger.num_vertices();
+  const Mesh two = SideBySide(finger);
   const ShellSpace space = testing::MakeSpace(two);
   RigidMotion other;
   other.rotation =
@@ -134,14 +142,7 @@ TEST(RotationExtrapolationTest, TheRotationBlendAtTwoContinuesATwist) {
 TEST(TwoPieceMeanTest, NewtonFinishesTheMeanOfAShellInTwoPieces) {
   const Mesh finger = MakeFinger(0.5, 4.0, 12, 10, 3);
   const int n = finger.num_vertices();
-  Mesh two;
-  two.positions.resize(2 * n, 3);
-  two.positions.topRows(n) = finger.positions;
-  two.positions.bottomRows(n) = finger.positions;
-  two.positions.bottomRows(n).col(0).array() += 3.0;
-  two.faces.resize(2 * finger.num_faces(), 3);
-  two.faces.topRows(finger.num_faces()) = finger.faces;
-  two.faces.bottomRows(finger.num_faces()) = finger.faces.array() + n;
+  const Mesh two = SideBySide(finger);
   const ShellSpace space = testing::MakeSpace(two);
   Positions bent = two.positions;
   bent.topRows(n) = BendAlongY(finger.positions, 4.0, 0.6);
