@@ -1,5 +1,5 @@
-// The convergence study of the two bending models (shape_operator.md),
-// one run of the project's own code:
+// The convergence study of the two bending models (docs/math.md, "Bending
+// energy: two models"), one run of the project's own code:
 //
 //   curvature_study            the convergence table (about a minute)
 //   curvature_study geodesics  the finger and cactus geodesics (K = 8) with

@@ -995,7 +995,7 @@ def energy(
         lambda_: membrane Lame weight lambda (default 1.0)
         eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
         relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
-        bending: bending model: discrete-shells (default), shape-operator, shape-operator-edge-angles (the shape operator with one angle per interior edge fitted to each shell, shape_operator.md; energy only), or both (W_bend of all three reported; total and membrane from discrete-shells) (default 'discrete-shells')
+        bending: bending model: discrete-shells (default), shape-operator, shape-operator-edge-angles (the shape operator with one angle per interior edge fitted to each shell, docs/math.md, "Bending energy: two models"; energy only), or both (W_bend of all three reported; total and membrane from discrete-shells) (default 'discrete-shells')
     """
 
 

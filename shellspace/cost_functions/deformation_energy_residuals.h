@@ -1,6 +1,6 @@
-// The Ceres adapter of W[Sbar, S] = W_mem + eta W_bend (shells.md): adds the
-// residual blocks of every element of the element set
-// (shell/element_set.h) to a ceres::Problem.
+// The Ceres adapter of W[Sbar, S] = W_mem + eta W_bend (docs/math.md,
+// "Deformation energy"): adds the residual blocks of every element of the
+// element set (shell/element_set.h) to a ceres::Problem.
 #ifndef SHELLSPACE_COST_FUNCTIONS_DEFORMATION_ENERGY_RESIDUALS_H_
 #define SHELLSPACE_COST_FUNCTIONS_DEFORMATION_ENERGY_RESIDUALS_H_
 

@@ -1,7 +1,7 @@
-// The edge-angle variant of the shape-operator bending energy
-// (shape_operator.md): the per-edge angles phi that make the rotated
-// mid-edge second forms (geometry/edge_angle_second_form.h) fit a shape
-// best, and the bending energy of a (reference, deformed) pair with them.
+// The edge-angle variant of the shape-operator bending energy (docs/math.md,
+// "Bending energy: two models"): the per-edge angles phi that make the rotated
+// mid-edge second forms (geometry/edge_angle_second_form.h) fit a shape best,
+// and the bending energy of a (reference, deformed) pair with them.
 //
 // The variant is not wired into the calculus (no problem differentiates
 // through the inner minimisation); `shellspace energy --bending
@@ -31,7 +31,7 @@ std::vector<SecondForm2> EdgeAngleSecondForms(
     const std::vector<EdgeAngleFace>& faces, const std::vector<double>& angles);
 
 struct EdgeAngleFitOptions {
-  double alpha = 0, beta = 1;  // the bending weights of shape_operator.md
+  double alpha = 0, beta = 1;  // docs/math.md, "Bending energy: two models"
   int max_iterations = 200;    // Levenberg-Marquardt iterations
   // Converged when Ceres' function, gradient or parameter tolerance is met.
   double function_tolerance = 1e-14;

@@ -1,6 +1,6 @@
-// The residual of one discrete exponential-map step (calculus.md): per vertex
-// v, F_v(s) = c_v + (D_fixed W)_v, the gradient of W w.r.t. its fixed argument
-// as a function of the unknown shell s in the other argument.
+// The residual of one discrete exponential-map step (docs/math.md, "Exponential
+// map"): per vertex v, F_v(s) = c_v + (D_fixed W)_v, the gradient of W w.r.t.
+// its fixed argument as a function of the unknown shell s in the other.
 //   forward step  s_{k+1}:  F(s) = D_2 W[s_{k-1}, s_k] + D_1 W[s_k, s]
 //     (fixed = s_k as reference, unknown s deformed);
 //   backward step s_{k-1}:  F(s) = D_2 W[s, s_k] + D_1 W[s_k, s_{k+1}]

@@ -1,6 +1,6 @@
-// Residuals of the LΘA reconstruction (calculus.md, "LΘA approximation"):
-// a shell is recovered from prescribed edge lengths l*_e, triangle areas a*_f
-// and dihedral angles theta*_e by minimising the sum of squares
+// Residuals of the LΘA reconstruction (docs/math.md, "Riemannian splines"): a
+// shell is recovered from prescribed edge lengths l*_e, triangle areas a*_f and
+// dihedral angles theta*_e by minimising the sum of squares
 //
 //   1/2 sum_e (l_e - l*_e)^2 / L_e^2 + 1/2 sum_f (a_f - a*_f)^2 / A_f
 //     + 1/2 eta sum_{e interior} 3 L_e^2 / (A_f1 + A_f2) (theta_e - theta*_e)^2

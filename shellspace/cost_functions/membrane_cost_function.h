@@ -8,7 +8,7 @@
 namespace shellspace {
 
 // Four residuals r with 1/2 |r|^2 = weight * abar W_m(G) for the triangle
-// (i, j, k) (shells.md, membrane_law.h):
+// (i, j, k) (docs/math.md, "Membrane energy"; membrane_law.h):
 //   r = sqrt(weight) (w (a - c), 2 w b, sqrt(2 mu abar) psi(sqrt d),
 //                     sqrt(lambda abar / 2) psi(d)).
 // Parameter blocks (each 3 doubles, one vertex): [Xbar_i, Xbar_j, Xbar_k] if

@@ -8,9 +8,9 @@
 namespace shellspace {
 
 // Three residuals r with 1/2 |r|^2 = weight * eta * abar (alpha (tr M)^2 +
-// beta tr(M^2)), M = Gbar^-1 (H - Hbar) (shape_operator.md,
-// shell/shape_operator_element.h): with Gbar = L L^T, K = L^-1 (H - Hbar)
-// L^-T,
+// beta tr(M^2)), M = Gbar^-1 (H - Hbar) (docs/math.md, "Bending energy: two
+// models"; shell/shape_operator_element.h): with Gbar = L L^T and
+// K = L^-1 (H - Hbar) L^-T,
 //   r = sqrt(weight eta) (sqrt(2 abar (alpha + beta/2)) (k11 + k22),
 //                         sqrt(abar beta) (k11 - k22), 2 sqrt(abar beta) k12).
 // The face has kInterior = 0..3 interior edges; its stencil is (X_0, X_1,

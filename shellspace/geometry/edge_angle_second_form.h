@@ -1,6 +1,6 @@
 // The mid-edge second fundamental form with rotated edge normals: the
-// edge-angle variant of the shape-operator bending model (shape_operator.md,
-// after Grinspun, Gingold, Reisman and Zorin 2006).
+// edge-angle variant of the shape-operator bending model (docs/math.md,
+// "Bending energy: two models"; after Grinspun, Gingold, Reisman, Zorin 2006).
 //
 // One angle phi_e per interior edge e. In face T the normal of its edge i
 // (opposite X_i) makes the angle

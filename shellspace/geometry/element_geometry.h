@@ -3,9 +3,9 @@
 // its analytic gradient and (by differentiating that gradient with ceres::Jet)
 // its Hessian.
 //
-// Conventions (shells.md): triangle (X_i, X_j, X_k), E_1 = X_j - X_i,
-// E_2 = X_k - X_i. All gradients are returned per vertex in the order
-// (i, j, k) or, for an edge flap, (i, j, k, l) as 3-vectors.
+// Conventions (docs/math.md, "Membrane energy"): triangle (X_i, X_j, X_k),
+// E_1 = X_j - X_i, E_2 = X_k - X_i. All gradients are returned per vertex in
+// the order (i, j, k) or, for an edge flap, (i, j, k, l) as 3-vectors.
 #ifndef SHELLSPACE_GEOMETRY_ELEMENT_GEOMETRY_H_
 #define SHELLSPACE_GEOMETRY_ELEMENT_GEOMETRY_H_
 

@@ -1,4 +1,4 @@
-// A triangle mesh with fixed connectivity: the "discrete shell" of shells.md.
+// A triangle mesh with fixed connectivity: a "shell" of docs/math.md.
 #ifndef SHELLSPACE_GEOMETRY_MESH_H_
 #define SHELLSPACE_GEOMETRY_MESH_H_
 

@@ -1,7 +1,7 @@
-// The per-face second fundamental form H_T from mid-edge normals
-// (shape_operator.md), written once as a template over the scalar type (as
-// geometry/element_geometry.h) so the same stencil gives the value, its
-// analytic gradient and, through ceres::Jet, second derivatives.
+// The per-face second fundamental form H_T from mid-edge normals (docs/math.md,
+// "Bending energy: two models"), written once as a template over the scalar
+// type (as geometry/element_geometry.h) so the same stencil gives the value,
+// its analytic gradient and, through ceres::Jet, second derivatives.
 //
 // Face T = (X_0, X_1, X_2) counter-clockwise with unit normal N, edge basis
 // E_1 = X_1 - X_0, E_2 = X_2 - X_0. Edge i is opposite X_i (it joins X_{i+1}

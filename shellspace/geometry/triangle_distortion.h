@@ -8,9 +8,9 @@
 
 namespace shellspace {
 
-// For reference edges Eb1, Eb2 and deformed edges E1, E2 (shells.md) let
-// gbar = L L^T be the Cholesky factorisation of the reference first
-// fundamental form, L = [[l11, 0], [l21, l22]], i.e.
+// For reference edges Eb1, Eb2 and deformed edges E1, E2 (docs/math.md,
+// "Membrane energy") let gbar = L L^T be the Cholesky factorisation of the
+// reference first fundamental form, L = [[l11, 0], [l21, l22]], i.e.
 //   l11 = |Eb1|,  rho = l21/l11 = Eb1.Eb2/|Eb1|^2,  l22 = |Eb2 - rho Eb1|,
 // and the reference area abar = l11 l22 / 2. The deformation gradient in the
 // reference frame has columns F1 = E1/l11, F2 = (E2 - rho E1)/l22, and

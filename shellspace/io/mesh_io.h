@@ -12,7 +12,7 @@ namespace shellspace {
 
 // Reads a triangle mesh with double-precision coordinates (every printed
 // digit kept: a single-precision intermediate would change energies in the
-// 6th digit, calculus.md). The format follows the extension: .ply (ascii,
+// 6th digit). The format follows the extension: .ply (ascii,
 // binary_little_endian, binary_big_endian; a vertex element with x, y, z and
 // a face element with a vertex_indices list, other elements and properties
 // read and ignored), .obj (v and f lines; vt, vn, vp, g, o, s, usemtl, mtllib

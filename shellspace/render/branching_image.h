@@ -1,9 +1,9 @@
-// Pictures of the Kohn–Müller branching problem (spec branching.md): the
-// slope u_y of a sharp self-similar construction and of a relaxed
-// (diffuse-interface) field. x runs to the right (the austenite at x = 0 is
-// the left edge), y upward; u_y = +1 orange, -1 blue. The *Figure functions
-// frame these pictures with axes and a legend (plot_axes.h) for the files
-// the CLI writes.
+// Pictures of the branching problem (docs/math.md, "Branching: the Kohn–Müller
+// model"): the slope u_y of a sharp self-similar construction and of a relaxed
+// (diffuse-interface) field. x runs to the right (the austenite at x = 0 is the
+// left edge), y upward; u_y = +1 orange, -1 blue. The *Figure functions frame
+// these pictures with axes and a legend (plot_axes.h) for the files the CLI
+// writes.
 #ifndef SHELLSPACE_RENDER_BRANCHING_IMAGE_H_
 #define SHELLSPACE_RENDER_BRANCHING_IMAGE_H_
 

@@ -1,5 +1,5 @@
 // Removing the 6 rigid-motion degrees of freedom of a free shell without
-// dense rows (shells.md, "Rigid-motion gauge").
+// dense rows (docs/math.md, "Derivatives and the rigid-motion gauge").
 #ifndef SHELLSPACE_SOLVERS_RIGID_GAUGE_H_
 #define SHELLSPACE_SOLVERS_RIGID_GAUGE_H_
 

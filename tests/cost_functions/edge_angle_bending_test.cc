@@ -1,12 +1,12 @@
-// The edge-angle variant of the shape-operator bending energy
-// (shape_operator.md; geometry/edge_angle_second_form.h,
-// cost_functions/edge_angle_bending_cost_function.h, edge_angle_bending.h):
-// at phi = 0 it is the plain shape-operator energy of the element set; the
-// cost function's Jacobian against GradientChecker with a negative twin; the
-// fitted angles are a stationary point (central differences of the total,
-// independent of Ceres) and a minimum; zero at rest and rigid invariance;
-// and on jittered icospheres the curvature functional converges at second
-// order where the plain model does not converge (meshes generated here).
+// The edge-angle variant of the shape-operator bending energy (docs/math.md,
+// "Bending energy: two models"; geometry/edge_angle_second_form.h,
+// cost_functions/edge_angle_bending_cost_function.h, edge_angle_bending.h): at
+// phi = 0 it is the plain shape-operator energy of the element set; the cost
+// function's Jacobian against GradientChecker with a negative twin; the fitted
+// angles are a stationary point (central differences of the total, independent
+// of Ceres) and a minimum; zero at rest and rigid invariance; and on jittered
+// icospheres the curvature functional converges at second order where the plain
+// model does not converge (meshes generated here).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -196,10 +196,10 @@ TEST(EdgeAngleBendingTest, ZeroAtRestAndInvariantUnderRigidMotions) {
 }
 
 TEST(EdgeAngleBendingTest, JitteredIcosphereConvergesAtSecondOrder) {
-  // shape_operator.md: jittered by 0.3 h and projected back, the plain
-  // mid-edge form stays ~7.6 % off, the fitted angles give 1.0069, 1.0017,
-  // 1.00044, 1.00011 (second order; our jitter's seed differs from the
-  // spec's, so the values are compared loosely and the rate strictly).
+  // docs/math.md, "Bending energy: two models": jittered by 0.3 h and projected
+  // back, the plain mid-edge form stays ~7.6 % off, the fitted angles give
+  // 1.0069, 1.0017, 1.00044, 1.00011 (second order, for another jitter seed
+  // than ours, so the values are compared loosely and the rate strictly).
   double error[3];
   for (int level = 2; level <= 4; ++level) {
     Mesh sphere = MakeIcosphere(level);

@@ -299,12 +299,12 @@ Eigen::MatrixXd ResidualJacobian(const E& element, const Sample<kV>& s,
   return j;
 }
 
-// HessianModel::kGaussNewton: every block is weight J_X^T J_active with J
-// the residual Jacobian (here by central differences of the residuals), the
-// model is positive semidefinite, and at rest (deformed = reference, r = 0)
-// it is the exact Hessian (shells.md). Its twin: away from rest the exact
-// blocks differ from J^T J by more than the same helper's bound, so the rest
-// comparison can fail.
+// HessianModel::kGaussNewton: every block is weight J_X^T J_active with J the
+// residual Jacobian (here by central differences of the residuals), the model
+// is positive semidefinite, and at rest (deformed = reference, r = 0) it is the
+// exact Hessian (docs/math.md, "Membrane energy"). Its twin: away from rest the
+// exact blocks differ from J^T J by more than the same helper's bound, so the
+// rest comparison can fail.
 TEST_P(ElementHessianTest, GaussNewtonModelIsJTransposeJ) {
   double worst_fd = 0, worst_rest = 0, most_negative = 0, largest_gap = 0;
   int elements = 0;

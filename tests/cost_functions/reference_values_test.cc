@@ -1,4 +1,4 @@
-// The reference values of ../shared/spec/reference_values.md, through both the
+// Reference values of W (docs/math.md, "Deformation energy"), through both the
 // direct energy formula and the residual form 1/2 sum r^2.
 #include <ceres/problem.h>
 #include <gtest/gtest.h>

@@ -1,10 +1,10 @@
-// The shape-operator bending model (shape_operator.md,
+// The shape-operator bending model (docs/math.md, "Bending energy: two models";
 // cost_functions/shell/shape_operator_element.h): residuals against an
 // independent implementation of the formula (the intrinsic S_T conormal form
 // with atan2 dihedral angles), rest and rigid invariance, Jacobians (ceres
 // GradientChecker) and Hessians (central differences) each with a negative
-// twin, and the convergence of the curvature functional on icospheres and
-// of the flat-sheet-to-cylinder energy (meshes generated here).
+// twin, and the convergence of the curvature functional on icospheres and of
+// the flat-sheet-to-cylinder energy (meshes generated here).
 #include <gtest/gtest.h>
 
 #include <ceres/problem.h>
@@ -471,7 +471,7 @@ TEST(ShapeOperatorTest, AssembledGradientAndHessianOfW) {
 }
 
 // ---------------------------------------------------------------------------
-// Convergence (shape_operator.md, "What a correct implementation shows").
+// Convergence (docs/math.md, "Bending energy: two models").
 
 // sum_T a_T tr(B_T^2) and sum_T a_T (tr B_T)^2 of one shape, B_T = G^-1 H,
 // H from the library's mid-edge second form (through the element set's

@@ -58,8 +58,8 @@ std::vector<std::string> DirectoryListing(const std::string& dir);
 int RunCli(const std::string& args, std::string* out = nullptr,
            std::string* err = nullptr);
 
-// The shape-operator material with bending weight eta and weights alpha,
-// beta (shape_operator.md).
+// The shape-operator material with bending weight eta and weights alpha, beta
+// (docs/math.md, "Bending energy: two models").
 ShellMaterial ShapeOperatorMaterial(double eta, double alpha = 0,
                                     double beta = 1);
 

@@ -47,8 +47,8 @@ std::vector<std::string> Listing(const std::string& dir) {
   return testing::DirectoryListing(dir);
 }
 
-// W_m(s^2 I) of shells.md with mu = lambda = 1: the membrane energy density
-// of a flat triangle scaled by s.
+// W_m(s^2 I) (docs/math.md, "Membrane energy") with mu = lambda = 1: the
+// membrane energy density of a flat triangle scaled by s.
 double ScaledDensity(double s) {
   const double mu = 1, lambda = 1;
   const double tr = 2 * s * s, det = s * s * s * s;

@@ -1,6 +1,6 @@
-// `shellspace branching simulate|construct [flags]`: the Kohn–Müller branching
-// problem (spec branching.md). Each sub-command is a verb of its own
-// ("branching simulate", "branching construct") with its own flags.
+// `shellspace branching simulate|construct [flags]`: the branching problem
+// (docs/math.md, "Branching: the Kohn–Müller model"). Each sub-command is a
+// verb ("branching simulate", "branching construct") with its own flags.
 //
 //   simulate  — relaxed diffuse-interface simulation on a graded grid (sparse
 //               LM, continuation in delta); writes DIR/u.csv, DIR/uy.png,

@@ -32,9 +32,9 @@ FlagTable EnergyMaterialFlags() {
       spec.meaning =
           "bending model: discrete-shells (default), shape-operator, "
           "shape-operator-edge-angles (the shape operator with one angle per "
-          "interior edge fitted to each shell, shape_operator.md; energy "
-          "only), or both (W_bend of all three reported; total and membrane "
-          "from discrete-shells)";
+          "interior edge fitted to each shell, docs/math.md, \"Bending "
+          "energy: two models\"; energy only), or both (W_bend of all three "
+          "reported; total and membrane from discrete-shells)";
     }
   }
   return table;

@@ -1,6 +1,6 @@
 // `shellspace mean` and `shellspace pca`: the elastic mean of a set of shells,
 // shell PCA at that mean (modes shot by EXP_K), the Procrustes PCA baseline,
-// and the leave-one-out comparison of the two (calculus.md, "Elastic mean and
+// and the leave-one-out comparison of the two (docs/math.md, "Elastic mean and
 // shell PCA").
 #include <gflags/gflags.h>
 

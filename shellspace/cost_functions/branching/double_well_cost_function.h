@@ -1,5 +1,5 @@
-// Double-well part of the Modica–Mortola term of the relaxed Kohn–Müller
-// functional (spec branching.md): one residual per y-edge of the grid.
+// Double-well part of the Modica–Mortola term of the relaxed functional
+// (docs/math.md, "Branching: the Kohn–Müller model"): one residual per y-edge.
 #ifndef SHELLSPACE_COST_FUNCTIONS_BRANCHING_DOUBLE_WELL_COST_FUNCTION_H_
 #define SHELLSPACE_COST_FUNCTIONS_BRANCHING_DOUBLE_WELL_COST_FUNCTION_H_
 

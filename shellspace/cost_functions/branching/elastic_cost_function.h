@@ -1,5 +1,5 @@
-// Elastic term of the relaxed Kohn–Müller functional (spec branching.md,
-// "Relaxed (diffuse-interface) model"): one residual per x-edge of the grid.
+// Elastic term of the relaxed functional (docs/math.md, "Branching: the
+// Kohn–Müller model", relaxed model): one residual per x-edge of the grid.
 #ifndef SHELLSPACE_COST_FUNCTIONS_BRANCHING_ELASTIC_COST_FUNCTION_H_
 #define SHELLSPACE_COST_FUNCTIONS_BRANCHING_ELASTIC_COST_FUNCTION_H_
 

@@ -1,9 +1,9 @@
-// The general reduced sharp-interface cell (thesis §8.2; spec branching.md,
-// "Self-similar constructions" and the last practical note): a super-cell of
-// n_c lamella pairs whose interfaces are piecewise linear in s, with needle
+// The general reduced sharp-interface cell (thesis §8.2; docs/math.md,
+// "Branching: the Kohn–Müller model", self-similar constructions): a super-cell
+// of n_c lamella pairs whose interfaces are piecewise linear in s, with needle
 // nucleation events, refined by r across the cell and closed self-similarly.
-// Its energy coefficient product A B^2 as a Ceres cost function whose
-// Jacobian comes from forward-mode automatic differentiation (ceres::Jet).
+// Its energy coefficient product A B^2 as a Ceres cost function whose Jacobian
+// comes from forward-mode automatic differentiation (ceres::Jet).
 //
 // Coordinates: s in [0, 1] from the coarse end (s = 0) to the fine end, eta
 // in units of the super-period P (one cell = n_c lamella pairs at s = 0 and

@@ -1,5 +1,5 @@
-// Gradient (u_yy) part of the Modica–Mortola term of the relaxed Kohn–Müller
-// functional (spec branching.md): one residual per grid node.
+// The u_yy part of the Modica–Mortola term of the relaxed functional
+// (docs/math.md, "Branching: the Kohn–Müller model"): one residual per node.
 #ifndef SHELLSPACE_COST_FUNCTIONS_BRANCHING_GRADIENT_COST_FUNCTION_H_
 #define SHELLSPACE_COST_FUNCTIONS_BRANCHING_GRADIENT_COST_FUNCTION_H_
 

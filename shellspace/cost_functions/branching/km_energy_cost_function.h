@@ -1,5 +1,5 @@
-// Energy of the self-similar Kohn–Müller construction as a function of its
-// parameters (h0, theta), as two squared residuals (spec branching.md).
+// Energy of the self-similar Kohn–Müller construction over (h0, theta) as two
+// squared residuals (docs/math.md, "Branching: the Kohn–Müller model").
 #ifndef SHELLSPACE_COST_FUNCTIONS_BRANCHING_KM_ENERGY_COST_FUNCTION_H_
 #define SHELLSPACE_COST_FUNCTIONS_BRANCHING_KM_ENERGY_COST_FUNCTION_H_
 

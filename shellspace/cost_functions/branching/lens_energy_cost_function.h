@@ -1,6 +1,6 @@
-// Energy of the self-similar lens construction as a function of its
-// parameters (h0, theta, tau, a1, a2), as squared residuals (spec
-// branching.md; cell geometry in models/branching/lens_family.h).
+// Energy of the self-similar lens construction as a function of its parameters
+// (h0, theta, tau, a1, a2), as squared residuals (docs/math.md, "Branching: the
+// Kohn–Müller model"; cell geometry in models/branching/lens_family.h).
 #ifndef SHELLSPACE_COST_FUNCTIONS_BRANCHING_LENS_ENERGY_COST_FUNCTION_H_
 #define SHELLSPACE_COST_FUNCTIONS_BRANCHING_LENS_ENERGY_COST_FUNCTION_H_
 

@@ -15,12 +15,12 @@ namespace shellspace {
 // For the flap (i, j, k, l) of geometry/topology.h:
 //   r = sqrt(2 eta wbar) (theta - thetabar),  wbar = 3 |Ebar|^2 / (abar_0 +
 //   abar_1),
-// so 1/2 r^2 = eta (theta - thetabar)^2 |Ebar|^2 / dbar_E (shells.md). theta
-// is the signed dihedral angle (geometry/element_geometry.h), in (-pi, pi];
-// theta - thetabar is taken in [-pi, pi) (DihedralAngleChange), so a flap
-// folded to nearly +-pi has a smooth energy across the branch cut. Jacobians are
-// 1 x 12, columns (i, j, k, l) x (x, y, z). An element type of the element
-// set (element_set.h): stencil (i, j, k, l), weight eta (= this eta).
+// so 1/2 r^2 = eta (theta - thetabar)^2 |Ebar|^2 / dbar_E (docs/math.md,
+// "Bending energy: two models"). theta is the signed dihedral angle
+// (geometry/element_geometry.h), in (-pi, pi]; theta - thetabar is taken in
+// [-pi, pi) (DihedralAngleChange), smooth across the branch cut for a flap
+// folded to nearly +-pi. Jacobians: 1 x 12, columns (i, j, k, l) x (x, y, z).
+// Element type of element_set.h: stencil (i, j, k, l), weight eta (= this eta).
 struct BendingElement {
   static constexpr int kNumVertices = 4;
   static constexpr int kNumResiduals = 1;

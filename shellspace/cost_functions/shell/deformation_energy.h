@@ -1,6 +1,6 @@
 // Direct evaluation of the deformation energy W[Sbar, S] = W_mem + eta W_bend
-// (shells.md) over the element set of a ShellSpace, from each element's
-// closed-form energy (independent of the residual form).
+// (docs/math.md, "Deformation energy") over the element set of a ShellSpace,
+// from each element's closed-form energy (independent of the residual form).
 #ifndef SHELLSPACE_COST_FUNCTIONS_SHELL_DEFORMATION_ENERGY_H_
 #define SHELLSPACE_COST_FUNCTIONS_SHELL_DEFORMATION_ENERGY_H_
 

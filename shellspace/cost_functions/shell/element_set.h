@@ -1,7 +1,7 @@
-// The element set of W[Sbar, S] (shells.md): the explicit list of the energy
-// terms of W on one connectivity -- for each term its element type, its
-// stencils (the vertex lists of its elements) and its weight -- in ONE
-// enumeration order, built once per ShellSpace (ShellSpace::elements()).
+// The element set of W[Sbar, S] (docs/math.md, "Deformation energy"): the
+// explicit list of the energy terms of W on one connectivity -- per term its
+// element type, stencils (the vertex lists of its elements) and weight -- in
+// ONE enumeration order, built once per ShellSpace (ShellSpace::elements()).
 // Every evaluation over a mesh iterates it: the energy value and its
 // derivatives (shell/deformation_energy.h, shell/energy_derivatives.h), the
 // Ceres residuals (deformation_energy_residuals.h), the EXP residual cache
@@ -45,9 +45,9 @@
 // and the evaluators are templates over it (ElementSecondDerivatives,
 // ElementCostFunction, ...): no evaluator names an element type.
 //
-// Recipe: adding a bending model (e.g. the discrete shape operator of
-// shape_operator.md, 3 residuals per face, stencil = the face and the
-// opposite vertices of its interior edges: up to 6 vertices)
+// Recipe: adding a bending model (e.g. the shape operator of docs/math.md,
+// "Bending energy: two models", 3 residuals per face, stencil = the face and
+// the opposite vertices of its interior edges: up to 6 vertices)
 //   1. write its element class (cost_functions/shell/<model>_element.h) with
 //      the interface above, with its own FD Jacobian test and negative twin,
 //      and SHELLSPACE_ELEMENT_HESSIAN_TEMPLATES(extern template, E) after it,

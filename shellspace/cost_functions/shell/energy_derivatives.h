@@ -1,7 +1,7 @@
-// Assembled first and second derivatives of W[Sbar, S] (shells.md,
-// calculus.md): D_1 W, D_2 W, D_1^2 W, D_2^2 W and the mixed D_1 D_2 W, as
+// First and second derivatives of W[Sbar, S] (docs/math.md, "Derivatives and
+// the rigid-motion gauge"): D_1 W, D_2 W, D_1^2 W, D_2^2 W and D_1 D_2 W as
 // Eigen vectors and sparse matrices over the 3 n coordinates (vertex-major:
-// index 3 v + c), summed over the element set of the space (element_set.h).
+// index 3 v + c), assembled over the element set of the space (element_set.h).
 // Each function throws InputError naming the element if one is degenerate;
 // its Try twin returns false instead (*failure, if given, names the first
 // degenerate element of the enumeration; the output is unspecified): the

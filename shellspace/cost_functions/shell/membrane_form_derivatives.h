@@ -11,12 +11,12 @@
 namespace shellspace {
 
 // With p = (gbar11, gbar12, gbar22) the reference and q = (g11, g12, g22) the
-// deformed first fundamental form (shells.md, geometry/element_geometry.h),
+// deformed first fundamental form (geometry/element_geometry.h),
 //   Dbar = det gbar = 1/2 p^T M p,  D = det g = 1/2 q^T M q,
 //   A = p^T M q = Dbar tr(gbar^-1 g),   M = [[0, 0, 1], [0, -2, 0], [1, 0, 0]],
-// the membrane term abar W_m(gbar^-1 g) of shells.md is, with s = sqrt(Dbar)
-// (abar = s / 2), L = log(D / Dbar), c1 = mu/2 + lambda/4, c0 = mu +
-// lambda/4:
+// the membrane term abar W_m(gbar^-1 g) (docs/math.md, "Membrane energy") is,
+// with s = sqrt(Dbar) (abar = s / 2), L = log(D / Dbar), c1 = mu/2 +
+// lambda/4, c0 = mu + lambda/4:
 //   F(p, q) = mu A / (4 s) + lambda D / (8 s) - c1 s L / 2 - c0 s / 2.
 // F is linear in A, so with P = M p = dDbar/dp = dA/dq and Q = M q = dD/dq =
 // dA/dp:

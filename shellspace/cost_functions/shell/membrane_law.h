@@ -1,4 +1,4 @@
-// The hyperelastic membrane material law of shells.md as four smooth residuals.
+// The membrane law of docs/math.md, "Membrane energy", as 4 smooth residuals.
 #ifndef SHELLSPACE_COST_FUNCTIONS_SHELL_MEMBRANE_LAW_H_
 #define SHELLSPACE_COST_FUNCTIONS_SHELL_MEMBRANE_LAW_H_
 
@@ -37,8 +37,8 @@ void SignedSqrtDivergence(const T& x, T* psi, T* dpsi) {
 }
 
 // Membrane law W_m(G) = mu/2 tr G + lambda/4 det G - (mu/2 + lambda/4) log
-// det G - mu - lambda/4 per unit reference area, written (shells.md) with
-// t = a + c, d = a c - b^2 = det G as
+// det G - mu - lambda/4 per unit reference area, written (docs/math.md,
+// "Membrane energy") with t = a + c, d = a c - b^2 = det G as
 //   abar W_m = 1/2 (r0^2 + r1^2 + r2^2 + r3^2),
 //   r0 = w (a - c),  r1 = 2 w b,  w = sqrt(mu abar / (t + 2 sqrt d)),
 //   r2 = sqrt(2 mu abar) psi(sqrt d),  r3 = sqrt(lambda abar / 2) psi(d).

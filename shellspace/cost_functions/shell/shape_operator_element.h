@@ -1,5 +1,5 @@
-// One face's bending residuals of the discrete shape operator
-// (shape_operator.md) with Jacobians w.r.t. reference and deformed vertices.
+// One face's bending residuals of the discrete shape operator (docs/math.md,
+// "Bending energy: two models"), Jacobians w.r.t. both shells' vertices.
 #ifndef SHELLSPACE_COST_FUNCTIONS_SHELL_SHAPE_OPERATOR_ELEMENT_H_
 #define SHELLSPACE_COST_FUNCTIONS_SHELL_SHAPE_OPERATOR_ELEMENT_H_
 
@@ -13,10 +13,10 @@
 
 namespace shellspace {
 
-// The shape-operator bending term of one face T (shape_operator.md):
-//   e_T = abar ( alpha (tr M)^2 + beta tr(M^2) ),  M = Gbar^-1 (H - Hbar),
-// H, Hbar the mid-edge second fundamental forms of the deformed and the
-// reference face (geometry/mid_edge_second_form.h), Gbar, abar the first
+// The shape-operator bending term of one face T (docs/math.md, "Bending
+// energy: two models"): e_T = abar (alpha (tr M)^2 + beta tr(M^2)) with
+// M = Gbar^-1 (H - Hbar), H, Hbar the mid-edge second forms of the deformed
+// and reference face (geometry/mid_edge_second_form.h), Gbar, abar the first
 // fundamental form and area of the reference face. Residuals: with Gbar =
 // L L^T (Cholesky) and K = L^-1 (H - Hbar) L^-T = [[k11, k12], [k12, k22]],
 //   r = sqrt(eta) ( sqrt(2 abar (alpha + beta/2)) (k11 + k22),

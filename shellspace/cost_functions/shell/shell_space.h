@@ -1,7 +1,7 @@
 // The space of shells of one connectivity and the material of W[Sbar, S] =
-// W_mem + eta W_bend (shells.md): ShellMaterial (membrane law weights, bending
-// weight, bending model) and ShellSpace (faces, topology, material and the
-// element set of W built from them).
+// W_mem + eta W_bend (docs/math.md, "Deformation energy"): ShellMaterial
+// (membrane law weights, bending weight, bending model) and ShellSpace (faces,
+// topology, material and the element set of W built from them).
 #ifndef SHELLSPACE_COST_FUNCTIONS_SHELL_SHELL_SPACE_H_
 #define SHELLSPACE_COST_FUNCTIONS_SHELL_SHELL_SPACE_H_
 
@@ -16,12 +16,12 @@
 
 namespace shellspace {
 
-// The discretisation of W_bend, an axis independent of the membrane law:
+// The discretisation of W_bend (docs/math.md, "Bending energy: two models"),
+// an axis independent of the membrane law:
 //   kDiscreteShells: sum over interior edges of (theta - thetabar)^2 |Ebar|^2
-//     / dbar_E (BendingElement; shells.md).
+//     / dbar_E (BendingElement).
 //   kShapeOperator: sum over faces of abar (alpha (tr M)^2 + beta tr(M^2)),
-//     M = Gbar^-1 (H - Hbar) from mid-edge normals (ShapeOperatorElement;
-//     shape_operator.md).
+//     M = Gbar^-1 (H - Hbar) from mid-edge normals (ShapeOperatorElement).
 enum class BendingModel { kDiscreteShells, kShapeOperator };
 
 // "discrete-shells" / "shape-operator".

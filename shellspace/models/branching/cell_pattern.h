@@ -4,8 +4,8 @@
 // families (km_family.h) and the general search stay in problems/branching/.
 //
 // One cell of a self-similar branching construction in the sharp-interface
-// Kohn–Müller model (spec branching.md, "Self-similar constructions"), and the
-// exact evaluation of its energy coefficients A (elastic) and B (interfacial).
+// model (docs/math.md, "Branching: the Kohn–Müller model"), and the exact
+// evaluation of its energy coefficients A (elastic) and B (interfacial).
 #ifndef SHELLSPACE_MODELS_BRANCHING_CELL_PATTERN_H_
 #define SHELLSPACE_MODELS_BRANCHING_CELL_PATTERN_H_
 

@@ -1,6 +1,6 @@
-// The lens branching cell (spec branching.md, "Lens family"): in the middle of
-// EACH existing lamella a lamella of the other variant nucleates as a needle
-// whose tip sits inside the cell; each lamella becomes three, so r = 3.
+// The lens cell (docs/math.md, "Branching: the Kohn–Müller model"): in the
+// middle of EACH existing lamella a lamella of the other variant nucleates as a
+// needle whose tip sits inside the cell; each lamella becomes three, so r = 3.
 //
 // Cell (units: period h; coordinates s, eta of cell_pattern.h). Coarse end:
 // -1 on [0, 1/4), +1 on [1/4, 3/4), -1 on [3/4, 1); the two old interfaces

@@ -1,5 +1,5 @@
-// The grid of the relaxed (diffuse-interface) Kohn–Müller simulation and the
-// nodal field u on it (spec branching.md, "Relaxed model").
+// The grid of the relaxed (diffuse-interface) simulation and the nodal field u
+// on it (docs/math.md, "Branching: the Kohn–Müller model", relaxed model).
 #ifndef SHELLSPACE_MODELS_BRANCHING_RELAXED_GRID_H_
 #define SHELLSPACE_MODELS_BRANCHING_RELAXED_GRID_H_
 

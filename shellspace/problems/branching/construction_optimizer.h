@@ -1,8 +1,8 @@
-// Evaluating and optimising the KM (psi-junction), needle (T2) and lens constructions (spec
-// branching.md): energies from the generic cell evaluator (cell_pattern.h)
-// plus the generation series (self_similar_series.h); optimisation of
-// (h0, theta[, tau, a1, a2]) by Levenberg–Marquardt on the analytic cost
-// functions KmEnergyCostFunction / LensEnergyCostFunction.
+// Evaluating and optimising the KM (psi-junction), needle (T2) and lens
+// constructions (docs/math.md, "Branching: the Kohn–Müller model"): energies
+// from the generic cell evaluator (cell_pattern.h) plus the generation series
+// (self_similar_series.h); optimisation of (h0, theta[, tau, a1, a2]) by
+// Levenberg–Marquardt on KmEnergyCostFunction / LensEnergyCostFunction.
 #ifndef SHELLSPACE_PROBLEMS_BRANCHING_CONSTRUCTION_OPTIMIZER_H_
 #define SHELLSPACE_PROBLEMS_BRANCHING_CONSTRUCTION_OPTIMIZER_H_
 

@@ -1,5 +1,5 @@
-// Initial fields for the relaxed simulation (spec branching.md, "Practical
-// notes": never start from u = 0; smooth the transitions to the width delta).
+// Initial fields of the relaxed simulation (docs/math.md, "Branching: the
+// Kohn–Müller model"): never u = 0; transitions smoothed to the width delta.
 //
 // Every initialisation prescribes a smoothed slope field
 //   u_y(x, y) = v(x, y) tanh(d(x, y) / delta),

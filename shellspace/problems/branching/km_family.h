@@ -1,6 +1,6 @@
-// The two r = 2 cells with straight interfaces (spec branching.md, "KM
-// family"): the Kohn–Müller psi-junction cell ("km") and the needle cell
-// ("needle", the T2 topology that the code formerly called km).
+// The two r = 2 cells with straight interfaces (docs/math.md, "Branching: the
+// Kohn–Müller model"): the Kohn–Müller psi-junction cell ("km") and the needle
+// cell ("needle", the T2 topology that the code formerly called km).
 // Units: period h; coordinates s, eta of cell_pattern.h. Both start from the
 // laminate -1 on [0, 1/4), +1 on [1/4, 3/4), -1 on [3/4, 1) and end (s = 1)
 // in the laminate of period 1/2.

@@ -1,6 +1,6 @@
-// The relaxed Kohn–Müller functional on a RelaxedGrid as a Ceres least-squares
-// problem, its energy split, and the sparse Levenberg–Marquardt solve with a
-// continuation in the interface width delta (spec branching.md).
+// The relaxed functional on a RelaxedGrid as a Ceres least-squares problem, its
+// energy split, and the sparse LM solve with continuation in the interface
+// width delta (docs/math.md, "Branching: the Kohn–Müller model").
 //
 //   E_delta[u] = (1/H) \int u_x^2 + (3 eps / 4) (delta u_yy^2
 //                + (1 - u_y^2)^2 / delta) dx dy      (energy per unit height)

@@ -1,5 +1,5 @@
-// The scaling law from the relaxed simulation (spec branching.md, "What to
-// measure"): minimal energy per unit height for a ladder of eps, and the fit
+// The scaling law from the relaxed simulation (docs/math.md, "Branching: the
+// Kohn–Müller model"): minimal energy per unit height over eps, and the fit
 //   log E = p log eps + log(C L^(1/3))      (expect p = 2/3).
 //
 // Grid / width rule (documented choice): L and H fixed for the whole ladder;

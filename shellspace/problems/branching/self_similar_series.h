@@ -1,7 +1,7 @@
-// Summing the generations of a self-similar construction (spec branching.md):
-// generation k has period h_k = h0 r^-k and x-length l_k = l0 theta^k,
-// l0 = L (1 - theta) so that sum l_k = L. With a cell costing
-// A h^2 / l + B eps l / h per unit height,
+// Summing the generations of a self-similar construction (docs/math.md,
+// "Branching: the Kohn–Müller model"): generation k has period h_k = h0 r^-k
+// and x-length l_k = l0 theta^k, l0 = L (1 - theta) so that sum l_k = L. With a
+// cell costing A h^2 / l + B eps l / h per unit height,
 //
 //   E(h0, theta) = A h0^2 S1 / l0 + B eps l0 S2 / h0,
 //   S1 = sum (r^2 theta)^-k = r^2 theta / (r^2 theta - 1),

@@ -1,6 +1,6 @@
-// One relaxed Kohn–Müller simulation: grid + initial guess + continuation in
-// delta + measurements (spec branching.md). Used by `shellspace branching
-// simulate`, the scaling ladder, the tests and the benchmark.
+// One relaxed simulation (docs/math.md, "Branching: the Kohn–Müller model"):
+// grid, initial guess, continuation in delta, measurements. Used by
+// `shellspace branching simulate`, the scaling ladder, tests and benchmark.
 #ifndef SHELLSPACE_PROBLEMS_BRANCHING_SIMULATION_H_
 #define SHELLSPACE_PROBLEMS_BRANCHING_SIMULATION_H_
 

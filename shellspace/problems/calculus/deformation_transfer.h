@@ -1,5 +1,5 @@
 // Prolongation of a coarse deformation to the fine mesh by deformation
-// transfer (calculus.md, "Multiresolution").
+// transfer (docs/math.md, "Multiresolution").
 #ifndef SHELLSPACE_PROBLEMS_CALCULUS_DEFORMATION_TRANSFER_H_
 #define SHELLSPACE_PROBLEMS_CALCULUS_DEFORMATION_TRANSFER_H_
 

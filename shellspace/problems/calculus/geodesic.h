@@ -1,6 +1,6 @@
-// Discrete geodesics (calculus.md): geodesic interpolation minimising the path
-// energy E_K = K sum_k W[s_{k-1}, s_k], the weighted 3-shape problem behind
-// midpoints and convex geodesic combinations, and evaluation of E_K.
+// Discrete geodesics (docs/math.md, "Path energy and discrete geodesics"):
+// interpolation minimising E_K = K sum_k W[s_{k-1}, s_k], the weighted 3-shape
+// problem behind midpoints and convex geodesic combinations, evaluating E_K.
 #ifndef SHELLSPACE_PROBLEMS_CALCULUS_GEODESIC_H_
 #define SHELLSPACE_PROBLEMS_CALCULUS_GEODESIC_H_
 
@@ -255,11 +255,11 @@ inline constexpr int kRelaxationNewtonSteps = 10;
 inline constexpr int kNewtonStallSteps = 8;
 
 // A discrete geodesic has (nearly) equal step energies W[s_{k-1}, s_k]
-// (calculus.md: E_K = K sum_k W is minimal among paths of equal length at
-// constant speed). A result whose largest step energy exceeds this factor
-// times the smallest is flagged (GeodesicResult::uneven_steps): a local
-// minimiser passing through a fold or a mirrored shape, or a path far from
-// converged.
+// (docs/math.md, "Path energy and discrete geodesics": E_K = K sum_k W is
+// minimal among paths of equal length at constant speed). A result whose
+// largest step energy exceeds this factor times the smallest is flagged
+// (GeodesicResult::uneven_steps): a local minimiser passing through a fold or a
+// mirrored shape, or a path far from converged.
 inline constexpr double kUnevenStepEnergyRatio = 2.0;
 
 // A triangle of an inner shape whose area is below this fraction of its area
@@ -320,10 +320,10 @@ struct GeodesicResult {
   // The absolute gradient target gradient_tolerance * max(1, g_0).
   double gradient_target = 0;
   // The stopping criterion was met: final_gradient <= gradient_target (the
-  // relative gradient criterion of calculus.md). Ceres' function- or
-  // parameter-tolerance convergence of an LM stage does not count: LM stops
-  // there on a cost that no longer decreases, not at a geodesic. True for
-  // K = 1 (no unknowns).
+  // relative gradient criterion; docs/math.md, "Path energy and discrete
+  // geodesics"). Ceres' function- or parameter-tolerance convergence of an LM
+  // stage does not count: LM stops there on a cost that no longer decreases,
+  // not at a geodesic. True for K = 1 (no unknowns).
   bool converged = false;
   // max / min of step_energies and whether it exceeds
   // kUnevenStepEnergyRatio.

@@ -1,7 +1,7 @@
-// The initial path of a geodesic solve (calculus.md, "Initial paths";
-// thesis §6.3.1-6.3.2): the linear interpolation of the end shapes with the
-// rigid motion between them removed, or, where that path passes through
-// collapsed or turned-over triangles, the LΘA path -- shells whose edge
+// The initial path of a geodesic solve (docs/math.md, "Path energy and discrete
+// geodesics"; thesis §6.3.1-6.3.2): the linear interpolation of the end shapes
+// with the rigid motion between them removed, or, where that path passes
+// through collapsed or turned-over triangles, the LΘA path -- shells whose edge
 // lengths, areas and dihedral angles interpolate those of the ends.
 #ifndef SHELLSPACE_PROBLEMS_CALCULUS_GEODESIC_INITIAL_PATH_H_
 #define SHELLSPACE_PROBLEMS_CALCULUS_GEODESIC_INITIAL_PATH_H_

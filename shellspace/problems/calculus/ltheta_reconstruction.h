@@ -1,8 +1,8 @@
-// The LΘA coordinates of a shell (calculus.md, "LΘA approximation"): edge
+// The LΘA coordinates of a shell (docs/math.md, "Riemannian splines"): edge
 // lengths, triangle areas and dihedral angles, and the reconstruction of a
 // shell from prescribed values by a sum of squares. Used by the LΘA spline
-// (problems/splines/ltheta_spline.h) and by the LΘA initial path of a
-// geodesic (geodesic_initial_path.h).
+// (problems/splines/ltheta_spline.h) and by the LΘA initial path of a geodesic
+// (geodesic_initial_path.h).
 #ifndef SHELLSPACE_PROBLEMS_CALCULUS_LTHETA_RECONSTRUCTION_H_
 #define SHELLSPACE_PROBLEMS_CALCULUS_LTHETA_RECONSTRUCTION_H_
 

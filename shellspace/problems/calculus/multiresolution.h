@@ -1,7 +1,7 @@
-// Multiresolution geodesic interpolation (calculus.md, "Multiresolution";
-// thesis §6.3.3): decimate the end shapes with one shared connectivity,
-// solve the geodesic on the coarse level, prolongate its inner shapes by
-// deformation transfer, finish on the fine level.
+// Multiresolution geodesic interpolation (docs/math.md, "Multiresolution";
+// thesis §6.3.3): decimate the end shapes with one shared connectivity, solve
+// the geodesic on the coarse level, prolongate its inner shapes by deformation
+// transfer, finish on the fine level.
 #ifndef SHELLSPACE_PROBLEMS_CALCULUS_MULTIRESOLUTION_H_
 #define SHELLSPACE_PROBLEMS_CALCULUS_MULTIRESOLUTION_H_
 

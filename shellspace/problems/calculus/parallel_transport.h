@@ -1,4 +1,4 @@
-// Discrete parallel transport along a path by Schild's ladder (calculus.md).
+// Parallel transport (docs/math.md, "Parallel transport (Schild's ladder)").
 #ifndef SHELLSPACE_PROBLEMS_CALCULUS_PARALLEL_TRANSPORT_H_
 #define SHELLSPACE_PROBLEMS_CALCULUS_PARALLEL_TRANSPORT_H_
 

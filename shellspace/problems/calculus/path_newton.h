@@ -1,5 +1,5 @@
-// Newton's method on the Euler-Lagrange equations of the path energy
-// (calculus.md): the finishing stage of geodesic interpolation.
+// Newton on the Euler-Lagrange equations of E_K (docs/math.md, "Path energy
+// and discrete geodesics"): the finishing stage of geodesic interpolation.
 #ifndef SHELLSPACE_PROBLEMS_CALCULUS_PATH_NEWTON_H_
 #define SHELLSPACE_PROBLEMS_CALCULUS_PATH_NEWTON_H_
 

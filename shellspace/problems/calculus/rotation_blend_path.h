@@ -17,7 +17,7 @@
 namespace shellspace {
 
 // The K + 1 = steps + 1 shapes s_0 = start, ..., s_K = end of the
-// rotation-blend path (calculus.md, "Initial paths"):
+// rotation-blend path (docs/math.md, "Path energy and discrete geodesics"):
 //  1. Without a mask, the rigid motion from end to start is removed first
 //     (RigidBlendFrame: end' = R end + c); with a mask the end is used as
 //     it is.

@@ -1,4 +1,4 @@
-// Decimation of several shells that share one connectivity (calculus.md,
+// Decimation of several shells that share one connectivity (docs/math.md,
 // "Multiresolution"): one coarse connectivity for all of them, chosen by the
 // quadric error summed over every shape.
 #ifndef SHELLSPACE_PROBLEMS_CALCULUS_SHARED_DECIMATION_H_

@@ -1,6 +1,6 @@
-// Vertex-local relaxation of the path energy E_K (calculus.md): each chosen
-// vertex of an inner shape moves alone, by damped Newton on E_K in its own
-// three coordinates, everything else held.
+// Vertex-local relaxation of the path energy E_K (docs/math.md, "Path energy
+// and discrete geodesics"): each chosen vertex of an inner shape moves alone,
+// by damped Newton on E_K in its own three coordinates, everything else held.
 //
 // Why: on a mesh with slivers (a triangle whose height is a tiny fraction
 // of its edges) or flaps nearly shut, the energy of the few elements at such

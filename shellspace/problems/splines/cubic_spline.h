@@ -1,6 +1,6 @@
-// Interpolating cubic splines of many scalar series at once (calculus.md,
-// "LΘA approximation": every edge length, area and dihedral angle is one
-// series over the keyframes).
+// Interpolating cubic splines of many scalar series at once (docs/math.md,
+// "Riemannian splines", LΘA spline: every edge length, area and dihedral angle
+// is one series over the keyframes).
 //
 // Knots t_0 < ... < t_{m-1} with values y_j. On [t_j, t_{j+1}], h_j =
 // t_{j+1} - t_j, the spline in terms of its second derivatives M_j is

@@ -1,4 +1,4 @@
-// The LΘA spline (calculus.md, "LΘA approximation"): a fast approximation of
+// The LΘA spline (docs/math.md, "Riemannian splines"): a fast approximation of
 // the time-discrete spline through keyframes, and the initial guess of the
 // nonlinear spline.
 //

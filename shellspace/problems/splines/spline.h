@@ -1,6 +1,6 @@
-// Riemannian splines through keyframes and shape regression (calculus.md):
-// the reduced spline / regression functional (problems/spline_energy.h)
-// minimised by L-BFGS (ceres::GradientProblemSolver).
+// Riemannian splines through keyframes and shape regression (docs/math.md,
+// "Riemannian splines", "Regression"): the reduced spline / regression
+// functional (problems/spline_energy.h) minimised by L-BFGS.
 #ifndef SHELLSPACE_PROBLEMS_SPLINES_SPLINE_H_
 #define SHELLSPACE_PROBLEMS_SPLINES_SPLINE_H_
 

@@ -1,5 +1,5 @@
 // The time-discrete spline energy and the regression functional as a
-// ceres::FirstOrderFunction with the adjoint gradient (calculus.md,
+// ceres::FirstOrderFunction with the adjoint gradient (docs/math.md,
 // "Riemannian splines" and "Regression").
 #ifndef SHELLSPACE_PROBLEMS_SPLINES_SPLINE_ENERGY_H_
 #define SHELLSPACE_PROBLEMS_SPLINES_SPLINE_ENERGY_H_

@@ -12,8 +12,8 @@
 namespace shellspace {
 
 // Near a shape s, W[a, b] ~ 1/2 (b - a)^T G (b - a) with the metric
-// G = D_2^2 W[s, s] (= J^T J, calculus.md), and s_k - m_k ~ -1/2 (s_{k-1} -
-// 2 s_k + s_{k+1}), so with one metric for all shapes
+// G = D_2^2 W[s, s] (= J^T J; docs/math.md, "Elastic mean and shell PCA"),
+// and s_k - m_k ~ -1/2 (s_{k-1} - 2 s_k + s_{k+1}); with one metric for all,
 //   R[s] ~ 1/2 sum_j |s_{k_j} - S_j|^2_G + sigma 1/2 K^3 sum_k |D_k s|^2_G,
 // whose Hessian over the free shapes is the Kronecker product A (x) G,
 //   A = E + sigma K^3 D^T D   (restricted to the free shapes),

@@ -1,4 +1,4 @@
-// The elastic (Frechet-type) mean of shells (calculus.md, "Elastic mean and
+// The elastic (Frechet-type) mean of shells (docs/math.md, "Elastic mean and
 // shell PCA"): s_bar = argmin_s sum_i W[S_i, s], the inputs as references.
 #ifndef SHELLSPACE_PROBLEMS_STATISTICS_ELASTIC_MEAN_H_
 #define SHELLSPACE_PROBLEMS_STATISTICS_ELASTIC_MEAN_H_

@@ -1,4 +1,4 @@
-// Leave-one-out evaluation of shell PCA against Procrustes PCA (calculus.md,
+// Leave-one-out evaluation of shell PCA against Procrustes PCA (docs/math.md,
 // "Elastic mean and shell PCA"): for each held-out shape S_h, build
 // both models from the other shapes and reconstruct S_h from their first m
 // modes.

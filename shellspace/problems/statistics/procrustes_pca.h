@@ -1,6 +1,6 @@
-// The Procrustes PCA baseline of shell PCA (calculus.md): rigidly align the
-// shapes (generalised Procrustes, no scaling), then Euclidean PCA on the
-// vertex positions.
+// The Procrustes PCA baseline of shell PCA (docs/math.md, "Elastic mean and
+// shell PCA"): rigidly align the shapes (generalised Procrustes, no scaling),
+// then Euclidean PCA on the vertex positions.
 #ifndef SHELLSPACE_PROBLEMS_STATISTICS_PROCRUSTES_PCA_H_
 #define SHELLSPACE_PROBLEMS_STATISTICS_PROCRUSTES_PCA_H_
 

@@ -1,4 +1,4 @@
-// Shell PCA (calculus.md, "Elastic mean and shell PCA"): principal modes of a
+// Shell PCA (docs/math.md, "Elastic mean and shell PCA"): principal modes of a
 // set of shells at their elastic mean in the Hessian metric
 //   g(u, w) = 1/2 u^T D_2^2 W[s_bar, s_bar] w,
 // with displacements v_i = LOG_K(s_bar -> S_i) (or, cheaply, S_i - s_bar

@@ -1,5 +1,5 @@
-// The time-discrete geodesic calculus (calculus.md): geodesics, EXP, LOG,
-// convex combinations, parallel transport, gauge independence, convergence.
+// Geodesic calculus (docs/math.md, "Path energy and discrete geodesics" ff.):
+// geodesics, EXP, LOG, convex combinations, transport, gauge, convergence.
 #include <gtest/gtest.h>
 
 #include <Eigen/SparseCholesky>

@@ -1,4 +1,4 @@
-// Tests of the LΘA spline (calculus.md, "LΘA approximation"): the analytic
+// Tests of the LΘA spline (docs/math.md, "Riemannian splines"): the analytic
 // Jacobians of its three residuals, the cubic splines in time, and the
 // per-frame reconstruction.
 #include "shellspace/problems/splines/ltheta_spline.h"
