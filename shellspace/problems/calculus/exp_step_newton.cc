@@ -171,7 +171,13 @@ ExpNewtonReport SolveExpStepNewton(const ExpStepEquation& equation,
   newton.progress_steps = kProgressSteps;
   newton.progress_factor = 0.5;
   SparseLu lu;
-  return SolveNewton(&problem, &lu, newton);
+  ExpNewtonReport report = SolveNewton(&problem, &lu, newton);
+  if (report.stop == NewtonStop::kInfeasibleStart) {
+    // F cannot be evaluated at the start (a degenerate triangle): no
+    // residual, not a residual of 0.
+    report.initial_gradient = report.final_gradient = HUGE_VAL;
+  }
+  return report;
 }
 
 }  // namespace shellspace

@@ -13,7 +13,8 @@
 namespace shellspace {
 
 // The report of SolveExpStepNewton: a NewtonReport whose initial_gradient /
-// final_gradient are max |F| over the unknown vertices.
+// final_gradient are max |F| over the unknown vertices (+inf both if F
+// cannot be evaluated at the start: stop kInfeasibleStart).
 using ExpNewtonReport = NewtonReport;
 
 // The equation of one EXP step, F(s) = c + D_fixed W = 0 (see

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <string>
 #include <cmath>
 
 #include "shellspace/cost_functions/gradient_field_residual.h"
@@ -9,6 +10,7 @@
 #include "shellspace/geometry/connected_components.h"
 #include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/runtime/blas_threads.h"
+#include "shellspace/problems/calculus/exp_step_continuation.h"
 #include "shellspace/problems/calculus/exp_step_newton.h"
 #include "shellspace/problems/calculus/rotation_blend_path.h"
 #include "shellspace/solvers/rigid_gauge.h"
@@ -26,6 +28,146 @@ constexpr int kMaxExpNewtonSteps = 20;
 // best rigid fit, no vertex is farther than this fraction of b's
 // bounding-box diagonal from its place.
 constexpr double kRigidStepTolerance = 1e-12;
+
+// One EXP step's equation and what its stages share.
+struct ExpStepContext {
+  const ShellSpace& space;
+  const Positions& a;
+  const Positions& b;
+  const std::vector<int>& fixed_vertices;
+  const ExpStepEquation& equation;
+  double scale;  // max |c| over the unknown vertices
+};
+
+// *result := `shape`, solved by Newton with max |F| = residual.
+void SetSolvedByNewton(Positions shape, double residual, double scale,
+                       const std::string& message, ExpStepResult* result) {
+  result->shape = std::move(shape);
+  result->residual_norm = residual;
+  result->relative_residual = residual / scale;
+  result->solved = true;
+  result->method = ExpStepResult::Method::kNewton;
+  result->summary.termination_type = ceres::CONVERGENCE;
+  result->summary.message = message;
+}
+
+// A rigid step (a to b a rigid motion M of each connected component to
+// round-off, no mask): the step beyond b is M(b) exactly -- W[b, M(b)] = 0
+// at its minimum and D_2 W[a, b] = 0 -- with no iteration. (Backward, a =
+// s_{k+1} and b = s_k: the same motion continued.)
+bool TryRigidStep(const ExpStepContext& step, ExpStepResult* result) {
+  if (!step.fixed_vertices.empty()) return false;
+  const ComponentwiseRigidMotion motion = FitRigidMotions(
+      step.a, step.b,
+      ConnectedComponents(step.space.faces, step.space.num_vertices));
+  const Positions moved = motion.Apply(step.a);
+  const double diameter =
+      (step.b.colwise().maxCoeff() - step.b.colwise().minCoeff()).norm();
+  if ((moved - step.b).rowwise().norm().maxCoeff() >
+      kRigidStepTolerance * diameter) {
+    return false;
+  }
+  Positions shape = motion.Apply(step.b);
+  const double residual = ExpResidualMaxNorm(step.equation, shape);
+  SetSolvedByNewton(std::move(shape), residual, 1, 
+                    "rigid step: the rigid motion continued", result);
+  result->residual_scale = 0;
+  result->relative_residual = 0;
+  return true;
+}
+
+// Newton from the guess left its basin: follow the roots of t c + D W from
+// b (t = 0) to t = 1 (exp_step_continuation.h). True if solved.
+bool SolveByContinuation(const ExpStepContext& step,
+                         const Positions& plain_guess,
+                         const SolverSettings& settings,
+                         ExpStepResult* result) {
+  if (StopRequested(settings)) return false;
+  ExpContinuationSettings continuation;
+  continuation.tolerance = kExpNewtonTolerance * step.scale;
+  continuation.accept = kExpNewtonAccept * step.scale;
+  continuation.intermediate_tolerance = kExpNewtonAccept * step.scale;
+  Positions continued;
+  const ExpContinuationReport report = SolveExpStepByContinuation(
+      step.equation, plain_guess, continuation, &continued);
+  result->newton_steps += report.newton_steps;
+  result->continuation_substeps = report.substeps;
+  if (settings.progress) {
+    std::fprintf(stderr,
+                 "%s EXP by continuation in the load: %.4g of 1 reached in "
+                 "%d load steps, %d Newton steps (%s)\n",
+                 settings.progress_label.c_str(), report.load,
+                 report.substeps, report.newton_steps,
+                 report.stop_reason.c_str());
+  }
+  if (!report.solved) return false;
+  SetSolvedByNewton(std::move(continued), report.final_residual, step.scale,
+                    "Newton on F by continuation in the load (" +
+                        std::to_string(report.substeps) + " load steps)",
+                    result);
+  return true;
+}
+
+// The last resort: least squares of the per-vertex residuals F_v by sparse
+// LM, from result->shape (or b if that has degenerate triangles).
+void SolveByLeastSquares(const ExpStepContext& step,
+                         const SolverSettings& settings,
+                         ExpStepResult* result) {
+  const ShellSpace& space = step.space;
+  GradientFieldCache cache(space, step.b, step.equation.unknown_side,
+                           &result->shape);
+  cache.PrepareForEvaluation(false, true);
+  if (!cache.ok()) {
+    result->shape = step.b;
+    for (int v : step.fixed_vertices) {
+      result->shape.row(v) = 2 * step.b.row(v) - step.a.row(v);
+    }
+    cache.PrepareForEvaluation(false, true);
+  }
+  std::vector<char> is_fixed(space.num_vertices, 0);
+  for (int v : step.fixed_vertices) is_fixed[v] = 1;
+  std::vector<std::vector<int>> incident(space.num_vertices);
+  for (int e = 0; e < static_cast<int>(cache.elements().size()); ++e) {
+    const auto& element = cache.elements()[e];
+    for (int k = 0; k < element.count; ++k) {
+      incident[element.vertices[k]].push_back(e);
+    }
+  }
+  ceres::Problem::Options options;
+  options.evaluation_callback = &cache;
+  ceres::Problem problem(options);
+  for (int v = 0; v < space.num_vertices; ++v) {
+    if (is_fixed[v] || incident[v].empty()) continue;
+    VertexGradientResidual* residual = VertexGradientResidual::Create(
+        &cache, v, step.equation.constant.data() + 3 * v, incident[v]);
+    std::vector<double*> blocks;
+    for (int w : residual->stencil())
+      blocks.push_back(result->shape.data() + 3 * w);
+    problem.AddResidualBlock(residual, nullptr, blocks);
+  }
+  for (int v : step.fixed_vertices) {
+    double* block = result->shape.data() + 3 * v;
+    if (problem.HasParameterBlock(block))
+      problem.SetParameterBlockConstant(block);
+  }
+  if (step.fixed_vertices.empty()) {
+    PinRigidMotions(&result->shape, &problem,
+                    ConnectedComponents(space.faces, space.num_vertices));
+  }
+  SolverSettings step_settings = settings;
+  step_settings.gradient_tolerance =
+      std::min(settings.gradient_tolerance, 1e-10);
+  step_settings.initial_trust_region_radius =
+      1e16;  // Gauss-Newton from the start
+  result->summary = SolveWithSettings(&problem, step_settings);
+  result->residual_norm = ExpResidualMaxNorm(step.equation, result->shape);
+  result->relative_residual = result->residual_norm / step.scale;
+  result->solved = result->relative_residual <= kExpNewtonAccept;
+  result->method = ExpStepResult::Method::kLevenbergMarquardt;
+  result->lm_iterations =
+      std::max(0, static_cast<int>(result->summary.iterations.size()) - 1);
+}
+
 }  // namespace
 
 ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
@@ -43,139 +185,62 @@ ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
   const Eigen::VectorXd constant =
       forward ? EnergyGradient(space, a, b, ShellSide::kDeformed)
               : EnergyGradient(space, b, a, ShellSide::kReference);
-  const ShellSide unknown_side =
-      forward ? ShellSide::kDeformed : ShellSide::kReference;
-
+  const ExpStepEquation equation{
+      space, b, forward ? ShellSide::kDeformed : ShellSide::kReference,
+      constant, fixed_vertices};
   std::vector<char> is_fixed(space.num_vertices, 0);
   for (int v : fixed_vertices) is_fixed[v] = 1;
-  const ExpStepEquation equation{space, b, unknown_side, constant,
-                                 fixed_vertices};
-  const auto residual_norm = [&](const Positions& s) {
-    return ExpResidualMaxNorm(equation, s);
-  };
-
-  ExpStepResult result;
-  // A rigid step (a to b a rigid motion M of each connected component to
-  // round-off, no mask): the step beyond b is M(b) exactly -- W[b, M(b)] =
-  // 0 at its minimum and D_2 W[a, b] = 0 -- with no iteration.
-  if (fixed_vertices.empty()) {
-    const ComponentwiseRigidMotion motion = FitRigidMotions(
-        a, b, ConnectedComponents(space.faces, space.num_vertices));
-    const Positions moved = motion.Apply(a);
-    const double diameter =
-        (b.colwise().maxCoeff() - b.colwise().minCoeff()).norm();
-    if ((moved - b).rowwise().norm().maxCoeff() <=
-        kRigidStepTolerance * diameter) {
-      // (Backward, a = s_{k+1} and b = s_k: the same motion continued.)
-      result.shape = motion.Apply(b);
-      result.residual_norm = residual_norm(result.shape);
-      result.residual_scale = 0;
-      result.relative_residual = 0;
-      result.solved = true;
-      result.method = ExpStepResult::Method::kNewton;
-      result.summary.termination_type = ceres::CONVERGENCE;
-      result.summary.message = "rigid step: the rigid motion continued";
-      return result;
-    }
-  }
-  result.shape = 2 * b - a;
-  if (alternative_start != nullptr) {
-    Positions alternative = *alternative_start;
-    for (int v : fixed_vertices) alternative.row(v) = result.shape.row(v);
-    if (residual_norm(alternative) < residual_norm(result.shape)) {
-      result.shape = alternative;
-    }
-  }
-  // Newton on F with the exact Jacobian first (exp_step_newton.h); sparse
-  // LM on |F|^2 below only if Newton does not get there, from the same
-  // initial guess (where Newton fails, its iterates wander: LM from them
-  // did worse on the finger's last transport rung).
   double scale = 1e-300;  // max |c| over the unknown vertices
   for (int v = 0; v < space.num_vertices; ++v) {
     if (!is_fixed[v]) {
       scale = std::max(scale, constant.segment<3>(3 * v).cwiseAbs().maxCoeff());
     }
   }
-  {
-    Positions trial = result.shape;
-    const ExpNewtonReport newton = SolveExpStepNewton(
-        equation,
-        ExpNewtonStopping{kExpNewtonTolerance * scale,
-                          kExpNewtonAccept * scale, kMaxExpNewtonSteps},
-        &trial);
-    result.newton_steps = newton.steps;
-    result.residual_scale = scale;
-    if (newton.final_gradient <= kExpNewtonAccept * scale) {
-      result.shape = std::move(trial);
-      result.residual_norm = newton.final_gradient;
-      result.relative_residual = result.residual_norm / scale;
-      result.solved = true;
-      result.method = ExpStepResult::Method::kNewton;
-      result.summary.termination_type = ceres::CONVERGENCE;
-      result.summary.message = "Newton on F: " + newton.stop_reason;
-      return result;
+  const ExpStepContext step{space, a, b, fixed_vertices, equation, scale};
+
+  ExpStepResult result;
+  if (TryRigidStep(step, &result)) return result;
+  result.residual_scale = scale;
+  result.shape = 2 * b - a;
+  if (alternative_start != nullptr) {
+    Positions alternative = *alternative_start;
+    for (int v : fixed_vertices) alternative.row(v) = result.shape.row(v);
+    if (ExpResidualMaxNorm(equation, alternative) <
+        ExpResidualMaxNorm(equation, result.shape)) {
+      result.shape = alternative;
     }
   }
-  if (settings.max_iterations <= 0) {  // Newton only: the LM fallback is off
-    result.residual_norm = residual_norm(result.shape);
+  // Newton on F with the exact Jacobian first (exp_step_newton.h); where it
+  // does not get there, the continuation, then sparse LM on |F|^2 from the
+  // same initial guess (where Newton fails, its iterates wander: LM from
+  // them did worse on the finger's last transport rung).
+  Positions trial = result.shape;
+  const ExpNewtonReport newton = SolveExpStepNewton(
+      equation,
+      ExpNewtonStopping{kExpNewtonTolerance * scale, kExpNewtonAccept * scale,
+                        kMaxExpNewtonSteps},
+      &trial);
+  result.newton_steps = newton.steps;
+  if (newton.final_gradient <= kExpNewtonAccept * scale) {
+    SetSolvedByNewton(std::move(trial), newton.final_gradient, scale,
+                      "Newton on F: " + newton.stop_reason, &result);
+    return result;
+  }
+  if (settings.max_iterations <= 0) {  // Newton only: no fallbacks
+    result.residual_norm = ExpResidualMaxNorm(equation, result.shape);
     result.relative_residual = result.residual_norm / scale;
     result.solved = false;
     result.method = ExpStepResult::Method::kNewton;
     result.summary.termination_type = ceres::NO_CONVERGENCE;
-    result.summary.message = "Newton on F did not converge (no LM fallback)";
+    result.summary.message = "Newton on F did not converge (no fallback)";
     return result;
   }
-  GradientFieldCache cache(space, b, unknown_side, &result.shape);
-  cache.PrepareForEvaluation(false, true);
-  if (!cache.ok()) {
-    result.shape = b;
-    for (int v : fixed_vertices) result.shape.row(v) = 2 * b.row(v) - a.row(v);
-    cache.PrepareForEvaluation(false, true);
+  if (SolveByContinuation(step, result.shape, settings, &result)) {
+    return result;
   }
-
-  std::vector<std::vector<int>> incident(space.num_vertices);
-  for (int e = 0; e < static_cast<int>(cache.elements().size()); ++e) {
-    const auto& element = cache.elements()[e];
-    for (int k = 0; k < element.count; ++k) {
-      incident[element.vertices[k]].push_back(e);
-    }
-  }
-  ceres::Problem::Options options;
-  options.evaluation_callback = &cache;
-  ceres::Problem problem(options);
-  for (int v = 0; v < space.num_vertices; ++v) {
-    if (is_fixed[v] || incident[v].empty()) continue;
-    VertexGradientResidual* residual = VertexGradientResidual::Create(
-        &cache, v, constant.data() + 3 * v, incident[v]);
-    std::vector<double*> blocks;
-    for (int w : residual->stencil())
-      blocks.push_back(result.shape.data() + 3 * w);
-    problem.AddResidualBlock(residual, nullptr, blocks);
-  }
-  for (int v : fixed_vertices) {
-    double* block = result.shape.data() + 3 * v;
-    if (problem.HasParameterBlock(block))
-      problem.SetParameterBlockConstant(block);
-  }
-  if (fixed_vertices.empty()) {
-    PinRigidMotions(&result.shape, &problem,
-                    ConnectedComponents(space.faces, space.num_vertices));
-  }
-  SolverSettings step_settings = settings;
-  step_settings.gradient_tolerance =
-      std::min(settings.gradient_tolerance, 1e-10);
-  step_settings.initial_trust_region_radius =
-      1e16;  // Gauss-Newton from the start
-  result.summary = SolveWithSettings(&problem, step_settings);
-  result.residual_norm = residual_norm(result.shape);  // F at the result
-  result.relative_residual = result.residual_norm / scale;
-  result.solved = result.relative_residual <= kExpNewtonAccept;
-  result.method = ExpStepResult::Method::kLevenbergMarquardt;
-  result.lm_iterations =
-      std::max(0, static_cast<int>(result.summary.iterations.size()) - 1);
+  SolveByLeastSquares(step, settings, &result);
   return result;
 }
-
 namespace {
 
 // ShootWithReport without the path energy.

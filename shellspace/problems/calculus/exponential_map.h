@@ -1,4 +1,4 @@
-// The discrete exponential map (calculus.md): single forward/backward steps,
+// The discrete exponential map (docs/math.md, "Exponential map"): steps,
 // geodesic shooting EXP_K, and the discrete logarithm LOG_K.
 #ifndef SHELLSPACE_PROBLEMS_CALCULUS_EXPONENTIAL_MAP_H_
 #define SHELLSPACE_PROBLEMS_CALCULUS_EXPONENTIAL_MAP_H_
@@ -32,6 +32,9 @@ struct ExpStepResult {
   enum class Method { kNewton, kLevenbergMarquardt };
   Method method = Method::kNewton;  // the solver that produced `shape`
   int newton_steps = 0;      // Newton steps on F (exp_step_newton.h)
+  // Load steps of the continuation (exp_step_continuation.h) if Newton from
+  // the initial guess did not converge (0: not needed or none found).
+  int continuation_substeps = 0;
   int lm_iterations = 0;     // LM iterations of the fallback (0: none)
   // The LM solve, if Newton did not converge; else a summary with
   // termination CONVERGENCE, no iterations and message "Newton on F: ...".
@@ -46,7 +49,8 @@ struct ExpStepResult {
 // Solved by Newton's method on F with the exact Jacobian and sparse LU
 // (exp_step_newton.h) to max |F| <= 1e-11 max |D_2 W[s_{k-1}, s_k]| (or
 // kExpStepAcceptance = 1e-8 if round-off stalls it; at most 20 Newton
-// steps), else as least squares of the per-vertex
+// steps), else by Newton along a continuation in the load from b
+// (exp_step_continuation.h), else as least squares of the per-vertex
 // residuals F_v (cost_functions/gradient_field_residual.h) by sparse LM,
 // from 2 b - a (or b if that has degenerate triangles), at most
 // settings.max_iterations LM iterations (0: no LM fallback; the initial
@@ -97,7 +101,7 @@ Positions ExpK(const ShellSpace& space, const Positions& s0,
                const std::vector<int>& fixed_vertices,
                const SolverSettings& settings);
 
-// LOG_K of a discrete geodesic (s_0, ..., s_K): K (s_1 - s_0) (calculus.md,
+// LOG_K of a discrete geodesic (s_0, ..., s_K): K (s_1 - s_0) (docs/math.md,
 // "Logarithm").
 Positions LogOfGeodesic(const ShellPath& geodesic);
 
