@@ -67,6 +67,26 @@ void MeasureSliverSwelling(GeodesicResult* result) {
   }
 }
 
+// The slivers and folds of `end` (the start's faces) that `start` does not
+// have.
+SliverFaces NewSliverFaces(const Mesh& start, const Positions& end) {
+  Mesh end_mesh = start;
+  end_mesh.positions = end;
+  const SliverFaces before = FindSliverFaces(start);
+  SliverFaces after = FindSliverFaces(end_mesh);
+  const auto drop_old = [](auto* items, const auto& old) {
+    items->erase(std::remove_if(items->begin(), items->end(),
+                                [&](const auto& item) {
+                                  return std::binary_search(
+                                      old.begin(), old.end(), item);
+                                }),
+                 items->end());
+  };
+  drop_old(&after.faces, before.faces);
+  drop_old(&after.folds, before.folds);
+  return after;
+}
+
 // The input's slivers and folds and how the path treats the slivers.
 JsonObject SliverJson(const GeodesicResult& result) {
   const SliverFaces& s = result.slivers;
@@ -104,7 +124,13 @@ GeodesicResult Solve(const GeodesicOptions& options, const std::string& what) {
   // Legal, but a path may crush them: named once, before the solve.
   result.slivers = FindSliverFaces(options.start);
   if (!result.slivers.empty() && options.warn) {
-    options.warn(result.slivers.Describe());
+    options.warn("start", result.slivers.Describe());
+  }
+  result.end_slivers = NewSliverFaces(options.start, options.end);
+  if (!result.end_slivers.empty() && options.warn) {
+    options.warn("end", result.end_slivers.Describe() +
+                            ", which the start does not have: the path must "
+                            "crush or fold the surface there");
   }
   const ShellSpace space(options.start, options.topology,
                          options.material.material);
@@ -137,7 +163,12 @@ JsonObject ToJson(const GeodesicResult& result) {
   json.Add("multires_levels", MultiresolutionJson(result.solve))
       .Add("prolongation", ProlongationJson(result.solve.prolongation))
       .Add("energy_split", EnergySplitJson(result.energy_split))
-      .Add("input_slivers", SliverJson(result));
+      .Add("input_slivers", SliverJson(result))
+      .Add("end_slivers",
+           JsonObject()
+               .Add("faces", result.end_slivers.faces)
+               .Add("folded_edges",
+                    static_cast<int>(result.end_slivers.folds.size())));
   return json;
 }
 

@@ -44,9 +44,11 @@ struct GeodesicOptions {
   // The solves' settings; settings.stop is the front end's stop request
   // (a time limit, a signal), polled between iterations.
   SolverSettings settings;
-  // Called before the solve with each warning about the input (sliver
-  // triangles and folded edges of s_0); may be empty.
-  std::function<void(const std::string&)> warn;
+  // Called before the solve with each warning about an input: which one
+  // ("start" or "end") and the text (sliver triangles and folded edges of
+  // s_0; those of s_K that s_0 does not have); may be empty.
+  std::function<void(const std::string& input, const std::string& text)>
+      warn;
 };
 
 struct GeodesicResult {
@@ -57,6 +59,10 @@ struct GeodesicResult {
   EnergySplit energy_split;  // of the path, computed once
   MaterialChoice material;   // as resolved
   SliverFaces slivers;       // of s_0 (and its folds), before the solve
+  // The slivers and folds of s_K that s_0 does not have: a pose that
+  // crushes triangles or folds the surface shut, which the path must do
+  // too (named before the solve; a solve there is slow or fails).
+  SliverFaces end_slivers;
   // The largest area ratio |f(s_k)| / |f(s_0)| of a sliver face of s_0 over
   // the path's shapes, and where (1, -1, -1 without slivers): how much the
   // path swells the slivers of the input.

@@ -115,8 +115,9 @@ workflows::GeodesicOptions GeodesicOptionsFromFlags(const std::string& verb) {
   options.settings = SettingsFromFlags(verb);
   // Legal, but a path may crush them: named once, before the solve.
   if (!FLAGS_quiet) {
-    options.warn = [](const std::string& text) {
-      std::fprintf(stderr, "warning: %s: %s\n", FLAGS_start.c_str(),
+    options.warn = [](const std::string& input, const std::string& text) {
+      std::fprintf(stderr, "warning: %s: %s\n",
+                   (input == "end" ? FLAGS_end : FLAGS_start).c_str(),
                    text.c_str());
     };
   }
