@@ -23,13 +23,14 @@
 #   finger  finger0 -> finger1, 5 shapes (K = 4), ring around vertex 1302
 #   cactus  cactus0 -> cactus1, K = 8, ring around the vertex of
 #           cactus_bottom_mask.txt nearest to that mask's centroid
-# and three cases of the stress corpus (bench/stress_corpus.sh) that
+# and five cases of the stress corpus (bench/stress_corpus.sh) that
 # shellspace's defaults do not converge on, as a masked problem both
 # programs can solve: the cgal mesh and its pose by bench/stress_pose
 # without the rigid motion (a geodesic does not depend on it), K = 8, the
 # ring around the vertex that moves least, eta = 1e-4 x the start's area
 # (shellspace's default relative_eta; GOAST's bendWeight is 3 eta):
-#   bull_bend120, triceratops_pull0.15, ChineseDragon_twist180
+#   bull_bend120, triceratops_pull0.15, ChineseDragon_twist180,
+#   ChineseDragon_twist60, triceratops_bend120
 # shellspace runs them twice, as GOAST (--init linear --multires off) and
 # with its defaults otherwise (ss_<problem>_defaults).
 # GOAST runs with OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1; shellspace with
@@ -220,7 +221,8 @@ pathcheck="$side/build/pathcheck"
 
 # --- the corpus problems' meshes -----------------------------------------
 corpus=()
-for entry in bull:bend:120 triceratops:pull:0.15 ChineseDragon-10kv:twist:180; do
+for entry in bull:bend:120 triceratops:pull:0.15 ChineseDragon-10kv:twist:180 \
+    ChineseDragon-10kv:twist:60 triceratops:bend:120; do
   IFS=: read -r mesh kind strength <<<"$entry"
   problem="${mesh%%-*}_${kind}${strength}"
   [[ "$problem" =~ $only ]] || continue
