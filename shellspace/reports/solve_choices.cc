@@ -48,10 +48,6 @@ PathLinearSolver ParsePathLinearSolver(const std::string& value,
   return ParseNamedValue(kPathLinearSolverNames, value, name);
 }
 
-const char* PathLinearSolverName(PathLinearSolver solver) {
-  return NameOf(kPathLinearSolverNames, solver);
-}
-
 GeodesicLm ParseGeodesicLm(const std::string& value, const std::string& name) {
   return ParseNamedValue(kGeodesicLmNames, value, name);
 }

@@ -31,9 +31,6 @@ MultiresolutionSettings ParseMultiresolution(const std::string& value,
 PathLinearSolver ParsePathLinearSolver(const std::string& value,
                                        const std::string& name);
 
-// The word of a PathLinearSolver.
-const char* PathLinearSolverName(PathLinearSolver solver);
-
 // GeodesicLm of "auto", "ceres", "engine". Throws InputError starting with
 // `name` for anything else.
 GeodesicLm ParseGeodesicLm(const std::string& value, const std::string& name);
