@@ -67,12 +67,12 @@ void MeasureSliverSwelling(GeodesicResult* result) {
   }
 }
 
-// The slivers and folds of `end` (the start's faces) that `start` does not
-// have.
-SliverFaces NewSliverFaces(const Mesh& start, const Positions& end) {
+// The slivers and folds of `end` (the start's faces) that are not in
+// `before`, those of the start.
+SliverFaces NewSliverFaces(const SliverFaces& before, const Mesh& start,
+                           const Positions& end) {
   Mesh end_mesh = start;
   end_mesh.positions = end;
-  const SliverFaces before = FindSliverFaces(start);
   SliverFaces after = FindSliverFaces(end_mesh);
   const auto drop_old = [](auto* items, const auto& old) {
     items->erase(std::remove_if(items->begin(), items->end(),
@@ -126,7 +126,8 @@ GeodesicResult Solve(const GeodesicOptions& options, const std::string& what) {
   if (!result.slivers.empty() && options.warn) {
     options.warn("start", result.slivers.Describe());
   }
-  result.end_slivers = NewSliverFaces(options.start, options.end);
+  result.end_slivers =
+      NewSliverFaces(result.slivers, options.start, options.end);
   if (!result.end_slivers.empty() && options.warn) {
     options.warn("end", result.end_slivers.Describe() +
                             ", which the start does not have: the path must "
