@@ -36,28 +36,13 @@ struct Warning {
 
 TEST(GeodesicInputWarningsTest, AFoldOfTheEndShapeIsNamedWithTheEndInput) {
   workflows::GeodesicOptions options = RolledSheet();
-  // Two faces sharing an interior edge (a, b): f with apex c, g with apex
-  // d. Moving d next to c in the end shape lays g over f: a fold shut.
-  const Faces& faces = options.start.faces;
-  int f = -1, g = -1, c = -1, d = -1;
-  for (int i = 0; i < faces.rows() && g < 0; ++i) {
-    for (int j = i + 1; j < faces.rows() && g < 0; ++j) {
-      int shared = 0;
-      for (int p = 0; p < 3; ++p)
-        for (int q = 0; q < 3; ++q) shared += faces(i, p) == faces(j, q);
-      if (shared != 2) continue;
-      f = i;
-      g = j;
-      for (int p = 0; p < 3; ++p) {
-        if (faces(i, p) != faces(j, 0) && faces(i, p) != faces(j, 1) &&
-            faces(i, p) != faces(j, 2))
-          c = faces(i, p);
-        if (faces(j, p) != faces(i, 0) && faces(j, p) != faces(i, 1) &&
-            faces(j, p) != faces(i, 2))
-          d = faces(j, p);
-      }
-    }
-  }
+  // An interior edge's flap: faces f and g with apexes c and d. Moving d
+  // next to c in the end shape lays g over f: a fold shut.
+  ASSERT_FALSE(options.topology.interior_edges.empty());
+  const EdgeFlap& flap = options.topology.interior_edges.front();
+  const int f = std::min(flap.face_0, flap.face_1);
+  const int g = std::max(flap.face_0, flap.face_1);
+  const int c = flap.k, d = flap.l;
   ASSERT_GE(d, 0);
   Positions folded = options.end;
   folded.row(d) = 0.9 * folded.row(c) + 0.1 * folded.row(d);

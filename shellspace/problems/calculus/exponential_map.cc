@@ -35,6 +35,7 @@ struct ExpStepContext {
   const Positions& a;
   const Positions& b;
   const std::vector<int>& fixed_vertices;
+  const std::vector<char>& is_fixed;  // per vertex: in fixed_vertices
   const ExpStepEquation& equation;
   double scale;  // max |c| over the unknown vertices
 };
@@ -124,8 +125,7 @@ void SolveByLeastSquares(const ExpStepContext& step,
     }
     cache.PrepareForEvaluation(false, true);
   }
-  std::vector<char> is_fixed(space.num_vertices, 0);
-  for (int v : step.fixed_vertices) is_fixed[v] = 1;
+  const std::vector<char>& is_fixed = step.is_fixed;
   std::vector<std::vector<int>> incident(space.num_vertices);
   for (int e = 0; e < static_cast<int>(cache.elements().size()); ++e) {
     const auto& element = cache.elements()[e];
@@ -196,7 +196,8 @@ ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
       scale = std::max(scale, constant.segment<3>(3 * v).cwiseAbs().maxCoeff());
     }
   }
-  const ExpStepContext step{space, a, b, fixed_vertices, equation, scale};
+  const ExpStepContext step{space,    a,        b,    fixed_vertices,
+                            is_fixed, equation, scale};
 
   ExpStepResult result;
   if (TryRigidStep(step, &result)) return result;
