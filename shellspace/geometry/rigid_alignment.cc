@@ -1,5 +1,6 @@
 #include "shellspace/geometry/rigid_alignment.h"
 
+#include <Eigen/Geometry>
 #include <Eigen/SVD>
 
 namespace shellspace {
@@ -8,6 +9,27 @@ Positions RigidMotion::Apply(const Positions& x) const {
   Positions out = x * rotation.transpose();
   out.rowwise() += translation;
   return out;
+}
+
+RigidMotion RigidMotion::Fraction(double tau,
+                                  const Eigen::RowVector3d& centre) const {
+  const Eigen::AngleAxisd whole(rotation);
+  RigidMotion part;
+  part.rotation = Eigen::AngleAxisd(tau * whole.angle(), whole.axis())
+                      .toRotationMatrix();
+  const Eigen::RowVector3d moved_centre =
+      centre * rotation.transpose() + translation;
+  // x -> R_tau x + (c - R_tau c) + tau (moved_centre - c)
+  part.translation = centre - centre * part.rotation.transpose() +
+                     tau * (moved_centre - centre);
+  return part;
+}
+
+RigidMotion RigidMotion::Inverse() const {
+  RigidMotion inverse;
+  inverse.rotation = rotation.transpose();
+  inverse.translation = -translation * rotation;
+  return inverse;
 }
 
 RigidMotion FitRigidMotion(const Positions& source, const Positions& target) {

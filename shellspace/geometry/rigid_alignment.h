@@ -14,6 +14,12 @@ struct RigidMotion {
   Eigen::Matrix3d rotation = Eigen::Matrix3d::Identity();
   Eigen::RowVector3d translation = Eigen::RowVector3d::Zero();
   Positions Apply(const Positions& x) const;
+  // The motion's fraction tau in [0, 1] about `centre` c: rotation by tau
+  // times its angle about its axis through c, and c moved by tau times its
+  // displacement: x -> R^tau (x - c) + c + tau (R c + t - c). tau = 0 is
+  // the identity, tau = 1 the motion itself (to round-off).
+  RigidMotion Fraction(double tau, const Eigen::RowVector3d& centre) const;
+  RigidMotion Inverse() const;  // x -> R^T (x - t)
 };
 
 // The rigid motion minimising sum_i |R p_i + t - q_i|^2 over the vertices

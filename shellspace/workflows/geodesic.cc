@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <utility>
 
+#include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/geometry/validation.h"
 #include "shellspace/problems/calculus/exponential_map.h"
 #include "shellspace/reports/path_reports.h"
@@ -100,6 +101,32 @@ JsonObject SliverJson(const GeodesicResult& result) {
       .Add("largest_swelling_shape", result.sliver_swelling_shape);
 }
 
+// Each shape of a path moves on its own without changing the path energy
+// (W[a, b] sees only lengths, angles and areas), but the initial path, a
+// blend of s_0 and s_K, does not: a blend of a shape and its rotated copy
+// shrinks it. Without a mask the solve therefore runs to s_K rigidly
+// aligned onto s_0 (FitRigidMotion), and MoveToUserEnd then carries shape
+// k by the fraction k/K of the inverse motion (about the centroid of s_0),
+// so the path ends at the user's s_K and still has the same energy and
+// gradient norm. With a mask the fixed vertices pin the frame: no motion.
+RigidMotion AlignmentOfEnd(const GeodesicOptions& options) {
+  if (!options.fixed_vertices.empty()) return RigidMotion();
+  return FitRigidMotion(options.end, options.start.positions);
+}
+
+void MoveToUserEnd(const RigidMotion& alignment, const Positions& user_end,
+                   ShellPath* path) {
+  if (path->size() < 2) return;
+  const RigidMotion back = alignment.Inverse();
+  const Eigen::RowVector3d centre = path->front().colwise().mean();
+  const int steps = static_cast<int>(path->size()) - 1;
+  for (int k = 1; k < steps; ++k) {
+    (*path)[k] = back.Fraction(static_cast<double>(k) / steps, centre)
+                     .Apply((*path)[k]);
+  }
+  path->back() = user_end;
+}
+
 GeodesicResult Solve(const GeodesicOptions& options, const std::string& what) {
   if (options.steps < 1) {
     throw InputError(options.option_prefix + "steps must be >= 1, got " +
@@ -107,7 +134,8 @@ GeodesicResult Solve(const GeodesicOptions& options, const std::string& what) {
   }
   GeodesicInput input;
   input.start = options.start.positions;
-  input.end = options.end;
+  const RigidMotion alignment = AlignmentOfEnd(options);
+  input.end = alignment.Apply(options.end);
   input.steps = options.steps;
   input.fixed_vertices = options.fixed_vertices;
   const std::string& prefix = options.option_prefix;
@@ -139,6 +167,7 @@ GeodesicResult Solve(const GeodesicOptions& options, const std::string& what) {
   const ObservedStop stop(&settings);
   result.solve = SolveGeodesicMultiresolution(space, input, settings, levels);
   result.stopped = stop.stopped();
+  MoveToUserEnd(alignment, options.end, &result.solve.geodesic.path);
   const shellspace::GeodesicResult& g = result.solve.geodesic;
   if (!g.failure.empty()) {
     result.status = FailedStatus(what, g.failure);
