@@ -21,9 +21,12 @@
 #     ("geometry/mesh.h"), in any of the project's C++ folders;
 #   - a link in the table to a room that is not below (a cycle);
 #   - in the CLI, an include of tools/verbs/ from tools/run/ (the run's
-#     infrastructure knows no verb).
+#     infrastructure knows no verb);
+#   - in the calculus, an include of geodesic.h from the parts the geodesic
+#     solve is built of (shell_path, path_energy, path_newton,
+#     geodesic_initial_path): a back-arrow inside the room.
 # With --self-test, first checks that a copy of the rooms passes and that
-# each of eight injected faults (bad includes, wrong edges in the table)
+# each of nine injected faults (bad includes, wrong edges in the table)
 # fails with its message.
 set -uo pipefail
 src="${1:?usage: $0 SOURCE_DIR ROOM_TABLE [--self-test]}"
@@ -100,6 +103,11 @@ check() {
         fail(file " (tools/run) includes " include ": the run infrastructure knows no verb")
         next
       }
+      if (file ~ /\/(shell_path|path_energy|path_newton|geodesic_initial_path)\.(h|cc)$/ &&
+          include ~ /\/calculus\/geodesic\.h$/) {
+        fail(file " includes " include ": the geodesic solve is built of it")
+        next
+      }
       room = room_of(file, "folder")
       if (room == "") next
       if (include ~ /\// && (top in front)) {
@@ -164,6 +172,11 @@ if [[ "${3:-}" == "--self-test" ]]; then
   echo "#include \"tools/verbs/verb.h\"" > "$copy/tools/run/layering_probe.cc"
   expect "run includes a verb" "tools/run/layering_probe.cc \(tools/run\) includes tools/verbs/verb.h"
   rm -r "$copy/tools"
+  calculus=$(folder_of calculus)
+  cp "$copy/$calculus/path_newton.cc" "$scratch/path_newton.cc"
+  echo "#include \"$(prefix_of calculus)/geodesic.h\"" >> "$copy/$calculus/path_newton.cc"
+  expect "back-arrow in the calculus" "$calculus/path_newton.cc includes .*geodesic.h: the geodesic solve is built of it"
+  cp "$scratch/path_newton.cc" "$copy/$calculus/path_newton.cc"
   # Wrong edges in the table: render without its link to the branching
   # model it draws, and geometry linking the calculus (a back edge).
   awk '$1 == "render" { sub(/ branching_model/, "") } { print }' "$table" > "$scratch/no_edge.txt"

@@ -113,6 +113,8 @@ JsonObject GeodesicJson(const GeodesicResult& result) {
       .Add("final_gradient_norm", result.final_gradient)
       .Add("relative_gradient_norm", relative)
       .Add("converged", result.converged)
+      .Add("converged_at_round_off", result.converged_at_round_off)
+      .Add("gradient_round_off", result.gradient_round_off)
       .Add("termination", !result.stall.empty() ? result.stall
                           : result.stages.empty()
                               ? std::string("no unknowns")

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <random>
 
 #include "shellspace/cost_functions/deformation_energy_residuals.h"
 #include "shellspace/cost_functions/shell/deformation_energy.h"
@@ -17,41 +18,6 @@
 
 namespace shellspace {
 
-std::optional<double> TryPathEnergy(const ShellSpace& space,
-                                    const ShellPath& path,
-                                    std::vector<double>* step_energies,
-                                    ElementFailure* failure) {
-  const int steps = static_cast<int>(path.size()) - 1;
-  double sum = 0;
-  if (step_energies) step_energies->clear();
-  for (int k = 1; k <= steps; ++k) {
-    DeformationEnergy w;
-    if (!TryEvaluateDeformationEnergy(space, path[k - 1], path[k], &w,
-                                      failure)) {
-      if (failure) {
-        failure->description = "W[s_" + std::to_string(k - 1) + ", s_" +
-                               std::to_string(k) + "]: " +
-                               failure->description;
-      }
-      return std::nullopt;
-    }
-    if (step_energies) step_energies->push_back(w.total);
-    sum += w.total;
-  }
-  return steps * sum;
-}
-
-double PathEnergy(const ShellSpace& space, const ShellPath& path,
-                  std::vector<double>* step_energies) {
-  ElementFailure failure;
-  const std::optional<double> energy =
-      TryPathEnergy(space, path, step_energies, &failure);
-  if (!energy) {
-    throw InputError("path energy: " + failure.description + " is degenerate");
-  }
-  return *energy;
-}
-
 double StepEnergyRatio(const std::vector<double>& step_energies) {
   if (step_energies.size() < 2) return 1;
   const auto [lo, hi] =
@@ -59,15 +25,6 @@ double StepEnergyRatio(const std::vector<double>& step_energies) {
   if (*hi <= 0) return 1;
   if (*lo <= 0) return HUGE_VAL;
   return *hi / *lo;
-}
-
-ShellPath LinearPath(const Positions& a, const Positions& b, int steps) {
-  ShellPath path;
-  for (int k = 0; k <= steps; ++k) {
-    const double t = static_cast<double>(k) / steps;
-    path.push_back((1 - t) * a + t * b);
-  }
-  return path;
 }
 
 namespace {
@@ -134,26 +91,38 @@ namespace {
 // The gradient_max_norm of that Ceres problem, without building it (on the
 // cactus x4 it has 1.1 M residual blocks). 0 if an element is degenerate
 // (as GradientMaxNorm when Ceres' evaluation fails).
+// max |g| over the free coordinates of inner shape `shape` (the mask's
+// vertices left out, or the gauge's pinned coordinates).
+double FreeMaxNorm(const GeodesicInput& input, const std::vector<char>& is_fixed,
+                   const Positions& shape, const Eigen::VectorXd& g) {
+  if (!input.fixed_vertices.empty()) {
+    double norm = 0;
+    for (int v = 0; v < static_cast<int>(is_fixed.size()); ++v) {
+      if (!is_fixed[v]) {
+        norm = std::max(norm, g.segment<3>(3 * v).cwiseAbs().maxCoeff());
+      }
+    }
+    return norm;
+  }
+  if (input.pin_gauge) return GaugeFreeMaxNorm(MakeRigidGauge(shape), g);
+  return g.cwiseAbs().maxCoeff();
+}
+
+std::vector<char> FixedFlags(const ShellSpace& space,
+                             const GeodesicInput& input) {
+  std::vector<char> is_fixed(space.num_vertices, 0);
+  for (int v : input.fixed_vertices) is_fixed[v] = 1;
+  return is_fixed;
+}
+
 double PathGradientMaxNorm(const ShellSpace& space, const GeodesicInput& input,
                            const ShellPath& path, int threads) {
   const int K = static_cast<int>(path.size()) - 1;
-  std::vector<char> is_fixed(space.num_vertices, 0);
-  for (int v : input.fixed_vertices) is_fixed[v] = 1;
+  const std::vector<char> is_fixed = FixedFlags(space, input);
   std::vector<double> norm(K - 1, 0.0);
   const bool ok = ForEachInnerShapeGradient(
       space, path, threads, [&](int i, const Eigen::VectorXd& g) {
-        if (!input.fixed_vertices.empty()) {
-          for (int v = 0; v < space.num_vertices; ++v) {
-            if (!is_fixed[v]) {
-              norm[i] =
-                  std::max(norm[i], g.segment<3>(3 * v).cwiseAbs().maxCoeff());
-            }
-          }
-        } else if (input.pin_gauge) {
-          norm[i] = GaugeFreeMaxNorm(MakeRigidGauge(path[i + 1]), g);
-        } else {
-          norm[i] = g.cwiseAbs().maxCoeff();
-        }
+        norm[i] = FreeMaxNorm(input, is_fixed, path[i + 1], g);
       });
   if (!ok) return 0;
   return *std::max_element(norm.begin(), norm.end());
@@ -161,48 +130,47 @@ double PathGradientMaxNorm(const ShellSpace& space, const GeodesicInput& input,
 
 }  // namespace
 
-bool TryInnerShapeGradient(const ShellSpace& space, const ShellPath& path,
-                           int k, Eigen::VectorXd* gradient) {
-  const int K = static_cast<int>(path.size()) - 1;
-  Eigen::VectorXd incoming, outgoing;
-  if (!TryEnergyGradient(space, path[k - 1], path[k], ShellSide::kDeformed,
-                         &incoming) ||
-      !TryEnergyGradient(space, path[k], path[k + 1], ShellSide::kReference,
-                         &outgoing)) {
-    return false;
-  }
-  *gradient = double(K) * (incoming + outgoing);
-  return true;
-}
-
-bool ForEachInnerShapeGradient(
-    const ShellSpace& space, const ShellPath& path, int threads,
-    const std::function<void(int, const Eigen::VectorXd&)>& use) {
-  const int K = static_cast<int>(path.size()) - 1;
-  if (K < 2) return true;
-  // Term by term, W[s_k, s_{k+1}] once for both of its inner shapes (the
-  // ends need no gradient): K element passes instead of 2 (K - 1), the
-  // same digits as TryInnerShapeGradient.
-  std::vector<Eigen::VectorXd> of_reference(K), of_deformed(K);
-  std::vector<char> ok(K, 1);
-  ParallelFor(K, threads, [&](int k) {
-    ok[k] = TryEnergyGradients(space, path[k], path[k + 1],
-                               k > 0 ? &of_reference[k] : nullptr,
-                               k + 1 < K ? &of_deformed[k] : nullptr);
-  });
-  if (!std::all_of(ok.begin(), ok.end(), [](char c) { return c != 0; })) {
-    return false;
-  }
-  ParallelFor(K - 1, threads, [&](int i) {
-    use(i, double(K) * (of_deformed[i] + of_reference[i + 1]));
-  });
-  return true;
-}
-
 double PathGradientNorm(const ShellSpace& space, const GeodesicInput& input,
                         const ShellPath& path, int threads) {
   if (path.size() < 3) return 0;
   return PathGradientMaxNorm(space, input, path, threads);
+}
+
+double GradientRoundOff(const ShellSpace& space, const GeodesicInput& input,
+                        const ShellPath& path, int threads) {
+  const int K = static_cast<int>(path.size()) - 1;
+  if (K < 2) return 0;
+  const std::vector<char> is_fixed = FixedFlags(space, input);
+  std::vector<Eigen::VectorXd> base(K - 1);
+  if (!ForEachInnerShapeGradient(
+          space, path, threads,
+          [&](int i, const Eigen::VectorXd& g) { base[i] = g; })) {
+    return 0;
+  }
+  std::mt19937 signs(20261207u);  // fixed seed: the same probes every run
+  double floor = 0;
+  for (int probe = 0; probe < kRoundOffProbes; ++probe) {
+    ShellPath moved = path;
+    for (int k = 1; k < K; ++k) {
+      for (int v = 0; v < space.num_vertices; ++v) {
+        if (is_fixed[v]) continue;
+        for (int c = 0; c < 3; ++c) {
+          double& x = moved[k](v, c);
+          x = std::nextafter(x, (signs() & 1u) != 0 ? HUGE_VAL : -HUGE_VAL);
+        }
+      }
+    }
+    std::vector<double> change(K - 1, 0.0);
+    if (!ForEachInnerShapeGradient(
+            space, moved, threads, [&](int i, const Eigen::VectorXd& g) {
+              change[i] = FreeMaxNorm(input, is_fixed, path[i + 1],
+                                      Eigen::VectorXd(g - base[i]));
+            })) {
+      continue;
+    }
+    floor = std::max(floor, *std::max_element(change.begin(), change.end()));
+  }
+  return floor;
 }
 
 double LinearPathGradient(const ShellSpace& space, const GeodesicInput& input) {
@@ -259,11 +227,16 @@ class GeodesicSolve {
   // probe, until converged, stopped, the budget is spent or a round lowers
   // the gradient by less than half.
   void RunProjectedPhase();
+  // At a stall: measures the gradient's round-off (GradientRoundOff) and
+  // counts the solve converged if the gradient is within it.
+  void AcceptRoundOffFloor();
   // A sweep of RelaxPeakVertices on the path (GeodesicInput::
   // relax_peak_vertices), recorded as a stage.
   void RelaxPeakVerticesStage();
   void Record(GeodesicStage stage);
-  bool Converged() const { return result_.final_gradient <= tolerance_; }
+  bool Converged() const {
+    return result_.final_gradient <= tolerance_ || at_round_off_;
+  }
 
   const ShellSpace& space_;
   const GeodesicInput& input_;
@@ -284,6 +257,7 @@ class GeodesicSolve {
   double lm_damping_ = 0, resume_damping_ = 0;
   bool newton_ran_ = false;  // a Newton stage (attempt or probe) has run
   bool projected_phase_ = false;  // RunProjectedPhase has begun
+  bool at_round_off_ = false;     // AcceptRoundOffFloor found it within
   // The path with the smallest gradient max norm after a stage, and that
   // norm (Finish).
   ShellPath best_path_;
@@ -558,8 +532,27 @@ void GeodesicSolve::RunProjectedPhase() {
                     result_.final_gradient, round_start,
                     kRoundEnergyProgress);
       result_.stall = text;
+      AcceptRoundOffFloor();
       return;
     }
+  }
+}
+
+void GeodesicSolve::AcceptRoundOffFloor() {
+  GeodesicInput solve_input = input_;
+  solve_input.fixed_vertices = *solve_mask_;
+  result_.gradient_round_off = GradientRoundOff(
+      *solve_space_, solve_input, *solve_path_, settings_.num_threads);
+  if (!(result_.final_gradient <= result_.gradient_round_off)) return;
+  at_round_off_ = true;
+  result_.converged_at_round_off = true;
+  if (settings_.progress) {
+    std::fprintf(stderr,
+                 "%s |grad| %.3e is within the gradient's round-off %.3e "
+                 "(one-ulp moves of the positions change it that much): "
+                 "converged\n",
+                 settings_.progress_label.c_str(), result_.final_gradient,
+                 result_.gradient_round_off);
   }
 }
 

@@ -14,44 +14,12 @@
 #include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/cost_functions/shell/shell_space.h"
 #include "shellspace/problems/calculus/geodesic_initial_path.h"
+#include "shellspace/problems/calculus/path_energy.h"
 #include "shellspace/problems/calculus/path_newton.h"
+#include "shellspace/problems/calculus/shell_path.h"
 #include "shellspace/solvers/solver_settings.h"
 
 namespace shellspace {
-
-using ShellPath = std::vector<Positions>;
-
-// Path energy E_K = K sum_{k=1..K} W[s_{k-1}, s_k] of a path with K + 1
-// shapes; fills the per-step energies W[s_{k-1}, s_k] if given.
-// Throws InputError naming the element if one W has a degenerate element.
-double PathEnergy(const ShellSpace& space, const ShellPath& path,
-                  std::vector<double>* step_energies = nullptr);
-
-// The same without exceptions: nullopt if some W[s_{k-1}, s_k] has a
-// degenerate element (*failure, if given, names the first, prefixed by the
-// step) -- the status for line searches. *step_energies is unspecified then.
-std::optional<double> TryPathEnergy(
-    const ShellSpace& space, const ShellPath& path,
-    std::vector<double>* step_energies = nullptr,
-    ElementFailure* failure = nullptr);
-
-// The gradient of E_K with respect to the inner shape k (1 <= k < K; all 3n
-// coordinates, vertex-major): G_k = K (D_2 W[s_{k-1}, s_k] +
-// D_1 W[s_k, s_{k+1}]). False if either W has a degenerate element.
-bool TryInnerShapeGradient(const ShellSpace& space, const ShellPath& path,
-                           int k, Eigen::VectorXd* gradient);
-
-// TryInnerShapeGradient for every inner shape k = 1 .. K - 1, with each
-// term W[s_k, s_{k+1}] evaluated once for both its shells (TryEnergyGradients),
-// the terms and then the calls in parallel (ParallelFor over `threads`):
-// calls use(k - 1, G_k) for every inner shape once all gradients exist.
-// False (and no call) if an element of any W is degenerate.
-bool ForEachInnerShapeGradient(
-    const ShellSpace& space, const ShellPath& path, int threads,
-    const std::function<void(int, const Eigen::VectorXd&)>& use);
-
-// Linear interpolation of vertex positions: K + 1 shapes from a to b.
-ShellPath LinearPath(const Positions& a, const Positions& b, int steps);
 
 // The solver of a geodesic's Levenberg-Marquardt stages:
 //  - kCeres: Ceres' sparse LM on the residuals (SPARSE_NORMAL_CHOLESKY: one
@@ -205,6 +173,16 @@ double LinearPathGradient(const ShellSpace& space, const GeodesicInput& input);
 double PathGradientNorm(const ShellSpace& space, const GeodesicInput& input,
                         const ShellPath& path, int threads);
 
+// The round-off floor of that gradient at `path`: the largest max norm (as
+// above) of its change when every free coordinate of the inner shapes is
+// moved by one unit in the last place, up or down, over kRoundOffProbes
+// fixed sign patterns (the same digits on every run). A gradient below it cannot be told from zero in double
+// precision: rounding the positions once changes it by that much (a sliver
+// triangle, stiff in its short direction, raises it by orders of magnitude).
+inline constexpr int kRoundOffProbes = 3;
+double GradientRoundOff(const ShellSpace& space, const GeodesicInput& input,
+                        const ShellPath& path, int threads);
+
 // One stage of a geodesic solve: an LM run or a Newton polish, in the order
 // they ran.
 struct GeodesicStage {
@@ -321,10 +299,16 @@ struct GeodesicResult {
   double gradient_target = 0;
   // The stopping criterion was met: final_gradient <= gradient_target (the
   // relative gradient criterion; docs/math.md, "Path energy and discrete
-  // geodesics"). Ceres' function- or parameter-tolerance convergence of an LM
-  // stage does not count: LM stops there on a cost that no longer decreases,
-  // not at a geodesic. True for K = 1 (no unknowns).
+  // geodesics"), or, where no stage makes progress any more (`stall`),
+  // final_gradient <= gradient_round_off: the target is below what double
+  // precision can resolve (converged_at_round_off). Ceres' function- or
+  // parameter-tolerance convergence of an LM stage does not count: LM stops
+  // there on a cost that no longer decreases, not at a geodesic. True for
+  // K = 1 (no unknowns).
   bool converged = false;
+  // Measured when the solve stalls (else 0): GradientRoundOff of the path.
+  double gradient_round_off = 0;
+  bool converged_at_round_off = false;
   // max / min of step_energies and whether it exceeds
   // kUnevenStepEnergyRatio.
   double step_energy_ratio = 1;

@@ -12,7 +12,7 @@
 #include "shellspace/geometry/named_values.h"
 #include "shellspace/runtime/parallel_for.h"
 #include "shellspace/geometry/rigid_alignment.h"
-#include "shellspace/problems/calculus/geodesic.h"
+#include "shellspace/problems/calculus/path_energy.h"
 #include "shellspace/problems/calculus/ltheta_reconstruction.h"
 #include "shellspace/problems/calculus/rotation_blend_path.h"
 

@@ -11,12 +11,11 @@
 #include <vector>
 
 #include "shellspace/cost_functions/shell/shell_space.h"
+#include "shellspace/problems/calculus/shell_path.h"
 #include "shellspace/geometry/named_values.h"
 #include "shellspace/solvers/solver_settings.h"
 
 namespace shellspace {
-
-using ShellPath = std::vector<Positions>;
 
 // How the initial path is made:
 //  - kLinear: LinearPathWithoutRigidMotion;

@@ -9,7 +9,7 @@
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
 #include "shellspace/geometry/validation.h"
 #include "shellspace/runtime/blas_threads.h"
-#include "shellspace/problems/calculus/geodesic.h"
+#include "shellspace/problems/calculus/path_energy.h"
 #include "shellspace/problems/calculus/path_hessian.h"
 #include "shellspace/geometry/connected_components.h"
 #include "shellspace/solvers/gauge_reduced_solve.h"

@@ -8,12 +8,11 @@
 #include <vector>
 
 #include "shellspace/cost_functions/shell/shell_space.h"
+#include "shellspace/problems/calculus/shell_path.h"
 #include "shellspace/cost_functions/shell/shell_space_renumbering.h"
 #include "shellspace/solvers/newton_solver.h"
 
 namespace shellspace {
-
-using ShellPath = std::vector<Positions>;
 
 // The linear solver of the Newton steps (H p = -G):
 //  - kDirect: ReusableCholesky, a supernodal Cholesky factorisation of the
