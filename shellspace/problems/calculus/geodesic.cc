@@ -227,9 +227,13 @@ class GeodesicSolve {
   // probe, until converged, stopped, the budget is spent or a round lowers
   // the gradient by less than half.
   void RunProjectedPhase();
-  // At a stall: measures the gradient's round-off (GradientRoundOff) and
-  // counts the solve converged if the gradient is within it.
+  // At a stall: goes back to the best iterate, measures the gradient's
+  // round-off there (GradientRoundOff) and counts the solve converged if
+  // the gradient is within it.
   void AcceptRoundOffFloor();
+  // The path with the smallest gradient any stage ended on, if that is
+  // smaller than the current one (best_iterate_restored).
+  void RestoreBestIterate();
   // A sweep of RelaxPeakVertices on the path (GeodesicInput::
   // relax_peak_vertices), recorded as a stage.
   void RelaxPeakVerticesStage();
@@ -539,6 +543,7 @@ void GeodesicSolve::RunProjectedPhase() {
 }
 
 void GeodesicSolve::AcceptRoundOffFloor() {
+  RestoreBestIterate();  // the floor is measured where the report will be
   GeodesicInput solve_input = input_;
   solve_input.fixed_vertices = *solve_mask_;
   result_.gradient_round_off = GradientRoundOff(
@@ -596,15 +601,17 @@ void GeodesicSolve::Globalise() {
   }
 }
 
+void GeodesicSolve::RestoreBestIterate() {
+  if (best_path_.empty() || !(best_gradient_ < result_.final_gradient)) return;
+  for (int k = 1; k < input_.steps; ++k) (*solve_path_)[k] = best_path_[k];
+  result_.final_gradient = best_gradient_;
+  result_.best_iterate_restored = true;
+}
+
 void GeodesicSolve::Finish() {
-  if (!Converged() && !best_path_.empty() &&
-      best_gradient_ < result_.final_gradient) {
-    // Unconverged: the path with the smallest gradient the solve met, not
-    // its last (whose E_K may be lower, its gradient larger).
-    for (int k = 1; k < input_.steps; ++k) (*solve_path_)[k] = best_path_[k];
-    result_.final_gradient = best_gradient_;
-    result_.best_iterate_restored = true;
-  }
+  // Unconverged: the path with the smallest gradient the solve met, not
+  // its last (whose E_K may be lower, its gradient larger).
+  if (!Converged()) RestoreBestIterate();
   if (renumbered_) {
     for (int k = 1; k < input_.steps; ++k) {
       result_.path[k] = renumbered_->ToOriginal(renumbered_path_[k]);

@@ -287,8 +287,9 @@ struct GeodesicResult {
   // Not empty if the solve ended because neither the projected-Newton
   // stages nor the exact probes made progress (kRoundProgress): one line.
   std::string stall;
-  // Unconverged, the solve reports the path with the smallest gradient max
-  // norm it met after a stage, not its last one.
+  // Unconverged, or converged at the gradient's round-off, the solve
+  // reports the path with the smallest gradient max norm it met after a
+  // stage, not its last one.
   bool best_iterate_restored = false;
   PathNewtonReport newton;            // the Newton stage(s), summed
   std::vector<GeodesicStage> stages;  // every stage, in order
