@@ -102,13 +102,16 @@ JsonObject SliverJson(const GeodesicResult& result) {
 }
 
 // Each shape of a path moves on its own without changing the path energy
-// (W[a, b] sees only lengths, angles and areas), but the initial path, a
-// blend of s_0 and s_K, does not: a blend of a shape and its rotated copy
-// shrinks it. Without a mask the solve therefore runs to s_K rigidly
-// aligned onto s_0 (FitRigidMotion), and MoveToUserEnd then carries shape
-// k by the fraction k/K of the inverse motion (about the centroid of s_0),
-// so the path ends at the user's s_K and still has the same energy and
-// gradient norm. With a mask the fixed vertices pin the frame: no motion.
+// (W[a, b] sees only lengths, angles and areas), but the solve's choices
+// are made in coordinates: the initial path's checks compare face normals
+// of consecutive shapes (a triangle turning over), and those of a blend
+// that also turns by k/K of a rigid motion decide differently for the same
+// pose placed differently. Without a mask the solve therefore runs to s_K
+// rigidly aligned onto s_0 (FitRigidMotion), every shape in one frame, and
+// MoveToUserEnd then carries shape k by the fraction k/K of the inverse
+// motion (about the centroid of s_0), so the path ends at the user's s_K
+// with the same energy and gradient norm. With a mask the fixed vertices
+// pin the frame: no motion.
 RigidMotion AlignmentOfEnd(const GeodesicOptions& options) {
   if (!options.fixed_vertices.empty()) return RigidMotion();
   return FitRigidMotion(options.end, options.start.positions);

@@ -84,13 +84,6 @@ int PathUnknowns(const ShellSpace& space, const GeodesicInput& input) {
 
 namespace {
 
-// max |G_k| over the coordinates of the inner shapes that BuildPathProblem
-// leaves free, G_k = K (D_2 W[s_{k-1}, s_k] + D_1 W[s_k, s_{k+1}]): the
-// unmasked vertices, or without a mask the gauge of PinRigidMotions at
-// `path` (GaugeFreeMaxNorm), or every coordinate if the gauge is not pinned.
-// The gradient_max_norm of that Ceres problem, without building it (on the
-// cactus x4 it has 1.1 M residual blocks). 0 if an element is degenerate
-// (as GradientMaxNorm when Ceres' evaluation fails).
 // max |g| over the free coordinates of inner shape `shape` (the mask's
 // vertices left out, or the gauge's pinned coordinates).
 double FreeMaxNorm(const GeodesicInput& input, const std::vector<char>& is_fixed,
@@ -115,6 +108,13 @@ std::vector<char> FixedFlags(const ShellSpace& space,
   return is_fixed;
 }
 
+// max |G_k| over the coordinates of the inner shapes that BuildPathProblem
+// leaves free, G_k = K (D_2 W[s_{k-1}, s_k] + D_1 W[s_k, s_{k+1}]): the
+// unmasked vertices, or without a mask the gauge of PinRigidMotions at
+// `path` (GaugeFreeMaxNorm), or every coordinate if the gauge is not pinned.
+// The gradient_max_norm of that Ceres problem, without building it (on the
+// cactus x4 it has 1.1 M residual blocks). 0 if an element is degenerate
+// (as GradientMaxNorm when Ceres' evaluation fails).
 double PathGradientMaxNorm(const ShellSpace& space, const GeodesicInput& input,
                            const ShellPath& path, int threads) {
   const int K = static_cast<int>(path.size()) - 1;
