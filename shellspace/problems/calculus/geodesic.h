@@ -176,9 +176,10 @@ double PathGradientNorm(const ShellSpace& space, const GeodesicInput& input,
 // The round-off floor of that gradient at `path`: the largest max norm (as
 // above) of its change when every free coordinate of the inner shapes is
 // moved by one unit in the last place, up or down, over kRoundOffProbes
-// fixed sign patterns (the same digits on every run). A gradient below it cannot be told from zero in double
-// precision: rounding the positions once changes it by that much (a sliver
-// triangle, stiff in its short direction, raises it by orders of magnitude).
+// fixed sign patterns (the same digits on every run). A gradient below it
+// cannot be told from zero in double precision: rounding the positions
+// once changes it by that much (a sliver triangle, stiff in its short
+// direction, raises it by orders of magnitude).
 inline constexpr int kRoundOffProbes = 3;
 double GradientRoundOff(const ShellSpace& space, const GeodesicInput& input,
                         const ShellPath& path, int threads);
