@@ -18,15 +18,15 @@ Positions Scatter() {
 
 RigidMotion Known() {
   RigidMotion m;
-  m.rotation =
-      Eigen::AngleAxisd(1.1, Eigen::Vector3d(1, 2, -0.5).normalized())
-          .toRotationMatrix();
+  m.rotation = Eigen::AngleAxisd(1.1, Eigen::Vector3d(1, 2, -0.5).normalized())
+                   .toRotationMatrix();
   m.translation << 0.3, -2.0, 5.0;
   return m;
 }
 
 TEST(RigidAlignmentTest, KabschRecoversAKnownMotion) {
-  const RigidMotion fitted = FitRigidMotion(Scatter(), Known().Apply(Scatter()));
+  const RigidMotion fitted =
+      FitRigidMotion(Scatter(), Known().Apply(Scatter()));
   EXPECT_LT((fitted.rotation - Known().rotation).norm(), 1e-12);
   EXPECT_LT((fitted.translation - Known().translation).norm(), 1e-12);
 }
@@ -41,9 +41,10 @@ TEST(RigidAlignmentTest, TheInverseUndoesTheMotion) {
 TEST(RigidAlignmentTest, AFractionTurnsByThatFractionAndMovesTheCentre) {
   const Eigen::RowVector3d centre(0.2, 0.4, 0.7);
   const RigidMotion whole = Known();
-  EXPECT_LT((whole.Fraction(1, centre).Apply(Scatter()) - whole.Apply(Scatter()))
-                .norm(),
-            1e-13);
+  EXPECT_LT(
+      (whole.Fraction(1, centre).Apply(Scatter()) - whole.Apply(Scatter()))
+          .norm(),
+      1e-13);
   EXPECT_LT((whole.Fraction(0, centre).Apply(Scatter()) - Scatter()).norm(),
             1e-15);
   for (const double tau : {0.125, 0.5, 0.75}) {

@@ -60,15 +60,14 @@ TEST(GeodesicRigidMotionTest, ARigidMotionOfTheEndMovesThePathOnly) {
     EXPECT_LT(RelativeDistanceUpToRigidMotion(b.path()[k], a.path()[k]), 1e-7)
         << k;
     // Twin: the comparison tells neighbouring shapes apart.
-    EXPECT_GT(
-        RelativeDistanceUpToRigidMotion(b.path()[k], a.path()[k + 1]), 1e-3)
+    EXPECT_GT(RelativeDistanceUpToRigidMotion(b.path()[k], a.path()[k + 1]),
+              1e-3)
         << k;
   }
   // The motion is spread over the steps: shape k is turned by about k/K of
   // the 143 degrees against the start (plus the bend's own share).
   const double step_turn =
-      Eigen::AngleAxisd(
-          FitRigidMotion(a.path()[1], b.path()[1]).rotation)
+      Eigen::AngleAxisd(FitRigidMotion(a.path()[1], b.path()[1]).rotation)
           .angle();
   EXPECT_NEAR(step_turn, 2.5 / 4, 0.15);
 }
@@ -83,9 +82,9 @@ TEST(GeodesicRigidMotionTest, WithAMaskTheEndIsNotMoved) {
   EXPECT_EQ(pinned.path().back(), options.end);
   for (const int v : options.fixed_vertices) {
     for (int k = 0; k <= 4; ++k) {
-      EXPECT_LT((pinned.path()[k].row(v) - options.start.positions.row(v))
-                    .norm(),
-                1e-12)
+      EXPECT_LT(
+          (pinned.path()[k].row(v) - options.start.positions.row(v)).norm(),
+          1e-12)
           << v << " " << k;
     }
   }

@@ -86,8 +86,9 @@ namespace {
 
 // max |g| over the free coordinates of inner shape `shape` (the mask's
 // vertices left out, or the gauge's pinned coordinates).
-double FreeMaxNorm(const GeodesicInput& input, const std::vector<char>& is_fixed,
-                   const Positions& shape, const Eigen::VectorXd& g) {
+double FreeMaxNorm(const GeodesicInput& input,
+                   const std::vector<char>& is_fixed, const Positions& shape,
+                   const Eigen::VectorXd& g) {
   if (!input.fixed_vertices.empty()) {
     double norm = 0;
     for (int v = 0; v < static_cast<int>(is_fixed.size()); ++v) {
@@ -101,10 +102,11 @@ double FreeMaxNorm(const GeodesicInput& input, const std::vector<char>& is_fixed
   return g.cwiseAbs().maxCoeff();
 }
 
-std::vector<char> FixedFlags(const ShellSpace& space,
-                             const GeodesicInput& input) {
-  std::vector<char> is_fixed(space.num_vertices, 0);
-  for (int v : input.fixed_vertices) is_fixed[v] = 1;
+// Per vertex: 1 if it is in `fixed_vertices`.
+std::vector<char> FixedFlags(int num_vertices,
+                             const std::vector<int>& fixed_vertices) {
+  std::vector<char> is_fixed(num_vertices, 0);
+  for (int v : fixed_vertices) is_fixed[v] = 1;
   return is_fixed;
 }
 
@@ -118,7 +120,8 @@ std::vector<char> FixedFlags(const ShellSpace& space,
 double PathGradientMaxNorm(const ShellSpace& space, const GeodesicInput& input,
                            const ShellPath& path, int threads) {
   const int K = static_cast<int>(path.size()) - 1;
-  const std::vector<char> is_fixed = FixedFlags(space, input);
+  const std::vector<char> is_fixed =
+      FixedFlags(space.num_vertices, input.fixed_vertices);
   std::vector<double> norm(K - 1, 0.0);
   const bool ok = ForEachInnerShapeGradient(
       space, path, threads, [&](int i, const Eigen::VectorXd& g) {
@@ -140,7 +143,8 @@ double GradientRoundOff(const ShellSpace& space, const GeodesicInput& input,
                         const ShellPath& path, int threads) {
   const int K = static_cast<int>(path.size()) - 1;
   if (K < 2) return 0;
-  const std::vector<char> is_fixed = FixedFlags(space, input);
+  const std::vector<char> is_fixed =
+      FixedFlags(space.num_vertices, input.fixed_vertices);
   std::vector<Eigen::VectorXd> base(K - 1);
   if (!ForEachInnerShapeGradient(
           space, path, threads,
@@ -586,8 +590,7 @@ void GeodesicSolve::Globalise() {
     }
     const bool probe = lm_handed_over_;
     early = false;
-    const PathNewtonReport report =
-        RunNewtonStage(HessianModel::kExact, probe);
+    const PathNewtonReport report = RunNewtonStage(HessianModel::kExact, probe);
     if (report.converged || budget_ <= 0 || stopped_) return;
     if (probe) {  // LM on to the threshold; not an attempt
       resume_damping_ = lm_damping_;
@@ -657,8 +660,8 @@ GradientPeak LargestPathGradient(const ShellSpace& space,
   const int K = static_cast<int>(path.size()) - 1;
   GradientPeak peak;
   if (K < 2) return peak;
-  std::vector<char> is_fixed(space.num_vertices, 0);
-  for (int v : fixed_vertices) is_fixed[v] = 1;
+  const std::vector<char> is_fixed =
+      FixedFlags(space.num_vertices, fixed_vertices);
   std::vector<GradientPeak> per_shape(K - 1);
   const bool ok = ForEachInnerShapeGradient(
       space, path, threads, [&](int i, const Eigen::VectorXd& g) {
