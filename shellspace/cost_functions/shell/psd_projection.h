@@ -21,7 +21,6 @@
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 
@@ -29,6 +28,13 @@ namespace shellspace {
 
 // Relative shift of the positive-semidefiniteness test (see above).
 inline constexpr double kPsdTestShift = 1e-12;
+
+// Replaces the symmetric matrix m (both triangles set) by
+// Q diag(max(lambda_i, 0)) Q^T, from its eigen-decomposition; false (m left
+// as it is) if the eigen-solver fails. One compiled body for every size
+// (psd_projection.cc): a fixed-size eigen-solver per size cost half a minute
+// of compilation each, for no measurable speed.
+bool ClampNegativeEigenvalues(Eigen::Ref<Eigen::MatrixXd> m);
 
 // Replaces the symmetric matrix *a (only its lower triangle is read) by its
 // projection onto the positive semidefinite cone. Returns true if *a was
@@ -47,11 +53,8 @@ bool ProjectToPositiveSemidefinite(Matrix* a) {
   shifted.diagonal().array() += tau;
   Eigen::LLT<Square> cholesky(shifted);
   if (cholesky.info() == Eigen::Success) return false;
-  Eigen::SelfAdjointEigenSolver<Square> eigen(m);
-  if (eigen.info() != Eigen::Success) return false;
-  const auto clamped = eigen.eigenvalues().cwiseMax(0.0);
-  *a = eigen.eigenvectors() * clamped.asDiagonal() *
-       eigen.eigenvectors().transpose();
+  if (!ClampNegativeEigenvalues(m)) return false;
+  *a = m;
   return true;
 }
 
@@ -109,7 +112,8 @@ bool ProjectToPositiveSemidefiniteModuloTranslations(Matrix* a) {
 // project (3 (kVertices - 1) kShapes square). With kind `extern template`
 // their explicit instantiation declarations (below), with kind `template`
 // their definitions, compiled once in psd_projection_<kVertices>.cc, each
-// with the sizes of reduced matrix listed under it.
+// with the sizes of reduced matrix listed under it (one file each: in one
+// file together they take twice as long to compile).
 #define SHELLSPACE_PSD_PROJECTION_TEMPLATES_OF_SIZE(kind, n) \
   kind bool ProjectToPositiveSemidefinite(Eigen::Matrix<double, n, n>*)
 #define SHELLSPACE_PSD_PROJECTION_TEMPLATES_OF_STENCIL(kind, k)    \
