@@ -8,8 +8,8 @@
 #include <cstring>
 #include <filesystem>
 #include <initializer_list>
-#include <regex>
 #include <system_error>
+#include <vector>
 
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/io/atomic_file.h"
@@ -29,24 +29,59 @@ std::string Sibling(const std::string& dir, const std::string& kind) {
   return (parent.empty() ? fs::path(name) : parent / name).string();
 }
 
+// True if `text` is all decimal digits, 1 to max_length of them.
+bool IsDigits(const std::string& text, std::size_t max_length) {
+  if (text.empty() || text.size() > max_length) return false;
+  for (char c : text) {
+    if (c < '0' || c > '9') return false;
+  }
+  return true;
+}
+
 // The owner of a temporary's tag "<pid>-<start>-<n>" (or "<pid>-<n>", the
 // names before the start time was added: start 0, unknown); false if
-// `tag` is not one.
+// `tag` is not one (pid at most 18 digits, start at most 19).
 bool ParseTag(const std::string& tag, long* pid, unsigned long long* start) {
-  static const std::regex three(R"(([0-9]{1,18})-([0-9]{1,19})-[0-9]+)");
-  static const std::regex two(R"(([0-9]{1,18})-[0-9]+)");
-  std::smatch match;
-  if (std::regex_match(tag, match, three)) {
-    *pid = std::stol(match[1]);
-    *start = std::stoull(match[2]);
+  std::vector<std::string> parts(1);
+  for (char c : tag) {
+    if (c == '-') {
+      parts.emplace_back();
+    } else {
+      parts.back() += c;
+    }
+  }
+  const std::size_t unlimited = std::string::npos;
+  if (parts.size() == 3 && IsDigits(parts[0], 18) &&
+      IsDigits(parts[1], 19) && IsDigits(parts[2], unlimited)) {
+    *pid = std::stol(parts[0]);
+    *start = std::stoull(parts[1]);
     return true;
   }
-  if (std::regex_match(tag, match, two)) {
-    *pid = std::stol(match[1]);
+  if (parts.size() == 2 && IsDigits(parts[0], 18) &&
+      IsDigits(parts[1], unlimited)) {
+    *pid = std::stol(parts[0]);
     *start = 0;
     return true;
   }
   return false;
+}
+
+// True if `name` matches `pattern`, where '#' stands for one or more decimal
+// digits, '*' for zero or more, and every other character for itself.
+bool MatchesNamePattern(const std::string& name, const char* pattern) {
+  std::size_t i = 0;
+  for (const char* p = pattern; *p != '\0'; ++p) {
+    if (*p == '#' || *p == '*') {
+      const std::size_t first = i;
+      while (i < name.size() && name[i] >= '0' && name[i] <= '9') ++i;
+      if (*p == '#' && i == first) return false;
+    } else if (i < name.size() && name[i] == *p) {
+      ++i;
+    } else {
+      return false;
+    }
+  }
+  return i == name.size();
 }
 
 // The tag of `entry` if it is a temporary of `name` of one of `kinds`
@@ -65,20 +100,25 @@ std::string TagOf(const std::string& entry, const std::string& name,
 }
 
 bool IsFrameName(const std::string& name) {
-  static const std::regex frame(R"(shape_[0-9]+\.ply)");
-  return std::regex_match(name, frame);
+  return MatchesNamePattern(name, "shape_#.ply");
 }
 
 bool IsRunFileName(const std::string& name) {
-  static const std::regex known(
-      R"(shape_[0-9]+\.ply|summary\.json|pca\.json|mean\.ply|)"
-      R"(mode_[0-9]+_(minus|plus)\.ply|procrustes_mean\.ply|)"
-      R"(procrustes_mode_[0-9]+_(minus|plus)\.ply|u\.csv|uy\.png|)"
-      R"(interfaces\.csv|pattern\.png|pattern\.txt|film_strip\.png|viewer\.html|)"
+  static const char* const kKnown[] = {
+      "shape_#.ply", "summary.json", "pca.json", "mean.ply",
+      "mode_#_minus.ply", "mode_#_plus.ply", "procrustes_mean.ply",
+      "procrustes_mode_#_minus.ply", "procrustes_mode_#_plus.ply", "u.csv",
+      "uy.png", "interfaces.csv", "pattern.png", "pattern.txt",
+      "film_strip.png", "viewer.html",
       // The example sets (geometry/example_poses.h).
-      R"((finger|plate|cylinder|pose)[0-9]*(_var)?\.ply|)"
-      R"((finger|plate|cylinder|collection)_mask\.txt)");
-  return std::regex_match(name, known) || IsTemporaryName(name);
+      "finger*.ply", "plate*.ply", "cylinder*.ply", "pose*.ply",
+      "finger*_var.ply", "plate*_var.ply", "cylinder*_var.ply",
+      "pose*_var.ply", "finger_mask.txt", "plate_mask.txt",
+      "cylinder_mask.txt", "collection_mask.txt"};
+  for (const char* pattern : kKnown) {
+    if (MatchesNamePattern(name, pattern)) return true;
+  }
+  return IsTemporaryName(name);
 }
 
 void RemoveAll(const std::string& path) {

@@ -5,10 +5,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
 #include "shellspace/geometry/mesh.h"
+#include "shellspace/io/atomic_file.h"
 #include "tests/testing/test_support.h"
 
 namespace shellspace {
@@ -76,6 +78,59 @@ TEST(OutputDirectoryTest, NeverReplacesOtherFiles) {
   EXPECT_NE(ReplaceableDirectoryProblem(base + "/file").find("not a directory"),
             std::string::npos);
   EXPECT_EQ(ReplaceableDirectoryProblem(base + "/missing"), "");
+}
+
+// Which names a directory may hold and still be replaced: the files a run
+// writes (frames, modes, the example sets) and the temporaries of a run;
+// a name that only resembles one is the user's.
+TEST(OutputDirectoryTest, KnowsTheNamesARunWrites) {
+  const std::string base = testing::TempDir();
+  int n = 0;
+  auto problem_with = [&](const std::string& name) {
+    const std::string dir = base + "/d" + std::to_string(n++);
+    std::filesystem::create_directory(dir);
+    Touch(dir + "/" + name);
+    return ReplaceableDirectoryProblem(dir);
+  };
+  for (const char* name :
+       {"shape_000.ply", "shape_12.ply", "summary.json", "mode_2_plus.ply",
+        "procrustes_mode_10_minus.ply", "finger.ply", "finger1.ply",
+        "plate12_var.ply", "pose_var.ply", "collection_mask.txt",
+        "viewer.html", ".out.tmp-12-345-0", "shape_000.ply.tmp-7-0"}) {
+    EXPECT_EQ(problem_with(name), "") << name;
+  }
+  for (const char* name :
+       {"shape_.ply", "shape_1.plyx", "shape_1a.ply", "mode_a_plus.ply",
+        "mode_1_both.ply", "finger_x.ply", "fingers.ply", "summary.json2",
+        "notes.txt"}) {
+    EXPECT_NE(problem_with(name).find(std::string("holds ") + name),
+              std::string::npos)
+        << name;
+  }
+}
+
+// Leftovers of ended runs beside an output are removed, by their tag
+// "<pid>-<start>-<n>" or "<pid>-<n>"; this process's, and names whose tag
+// is not one, stay.
+TEST(OutputDirectoryTest, RemovesOnlyTheLeftoversOfEndedRuns) {
+  const std::string base = testing::TempDir() + "/leftovers";
+  std::filesystem::create_directory(base);
+  // No process has a pid this large (the kernel's limit is 2^22).
+  const std::string ended = "999999999";
+  const std::vector<std::string> removed = {
+      ".out.tmp-" + ended + "-12345-0", ".out.tmp-" + ended + "-3",
+      "out.tmp-" + ended + "-12345-1", ".out.old-" + ended + "-12345-2"};
+  const std::vector<std::string> kept = {
+      ".out.tmp-" + ProcessTag() + "-0", ".out.tmp-" + ended + "-x-0",
+      ".out.tmp-1234567890123456789-0", ".out.tmp-" + ended + "-1-2-3",
+      ".out.tmp-" + ended, ".other.tmp-" + ended + "-0"};
+  for (const std::string& name : removed) Touch(base + "/" + name);
+  for (const std::string& name : kept) Touch(base + "/" + name);
+  EXPECT_EQ(RemoveLeftoversOfEndedRuns(base + "/out", true),
+            static_cast<int>(removed.size()));
+  std::vector<std::string> expected = kept;
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(DirectoryListing(base), expected);
 }
 
 // Every spelling names the path that is renamed: the parent resolved
