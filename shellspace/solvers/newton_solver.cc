@@ -148,6 +148,10 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
                        EvaluationStatus::kOk) ||
       problem->Residual(NewtonPoint::kCurrent, &current) !=
           EvaluationStatus::kOk) {
+    // No residual, not a residual of 0: a caller that compares
+    // final_gradient with its tolerance must not see a converged start.
+    report.initial_gradient = report.final_gradient = HUGE_VAL;
+    report.final_merit = HUGE_VAL;
     finish(NewtonStop::kInfeasibleStart);
     update_counters();
     return report;

@@ -259,7 +259,9 @@ std::string NewtonStopText(NewtonStop stop, NewtonMode mode);
 struct NewtonReport {
   int steps = 0;                // accepted Newton steps
   int iterations = 0;           // Hessian / Jacobian assemblies
-  double initial_gradient = 0;  // residual max_norm before / after
+  // Residual max_norm before / after (both +inf, and final_merit too, if
+  // the start cannot be evaluated: stop kInfeasibleStart).
+  double initial_gradient = 0;
   double final_gradient = 0;
   double final_merit = 0;       // minimisation: the merit at the end
   bool converged = false;       // final_gradient <= tolerance

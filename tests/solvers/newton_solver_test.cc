@@ -376,6 +376,10 @@ TEST(NewtonSolverTest, StopReasons) {
     EXPECT_EQ(r.stop_reason, "degenerate initial guess");
     EXPECT_FALSE(r.converged);
     EXPECT_EQ(r.steps, 0);
+    // No residual, not a residual of 0 (a caller's tolerance test fails).
+    EXPECT_EQ(r.initial_gradient, HUGE_VAL);
+    EXPECT_EQ(r.final_gradient, HUGE_VAL);
+    EXPECT_EQ(r.final_merit, HUGE_VAL);
   }
   {  // A negative definite Hessian: f = -x^2 from 1.
     Callbacks c;

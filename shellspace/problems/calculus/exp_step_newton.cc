@@ -4,6 +4,7 @@
 
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
 #include "shellspace/geometry/connected_components.h"
+#include "shellspace/geometry/vertex_flags.h"
 #include "shellspace/solvers/gauge_reduced_solve.h"
 #include "shellspace/problems/calculus/path_hessian.h"
 #include "shellspace/solvers/newton_solver.h"
@@ -52,13 +53,6 @@ EvaluationStatus TryResidual(const ShellSpace& space, const Positions& fixed,
   return EvaluationStatus::kOk;
 }
 
-std::vector<char> FixedFlags(int num_vertices,
-                             const std::vector<int>& fixed_vertices) {
-  std::vector<char> is_fixed(num_vertices, 0);
-  for (int v : fixed_vertices) is_fixed[v] = 1;
-  return is_fixed;
-}
-
 }  // namespace
 
 double ExpResidualMaxNorm(const ExpStepEquation& equation,
@@ -68,7 +62,7 @@ double ExpResidualMaxNorm(const ExpStepEquation& equation,
                   equation.constant, s, &f) != EvaluationStatus::kOk) {
     return HUGE_VAL;
   }
-  return MaxNorm(f, FixedFlags(equation.space.num_vertices,
+  return MaxNorm(f, VertexFlags(equation.space.num_vertices,
                                equation.fixed_vertices));
 }
 
@@ -87,7 +81,7 @@ class ExpStepProblem : public NewtonProblem {
         fixed_(fixed),
         unknown_side_(unknown_side),
         constant_(constant),
-        is_fixed_(FixedFlags(space.num_vertices, fixed_vertices)),
+        is_fixed_(VertexFlags(space.num_vertices, fixed_vertices)),
         gauge_(fixed_vertices.empty()),
         components_(gauge_ ? ConnectedComponents(space.faces,
                                                  space.num_vertices)
@@ -171,13 +165,7 @@ ExpNewtonReport SolveExpStepNewton(const ExpStepEquation& equation,
   newton.progress_steps = kProgressSteps;
   newton.progress_factor = 0.5;
   SparseLu lu;
-  ExpNewtonReport report = SolveNewton(&problem, &lu, newton);
-  if (report.stop == NewtonStop::kInfeasibleStart) {
-    // F cannot be evaluated at the start (a degenerate triangle): no
-    // residual, not a residual of 0.
-    report.initial_gradient = report.final_gradient = HUGE_VAL;
-  }
-  return report;
+  return SolveNewton(&problem, &lu, newton);
 }
 
 }  // namespace shellspace

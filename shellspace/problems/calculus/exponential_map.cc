@@ -9,6 +9,7 @@
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
 #include "shellspace/geometry/connected_components.h"
 #include "shellspace/geometry/rigid_alignment.h"
+#include "shellspace/geometry/vertex_flags.h"
 #include "shellspace/runtime/blas_threads.h"
 #include "shellspace/problems/calculus/exp_step_continuation.h"
 #include "shellspace/problems/calculus/exp_step_newton.h"
@@ -188,8 +189,8 @@ ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
   const ExpStepEquation equation{
       space, b, forward ? ShellSide::kDeformed : ShellSide::kReference,
       constant, fixed_vertices};
-  std::vector<char> is_fixed(space.num_vertices, 0);
-  for (int v : fixed_vertices) is_fixed[v] = 1;
+  const std::vector<char> is_fixed =
+      VertexFlags(space.num_vertices, fixed_vertices);
   double scale = 1e-300;  // max |c| over the unknown vertices
   for (int v = 0; v < space.num_vertices; ++v) {
     if (!is_fixed[v]) {

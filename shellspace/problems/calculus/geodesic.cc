@@ -12,6 +12,7 @@
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
 #include "shellspace/cost_functions/shell/shell_space_renumbering.h"
 #include "shellspace/geometry/validation.h"
+#include "shellspace/geometry/vertex_flags.h"
 #include "shellspace/problems/calculus/vertex_relaxation.h"
 #include "shellspace/runtime/parallel_for.h"
 #include "shellspace/solvers/rigid_gauge.h"
@@ -102,14 +103,6 @@ double FreeMaxNorm(const GeodesicInput& input,
   return g.cwiseAbs().maxCoeff();
 }
 
-// Per vertex: 1 if it is in `fixed_vertices`.
-std::vector<char> FixedFlags(int num_vertices,
-                             const std::vector<int>& fixed_vertices) {
-  std::vector<char> is_fixed(num_vertices, 0);
-  for (int v : fixed_vertices) is_fixed[v] = 1;
-  return is_fixed;
-}
-
 // max |G_k| over the coordinates of the inner shapes that BuildPathProblem
 // leaves free, G_k = K (D_2 W[s_{k-1}, s_k] + D_1 W[s_k, s_{k+1}]): the
 // unmasked vertices, or without a mask the gauge of PinRigidMotions at
@@ -121,7 +114,7 @@ double PathGradientMaxNorm(const ShellSpace& space, const GeodesicInput& input,
                            const ShellPath& path, int threads) {
   const int K = static_cast<int>(path.size()) - 1;
   const std::vector<char> is_fixed =
-      FixedFlags(space.num_vertices, input.fixed_vertices);
+      VertexFlags(space.num_vertices, input.fixed_vertices);
   std::vector<double> norm(K - 1, 0.0);
   const bool ok = ForEachInnerShapeGradient(
       space, path, threads, [&](int i, const Eigen::VectorXd& g) {
@@ -144,7 +137,7 @@ double GradientRoundOff(const ShellSpace& space, const GeodesicInput& input,
   const int K = static_cast<int>(path.size()) - 1;
   if (K < 2) return 0;
   const std::vector<char> is_fixed =
-      FixedFlags(space.num_vertices, input.fixed_vertices);
+      VertexFlags(space.num_vertices, input.fixed_vertices);
   std::vector<Eigen::VectorXd> base(K - 1);
   if (!ForEachInnerShapeGradient(
           space, path, threads,
@@ -661,7 +654,7 @@ GradientPeak LargestPathGradient(const ShellSpace& space,
   GradientPeak peak;
   if (K < 2) return peak;
   const std::vector<char> is_fixed =
-      FixedFlags(space.num_vertices, fixed_vertices);
+      VertexFlags(space.num_vertices, fixed_vertices);
   std::vector<GradientPeak> per_shape(K - 1);
   const bool ok = ForEachInnerShapeGradient(
       space, path, threads, [&](int i, const Eigen::VectorXd& g) {

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "shellspace/cost_functions/shell/element_hessian.h"
+#include "shellspace/geometry/vertex_flags.h"
 #include "shellspace/problems/calculus/geodesic.h"
 #include "shellspace/runtime/parallel_for.h"
 
@@ -176,8 +177,8 @@ VertexRelaxationReport RelaxPeakVertices(const ShellSpace& space,
                       .transpose();
       });
   if (!ok) return report;
-  std::vector<char> is_fixed(space.num_vertices, 0);
-  for (int v : fixed_vertices) is_fixed[v] = 1;
+  const std::vector<char> is_fixed =
+      VertexFlags(space.num_vertices, fixed_vertices);
   double largest = 0;
   for (const Eigen::VectorXd& p : peak) {
     for (int v = 0; v < space.num_vertices; ++v) {
