@@ -176,21 +176,11 @@ ShellMaterial Material(const MaterialArgs& args, const Mesh& reference) {
   return material;
 }
 
-// The material as resolved for `reference` (the CLI's "material" record).
-JsonObject MaterialRecord(const ShellSpace& space, const Mesh& reference,
-                          const MaterialArgs& args) {
-  return MaterialJson(space.material, reference, args.eta.has_value());
-}
-
 workflows::MaterialChoice MaterialChoiceOf(const MaterialArgs& args,
                                            const Mesh& reference) {
   return {Material(args, reference), args.eta.has_value()};
 }
 
-JsonObject MaterialRecord(const workflows::MaterialChoice& material,
-                          const Mesh& reference) {
-  return MaterialJson(material.material, reference, material.eta_absolute);
-}
 
 std::vector<std::string> FailuresOf(const workflows::SolveStatus& status) {
   if (status.failed()) return {status.message};
@@ -300,7 +290,7 @@ JsonObject WorkflowJson(JsonObject json,
                         const Mesh& reference, std::optional<double> seconds,
                         const SolverOptions& solver,
                         const std::optional<std::string>& output) {
-  json.Add("material", MaterialRecord(material, reference));
+  json.Add("material", workflows::MaterialChoiceJson(material, reference));
   if (seconds) json.Add("seconds", *seconds);
   AddStopFields(json, *solver.control);
   AddOutput(json, output);

@@ -122,16 +122,9 @@ MaterialArgs MakeMaterialArgs(double mu, double lambda,
                               const RelativeEtaArg& relative_eta,
                               const std::string& bending);
 
-// The material as resolved for `reference` (the CLI's "material" record).
-JsonObject MaterialRecord(const ShellSpace& space, const Mesh& reference,
-                          const MaterialArgs& args);
-
 // The material of the keywords for `reference`, as the workflows take it.
 workflows::MaterialChoice MaterialChoiceOf(const MaterialArgs& args,
                                            const Mesh& reference);
-// The "material" record of a workflow's result.
-JsonObject MaterialRecord(const workflows::MaterialChoice& material,
-                          const Mesh& reference);
 
 // What a workflow's status raises as NotConvergedError's failures: its
 // failures, or the one line of a solve that could not run.

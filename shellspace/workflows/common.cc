@@ -34,6 +34,11 @@ EnergySplit MeanEnergySplit(const ShellSpace& space, const Positions& mean,
   return split;
 }
 
+JsonObject MaterialChoiceJson(const MaterialChoice& choice,
+                              const Mesh& reference) {
+  return MaterialJson(choice.material, reference, choice.eta_absolute);
+}
+
 JsonObject EnergySplitJson(const EnergySplit& split) {
   return shellspace::EnergySplitJson(split.membrane, split.bending);
 }

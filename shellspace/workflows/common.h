@@ -25,6 +25,12 @@ struct MaterialChoice {
   bool eta_absolute = false;
 };
 
+// The "material" record of a run's summary for `choice` resolved for
+// `reference` (reports' MaterialJson): mu, lambda, eta, relative_eta,
+// eta_from, reference_area, bending_model.
+JsonObject MaterialChoiceJson(const MaterialChoice& choice,
+                              const Mesh& reference);
+
 // The membrane / bending split of an energy whose bending part includes
 // eta: membrane + bending is the energy.
 struct EnergySplit {

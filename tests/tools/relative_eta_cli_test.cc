@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
 #include <string>
+#include <vector>
 
 #include "shellspace/cost_functions/shell/relative_bending_weight.h"
 #include "shellspace/io/frame_sequence.h"
@@ -117,6 +119,31 @@ TEST(RelativeEtaCliTest, EnergySplitAddsUpToThePathEnergy) {
   EXPECT_NEAR(Number(paths.small_json, "bending_share"), bending / total,
               1e-12);
   EXPECT_NEAR(Number(paths.small_json, "relative_eta"), 0.1, 1e-15);
+}
+
+// energy, deform and mean (geodesic above) report the material they
+// resolved from their own flags, relative or absolute.
+TEST(RelativeEtaCliTest, EverySolvingVerbReportsTheMaterialItResolved) {
+  const std::string dir = TempDir();
+  const std::string mask = dir + "/corners.txt";
+  std::ofstream(mask) << "1\n2\n3\n4\n";
+  const std::string square = testing::Square4(), bent = testing::Square4Bent();
+  const std::vector<std::string> runs = {
+      "energy --json --reference " + square + " --deformed " + bent,
+      "deform --quiet --json --reference " + square + " --targets " + bent +
+          " --mask " + mask + " --output " + dir + "/deformed.ply",
+      "mean --quiet --json --inputs " + square + "," + bent + " --output " +
+          dir + "/mean.ply"};
+  for (const std::string& run : runs) {
+    const std::string relative = RunOk(run + " --relative_eta 0.02");
+    EXPECT_NEAR(Number(relative, "relative_eta"), 0.02, 1e-15) << run;
+    EXPECT_NE(relative.find("\"eta_from\": \"relative\""), std::string::npos)
+        << relative;
+    const std::string absolute = RunOk(run + " --eta 0.5");
+    EXPECT_EQ(Number(absolute, "eta"), 0.5) << run;
+    EXPECT_NE(absolute.find("\"eta_from\": \"absolute\""), std::string::npos)
+        << absolute;
+  }
 }
 
 TEST(RelativeEtaCliTest, EtaAndRelativeEtaTogetherAreAnError) {

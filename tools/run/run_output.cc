@@ -46,8 +46,6 @@ const std::string& RunId() {
 
 JsonObject& AddRunFields(JsonObject& json) {
   const StopCause stop = ObservedStop();
-  const std::string material = RunMaterialJson();
-  if (!material.empty()) json.Raw("material", material);
   return json.Add("partial", stop != StopCause::kNone)
       .Add("stop_reason", StopCauseText(stop))
       .Add("run_id", RunId())

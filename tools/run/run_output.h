@@ -24,8 +24,7 @@ const std::string& RunId();
 // spaces).
 const std::string& RunCommandLine();
 
-// Adds material (the resolved material of the run, RunMaterialJson in
-// shell_inputs.h, if the verb has one), run_id, command_line, partial (a time limit or a signal cut a solve
+// Adds run_id, command_line, partial (a time limit or a signal cut a solve
 // short, tools/run/stop_request.h) and stop_reason ("" or e.g. "SIGTERM",
 // "time limit 10 s") to `json`.
 JsonObject& AddRunFields(JsonObject& json);

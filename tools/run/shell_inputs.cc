@@ -9,7 +9,6 @@
 
 #include "shellspace/cost_functions/shell/relative_bending_weight.h"
 #include "shellspace/geometry/validation.h"
-#include "shellspace/reports/shape_reports.h"
 #include "shellspace/io/atomic_file.h"
 #include "shellspace/io/mesh_io.h"
 #include "tools/run/common_flags.h"
@@ -78,11 +77,6 @@ BendingModel BendingModelFromFlags() {
 
 namespace {
 
-std::string& RunMaterialStorage() {
-  static std::string json;
-  return json;
-}
-
 bool Given(const char* flag) {
   gflags::CommandLineFlagInfo info;
   return gflags::GetCommandLineFlagInfo(flag, &info) && !info.is_default;
@@ -90,28 +84,23 @@ bool Given(const char* flag) {
 
 }  // namespace
 
-ShellMaterial MaterialFromFlags(const Mesh& reference) {
-  ShellMaterial material;
+workflows::MaterialChoice MaterialChoiceFromFlags(const Mesh& reference) {
+  workflows::MaterialChoice choice;
+  ShellMaterial& material = choice.material;
   material.bending_model = BendingModelFromFlags();
   material.mu = FLAGS_mu;
   material.lambda = FLAGS_lambda;
-  const bool absolute = Given("eta");
-  if (absolute && Given("relative_eta")) {
+  choice.eta_absolute = Given("eta");
+  if (choice.eta_absolute && Given("relative_eta")) {
     throw InputError(
         "--eta and --relative_eta: give one of them (--eta is absolute, "
         "--relative_eta is multiplied by the reference's area)");
   }
-  material.eta =
-      absolute ? FLAGS_eta : EtaFromRelative(FLAGS_relative_eta, reference);
+  material.eta = choice.eta_absolute
+                     ? FLAGS_eta
+                     : EtaFromRelative(FLAGS_relative_eta, reference);
   material.Validate();
-  RunMaterialStorage() = MaterialJson(material, reference, absolute).str();
-  return material;
-}
-
-std::string RunMaterialJson() { return RunMaterialStorage(); }
-
-ShellSpace SpaceFromFlags(const Shell& shell) {
-  return ShellSpace(shell.mesh, shell.topology, MaterialFromFlags(shell.mesh));
+  return choice;
 }
 
 std::vector<int> MaskFromFlags(int num_vertices) {

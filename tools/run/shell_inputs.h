@@ -12,6 +12,7 @@
 #include "shellspace/geometry/topology.h"
 #include "shellspace/io/frame_sequence.h"
 #include "shellspace/solvers/solver_settings.h"
+#include "shellspace/workflows/common.h"
 
 namespace shellspace {
 
@@ -58,19 +59,11 @@ ShellPair LoadShellPair(const std::string& first, const std::string& second);
 BendingModel BendingModelFromFlags();
 
 // The material of --mu, --lambda, --eta / --relative_eta and --bending for
-// shells whose reference is `reference`: eta is --eta if given, else
-// --relative_eta x SurfaceArea(reference) (relative_bending_weight.h);
-// InputError if both are given. Records the result for RunMaterialJson.
-ShellMaterial MaterialFromFlags(const Mesh& reference);
-
-// The material of this run as MaterialFromFlags last resolved it, as JSON:
-// mu, lambda, eta, relative_eta (eta / area), eta_from ("relative" or
-// "absolute"), reference_area, bending_model; "" if none was resolved.
-std::string RunMaterialJson();
-
-// ShellSpace of a validated shell with the flags' material (its topology
-// reused; the shell is the reference of MaterialFromFlags).
-ShellSpace SpaceFromFlags(const Shell& shell);
+// shells whose reference is `reference`, as the workflows take it: eta is
+// --eta if given (eta_absolute), else --relative_eta x SurfaceArea(reference)
+// (relative_bending_weight.h); InputError if both are given. A verb puts
+// workflows::MaterialChoiceJson of it in its summary.
+workflows::MaterialChoice MaterialChoiceFromFlags(const Mesh& reference);
 
 // The --mask vertices, or none if --mask is empty.
 std::vector<int> MaskFromFlags(int num_vertices);

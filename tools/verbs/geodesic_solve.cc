@@ -86,13 +86,6 @@ RunPaths GeodesicInputPaths() {
   return paths;
 }
 
-workflows::MaterialChoice MaterialChoiceFromFlags(const Mesh& reference) {
-  workflows::MaterialChoice choice;
-  choice.material = MaterialFromFlags(reference);
-  choice.eta_absolute = !gflags::GetCommandLineFlagInfoOrDie("eta").is_default;
-  return choice;
-}
-
 workflows::GeodesicOptions GeodesicOptionsFromFlags(const std::string& verb) {
   const auto [start, end] = LoadShellPair(FLAGS_start, FLAGS_end);
   const int vertices = start.mesh.num_vertices();

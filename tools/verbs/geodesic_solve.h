@@ -45,9 +45,6 @@ FlagSpec GeodesicInitFlag();
 // --mask), to which the verb adds its outputs before RunPaths::Check.
 RunPaths GeodesicInputPaths();
 
-// The material of the flags (MaterialFromFlags) as the workflows take it.
-workflows::MaterialChoice MaterialChoiceFromFlags(const Mesh& reference);
-
 // The geodesic workflow's options of the flags of `verb` (geodesic, log):
 // --start and --end read and validated, --steps (checked against
 // kGeodesicModel's memory estimate first), --mask, the material, the solve

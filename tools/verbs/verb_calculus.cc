@@ -149,7 +149,11 @@ int RunShoot() {
   RecordWorkflow(result.status, {}, "shoot", &status);
   RunDirectory output(FLAGS_output);
   WritePathOutputs(&output, first.mesh.faces, result.path());
-  CommitPathRun(&output, workflows::ToJson(result), Seconds(clock));
+  CommitPathRun(&output,
+                workflows::ToJson(result).Add(
+                    "material",
+                    workflows::MaterialChoiceJson(options.material, first.mesh)),
+                Seconds(clock));
   return status.Finish();
 }
 
@@ -168,7 +172,9 @@ int RunLog() {
             FLAGS_output);
   if (FLAGS_json) {
     JsonObject json = workflows::ToJson(result);
-    json.Add("bending_model", FLAGS_bending)
+    json.Add("material",
+             workflows::MaterialChoiceJson(geodesic.material, geodesic.start))
+        .Add("bending_model", FLAGS_bending)
         .Add("seconds", Seconds(clock))
         .Add("output", FLAGS_output);
     std::cout << AddRunFields(json).str() << "\n";
@@ -212,7 +218,11 @@ int RunTransport() {
   for (const std::string& warning : result.warnings) status.Warn(warning);
   RunDirectory output(FLAGS_output);
   WritePathOutputs(&output, first.mesh.faces, result.shapes());
-  CommitPathRun(&output, workflows::ToJson(result), Seconds(clock));
+  CommitPathRun(&output,
+                workflows::ToJson(result).Add(
+                    "material",
+                    workflows::MaterialChoiceJson(options.material, first.mesh)),
+                Seconds(clock));
   return status.Finish();
 }
 

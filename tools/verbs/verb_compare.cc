@@ -62,7 +62,8 @@ int RunCompare() {
     throw InputError("compare: " + FLAGS_a + " has " + std::to_string(a.size()) +
                      " frame(s), " + FLAGS_b + " has " + std::to_string(b.size()));
   }
-  const ShellSpace space = SpaceFromFlags(first_a);
+  const ShellSpace space(first_a.mesh, first_a.topology,
+                         MaterialChoiceFromFlags(first_a.mesh).material);
   const ShapeComparison c = CompareShapes(space, a, b);
   const bool paths = a.size() > 1;
   const ComparisonVerdict verdict =

@@ -50,7 +50,10 @@ int RunDeform() {
       .Check();
   const auto [reference, targets] =
       LoadShellPair(FLAGS_reference, FLAGS_targets);
-  const ShellSpace space = SpaceFromFlags(reference);
+  const workflows::MaterialChoice material =
+      MaterialChoiceFromFlags(reference.mesh);
+  const ShellSpace space(reference.mesh, reference.topology,
+                         material.material);
   ElasticDeformationInput input;
   input.reference = reference.mesh.positions;
   input.targets = targets.positions;
@@ -82,7 +85,9 @@ int RunDeform() {
           .count();
   if (FLAGS_json) {
     JsonObject json;
-    json.Add("bending_model", FLAGS_bending);
+    json.Add("material",
+             workflows::MaterialChoiceJson(material, reference.mesh))
+        .Add("bending_model", FLAGS_bending);
     std::cout << AddRunFields(json)
                      .Add("membrane", result.energy.membrane)
                      .Add("bending", result.energy.bending)

@@ -79,8 +79,9 @@ int RunDemo() {
                        "film_strip.png");
   const double pi = std::acos(-1.0);
   const Positions bent = BendAlongY(finger.positions, 4.0, 0.5 * pi);
+  const workflows::MaterialChoice material = MaterialChoiceFromFlags(finger);
   const ShellSpace space(finger, ValidateShell(finger, "procedural finger"),
-                         MaterialFromFlags(finger));
+                         material.material);
   const std::vector<int> base = FingerBaseVertices();
   SolverSettings settings = SettingsFromFlags("demo geodesic");
 
@@ -159,7 +160,8 @@ int RunDemo() {
       .Add("frames_dir", dir + "/frames")
       .Add("film_strip", dir + "/film_strip.png");
   if (!FLAGS_gltf.empty()) summary.Add("gltf", FLAGS_gltf);
-  summary.Add("viewer", dir + "/viewer.html");
+  summary.Add("viewer", dir + "/viewer.html")
+      .Add("material", workflows::MaterialChoiceJson(material, finger));
   const std::string json = output.Commit(summary);
   std::cout << json << "\n";
   return status.Finish();

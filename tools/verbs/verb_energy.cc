@@ -79,7 +79,10 @@ int RunEnergy() {
   // shape-operator (its alpha, beta and membrane) for the variant.
   if (both) FLAGS_bending = BendingModelName(BendingModel::kDiscreteShells);
   if (edge_angles) FLAGS_bending = BendingModelName(BendingModel::kShapeOperator);
-  const ShellSpace space = SpaceFromFlags(reference);
+  const workflows::MaterialChoice material =
+      MaterialChoiceFromFlags(reference.mesh);
+  const ShellSpace space(reference.mesh, reference.topology,
+                         material.material);
   FLAGS_bending = requested;
   DeformationEnergy e = EvaluateDeformationEnergy(
       space, reference.mesh.positions, deformed.positions);
@@ -109,7 +112,9 @@ int RunEnergy() {
   }
   if (FLAGS_json) {
     JsonObject json = EnergyJson(e, space.material);
-    json.Add("bending_model", requested).Raw("material", RunMaterialJson());
+    json.Add("bending_model", requested)
+        .Add("material",
+             workflows::MaterialChoiceJson(material, reference.mesh));
     if (both) {
       json.Add("bending_models", JsonObject()
                                      .Add("discrete-shells", e.bending)

@@ -67,7 +67,11 @@ int RunGeodesic() {
   const double seconds =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock)
           .count();
-  CommitPathRun(&output, workflows::ToJson(result), seconds);
+  CommitPathRun(&output,
+                workflows::ToJson(result).Add(
+                    "material",
+                    workflows::MaterialChoiceJson(result.material, result.start)),
+                seconds);
   if (!FLAGS_json && !FLAGS_quiet) {
     if (ceres_ran) std::cerr << ceres.BriefReport() << "\n";
     std::cout << "E_K = " << result.path_energy() << " over " << FLAGS_steps

@@ -245,13 +245,18 @@ int RunSpline() {
     WritePathOutputs(&output, set.first.mesh.faces, result.path());
     const std::string summary = output.Commit(
         workflows::ToJson(result, Seconds(clock))
+            .Add("material", workflows::MaterialChoiceJson(options.material,
+                                                           set.first.mesh))
             .Add("bending_model", FLAGS_bending)
             .Add("output", FLAGS_output));
     if (FLAGS_json) std::cout << summary << "\n";
     return status.Finish();
   }
-  return CommitSplineRun(status, set.first.mesh.faces, result.spline,
-                         workflows::ToJson(result, Seconds(clock)));
+  return CommitSplineRun(
+      status, set.first.mesh.faces, result.spline,
+      workflows::ToJson(result, Seconds(clock))
+          .Add("material",
+               workflows::MaterialChoiceJson(options.material, set.first.mesh)));
 }
 
 // Flags -> options -> the workflow -> frames and summary.
@@ -279,8 +284,11 @@ int RunRegress() {
   const workflows::RegressResult result = workflows::RunRegress(options);
   RunStatus status("regress");
   RecordWorkflow(result.status, {}, "regress", &status);
-  return CommitSplineRun(status, set.first.mesh.faces, result.spline,
-                         workflows::ToJson(result, Seconds(clock)));
+  return CommitSplineRun(
+      status, set.first.mesh.faces, result.spline,
+      workflows::ToJson(result, Seconds(clock))
+          .Add("material",
+               workflows::MaterialChoiceJson(options.material, set.first.mesh)));
 }
 
 }  // namespace
