@@ -277,105 +277,103 @@ OutputPaths& OutputPaths::OutputDirectory(const std::string& name,
   return Add(&output_dirs_, name, path);
 }
 
-void OutputPaths::Check() const {
-  for (size_t i = 0; i < output_files_.size(); ++i) {
-    const Entry& out = output_files_[i];
-    for (const Entry& in : input_files_) {
-      if (Same(out.path, in.path)) {
-        throw InputError(out.name + " " + out.path + " is also the input " +
-                         in.name + ": not overwriting it");
-      }
+void OutputPaths::CheckOutputFile(size_t i) const {
+  const Entry& out = output_files_[i];
+  for (const Entry& in : input_files_) {
+    if (Same(out.path, in.path)) {
+      throw InputError(out.name + " " + out.path + " is also the input " +
+                       in.name + ": not overwriting it");
     }
-    for (const Entry& in : input_dirs_) {
-      if (Same(out.path, in.path)) {
-        throw InputError(out.name + " " + out.path +
-                         " is the input directory " + in.name);
-      }
+  }
+  for (const Entry& in : input_dirs_) {
+    if (Same(out.path, in.path)) {
+      throw InputError(out.name + " " + out.path + " is the input directory " +
+                       in.name);
     }
-    for (const Entry& dir : output_dirs_) {
-      if (Same(out.path, dir.path) || Inside(out.path, dir.path)) {
-        throw InputError(out.name + " " + out.path + " is inside " +
-                         dir.name + " " + dir.path +
-                         ", which is replaced as a whole: write it elsewhere");
-      }
+  }
+  for (const Entry& dir : output_dirs_) {
+    if (Same(out.path, dir.path) || Inside(out.path, dir.path)) {
+      throw InputError(out.name + " " + out.path + " is inside " + dir.name +
+                       " " + dir.path +
+                       ", which is replaced as a whole: write it elsewhere");
     }
-    for (size_t j = 0; j < i; ++j) {
-      if (Same(out.path, output_files_[j].path) ||
-          FoldedTogether(out.path, output_files_[j].path)) {
-        throw InputError(out.name + " and " + output_files_[j].name +
-                         " are the same file " + out.path);
-      }
+  }
+  for (size_t j = 0; j < i; ++j) {
+    if (Same(out.path, output_files_[j].path) ||
+        FoldedTogether(out.path, output_files_[j].path)) {
+      throw InputError(out.name + " and " + output_files_[j].name +
+                       " are the same file " + out.path);
     }
-    std::error_code error;
-    if (fs::is_directory(out.path, error)) {
-      throw InputError(out.name + " " + out.path + " is a directory");
+  }
+  std::error_code error;
+  if (fs::is_directory(out.path, error)) {
+    throw InputError(out.name + " " + out.path + " is a directory");
+  }
+  // A FIFO, socket or device: reading (a cache) would block and the
+  // staged rename would replace the node itself.
+  if (fs::exists(out.path, error) && !fs::is_regular_file(out.path, error)) {
+    throw InputError(out.name + " " + out.path +
+                     " is not a regular file (a FIFO, socket or device)");
+  }
+  CheckParentWritable(out.name, out.path);
+  if (Exists(out.path) && ::access(out.path.c_str(), W_OK) != 0) {
+    throw InputError(out.name + " " + out.path + " is not writable");
+  }
+  CheckLength(out.name, out.path);
+}
+
+void OutputPaths::CheckOutputDirectory(size_t i) const {
+  const Entry& out = output_dirs_[i];
+  for (const Entry& in : input_files_) {
+    if (Same(out.path, in.path) || Inside(in.path, out.path)) {
+      throw InputError(out.name + " " + out.path + " holds the input " +
+                       in.name + " " + in.path +
+                       " (the directory is replaced as a whole)");
     }
-    // A FIFO, socket or device: reading (a cache) would block and the
-    // staged rename would replace the node itself.
-    if (fs::exists(out.path, error) && !fs::is_regular_file(out.path, error)) {
+  }
+  for (const Entry& in : input_dirs_) {
+    if (Same(out.path, in.path)) {
+      throw InputError(out.name + " " + out.path + " is the input directory " +
+                       in.name);
+    }
+    if (Inside(in.path, out.path)) {
       throw InputError(out.name + " " + out.path +
-                       " is not a regular file (a FIFO, socket or device)");
+                       " holds the input directory " + in.name + " " + in.path);
     }
-    CheckParentWritable(out.name, out.path);
-    if (Exists(out.path) && ::access(out.path.c_str(), W_OK) != 0) {
-      throw InputError(out.name + " " + out.path + " is not writable");
-    }
-    CheckLength(out.name, out.path);
   }
-  for (size_t i = 0; i < output_dirs_.size(); ++i) {
-    const Entry& out = output_dirs_[i];
-    for (const Entry& in : input_files_) {
-      if (Same(out.path, in.path) || Inside(in.path, out.path)) {
-        throw InputError(out.name + " " + out.path + " holds the input " +
-                         in.name + " " + in.path +
-                         " (the directory is replaced as a whole)");
-      }
+  for (size_t j = 0; j < i; ++j) {
+    const Entry& other = output_dirs_[j];
+    if (Same(out.path, other.path) || Inside(out.path, other.path) ||
+        Inside(other.path, out.path) || FoldedTogether(out.path, other.path)) {
+      throw InputError(out.name + " " + out.path + " and " + other.name + " " +
+                       other.path + " overlap");
     }
-    for (const Entry& in : input_dirs_) {
-      if (Same(out.path, in.path)) {
-        throw InputError(out.name + " " + out.path +
-                         " is the input directory " + in.name);
-      }
-      if (Inside(in.path, out.path)) {
-        throw InputError(out.name + " " + out.path +
-                         " holds the input directory " + in.name + " " +
-                         in.path);
-      }
-    }
-    for (size_t j = 0; j < i; ++j) {
-      const Entry& other = output_dirs_[j];
-      if (Same(out.path, other.path) || Inside(out.path, other.path) ||
-          Inside(other.path, out.path) ||
-          FoldedTogether(out.path, other.path)) {
-        throw InputError(out.name + " " + out.path + " and " + other.name +
-                         " " + other.path + " overlap");
-      }
-    }
-    for (const Entry& file : output_files_) {
-      if (FoldedTogether(out.path, file.path)) {
-        throw InputError(file.name + " and " + out.name +
-                         " are the same file " + file.path);
-      }
-    }
-    const std::string problem =
-        ReplaceableDirectoryProblem(WithoutTrailingSlash(out.path));
-    if (!problem.empty()) throw InputError(out.name + ": " + problem);
-    CheckParentWritable(out.name, out.path);
-    if (Exists(out.path) && ::access(out.path.c_str(), W_OK | X_OK) != 0) {
-      throw InputError(out.name + " " + out.path + " is not writable");
-    }
-    CheckLength(out.name, out.path);
   }
-  for (const Entry& glb : glb_files_) CheckGltfFileName(glb.path, glb.name);
+  for (const Entry& file : output_files_) {
+    if (FoldedTogether(out.path, file.path)) {
+      throw InputError(file.name + " and " + out.name + " are the same file " +
+                       file.path);
+    }
+  }
+  const std::string problem =
+      ReplaceableDirectoryProblem(WithoutTrailingSlash(out.path));
+  if (!problem.empty()) throw InputError(out.name + ": " + problem);
+  CheckParentWritable(out.name, out.path);
+  if (Exists(out.path) && ::access(out.path.c_str(), W_OK | X_OK) != 0) {
+    throw InputError(out.name + " " + out.path + " is not writable");
+  }
+  CheckLength(out.name, out.path);
+}
+
+void OutputPaths::CheckContainerNames() const {
   for (const NamedContainer& named : named_files_) {
     const std::string lower = AsciiLowercase(named.entry.path);
     bool matches = false;
     std::string names;
     for (const std::string& ext : named.extensions) {
-      matches = matches ||
-                (lower.size() > ext.size() &&
-                 lower.compare(lower.size() - ext.size(), ext.size(), ext) ==
-                     0);
+      matches = matches || (lower.size() > ext.size() &&
+                            lower.compare(lower.size() - ext.size(), ext.size(),
+                                          ext) == 0);
       names += (names.empty() ? "" : ", ") + ext;
     }
     if (!matches) {
@@ -384,6 +382,13 @@ void OutputPaths::Check() const {
                        "; name it " + names);
     }
   }
+}
+
+void OutputPaths::Check() const {
+  for (size_t i = 0; i < output_files_.size(); ++i) CheckOutputFile(i);
+  for (size_t i = 0; i < output_dirs_.size(); ++i) CheckOutputDirectory(i);
+  for (const Entry& glb : glb_files_) CheckGltfFileName(glb.path, glb.name);
+  CheckContainerNames();
   // Every output can be written: what killed runs left beside it goes
   // before the solves (a staging directory can be large).
   for (const std::vector<Entry>* outputs : {&output_files_, &output_dirs_}) {

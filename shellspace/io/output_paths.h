@@ -87,6 +87,13 @@ class OutputPaths {
                         std::vector<std::string> extensions,
                         const std::string& container);
 
+  // The parts of Check: output file i and output directory i against the
+  // inputs and the outputs before them and on disk; the names of the
+  // named containers.
+  void CheckOutputFile(size_t i) const;
+  void CheckOutputDirectory(size_t i) const;
+  void CheckContainerNames() const;
+
   std::vector<Entry> input_files_, input_dirs_, output_files_, output_dirs_,
       glb_files_;
   std::vector<NamedContainer> named_files_;
