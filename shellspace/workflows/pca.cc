@@ -27,6 +27,64 @@ void CheckOptions(const PcaOptions& options) {
   }
 }
 
+// The shapes mode_j_minus and mode_j_plus of the first result->shell_modes
+// modes of `model` by EXP_K, each added to result->shapes, or named with its
+// reason in failed_shapes where the shot fails; no new shot once `stop`
+// has stopped.
+void AddModeShapes(const ShellSpace& space, const ShellPcaModel& model,
+                   const PcaOptions& options, const SolverSettings& inner,
+                   const ObservedStop& stop, PcaResult* result) {
+  for (int j = 0; j < result->shell_modes; ++j) {
+    for (const double sign : {-1.0, 1.0}) {
+      if (stop.stopped()) return;
+      const std::string name =
+          "mode_" + std::to_string(j + 1) + (sign < 0 ? "_minus" : "_plus");
+      Positions shape;
+      ExpShotReport shot;
+      if (TryShellModeShape(space, model, j, sign * options.amplitude,
+                            options.pca, inner, &shape, &shot)) {
+        result->shapes.emplace_back(name, std::move(shape));
+      } else {
+        result->failed_shapes.push_back(name);
+        result->failed_shape_reasons.push_back(shot.failure);
+      }
+    }
+  }
+}
+
+// The Procrustes PCA of the inputs (the linear baseline) and its mean and
+// mode shapes, added to result->shapes.
+void AddProcrustesShapes(const PcaOptions& options, PcaResult* result) {
+  result->procrustes = ComputeProcrustesPca(options.shapes);
+  JsonObject unused;
+  for (auto& shape : AddProcrustesBaseline(*result->procrustes, options.modes,
+                                           options.amplitude, &unused)) {
+    result->shapes.push_back(std::move(shape));
+  }
+}
+
+// The leave-one-out table of the shell PCA (EvaluateLeaveOneOut), each
+// mean warm-started from the mean of all inputs.
+LeaveOneOutTable LeaveOneOut(const ShellSpace& space, const PcaOptions& options,
+                             const SolverSettings& inner,
+                             const ElasticMeanResult& mean) {
+  LeaveOneOutOptions loo;
+  loo.max_modes = options.modes;
+  loo.pca = options.pca;
+  loo.initial_mean = mean.mean;  // warm start; same minimiser
+  loo.log = options.leave_one_out_log;
+  return EvaluateLeaveOneOut(space, options.shapes, loo, inner);
+}
+
+// Seconds since `start` as text, for the progress lines only.
+std::string SecondsSince(std::chrono::steady_clock::time_point start) {
+  std::ostringstream text;
+  text << std::chrono::duration<double>(std::chrono::steady_clock::now() -
+                                        start)
+              .count();
+  return text.str();
+}
+
 }  // namespace
 
 const Positions* PcaResult::Shape(const std::string& name) const {
@@ -39,14 +97,7 @@ const Positions* PcaResult::Shape(const std::string& name) const {
 PcaResult RunPca(const PcaOptions& options) {
   CheckOptions(options);
   const auto clock = std::chrono::steady_clock::now();
-  // Seconds since the start, for the progress lines only.
-  const auto seconds = [&clock] {
-    std::ostringstream text;
-    text << std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                          clock)
-                .count();
-    return text.str();
-  };
+  const auto seconds = [&clock] { return SecondsSince(clock); };
   const auto log = [&options](const std::string& line) {
     if (options.log) options.log(line);
   };
@@ -101,42 +152,14 @@ PcaResult RunPca(const PcaOptions& options) {
       std::min<int>(options.modes, static_cast<int>(model.modes.size()));
   log("shell PCA done (" + seconds() + " s); " +
       std::to_string(2 * result.shell_modes) + " mode shapes by EXP_K");
-  for (int j = 0; j < result.shell_modes; ++j) {
-    for (const double sign : {-1.0, 1.0}) {
-      if (stop.stopped()) break;  // no new shot once stopped
-      const std::string name =
-          "mode_" + std::to_string(j + 1) + (sign < 0 ? "_minus" : "_plus");
-      Positions shape;
-      ExpShotReport shot;
-      if (TryShellModeShape(space, model, j, sign * options.amplitude,
-                            options.pca, inner, &shape, &shot)) {
-        result.shapes.emplace_back(name, std::move(shape));
-      } else {
-        result.failed_shapes.push_back(name);
-        result.failed_shape_reasons.push_back(shot.failure);
-      }
-    }
-  }
+  AddModeShapes(space, model, options, inner, stop, &result);
   if (stop.stopped()) return finish("mode shapes");
   log("shell modes done");
   result.model = std::move(model);
 
-  if (options.procrustes) {
-    result.procrustes = ComputeProcrustesPca(options.shapes);
-    JsonObject unused;
-    for (auto& shape : AddProcrustesBaseline(*result.procrustes, options.modes,
-                                             options.amplitude, &unused)) {
-      result.shapes.push_back(std::move(shape));
-    }
-  }
+  if (options.procrustes) AddProcrustesShapes(options, &result);
   if (options.leave_one_out) {
-    LeaveOneOutOptions loo;
-    loo.max_modes = options.modes;
-    loo.pca = options.pca;
-    loo.initial_mean = result.mean.mean;  // warm start; same minimiser
-    loo.log = options.leave_one_out_log;
-    result.leave_one_out =
-        EvaluateLeaveOneOut(space, options.shapes, loo, inner);
+    result.leave_one_out = LeaveOneOut(space, options, inner, result.mean);
     if (stop.stopped()) {
       result.model.reset();
       result.procrustes.reset();
