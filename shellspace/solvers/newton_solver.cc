@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 #include <utility>
 #include <vector>
 
@@ -98,6 +99,92 @@ class Timer {
       std::chrono::steady_clock::now();
 };
 
+// The linear solver's counters of this solve (its stats now minus `before`)
+// and the seconds so far, into *report.
+void SetSolveCounters(const LinearSolverStats& before,
+                      const LinearSolverStats& now, const Timer& timer,
+                      NewtonReport* report) {
+  report->seconds = timer.Seconds();
+  report->factorizations = now.factorizations - before.factorizations;
+  report->time_coupled_factorizations =
+      now.time_coupled_factorizations - before.time_coupled_factorizations;
+  report->factorization_seconds =
+      now.factorization_seconds - before.factorization_seconds;
+  report->cg_iterations = now.cg_iterations - before.cg_iterations;
+  report->cg_seconds = now.cg_seconds - before.cg_seconds;
+  report->cg_not_converged = now.cg_not_converged - before.cg_not_converged;
+}
+
+// The relative residual the linear solve of this step must reach
+// (NewtonSettings::forcing_rule).
+double ForcingTerm(const NewtonSettings& settings,
+                   const NewtonResidual& current, double initial_two_norm) {
+  switch (settings.forcing_rule) {
+    case NewtonSettings::Forcing::kInexactNewton: {
+      const double g = std::max(current.reduced.norm(), 1e-300);
+      const double fall = g / initial_two_norm;
+      return std::min(0.1, std::max(std::min(settings.forcing, fall * fall),
+                                    0.25 * settings.tolerance / g));
+    }
+    case NewtonSettings::Forcing::kRelativeResidual:
+      return std::clamp(current.max_norm / current.scale,
+                        settings.forcing_min, settings.forcing);
+    case NewtonSettings::Forcing::kFixed:
+      break;
+  }
+  return settings.forcing;
+}
+
+// The stop rules checked before a step: the tolerance, the step budget and
+// the caller's stop poll.
+std::optional<NewtonStop> StopBeforeStep(const NewtonSettings& settings,
+                                         const NewtonReport& report,
+                                         const NewtonResidual& current) {
+  if (report.final_gradient <= settings.tolerance * current.scale) {
+    return NewtonStop::kConverged;
+  }
+  if (report.steps >= settings.max_steps) return NewtonStop::kMaxSteps;
+  if (settings.stop && settings.stop()) return NewtonStop::kStopped;
+  return std::nullopt;
+}
+
+// The stop rules checked after an accepted step that brought max_norm from
+// `previous_norm` to report.final_gradient without reaching the tolerance:
+// the strategy's end, the round-off floor, the hand-over to the caller, the
+// stall rule (over *accepted_norms, appended here) and the no-progress rule.
+std::optional<NewtonStop> StopAfterStep(const NewtonSettings& settings,
+                                        const NewtonStepOutcome& outcome,
+                                        const NewtonReport& report,
+                                        double previous_norm, double scale,
+                                        std::vector<double>* accepted_norms) {
+  const double norm = report.final_gradient;
+  if (norm <= settings.tolerance * scale) return std::nullopt;
+  if (outcome.end) return outcome.failure;
+  if (norm <= settings.round_off_floor &&
+      !(norm <= settings.round_off_factor * previous_norm)) {
+    return NewtonStop::kRoundOffFloor;
+  }
+  if (settings.mode == NewtonMode::kMinimize &&
+      settings.hand_over_contraction > 0 &&
+      norm * settings.hand_over_contraction <= previous_norm) {
+    return NewtonStop::kHandedOver;
+  }
+  if (settings.stall_steps > 0) {
+    accepted_norms->push_back(norm);
+    const size_t steps = accepted_norms->size();
+    if (steps > static_cast<size_t>(settings.stall_steps) &&
+        !(norm <= settings.stall_factor *
+                      (*accepted_norms)[steps - 1 - settings.stall_steps])) {
+      return NewtonStop::kNoProgress;
+    }
+  }
+  if (settings.progress_steps > 0 && report.steps >= settings.progress_steps &&
+      !(norm <= settings.progress_factor * report.initial_gradient)) {
+    return NewtonStop::kNoProgress;
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::unique_ptr<NewtonStepStrategy> MakeNewtonStepStrategy(
@@ -129,17 +216,7 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
     report.converged = stop == NewtonStop::kConverged;
   };
   const auto update_counters = [&]() {
-    const LinearSolverStats& s = linear_solver->stats();
-    report.seconds = timer.Seconds();
-    report.factorizations = s.factorizations - stats_before.factorizations;
-    report.time_coupled_factorizations =
-        s.time_coupled_factorizations -
-        stats_before.time_coupled_factorizations;
-    report.factorization_seconds =
-        s.factorization_seconds - stats_before.factorization_seconds;
-    report.cg_iterations = s.cg_iterations - stats_before.cg_iterations;
-    report.cg_seconds = s.cg_seconds - stats_before.cg_seconds;
-    report.cg_not_converged = s.cg_not_converged - stats_before.cg_not_converged;
+    SetSolveCounters(stats_before, linear_solver->stats(), timer, &report);
   };
 
   NewtonResidual current;
@@ -165,16 +242,8 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
   // max_norm after each accepted step (the stall rule).
   std::vector<double> accepted_norms;
   while (true) {
-    if (report.final_gradient <= settings.tolerance * current.scale) {
-      finish(NewtonStop::kConverged);
-      break;
-    }
-    if (report.steps >= settings.max_steps) {
-      finish(NewtonStop::kMaxSteps);
-      break;
-    }
-    if (settings.stop && settings.stop()) {
-      finish(NewtonStop::kStopped);
+    if (const auto stop = StopBeforeStep(settings, report, current)) {
+      finish(*stop);
       break;
     }
     const double assembly_start = timer.Seconds();
@@ -185,17 +254,6 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
       finish(NewtonStop::kAssemblyFailed);
       break;
     }
-    double forcing = settings.forcing;
-    if (settings.forcing_rule == NewtonSettings::Forcing::kInexactNewton) {
-      const double g = std::max(current.reduced.norm(), 1e-300);
-      const double fall = g / initial_two_norm;
-      forcing = std::min(0.1, std::max(std::min(settings.forcing, fall * fall),
-                                       0.25 * settings.tolerance / g));
-    } else if (settings.forcing_rule ==
-               NewtonSettings::Forcing::kRelativeResidual) {
-      forcing = std::clamp(current.max_norm / current.scale,
-                           settings.forcing_min, settings.forcing);
-    }
     const double previous_norm = report.final_gradient;
     NewtonIteration iteration;
     iteration.problem = problem;
@@ -204,7 +262,7 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
     iteration.system = &system;
     iteration.current = &current;
     iteration.merit = merit;
-    iteration.forcing = forcing;
+    iteration.forcing = ForcingTerm(settings, current, initial_two_norm);
     iteration.report = &report;
     iteration.report_rejection = [&]() {
       if (!settings.progress) return;
@@ -230,37 +288,10 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
       finish(outcome.failure);
       break;
     }
-    const double norm = report.final_gradient;
-    if (outcome.end && !(norm <= settings.tolerance * current.scale)) {
-      finish(outcome.failure);
-      break;
-    }
-    if (norm <= settings.round_off_floor &&
-        !(norm <= settings.round_off_factor * previous_norm) &&
-        !(norm <= settings.tolerance * current.scale)) {
-      finish(NewtonStop::kRoundOffFloor);
-      break;
-    }
-    if (minimize && settings.hand_over_contraction > 0 &&
-        norm * settings.hand_over_contraction <= previous_norm &&
-        !(norm <= settings.tolerance * current.scale)) {
-      finish(NewtonStop::kHandedOver);
-      break;
-    }
-    if (settings.stall_steps > 0) {
-      accepted_norms.push_back(norm);
-      const size_t steps = accepted_norms.size();
-      if (steps > static_cast<size_t>(settings.stall_steps) &&
-          !(norm <= settings.stall_factor *
-                        accepted_norms[steps - 1 - settings.stall_steps]) &&
-          !(norm <= settings.tolerance * current.scale)) {
-        finish(NewtonStop::kNoProgress);
-        break;
-      }
-    }
-    if (settings.progress_steps > 0 && report.steps >= settings.progress_steps &&
-        !(norm <= settings.progress_factor * report.initial_gradient)) {
-      finish(NewtonStop::kNoProgress);
+    if (const auto stop = StopAfterStep(settings, outcome, report,
+                                        previous_norm, current.scale,
+                                        &accepted_norms)) {
+      finish(*stop);
       break;
     }
   }
