@@ -181,7 +181,6 @@ workflows::MaterialChoice MaterialChoiceOf(const MaterialArgs& args,
   return {Material(args, reference), args.eta.has_value()};
 }
 
-
 std::vector<std::string> FailuresOf(const workflows::SolveStatus& status) {
   if (status.failed()) return {status.message};
   return status.failures;

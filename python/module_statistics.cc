@@ -156,7 +156,8 @@ py::object PcaPy(const py::object& inputs_object, const py::object& F,
     result = workflows::RunPca(options);
   }
   JsonObject json = workflows::ToJson(result, options);
-  json.Add("material", workflows::MaterialChoiceJson(result.material, set.first.mesh))
+  json.Add("material",
+           workflows::MaterialChoiceJson(result.material, set.first.mesh))
       .Add("seconds", Seconds(clock));
   AddStopFields(json, *solver.control);
   AddOutput(json, output);

@@ -51,8 +51,8 @@ bool ParseTag(const std::string& tag, long* pid, unsigned long long* start) {
     }
   }
   const std::size_t unlimited = std::string::npos;
-  if (parts.size() == 3 && IsDigits(parts[0], 18) &&
-      IsDigits(parts[1], 19) && IsDigits(parts[2], unlimited)) {
+  if (parts.size() == 3 && IsDigits(parts[0], 18) && IsDigits(parts[1], 19) &&
+      IsDigits(parts[2], unlimited)) {
     *pid = std::stol(parts[0]);
     *start = std::stoull(parts[1]);
     return true;
@@ -105,16 +105,15 @@ bool IsFrameName(const std::string& name) {
 
 bool IsRunFileName(const std::string& name) {
   static const char* const kKnown[] = {
-      "shape_#.ply", "summary.json", "pca.json", "mean.ply",
-      "mode_#_minus.ply", "mode_#_plus.ply", "procrustes_mean.ply",
-      "procrustes_mode_#_minus.ply", "procrustes_mode_#_plus.ply", "u.csv",
-      "uy.png", "interfaces.csv", "pattern.png", "pattern.txt",
-      "film_strip.png", "viewer.html",
+      "shape_#.ply", "summary.json", "pca.json", "mean.ply", "mode_#_minus.ply",
+      "mode_#_plus.ply", "procrustes_mean.ply", "procrustes_mode_#_minus.ply",
+      "procrustes_mode_#_plus.ply", "u.csv", "uy.png", "interfaces.csv",
+      "pattern.png", "pattern.txt", "film_strip.png", "viewer.html",
       // The example sets (geometry/example_poses.h).
       "finger*.ply", "plate*.ply", "cylinder*.ply", "pose*.ply",
-      "finger*_var.ply", "plate*_var.ply", "cylinder*_var.ply",
-      "pose*_var.ply", "finger_mask.txt", "plate_mask.txt",
-      "cylinder_mask.txt", "collection_mask.txt"};
+      "finger*_var.ply", "plate*_var.ply", "cylinder*_var.ply", "pose*_var.ply",
+      "finger_mask.txt", "plate_mask.txt", "cylinder_mask.txt",
+      "collection_mask.txt"};
   for (const char* pattern : kKnown) {
     if (MatchesNamePattern(name, pattern)) return true;
   }

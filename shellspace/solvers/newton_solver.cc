@@ -127,8 +127,8 @@ double ForcingTerm(const NewtonSettings& settings,
                                     0.25 * settings.tolerance / g));
     }
     case NewtonSettings::Forcing::kRelativeResidual:
-      return std::clamp(current.max_norm / current.scale,
-                        settings.forcing_min, settings.forcing);
+      return std::clamp(current.max_norm / current.scale, settings.forcing_min,
+                        settings.forcing);
     case NewtonSettings::Forcing::kFixed:
       break;
   }
@@ -288,9 +288,9 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
       finish(outcome.failure);
       break;
     }
-    if (const auto stop = StopAfterStep(settings, outcome, report,
-                                        previous_norm, current.scale,
-                                        &accepted_norms)) {
+    if (const auto stop =
+            StopAfterStep(settings, outcome, report, previous_norm,
+                          current.scale, &accepted_norms)) {
       finish(*stop);
       break;
     }

@@ -95,14 +95,13 @@ TEST(OutputDirectoryTest, KnowsTheNamesARunWrites) {
   for (const char* name :
        {"shape_000.ply", "shape_12.ply", "summary.json", "mode_2_plus.ply",
         "procrustes_mode_10_minus.ply", "finger.ply", "finger1.ply",
-        "plate12_var.ply", "pose_var.ply", "collection_mask.txt",
-        "viewer.html", ".out.tmp-12-345-0", "shape_000.ply.tmp-7-0"}) {
+        "plate12_var.ply", "pose_var.ply", "collection_mask.txt", "viewer.html",
+        ".out.tmp-12-345-0", "shape_000.ply.tmp-7-0"}) {
     EXPECT_EQ(problem_with(name), "") << name;
   }
-  for (const char* name :
-       {"shape_.ply", "shape_1.plyx", "shape_1a.ply", "mode_a_plus.ply",
-        "mode_1_both.ply", "finger_x.ply", "fingers.ply", "summary.json2",
-        "notes.txt"}) {
+  for (const char* name : {"shape_.ply", "shape_1.plyx", "shape_1a.ply",
+                           "mode_a_plus.ply", "mode_1_both.ply", "finger_x.ply",
+                           "fingers.ply", "summary.json2", "notes.txt"}) {
     EXPECT_NE(problem_with(name).find(std::string("holds ") + name),
               std::string::npos)
         << name;
@@ -120,10 +119,12 @@ TEST(OutputDirectoryTest, RemovesOnlyTheLeftoversOfEndedRuns) {
   const std::vector<std::string> removed = {
       ".out.tmp-" + ended + "-12345-0", ".out.tmp-" + ended + "-3",
       "out.tmp-" + ended + "-12345-1", ".out.old-" + ended + "-12345-2"};
-  const std::vector<std::string> kept = {
-      ".out.tmp-" + ProcessTag() + "-0", ".out.tmp-" + ended + "-x-0",
-      ".out.tmp-1234567890123456789-0", ".out.tmp-" + ended + "-1-2-3",
-      ".out.tmp-" + ended, ".other.tmp-" + ended + "-0"};
+  const std::vector<std::string> kept = {".out.tmp-" + ProcessTag() + "-0",
+                                         ".out.tmp-" + ended + "-x-0",
+                                         ".out.tmp-1234567890123456789-0",
+                                         ".out.tmp-" + ended + "-1-2-3",
+                                         ".out.tmp-" + ended,
+                                         ".other.tmp-" + ended + "-0"};
   for (const std::string& name : removed) Touch(base + "/" + name);
   for (const std::string& name : kept) Touch(base + "/" + name);
   EXPECT_EQ(RemoveLeftoversOfEndedRuns(base + "/out", true),

@@ -1,11 +1,10 @@
 #include "tools/run/shell_inputs.h"
 
-#include <cstdio>
+#include <gflags/gflags.h>
 
 #include <cmath>
+#include <cstdio>
 #include <sstream>
-
-#include <gflags/gflags.h>
 
 #include "shellspace/cost_functions/shell/relative_bending_weight.h"
 #include "shellspace/geometry/validation.h"

@@ -151,8 +151,8 @@ int RunShoot() {
   WritePathOutputs(&output, first.mesh.faces, result.path());
   CommitPathRun(&output,
                 workflows::ToJson(result).Add(
-                    "material",
-                    workflows::MaterialChoiceJson(options.material, first.mesh)),
+                    "material", workflows::MaterialChoiceJson(options.material,
+                                                              first.mesh)),
                 Seconds(clock));
   return status.Finish();
 }
@@ -220,8 +220,8 @@ int RunTransport() {
   WritePathOutputs(&output, first.mesh.faces, result.shapes());
   CommitPathRun(&output,
                 workflows::ToJson(result).Add(
-                    "material",
-                    workflows::MaterialChoiceJson(options.material, first.mesh)),
+                    "material", workflows::MaterialChoiceJson(options.material,
+                                                              first.mesh)),
                 Seconds(clock));
   return status.Finish();
 }

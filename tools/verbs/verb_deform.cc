@@ -52,8 +52,7 @@ int RunDeform() {
       LoadShellPair(FLAGS_reference, FLAGS_targets);
   const workflows::MaterialChoice material =
       MaterialChoiceFromFlags(reference.mesh);
-  const ShellSpace space(reference.mesh, reference.topology,
-                         material.material);
+  const ShellSpace space(reference.mesh, reference.topology, material.material);
   ElasticDeformationInput input;
   input.reference = reference.mesh.positions;
   input.targets = targets.positions;

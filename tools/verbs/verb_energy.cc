@@ -81,8 +81,7 @@ int RunEnergy() {
   if (edge_angles) FLAGS_bending = BendingModelName(BendingModel::kShapeOperator);
   const workflows::MaterialChoice material =
       MaterialChoiceFromFlags(reference.mesh);
-  const ShellSpace space(reference.mesh, reference.topology,
-                         material.material);
+  const ShellSpace space(reference.mesh, reference.topology, material.material);
   FLAGS_bending = requested;
   DeformationEnergy e = EvaluateDeformationEnergy(
       space, reference.mesh.positions, deformed.positions);

@@ -69,8 +69,8 @@ int RunGeodesic() {
           .count();
   CommitPathRun(&output,
                 workflows::ToJson(result).Add(
-                    "material",
-                    workflows::MaterialChoiceJson(result.material, result.start)),
+                    "material", workflows::MaterialChoiceJson(result.material,
+                                                              result.start)),
                 seconds);
   if (!FLAGS_json && !FLAGS_quiet) {
     if (ceres_ran) std::cerr << ceres.BriefReport() << "\n";

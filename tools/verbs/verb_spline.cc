@@ -255,8 +255,8 @@ int RunSpline() {
   return CommitSplineRun(
       status, set.first.mesh.faces, result.spline,
       workflows::ToJson(result, Seconds(clock))
-          .Add("material",
-               workflows::MaterialChoiceJson(options.material, set.first.mesh)));
+          .Add("material", workflows::MaterialChoiceJson(options.material,
+                                                         set.first.mesh)));
 }
 
 // Flags -> options -> the workflow -> frames and summary.
@@ -287,8 +287,8 @@ int RunRegress() {
   return CommitSplineRun(
       status, set.first.mesh.faces, result.spline,
       workflows::ToJson(result, Seconds(clock))
-          .Add("material",
-               workflows::MaterialChoiceJson(options.material, set.first.mesh)));
+          .Add("material", workflows::MaterialChoiceJson(options.material,
+                                                         set.first.mesh)));
 }
 
 }  // namespace

@@ -174,8 +174,8 @@ int RunMean() {
   WriteMesh(Mesh{mean.mean, inputs.first.mesh.faces}, FLAGS_output);
   if (FLAGS_json) {
     JsonObject json = workflows::ToJson(result);
-    json.Add("material", workflows::MaterialChoiceJson(result.material,
-                                                       inputs.first.mesh))
+    json.Add("material",
+             workflows::MaterialChoiceJson(result.material, inputs.first.mesh))
         .Add("bending_model", FLAGS_bending);
     std::cout << AddRunFields(json)
                      .Add("seconds", Seconds(clock))
@@ -295,8 +295,8 @@ int RunPca() {
   RunStatus status("pca");
   RecordWorkflow(result.status, {}, "pca", &status);
   JsonObject json = workflows::ToJson(result, options);
-  json.Add("material", workflows::MaterialChoiceJson(options.material,
-                                                     inputs.first.mesh));
+  json.Add("material",
+           workflows::MaterialChoiceJson(options.material, inputs.first.mesh));
   if (!result.stopped_in.empty()) {
     // Stopped: the mean so far (or the converged mean, if the stop came
     // later), no modes. The exit code is the stop's (main).

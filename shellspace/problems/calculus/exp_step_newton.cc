@@ -5,8 +5,8 @@
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
 #include "shellspace/geometry/connected_components.h"
 #include "shellspace/geometry/vertex_flags.h"
-#include "shellspace/solvers/gauge_reduced_solve.h"
 #include "shellspace/problems/calculus/path_hessian.h"
+#include "shellspace/solvers/gauge_reduced_solve.h"
 #include "shellspace/solvers/newton_solver.h"
 #include "shellspace/solvers/rigid_gauge.h"
 #include "shellspace/solvers/sparse_lu.h"
@@ -62,8 +62,8 @@ double ExpResidualMaxNorm(const ExpStepEquation& equation,
                   equation.constant, s, &f) != EvaluationStatus::kOk) {
     return HUGE_VAL;
   }
-  return MaxNorm(f, VertexFlags(equation.space.num_vertices,
-                               equation.fixed_vertices));
+  return MaxNorm(
+      f, VertexFlags(equation.space.num_vertices, equation.fixed_vertices));
 }
 
 namespace {
@@ -83,11 +83,11 @@ class ExpStepProblem : public NewtonProblem {
         constant_(constant),
         is_fixed_(VertexFlags(space.num_vertices, fixed_vertices)),
         gauge_(fixed_vertices.empty()),
-        components_(gauge_ ? ConnectedComponents(space.faces,
-                                                 space.num_vertices)
-                           : std::vector<std::vector<int>>{}),
-        rows_(gauge_ ? RigidGaugeBasis(
-                           fixed, ChooseGaugeVertices(fixed, components_))
+        components_(gauge_
+                        ? ConnectedComponents(space.faces, space.num_vertices)
+                        : std::vector<std::vector<int>>{}),
+        rows_(gauge_ ? RigidGaugeBasis(fixed,
+                                       ChooseGaugeVertices(fixed, components_))
                      : FreeVertexBasis(space.num_vertices, fixed_vertices)),
         assembler_(space),
         s_(s) {}

@@ -1,19 +1,19 @@
 #include "shellspace/problems/calculus/exponential_map.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
-#include <cmath>
 
 #include "shellspace/cost_functions/gradient_field_residual.h"
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
 #include "shellspace/geometry/connected_components.h"
 #include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/geometry/vertex_flags.h"
-#include "shellspace/runtime/blas_threads.h"
 #include "shellspace/problems/calculus/exp_step_continuation.h"
 #include "shellspace/problems/calculus/exp_step_newton.h"
 #include "shellspace/problems/calculus/rotation_blend_path.h"
+#include "shellspace/runtime/blas_threads.h"
 #include "shellspace/solvers/rigid_gauge.h"
 
 namespace shellspace {
