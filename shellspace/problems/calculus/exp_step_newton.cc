@@ -22,14 +22,6 @@ constexpr int kMaxHalvings = 20;
 // nearby): give up, the caller has a fallback.
 constexpr int kProgressSteps = 8;
 
-double MaxNorm(const Eigen::VectorXd& f, const std::vector<char>& is_fixed) {
-  double norm = 0;
-  for (int v = 0; v < static_cast<int>(is_fixed.size()); ++v) {
-    if (!is_fixed[v]) norm = std::max(norm, f.segment<3>(3 * v).cwiseAbs().maxCoeff());
-  }
-  return norm;
-}
-
 double TwoNorm(const Eigen::VectorXd& f, const std::vector<char>& is_fixed) {
   double sum = 0;
   for (int v = 0; v < static_cast<int>(is_fixed.size()); ++v) {
@@ -62,7 +54,7 @@ double ExpResidualMaxNorm(const ExpStepEquation& equation,
                   equation.constant, s, &f) != EvaluationStatus::kOk) {
     return HUGE_VAL;
   }
-  return MaxNorm(
+  return UnflaggedMaxNorm(
       f, VertexFlags(equation.space.num_vertices, equation.fixed_vertices));
 }
 
@@ -103,7 +95,7 @@ class ExpStepProblem : public NewtonProblem {
         EvaluationStatus::kOk) {
       return EvaluationStatus::kInfeasible;
     }
-    residual->max_norm = MaxNorm(f, is_fixed_);
+    residual->max_norm = UnflaggedMaxNorm(f, is_fixed_);
     residual->two_norm = TwoNorm(f, is_fixed_);
     residual->reduced = rows_.transpose() * f;
     return EvaluationStatus::kOk;

@@ -191,12 +191,8 @@ ExpStepResult ExpStep(const ShellSpace& space, const Positions& a,
       constant, fixed_vertices};
   const std::vector<char> is_fixed =
       VertexFlags(space.num_vertices, fixed_vertices);
-  double scale = 1e-300;  // max |c| over the unknown vertices
-  for (int v = 0; v < space.num_vertices; ++v) {
-    if (!is_fixed[v]) {
-      scale = std::max(scale, constant.segment<3>(3 * v).cwiseAbs().maxCoeff());
-    }
-  }
+  // max |c| over the unknown vertices
+  const double scale = std::max(1e-300, UnflaggedMaxNorm(constant, is_fixed));
   const ExpStepContext step{space,    a,        b,    fixed_vertices,
                             is_fixed, equation, scale};
 

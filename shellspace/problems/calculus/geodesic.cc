@@ -90,15 +90,7 @@ namespace {
 double FreeMaxNorm(const GeodesicInput& input,
                    const std::vector<char>& is_fixed, const Positions& shape,
                    const Eigen::VectorXd& g) {
-  if (!input.fixed_vertices.empty()) {
-    double norm = 0;
-    for (int v = 0; v < static_cast<int>(is_fixed.size()); ++v) {
-      if (!is_fixed[v]) {
-        norm = std::max(norm, g.segment<3>(3 * v).cwiseAbs().maxCoeff());
-      }
-    }
-    return norm;
-  }
+  if (!input.fixed_vertices.empty()) return UnflaggedMaxNorm(g, is_fixed);
   if (input.pin_gauge) return GaugeFreeMaxNorm(MakeRigidGauge(shape), g);
   return g.cwiseAbs().maxCoeff();
 }
