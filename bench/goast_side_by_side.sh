@@ -33,6 +33,15 @@
 #   ChineseDragon_twist60, triceratops_bend120
 # shellspace runs them twice, as GOAST (--init linear --multires off) and
 # with its defaults otherwise (ss_<problem>_defaults).
+# Shooting (EXP) the same way, on the corpus poses whose shoots shellspace
+# does not solve from a converged geodesic (exp_ChineseDragon_bend75,
+# exp_ChineseDragon_bend120): shellspace's masked geodesic (defaults) gives
+# s_0 and s_1; from them shellspace's `shoot --steps 8` and GOAST's example
+# extrapolationShells (examples/geodesic_extrapolation_shells.cpp, a copy
+# reading its inputs from argv: Newton from s_k, 50 steps, tolerance 1e-8
+# on its gradient norm) each extrapolate 7 steps with the same mask and
+# weights. Their own table lists, per EXP step, whether it was solved and
+# the Newton steps it took.
 # GOAST runs with OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1; shellspace with
 # --tolerance 1e-10 and its default, each with one thread and with the
 # default threads. shellspace also runs on the inputs rounded to float32,
@@ -50,7 +59,8 @@
 # a run stopped there is reported partial; shellspace's runs of the corpus
 # problems get the same --time_limit), JOBS (default 1), ONLY a regular
 # expression of the problems (default finger|cactus; the corpus problems
-# by name, e.g. ONLY=bull), TABLE_ONLY=1 prints the table of the runs
+# by name, e.g. ONLY=bull; the shooting problems with their prefix,
+# e.g. ONLY=exp_ChineseDragon_bend75), TABLE_ONLY=1 prints the table of the runs
 # already in OUT_DIR.
 set -uo pipefail
 
@@ -88,7 +98,9 @@ def timing(name):
     return wall, cpu, rss, load1, rc
 print('| run | wall s | CPU s | peak RSS MB | load | iterations | E_K | own final gradient | gradient of the path by GOAST: 2-norm / max-norm |')
 print('|---|---|---|---|---|---|---|---|---|')
-for name in sorted(os.path.basename(p)[:-5] for p in glob.glob(f'{out}/logs/*.time')):
+names = sorted(os.path.basename(p)[:-5] for p in glob.glob(f'{out}/logs/*.time'))
+for name in names:
+    if name.startswith('exp_'): continue
     wall, cpu, rss, load, rc = timing(name)
     if name.startswith('goast_'):
         o, e = open(f'{out}/logs/{name}.out').read(), open(f'{out}/logs/{name}.err').read()
@@ -114,6 +126,26 @@ for name in sorted(os.path.basename(p)[:-5] for p in glob.glob(f'{out}/logs/*.ti
             except Exception: check = 'pathcheck failed'
         print(f"| {name} | {wall:.1f} | {cpu:.1f} | {rss:.0f} | {load} | {its} | {s['path_energy']!r} | "
               f"max {s['final_gradient_norm']:.2e} | {check} |")
+# Shooting: per EXP step s_2 ... s_8, solved or not and its Newton steps.
+exp = [n for n in names if n.startswith('exp_') and not n.startswith('exp_geo_')]
+if exp:
+    print()
+    print('| shooting run | wall s | CPU s | peak RSS MB | load | exit | EXP steps solved | per step: Newton steps (no: not solved) / final residual (GOAST: its gradient 2-norm; shellspace: relative to the scale of F) |')
+    print('|---|---|---|---|---|---|---|---|')
+for name in exp:
+    wall, cpu, rss, load, rc = timing(name)
+    if name.startswith('exp_goast_'):
+        o = open(f'{out}/logs/{name}.out').read()
+        runs = re.findall(r"Finished Newton's method after (\d+) steps \(max\. steps = \d+, tol = (\S+)\)\.\s*"
+                          r"Final stepsize = \S+, final norm = (\S+)", o)
+        steps = [(int(n), float(r) <= float(t), float(r)) for n, t, r in runs]
+    else:
+        try: s = json.load(open(f'{out}/logs/{name}.out'))
+        except Exception: steps = []
+        else: steps = [(x['iterations'], x['solved'], x['relative_residual']) for x in s['stages']]
+    solved = sum(1 for _, ok, _ in steps if ok)
+    cells = ', '.join(f"{n}{'' if ok else ' (no)'} / {r:.1e}" for n, ok, r in steps)
+    print(f'| {name} | {wall:.1f} | {cpu:.1f} | {rss:.0f} | {load} | {rc} | {solved} of {len(steps)} | {cells} |')
 EOF
 }
 if [ -n "${TABLE_ONLY:-}" ]; then table; exit 0; fi
@@ -143,6 +175,18 @@ sed -e 's|"../../data/finger/finger0.ply"|argv[1]|' \
 for pattern in 'argv\[1\]' 'argv\[2\]' 'argv\[3\]' 'argv\[5\]' 'argv\[6\]' 'argv\[7\]'; do
   grep -q "$pattern" "$side/interpolation_args.cpp" ||
     { echo "GOAST's example changed: $pattern not substituted" >&2; exit 1; }
+done
+# The extrapolation example with its inputs from argv.
+sed -e 's|"../../data/finger/finger0.ply"|argv[1]|' \
+    -e 's|"../../data/finger/finger_var.ply"|argv[2]|' \
+    -e 's|double bendWeight = 0.001;|double bendWeight = std::stod(argv[5]);|' \
+    -e 's|int numShootingSteps = 3;|int numShootingSteps = std::stoi(argv[6]);|' \
+    -e 's|getVertexNRingVertices( 10, 1302,  indices )|getVertexNRingVertices( std::stoi(argv[4]), std::stoi(argv[3]), indices )|' \
+    -e 's|"fingerExtrapolation"|argv[7]|' \
+    "$goast/examples/geodesic_extrapolation_shells.cpp" > "$side/extrapolation_args.cpp"
+for pattern in 'argv\[1\]' 'argv\[2\]' 'argv\[3\]' 'argv\[5\]' 'argv\[6\]' 'argv\[7\]'; do
+  grep -q "$pattern" "$side/extrapolation_args.cpp" ||
+    { echo "GOAST's extrapolation example changed: $pattern not substituted" >&2; exit 1; }
 done
 cat > "$side/pathcheck.cpp" <<'EOF'
 // GOAST's E_K and masked gradient of a path DIR/shape_000.ply ... shape_K.ply.
@@ -208,6 +252,8 @@ set(CMAKE_CXX_STANDARD 14)
 include("$goast/cmake/GOAST.cmake")
 add_executable(interpolation_args interpolation_args.cpp)
 target_link_libraries(interpolation_args PRIVATE GOAST::GOAST)
+add_executable(extrapolation_args extrapolation_args.cpp)
+target_link_libraries(extrapolation_args PRIVATE GOAST::GOAST)
 add_executable(pathcheck pathcheck.cpp)
 target_link_libraries(pathcheck PRIVATE GOAST::GOAST)
 EOF
@@ -217,25 +263,28 @@ cmake -S "$side" -B "$side/build" -DCMAKE_BUILD_TYPE=Release \
 nice -n 10 cmake --build "$side/build" -j"$jobs" > "$out/logs/side_build.log" 2>&1 ||
   { echo "building the GOAST programs failed: $out/logs/side_*.log" >&2; exit 1; }
 goast_run="$side/build/interpolation_args"
+goast_exp="$side/build/extrapolation_args"
 pathcheck="$side/build/pathcheck"
 
 # --- the corpus problems' meshes -----------------------------------------
-corpus=()
+corpus=() exp_corpus=()
 for entry in bull:bend:120 triceratops:pull:0.15 ChineseDragon-10kv:twist:180 \
-    ChineseDragon-10kv:twist:60 triceratops:bend:120; do
+    ChineseDragon-10kv:twist:60 triceratops:bend:120 \
+    exp:ChineseDragon-10kv:bend:75 exp:ChineseDragon-10kv:bend:120; do
+  exp=""; [[ "$entry" == exp:* ]] && exp="exp_" entry="${entry#exp:}"
   IFS=: read -r mesh kind strength <<<"$entry"
   problem="${mesh%%-*}_${kind}${strength}"
-  [[ "$problem" =~ $only ]] || continue
+  [[ "$exp$problem" =~ $only ]] || continue
   pose="$(dirname "$cli")/bench/stress_pose"
   [ -x "$pose" ] || { echo "no $pose (build the target stress_pose)" >&2; exit 1; }
   "$pose" "$data/cgal/$mesh.off" none 0 0 "$out/${problem}0.ply" norigid &&
   "$pose" "$data/cgal/$mesh.off" "$kind" "$strength" 0 "$out/${problem}1.ply" norigid ||
     { echo "stress_pose failed on $mesh" >&2; exit 1; }
-  corpus+=("$problem")
+  if [ -n "$exp" ]; then exp_corpus+=("$problem"); else corpus+=("$problem"); fi
 done
 
 # --- masks, centre vertices and float32 copies of the inputs ---------------
-"$python" - "$data" "$out" "${corpus[@]}" <<'EOF' || exit 1
+"$python" - "$data" "$out" "${corpus[@]}" "${exp_corpus[@]}" <<'EOF' || exit 1
 import sys
 from collections import deque
 data, out = sys.argv[1], sys.argv[2]
@@ -353,6 +402,23 @@ for problem in "${corpus[@]}"; do
     [ -d "$run" ] && OMP_NUM_THREADS=1 "$pathcheck" "$run" 8 "$centre" 10 "$weight" \
       > "$out/logs/$(basename "$run").pathcheck" 2>&1
   done
+done
+
+for problem in "${exp_corpus[@]}"; do
+  centre="$(cat "$out/$problem.centre")" eta="$(cat "$out/$problem.eta")"
+  weight=$("$python" -c "print(repr(3 * float('$eta')))")
+  geo="$out/runs/exp_geo_$problem"
+  timed "exp_geo_$problem" "$cli" geodesic --steps 8 --mask "$out/${problem}_mask.txt" \
+    --eta "$eta" --json --time_limit "$timeout_s" --start "$out/${problem}0.ply" \
+    --end "$out/${problem}1.ply" --output "$geo"
+  [ -f "$geo/shape_001.ply" ] || { echo "no geodesic for exp_$problem: $out/logs/exp_geo_$problem.err" >&2; continue; }
+  (cd "$out/runs" && OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 \
+    timed "exp_goast_$problem" timeout "$timeout_s" stdbuf -oL -eL \
+      "$goast_exp" "$geo/shape_000.ply" "$geo/shape_001.ply" "$centre" 10 "$weight" 7 "exp_goast_$problem")
+  OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 timed "exp_ss_$problem" "$cli" shoot \
+    --first "$geo/shape_000.ply" --second "$geo/shape_001.ply" --steps 8 \
+    --mask "$out/${problem}_mask.txt" --eta "$eta" --json --time_limit "$timeout_s" \
+    --threads 1 --output "$out/runs/exp_ss_$problem"
 done
 
 table
