@@ -69,4 +69,32 @@ void KeepFreedHeapForReuse() {
 #endif
 }
 
+bool WholeHugePagesIn(std::uintptr_t address, std::size_t bytes,
+                      std::uintptr_t* first, std::uintptr_t* last) {
+  const std::uintptr_t huge = std::uintptr_t{2} << 20;
+  if (address > UINTPTR_MAX - bytes) return false;  // wraps: not a block
+  const std::uintptr_t end = address + bytes;
+  if (address > UINTPTR_MAX - (huge - 1)) return false;
+  const std::uintptr_t from = (address + huge - 1) & ~(huge - 1);
+  const std::uintptr_t to = end & ~(huge - 1);
+  if (to <= from) return false;
+  *first = from;
+  *last = to;
+  return true;
+}
+
+void* MallocOnHugePages(std::size_t bytes) {
+  void* const block = std::malloc(bytes);
+#if defined(__GLIBC__)
+  std::uintptr_t first = 0, last = 0;
+  if (block != nullptr && bytes >= (std::size_t{32} << 20) &&
+      WholeHugePagesIn(reinterpret_cast<std::uintptr_t>(block), bytes, &first,
+                       &last)) {
+    // Advice only: where the kernel declines, the block is ordinary memory.
+    madvise(reinterpret_cast<void*>(first), last - first, MADV_HUGEPAGE);
+  }
+#endif
+  return block;
+}
+
 }  // namespace shellspace

@@ -9,6 +9,8 @@
 #include <limits>
 #include <utility>
 
+#include "shellspace/runtime/heap_reuse.h"
+
 namespace shellspace {
 
 namespace {
@@ -172,9 +174,8 @@ SupernodalFactor<Stored>::SupernodalFactor(
     return;
   }
   value_count_ = pattern_->packed_values();
-  values_.reset(static_cast<Stored*>(std::malloc(
-      std::max<size_t>(sizeof(Stored) * static_cast<size_t>(value_count_),
-                       1))));
+  values_.reset(static_cast<Stored*>(MallocOnHugePages(std::max<size_t>(
+      sizeof(Stored) * static_cast<size_t>(value_count_), 1))));
   if (!values_) {
     value_count_ = 0;
     return;

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <random>
 
+#include "shellspace/runtime/heap_reuse.h"
 #include "shellspace/runtime/parallel_for.h"
 #include "shellspace/solvers/supernodal_cholesky.h"
 #include "shellspace/solvers/supernodal_factor.h"
@@ -214,7 +215,7 @@ TimeCoupledPreconditioner::Status TimeCoupledPreconditioner::Factorize(
     // after its factorisation; the others compare with its pattern).
     if (i == 0) own_block = std::move(front);
     if (!*buffer) {
-      buffer->reset(static_cast<double*>(std::malloc(buffer_size)));
+      buffer->reset(static_cast<double*>(MallocOnHugePages(buffer_size)));
       if (!*buffer) return;
     }
     const bool factorized = cholesky.Factorize(own_block, buffer->get());

@@ -119,5 +119,54 @@ TEST(HeapReuseTest, HeapBlocksLieInAHugePageRange) {
   munmap(plain, size);
 }
 
+TEST(HeapReuseTest, WholeHugePagesInABlock) {
+  const std::uintptr_t mb2 = std::uintptr_t{2} << 20;
+  std::uintptr_t first = 0, last = 0;
+  // [21, 28) MB: the whole pages [22, 28) MB; [21, 22) is partial.
+  ASSERT_TRUE(
+      WholeHugePagesIn(10 * mb2 + mb2 / 2, 7 * (mb2 / 2), &first, &last));
+  EXPECT_EQ(first, 11 * mb2);
+  EXPECT_EQ(last, 14 * mb2);
+  // Aligned at both ends: all of it.
+  ASSERT_TRUE(WholeHugePagesIn(4 * mb2, 3 * mb2, &first, &last));
+  EXPECT_EQ(first, 4 * mb2);
+  EXPECT_EQ(last, 7 * mb2);
+  // [1, 4) MB holds one whole page, [2, 4); [1.5, 3.5) MB none.
+  ASSERT_TRUE(WholeHugePagesIn(mb2 / 2, 3 * (mb2 / 2), &first, &last));
+  EXPECT_EQ(first, mb2);
+  EXPECT_EQ(last, 2 * mb2);
+  first = last = 7;
+  EXPECT_FALSE(WholeHugePagesIn(3 * (mb2 / 4), mb2, &first, &last));
+  EXPECT_EQ(first, 7u);  // untouched
+  EXPECT_FALSE(WholeHugePagesIn(UINTPTR_MAX - mb2, 2 * mb2, &first, &last));
+}
+
+TEST(HeapReuseTest, LargeBlocksAreAdvisedForHugePages) {
+#if !defined(__GLIBC__)
+  GTEST_SKIP() << "glibc only";
+#endif
+  if (!KernelGivesHugePagesOnRequest()) {
+    GTEST_SKIP() << "transparent huge pages off in this kernel";
+  }
+  // 64 MB: above glibc's mmap threshold, so a fresh mapping; its middle is
+  // advised.
+  const size_t size = size_t{64} << 20;
+  char* block = static_cast<char*>(MallocOnHugePages(size));
+  ASSERT_NE(block, nullptr);
+  EXPECT_TRUE(HasFlag(MappingOf(block + size / 2), "hg"));
+  block[0] = block[size - 1] = 1;  // usable to its ends
+  char* grown = static_cast<char*>(std::realloc(block, size / 2));
+  ASSERT_NE(grown, nullptr);
+  EXPECT_EQ(grown[0], 1);
+  std::free(grown);
+  // The twin: a fresh mapping of that size, as glibc makes for a block it
+  // does not take from the heap, is not advised, and the same check says so.
+  void* plain = mmap(nullptr, size, PROT_READ | PROT_WRITE,
+                     MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+  ASSERT_NE(plain, MAP_FAILED);
+  EXPECT_FALSE(HasFlag(MappingOf(static_cast<char*>(plain) + size / 2), "hg"));
+  munmap(plain, size);
+}
+
 }  // namespace
 }  // namespace shellspace
