@@ -129,7 +129,10 @@ def test_a_sigalrm_handler_runs_during_a_solve():
             shellspace.geodesic(V, B, F, steps=24, tolerance=1e-14,
                                 max_iterations=10000, quiet=True,
                                 threads=1)
-        assert time.monotonic() - start < 1.3
+        # During the solve, not after it: uninterrupted, 10,000 iterations
+        # at about 0.2 s each. (Not a latency bound: on a loaded machine a
+        # step took seconds.)
+        assert time.monotonic() - start < 60
         assert hasattr(raised.value, "result")
     finally:
         signal.setitimer(signal.ITIMER_REAL, 0)
