@@ -26,7 +26,6 @@ namespace {
 // heap did not grow (e.g. no room for it: glibc then maps its blocks, and
 // nothing changes).
 bool ReserveHugePageHeap(size_t bytes) {
-  const uintptr_t huge = uintptr_t{2} << 20;
   mallopt(M_TOP_PAD, static_cast<int>(bytes));
   char* const before = static_cast<char*>(sbrk(0));
   // Larger than any free block of the young heap, below the mmap threshold:
@@ -35,10 +34,12 @@ bool ReserveHugePageHeap(size_t bytes) {
   char* const after = static_cast<char*>(sbrk(0));
   std::free(probe);
   mallopt(M_TOP_PAD, 128 << 10);  // glibc's default again
-  const uintptr_t from =
-      (reinterpret_cast<uintptr_t>(before) + huge - 1) & ~(huge - 1);
-  const uintptr_t to = reinterpret_cast<uintptr_t>(after) & ~(huge - 1);
-  if (probe == nullptr || after == before || to <= from) return false;
+  std::uintptr_t from = 0, to = 0;
+  if (probe == nullptr || after <= before ||
+      !WholeHugePagesIn(reinterpret_cast<std::uintptr_t>(before),
+                        static_cast<std::size_t>(after - before), &from, &to)) {
+    return false;
+  }
   return madvise(reinterpret_cast<void*>(from), to - from, MADV_HUGEPAGE) == 0;
 }
 #endif
