@@ -163,6 +163,15 @@ nice -n 10 cmake --build "$gbuild" -j"$jobs" --target interpolationShells \
 
 side="$gbuild/side_by_side"
 mkdir -p "$side"
+# Exit unless every substitution of a copy below took (GOAST's example
+# changed otherwise).
+require_argv() {
+  local pattern
+  for pattern in 'argv\[1\]' 'argv\[2\]' 'argv\[3\]' 'argv\[5\]' 'argv\[6\]' 'argv\[7\]'; do
+    grep -q "$pattern" "$1" ||
+      { echo "GOAST's example changed: $pattern not substituted in $1" >&2; exit 1; }
+  done
+}
 # The example with its inputs from argv (a sed script over the authors' file).
 sed -e 's|"../../data/finger/finger0.ply"|argv[1]|' \
     -e 's|"../../data/finger/finger1.ply"|argv[2]|' \
@@ -172,10 +181,7 @@ sed -e 's|"../../data/finger/finger0.ply"|argv[1]|' \
     -e 's|interpolationOp.execute( "fingerInterpolation"|std::cerr << std::setprecision(17); interpolationOp.execute( argv[7]|' \
     -e 's|#include <string>|#include <string>\n#include <iomanip>|' \
     "$goast/examples/geodesic_interpolation_shells.cpp" > "$side/interpolation_args.cpp"
-for pattern in 'argv\[1\]' 'argv\[2\]' 'argv\[3\]' 'argv\[5\]' 'argv\[6\]' 'argv\[7\]'; do
-  grep -q "$pattern" "$side/interpolation_args.cpp" ||
-    { echo "GOAST's example changed: $pattern not substituted" >&2; exit 1; }
-done
+require_argv "$side/interpolation_args.cpp"
 # The extrapolation example with its inputs from argv.
 sed -e 's|"../../data/finger/finger0.ply"|argv[1]|' \
     -e 's|"../../data/finger/finger_var.ply"|argv[2]|' \
@@ -184,10 +190,7 @@ sed -e 's|"../../data/finger/finger0.ply"|argv[1]|' \
     -e 's|getVertexNRingVertices( 10, 1302,  indices )|getVertexNRingVertices( std::stoi(argv[4]), std::stoi(argv[3]), indices )|' \
     -e 's|"fingerExtrapolation"|argv[7]|' \
     "$goast/examples/geodesic_extrapolation_shells.cpp" > "$side/extrapolation_args.cpp"
-for pattern in 'argv\[1\]' 'argv\[2\]' 'argv\[3\]' 'argv\[5\]' 'argv\[6\]' 'argv\[7\]'; do
-  grep -q "$pattern" "$side/extrapolation_args.cpp" ||
-    { echo "GOAST's extrapolation example changed: $pattern not substituted" >&2; exit 1; }
-done
+require_argv "$side/extrapolation_args.cpp"
 cat > "$side/pathcheck.cpp" <<'EOF'
 // GOAST's E_K and masked gradient of a path DIR/shape_000.ply ... shape_K.ply.
 #include <cstdio>
