@@ -49,7 +49,7 @@ bool WholeHugePagesIn(std::uintptr_t address, std::size_t bytes,
 // it) glibc maps such blocks afresh at every allocation, so each first
 // touch faults: a supernodal factor's buffer (546 MB a slice on the cactus
 // x16 problem, 84k vertices, K = 8) then costs 140,000 faults of 4 KB
-// instead of 270 of 2 MB: on that problem 3.28M page faults become 1.76M,
+// instead of 270 of 2 MB: on that problem 3.29M page faults become 1.76M,
 // system time 31.7 s becomes 20.2 s and wall time 107 s becomes 91 s. On a
 // kernel without transparent huge pages, or another C library, plain
 // std::malloc. Never changes a result.

@@ -22,6 +22,7 @@ import pytest
 import shellspace
 import shellspace.collections as sc
 from procedural import plate
+from process_signals import wait_until_signal_is_held
 
 STEPS = 2
 
@@ -518,23 +519,6 @@ def test_cli_collection_refuses_bad_flags_in_one_line(meshes, args, code,
     assert not os.path.exists(output)
 
 
-def _wait_until_signal_is_held(process, number, timeout=60):
-    # Until /proc/PID/status lists `number` as caught (SigCgt) or blocked
-    # (SigBlk), or the process has ended.
-    bit = 1 << (number - 1)
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline and process.poll() is None:
-        try:
-            with open(f"/proc/{process.pid}/status") as status:
-                for line in status:
-                    if (line.startswith(("SigCgt:", "SigBlk:")) and
-                            int(line.split()[1], 16) & bit):
-                        return
-        except FileNotFoundError:
-            return
-        time.sleep(0.002)
-
-
 def test_a_stop_while_the_cli_starts_python_is_one_line(meshes, tmp_path):
     # SIGINT / SIGTERM soon after `shellspace collection` execs the
     # interpreter (while it imports numpy and the module): one line, exit
@@ -553,7 +537,7 @@ def test_a_stop_while_the_cli_starts_python_is_one_line(meshes, tmp_path):
             # that, the signal's default action ends any program: on a
             # loaded machine 30 ms did not reach it): then into python's
             # start-up.
-            _wait_until_signal_is_held(run, number)
+            wait_until_signal_is_held(run, number)
             time.sleep(delay)
             run.send_signal(number)
             err = run.communicate(timeout=120)[1]

@@ -16,6 +16,7 @@ import pytest
 import shellspace
 import shellspace.collections as sc
 from procedural import plate
+from process_signals import wait_until_signal_is_held
 
 
 def pair(n=5):
@@ -281,23 +282,6 @@ def test_a_refused_scheduler_address_errors_within_5_s():
     assert time.monotonic() - start < 8
 
 
-def _wait_for_stop_handlers(process, timeout=60):
-    # Until the module's main has installed its SIGTERM handler (with its
-    # SIGINT one): before that a signal kills the interpreter or raises
-    # KeyboardInterrupt. A fixed sleep failed when the imports took longer
-    # on a loaded machine. /proc/PID/status lists the caught signals.
-    bit = 1 << (signal.SIGTERM - 1)
-    deadline = time.monotonic() + timeout
-    while time.monotonic() < deadline:
-        assert process.poll() is None, "the run ended before it was signalled"
-        with open(f"/proc/{process.pid}/status") as status:
-            for line in status:
-                if line.startswith("SigCgt:") and int(line.split()[1], 16) & bit:
-                    return
-        time.sleep(0.05)
-    raise AssertionError("no SIGTERM handler after %d s" % timeout)
-
-
 def test_sigterm_and_sigint_write_the_partial_result(meshes, tmp_path):
     folder, _ = meshes
     S, F = shapes(count=6, n=12)
@@ -312,7 +296,11 @@ def test_sigterm_and_sigint_write_the_partial_result(meshes, tmp_path):
              "--inputs", ",".join(paths), "--output", str(out), "--steps",
              "8", "--tolerance", "1e-14", "--quiet"],
             stderr=subprocess.PIPE, text=True)
-        _wait_for_stop_handlers(process)
+        # Until the module's main has installed its SIGTERM handler (with
+        # its SIGINT one): before that a signal kills the interpreter or
+        # raises KeyboardInterrupt (a fixed sleep failed on a loaded machine).
+        wait_until_signal_is_held(process, signal.SIGTERM, ("SigCgt:",),
+                                  required=True)
         time.sleep(1.0)  # into the solves
         process.send_signal(number)
         _, err = process.communicate(timeout=60)

@@ -148,8 +148,8 @@ TEST(HeapReuseTest, LargeBlocksAreAdvisedForHugePages) {
   if (!KernelGivesHugePagesOnRequest()) {
     GTEST_SKIP() << "transparent huge pages off in this kernel";
   }
-  // 64 MB: above glibc's mmap threshold, so a fresh mapping; its middle is
-  // advised.
+  // 64 MB: above glibc's mmap threshold (a fresh mapping, or the huge-page
+  // heap if an earlier test reserved it); either way its middle is advised.
   const size_t size = size_t{64} << 20;
   char* block = static_cast<char*>(MallocOnHugePages(size));
   ASSERT_NE(block, nullptr);
