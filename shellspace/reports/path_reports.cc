@@ -54,6 +54,12 @@ const char* ExpMethodName(ExpStepResult::Method method) {
   return NameOf(kNames, method);
 }
 
+std::string ExpStepTermination(const ExpStepResult& step) {
+  const std::string how = std::string(ExpMethodName(step.method)) + ": " +
+                          step.summary.message;
+  return (step.solved ? "solved (" : "not solved (") + how + ")";
+}
+
 std::vector<JsonObject> ExpStepStages(const ShootResult& result) {
   std::vector<JsonObject> stages;
   for (const ExpStepResult& step : result.exp_steps) {
@@ -67,8 +73,7 @@ std::vector<JsonObject> ExpStepStages(const ShootResult& result) {
             .Add("iterations", step.newton_steps + lm)
             .Add("residual", step.residual_norm)
             .Add("relative_residual", step.relative_residual)
-            .Add("termination", ceres::TerminationTypeToString(
-                                    step.summary.termination_type)));
+            .Add("termination", ExpStepTermination(step)));
   }
   return stages;
 }

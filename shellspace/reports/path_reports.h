@@ -54,8 +54,14 @@ std::vector<JsonObject> GeodesicStages(const GeodesicResult& result);
 // "levenberg-marquardt": the solver that produced the shape), solved
 // (relative_residual <= kExpStepAcceptance), newton_steps, lm_iterations,
 // iterations (their sum), residual (max |F|), relative_residual (max |F| /
-// max |D_2 W|), termination.
+// max |D_2 W|), termination (ExpStepTermination).
 std::vector<JsonObject> ExpStepStages(const ShootResult& result);
+
+// An EXP step's outcome in words: "solved (" or "not solved (", then the
+// method that produced the shape and its solver's own message, ")". Ceres'
+// termination type is not used: an LM fallback that stops at its function
+// tolerance reports CONVERGENCE though F = 0 is not solved.
+std::string ExpStepTermination(const ExpStepResult& step);
 
 // "newton" or "levenberg-marquardt".
 const char* ExpMethodName(ExpStepResult::Method method);
