@@ -224,7 +224,12 @@ ShellPath MakeGeodesicInitialPath(const ShellSpace& space,
     r.reason += rotation;
   }
   if (r.used == GeodesicInit::kLTheta) {
-    path = LThetaPath(space, start, end, steps, fixed_vertices, settings,
+    SolverSettings frames = settings;
+    if (init == GeodesicInit::kAuto) {
+      frames.max_iterations =
+          std::min(settings.max_iterations, kAutoLThetaFrameIterations);
+    }
+    path = LThetaPath(space, start, end, steps, fixed_vertices, frames,
                       &r.ltheta_iterations, &r.ltheta_unconverged);
     // Auto: a reconstruction with a degenerate triangle (no energy) is no
     // better a start than the linear path it replaces, if that one has an
