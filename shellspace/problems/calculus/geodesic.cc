@@ -212,10 +212,6 @@ class GeodesicSolve {
   // A Newton stage of the engine on `model`: the trust region, to the
   // tolerance, as a basin probe if `probe`.
   PathNewtonReport RunNewtonStage(HessianModel model, bool probe);
-  // An exact Newton probe of the basin from the start
-  // (GeodesicInput::probe_start): a solve that converges there runs no LM
-  // stage; otherwise the path and the state go back to the start.
-  void ProbeBasinAtStart();
   // The projected phase: projected-Newton stages, each followed by an exact
   // probe, until converged, stopped, the budget is spent or a round lowers
   // the gradient by less than half.
@@ -554,28 +550,7 @@ void GeodesicSolve::AcceptRoundOffFloor() {
   }
 }
 
-void GeodesicSolve::ProbeBasinAtStart() {
-  if (!engine_lm_ || !input_.probe_start || !(input_.newton_from > 0) ||
-      Converged() || stopped_ || budget_ <= 0) {
-    return;
-  }
-  const ShellPath start = *solve_path_;
-  const double start_gradient = result_.final_gradient;
-  const bool newton_ran = newton_ran_;
-  const PathNewtonReport probe =
-      RunNewtonStage(HessianModel::kExact, /*probe=*/true);
-  if (probe.converged || Converged() || stopped_) return;
-  // Not in the basin yet: the solve goes on from the start as if the probe
-  // had not run (its iterations stay counted).
-  for (int k = 1; k < input_.steps; ++k) (*solve_path_)[k] = start[k];
-  result_.final_gradient = start_gradient;
-  newton_ran_ = newton_ran;
-  result_.stages.back().termination += "; the start kept";
-}
-
 void GeodesicSolve::Globalise() {
-  ProbeBasinAtStart();
-  if (Converged() || stopped_ || budget_ <= 0) return;
   double threshold = input_.newton_from;
   // The early hand-over (newton_contraction) is tried once: its Newton
   // stage is a probe of the basin, and where it stops short, LM goes on

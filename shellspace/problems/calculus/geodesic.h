@@ -137,15 +137,6 @@ struct GeodesicInput {
   // saves the LM steps down to newton_from; where the rule hands over too
   // early, Newton stops short and LM continues as above. 0: off.
   double newton_contraction = 10;
-  // With the engine's LM stages (GeodesicLm) and newton_from > 0: before
-  // the first LM stage, one exact Newton probe of the basin from the start
-  // (the trust region ended by the first step that is not a full step of a
-  // good model, kNewtonBasinRatio). Where the start is already in Newton's
-  // basin the solve converges there and no LM stage runs (the Gauss-Newton
-  // factorisation and assembly saved); where not, the path goes back to
-  // the start and the solve goes on as without the probe, having spent its
-  // steps (counted in the iterations) and one factorisation.
-  bool probe_start = true;
   // The linear solver of the Newton steps (path_newton.h; kAuto: by size).
   PathLinearSolver linear_solver = PathLinearSolver::kAuto;
   static constexpr int kMaxNewtonAttempts = 3;

@@ -124,6 +124,31 @@ TEST_F(InitialPathTest, TheLThetaPathInterpolatesLengthsAndLeadsToTheGeodesic) {
   EXPECT_EQ(b.init.used, GeodesicInit::kLinear);
 }
 
+// A finger twisted by 300 degrees: the linear path and the rotation blend
+// degenerate, so auto takes the LΘA path, whose reconstruction stops short
+// in a frame. Auto stops each frame after kAutoLThetaFrameIterations LM
+// iterations and names the frames stopped short; the twin, an explicit
+// ltheta start, spends the settings' iterations (200) instead.
+TEST(AutoLThetaStartTest, EachFrameStopsAtTheAutoCap) {
+  const Mesh finger = MakeFinger(0.5, 3.0, 24, 8, 3);
+  const ShellSpace space(finger, Topology::Build(finger),
+                         ShellMaterial{1, 1, 0.01});
+  const Positions end =
+      DeformForCorpus(finger.positions, "twist", 300, false, 1);
+  constexpr int kSteps = 4;
+  InitialPathReport automatic, explicit_ltheta;
+  MakeGeodesicInitialPath(space, finger.positions, end, kSteps, {},
+                          GeodesicInit::kAuto, Tight(), &automatic);
+  MakeGeodesicInitialPath(space, finger.positions, end, kSteps, {},
+                          GeodesicInit::kLTheta, Tight(), &explicit_ltheta);
+  ASSERT_EQ(automatic.used, GeodesicInit::kLTheta) << automatic.reason;
+  EXPECT_FALSE(automatic.ltheta_unconverged.empty());
+  EXPECT_LE(automatic.ltheta_iterations,
+            (kSteps - 1) * kAutoLThetaFrameIterations);
+  EXPECT_GT(explicit_ltheta.ltheta_iterations,
+            (kSteps - 1) * kAutoLThetaFrameIterations);
+}
+
 // The largest |l_e(s) - l_e(target)| / l_e(target) over the edges e.
 double LargestRelativeLengthError(const Topology& topology, const Positions& s,
                                   const Eigen::VectorXd& target) {

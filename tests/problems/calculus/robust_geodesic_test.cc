@@ -307,62 +307,6 @@ TEST(NewtonStallTest, AnAttemptOutsideTheBasinEndsWhenItsGradientStalls) {
   EXPECT_EQ(capped.steps, kCap) << capped.stop_reason;
 }
 
-// The basin probe at the start (GeodesicInput::probe_start), with the
-// engine's LM stages: a start already in Newton's basin converges in the
-// probe, with no LM stage, at the geodesic the solve without the probe
-// finds; a start outside it goes back to the start, and the solve then
-// takes the same stages to the same digits as without the probe.
-GeodesicResult SolveWithProbe(const BentFinger& f, bool probe) {
-  GeodesicInput input = f.Input();
-  input.lm = GeodesicLm::kEngine;
-  input.probe_start = probe;
-  return SolveGeodesic(f.space, input, testing::TightSettings(1e-9));
-}
-
-TEST(BasinProbeTest, AStartInTheBasinConvergesWithoutAnLmStage) {
-  const BentFinger f(10);
-  const GeodesicResult probed = SolveWithProbe(f, true);
-  const GeodesicResult plain = SolveWithProbe(f, false);
-  ASSERT_TRUE(probed.converged);
-  ASSERT_TRUE(plain.converged);
-  ASSERT_EQ(probed.stages.size(), 1u);
-  EXPECT_EQ(probed.stages[0].method, GeodesicStage::Method::kNewton);
-  // The twin: without the probe an LM stage comes first.
-  ASSERT_GE(plain.stages.size(), 2u);
-  EXPECT_EQ(plain.stages[0].method,
-            GeodesicStage::Method::kLevenbergMarquardt);
-  EXPECT_NEAR(probed.path_energy, plain.path_energy,
-              1e-10 * plain.path_energy);
-}
-
-TEST(BasinProbeTest, AStartOutsideTheBasinGoesOnAsWithoutTheProbe) {
-  const BentFinger f(150);
-  const GeodesicResult probed = SolveWithProbe(f, true);
-  const GeodesicResult plain = SolveWithProbe(f, false);
-  ASSERT_TRUE(plain.converged);
-  ASSERT_EQ(probed.stages.size(), plain.stages.size() + 1);
-  const GeodesicStage& probe = probed.stages[0];
-  EXPECT_EQ(probe.method, GeodesicStage::Method::kNewton);
-  EXPECT_GE(probe.iterations, 1);
-  EXPECT_NE(probe.termination.find("not yet in Newton's basin"),
-            std::string::npos)
-      << probe.termination;
-  EXPECT_NE(probe.termination.find("the start kept"), std::string::npos);
-  // The probe's step moved the path (it is not a no-op that would make the
-  // comparison below trivial), yet every later stage is the plain solve's.
-  EXPECT_NE(probe.final_gradient, plain.initial_gradient);
-  for (size_t i = 0; i < plain.stages.size(); ++i) {
-    EXPECT_EQ(probed.stages[i + 1].method, plain.stages[i].method) << i;
-    EXPECT_EQ(probed.stages[i + 1].iterations, plain.stages[i].iterations)
-        << i;
-    EXPECT_EQ(probed.stages[i + 1].final_gradient,
-              plain.stages[i].final_gradient)
-        << i;
-  }
-  EXPECT_EQ(probed.iterations, plain.iterations + probe.iterations);
-  for (int k = 0; k <= 4; ++k) EXPECT_EQ(probed.path[k], plain.path[k]) << k;
-}
-
 // A vertex displaced from a converged geodesic, relaxed alone with every
 // other vertex at the geodesic: its local minimiser is its geodesic
 // position, and E_K returns to the geodesic's.
