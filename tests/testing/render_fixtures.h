@@ -1,5 +1,5 @@
 // Small meshes and image probes shared by the renderer's tests
-// (tests/render/, tests/tools/film_strip_cli_test.cc).
+// (tests/render/, tests/tools/film_strip_cli_data_test.cc).
 #ifndef SHELLSPACE_TESTS_TESTING_RENDER_FIXTURES_H_
 #define SHELLSPACE_TESTS_TESTING_RENDER_FIXTURES_H_
 
