@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Runs the sanitized test executables listed in BUILD/sanitized_tests.txt
 # (a build configured with -DSHELLSPACE_SANITIZE=ON, target sanitized_tests),
-# one line each: the executable and its gtest filter (its unit tests only
-# when the build has no data folder; "skip" if all of its tests read it).
+# one line each: the executable and its gtest filter ("*"; "skip" for a data
+# executable, *_data_test, when the build has no data folder).
 # Any AddressSanitizer, LeakSanitizer or UndefinedBehaviorSanitizer report, or
 # any test failure, fails the run; prints one line per executable.
 # Usage: scripts/run_sanitized_tests.sh BUILD

@@ -77,18 +77,6 @@ TEST(MeshReaderTest, ValidSquareReadsBackInEveryFormat) {
   }
 }
 
-TEST(MeshReaderTest, WrittenMeshesReadBackBitExactly) {
-  const Mesh mesh = testing::LoadData("plate/plate121_rolledA.ply");
-  const std::string dir = testing::TempDir();
-  for (const char* ext : {"ply", "obj", "off"}) {
-    const std::string path = dir + "/plate." + ext;
-    WriteMesh(mesh, path);
-    const Mesh back = ReadMesh(path);
-    EXPECT_EQ(back.positions, mesh.positions) << ext;
-    EXPECT_EQ(back.faces, mesh.faces) << ext;
-  }
-}
-
 TEST(MeshReaderTest, BinaryPlyBigEndianFloatAndExtraProperties) {
   // Big-endian float coordinates, an extra uchar vertex property, an int
   // face property before the list, an extra element: read, the rest ignored.
@@ -368,17 +356,6 @@ TEST(MeshReaderTest, MaskDefects) {
   }
   EXPECT_EQ(ReadMask(Write(dir + "/ok.txt", "3 1\n# c\n1\r\n0 # x\n"), 4),
             (std::vector<int>{0, 1, 3}));
-}
-
-// A real COFF file: CGAL's dino.off (per-vertex colours r g b a), read with
-// its colours ignored; its first and last vertex and face as printed.
-TEST(MeshReaderDataTest, CgalDinoCoffReads) {
-  const Mesh dino = testing::LoadData("cgal/dino.off");
-  ASSERT_EQ(dino.num_vertices(), 3916);
-  ASSERT_EQ(dino.num_faces(), 7828);
-  EXPECT_EQ(dino.positions.row(0),
-            Eigen::RowVector3d(0.991441, -0.544272, -0.555859));
-  EXPECT_EQ(dino.faces.row(7827), Eigen::RowVector3i(1859, 2191, 1904));
 }
 
 }  // namespace

@@ -1,5 +1,12 @@
 #include "tests/testing/render_fixtures.h"
 
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "shellspace/render/film_strip.h"
+#include "shellspace/render/view.h"
 #include "tests/testing/cli_output.h"
 
 namespace shellspace::testing {
@@ -62,6 +69,60 @@ std::pair<int, int> PngSize(const std::string& path) {
     return value;
   };
   return {word(16), word(20)};
+}
+
+RenderOptions CameraOptions(int width, int height, int supersample) {
+  RenderOptions options;
+  options.width = width;
+  options.height = height;
+  options.supersample = supersample;
+  options.up = UpAxis::kPlusY;
+  options.labels = false;
+  return options;
+}
+
+int CoveredPixels(const RgbImage& image, const RenderOptions& options,
+                  int left, int top, int width, int height) {
+  if (width < 0) width = image.width;
+  if (height < 0) height = image.height;
+  const auto& bg = options.lighting.background;
+  const int r = static_cast<int>(std::lround(255 * bg.x()));
+  const int g = static_cast<int>(std::lround(255 * bg.y()));
+  const int b = static_cast<int>(std::lround(255 * bg.z()));
+  int count = 0;
+  for (int y = top; y < top + height; ++y) {
+    for (int x = left; x < left + width; ++x) {
+      const std::uint8_t* p = image.at(x, y);
+      if (p[0] != r || p[1] != g || p[2] != b) ++count;
+    }
+  }
+  return count;
+}
+
+void ExpectSphereCoverage(const Mesh& sphere, const std::string& view,
+                          double low, double high) {
+  const int size = 240;
+  RenderOptions options = CameraOptions(size, size);
+  options.view = ParseView(view);
+  const RgbImage image =
+      RenderFilmStrip({sphere.positions}, sphere.faces, options);
+  double radius = 0;
+  for (int i = 0; i < sphere.num_vertices(); ++i) {
+    radius = std::max(radius, sphere.positions.row(i).norm());
+  }
+  double extent = 2 * radius;
+  if (view == "front") {
+    const Eigen::RowVector3d box = sphere.positions.colwise().maxCoeff() -
+                                   sphere.positions.colwise().minCoeff();
+    extent = std::max(box.x(), box.y());
+  }
+  const double scale = 0.9 * size / extent;
+  const double expected = M_PI * std::pow(scale * radius, 2) / (size * size);
+  const double actual =
+      static_cast<double>(CoveredPixels(image, options)) / (size * size);
+  EXPECT_GT(actual / expected, low) << view << " " << actual << " " << expected;
+  EXPECT_LT(actual / expected, high)
+      << view << " " << actual << " " << expected;
 }
 
 }  // namespace shellspace::testing

@@ -1,7 +1,13 @@
 #include "tests/testing/test_support.h"
 
+#include <poll.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <Eigen/Geometry>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -105,6 +111,64 @@ int RunCli(const std::string& args, std::string* out, std::string* err) {
   if (out) *out = Slurp(dir + "/out");
   if (err) *err = Slurp(dir + "/err");
   return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+int RunCliIn(const std::string& dir, const std::string& args,
+             std::string* err) {
+  const std::string log = TempDir();
+  const std::string command = "cd '" + dir + "' && " + SHELLSPACE_CLI + " " +
+                              args + " > " + log + "/out 2> " + log + "/err";
+  const int status = std::system(command.c_str());
+  *err = Slurp(log + "/err");
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+CliRun RunCliWithTimeout(const std::string& args, double timeout,
+                         double signal_after) {
+  CliRun run;
+  int fds[2];
+  if (pipe(fds) != 0) return run;
+  const std::string command =
+      std::string("exec ") + SHELLSPACE_CLI + " " + args + " > /dev/null";
+  const auto start = std::chrono::steady_clock::now();
+  const pid_t pid = fork();
+  if (pid == 0) {
+    dup2(fds[1], 2);
+    close(fds[0]);
+    close(fds[1]);
+    execl("/bin/sh", "sh", "-c", command.c_str(), static_cast<char*>(nullptr));
+    _exit(127);
+  }
+  close(fds[1]);
+  bool signalled = signal_after < 0;
+  char chunk[4096];
+  while (true) {
+    const double elapsed =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+            .count();
+    if (elapsed > timeout) {
+      kill(pid, SIGKILL);
+      run.err += "[killed after the timeout]";
+      break;
+    }
+    if (!signalled && elapsed >= signal_after) {
+      kill(pid, SIGTERM);
+      signalled = true;
+    }
+    pollfd p{fds[0], POLLIN, 0};
+    if (poll(&p, 1, 20) <= 0) continue;
+    const ssize_t n = read(fds[0], chunk, sizeof(chunk));
+    if (n <= 0) break;  // EOF: the child exited
+    run.err.append(chunk, static_cast<size_t>(n));
+  }
+  close(fds[0]);
+  int status = 0;
+  waitpid(pid, &status, 0);
+  run.seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start)
+          .count();
+  run.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return run;
 }
 
 Positions RandomRigidMotion(const Positions& p, unsigned seed) {

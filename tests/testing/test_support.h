@@ -58,6 +58,24 @@ std::vector<std::string> DirectoryListing(const std::string& dir);
 int RunCli(const std::string& args, std::string* out = nullptr,
            std::string* err = nullptr);
 
+// Runs `shellspace ARGS` in the directory `dir` (relative spellings are
+// relative to it); returns the exit code, stderr in `err`.
+int RunCliIn(const std::string& dir, const std::string& args,
+             std::string* err);
+
+// A run of the CLI as a child process (RunCliWithTimeout).
+struct CliRun {
+  int code = -1;  // exit code; -1: killed (timeout) or died of a signal
+  std::string err;
+  double seconds = 0;
+};
+
+// Runs `shellspace ARGS` (stdout discarded) with stderr captured; sends
+// SIGTERM after `signal_after` seconds (< 0: never); kills it after
+// `timeout` seconds, so that a run that would hang fails instead.
+CliRun RunCliWithTimeout(const std::string& args, double timeout = 20,
+                         double signal_after = -1);
+
 // The shape-operator material with bending weight eta and weights alpha, beta
 // (docs/math.md, "Bending energy: two models").
 ShellMaterial ShapeOperatorMaterial(double eta, double alpha = 0,

@@ -1,179 +1,44 @@
-// Tests of the elastic mean, shell PCA, Procrustes PCA, the leave-one-out
-// evaluation, and the `mean` / `pca` verbs, on small meshes (the 162-vertex
-// spheres and the 121-vertex plates).
+// Tests of shell PCA, Procrustes PCA and the leave-one-out evaluation on
+// small meshes (the 162-vertex spheres and the 121-vertex plates): the
+// metric and its kernel, orthonormal modes, a pose on the first mode's
+// curve recovered, the EXP shots of the mode shapes (their safeguard,
+// failures, stops and degenerate triangles as statuses), warm LOG paths.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <random>
 #include <string>
 #include <vector>
 
 #include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/cost_functions/shell/energy_derivatives.h"
-#include "shellspace/cost_functions/shell/relative_bending_weight.h"
-#include "shellspace/io/mesh_io.h"
 #include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/problems/statistics/elastic_mean.h"
 #include "shellspace/problems/statistics/leave_one_out.h"
 #include "shellspace/problems/statistics/procrustes_pca.h"
 #include "shellspace/problems/statistics/shell_pca.h"
-#include "tests/testing/cli_output.h"
+#include "tests/testing/statistics_fixtures.h"
 #include "tests/testing/test_support.h"
 
 namespace shellspace {
 namespace {
 
-using testing::DataPath;
+using testing::GaussianNoise;
+using testing::kSpheres;
 using testing::LoadData;
+using testing::LoadSpheres;
 using testing::MakeSpace;
-using testing::Number;
 using testing::RandomRigidMotion;
-using testing::RunCli;
-using testing::TempDir;
-
-const char* const kSpheres[] = {
-    "sphere/unitSphere1.ply", "sphere/unitSphere1_defX.ply",
-    "sphere/unitSphere1_defY.ply", "sphere/unitSphere1_defZ.ply"};
-
-std::vector<Positions> LoadSpheres() {
-  std::vector<Positions> shapes;
-  for (const char* name : kSpheres) shapes.push_back(LoadData(name).positions);
-  return shapes;
-}
-
-SolverSettings Tight() {
-  SolverSettings settings;
-  settings.gradient_tolerance = 1e-10;
-  settings.function_tolerance = 1e-14;
-  return settings;
-}
-
-Positions Noise(int rows, double scale, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> normal;
-  Positions p(rows, 3);
-  for (int i = 0; i < p.size(); ++i) p.data()[i] = scale * normal(rng);
-  return p;
-}
-
-// max-norm of sum_i D_2 W[S_i, s] relative to the largest single term.
-double RelativeMeanGradient(const ShellSpace& space,
-                            const std::vector<Positions>& shapes,
-                            const Positions& s) {
-  Eigen::VectorXd sum = Eigen::VectorXd::Zero(s.size());
-  double scale = 0;
-  for (const Positions& shape : shapes) {
-    const Eigen::VectorXd g =
-        EnergyGradient(space, shape, s, ShellSide::kDeformed);
-    sum += g;
-    scale = std::max(scale, g.cwiseAbs().maxCoeff());
-  }
-  return sum.cwiseAbs().maxCoeff() / scale;
-}
-
-TEST(ElasticMeanTest, MeanOfCopiesIsTheShape) {
-  const Mesh mesh = LoadData("sphere/unitSphere1_defX.ply");
-  const ShellSpace space = MakeSpace(mesh);
-  const Positions& shape = mesh.positions;
-  const std::vector<Positions> copies = {shape, RandomRigidMotion(shape, 1),
-                                         RandomRigidMotion(shape, 2)};
-  // From the default guess (the aligned average: the shape itself).
-  const ElasticMeanResult plain = ComputeElasticMean(space, copies, Tight());
-  EXPECT_LT(plain.energy, 1e-14);
-  EXPECT_LT(RelativeDistanceUpToRigidMotion(plain.mean, shape), 1e-8);
-  // From a perturbed guess, so that the solver has work to do.
-  const Positions initial =
-      RandomRigidMotion(shape, 3) + Noise(shape.rows(), 0.03, 4);
-  ASSERT_GT(RelativeDistanceUpToRigidMotion(initial, shape), 1e-2);
-  const ElasticMeanResult result =
-      ComputeElasticMean(space, copies, Tight(), &initial);
-  EXPECT_TRUE(result.summary.IsSolutionUsable());
-  EXPECT_LT(result.energy, 1e-12);
-  EXPECT_LT(RelativeDistanceUpToRigidMotion(result.mean, shape), 1e-6);
-  // Reported aligned to the first input.
-  EXPECT_LT((result.mean - shape).cwiseAbs().maxCoeff(), 1e-5);
-}
-
-TEST(ElasticMeanTest, InvariantUnderRigidMotionsOfTheInputs) {
-  const std::vector<Positions> shapes = LoadSpheres();
-  const ShellSpace space = MakeSpace(LoadData(kSpheres[0]));
-  const ElasticMeanResult a = ComputeElasticMean(space, shapes, Tight());
-  std::vector<Positions> moved;
-  for (size_t i = 0; i < shapes.size(); ++i) {
-    moved.push_back(RandomRigidMotion(shapes[i], 10 + i));
-  }
-  const ElasticMeanResult b = ComputeElasticMean(space, moved, Tight());
-  ASSERT_GT(a.energy, 1e-4);  // the inputs differ: a non-trivial mean
-  EXPECT_NEAR(a.energy, b.energy, 1e-9 * a.energy);
-  EXPECT_LT(RelativeDistanceUpToRigidMotion(a.mean, b.mean), 1e-6);
-  // b is reported in the pose of the moved first input.
-  EXPECT_LT((AlignRigidly(a.mean, moved[0]) - b.mean).cwiseAbs().maxCoeff(),
-            1e-5);
-  // A stationary point that beats the initial guess, and not an input.
-  EXPECT_LT(RelativeMeanGradient(space, shapes, a.mean), 1e-6);
-  double at_average = 0;
-  const Positions average = AlignedVertexAverage(shapes);
-  for (const Positions& s : shapes) {
-    at_average += EvaluateDeformationEnergy(space, s, average).total;
-  }
-  EXPECT_LT(a.energy, at_average);
-  for (const Positions& s : shapes) {
-    EXPECT_GT(RelativeDistanceUpToRigidMotion(a.mean, s), 1e-3);
-  }
-}
-
-TEST(ElasticMeanTest, NewtonFinishReachesATightGradientAndTheLmMean) {
-  const std::vector<Positions> shapes = LoadSpheres();
-  const ShellSpace space = MakeSpace(LoadData(kSpheres[0]));
-  SolverSettings settings;
-  settings.gradient_tolerance = 1e-11;
-  settings.max_iterations = 1000;
-  const ElasticMeanResult newton = ComputeElasticMean(space, shapes, settings);
-  // LM hands over at 1e-4 relative; Newton takes it to the target.
-  EXPECT_TRUE(newton.converged);
-  EXPECT_FALSE(newton.newton_fell_back);
-  EXPECT_GE(newton.newton_iterations, 1);
-  EXPECT_LE(newton.newton_iterations, 6);  // quadratic convergence
-  EXPECT_LE(newton.gradient_norm,
-            1e-11 * std::max(1.0, newton.initial_gradient_norm));
-  // The reported gradient is the true one at the (aligned) mean.
-  EXPECT_LT(RelativeMeanGradient(space, shapes, newton.mean), 1e-9);
-  EXPECT_NEAR(
-      newton.gradient_norm,
-      ElasticMeanGradient(space, shapes, newton.mean).cwiseAbs().maxCoeff(),
-      1e-12);
-
-  // LM alone, to the same target, finds the same mean.
-  ElasticMeanOptions lm_only;
-  lm_only.newton = false;
-  const ElasticMeanResult lm =
-      ComputeElasticMean(space, shapes, settings, nullptr, lm_only);
-  EXPECT_EQ(lm.newton_iterations, 0);
-  EXPECT_LT(RelativeDistanceUpToRigidMotion(lm.mean, newton.mean), 1e-6);
-  EXPECT_NEAR(lm.energy, newton.energy, 1e-10 * newton.energy);
-  EXPECT_LE(newton.energy, lm.energy + 1e-12 * lm.energy);
-  // LM stopped early, then Newton: fewer LM iterations than LM alone.
-  EXPECT_LT(newton.lm_iterations, lm.lm_iterations);
-}
-
-TEST(ElasticMeanTest, RejectsBadInputs) {
-  const ShellSpace space = MakeSpace(LoadData(kSpheres[0]));
-  EXPECT_THROW(ComputeElasticMean(space, {}, SolverSettings{}), InputError);
-  const Positions plate = LoadData("plate/plate121.ply").positions;
-  EXPECT_THROW(ComputeElasticMean(space, {plate}, SolverSettings{}),
-               InputError);
-}
+using testing::StatisticsSettings;
 
 TEST(ShellPcaTest, MetricIsSemidefiniteWithTheRigidMotionsInItsKernel) {
   const Mesh mesh = LoadData("sphere/unitSphere1_defX.ply");
   const ShellSpace space = MakeSpace(mesh);
   const ShellMetric metric(space, mesh.positions);
-  const Positions u = Noise(mesh.num_vertices(), 1.0, 7);
+  const Positions u = GaussianNoise(mesh.num_vertices(), 1.0, 7);
   const double guu = metric.Inner(u, u);
   EXPECT_GT(guu, 0);
-  const Positions w = Noise(mesh.num_vertices(), 1.0, 8);
+  const Positions w = GaussianNoise(mesh.num_vertices(), 1.0, 8);
   EXPECT_NEAR(metric.Inner(u, w), metric.Inner(w, u), 1e-10 * guu);
   // Infinitesimal rigid motion x -> omega x x + t.
   const Eigen::RowVector3d omega(0.3, -0.5, 0.8), t(1.0, 2.0, -0.5);
@@ -229,11 +94,12 @@ void ExpectOrthonormalModes(const ShellPcaModel& model, int expected_modes) {
 TEST(ShellPcaTest, LogModesAreOrthonormalInTheMetric) {
   const std::vector<Positions> shapes = LoadSpheres();
   const ShellSpace space = MakeSpace(LoadData(kSpheres[0]));
-  const ElasticMeanResult mean = ComputeElasticMean(space, shapes, Tight());
+  const ElasticMeanResult mean =
+      ComputeElasticMean(space, shapes, StatisticsSettings());
   ShellPcaOptions options;
   options.steps = 2;
   const ShellPcaModel model =
-      ComputeShellPca(space, mean.mean, shapes, options, Tight());
+      ComputeShellPca(space, mean.mean, shapes, options, StatisticsSettings());
   ExpectOrthonormalModes(model, 3);
   // The LOGs at the mean sum to about zero (first-order optimality), so the
   // last eigenvalue is tiny compared with the first.
@@ -243,45 +109,48 @@ TEST(ShellPcaTest, LogModesAreOrthonormalInTheMetric) {
     const Eigen::VectorXd c = ShellModeCoefficients(
         model, model.displacements[i], static_cast<int>(model.modes.size()));
     const Positions back =
-        ShellFromCoefficients(space, model, c, options, Tight());
+        ShellFromCoefficients(space, model, c, options, StatisticsSettings());
     EXPECT_LT(RelativeDistanceUpToRigidMotion(back, shapes[i]), 1e-3) << i;
     EXPECT_GT(RelativeDistanceUpToRigidMotion(model.mean, shapes[i]), 1e-2);
   }
   // Mode shapes at +-1 are on either side of the mean.
-  const Positions plus = ShellModeShape(space, model, 0, 1.0, options, Tight());
+  const Positions plus =
+      ShellModeShape(space, model, 0, 1.0, options, StatisticsSettings());
   const Positions minus =
-      ShellModeShape(space, model, 0, -1.0, options, Tight());
+      ShellModeShape(space, model, 0, -1.0, options, StatisticsSettings());
   EXPECT_GT(RelativeDistanceUpToRigidMotion(plus, minus), 1e-3);
-  EXPECT_THROW(ShellModeShape(space, model, 10, 1.0, options, Tight()),
-               InputError);
+  EXPECT_THROW(
+      ShellModeShape(space, model, 10, 1.0, options, StatisticsSettings()),
+      InputError);
 }
 
 TEST(ShellPcaTest, PoseOnTheFirstModeCurveIsRecovered) {
   const std::vector<Positions> shapes = LoadSpheres();
   const ShellSpace space = MakeSpace(LoadData(kSpheres[0]));
-  const ElasticMeanResult mean = ComputeElasticMean(space, shapes, Tight());
+  const ElasticMeanResult mean =
+      ComputeElasticMean(space, shapes, StatisticsSettings());
   ShellPcaOptions options;
   options.steps = 3;
   options.exp_steps = 3;  // LOG_3 and EXP_3: EXP_3(LOG_3(T)) = T
   const ShellPcaModel model =
-      ComputeShellPca(space, mean.mean, shapes, options, Tight());
+      ComputeShellPca(space, mean.mean, shapes, options, StatisticsSettings());
   ASSERT_GE(model.modes.size(), 3u);
   // T = EXP_3(s_bar, a w_1), a = 0.8 sqrt(lambda_1), in another pose.
   const double a = 0.8 * std::sqrt(model.eigenvalues(0));
   const Positions truth = RandomRigidMotion(
-      ShellModeShape(space, model, 0, 0.8, options, Tight()), 5);
+      ShellModeShape(space, model, 0, 0.8, options, StatisticsSettings()), 5);
   ASSERT_GT(RelativeDistanceUpToRigidMotion(truth, model.mean), 1e-2);
   // LOG_3(s_bar -> T) = a w_1: coefficients (a, 0, 0, ...).
-  const Positions v =
-      ShellDisplacement(space, model.mean, truth, options, Tight());
+  const Positions v = ShellDisplacement(space, model.mean, truth, options,
+                                        StatisticsSettings());
   const Eigen::VectorXd c =
       ShellModeCoefficients(model, v, static_cast<int>(model.modes.size()));
   EXPECT_NEAR(c(0), a, 1e-5 * a);
   for (int j = 1; j < c.size(); ++j) EXPECT_LT(std::abs(c(j)), 1e-5 * a) << j;
   // One mode reconstructs T.
   ExpShotReport report;
-  const Positions back =
-      ShellFromCoefficients(space, model, c.head(1), options, Tight(), &report);
+  const Positions back = ShellFromCoefficients(space, model, c.head(1), options,
+                                               StatisticsSettings(), &report);
   EXPECT_TRUE(report.ok);
   EXPECT_EQ(report.steps, 3);
   EXPECT_EQ(report.attempts, 1);
@@ -293,18 +162,19 @@ TEST(ShellPcaTest, PoseOnTheFirstModeCurveIsRecovered) {
 TEST(ShellPcaTest, ExpShotSafeguardDoublesTheSteps) {
   const std::vector<Positions> shapes = LoadSpheres();
   const ShellSpace space = MakeSpace(LoadData(kSpheres[0]));
-  const ElasticMeanResult mean = ComputeElasticMean(space, shapes, Tight());
+  const ElasticMeanResult mean =
+      ComputeElasticMean(space, shapes, StatisticsSettings());
   ShellPcaOptions options;
   const ShellPcaModel model =
-      ComputeShellPca(space, mean.mean, shapes, options, Tight());
+      ComputeShellPca(space, mean.mean, shapes, options, StatisticsSettings());
   const Positions variation = std::sqrt(model.eigenvalues(0)) * model.modes[0];
   // A discrete geodesic conserves its step energies: EXP_4 of a one-sigma
   // variation passes at once, with a small drift.
   options.exp_steps = 4;
   options.max_exp_steps = 16;
   ExpShotReport report;
-  const Positions shot =
-      ShootFromMean(space, model.mean, variation, options, Tight(), &report);
+  const Positions shot = ShootFromMean(space, model.mean, variation, options,
+                                       StatisticsSettings(), &report);
   EXPECT_TRUE(report.ok);
   EXPECT_EQ(report.steps, 4);
   EXPECT_EQ(report.attempts, 1);
@@ -313,8 +183,8 @@ TEST(ShellPcaTest, ExpShotSafeguardDoublesTheSteps) {
   // An impossible drift bound: K = 4, 8, 16 are tried and the last returned,
   // flagged; EXP_16 and EXP_4 of the same variation nearly agree.
   options.max_energy_drift = 1e-12;
-  const Positions last =
-      ShootFromMean(space, model.mean, variation, options, Tight(), &report);
+  const Positions last = ShootFromMean(space, model.mean, variation, options,
+                                       StatisticsSettings(), &report);
   EXPECT_FALSE(report.ok);
   EXPECT_EQ(report.steps, 16);
   EXPECT_EQ(report.attempts, 3);
@@ -323,11 +193,12 @@ TEST(ShellPcaTest, ExpShotSafeguardDoublesTheSteps) {
   // Zero variation: the mean itself, nothing shot.
   const Positions zero =
       ShootFromMean(space, model.mean, Positions::Zero(variation.rows(), 3),
-                    options, Tight(), &report);
+                    options, StatisticsSettings(), &report);
   EXPECT_TRUE(report.ok);
   EXPECT_EQ(zero, model.mean);
   options.max_exp_steps = 2;
-  EXPECT_THROW(ShootFromMean(space, model.mean, variation, options, Tight()),
+  EXPECT_THROW(ShootFromMean(space, model.mean, variation, options,
+                             StatisticsSettings()),
                InputError);
 }
 
@@ -339,8 +210,9 @@ ExpShotReport ExpectFailedShot(const ShellSpace& space, const Positions& mean,
   ExpShotReport status;
   Positions shot;
   bool solved = true;
-  EXPECT_NO_THROW(solved = TryShootFromMean(space, mean, variation, options,
-                                            Tight(), &shot, &status));
+  EXPECT_NO_THROW(solved =
+                      TryShootFromMean(space, mean, variation, options,
+                                       StatisticsSettings(), &shot, &status));
   EXPECT_FALSE(solved);
   EXPECT_EQ(shot.size(), 0);
   return status;
@@ -367,7 +239,8 @@ TEST(ShellPcaTest, ExpShotWithoutSolutionStopsAndNamesTheStep) {
   const ShellPcaOptions options = ShotsFrom4To16();
   ExpShotReport report;
   try {
-    ShootFromMean(space, sphere, variation, options, Tight(), &report);
+    ShootFromMean(space, sphere, variation, options, StatisticsSettings(),
+                  &report);
     ADD_FAILURE() << "the shot should have thrown";
   } catch (const InputError& e) {
     const std::string message = e.what();
@@ -395,7 +268,7 @@ TEST(ShellPcaTest, ExpShotStopsOnRequest) {
   const ShellSpace space = MakeSpace(LoadData(kSpheres[0]));
   const Positions variation = 0.05 * sphere.array().square().matrix();
   const ShellPcaOptions options = ShotsFrom4To16();
-  SolverSettings settings = Tight();
+  SolverSettings settings = StatisticsSettings();
   Positions shot;
   ExpShotReport status;
   ASSERT_TRUE(TryShootFromMean(space, sphere, variation, options, settings,
@@ -431,21 +304,11 @@ TEST(ShellPcaTest, ExpShotThroughADegenerateTriangleIsAStatus) {
       << status.failure;
   // The throwing form carries the same message.
   try {
-    ShootFromMean(space, sphere, variation, options, Tight());
+    ShootFromMean(space, sphere, variation, options, StatisticsSettings());
     ADD_FAILURE() << "the shot should have thrown";
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()), status.failure);
   }
-}
-
-TEST(ElasticMeanTest, FarInputsAreTheOutliersOfTheMeanEnergies) {
-  EXPECT_DOUBLE_EQ(Median({3.0, 1.0, 2.0}), 2.0);
-  EXPECT_DOUBLE_EQ(Median({4.0, 1.0, 3.0, 2.0}), 2.5);
-  EXPECT_EQ(FarInputs({0.05, 0.04, 2.0, 0.06}), std::vector<int>({2}));
-  EXPECT_EQ(FarInputs({0.05, 0.04, 0.3, 0.06}), std::vector<int>());
-  EXPECT_EQ(FarInputs({0.05, 0.04, 0.3, 0.06}, 5.0), std::vector<int>({2}));
-  EXPECT_EQ(FarInputs({0.05, 2.0}), std::vector<int>());  // too few
-  EXPECT_EQ(FarInputs({0.0, 0.0, 1.0}), std::vector<int>());  // zero median
 }
 
 TEST(ShellPcaTest, DifferenceModesAreOrthonormalOnPlates) {
@@ -455,11 +318,12 @@ TEST(ShellPcaTest, DifferenceModesAreOrthonormalOnPlates) {
     shapes.push_back(LoadData(name).positions);
   }
   const ShellSpace space = MakeSpace(LoadData("plate/plate121.ply"));
-  const ElasticMeanResult mean = ComputeElasticMean(space, shapes, Tight());
+  const ElasticMeanResult mean =
+      ComputeElasticMean(space, shapes, StatisticsSettings());
   ShellPcaOptions options;
   options.displacement = DisplacementKind::kAlignedDifference;
   const ShellPcaModel model =
-      ComputeShellPca(space, mean.mean, shapes, options, Tight());
+      ComputeShellPca(space, mean.mean, shapes, options, StatisticsSettings());
   ExpectOrthonormalModes(model, 2);
 }
 
@@ -539,12 +403,13 @@ TEST(LeaveOneOutTest, WarmLogsGiveTheSameTable) {
   LeaveOneOutOptions options;
   options.max_modes = 2;
   options.held_out = {0, 2};
-  options.initial_mean = ComputeElasticMean(space, shapes, Tight()).mean;
+  options.initial_mean =
+      ComputeElasticMean(space, shapes, StatisticsSettings()).mean;
   const LeaveOneOutTable warm =
-      EvaluateLeaveOneOut(space, shapes, options, Tight());
+      EvaluateLeaveOneOut(space, shapes, options, StatisticsSettings());
   options.warm_logs = false;
   const LeaveOneOutTable cold =
-      EvaluateLeaveOneOut(space, shapes, options, Tight());
+      EvaluateLeaveOneOut(space, shapes, options, StatisticsSettings());
   for (int f = 0; f < 2; ++f) {
     const LeaveOneOutFold& a = warm.folds[f];
     const LeaveOneOutFold& b = cold.folds[f];
@@ -568,11 +433,11 @@ TEST(ShellPcaTest, WarmLogPathHasTheNewEndsAndIgnoresRigidMotions) {
   // An old LOG_3 path from shapes[0] to shapes[1]; new ends: a perturbed
   // start and a rigidly moved end.
   GeodesicResult old_log;
-  ShellDisplacement(space, shapes[0], shapes[1], options, Tight(), nullptr,
-                    &old_log);
+  ShellDisplacement(space, shapes[0], shapes[1], options, StatisticsSettings(),
+                    nullptr, &old_log);
   const ShellPath& old = old_log.path;
   ASSERT_EQ(old.size(), 4u);
-  const Positions start = shapes[0] + Noise(shapes[0].rows(), 1e-3, 3);
+  const Positions start = shapes[0] + GaussianNoise(shapes[0].rows(), 1e-3, 3);
   const Positions end = RandomRigidMotion(shapes[1], 7);
   const ShellPath path = WarmLogPath(old, start, end);
   ASSERT_EQ(path.size(), 4u);
@@ -592,10 +457,10 @@ TEST(ShellPcaTest, WarmLogPathHasTheNewEndsAndIgnoresRigidMotions) {
   // LOG = K (s_1 - s_0) may differ by a small rigid motion, which the
   // metric nearly ignores (infinitesimal rigid motions are its kernel).
   GeodesicResult cold_log, warm_log;
-  const Positions cold = ShellDisplacement(space, start, end, options,
-                                           Tight(), nullptr, &cold_log);
-  const Positions warm =
-      ShellDisplacement(space, start, end, options, Tight(), &old, &warm_log);
+  const Positions cold = ShellDisplacement(
+      space, start, end, options, StatisticsSettings(), nullptr, &cold_log);
+  const Positions warm = ShellDisplacement(
+      space, start, end, options, StatisticsSettings(), &old, &warm_log);
   for (int k = 1; k < 3; ++k) {
     EXPECT_LT(
         RelativeDistanceUpToRigidMotion(warm_log.path[k], cold_log.path[k]),
@@ -609,170 +474,6 @@ TEST(ShellPcaTest, WarmLogPathHasTheNewEndsAndIgnoresRigidMotions) {
   const ShellMetric metric(space, start);
   EXPECT_LT(metric.Norm(warm - cold), 1e-4 * metric.Norm(cold));
   EXPECT_THROW(WarmLogPath({shapes[0]}, start, end), InputError);
-}
-
-std::string SphereList(int count) {
-  std::string list;
-  for (int i = 0; i < count; ++i) {
-    list += (i ? "," : "") + DataPath(kSpheres[i]);
-  }
-  return list;
-}
-
-TEST(StatisticsCliTest, MeanWritesTheShapeAndJson) {
-  const std::string out = TempDir() + "/M.ply";
-  std::string stdout_text, stderr_text;
-  ASSERT_EQ(RunCli("mean --inputs " + SphereList(3) + " --output " + out +
-                       " --json --quiet",
-                   &stdout_text, &stderr_text),
-            0)
-      << stderr_text;
-  EXPECT_TRUE(std::filesystem::exists(out));
-  EXPECT_NE(stdout_text.find("\"energy\""), std::string::npos);
-  // The written shape is the library's elastic mean, with the CLI's default
-  // material: eta = kDefaultRelativeEta (1e-4) x the area of the first input.
-  std::vector<Positions> shapes = LoadSpheres();
-  shapes.resize(3);
-  const Mesh first = LoadData(kSpheres[0]);
-  ShellMaterial material;
-  material.eta = kDefaultRelativeEta * SurfaceArea(first);
-  EXPECT_NEAR(Number(stdout_text, "eta"), material.eta, 1e-15 * material.eta);
-  const ElasticMeanResult mean =
-      ComputeElasticMean(MakeSpace(first, material), shapes, SolverSettings{});
-  EXPECT_LT(RelativeDistanceUpToRigidMotion(ReadMesh(out).positions, mean.mean),
-            1e-6);
-}
-
-// Runs `pca` with two modes of the four spheres into `dir`, with `options`;
-// returns its exit status.
-int RunPcaOfSpheres(const std::string& dir, const std::string& options,
-                    std::string* stdout_text, std::string* stderr_text) {
-  return RunCli("pca --inputs " + SphereList(4) + " --modes 2 --output " + dir +
-                    " " + options,
-                stdout_text, stderr_text);
-}
-
-TEST(StatisticsCliTest, PcaWritesModesAndLeaveOneOutTable) {
-  const std::string dir = TempDir() + "/pca";
-  std::string stdout_text, stderr_text;
-  ASSERT_EQ(RunPcaOfSpheres(dir, "--baseline procrustes --loo --json --quiet",
-                            &stdout_text, &stderr_text),
-            0)
-      << stderr_text;
-  for (const char* name :
-       {"mean.ply", "mode_1_minus.ply", "mode_1_plus.ply", "mode_2_plus.ply",
-        "procrustes_mean.ply", "procrustes_mode_2_minus.ply", "pca.json"}) {
-    EXPECT_TRUE(std::filesystem::exists(dir + "/" + name)) << name;
-  }
-  EXPECT_NE(stdout_text.find("\"eigenvalues\""), std::string::npos);
-  EXPECT_NE(stdout_text.find("\"leave_one_out\""), std::string::npos);
-  EXPECT_NE(stdout_text.find("\"procrustes_vertex_error\""), std::string::npos);
-  EXPECT_NE(stdout_text.find("\"log_iterations\""), std::string::npos);
-}
-
-TEST(StatisticsCliTest, MeanWarnsAboutAFarInput) {
-  // The four spheres twice over and one blown up to twice its size: the big
-  // one is far (W[S, mean] more than 10 times the median), the others are
-  // not.
-  const std::string big = TempDir() + "/big.ply";
-  Mesh sphere = LoadData(kSpheres[1]);
-  sphere.positions *= 2.0;
-  WriteMesh(sphere, big);
-  const std::string out = TempDir() + "/far_mean.ply";
-  std::string stdout_text, stderr_text;
-  ASSERT_EQ(RunCli("mean --inputs " + SphereList(4) + "," + SphereList(4) +
-                       "," + big +
-                       " --output " + out + " --json",
-                   &stdout_text, &stderr_text),
-            0)
-      << stderr_text;
-  EXPECT_NE(stderr_text.find("warning: input " + big + " is far"),
-            std::string::npos)
-      << stderr_text;
-  EXPECT_NE(stdout_text.find("\"far_inputs\": [\"" + big + "\"]"),
-            std::string::npos)
-      << stdout_text;
-  ASSERT_EQ(RunCli("mean --inputs " + SphereList(4) + " --output " + out +
-                       " --json",
-                   &stdout_text, &stderr_text),
-            0);
-  EXPECT_EQ(stderr_text.find("warning"), std::string::npos) << stderr_text;
-  EXPECT_NE(stdout_text.find("\"far_inputs\": []"), std::string::npos);
-}
-
-TEST(StatisticsCliTest, PcaSkipsModeShapesWithoutAnExpSolution) {
-  // At 40 standard deviations the EXP shots of the sphere modes break down
-  // (no solution of a step near the extrapolation, for K = 4, 8, 16): those
-  // shapes are not written, listed in the JSON, and the rest is written.
-  const std::string dir = TempDir() + "/pca_far";
-  std::string stdout_text, stderr_text;
-  ASSERT_EQ(RunPcaOfSpheres(dir, "--amplitude 40 --eta 0.01 --json",
-                            &stdout_text, &stderr_text),
-            0)
-      << stderr_text;
-  const auto begin = stdout_text.find("\"failed_mode_shapes\": [");
-  ASSERT_NE(begin, std::string::npos) << stdout_text;
-  const std::string failed =
-      stdout_text.substr(begin, stdout_text.find(']', begin) - begin);
-  EXPECT_NE(failed.find(".ply"), std::string::npos) << failed;  // some
-  for (const char* name : {"mode_1_minus.ply", "mode_1_plus.ply",
-                           "mode_2_minus.ply", "mode_2_plus.ply"}) {
-    const bool listed = failed.find(name) != std::string::npos;
-    EXPECT_EQ(std::filesystem::exists(dir + "/" + name), !listed) << name;
-    EXPECT_EQ(stderr_text.find(std::string(name) + " not written") !=
-                  std::string::npos,
-              listed)
-        << name;
-  }
-  EXPECT_TRUE(std::filesystem::exists(dir + "/mean.ply"));
-  EXPECT_TRUE(std::filesystem::exists(dir + "/pca.json"));
-}
-
-TEST(StatisticsCliTest, BadInputsFailWithOneLineAndNoOutput) {
-  const std::string base = TempDir();
-  struct Case {
-    std::string args, expected;
-  };
-  const std::vector<Case> cases = {
-      {"mean --inputs " + DataPath(kSpheres[0]) + "," +
-           DataPath("plate/plate121.ply") + " --output " + base + "/a.ply",
-       "plate121"},
-      {"mean --inputs " + DataPath(kSpheres[0]) + ",missing.ply --output " +
-           base + "/b.ply",
-       "missing.ply"},
-      {"mean --output " + base + "/c.ply", "--inputs"},
-      {"pca --inputs " + SphereList(4) + " --modes 0 --output " + base + "/d",
-       "--modes"},
-      {"pca --inputs " + SphereList(3) + " --modes 3 --output " + base + "/e",
-       "--modes"},
-      {"pca --inputs " + SphereList(3) +
-           " --modes 1 --baseline linear "
-           "--output " +
-           base + "/f",
-       "--baseline"},
-      {"pca --inputs " + SphereList(2) + " --modes 1 --loo --output " + base +
-           "/g",
-       "at least 3"},
-      {"pca --inputs " + SphereList(3) + " --modes 1 --exp_steps 0 --output " +
-           base + "/h",
-       "--exp_steps"},
-      {"mean --inputs " + SphereList(3) + " --threads 0 --output " + base +
-           "/i.ply",
-       "--threads"},
-  };
-  for (const Case& c : cases) {
-    std::string stdout_text, stderr_text;
-    EXPECT_EQ(RunCli(c.args + " --quiet", &stdout_text, &stderr_text), 1)
-        << c.args;
-    EXPECT_NE(stderr_text.find(c.expected), std::string::npos) << c.args << "\n"
-                                                               << stderr_text;
-    EXPECT_EQ(std::count(stderr_text.begin(), stderr_text.end(), '\n'), 1)
-        << stderr_text;
-  }
-  for (const char* name :
-       {"a.ply", "b.ply", "c.ply", "d", "e", "f", "g", "h", "i.ply"}) {
-    EXPECT_FALSE(std::filesystem::exists(base + "/" + name)) << name;
-  }
 }
 
 }  // namespace

@@ -1,91 +1,33 @@
-// The workflows (shellspace/workflows/) on procedural sheets: the digits of
-// the front ends' former code paths, the energy split, the stop phases of
-// PCA and a failing solve as a status, not an exception.
+// The path workflows (shellspace/workflows/: geodesic, log, shoot,
+// transport, regress, spline) on procedural sheets
+// (tests/testing/workflow_sheets.h): the digits of the front ends' former
+// code paths, the energy split, the slivers the summary reports, bad
+// options as input errors and a failing solve as a status, not an
+// exception.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
 #include <string>
 #include <vector>
 
+#include "shellspace/cost_functions/shell/deformation_energy.h"
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/geometry/procedural_shapes.h"
-#include "shellspace/geometry/topology.h"
-#include "shellspace/cost_functions/shell/deformation_energy.h"
-#include "shellspace/cost_functions/shell/relative_bending_weight.h"
-#include "shellspace/io/json_writer.h"
-#include "shellspace/io/mesh_io.h"
 #include "shellspace/workflows/geodesic.h"
-#include "shellspace/workflows/mean.h"
-#include "shellspace/workflows/pca.h"
 #include "shellspace/workflows/regress.h"
 #include "shellspace/workflows/shoot.h"
 #include "shellspace/workflows/spline.h"
 #include "shellspace/workflows/transport.h"
-#include "tests/testing/test_support.h"
+#include "tests/testing/workflow_sheets.h"
 
 namespace shellspace {
 namespace {
 
+using testing::BentSheetGeodesic;
+using testing::DefaultSettings;
+using testing::FourSheets;
 using workflows::SolveStatus;
-
-// The CLI's defaults: mu = lambda = 1, eta = 1e-4 x the reference's area,
-// tolerance 1e-8, 200 iterations, 2 threads.
-workflows::MaterialChoice DefaultMaterial(const Mesh& reference) {
-  workflows::MaterialChoice choice;
-  choice.material.eta = EtaFromRelative(kDefaultRelativeEta, reference);
-  return choice;
-}
-
-SolverSettings DefaultSettings() {
-  return UserSolverSettings(1e-8, 200, 2, /*quiet=*/true, "test");
-}
-
-// The bent sheet: a 6 x 4 equilateral sheet of side 0.25 and the same
-// sheet rolled onto a cylinder of radius 0.6.
-Mesh Sheet() { return MakeEquilateralSheet(6, 4, 0.25); }
-
-workflows::GeodesicOptions BentSheetGeodesic() {
-  workflows::GeodesicOptions options;
-  options.start = Sheet();
-  options.topology = Topology::Build(options.start);
-  options.end = RollOntoCylinder(options.start.positions, 0.6);
-  options.steps = 4;
-  options.material = DefaultMaterial(options.start);
-  options.settings = DefaultSettings();
-  return options;
-}
-
-// Four shapes of the sheet: flat and rolled onto radii 0.6, 1.0 and 2.0.
-workflows::PcaOptions FourSheets() {
-  workflows::PcaOptions options;
-  options.reference = Sheet();
-  options.topology = Topology::Build(options.reference);
-  options.shapes = {options.reference.positions};
-  for (const double radius : {0.6, 1.0, 2.0}) {
-    options.shapes.push_back(
-        RollOntoCylinder(options.reference.positions, radius));
-  }
-  options.material = DefaultMaterial(options.reference);
-  options.modes = 1;
-  // The CLI's --log_steps 2 --exp_steps 4 --max_exp_steps 16.
-  options.pca = MakeShellPcaOptions(2, 4, 16, "log", "");
-  options.settings = DefaultSettings();
-  return options;
-}
-
-// The mean of the same four sheets, material and settings.
-workflows::MeanOptions MeanOfFourSheets() {
-  const workflows::PcaOptions sheets = FourSheets();
-  workflows::MeanOptions options;
-  options.reference = sheets.reference;
-  options.topology = sheets.topology;
-  options.shapes = sheets.shapes;
-  options.material = sheets.material;
-  options.settings = sheets.settings;
-  return options;
-}
 
 // E_K of the CLI before the workflows (commit 832cb59), on the files that
 // WorkflowCliTest's SetUp writes (the sheets of FourSheets() as PLY with 17
@@ -242,139 +184,6 @@ TEST(GeodesicWorkflowTest, AnUnconvergedSolveIsAStatusNotAThrow) {
   EXPECT_EQ(log.geodesic.status.message.rfind("log: the geodesic: |grad| ", 0),
             0u)
       << log.geodesic.status.message;
-}
-
-// A mean whose solve stops short is a status too; the stop poll seen by a
-// solve is the run's stop state.
-TEST(MeanWorkflowTest, AStoppedMeanIsAStatusWithItsState) {
-  workflows::MeanOptions options = MeanOfFourSheets();
-  options.settings.stop = [] { return true; };
-  workflows::MeanResult result;
-  ASSERT_NO_THROW(result = workflows::RunMean(options));
-  EXPECT_TRUE(result.stopped);
-  EXPECT_EQ(result.status.code, SolveStatus::Code::kStopped);
-  EXPECT_FALSE(result.mean.converged);
-  ASSERT_EQ(result.status.failures.size(), 1u);
-  EXPECT_EQ(result.status.failures[0].rfind("elastic mean: |grad| ", 0), 0u)
-      << result.status.failures[0];
-}
-
-// The mean and the first mode shape of the CLI before the workflows (commit
-// 832cb59), on the files of WorkflowCliTest:
-//   shellspace pca --inputs sheet.ply,rolled_0.6.ply,rolled_1.ply,rolled_2.ply
-//     --modes 1 --output p --json --quiet
-// p/mean.ply and p/mode_1_plus.ply: the sum of the squares of all
-// coordinates and vertex 17's z; "eigenvalues"[0] of its summary. The
-// Newton finish's forcing of 4a1dd84 moved the LOG and EXP solves within
-// their tolerance: the mode shape by 4e-9, the eigenvalue by 2.5e-7
-// relative (the mean not at all); the CLI of this build is compared digit
-// for digit in WorkflowCliTest.PcaWritesTheWorkflowsShapes.
-constexpr double kCliMeanSquares = 40.56464366574963;
-constexpr double kCliMeanZ17 = 0.09707285835091392;
-constexpr double kCliModePlusSquares = 40.11099133625926;
-constexpr double kCliModePlusZ17 = 0.10805843098157757;
-constexpr double kCliFirstEigenvalue = 0.0019444427306022302;
-
-TEST(PcaWorkflowTest, MeanAndFirstModeShapeEqualTheCli) {
-  const workflows::PcaOptions options = FourSheets();
-  const workflows::PcaResult result = workflows::RunPca(options);
-  ASSERT_TRUE(result.status.ok()) << result.status.message;
-  EXPECT_EQ(result.stopped_in, "");
-  ASSERT_TRUE(result.model.has_value());
-  const Positions* mean = result.Shape("mean");
-  const Positions* plus = result.Shape("mode_1_plus");
-  ASSERT_NE(mean, nullptr);
-  ASSERT_NE(plus, nullptr);
-  ASSERT_NE(result.Shape("mode_1_minus"), nullptr);
-  EXPECT_EQ(result.Shape("mode_2_plus"), nullptr);  // modes = 1
-  EXPECT_NEAR(mean->squaredNorm(), kCliMeanSquares, 1e-12);
-  EXPECT_NEAR((*mean)(17, 2), kCliMeanZ17, 1e-14);
-  EXPECT_NEAR(plus->squaredNorm(), kCliModePlusSquares, 1e-6);
-  EXPECT_NEAR((*plus)(17, 2), kCliModePlusZ17, 1e-7);
-  EXPECT_NEAR(result.model->eigenvalues(0), kCliFirstEigenvalue,
-              1e-5 * kCliFirstEigenvalue);
-  EXPECT_TRUE(result.failed_shapes.empty());
-  EXPECT_FALSE(workflows::ToJson(result, options).value().ContainsRaw());
-  const std::string json = workflows::ToJson(result, options).str();
-  EXPECT_NE(json.find("\"modes\": 1"), std::string::npos) << json;
-}
-
-// A stop request before the first solve ends the run in the mean's phase:
-// the mean alone, stopped_in "mean", status kStopped.
-TEST(PcaWorkflowTest, AStoppedRunReturnsTheMeanAndThePhase) {
-  workflows::PcaOptions options = FourSheets();
-  options.settings.stop = [] { return true; };
-  const workflows::PcaResult result = workflows::RunPca(options);
-  EXPECT_EQ(result.stopped_in, "mean");
-  EXPECT_TRUE(result.stopped);
-  EXPECT_EQ(result.status.code, SolveStatus::Code::kStopped);
-  ASSERT_EQ(result.shapes.size(), 1u);
-  EXPECT_EQ(result.shapes[0].first, "mean");
-  EXPECT_FALSE(result.model.has_value());
-  const std::string json = workflows::ToJson(result, options).str();
-  EXPECT_NE(json.find("\"stopped_in\": \"mean\""), std::string::npos) << json;
-  EXPECT_NE(json.find("\"modes\": 0"), std::string::npos) << json;
-}
-
-// A poll that turns true only after the mean's solve: the run ends in a
-// later phase, never with a mode.
-TEST(PcaWorkflowTest, AStopAfterTheMeanEndsInALaterPhase) {
-  workflows::PcaOptions options = FourSheets();
-  const workflows::PcaResult full = workflows::RunPca(options);
-  ASSERT_TRUE(full.status.ok());
-  // Stop at the first poll after the mean's solve: count the polls of a
-  // mean alone.
-  workflows::MeanOptions mean_options;
-  mean_options.reference = options.reference;
-  mean_options.topology = options.topology;
-  mean_options.shapes = options.shapes;
-  mean_options.material = options.material;
-  mean_options.settings = options.settings;
-  auto polls = std::make_shared<int>(0);
-  mean_options.settings.stop = [polls] {
-    ++*polls;
-    return false;
-  };
-  const workflows::MeanResult mean = workflows::RunMean(mean_options);
-  ASSERT_TRUE(mean.status.ok());
-  ASSERT_GT(*polls, 0);
-  const int mean_polls = *polls;
-  auto count = std::make_shared<int>(0);
-  options.settings.stop = [count, mean_polls] {
-    return ++*count > mean_polls;
-  };
-  const workflows::PcaResult result = workflows::RunPca(options);
-  EXPECT_EQ(result.stopped_in, "displacements");
-  EXPECT_EQ(result.status.code, SolveStatus::Code::kStopped);
-  ASSERT_EQ(result.shapes.size(), 1u);
-  // The mean is the unstopped run's.
-  EXPECT_EQ((result.shapes[0].second - full.mean.mean).cwiseAbs().maxCoeff(),
-            0.0);
-}
-
-TEST(MeanWorkflowTest, SplitSumsToTheMeanEnergy) {
-  workflows::MeanOptions options = MeanOfFourSheets();
-  const workflows::MeanResult result = workflows::RunMean(options);
-  ASSERT_TRUE(result.status.ok()) << result.status.message;
-  // The split is that of the mean's objective sum_i W[S_i, mean] (the
-  // inputs as references): its total is the solver's energy, and its
-  // membrane part is evaluated here independently. The reversed order
-  // W[mean, S_i] (what the summary split before) is another number.
-  const ShellSpace space(options.reference, options.topology,
-                         options.material.material);
-  double membrane = 0, reversed = 0;
-  for (const Positions& shape : options.shapes) {
-    membrane += EvaluateDeformationEnergy(space, shape, result.mean.mean)
-                    .membrane;
-    reversed +=
-        EvaluateDeformationEnergy(space, result.mean.mean, shape).total;
-  }
-  EXPECT_NEAR(result.energy_split.membrane, membrane, 1e-15);
-  EXPECT_NEAR(result.energy_split.total(), result.mean.energy,
-              1e-12 * result.mean.energy);
-  EXPECT_GT(std::abs(reversed - result.mean.energy), 1e-6 * reversed);
-  EXPECT_GT(result.energy_split.bending, 0);
-  EXPECT_FALSE(workflows::ToJson(result).value().ContainsRaw());
 }
 
 // A shot from the geodesic's first two shapes: K + 1 shapes starting with
@@ -567,129 +376,6 @@ TEST(SplineWorkflowTest, TheLThetaPathAloneAndBadMethods) {
   }
   options.method = "cubic";
   EXPECT_THROW(workflows::RunSpline(options), InputError);
-}
-
-// The CLI runs the same workflow: its E_K is RunGeodesic's to the digit,
-// and a log or pca whose solve misses its criterion exits 4 with one line
-// naming the workflow's solve.
-class WorkflowCliTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = testing::TempDir();
-    const workflows::PcaOptions sheets = FourSheets();
-    const char* const names[] = {"sheet", "rolled_0.6", "rolled_1",
-                                 "rolled_2"};
-    for (int i = 0; i < 4; ++i) {
-      WriteMesh(Mesh{sheets.shapes[i], sheets.reference.faces},
-                File(names[i]));
-    }
-  }
-  std::string File(const std::string& name) const {
-    return dir_ + "/" + name + ".ply";
-  }
-  std::string dir_;
-};
-
-TEST_F(WorkflowCliTest, GeodesicPrintsTheWorkflowsEnergy) {
-  std::string out, err;
-  ASSERT_EQ(testing::RunCli("geodesic --start " + File("sheet") + " --end " +
-                                File("rolled_0.6") + " --steps 4 --output " +
-                                dir_ + "/g --json --quiet",
-                            &out, &err),
-            0)
-      << err;
-  const workflows::GeodesicResult result =
-      workflows::RunGeodesic(BentSheetGeodesic());
-  EXPECT_NE(out.find("\"path_energy\": " +
-                     JsonObject::Number(result.path_energy()) + ","),
-            std::string::npos)
-      << out;
-  EXPECT_NE(out.find("\"energy_split\": " +
-                     workflows::EnergySplitJson(result.energy_split).str()),
-            std::string::npos)
-      << out;
-}
-
-TEST_F(WorkflowCliTest, PcaWritesTheWorkflowsShapes) {
-  std::string out, err;
-  ASSERT_EQ(testing::RunCli("pca --modes 1 --inputs " + File("sheet") + "," +
-                                File("rolled_0.6") + "," + File("rolled_1") +
-                                "," + File("rolled_2") + " --output " + dir_ +
-                                "/p --json --quiet",
-                            &out, &err),
-            0)
-      << err;
-  workflows::PcaOptions options = FourSheets();
-  const workflows::PcaResult result = workflows::RunPca(options);
-  ASSERT_TRUE(result.status.ok());
-  for (const char* name : {"mean", "mode_1_minus", "mode_1_plus"}) {
-    const Mesh written = ReadMesh(dir_ + "/p/" + name + ".ply");
-    ASSERT_NE(result.Shape(name), nullptr) << name;
-    EXPECT_EQ((written.positions - *result.Shape(name)).cwiseAbs().maxCoeff(),
-              0.0)
-        << name;
-  }
-  EXPECT_NE(out.find("\"eigenvalues\": [" +
-                     JsonObject::Number(result.model->eigenvalues(0))),
-            std::string::npos)
-      << out;
-}
-
-TEST_F(WorkflowCliTest, UnconvergedSolvesExitFourWithOneLine) {
-  struct Case {
-    std::string args;
-    std::string line;  // how stderr begins
-  };
-  const std::string inputs = File("sheet") + "," + File("rolled_0.6") + "," +
-                             File("rolled_1") + "," + File("rolled_2");
-  const std::vector<Case> cases = {
-      {"log --start " + File("sheet") + " --end " + File("rolled_0.6") +
-           " --steps 4 --output " + dir_ + "/log.ply",
-       "shellspace log: not converged: log: the geodesic: |grad| "},
-      {"mean --inputs " + inputs + " --output " + dir_ + "/mean.ply",
-       "shellspace mean: not converged: elastic mean: |grad| "},
-      {"pca --modes 1 --inputs " + inputs + " --output " + dir_ + "/pca",
-       "shellspace pca: not converged: the elastic mean: |grad| "},
-  };
-  for (const Case& c : cases) {
-    std::string out, err;
-    EXPECT_EQ(testing::RunCli(c.args + " --max_iterations 1 --quiet", &out,
-                              &err),
-              4)
-        << c.args << "\n" << err;
-    EXPECT_EQ(err.rfind(c.line, 0), 0u) << err;
-    EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
-  }
-}
-
-// The status of failure lines and a stop, and of a solve that could not run.
-TEST(SolveStatusTest, CodesAndOneLineMessages) {
-  struct Case {
-    std::vector<std::string> failures;
-    bool stopped;
-    SolveStatus::Code code;
-    std::string message;
-  };
-  const std::vector<Case> cases = {
-      {{}, false, SolveStatus::Code::kConverged, ""},
-      {{"a: x"}, false, SolveStatus::Code::kNotConverged, "a: x"},
-      {{"a: x", "b: y"}, false, SolveStatus::Code::kNotConverged, "a: x; b: y"},
-      {{}, true, SolveStatus::Code::kStopped, "stopped by request"},
-      {{"a: x"}, true, SolveStatus::Code::kStopped, "a: x"},
-  };
-  for (const Case& c : cases) {
-    const SolveStatus status = workflows::StatusOf(c.failures, c.stopped);
-    EXPECT_EQ(status.code, c.code) << c.message;
-    EXPECT_EQ(status.message, c.message);
-    EXPECT_EQ(status.failures, c.failures);
-    EXPECT_EQ(status.ok(), c.code == SolveStatus::Code::kConverged);
-  }
-  const SolveStatus failed =
-      workflows::FailedStatus("elastic mean", "Residual evaluation failed.");
-  EXPECT_TRUE(failed.failed());
-  EXPECT_FALSE(failed.ok());
-  EXPECT_EQ(failed.message, "elastic mean failed: Residual evaluation failed.");
-  EXPECT_STREQ(workflows::SolveStatusName(failed.code), "failed");
 }
 
 }  // namespace

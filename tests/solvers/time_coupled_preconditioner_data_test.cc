@@ -302,7 +302,7 @@ TEST(TimeCoupledPreconditionerTest, AKeptAnalysisGivesTheFreshFactors) {
 
 // CG iterations to 1e-10 with block Jacobi [0] and the fitted time-coupled
 // preconditioner [1] on the Hessian of the plate geodesic (two rows masked,
-// as in block_jacobi_cg_test.cc, K = 8) to `roll` times the roll of
+// as in block_jacobi_cg_data_test.cc, K = 8) to `roll` times the roll of
 // plate121_rolledA, each checked against a direct solve; `theta` receives
 // the fitted couplings.
 std::array<int, 2> PlateCgIterations(double roll, std::vector<double>* theta) {
