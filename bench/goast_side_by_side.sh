@@ -54,7 +54,10 @@
 #              BUILD_DIR/shellspace)
 #   OUT_DIR    default a new temporary directory (GOAST's build in
 #              OUT_DIR/goast-build, frames, logs)
-# Environment: GOAST_BUILD (GOAST's build directory, default
+# Environment: GOAST_EXTRA_PROBLEMS (more corpus-style problems, each
+# MESH_FILE:KIND:STRENGTH with an absolute path, e.g.
+# /tmp/meshes/man.off:bend:75, named by the file's name up to its first
+# "-": man_bend75), GOAST_BUILD (GOAST's build directory, default
 # OUT_DIR/goast-build), GOAST_TIMEOUT seconds per GOAST run (default 900;
 # a run stopped there is reported partial; shellspace's runs of the corpus
 # problems get the same --time_limit), JOBS (default 1), ONLY a regular
@@ -273,15 +276,18 @@ pathcheck="$side/build/pathcheck"
 corpus=() exp_corpus=()
 for entry in bull:bend:120 triceratops:pull:0.15 ChineseDragon-10kv:twist:180 \
     ChineseDragon-10kv:twist:60 triceratops:bend:120 \
-    exp:ChineseDragon-10kv:bend:75 exp:ChineseDragon-10kv:bend:120; do
+    exp:ChineseDragon-10kv:bend:75 exp:ChineseDragon-10kv:bend:120 \
+    ${GOAST_EXTRA_PROBLEMS:-}; do
   exp=""; [[ "$entry" == exp:* ]] && exp="exp_" entry="${entry#exp:}"
   IFS=: read -r mesh kind strength <<<"$entry"
+  file="$data/cgal/$mesh.off"
+  if [[ "$mesh" == /* ]]; then file="$mesh" mesh="$(basename "${mesh%.*}")"; fi
   problem="${mesh%%-*}_${kind}${strength}"
   [[ "$exp$problem" =~ $only ]] || continue
   pose="$(dirname "$cli")/bench/stress_pose"
   [ -x "$pose" ] || { echo "no $pose (build the target stress_pose)" >&2; exit 1; }
-  "$pose" "$data/cgal/$mesh.off" none 0 0 "$out/${problem}0.ply" norigid &&
-  "$pose" "$data/cgal/$mesh.off" "$kind" "$strength" 0 "$out/${problem}1.ply" norigid ||
+  "$pose" "$file" none 0 0 "$out/${problem}0.ply" norigid &&
+  "$pose" "$file" "$kind" "$strength" 0 "$out/${problem}1.ply" norigid ||
     { echo "stress_pose failed on $mesh" >&2; exit 1; }
   if [ -n "$exp" ]; then exp_corpus+=("$problem"); else corpus+=("$problem"); fi
 done
