@@ -143,6 +143,8 @@ JsonObject GeodesicJson(const GeodesicResult& result) {
       .Add("newton_rejected_trials", result.newton.rejected_trials)
       .Add("newton_shifted_preconditioners",
            result.newton.shifted_preconditioners)
+      .Add("stiff_vertices", result.stiff_vertices)
+      .Add("elimination_newton_steps", result.elimination_newton_steps)
       .Add("init", InitialPathJson(result.init))
       .Add("step_energy_ratio", result.step_energy_ratio)
       .Add("uneven_steps", result.uneven_steps)

@@ -13,6 +13,7 @@
 #include "shellspace/cost_functions/shell/shell_space_renumbering.h"
 #include "shellspace/geometry/validation.h"
 #include "shellspace/geometry/vertex_flags.h"
+#include "shellspace/problems/calculus/stiff_vertex_elimination.h"
 #include "shellspace/problems/calculus/vertex_relaxation.h"
 #include "shellspace/runtime/parallel_for.h"
 #include "shellspace/solvers/rigid_gauge.h"
@@ -255,6 +256,7 @@ class GeodesicSolve {
   // norm (Finish).
   ShellPath best_path_;
   double best_gradient_ = HUGE_VAL;
+  StiffVertexElimination elimination_;
 };
 
 void GeodesicSolve::Start() {
@@ -318,6 +320,17 @@ void GeodesicSolve::Prepare() {
     problem_ = std::make_unique<ceres::Problem>();
     BuildPathProblem(space_, input_, &result_.path, problem_.get());
   }
+  if (input_.eliminate_stiff_vertices) {
+    const std::vector<int> stiff =
+        FindStiffVertices(solve_space_->faces, (*solve_path_)[0], *solve_mask_,
+                          kStiffAngleDegrees);
+    if (!stiff.empty() &&
+        stiff.size() <= kMaxStiffFraction * solve_space_->num_vertices) {
+      elimination_ =
+          StiffVertexElimination(*solve_space_, stiff, kStepMinAreaFraction);
+      result_.stiff_vertices = static_cast<int>(stiff.size());
+    }
+  }
   if (input_.keep_best_iterate) {
     best_gradient_ = result_.final_gradient;
     best_path_ = *solve_path_;
@@ -336,6 +349,7 @@ PathNewtonSettings GeodesicSolve::EngineStage(const std::string& label) {
   stage.solvers = &solvers_;
   stage.keep_best_iterate = false;  // RunNewtonStage: exact stages only
   stage.renumbering = renumbered_ ? &*renumbered_ : nullptr;
+  stage.elimination = elimination_.empty() ? nullptr : &elimination_;
   return stage;
 }
 
@@ -597,6 +611,7 @@ void GeodesicSolve::RestoreBestIterate() {
 }
 
 void GeodesicSolve::Finish() {
+  result_.elimination_newton_steps = elimination_.newton_steps();
   // Unconverged: the path with the smallest gradient the solve met, not
   // its last (whose E_K may be lower, its gradient larger).
   if (!Converged()) RestoreBestIterate();

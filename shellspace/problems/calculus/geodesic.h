@@ -153,6 +153,12 @@ struct GeodesicInput {
   // (vertex_relaxation.h) moves the vertices that hold the gradient, each
   // alone (false only to show what it changes).
   bool relax_peak_vertices = true;
+  // Nonlinear elimination of the stiff vertices (stiff_vertex_elimination.h)
+  // in every trial of the engine's stages: the vertices of the start's
+  // triangles with an angle below kStiffAngleDegrees, unless they are more
+  // than kMaxStiffFraction of the vertices (false only to show what it
+  // changes).
+  bool eliminate_stiff_vertices = true;
   // The gradient max norm g_0 that the relative tolerance refers to
   // (stop at |grad| <= tolerance * max(1, g_0)); negative: the initial
   // path's. A solve started from a prolongated coarse solution passes the
@@ -294,6 +300,12 @@ struct GeodesicResult {
   bool best_iterate_restored = false;
   PathNewtonReport newton;            // the Newton stage(s), summed
   std::vector<GeodesicStage> stages;  // every stage, in order
+  // The stiff vertices eliminated in the engine's trials (0: none, or
+  // elimination off) and the Newton steps of those elimination solves,
+  // summed over all trials (inner iterations, like CG's: not in
+  // `iterations`).
+  int stiff_vertices = 0;
+  int elimination_newton_steps = 0;
   int iterations = 0;           // sum of stages[i].iterations (LM + Newton)
   double initial_gradient = 0;  // max |grad E_K| (free coords), initial path
   double final_gradient = 0;    // max |grad E_K| (free coords), result

@@ -11,6 +11,7 @@
 #include "shellspace/runtime/blas_threads.h"
 #include "shellspace/problems/calculus/path_energy.h"
 #include "shellspace/problems/calculus/path_hessian.h"
+#include "shellspace/problems/calculus/stiff_vertex_elimination.h"
 #include "shellspace/geometry/connected_components.h"
 #include "shellspace/solvers/gauge_reduced_solve.h"
 #include "shellspace/solvers/block_jacobi_solver.h"
@@ -211,6 +212,16 @@ class PathEnergyProblem : public NewtonProblem {
   }
   void SetTrial(const Eigen::VectorXd& step) override {
     trial_ = StepPath(*path_, reduced_, step);
+    if (elimination_ != nullptr) {
+      elimination_->Solve(kEliminationNewtonSteps, elimination_tolerance_,
+                          &trial_);
+    }
+  }
+  void SetElimination(StiffVertexElimination* elimination,
+                      double tolerance) {
+    elimination_ =
+        elimination != nullptr && !elimination->empty() ? elimination : nullptr;
+    elimination_tolerance_ = tolerance;
   }
   void AcceptTrial() override {
     // Leaving the best iterate for a worse one: keep a copy of it.
@@ -253,6 +264,8 @@ class PathEnergyProblem : public NewtonProblem {
   ReducedCoordinates reduced_;
   ShellPath trial_;
   ReducedCoordinates trial_reduced_;
+  StiffVertexElimination* elimination_ = nullptr;
+  double elimination_tolerance_ = 0;
   // Gradient max norms: of the last trial evaluated, of the current point,
   // of the best point so far (-1: not yet evaluated); the best point's path
   // while the current point is another.
@@ -325,6 +338,7 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
       space, fixed_vertices, std::max(1, settings.num_threads),
       line_search ? HessianModel::kExact : settings.model,
       settings.min_area_fraction, settings.renumbering, path);
+  problem.SetElimination(settings.elimination, settings.gradient_tolerance);
   NewtonSettings newton;
   newton.mode = NewtonMode::kMinimize;
   newton.max_steps = settings.max_steps;

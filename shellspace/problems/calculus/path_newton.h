@@ -48,6 +48,7 @@ inline constexpr int kBlockJacobiFromUnknowns = 20000;
 PathLinearSolver ChooseLinearSolver(PathLinearSolver choice, int unknowns);
 
 class BlockJacobiSolver;
+class StiffVertexElimination;
 
 // The block-Jacobi solver of consecutive PolishPathNewton stages on one path
 // problem (the same K and free vertices; PathNewtonSettings::solvers),
@@ -123,6 +124,11 @@ struct PathNewtonSettings {
   // compresses gets there, if at all, through steps the energy accepts one
   // by one, never by jumping across the barrier of the membrane energy.
   double min_area_fraction = 0;
+  // Nonlinear elimination (stiff_vertex_elimination.h), or nullptr: every
+  // trial path is handed to its Solve (at most kEliminationNewtonSteps
+  // steps, down to gradient_tolerance) before its merit is measured. The
+  // space must be the one `elimination` was built on.
+  StiffVertexElimination* elimination = nullptr;
   // The best-iterate rule: a stage that ends short of its tolerance with a
   // larger gradient max norm than an iterate it met (its start included)
   // leaves that iterate in the path, not the last one, and says so in its
