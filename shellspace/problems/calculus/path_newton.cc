@@ -213,8 +213,17 @@ class PathEnergyProblem : public NewtonProblem {
   void SetTrial(const Eigen::VectorXd& step) override {
     trial_ = StepPath(*path_, reduced_, step);
     if (elimination_ != nullptr) {
+      // The elimination's own trials keep min_area_fraction of the areas it
+      // starts from; its result is held to the step limit against the
+      // current path, as the plain trial is, and dropped if it breaks it
+      // (the plain trial is then judged as it is).
+      ShellPath plain = trial_;
       elimination_->Solve(kEliminationNewtonSteps, elimination_tolerance_,
                           &trial_);
+      if (min_area_fraction_ > 0 && CrushesATriangle(*path_, trial_) &&
+          !CrushesATriangle(*path_, plain)) {
+        trial_ = std::move(plain);
+      }
     }
   }
   void SetElimination(StiffVertexElimination* elimination,
