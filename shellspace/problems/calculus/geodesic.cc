@@ -227,6 +227,11 @@ class GeodesicSolve {
   // A sweep of RelaxPeakVertices on the path (GeodesicInput::
   // relax_peak_vertices), recorded as a stage.
   void RelaxPeakVerticesStage();
+  // The stiff vertices of the initial path brought to equilibrium once
+  // before the first stage, as every trial's are: the first step's gradient
+  // contraction (the early hand-over to Newton) then compares two
+  // eliminated paths, not the raw start with an eliminated trial.
+  void EliminateAtStart();
   void Record(GeodesicStage stage);
   bool Converged() const {
     return result_.final_gradient <= tolerance_ || at_round_off_;
@@ -506,6 +511,17 @@ void GeodesicSolve::RelaxPeakVerticesStage() {
   Record(stage);
 }
 
+void GeodesicSolve::EliminateAtStart() {
+  if (elimination_.empty()) return;
+  const StiffEliminationReport report =
+      elimination_.Solve(kEliminationNewtonSteps, tolerance_, solve_path_);
+  if (report.steps == 0) return;
+  GeodesicInput solve_input = input_;
+  solve_input.fixed_vertices = *solve_mask_;
+  result_.final_gradient = PathGradientMaxNorm(
+      *solve_space_, solve_input, *solve_path_, settings_.num_threads);
+}
+
 void GeodesicSolve::RunProjectedPhase() {
   projected_phase_ = true;
   while (!Converged() && !stopped_ && budget_ > 0) {
@@ -565,6 +581,7 @@ void GeodesicSolve::AcceptRoundOffFloor() {
 }
 
 void GeodesicSolve::Globalise() {
+  EliminateAtStart();
   double threshold = input_.newton_from;
   // The early hand-over (newton_contraction) is tried once: its Newton
   // stage is a probe of the basin, and where it stops short, LM goes on
