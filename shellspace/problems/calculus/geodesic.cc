@@ -233,6 +233,12 @@ class GeodesicSolve {
   // eliminated paths, not the raw start with an eliminated trial.
   void EliminateAtStart();
   void Record(GeodesicStage stage);
+  // The input with the mask in the solve space's numbering.
+  GeodesicInput SolveInput() const {
+    GeodesicInput solve_input = input_;
+    solve_input.fixed_vertices = *solve_mask_;
+    return solve_input;
+  }
   bool Converged() const {
     return result_.final_gradient <= tolerance_ || at_round_off_;
   }
@@ -489,10 +495,8 @@ void GeodesicSolve::RelaxPeakVerticesStage() {
                         kRelaxationNewtonSteps, settings_.num_threads,
                         solve_path_);
   if (relaxed.vertices == 0) return;
-  GeodesicInput solve_input = input_;
-  solve_input.fixed_vertices = *solve_mask_;
   result_.final_gradient = PathGradientMaxNorm(
-      *solve_space_, solve_input, *solve_path_, settings_.num_threads);
+      *solve_space_, SolveInput(), *solve_path_, settings_.num_threads);
   GeodesicStage stage;
   stage.method = GeodesicStage::Method::kVertexRelaxation;
   stage.iterations = 1;
@@ -516,10 +520,8 @@ void GeodesicSolve::EliminateAtStart() {
   const StiffEliminationReport report =
       elimination_.Solve(kEliminationNewtonSteps, tolerance_, solve_path_);
   if (report.steps == 0) return;
-  GeodesicInput solve_input = input_;
-  solve_input.fixed_vertices = *solve_mask_;
   result_.final_gradient = PathGradientMaxNorm(
-      *solve_space_, solve_input, *solve_path_, settings_.num_threads);
+      *solve_space_, SolveInput(), *solve_path_, settings_.num_threads);
 }
 
 void GeodesicSolve::RunProjectedPhase() {
@@ -563,10 +565,8 @@ void GeodesicSolve::RunProjectedPhase() {
 
 void GeodesicSolve::AcceptRoundOffFloor() {
   RestoreBestIterate();  // the floor is measured where the report will be
-  GeodesicInput solve_input = input_;
-  solve_input.fixed_vertices = *solve_mask_;
   result_.gradient_round_off = GradientRoundOff(
-      *solve_space_, solve_input, *solve_path_, settings_.num_threads);
+      *solve_space_, SolveInput(), *solve_path_, settings_.num_threads);
   if (!(result_.final_gradient <= result_.gradient_round_off)) return;
   at_round_off_ = true;
   result_.converged_at_round_off = true;

@@ -217,12 +217,18 @@ class PathEnergyProblem : public NewtonProblem {
       // starts from; its result is held to the step limit against the
       // current path, as the plain trial is, and dropped if it breaks it
       // (the plain trial is then judged as it is).
-      ShellPath plain = trial_;
+      // Solve changes only the stiff rows of the inner shapes: those are
+      // kept, not the whole path.
+      const std::vector<int>& stiff = elimination_->stiff_vertices();
+      const int K = static_cast<int>(trial_.size()) - 1;
+      std::vector<Positions> plain(K + 1);
+      for (int k = 1; k < K; ++k) plain[k] = trial_[k](stiff, Eigen::all);
       elimination_->Solve(kEliminationNewtonSteps, elimination_tolerance_,
                           &trial_);
-      if (min_area_fraction_ > 0 && CrushesATriangle(*path_, trial_) &&
-          !CrushesATriangle(*path_, plain)) {
-        trial_ = std::move(plain);
+      if (min_area_fraction_ > 0 && CrushesATriangle(*path_, trial_)) {
+        ShellPath relaxed_rows = trial_;
+        for (int k = 1; k < K; ++k) trial_[k](stiff, Eigen::all) = plain[k];
+        if (CrushesATriangle(*path_, trial_)) trial_ = std::move(relaxed_rows);
       }
     }
   }
