@@ -59,71 +59,76 @@ class PairTable {
   std::vector<int> values_;
 };
 
-}  // namespace
-
-Topology Topology::Build(const Mesh& mesh) {
-  Topology topo;
-  const int n = mesh.num_vertices();
-  topo.vertex_faces.assign(n, {});
-  const size_t half_edge_count = 3 * static_cast<size_t>(mesh.num_faces());
-  // Directed half-edge (a, b) -> face containing it with that orientation.
-  PairTable half_edges(half_edge_count);
-  PairTable edge_index(half_edge_count);
-  for (int f = 0; f < mesh.num_faces(); ++f) {
-    for (int c = 0; c < 3; ++c) {
-      const int v = mesh.faces(f, c);
-      if (v < 0 || v >= n) {
-        throw InputError("face " + std::to_string(f) + " references vertex " +
-                         std::to_string(v) + " but the mesh has " +
-                         std::to_string(n) + " vertices");
-      }
-    }
-    const int a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
-    if (a == b || b == c || a == c) {
-      throw InputError("face " + std::to_string(f) +
-                       " repeats a vertex (degenerate triangle)");
-    }
-    for (int v : {a, b, c}) topo.vertex_faces[v].push_back(f);
-    for (int s = 0; s < 3; ++s) {
-      const int u = mesh.faces(f, s), w = mesh.faces(f, (s + 1) % 3);
-      const auto half_edge = half_edges.Emplace(u, w, f);
-      if (!half_edge.second) {
-        throw InputError("non-manifold or inconsistently oriented edge (" +
-                         std::to_string(u) + ", " + std::to_string(w) +
-                         ") in faces " + std::to_string(*half_edge.first) +
-                         " and " + std::to_string(f));
-      }
-      const auto key = std::make_pair(std::min(u, w), std::max(u, w));
-      const auto edge = edge_index.Emplace(key.first, key.second,
-                                           static_cast<int>(topo.edges.size()));
-      if (edge.second) {
-        topo.edges.push_back({key.first, key.second});
-        topo.edge_faces.push_back({f, -1});
-      } else {
-        auto& ef = topo.edge_faces[*edge.first];
-        if (ef[1] != -1) {
-          throw InputError("non-manifold edge (" + std::to_string(key.first) +
-                           ", " + std::to_string(key.second) +
-                           ") shared by more than two faces");
-        }
-        ef[1] = f;
-      }
+// Throws InputError unless face f's vertices lie in [0, n) and are distinct.
+void CheckFace(const Mesh& mesh, int f, int n) {
+  for (int c = 0; c < 3; ++c) {
+    const int v = mesh.faces(f, c);
+    if (v < 0 || v >= n) {
+      throw InputError("face " + std::to_string(f) + " references vertex " +
+                       std::to_string(v) + " but the mesh has " +
+                       std::to_string(n) + " vertices");
     }
   }
-  auto opposite = [&](int f, int u, int w) {
-    for (int c = 0; c < 3; ++c) {
-      const int v = mesh.faces(f, c);
-      if (v != u && v != w) return v;
+  const int a = mesh.faces(f, 0), b = mesh.faces(f, 1), c = mesh.faces(f, 2);
+  if (a == b || b == c || a == c) {
+    throw InputError("face " + std::to_string(f) +
+                     " repeats a vertex (degenerate triangle)");
+  }
+}
+
+// Adds face f's three half-edges to `half_edges` (directed (a, b) -> face)
+// and its edges to topo->edges and topo->edge_faces (`edge_index`: (min,
+// max) -> edge); throws InputError for a half-edge already present or an
+// edge with a third face.
+void AddFaceEdges(const Mesh& mesh, int f, PairTable* half_edges,
+                  PairTable* edge_index, Topology* topo) {
+  for (int s = 0; s < 3; ++s) {
+    const int u = mesh.faces(f, s), w = mesh.faces(f, (s + 1) % 3);
+    const auto half_edge = half_edges->Emplace(u, w, f);
+    if (!half_edge.second) {
+      throw InputError("non-manifold or inconsistently oriented edge (" +
+                       std::to_string(u) + ", " + std::to_string(w) +
+                       ") in faces " + std::to_string(*half_edge.first) +
+                       " and " + std::to_string(f));
     }
-    return -1;
-  };
-  for (int e = 0; e < static_cast<int>(topo.edges.size()); ++e) {
-    const auto& ef = topo.edge_faces[e];
+    const auto key = std::make_pair(std::min(u, w), std::max(u, w));
+    const auto edge = edge_index->Emplace(key.first, key.second,
+                                          static_cast<int>(topo->edges.size()));
+    if (edge.second) {
+      topo->edges.push_back({key.first, key.second});
+      topo->edge_faces.push_back({f, -1});
+    } else {
+      auto& ef = topo->edge_faces[*edge.first];
+      if (ef[1] != -1) {
+        throw InputError("non-manifold edge (" + std::to_string(key.first) +
+                         ", " + std::to_string(key.second) +
+                         ") shared by more than two faces");
+      }
+      ef[1] = f;
+    }
+  }
+}
+
+// The vertex of face f that is neither u nor w (-1 if none).
+int OppositeVertex(const Mesh& mesh, int f, int u, int w) {
+  for (int c = 0; c < 3; ++c) {
+    const int v = mesh.faces(f, c);
+    if (v != u && v != w) return v;
+  }
+  return -1;
+}
+
+// Fills topo->boundary_edges and topo->interior_edges (one flap per edge
+// with two faces, oriented as in its face_0) from its edges and
+// `half_edges`.
+void BuildFlaps(const Mesh& mesh, const PairTable& half_edges, Topology* topo) {
+  for (int e = 0; e < static_cast<int>(topo->edges.size()); ++e) {
+    const auto& ef = topo->edge_faces[e];
     if (ef[1] == -1) {
-      topo.boundary_edges.push_back(e);
+      topo->boundary_edges.push_back(e);
       continue;
     }
-    const int u = topo.edges[e][0], w = topo.edges[e][1];
+    const int u = topo->edges[e][0], w = topo->edges[e][1];
     // Orient i -> j as in face_0.
     int f0 = ef[0], f1 = ef[1];
     int i = u, j = w;
@@ -138,10 +143,30 @@ Topology Topology::Build(const Mesh& mesh) {
     flap.j = j;
     flap.face_0 = f0;
     flap.face_1 = f1;
-    flap.k = opposite(f0, i, j);
-    flap.l = opposite(f1, i, j);
-    topo.interior_edges.push_back(flap);
+    flap.k = OppositeVertex(mesh, f0, i, j);
+    flap.l = OppositeVertex(mesh, f1, i, j);
+    topo->interior_edges.push_back(flap);
   }
+}
+
+}  // namespace
+
+Topology Topology::Build(const Mesh& mesh) {
+  Topology topo;
+  const int n = mesh.num_vertices();
+  topo.vertex_faces.assign(n, {});
+  const size_t half_edge_count = 3 * static_cast<size_t>(mesh.num_faces());
+  // Directed half-edge (a, b) -> face containing it with that orientation.
+  PairTable half_edges(half_edge_count);
+  PairTable edge_index(half_edge_count);
+  for (int f = 0; f < mesh.num_faces(); ++f) {
+    CheckFace(mesh, f, n);
+    for (int c = 0; c < 3; ++c) {
+      topo.vertex_faces[mesh.faces(f, c)].push_back(f);
+    }
+    AddFaceEdges(mesh, f, &half_edges, &edge_index, &topo);
+  }
+  BuildFlaps(mesh, half_edges, &topo);
   return topo;
 }
 

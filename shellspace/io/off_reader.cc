@@ -127,6 +127,108 @@ OffHeader ParseOffHeader(OffRows& rows, uint64_t file_size,
   return header;
 }
 
+// The values of a vertex line of an OFF file: x y z [w] [nx ny nz]
+// [r g b [a]] [s t].
+struct OffVertexColumns {
+  size_t coordinates = 3;  // x y z [w]
+  size_t min_values = 3;   // without a colour's alpha
+  size_t max_values = 3;   // with it
+  std::string expected;    // the counts for messages, "6 or 7 (COFF)"
+};
+
+// The columns of a vertex line that `header`'s keyword declares.
+OffVertexColumns VertexColumnsOf(const OffHeader& header) {
+  const OffKeyword& kind = header.kind;
+  const std::string& keyword = header.keyword;
+  OffVertexColumns columns;
+  columns.coordinates = kind.homogeneous ? 4 : 3;
+  const size_t before_colour = columns.coordinates + (kind.normal ? 3 : 0);
+  const size_t min_values =
+      before_colour + (kind.colour ? 3 : 0) + (kind.texture ? 2 : 0);
+  const size_t max_values = min_values + (kind.colour ? 1 : 0);
+  columns.min_values = min_values;
+  columns.max_values = max_values;
+  columns.expected =
+      std::to_string(min_values) +
+      (max_values > min_values ? " or " + std::to_string(max_values) : "") +
+      (keyword == "OFF" ? "" : " (" + keyword + ")");
+  return columns;
+}
+
+// Reads vertex i of nv (the next row of `rows`) into b->points.
+void ReadOffVertex(OffRows& rows, long long i, long long nv,
+                   const OffKeyword& kind, const OffVertexColumns& columns,
+                   MeshBuilder* b) {
+  if (!rows.Next()) {
+    b->Fail("OFF file ends early at vertex " + std::to_string(i) + " of " +
+            std::to_string(nv));
+  }
+  const std::vector<std::string_view>& t = rows.t;
+  if (t.size() != columns.min_values && t.size() != columns.max_values) {
+    b->Fail("vertex " + std::to_string(i) + " has " + std::to_string(t.size()) +
+            " values, expected " + columns.expected + LineTag(rows.line()));
+  }
+  double values[4] = {0, 0, 0, 1};
+  for (size_t c = 0; c < t.size(); ++c) {
+    double value = 0;
+    if (!ParseDouble(t[c], &value)) {
+      b->Fail("vertex " + std::to_string(i) + " has a malformed number " +
+              Excerpt(t[c]) + LineTag(rows.line()));
+    }
+    if (c < columns.coordinates) values[c] = value;
+  }
+  if (kind.homogeneous) {
+    // x y z w is the point (x/w, y/w, z/w).
+    if (values[3] == 0 || !std::isfinite(values[3])) {
+      b->Fail("vertex " + std::to_string(i) +
+              " has the homogeneous coordinate w = " + Excerpt(t[3]) +
+              " (a point at infinity)" + LineTag(rows.line()));
+    }
+    for (int c = 0; c < 3; ++c) values[c] /= values[3];
+  }
+  b->points.push_back({values[0], values[1], values[2]});
+}
+
+// Reads face r of nf (the next row of `rows`) into b->faces and
+// b->face_lines.
+void ReadOffFace(OffRows& rows, long long r, long long nf, MeshBuilder* b) {
+  if (!rows.Next()) {
+    b->Fail("OFF file ends early at face " + std::to_string(r) + " of " +
+            std::to_string(nf));
+  }
+  const std::vector<std::string_view>& t = rows.t;
+  const size_t line = rows.line();
+  long long n = 0;
+  if (!ParseInteger(t[0], &n)) {
+    b->Fail("face " + std::to_string(r) + " has a malformed vertex count " +
+            Excerpt(t[0]) + LineTag(line));
+  }
+  CheckTriangleCount(*b, r, n, line);
+  // Three indices, optionally followed by an r g b [a] colour.
+  if (t.size() != 4 && t.size() != 7 && t.size() != 8) {
+    b->Fail("face " + std::to_string(r) + " has " +
+            std::to_string(t.size() - 1) +
+            " values after the count (expected 3 indices [and a colour])" +
+            LineTag(line));
+  }
+  std::array<long long, 3> f{0, 0, 0};
+  for (int c = 0; c < 3; ++c) {
+    if (!ParseInteger(t[c + 1], &f[c])) {
+      b->Fail("face " + std::to_string(r) + " has a non-integer vertex index " +
+              Excerpt(t[c + 1]) + LineTag(line));
+    }
+  }
+  for (size_t k = 4; k < t.size(); ++k) {
+    double colour = 0;
+    if (!ParseDouble(t[k], &colour)) {
+      b->Fail("face " + std::to_string(r) + " has a malformed colour " +
+              Excerpt(t[k]) + LineTag(line));
+    }
+  }
+  b->faces.push_back(f);
+  b->face_lines.push_back(line);
+}
+
 }  // namespace
 
 void CheckOffHeader(const std::string& prefix, uint64_t file_size,
@@ -138,89 +240,13 @@ void CheckOffHeader(const std::string& prefix, uint64_t file_size,
 Mesh ReadOff(const std::string& bytes, MeshBuilder* b) {
   OffRows rows(bytes, *b);
   const OffHeader header = ParseOffHeader(rows, bytes.size(), b);
-  const OffKeyword& kind = header.kind;
-  const std::string& keyword = header.keyword;
   const long long nv = header.nv, nf = header.nf;
-  // The values of a vertex line: x y z [w] [nx ny nz] [r g b [a]] [s t].
-  const size_t coordinates = kind.homogeneous ? 4 : 3;
-  const size_t before_colour = coordinates + (kind.normal ? 3 : 0);
-  const size_t min_values =
-      before_colour + (kind.colour ? 3 : 0) + (kind.texture ? 2 : 0);
-  const size_t max_values = min_values + (kind.colour ? 1 : 0);
-  const std::string expected =
-      std::to_string(min_values) +
-      (max_values > min_values ? " or " + std::to_string(max_values) : "") +
-      (keyword == "OFF" ? "" : " (" + keyword + ")");
+  const OffVertexColumns columns = VertexColumnsOf(header);
   b->Reserve(nv, nf);
   for (long long i = 0; i < nv; ++i) {
-    if (!rows.Next()) {
-      b->Fail("OFF file ends early at vertex " + std::to_string(i) + " of " +
-              std::to_string(nv));
-    }
-    const std::vector<std::string_view>& t = rows.t;
-    if (t.size() != min_values && t.size() != max_values) {
-      b->Fail("vertex " + std::to_string(i) + " has " +
-              std::to_string(t.size()) + " values, expected " + expected +
-              LineTag(rows.line()));
-    }
-    double values[4] = {0, 0, 0, 1};
-    for (size_t c = 0; c < t.size(); ++c) {
-      double value = 0;
-      if (!ParseDouble(t[c], &value)) {
-        b->Fail("vertex " + std::to_string(i) + " has a malformed number " +
-                Excerpt(t[c]) + LineTag(rows.line()));
-      }
-      if (c < coordinates) values[c] = value;
-    }
-    if (kind.homogeneous) {
-      // x y z w is the point (x/w, y/w, z/w).
-      if (values[3] == 0 || !std::isfinite(values[3])) {
-        b->Fail("vertex " + std::to_string(i) +
-                " has the homogeneous coordinate w = " + Excerpt(t[3]) +
-                " (a point at infinity)" + LineTag(rows.line()));
-      }
-      for (int c = 0; c < 3; ++c) values[c] /= values[3];
-    }
-    b->points.push_back({values[0], values[1], values[2]});
+    ReadOffVertex(rows, i, nv, header.kind, columns, b);
   }
-  for (long long r = 0; r < nf; ++r) {
-    if (!rows.Next()) {
-      b->Fail("OFF file ends early at face " + std::to_string(r) + " of " +
-              std::to_string(nf));
-    }
-    const std::vector<std::string_view>& t = rows.t;
-    const size_t line = rows.line();
-    long long n = 0;
-    if (!ParseInteger(t[0], &n)) {
-      b->Fail("face " + std::to_string(r) + " has a malformed vertex count " +
-              Excerpt(t[0]) + LineTag(line));
-    }
-    CheckTriangleCount(*b, r, n, line);
-    // Three indices, optionally followed by an r g b [a] colour.
-    if (t.size() != 4 && t.size() != 7 && t.size() != 8) {
-      b->Fail("face " + std::to_string(r) + " has " +
-              std::to_string(t.size() - 1) +
-              " values after the count (expected 3 indices [and a colour])" +
-              LineTag(line));
-    }
-    std::array<long long, 3> f{0, 0, 0};
-    for (int c = 0; c < 3; ++c) {
-      if (!ParseInteger(t[c + 1], &f[c])) {
-        b->Fail("face " + std::to_string(r) +
-                " has a non-integer vertex index " + Excerpt(t[c + 1]) +
-                LineTag(line));
-      }
-    }
-    for (size_t k = 4; k < t.size(); ++k) {
-      double colour = 0;
-      if (!ParseDouble(t[k], &colour)) {
-        b->Fail("face " + std::to_string(r) + " has a malformed colour " +
-                Excerpt(t[k]) + LineTag(line));
-      }
-    }
-    b->faces.push_back(f);
-    b->face_lines.push_back(line);
-  }
+  for (long long r = 0; r < nf; ++r) ReadOffFace(rows, r, nf, b);
   if (rows.Next()) {
     b->Fail("extra data after the " + std::to_string(nf) +
             " faces: " + Excerpt(rows.raw) + LineTag(rows.line()));

@@ -46,6 +46,69 @@ bool FactorizePreconditioner(Preconditioner* preconditioner,
   return factorized;
 }
 
+// One Steihaug-Toint trial judged: its rho = actual / predicted decrease
+// (-1 where the trial cannot be evaluated), whether the merit changed by less
+// than its round-off, and whether the step is taken (with the residual at the
+// trial point).
+struct TrustRegionTrial {
+  double ratio = -1;
+  bool round_off = false;
+  double merit = 0;
+  bool residual_decides = false;
+  bool take = false;
+  NewtonResidual residual;
+};
+
+// Evaluates the trial point of `step` from the current point of `it` and
+// decides whether the step is taken.
+TrustRegionTrial JudgeTrial(const NewtonIteration& it,
+                            const SteihaugResult& step) {
+  NewtonProblem* const problem = it.problem;
+  const NewtonSettings& settings = *it.settings;
+  const double merit = it.merit;
+  const NewtonResidual& current = *it.current;
+  TrustRegionTrial trial;
+  if (step.model_decrease > 0 && step.step.allFinite()) {
+    problem->SetTrial(step.step);
+    if (problem->Merit(NewtonPoint::kTrial, &trial.merit) ==
+            EvaluationStatus::kOk &&
+        std::isfinite(trial.merit)) {
+      trial.ratio = (merit - trial.merit) / step.model_decrease;
+      trial.round_off = std::abs(trial.merit - merit) <=
+                        settings.merit_round_off * std::abs(merit);
+    }
+  }
+  // Where the merit changes by less than its round-off (with
+  // accept_smaller_max_norm, or where the predicted decrease itself is
+  // below it), rho is noise: the residual alone decides, and a step that
+  // raises its max norm is not taken however good its rho.
+  const bool model_at_round_off =
+      step.model_decrease <= settings.merit_round_off * std::abs(merit);
+  trial.residual_decides =
+      trial.round_off &&
+      (settings.accept_smaller_max_norm || model_at_round_off);
+  if (trial.ratio >= settings.tr_accept || trial.residual_decides) {
+    trial.take =
+        problem->Residual(NewtonPoint::kTrial, &trial.residual) ==
+            EvaluationStatus::kOk &&
+        (trial.residual_decides ? trial.residual.max_norm < current.max_norm
+                                : trial.ratio >= settings.tr_accept);
+  }
+  return trial;
+}
+
+// The basin probe: anything but a full step of a good model ends it (a
+// step whose decrease is below round-off, taken because the residual
+// fell, counts as good: its rho is noise).
+bool OutsideBasin(const NewtonSettings& settings, const SteihaugResult& step,
+                  const TrustRegionTrial& trial, bool on_boundary) {
+  return settings.tr_basin_ratio > 0 &&
+         (!trial.take || on_boundary ||
+          step.stop == SteihaugResult::Stop::kNegativeCurvature ||
+          (!(trial.ratio >= settings.tr_basin_ratio) &&
+           !trial.residual_decides));
+}
+
 class TrustRegionStrategy : public NewtonStepStrategy {
  public:
   TrustRegionStrategy(const NewtonSettings& settings,
@@ -56,6 +119,10 @@ class TrustRegionStrategy : public NewtonStepStrategy {
   NewtonStepOutcome Step(const NewtonIteration& it) override;
 
  private:
+  SteihaugResult SolveSubproblem(const NewtonIteration& it);
+  void UpdateRadius(const SteihaugResult& step, const TrustRegionTrial& trial,
+                    bool on_boundary);
+
   Preconditioner* const preconditioner_;
   double radius_;  // in the norm |.|_M of the preconditioner
   // The preconditioner held across iterations: M of an earlier H is kept
@@ -66,107 +133,76 @@ class TrustRegionStrategy : public NewtonStepStrategy {
   int last_cg_iterations_ = 0;
 };
 
+// The Steihaug-Toint step for the current radius (its CG iterations and time
+// counted by the linear solver).
+SteihaugResult TrustRegionStrategy::SolveSubproblem(const NewtonIteration& it) {
+  const auto cg_start = std::chrono::steady_clock::now();
+  const SteihaugResult step =
+      SolveSteihaugCg(it.system->matrix, it.current->reduced, *preconditioner_,
+                      radius_, it.forcing, it.settings->tr_max_cg_iterations);
+  last_cg_iterations_ = step.iterations;
+  it.linear_solver->CountCg(
+      step.iterations,
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - cg_start)
+          .count());
+  return step;
+}
+
+// The radius: shrink to a quarter of the step on a poor model, a trial
+// that cannot be evaluated or one not taken (below round-off, a good
+// rho does not take a step that raises the residual), double it after a
+// good step that the boundary cut short.
+void TrustRegionStrategy::UpdateRadius(const SteihaugResult& step,
+                                       const TrustRegionTrial& trial,
+                                       bool on_boundary) {
+  if (!trial.take || (!(trial.ratio >= 0.25) && !trial.round_off)) {
+    radius_ = 0.25 * step.step_norm;
+  } else if (trial.ratio > 0.75 && on_boundary) {
+    radius_ = 2 * radius_;
+  }
+}
+
 // One iteration at the current point (H assembled in *system): the
 // preconditioner factorised (shifted where needed) unless it is held, then
 // Steihaug-Toint steps for the radius until one is accepted or
 // tr_max_rejections trials in a row are rejected.
 NewtonStepOutcome TrustRegionStrategy::Step(const NewtonIteration& it) {
-  NewtonProblem* const problem = it.problem;
-  LinearSolver* const linear_solver = it.linear_solver;
-  Preconditioner* const preconditioner = preconditioner_;
   const NewtonSettings& settings = *it.settings;
-  const double forcing = it.forcing;
-  const double merit = it.merit;
-  const NewtonResidual& current = *it.current;
-  LinearSystem* const system = it.system;
   NewtonReport* const report = it.report;
-  double* const radius = &radius_;
   NewtonStepOutcome outcome;
-  if (preconditioner == nullptr) {
+  if (preconditioner_ == nullptr) {
     outcome.failure = NewtonStop::kLinearSolveFailed;
     return outcome;
   }
   if (!held_ || last_cg_iterations_ > settings.tr_refactor_cg_iterations) {
-    held_ = FactorizePreconditioner(preconditioner, settings, system, report);
+    held_ =
+        FactorizePreconditioner(preconditioner_, settings, it.system, report);
   }
   if (!held_) {
     outcome.failure = NewtonStop::kLinearSolveFailed;
     return outcome;
   }
-  const Eigen::VectorXd& g = current.reduced;
   for (int rejected = 0; rejected <= settings.tr_max_rejections; ++rejected) {
     if (rejected > 0 && settings.stop && settings.stop()) {
       outcome.failure = NewtonStop::kStopped;
       return outcome;
     }
-    const auto cg_start = std::chrono::steady_clock::now();
-    const SteihaugResult step =
-        SolveSteihaugCg(system->matrix, g, *preconditioner, *radius, forcing,
-                        settings.tr_max_cg_iterations);
-    last_cg_iterations_ = step.iterations;
-    linear_solver->CountCg(
-        step.iterations,
-        std::chrono::duration<double>(std::chrono::steady_clock::now() -
-                                      cg_start)
-            .count());
+    const SteihaugResult step = SolveSubproblem(it);
     const bool on_boundary =
         step.stop == SteihaugResult::Stop::kBoundary ||
         (step.stop == SteihaugResult::Stop::kNegativeCurvature &&
-         std::isfinite(*radius));
-    double ratio = -1;
-    bool round_off = false;
-    double trial_merit = 0;
-    if (step.model_decrease > 0 && step.step.allFinite()) {
-      problem->SetTrial(step.step);
-      if (problem->Merit(NewtonPoint::kTrial, &trial_merit) ==
-              EvaluationStatus::kOk &&
-          std::isfinite(trial_merit)) {
-        ratio = (merit - trial_merit) / step.model_decrease;
-        round_off = std::abs(trial_merit - merit) <=
-                    settings.merit_round_off * std::abs(merit);
-      }
-    }
-    // Where the merit changes by less than its round-off (with
-    // accept_smaller_max_norm, or where the predicted decrease itself is
-    // below it), rho is noise: the residual alone decides, and a step that
-    // raises its max norm is not taken however good its rho.
-    const bool model_at_round_off =
-        step.model_decrease <= settings.merit_round_off * std::abs(merit);
-    const bool residual_decides =
-        round_off && (settings.accept_smaller_max_norm || model_at_round_off);
-    bool take = false;
-    NewtonResidual trial;
-    if (ratio >= settings.tr_accept || residual_decides) {
-      take = problem->Residual(NewtonPoint::kTrial, &trial) ==
-                 EvaluationStatus::kOk &&
-             (residual_decides ? trial.max_norm < current.max_norm
-                               : ratio >= settings.tr_accept);
-    }
-    // The basin probe: anything but a full step of a good model ends it (a
-    // step whose decrease is below round-off, taken because the residual
-    // fell, counts as good: its rho is noise).
-    const bool outside_basin =
-        settings.tr_basin_ratio > 0 &&
-        (!take || on_boundary ||
-         step.stop == SteihaugResult::Stop::kNegativeCurvature ||
-         (!(ratio >= settings.tr_basin_ratio) && !residual_decides));
-    // The radius: shrink to a quarter of the step on a poor model, a trial
-    // that cannot be evaluated or one not taken (below round-off, a good
-    // rho does not take a step that raises the residual), double it after a
-    // good step that the boundary cut short.
-    if (!take || (!(ratio >= 0.25) && !round_off)) {
-      *radius = 0.25 * step.step_norm;
-    } else if (ratio > 0.75 && on_boundary) {
-      *radius = 2 * *radius;
-    }
-    if (take) {
+         std::isfinite(radius_));
+    TrustRegionTrial trial = JudgeTrial(it, step);
+    const bool outside_basin = OutsideBasin(settings, step, trial, on_boundary);
+    UpdateRadius(step, trial, on_boundary);
+    if (trial.take) {
       if (on_boundary) ++report->boundary_steps;
       if (step.stop == SteihaugResult::Stop::kNegativeCurvature) {
         ++report->negative_curvature_steps;
       }
       outcome.accepted = true;
-      outcome.residual = std::move(trial);
-      outcome.merit = trial_merit;
+      outcome.residual = std::move(trial.residual);
+      outcome.merit = trial.merit;
       outcome.end = outside_basin;
       if (outside_basin) outcome.failure = NewtonStop::kOutsideBasin;
       return outcome;

@@ -231,7 +231,9 @@ std::string PrepareOutput() {
   return FLAGS_output;
 }
 
-int RunSimulate() {
+// The simulation's settings from the flags (checked), after refusing a
+// --delta the grid does not resolve.
+SimulationSettings SimulationSettingsFromFlags() {
   if (FLAGS_delta > 0 && BranchingHeight() / FLAGS_ny > FLAGS_delta / 2.0) {
     throw InputError("--delta is not resolved: need --height / --ny <= "
                      "--delta / 2");
@@ -251,30 +253,59 @@ int RunSimulate() {
   s.max_iterations = FLAGS_lm_iterations;
   s.stop = StopPollForRun();
   CheckSimulationSettings(s);
+  return s;
+}
+
+// Refuses a grid whose estimated memory exceeds the limit.
+void CheckSimulationMemory(const SimulationSettings& s) {
   const double nodes = (static_cast<double>(s.nx) + 1) * s.ny;
   CheckMemory(BranchingBytes(nodes),
               "--nx " + std::to_string(s.nx) + " --ny " + std::to_string(s.ny) +
                   " (" + std::to_string(static_cast<long>(nodes)) + " nodes)",
               "16 MB + 3 KB x (nx + 1) x ny");
-  const std::string dir = PrepareOutput();
-  if (!FLAGS_quiet) {
-    std::cerr << "branching simulate: eps " << s.epsilon << ", L " << s.length
-              << ", H " << s.height << ", grid " << s.nx << " x " << s.ny
-              << ", delta " << s.Delta() << ", init " << s.init << "\n";
-    s.progress = [](double delta, int iteration, double energy) {
-      if (iteration % 10 == 0) {
-        std::cerr << "  delta " << delta << "  iteration " << iteration
-                  << "  energy " << energy << "\n";
-      }
-    };
-  }
-  const SimulationResult result = RunSimulation(s);
-  if (const std::string why = SimulationBreakdown(result); !why.empty()) {
-    throw InputError("branching simulate: " + why +
-                     " (--ny, --delta, --epsilon, --length, --height)");
-  }
-  const double scale = std::pow(s.epsilon, 2.0 / 3.0) * std::cbrt(s.length);
+}
 
+// Without --quiet: prints the simulation's parameters and sets s->progress
+// to print every tenth iteration.
+void AnnounceSimulation(SimulationSettings* s) {
+  if (FLAGS_quiet) return;
+  std::cerr << "branching simulate: eps " << s->epsilon << ", L " << s->length
+            << ", H " << s->height << ", grid " << s->nx << " x " << s->ny
+            << ", delta " << s->Delta() << ", init " << s->init << "\n";
+  s->progress = [](double delta, int iteration, double energy) {
+    if (iteration % 10 == 0) {
+      std::cerr << "  delta " << delta << "  iteration " << iteration
+                << "  energy " << energy << "\n";
+    }
+  };
+}
+
+// Prints the extrapolation in delta: its fits, the constant as delta -> 0
+// and the steps of the interface count.
+void PrintExtrapolation(const DeltaExtrapolation& ex) {
+  std::cerr << "  extrapolation: "
+            << (ex.all_converged ? "every width converged"
+                                 : "NOT every width converged")
+            << ", C(delta) " << (ex.monotone ? "" : "NOT ")
+            << "monotone; linear c0 " << ex.c0 << " (rms " << ex.linear_rms
+            << ")";
+  if (ex.has_quadratic) {
+    std::cerr << ", quadratic q0 " << ex.q0 << " (rms " << ex.quadratic_rms
+              << "), root s0 " << ex.s0 << " (rms " << ex.root_rms << ")";
+  }
+  std::cerr << "; C(delta -> 0) = " << ex.extrapolated << " +- " << ex.error
+            << "\n  interface count steps (x = L -> 0):";
+  for (const CountStep& st : ex.steps) {
+    std::cerr << " " << st.outer << "->" << st.inner << " at x " << st.x << ";";
+  }
+  std::cerr << "\n";
+}
+
+// With --delta_extrapolation (and no stop requested): the runs at the
+// widths delta, delta/r, ... and the constant fitted as delta -> 0
+// (printed without --quiet); else none.
+std::optional<DeltaExtrapolation> ExtrapolateIfAsked(
+    const SimulationSettings& s, const SimulationResult& result) {
   std::optional<DeltaExtrapolation> extrapolation;
   if (FLAGS_delta_extrapolation >= 2 && ObservedStop() == StopCause::kNone) {
     const DeltaExtrapolation& ex = extrapolation.emplace(ExtrapolateDelta(
@@ -284,32 +315,57 @@ int RunSimulate() {
             std::cerr << "  extrapolation: delta " << w.delta << "  grid "
                       << w.nx << " x " << w.ny << "  C " << w.constant
                       << "  iterations " << w.iterations << "  "
-                      << w.termination << "  interfaces x = L: "
-                      << w.interfaces_far << ", max " << w.interfaces_max
-                      << "\n";
+                      << w.termination
+                      << "  interfaces x = L: " << w.interfaces_far << ", max "
+                      << w.interfaces_max << "\n";
           }
         }));
-    if (!FLAGS_quiet) {
-      std::cerr << "  extrapolation: "
-                << (ex.all_converged ? "every width converged"
-                                     : "NOT every width converged")
-                << ", C(delta) " << (ex.monotone ? "" : "NOT ")
-                << "monotone; linear c0 " << ex.c0 << " (rms "
-                << ex.linear_rms << ")";
-      if (ex.has_quadratic) {
-        std::cerr << ", quadratic q0 " << ex.q0 << " (rms "
-                  << ex.quadratic_rms << "), root s0 " << ex.s0 << " (rms "
-                  << ex.root_rms << ")";
-      }
-      std::cerr << "; C(delta -> 0) = " << ex.extrapolated << " +- "
-                << ex.error << "\n  interface count steps (x = L -> 0):";
-      for (const CountStep& st : ex.steps) {
-        std::cerr << " " << st.outer << "->" << st.inner << " at x "
-                  << st.x << ";";
-      }
-      std::cerr << "\n";
-    }
+    if (!FLAGS_quiet) PrintExtrapolation(ex);
   }
+  return extrapolation;
+}
+
+// Writes DIR/uy.png (the slope figure), DIR/u.csv and DIR/interfaces.csv.
+void WriteSimulationFiles(RunDirectory* output, const SimulationSettings& s,
+                          const SimulationResult& result) {
+  const int width_px = 800;
+  const int height_px = std::clamp(
+      static_cast<int>(std::lround(width_px * s.height / s.length)), 200, 1600);
+  WriteFileAtomically(
+      output->File("uy.png"),
+      EncodePng(SlopeFigure(result.field, width_px, height_px)));
+  WriteFileAtomically(output->File("u.csv"), FieldCsv(result.field));
+  WriteFileAtomically(output->File("interfaces.csv"),
+                      InterfaceCsv(result.field, result.interfaces));
+}
+
+// Prints the energy (also scaled by eps^2/3 L^1/3) and the interface counts
+// at both ends.
+void PrintSimulationEnergy(const SimulationSettings& s,
+                           const SimulationResult& result,
+                           const std::string& dir) {
+  const double scale = std::pow(s.epsilon, 2.0 / 3.0) * std::cbrt(s.length);
+  std::cerr << "energy " << result.energy.total() << " (elastic "
+            << result.energy.elastic << ", interfacial "
+            << result.energy.interfacial()
+            << "), E / (eps^2/3 L^1/3) = " << result.energy.total() / scale
+            << "; interfaces at x = L: " << result.interfaces.back()
+            << ", near x = 0: " << result.interfaces.front() << "; wrote "
+            << dir << "\n";
+}
+
+int RunSimulate() {
+  SimulationSettings s = SimulationSettingsFromFlags();
+  CheckSimulationMemory(s);
+  const std::string dir = PrepareOutput();
+  AnnounceSimulation(&s);
+  const SimulationResult result = RunSimulation(s);
+  if (const std::string why = SimulationBreakdown(result); !why.empty()) {
+    throw InputError("branching simulate: " + why +
+                     " (--ny, --delta, --epsilon, --length, --height)");
+  }
+  const std::optional<DeltaExtrapolation> extrapolation =
+      ExtrapolateIfAsked(s, result);
   const DeltaExtrapolation* ex = extrapolation ? &*extrapolation : nullptr;
   const JsonObject summary = SimulationJson(s, result, ex);
   // The exit code says what the summary's converged says: a last stage that
@@ -320,26 +376,11 @@ int RunSimulate() {
        SimulationFailures(s, result, ex, "--lm_iterations")) {
     status.Require(false, failure);
   }
-
-  const int width_px = 800;
-  const int height_px = std::clamp(
-      static_cast<int>(std::lround(width_px * s.height / s.length)), 200, 1600);
   RunDirectory output(dir);
-  WriteFileAtomically(output.File("uy.png"),
-                      EncodePng(SlopeFigure(result.field, width_px, height_px)));
-  WriteFileAtomically(output.File("u.csv"), FieldCsv(result.field));
-  WriteFileAtomically(output.File("interfaces.csv"),
-                      InterfaceCsv(result.field, result.interfaces));
+  WriteSimulationFiles(&output, s, result);
   const std::string text = output.Commit(summary);
   if (FLAGS_json) std::cout << text << "\n";
-  if (!FLAGS_quiet) {
-    std::cerr << "energy " << result.energy.total() << " (elastic "
-              << result.energy.elastic << ", interfacial "
-              << result.energy.interfacial() << "), E / (eps^2/3 L^1/3) = "
-              << result.energy.total() / scale << "; interfaces at x = L: "
-              << result.interfaces.back() << ", near x = 0: "
-              << result.interfaces.front() << "; wrote " << dir << "\n";
-  }
+  if (!FLAGS_quiet) PrintSimulationEnergy(s, result, dir);
   return status.Finish();
 }
 

@@ -55,82 +55,81 @@ FlagTable DemoFlags() {
                 MaterialFlags(), SolverFlags(), FilmStripFlags()});
 }
 
-int RunDemo() {
-  const std::string dir = FLAGS_output;
-  RunPaths()
-      .OutputDirectory("output", dir)
-      .OutputGlb("gltf", FLAGS_gltf)
-      .Check();
-  const auto clock = std::chrono::steady_clock::now();
-  const Mesh finger = MakeFinger();
-  const std::string size = " on " + std::to_string(finger.num_vertices()) +
-                           " vertices";
+// Refuses --steps and --extrapolate whose geodesic or path would not fit in
+// memory on `finger`.
+void CheckDemoMemory(const Mesh& finger) {
+  const std::string size =
+      " on " + std::to_string(finger.num_vertices()) + " vertices";
   CheckMemory(GeodesicBytes(finger.num_vertices(), FLAGS_steps),
               "--steps " + std::to_string(FLAGS_steps) + size, kGeodesicModel);
-  CheckMemory(PathBytes(finger.num_vertices(),
-                        FLAGS_steps + FLAGS_extrapolate + 1),
-              "--steps " + std::to_string(FLAGS_steps) + " --extrapolate " +
-                  std::to_string(FLAGS_extrapolate) + size,
-              kDemoPathModel);
+  CheckMemory(
+      PathBytes(finger.num_vertices(), FLAGS_steps + FLAGS_extrapolate + 1),
+      "--steps " + std::to_string(FLAGS_steps) + " --extrapolate " +
+          std::to_string(FLAGS_extrapolate) + size,
+      kDemoPathModel);
+}
+
+// The film strip's options (the flags', seen from the front, 7 frames a
+// row), its memory checked for every frame of the demo.
+RenderOptions DemoFilmStripOptions() {
   RenderOptions options = FilmStripOptionsFromFlags();
   options.view = ParseView("front");  // the bend lies in the x-y plane
   options.max_per_row = 7;
   CheckFilmStripMemory(FLAGS_steps + FLAGS_extrapolate + 1, options,
                        "film_strip.png");
-  const double pi = std::acos(-1.0);
-  const Positions bent = BendAlongY(finger.positions, 4.0, 0.5 * pi);
-  const workflows::MaterialChoice material = MaterialChoiceFromFlags(finger);
-  const ShellSpace space(finger, ValidateShell(finger, "procedural finger"),
-                         material.material);
-  const std::vector<int> base = FingerBaseVertices();
-  SolverSettings settings = SettingsFromFlags("demo geodesic");
+  return options;
+}
 
-  GeodesicInput input;
-  input.start = finger.positions;
-  input.end = bent;
-  input.steps = FLAGS_steps;
-  input.fixed_vertices = base;
-  const GeodesicResult geodesic = SolveGeodesic(space, input, settings);
-
-  ShellPath frames = geodesic.path;
+// Extends `frames` (the geodesic) by --extrapolate EXP steps from its last
+// two shapes, the base held fixed; the shot (empty without --extrapolate).
+ShootResult ExtrapolateDemoPath(const ShellSpace& space,
+                                const std::vector<int>& base,
+                                SolverSettings* settings, ShellPath* frames) {
   ShootResult shot;
   if (FLAGS_extrapolate > 0) {
-    settings.progress_label = "demo exp";
+    settings->progress_label = "demo exp";
     const int K = FLAGS_steps;
-    shot = ShootWithReport(space, frames[K - 1], frames[K],
-                           FLAGS_extrapolate + 1, StepDirection::kForward,
-                           base, settings);
-    frames.insert(frames.end(), shot.path.begin() + 2, shot.path.end());
+    shot = ShootWithReport(space, (*frames)[K - 1], (*frames)[K],
+                           FLAGS_extrapolate + 1, StepDirection::kForward, base,
+                           *settings);
+    frames->insert(frames->end(), shot.path.begin() + 2, shot.path.end());
   }
-  // The geodesic's report, with the EXP steps of the extrapolation added to
-  // iterations and stages; the extrapolated steps' energies (the shot's,
-  // after its first step, which is the geodesic's last) beside it.
+  return shot;
+}
+
+// Writes the viewer page, the PLY frames, the glTF animation (with --gltf)
+// and the film strip of `frames` into `output`.
+void WriteDemoFiles(RunDirectory* output, const Mesh& finger,
+                    const ShellPath& frames, const RenderOptions& options) {
+  output->AddFileOfSummary(
+      "viewer.html", [&finger, &frames](const std::string& text) {
+        return EncodeHtmlViewer(frames, finger.faces, "shellspace demo", text);
+      });
+  WriteFrames(output->File("frames"), finger.faces, frames);
+  if (!FLAGS_gltf.empty()) {
+    output->AddOutside(FLAGS_gltf,
+                       EncodeGltfMorphAnimation(frames, finger.faces));
+  }
+  WriteFilmStrip(frames, finger.faces, options, output->File("film_strip.png"));
+}
+
+// The demo's summary.json: the geodesic's report, with the EXP steps of the
+// extrapolation added to iterations and stages; the extrapolated steps'
+// energies (the shot's, after its first step, which is the geodesic's last)
+// beside it.
+JsonObject DemoSummary(const GeodesicResult& geodesic, const ShootResult& shot,
+                       int frames, double seconds, const std::string& dir,
+                       const workflows::MaterialChoice& material,
+                       const Mesh& finger) {
   const ShootTotals totals = TotalsOf(shot);
   const int shot_iterations = totals.iterations;
   const bool shot_converged = totals.converged;
   std::vector<JsonObject> stages = GeodesicStages(geodesic);
   for (const JsonObject& stage : ExpStepStages(shot)) stages.push_back(stage);
-  const std::vector<double> extrapolated(
-      shot.step_energies.empty() ? shot.step_energies.end()
-                                 : shot.step_energies.begin() + 1,
-      shot.step_energies.end());
-  RunStatus status("demo");
-  CheckGeodesic(geodesic, "demo: the geodesic", &status);
-  CheckShoot(shot, &status);
-  RunDirectory output(dir);
-  output.AddFileOfSummary(
-      "viewer.html", [&finger, &frames](const std::string& text) {
-        return EncodeHtmlViewer(frames, finger.faces, "shellspace demo", text);
-      });
-  WriteFrames(output.File("frames"), finger.faces, frames);
-  if (!FLAGS_gltf.empty()) {
-    output.AddOutside(FLAGS_gltf,
-                      EncodeGltfMorphAnimation(frames, finger.faces));
-  }
-  WriteFilmStrip(frames, finger.faces, options, output.File("film_strip.png"));
-  const double seconds =
-      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock)
-          .count();
+  const std::vector<double> extrapolated(shot.step_energies.empty()
+                                             ? shot.step_energies.end()
+                                             : shot.step_energies.begin() + 1,
+                                         shot.step_energies.end());
   JsonObject summary;
   summary.Add("path_energy", geodesic.path_energy)
       .Add("step_energies", geodesic.step_energies)
@@ -153,7 +152,7 @@ int RunDemo() {
       .Add("factorizations", geodesic.newton.factorizations)
       .Add("cg_iterations", geodesic.newton.cg_iterations)
       .Add("seconds", seconds)
-      .Add("frames", static_cast<int>(frames.size()))
+      .Add("frames", frames)
       .Add("geodesic_steps", FLAGS_steps)
       .Add("extrapolated_steps", FLAGS_extrapolate)
       .Add("vertices", finger.num_vertices())
@@ -162,6 +161,47 @@ int RunDemo() {
   if (!FLAGS_gltf.empty()) summary.Add("gltf", FLAGS_gltf);
   summary.Add("viewer", dir + "/viewer.html")
       .Add("material", workflows::MaterialChoiceJson(material, finger));
+  return summary;
+}
+
+int RunDemo() {
+  const std::string dir = FLAGS_output;
+  RunPaths()
+      .OutputDirectory("output", dir)
+      .OutputGlb("gltf", FLAGS_gltf)
+      .Check();
+  const auto clock = std::chrono::steady_clock::now();
+  const Mesh finger = MakeFinger();
+  CheckDemoMemory(finger);
+  const RenderOptions options = DemoFilmStripOptions();
+  const double pi = std::acos(-1.0);
+  const Positions bent = BendAlongY(finger.positions, 4.0, 0.5 * pi);
+  const workflows::MaterialChoice material = MaterialChoiceFromFlags(finger);
+  const ShellSpace space(finger, ValidateShell(finger, "procedural finger"),
+                         material.material);
+  const std::vector<int> base = FingerBaseVertices();
+  SolverSettings settings = SettingsFromFlags("demo geodesic");
+
+  GeodesicInput input;
+  input.start = finger.positions;
+  input.end = bent;
+  input.steps = FLAGS_steps;
+  input.fixed_vertices = base;
+  const GeodesicResult geodesic = SolveGeodesic(space, input, settings);
+
+  ShellPath frames = geodesic.path;
+  const ShootResult shot = ExtrapolateDemoPath(space, base, &settings, &frames);
+  RunStatus status("demo");
+  CheckGeodesic(geodesic, "demo: the geodesic", &status);
+  CheckShoot(shot, &status);
+  RunDirectory output(dir);
+  WriteDemoFiles(&output, finger, frames, options);
+  const double seconds =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - clock)
+          .count();
+  const JsonObject summary =
+      DemoSummary(geodesic, shot, static_cast<int>(frames.size()), seconds, dir,
+                  material, finger);
   const std::string json = output.Commit(summary);
   std::cout << json << "\n";
   return status.Finish();
