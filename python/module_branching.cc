@@ -5,11 +5,11 @@
 
 #include "python/module_common.h"
 #include "python/parameter_docs.h"
+#include "shellspace/geometry/memory_limits.h"
 #include "shellspace/problems/branching/construction_optimizer.h"
 #include "shellspace/problems/branching/general_construction.h"
 #include "shellspace/problems/branching/simulation.h"
 #include "shellspace/reports/branching_reports.h"
-#include "tools/run/memory_limits.h"
 
 namespace shellspace {
 namespace pymodule {

@@ -9,6 +9,7 @@
 #include "python/module_options.h"
 #include "python/module_results.h"
 #include "python/parameter_docs.h"
+#include "shellspace/geometry/memory_limits.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/exponential_map.h"
 #include "shellspace/problems/calculus/geodesic.h"
@@ -20,7 +21,6 @@
 #include "shellspace/workflows/geodesic.h"
 #include "shellspace/workflows/shoot.h"
 #include "shellspace/workflows/transport.h"
-#include "tools/run/memory_limits.h"
 
 namespace shellspace {
 namespace pymodule {

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "python/array_arguments.h"
+#include "shellspace/geometry/memory_limits.h"
 #include "shellspace/geometry/validation.h"
 #include "shellspace/io/atomic_file.h"
 #include "shellspace/io/frame_sequence.h"
@@ -14,9 +15,6 @@
 #include "shellspace/io/png_writer.h"
 #include "shellspace/render/film_strip.h"
 #include "shellspace/reports/shape_reports.h"
-// The CLI's memory bounds of --steps (compiled into the module,
-// python/CMakeLists.txt).
-#include "tools/run/memory_limits.h"
 
 namespace shellspace {
 namespace pymodule {
@@ -211,7 +209,7 @@ void CheckAtLeast(const std::string& name, long value, long min) {
 }
 
 // `steps` of a solve the CLI bounds up front: in [min, kMaxSteps] and its
-// memory estimate `bytes` (tools/run/memory_limits.h, the model `model`)
+// memory estimate `bytes` (geometry/memory_limits.h, the model `model`)
 // within half the physical memory.
 void CheckSteps(const std::string& name, long steps, long min, double bytes,
                 int vertices, const std::string& model) {

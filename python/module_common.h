@@ -179,12 +179,12 @@ JsonObject& AddStopFields(JsonObject& json, const SolveControl& control);
 void CheckAtLeast(const std::string& name, long value, long min);
 
 // `steps` of a solve the CLI bounds up front: in [min, kMaxSteps] and its
-// memory estimate `bytes` (tools/run/memory_limits.h, the model `model`)
+// memory estimate `bytes` (geometry/memory_limits.h, the model `model`)
 // within half the physical memory.
 void CheckSteps(const std::string& name, long steps, long min, double bytes,
                 int vertices, const std::string& model);
 
-// The memory models of tools/run/memory_limits.h, as the CLI words them.
+// The memory models of geometry/memory_limits.h, as the CLI words them.
 inline constexpr const char* kGeodesicModel = "64 MB + 1500 B x #V x K^2";
 inline constexpr const char* kPathModel = "64 MB + 200 B x #V x (K + 1)";
 
@@ -202,7 +202,7 @@ void CheckOutputs(const std::optional<std::string>& output,
                       inputs = {});
 
 // With `png`, the film strip of `frames` frames against the CLI's memory
-// bound (tools/run/memory_limits.h CheckFilmStripMemory), before the solve.
+// bound (render/film_strip.h CheckFilmStripMemory), before the solve.
 void CheckPngMemory(const std::optional<std::string>& png, int frames);
 
 // `output` a mesh file (.ply, .obj, .off) checked as CheckOutputs checks

@@ -6,7 +6,6 @@
 #include "python/parameter_docs.h"
 #include "shellspace/io/output_paths.h"
 #include "shellspace/render/film_strip.h"
-#include "tools/run/memory_limits.h"
 
 namespace shellspace {
 namespace pymodule {

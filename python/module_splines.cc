@@ -8,13 +8,13 @@
 #include "python/module_options.h"
 #include "python/module_results.h"
 #include "python/parameter_docs.h"
+#include "shellspace/geometry/memory_limits.h"
 #include "shellspace/problems/splines/ltheta_spline.h"
 #include "shellspace/problems/splines/spline.h"
 #include "shellspace/problems/splines/spline_initial_path.h"
 #include "shellspace/reports/path_reports.h"
 #include "shellspace/workflows/regress.h"
 #include "shellspace/workflows/spline.h"
-#include "tools/run/memory_limits.h"
 
 namespace shellspace {
 namespace pymodule {
@@ -53,7 +53,7 @@ SplineSettings SplineSettingsOf(const SolverOptions& solver,
 }
 
 // The path verbs' (spline, regress) bound of steps: kMaxSteps and the
-// path's memory (tools/run/memory_limits.h's PathBytes).
+// path's memory (geometry/memory_limits.h's PathBytes).
 void CheckPathSteps(int steps, int min, int vertices) {
   CheckSteps("steps", steps, min, PathBytes(vertices, steps + 1), vertices,
              kPathModel);

@@ -9,6 +9,7 @@
 #include "python/module_options.h"
 #include "python/module_results.h"
 #include "python/parameter_docs.h"
+#include "shellspace/geometry/memory_limits.h"
 #include "shellspace/io/atomic_file.h"
 #include "shellspace/io/frame_sequence.h"
 #include "shellspace/io/mesh_io.h"
@@ -21,7 +22,6 @@
 #include "shellspace/reports/shape_reports.h"
 #include "shellspace/workflows/mean.h"
 #include "shellspace/workflows/pca.h"
-#include "tools/run/memory_limits.h"
 
 namespace shellspace {
 namespace pymodule {

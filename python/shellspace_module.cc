@@ -14,7 +14,7 @@
 // that solve take time_limit and allow_unconverged, stop at KeyboardInterrupt,
 // and raise shellspace.NotConvergedError for a result that missed its
 // stopping criterion (python/solve_control.h); their steps are bounded up
-// front by the CLI's memory estimates (tools/run/memory_limits.h).
+// front by the CLI's memory estimates (geometry/memory_limits.h).
 //
 // This file makes the module and its exceptions; the functions are added
 // by one file per room of the library, python/module_<room>.cc (their

@@ -24,9 +24,10 @@
 #     infrastructure knows no verb);
 #   - in the calculus, an include of geodesic.h from the parts the geodesic
 #     solve is built of (shell_path, path_energy, path_newton,
-#     geodesic_initial_path): a back-arrow inside the room.
+#     geodesic_initial_path, vertex_relaxation, stiff_vertex_elimination;
+#     .h and .cc): a back-arrow inside the room.
 # With --self-test, first checks that a copy of the rooms passes and that
-# each of nine injected faults (bad includes, wrong edges in the table)
+# each of ten injected faults (bad includes, wrong edges in the table)
 # fails with its message.
 set -uo pipefail
 src="${1:?usage: $0 SOURCE_DIR ROOM_TABLE [--self-test]}"
@@ -103,7 +104,7 @@ check() {
         fail(file " (tools/run) includes " include ": the run infrastructure knows no verb")
         next
       }
-      if (file ~ /\/(shell_path|path_energy|path_newton|geodesic_initial_path)\.(h|cc)$/ &&
+      if (file ~ /\/(shell_path|path_energy|path_newton|geodesic_initial_path|vertex_relaxation|stiff_vertex_elimination)\.(h|cc)$/ &&
           include ~ /\/calculus\/geodesic\.h$/) {
         fail(file " includes " include ": the geodesic solve is built of it")
         next
@@ -177,6 +178,10 @@ if [[ "${3:-}" == "--self-test" ]]; then
   echo "#include \"$(prefix_of calculus)/geodesic.h\"" >> "$copy/$calculus/path_newton.cc"
   expect "back-arrow in the calculus" "$calculus/path_newton.cc includes .*geodesic.h: the geodesic solve is built of it"
   cp "$scratch/path_newton.cc" "$copy/$calculus/path_newton.cc"
+  cp "$copy/$calculus/vertex_relaxation.h" "$scratch/vertex_relaxation.h"
+  echo "#include \"$(prefix_of calculus)/geodesic.h\"" >> "$copy/$calculus/vertex_relaxation.h"
+  expect "back-arrow from a stage of the solve" "$calculus/vertex_relaxation.h includes .*geodesic.h: the geodesic solve is built of it"
+  cp "$scratch/vertex_relaxation.h" "$copy/$calculus/vertex_relaxation.h"
   # Wrong edges in the table: render without its link to the branching
   # model it draws, and geometry linking the calculus (a back edge).
   awk '$1 == "render" { sub(/ branching_model/, "") } { print }' "$table" > "$scratch/no_edge.txt"

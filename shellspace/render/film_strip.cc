@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <limits>
 
+#include "shellspace/geometry/memory_limits.h"
 #include "shellspace/geometry/named_values.h"
 #include "shellspace/io/ascii_lowercase.h"
 #include "shellspace/render/bitmap_font.h"
@@ -212,6 +213,18 @@ double FilmStripBytes(int count, const RenderOptions& options) {
   return 6.0 * layout.width * static_cast<double>(layout.height) +
          32.0 * samples * layout.frame_width *
              static_cast<double>(layout.frame_height);
+}
+
+void CheckFilmStripMemory(int frames, const RenderOptions& options,
+                          const std::string& what) {
+  const FilmStripLayout layout = LayoutFilmStrip(frames, options);
+  CheckMemory(FilmStripBytes(frames, options),
+              what + ": a film strip of " + std::to_string(frames) +
+                  " frame(s), " + std::to_string(layout.width) + " x " +
+                  std::to_string(layout.height) + " pixels (frames " +
+                  std::to_string(layout.frame_width) + " x " +
+                  std::to_string(layout.frame_height) + ")",
+              kFilmStripModel);
 }
 
 std::string FrameLabel(int k, int count) {

@@ -119,6 +119,13 @@ FilmStripLayout LayoutFilmStrip(int count, const RenderOptions& options);
 // 2048 (estimate 0.69 GB), 2.38 GB at 24576 x 4096 (estimate 2.76 GB).
 double FilmStripBytes(int count, const RenderOptions& options);
 
+// CheckMemory (geometry/memory_limits.h) of FilmStripBytes(frames, options),
+// the model kFilmStripModel, before anything is rendered; `what` names the
+// output (e.g. "--png"). Also throws as LayoutFilmStrip (a width below one
+// pixel per column, a frame wider than 8192 pixels).
+void CheckFilmStripMemory(int frames, const RenderOptions& options,
+                          const std::string& what);
+
 // The label of frame k of `count`: "k  t=T" as described at
 // RenderOptions::labels.
 std::string FrameLabel(int k, int count);

@@ -102,7 +102,7 @@ TEST(RunLimitsCliTest, StepsAreBoundedBeforeAnyWorkInEveryVerb) {
   const struct {
     std::string args, message;
   } cases[] = {
-      // Above the memory estimate (the estimates of tools/run/memory_limits.h).
+      // Above the memory estimate (the estimates of geometry/memory_limits.h).
       {geodesic("geodesic", "100000"), memory("100000")},
       {geodesic("geodesic", "20000"), memory("20000")},
       {geodesic("log", "100000"), memory("100000")},

@@ -6,10 +6,10 @@
 #include <string>
 #include <vector>
 
+#include "shellspace/geometry/memory_limits.h"
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/geometry/validation.h"
 #include "tools/run/common_flags.h"
-#include "tools/run/memory_limits.h"
 #include "tools/verbs/path_summary.h"
 
 namespace shellspace {

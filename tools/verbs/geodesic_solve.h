@@ -21,7 +21,7 @@ namespace shellspace {
 FlagSpec MultiresFlag();
 
 // The memory model of a geodesic solve of K steps (GeodesicBytes in
-// memory_limits.h), as named in errors and --help.
+// geometry/memory_limits.h), as named in errors and --help.
 inline constexpr const char* kGeodesicModel = "64 MB + 1500 B x #V x K^2";
 
 // The required --start and --end flags of the verbs that solve geodesics,

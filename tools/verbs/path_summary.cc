@@ -4,6 +4,7 @@
 #include <iostream>
 #include <utility>
 
+#include "shellspace/geometry/memory_limits.h"
 #include "shellspace/io/atomic_file.h"
 #include "shellspace/io/frame_set_check.h"
 #include "shellspace/io/gltf_writer.h"
@@ -11,7 +12,6 @@
 #include "shellspace/render/film_strip.h"
 #include "shellspace/render/html_viewer.h"
 #include "tools/run/common_flags.h"
-#include "tools/run/memory_limits.h"
 #include "tools/verbs/film_strip_flags.h"
 #include "tools/run/shell_inputs.h"
 

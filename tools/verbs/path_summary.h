@@ -52,7 +52,7 @@ int FailedSolveExit(const std::string& verb,
 void CheckShoot(const ShootResult& result, RunStatus* status);
 
 // With --png, the film strip of `frames` frames (--up, --labels, --color)
-// against the memory bound (tools/run/memory_limits.h
+// against the memory bound (render/film_strip.h
 // CheckFilmStripMemory): called before the solve with the frames it will
 // write, so that a strip too large fails in one line before any work.
 void CheckPngMemory(int frames);

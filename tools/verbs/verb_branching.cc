@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "shellspace/geometry/memory_limits.h"
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/problems/branching/construction_optimizer.h"
 #include "shellspace/problems/branching/general_construction.h"
@@ -35,7 +36,6 @@
 #include "shellspace/io/png_writer.h"
 #include "shellspace/render/branching_image.h"
 #include "tools/run/common_flags.h"
-#include "tools/run/memory_limits.h"
 #include "tools/run/run_output.h"
 #include "tools/run/run_paths.h"
 #include "tools/run/run_status.h"

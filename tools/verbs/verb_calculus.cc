@@ -5,6 +5,7 @@
 #include <chrono>
 #include <iostream>
 
+#include "shellspace/geometry/memory_limits.h"
 #include "shellspace/io/frame_sequence.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/exponential_map.h"
@@ -15,7 +16,6 @@
 #include "tools/run/common_flags.h"
 #include "tools/verbs/film_strip_flags.h"
 #include "tools/verbs/geodesic_solve.h"
-#include "tools/run/memory_limits.h"
 #include "tools/verbs/path_summary.h"
 #include "tools/run/run_paths.h"
 #include "tools/run/run_status.h"

@@ -9,6 +9,7 @@
 #include <cmath>
 #include <iostream>
 
+#include "shellspace/geometry/memory_limits.h"
 #include "shellspace/geometry/validation.h"
 #include "shellspace/io/atomic_file.h"
 #include "shellspace/io/gltf_writer.h"
@@ -21,7 +22,6 @@
 #include "tools/run/common_flags.h"
 #include "tools/verbs/film_strip_flags.h"
 #include "tools/verbs/geodesic_solve.h"
-#include "tools/run/memory_limits.h"
 #include "tools/verbs/path_summary.h"
 #include "tools/run/run_status.h"
 #include "tools/run/shell_inputs.h"

@@ -6,13 +6,13 @@
 #include <iostream>
 #include <string>
 
+#include "shellspace/geometry/memory_limits.h"
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/render/film_strip.h"
 #include "shellspace/io/frame_sequence.h"
 #include "shellspace/render/view.h"
 #include "tools/run/common_flags.h"
 #include "tools/verbs/film_strip_flags.h"
-#include "tools/run/memory_limits.h"
 #include "tools/run/run_paths.h"
 #include "tools/verbs/verb.h"
 

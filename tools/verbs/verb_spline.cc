@@ -6,6 +6,7 @@
 #include <chrono>
 #include <iostream>
 
+#include "shellspace/geometry/memory_limits.h"
 #include "shellspace/problems/splines/ltheta_spline.h"
 #include "shellspace/problems/splines/spline.h"
 #include "shellspace/problems/splines/spline_initial_path.h"
@@ -14,7 +15,6 @@
 #include "tools/run/common_flags.h"
 #include "tools/verbs/film_strip_flags.h"
 #include "tools/verbs/geodesic_solve.h"
-#include "tools/run/memory_limits.h"
 #include "tools/verbs/path_summary.h"
 #include "tools/run/run_paths.h"
 #include "tools/run/run_status.h"

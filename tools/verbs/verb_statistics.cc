@@ -20,7 +20,6 @@
 #include "shellspace/problems/statistics/shell_pca.h"
 #include "shellspace/render/film_strip.h"
 #include "tools/run/common_flags.h"
-#include "tools/run/memory_limits.h"
 #include "tools/verbs/film_strip_flags.h"
 #include "shellspace/io/json_writer.h"
 #include "shellspace/reports/shape_reports.h"

@@ -8,7 +8,7 @@
 
 #include "shellspace/cost_functions/shell/element_hessian.h"
 #include "shellspace/geometry/vertex_flags.h"
-#include "shellspace/problems/calculus/geodesic.h"
+#include "shellspace/problems/calculus/path_energy.h"
 #include "shellspace/runtime/parallel_for.h"
 
 namespace shellspace {

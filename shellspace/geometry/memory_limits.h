@@ -1,18 +1,22 @@
-// Memory estimates of the solves whose size the user picks (--steps, the
-// branching grid), checked before anything is allocated: above the limit,
-// one line naming the flags, the estimate and the limit. The estimates are
-// fits of the peak resident memory measured with /usr/bin/time (docs/cli-behaviour.md,
-// "Limits"); they are rough, on the safe side for the meshes measured.
-#ifndef SHELLSPACE_TOOLS_RUN_MEMORY_LIMITS_H_
-#define SHELLSPACE_TOOLS_RUN_MEMORY_LIMITS_H_
+// Memory estimates of the solves whose size the user picks (the steps of a
+// path, the branching grid), checked before anything is allocated: above
+// the limit, one line naming the input, the estimate and the limit. Both
+// front ends (the CLI's verbs, the Python module) refuse the same sizes
+// through these. The estimates are fits of the peak resident memory
+// measured with /usr/bin/time (docs/cli-behaviour.md, "Limits"); they are
+// rough, on the safe side for the meshes measured. The film strip's check,
+// which needs its layout, is render/film_strip.h's CheckFilmStripMemory.
+// (In geometry/, the room of InputError, not in runtime/: runtime/ sits
+// below geometry/ and links nothing of the project.)
+#ifndef SHELLSPACE_GEOMETRY_MEMORY_LIMITS_H_
+#define SHELLSPACE_GEOMETRY_MEMORY_LIMITS_H_
 
 #include <string>
 
-#include "shellspace/render/film_strip.h"
-
 namespace shellspace {
 
-// The largest --steps of any verb (also bounded by the estimates below).
+// The largest number of steps of any solve (the CLI's --steps; also
+// bounded by the estimates below).
 constexpr int kMaxSteps = 100000;
 
 // Half the physical memory of the machine.
@@ -42,18 +46,11 @@ double SplineBytes(int vertices, int steps);
 double BranchingBytes(double nodes);
 
 // A film strip (render; --png of the verbs that write frames): FilmStripBytes
-// of the library (render/film_strip.h), 6 B x W x H + 32 B x s^2 x frame
-// pixels, s the supersampling (2): the 49152 x 8192 strip of 6 square
-// frames needs about 11 GB.
+// of render/film_strip.h, 6 B x W x H + 32 B x s^2 x frame pixels, s the
+// supersampling (2): the 49152 x 8192 strip of 6 square frames needs about
+// 11 GB. Checked by render/film_strip.h's CheckFilmStripMemory.
 inline constexpr const char* kFilmStripModel =
     "6 B x width x height + 128 B x frame width x frame height";
-
-// CheckMemory of the film strip of `frames` frames drawn with `options`,
-// before anything is rendered; `what` names the output (e.g. "--png").
-// Also throws as LayoutFilmStrip (a width below one pixel per column, a
-// frame wider than 8192 pixels).
-void CheckFilmStripMemory(int frames, const RenderOptions& options,
-                          const std::string& what);
 
 // Throws InputError "<what> needs about X GB (<model>), above the limit
 // Y GB (half the physical memory)" if estimate > MemoryLimitBytes().
@@ -65,10 +62,10 @@ void CheckMemory(double estimate, const std::string& what,
 // here)".
 std::string FilmStripBoundText();
 
-// The --help text of the bound of --steps for a verb whose estimate is
-// `model`.
+// The --help text of the bound of the steps (the CLI's --steps) of a solve
+// whose estimate is `model`.
 std::string StepsBoundText(const std::string& model);
 
 }  // namespace shellspace
 
-#endif  // SHELLSPACE_TOOLS_RUN_MEMORY_LIMITS_H_
+#endif  // SHELLSPACE_GEOMETRY_MEMORY_LIMITS_H_

@@ -1,4 +1,4 @@
-#include "tools/run/memory_limits.h"
+#include "shellspace/geometry/memory_limits.h"
 
 #include <unistd.h>
 
@@ -47,18 +47,6 @@ void CheckMemory(double estimate, const std::string& what,
   throw InputError(what + " needs about " + Gigabytes(estimate) + " (" +
                    model + "), above the limit " + Gigabytes(limit) +
                    " (half the physical memory)");
-}
-
-void CheckFilmStripMemory(int frames, const RenderOptions& options,
-                          const std::string& what) {
-  const FilmStripLayout layout = LayoutFilmStrip(frames, options);
-  CheckMemory(FilmStripBytes(frames, options),
-              what + ": a film strip of " + std::to_string(frames) +
-                  " frame(s), " + std::to_string(layout.width) + " x " +
-                  std::to_string(layout.height) + " pixels (frames " +
-                  std::to_string(layout.frame_width) + " x " +
-                  std::to_string(layout.frame_height) + ")",
-              kFilmStripModel);
 }
 
 std::string FilmStripBoundText() {
