@@ -15,7 +15,7 @@ namespace {
 
 // What an unconverged geodesic missed, as the front ends word it.
 std::string GradientFailure(const shellspace::GeodesicResult& g,
-                            const std::string& what) {
+                            const Faces& faces, const std::string& what) {
   return what + ": |grad| " + ShortNumber(g.final_gradient) +
          " above the target " + ShortNumber(g.gradient_target) +
          " (tolerance x max(1, |grad_0|)) after " +
@@ -23,7 +23,7 @@ std::string GradientFailure(const shellspace::GeodesicResult& g,
          (!g.stall.empty()    ? g.stall
           : g.stages.empty() ? std::string("no stages")
                              : g.stages.back().termination) +
-         ")";
+         ")" + GradientPeakText(g, faces);
 }
 
 std::vector<std::string> PathWarnings(const shellspace::GeodesicResult& g) {
@@ -180,12 +180,32 @@ GeodesicResult Solve(const GeodesicOptions& options, const std::string& what) {
   MeasureSliverSwelling(&result);
   result.warnings = PathWarnings(g);
   std::vector<std::string> failures;
-  if (!g.converged) failures.push_back(GradientFailure(g, what));
+  if (!g.converged) {
+    failures.push_back(GradientFailure(g, result.start.faces, what));
+  }
   result.status = StatusOf(std::move(failures), result.stopped);
   return result;
 }
 
 }  // namespace
+
+std::string GradientPeakText(const shellspace::GeodesicResult& geodesic,
+                             const Faces& faces) {
+  const GradientPeak& peak = geodesic.gradient_peak;
+  if (peak.vertex < 0) return "";
+  std::string text = ", largest at vertex " + std::to_string(peak.vertex) +
+                     " of shape " + std::to_string(peak.shape);
+  const FaceAreaRatio& crushed = geodesic.smallest_face_area;
+  if (!geodesic.collapsing_faces || crushed.face < 0 ||
+      crushed.face >= faces.rows() ||
+      (faces.row(crushed.face).array() != peak.vertex).all()) {
+    return text;
+  }
+  return text + ", a vertex of face " + std::to_string(crushed.face) +
+         ", which the solve crushed to " + ShortNumber(crushed.ratio) +
+         " of its start area while lowering E_K (a sliver or cap of the "
+         "mesh: remesh it)";
+}
 
 GeodesicResult RunGeodesic(const GeodesicOptions& options) {
   return Solve(options, "geodesic");

@@ -78,6 +78,16 @@ struct GeodesicResult {
   double path_energy() const { return solve.geodesic.path_energy; }
 };
 
+// Where an unconverged geodesic is held: ", largest at vertex v of shape
+// k" (GeodesicResult::gradient_peak; nothing if unknown) and, if that
+// vertex lies on the triangle the path shrank most and the path crushed it
+// below kCollapsingFaceAreaRatio of its start area, ", a vertex of face f,
+// which the solve crushed to r of its start area while lowering E_K (a
+// sliver or cap of the mesh: remesh it)". `faces`: the solve's faces
+// (empty: no face is named).
+std::string GradientPeakText(const shellspace::GeodesicResult& geodesic,
+                             const Faces& faces);
+
 // Solves the geodesic. InputError for bad options (a steps count below 1,
 // an unknown word, a mask out of range, an end of another vertex count);
 // a solve that could not run is status kFailed with the path it started

@@ -11,6 +11,7 @@
 #include "shellspace/io/png_writer.h"
 #include "shellspace/render/film_strip.h"
 #include "shellspace/render/html_viewer.h"
+#include "shellspace/workflows/geodesic.h"
 #include "tools/run/common_flags.h"
 #include "tools/verbs/film_strip_flags.h"
 #include "tools/run/shell_inputs.h"
@@ -49,17 +50,6 @@ void AddViewerPage(RunDirectory* out, const Faces& faces,
       });
 }
 
-namespace {
-
-// ", largest at vertex v of shape k" (nothing if unknown).
-std::string GradientPeakText(const GradientPeak& peak) {
-  if (peak.vertex < 0) return "";
-  return ", largest at vertex " + std::to_string(peak.vertex) + " of shape " +
-         std::to_string(peak.shape);
-}
-
-}  // namespace
-
 void CheckGeodesic(const GeodesicResult& result, const std::string& what,
                    RunStatus* status) {
   status->Require(result.converged,
@@ -70,7 +60,7 @@ void CheckGeodesic(const GeodesicResult& result, const std::string& what,
                       std::to_string(result.iterations) + " iterations (" +
                       (result.stages.empty() ? std::string("no stages")
                                              : result.stages.back().termination) +
-                      ")" + GradientPeakText(result.gradient_peak));
+                      ")" + workflows::GradientPeakText(result, Faces()));
   if (result.uneven_steps) {
     const auto [lo, hi] = std::minmax_element(result.step_energies.begin(),
                                               result.step_energies.end());
