@@ -5,11 +5,7 @@
 
 #include "python/module_common.h"
 #include "python/parameter_docs.h"
-#include "shellspace/geometry/memory_limits.h"
-#include "shellspace/problems/branching/construction_optimizer.h"
-#include "shellspace/problems/branching/general_construction.h"
-#include "shellspace/problems/branching/simulation.h"
-#include "shellspace/reports/branching_reports.h"
+#include "shellspace/workflows/branching.h"
 
 namespace shellspace {
 namespace pymodule {
@@ -24,10 +20,9 @@ py::object BranchingSimulatePy(double epsilon, double length, double height,
                                int delta_extrapolation,
                                std::optional<double> time_limit,
                                bool allow_unconverged) {
-  using namespace branching;
   SolveControl control(time_limit);
-  CheckExtrapolationCount(delta_extrapolation);
-  SimulationSettings s;
+  workflows::BranchingSimulateOptions options;
+  branching::SimulationSettings& s = options.settings;
   s.epsilon = epsilon;
   s.length = length;
   s.height = height > 0 ? height : 0.5;
@@ -41,45 +36,27 @@ py::object BranchingSimulatePy(double epsilon, double length, double height,
   s.seed = static_cast<unsigned>(init_seed);
   s.max_iterations = lm_iterations;
   s.stop = control.Poll();
-  CheckSimulationSettings(s);
-  const double nodes = (static_cast<double>(s.nx) + 1) * s.ny;
-  CheckMemory(BranchingBytes(nodes),
-              "nx " + std::to_string(s.nx) + ", ny " + std::to_string(s.ny) +
-                  " (" + std::to_string(static_cast<long>(nodes)) + " nodes)",
-              "16 MB + 3 KB x (nx + 1) x ny");
-  std::optional<SimulationResult> simulation;
-  std::optional<DeltaExtrapolation> extrapolation;
+  options.delta_extrapolation = delta_extrapolation;
+  workflows::CheckBranchingSimulate(options);
+  std::optional<workflows::BranchingSimulateResult> run;
   {
     SolveControl::Solving solving(control);
-    simulation.emplace(RunSimulation(s));
-    const SimulationResult& result = *simulation;
-    if (const std::string why = SimulationBreakdown(result); !why.empty()) {
-      throw InputError("branching simulate: " + why);
-    }
-    if (delta_extrapolation >= 2 && !control.stopped()) {
-      extrapolation.emplace(ExtrapolateDelta(
-          s, ExtrapolationWidths(result.delta, delta_extrapolation)));
-    }
+    run.emplace(workflows::RunBranchingSimulate(options));
   }
-  const SimulationResult& result = *simulation;
-  const DeltaExtrapolation* ex = extrapolation ? &*extrapolation : nullptr;
-  JsonObject summary = SimulationJson(s, result, ex);
+  JsonObject summary = run->summary;
   AddStopFields(summary, control);
   // What the summary's converged judges, as the CLI's exit 4: raised as
   // NotConvergedError unless allow_unconverged (a stopped run: partial).
-  std::vector<std::string> failures =
-      SimulationFailures(s, result, ex, "lm_iterations");
-  const RelaxedGrid& g = result.field.grid;
+  const branching::RelaxedField& field = run->simulation.field;
+  const branching::RelaxedGrid& g = field.grid;
   py::array_t<double> u(
       {static_cast<py::ssize_t>(g.nx + 1), static_cast<py::ssize_t>(g.ny)});
   for (int i = 0; i <= g.nx; ++i) {
-    for (int j = 0; j < g.ny; ++j) {
-      u.mutable_at(i, j) = result.field.at(i, j);
-    }
+    for (int j = 0; j < g.ny; ++j) u.mutable_at(i, j) = field.at(i, j);
   }
   const py::object dict = ToDict(summary);
   return control.Finish(py::make_tuple(ReadOnlyArrays(u), dict), dict,
-                        "branching simulate", std::move(failures),
+                        "branching simulate", run->status.failures,
                         allow_unconverged);
 }
 
@@ -92,37 +69,24 @@ py::object BranchingConstructPy(double epsilon, double length,
                                 int search_starts,
                                 const std::string& search_filter,
                                 int search_threads) {
-  using namespace branching;
-  if (!(epsilon > 0) || !(length > 0)) {
-    throw InputError("epsilon and length must be > 0");
+  workflows::BranchingConstructOptions options;
+  options.epsilon = epsilon;
+  options.length = length;
+  options.family = family;
+  options.optimize = optimize;
+  options.search = search;
+  options.search_ratios = search_ratios;
+  options.search_pairs = search_pairs;
+  options.subintervals = subintervals;
+  options.search_starts = search_starts;
+  options.search_filter = search_filter;
+  options.search_threads = search_threads;
+  std::optional<workflows::BranchingConstructResult> run;
+  {
+    py::gil_scoped_release release;
+    run.emplace(workflows::RunBranchingConstruct(options));
   }
-  if (family != "km" && family != "needle" && family != "lens" &&
-      family != "general") {
-    throw InputError("family must be km, needle, lens or general, got '" +
-                     family + "'");
-  }
-  py::gil_scoped_release release;
-  if (family == "general") {
-    const GeneralSearchOptions options = MakeGeneralSearchOptions(
-        search_ratios, search_pairs, subintervals, search_starts,
-        search_threads, search_filter, "");
-    const GeneralConstruction construction = ConstructGeneral(options, search);
-    const GeneralResult& best = construction.best;
-    const FreeLengthSeries series =
-        OptimalFreeLengths(best.A, best.B, best.topology.r, epsilon, length);
-    const JsonObject summary =
-        GeneralConstructionJson(best, series, epsilon, length, search,
-                                construction.solves, construction.seconds);
-    py::gil_scoped_acquire acquire;
-    return ToDict(summary);
-  }
-  if (search) throw InputError("search needs family general");
-  const ConstructionResult result =
-      ConstructFamily(family, epsilon, length, optimize);
-  const JsonObject summary =
-      ConstructionJson(result, epsilon, length, optimize);
-  py::gil_scoped_acquire acquire;
-  return ToDict(summary);
+  return ToDict(run->summary);
 }
 
 }  // namespace

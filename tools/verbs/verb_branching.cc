@@ -18,10 +18,10 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <sstream>
 #include <filesystem>
 #include <iostream>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -35,6 +35,7 @@
 #include "shellspace/io/atomic_file.h"
 #include "shellspace/io/png_writer.h"
 #include "shellspace/render/branching_image.h"
+#include "shellspace/workflows/branching.h"
 #include "tools/run/common_flags.h"
 #include "tools/run/run_output.h"
 #include "tools/run/run_paths.h"
@@ -231,13 +232,8 @@ std::string PrepareOutput() {
   return FLAGS_output;
 }
 
-// The simulation's settings from the flags (checked), after refusing a
-// --delta the grid does not resolve.
+// The simulation's settings from the flags (checked by the workflow).
 SimulationSettings SimulationSettingsFromFlags() {
-  if (FLAGS_delta > 0 && BranchingHeight() / FLAGS_ny > FLAGS_delta / 2.0) {
-    throw InputError("--delta is not resolved: need --height / --ny <= "
-                     "--delta / 2");
-  }
   SimulationSettings s;
   s.epsilon = FLAGS_epsilon;
   s.length = FLAGS_length;
@@ -252,17 +248,7 @@ SimulationSettings SimulationSettingsFromFlags() {
   s.seed = static_cast<unsigned>(FLAGS_init_seed);
   s.max_iterations = FLAGS_lm_iterations;
   s.stop = StopPollForRun();
-  CheckSimulationSettings(s);
   return s;
-}
-
-// Refuses a grid whose estimated memory exceeds the limit.
-void CheckSimulationMemory(const SimulationSettings& s) {
-  const double nodes = (static_cast<double>(s.nx) + 1) * s.ny;
-  CheckMemory(BranchingBytes(nodes),
-              "--nx " + std::to_string(s.nx) + " --ny " + std::to_string(s.ny) +
-                  " (" + std::to_string(static_cast<long>(nodes)) + " nodes)",
-              "16 MB + 3 KB x (nx + 1) x ny");
 }
 
 // Without --quiet: prints the simulation's parameters and sets s->progress
@@ -301,28 +287,14 @@ void PrintExtrapolation(const DeltaExtrapolation& ex) {
   std::cerr << "\n";
 }
 
-// With --delta_extrapolation (and no stop requested): the runs at the
-// widths delta, delta/r, ... and the constant fitted as delta -> 0
-// (printed without --quiet); else none.
-std::optional<DeltaExtrapolation> ExtrapolateIfAsked(
-    const SimulationSettings& s, const SimulationResult& result) {
-  std::optional<DeltaExtrapolation> extrapolation;
-  if (FLAGS_delta_extrapolation >= 2 && ObservedStop() == StopCause::kNone) {
-    const DeltaExtrapolation& ex = extrapolation.emplace(ExtrapolateDelta(
-        s, ExtrapolationWidths(result.delta, FLAGS_delta_extrapolation),
-        [](const DeltaWidth& w) {
-          if (!FLAGS_quiet) {
-            std::cerr << "  extrapolation: delta " << w.delta << "  grid "
-                      << w.nx << " x " << w.ny << "  C " << w.constant
-                      << "  iterations " << w.iterations << "  "
-                      << w.termination
-                      << "  interfaces x = L: " << w.interfaces_far << ", max "
-                      << w.interfaces_max << "\n";
-          }
-        }));
-    if (!FLAGS_quiet) PrintExtrapolation(ex);
-  }
-  return extrapolation;
+// Without --quiet: one line per width of the extrapolation.
+void PrintExtrapolationWidth(const DeltaWidth& w) {
+  if (FLAGS_quiet) return;
+  std::cerr << "  extrapolation: delta " << w.delta << "  grid " << w.nx
+            << " x " << w.ny << "  C " << w.constant << "  iterations "
+            << w.iterations << "  " << w.termination
+            << "  interfaces x = L: " << w.interfaces_far << ", max "
+            << w.interfaces_max << "\n";
 }
 
 // Writes DIR/uy.png (the slope figure), DIR/u.csv and DIR/interfaces.csv.
@@ -355,121 +327,111 @@ void PrintSimulationEnergy(const SimulationSettings& s,
 }
 
 int RunSimulate() {
-  SimulationSettings s = SimulationSettingsFromFlags();
-  CheckSimulationMemory(s);
+  workflows::BranchingSimulateOptions options;
+  options.settings = SimulationSettingsFromFlags();
+  options.delta_extrapolation = FLAGS_delta_extrapolation;
+  options.on_width = PrintExtrapolationWidth;
+  workflows::CheckBranchingSimulate(options);
   const std::string dir = PrepareOutput();
-  AnnounceSimulation(&s);
-  const SimulationResult result = RunSimulation(s);
-  if (const std::string why = SimulationBreakdown(result); !why.empty()) {
-    throw InputError("branching simulate: " + why +
-                     " (--ny, --delta, --epsilon, --length, --height)");
-  }
-  const std::optional<DeltaExtrapolation> extrapolation =
-      ExtrapolateIfAsked(s, result);
-  const DeltaExtrapolation* ex = extrapolation ? &*extrapolation : nullptr;
-  const JsonObject summary = SimulationJson(s, result, ex);
+  AnnounceSimulation(&options.settings);
+  const workflows::BranchingSimulateResult run =
+      workflows::RunBranchingSimulate(options);
+  if (run.extrapolation && !FLAGS_quiet) PrintExtrapolation(*run.extrapolation);
   // The exit code says what the summary's converged says: a last stage that
   // did not converge (NO_CONVERGENCE after --lm_iterations), or a width of
   // the extrapolation that did not, is exit 4.
   RunStatus status("branching simulate");
-  for (const std::string& failure :
-       SimulationFailures(s, result, ex, "--lm_iterations")) {
+  for (const std::string& failure : run.status.failures) {
     status.Require(false, failure);
   }
   RunDirectory output(dir);
-  WriteSimulationFiles(&output, s, result);
-  const std::string text = output.Commit(summary);
+  WriteSimulationFiles(&output, run.settings, run.simulation);
+  const std::string text = output.Commit(run.summary);
   if (FLAGS_json) std::cout << text << "\n";
-  if (!FLAGS_quiet) PrintSimulationEnergy(s, result, dir);
+  if (!FLAGS_quiet) PrintSimulationEnergy(run.settings, run.simulation, dir);
   return status.Finish();
 }
 
-int RunGeneral(double epsilon, const std::string& dir) {
-  const GeneralSearchOptions options = MakeGeneralSearchOptions(
-      FLAGS_search_ratios, FLAGS_search_pairs, FLAGS_subintervals,
-      FLAGS_search_starts, FLAGS_search_threads, FLAGS_search_filter, "--");
-  const GeneralConstruction construction =
-      ConstructGeneral(options, FLAGS_search, [](const GeneralResult& g) {
-        if (!FLAGS_quiet && g.ok) {
-          std::cerr << "  " << g.topology.name << ": C_free " << g.constant_free
-                    << "\n";
-        }
-      });
-  const GeneralResult& best = construction.best;
-  const int solves = construction.solves;
-  const double seconds = construction.seconds;
-  const FreeLengthSeries series =
-      OptimalFreeLengths(best.A, best.B, best.topology.r, epsilon, FLAGS_length);
-  const JsonObject summary = GeneralConstructionJson(
-      best, series, epsilon, FLAGS_length, FLAGS_search, solves, seconds);
-  Construction c;
-  c.pattern = GeneralCellPattern(best);
-  c.length = FLAGS_length;
-  c.h0 = series.h0;
-  c.lengths = series.lengths;
-  const double height = FLAGS_height > 0 ? FLAGS_height : 2.0 * series.h0;
-  const int width_px = 900;
-  const int height_px = std::clamp(
-      static_cast<int>(std::lround(width_px * height / FLAGS_length)), 100,
-      1800);
+// The figure's height in pixels for a pattern of `height` over --length
+// at 900 pixels wide.
+int ConstructionFigureHeight(double height) {
+  return std::clamp(
+      static_cast<int>(std::lround(900 * height / FLAGS_length)), 100, 1800);
+}
+
+// Writes DIR/pattern.png (and for the general family DIR/pattern.txt) and
+// prints the summary (--json) or the construction's line.
+int WriteConstruction(const workflows::BranchingConstructResult& run,
+                      const std::string& dir) {
   RunDirectory output(dir);
-  WriteFileAtomically(
-      output.File("pattern.png"),
-      EncodePng(ConstructionFigure(c, height, width_px, height_px)));
-  WriteFileAtomically(output.File("pattern.txt"), DescribeGeneral(best));
-  const std::string text = output.Commit(summary);
+  std::string line;
+  if (run.general) {
+    const branching::GeneralResult& best = run.general->best;
+    Construction c;
+    c.pattern = GeneralCellPattern(best);
+    c.length = FLAGS_length;
+    c.h0 = run.series.h0;
+    c.lengths = run.series.lengths;
+    const double height = FLAGS_height > 0 ? FLAGS_height : 2.0 * c.h0;
+    WriteFileAtomically(output.File("pattern.png"),
+                        EncodePng(ConstructionFigure(
+                            c, height, 900, ConstructionFigureHeight(height))));
+    WriteFileAtomically(output.File("pattern.txt"), DescribeGeneral(best));
+    std::ostringstream text;
+    text << DescribeGeneral(best) << "general: constant "
+         << best.constant_free << " (free lengths; geometric "
+         << best.constant_geometric << "), ratio to C_KM "
+         << best.constant_free / KmClosedFormConstant()
+         << ", to C_KM shifted "
+         << best.constant_free / KmShiftedClosedFormConstant() << "; "
+         << run.general->solves << " solves, " << run.general->seconds
+         << " s\n";
+    line = text.str();
+  } else {
+    const branching::ConstructionResult& result = *run.construction;
+    const double height = FLAGS_height > 0 ? FLAGS_height : 2.0 * result.h0;
+    WriteFileAtomically(
+        output.File("pattern.png"),
+        EncodePng(ConstructionFigure(result.ToConstruction(FLAGS_length),
+                                     height, 900,
+                                     ConstructionFigureHeight(height))));
+    std::ostringstream text;
+    text << result.family << ": constant " << result.constant
+         << " (C_KM closed form " << KmClosedFormConstant() << ", ratio "
+         << result.constant / KmClosedFormConstant() << "), h0 " << result.h0
+         << ", theta " << result.theta << "\n";
+    line = text.str();
+  }
+  const std::string text = output.Commit(run.summary);
   if (FLAGS_json) {
     std::cout << text << "\n";
   } else if (!FLAGS_quiet) {
-    std::cout << DescribeGeneral(best) << "general: constant " << best.constant_free
-              << " (free lengths; geometric " << best.constant_geometric
-              << "), ratio to C_KM " << best.constant_free / KmClosedFormConstant()
-              << ", to C_KM shifted "
-              << best.constant_free / KmShiftedClosedFormConstant() << "; "
-              << solves << " solves, " << seconds << " s\n";
+    std::cout << line;
   }
   return 0;
 }
 
 int RunConstruct() {
-  if (FLAGS_family != "km" && FLAGS_family != "needle" &&
-      FLAGS_family != "lens" && FLAGS_family != "general") {
-    throw InputError("--family must be km, needle, lens or general, got '" +
-                     FLAGS_family + "'");
-  }
-  const double epsilon = FLAGS_epsilon;
+  workflows::BranchingConstructOptions options;
+  options.epsilon = FLAGS_epsilon;
+  options.length = FLAGS_length;
+  options.family = FLAGS_family;
+  options.optimize = FLAGS_optimize;
+  options.search = FLAGS_search;
+  options.search_ratios = FLAGS_search_ratios;
+  options.search_pairs = FLAGS_search_pairs;
+  options.subintervals = FLAGS_subintervals;
+  options.search_starts = FLAGS_search_starts;
+  options.search_threads = FLAGS_search_threads;
+  options.search_filter = FLAGS_search_filter;
+  options.on_topology = [](const branching::GeneralResult& g) {
+    if (!FLAGS_quiet && g.ok) {
+      std::cerr << "  " << g.topology.name << ": C_free " << g.constant_free
+                << "\n";
+    }
+  };
   const std::string dir = PrepareOutput();
-  if (FLAGS_family == "general") return RunGeneral(epsilon, dir);
-  if (FLAGS_search) throw InputError("--search needs --family general");
-  const ConstructionResult result =
-      ConstructFamily(FLAGS_family, epsilon, FLAGS_length, FLAGS_optimize);
-  if (!std::isfinite(result.constant) || !std::isfinite(result.h0)) {
-    throw InputError("branching construct: the construction is not finite "
-                     "(constant " + std::to_string(result.constant) + ", h0 " +
-                     std::to_string(result.h0) +
-                     "): epsilon and length this far apart");
-  }
-  const JsonObject summary =
-      ConstructionJson(result, epsilon, FLAGS_length, FLAGS_optimize);
-  const double height = FLAGS_height > 0 ? FLAGS_height : 2.0 * result.h0;
-  const int width_px = 900;
-  const int height_px = std::clamp(
-      static_cast<int>(std::lround(width_px * height / FLAGS_length)), 100,
-      1800);
-  const RgbImage image = ConstructionFigure(
-      result.ToConstruction(FLAGS_length), height, width_px, height_px);
-  RunDirectory output(dir);
-  WriteFileAtomically(output.File("pattern.png"), EncodePng(image));
-  const std::string text = output.Commit(summary);
-  if (FLAGS_json) {
-    std::cout << text << "\n";
-  } else if (!FLAGS_quiet) {
-    std::cout << result.family << ": constant " << result.constant
-              << " (C_KM closed form " << KmClosedFormConstant() << ", ratio "
-              << result.constant / KmClosedFormConstant() << "), h0 "
-              << result.h0 << ", theta " << result.theta << "\n";
-  }
-  return 0;
+  return WriteConstruction(workflows::RunBranchingConstruct(options), dir);
 }
 
 }  // namespace
