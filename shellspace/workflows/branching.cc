@@ -67,8 +67,7 @@ BranchingConstructResult RunBranchingConstruct(
   if (family == "general") {
     const GeneralSearchOptions search = MakeGeneralSearchOptions(
         options.search_ratios, options.search_pairs, options.subintervals,
-        options.search_starts, options.search_threads, options.search_filter,
-        "");
+        options.search_starts, options.search_threads, options.search_filter);
     const GeneralConstruction& general = result.general.emplace(
         ConstructGeneral(search, options.search, options.on_topology));
     const GeneralResult& best = general.best;

@@ -44,21 +44,19 @@ std::vector<int> ParseRefinementRatios(const std::string& list,
 
 GeneralSearchOptions MakeGeneralSearchOptions(
     const std::string& search_ratios, int search_pairs, int subintervals,
-    int search_starts, int search_threads, const std::string& search_filter,
-    const std::string& prefix) {
+    int search_starts, int search_threads, const std::string& search_filter) {
   if (subintervals < 1 || subintervals > 16) {
-    throw InputError(prefix + "subintervals must lie in [1, 16]");
+    throw InputError("subintervals must lie in [1, 16]");
   }
   if (search_pairs < 1 || search_pairs > 2) {
-    throw InputError(prefix + "search_pairs must be 1 or 2");
+    throw InputError("search_pairs must be 1 or 2");
   }
   if (search_starts < 0 || search_threads < 1) {
-    throw InputError(prefix + "search_starts must be >= 0, " + prefix +
-                     "search_threads >= 1");
+    throw InputError("search_starts must be >= 0, search_threads >= 1");
   }
   GeneralSearchOptions options;
   options.ratios =
-      ParseRefinementRatios(search_ratios, prefix + "search_ratios");
+      ParseRefinementRatios(search_ratios, "search_ratios");
   options.max_pairs = search_pairs;
   options.subintervals = subintervals;
   options.starts_per_topology = search_starts;

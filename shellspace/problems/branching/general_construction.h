@@ -23,13 +23,10 @@ GeneralTopology LensTopology(int subintervals);
 // [1, 2], search_starts (starts_per_topology) >= 0, search_threads
 // (num_threads) >= 1, then search_ratios, a comma-separated list of 2, 3
 // and 4 such as "2,3,4" (ratios), and search_filter (filter). Throws
-// InputError for the first value out of range, naming it as the caller
-// does: `prefix` + its name ("--" for the CLI's flags, "" for the Python
-// arguments).
+// InputError for the first value out of range, naming it by these names.
 GeneralSearchOptions MakeGeneralSearchOptions(
     const std::string& search_ratios, int search_pairs, int subintervals,
-    int search_starts, int search_threads, const std::string& search_filter,
-    const std::string& prefix);
+    int search_starts, int search_threads, const std::string& search_filter);
 
 struct GeneralConstruction {
   GeneralResult best;
