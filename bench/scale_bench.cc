@@ -33,7 +33,7 @@
 #include "shellspace/geometry/subdivision.h"
 #include "shellspace/io/mesh_io.h"
 #include "shellspace/problems/calculus/multiresolution.h"
-#include "shellspace/reports/solve_choices.h"
+#include "shellspace/workflows/solve_choice_words.h"
 
 namespace shellspace {
 namespace {

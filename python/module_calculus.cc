@@ -17,7 +17,7 @@
 #include "shellspace/problems/calculus/parallel_transport.h"
 #include "shellspace/problems/calculus/shape_comparison.h"
 #include "shellspace/reports/path_reports.h"
-#include "shellspace/reports/solve_choices.h"
+#include "shellspace/workflows/solve_choice_words.h"
 #include "shellspace/workflows/geodesic.h"
 #include "shellspace/workflows/shoot.h"
 #include "shellspace/workflows/transport.h"
@@ -49,10 +49,10 @@ workflows::GeodesicOptions GeodesicOptionsOf(
   options.topology = std::move(start.topology);
   options.end = std::move(end);
   options.steps = steps;
-  options.multires = multires;
-  options.linear_solver = linear_solver;
-  options.lm = lm;
-  options.init = init;
+  options.multires = ParseMultiresolution(multires, "multires");
+  options.linear_solver = ParsePathLinearSolver(linear_solver, "linear_solver");
+  options.lm = ParseGeodesicLm(lm, "lm");
+  options.init = ParseGeodesicInit(init, "init");
   options.settings = solver.Settings(label);
   return options;
 }

@@ -30,6 +30,7 @@
 #include "shellspace/solvers/solver_settings.h"
 #include "shellspace/workflows/common.h"
 #include "shellspace/workflows/geodesic.h"
+#include "shellspace/workflows/solve_choice_words.h"
 #include "shellspace/workflows/solve_status.h"
 
 namespace shellspace {
@@ -337,10 +338,13 @@ void RegisterRender(py::module_& m);
   py::arg("start"), py::arg("end"), py::arg("F"),                            \
       py::arg("steps") = workflows::GeodesicOptions().steps,                 \
       py::arg("mask") = py::none(),                                          \
-      py::arg("multires") = workflows::GeodesicOptions().multires,           \
-      py::arg("linear_solver") = workflows::GeodesicOptions().linear_solver, \
-      py::arg("lm") = workflows::GeodesicOptions().lm,                       \
-      py::arg("init") = workflows::GeodesicOptions().init
+      py::arg("multires") =                                                  \
+          MultiresolutionWord(workflows::GeodesicOptions().multires),        \
+      py::arg("linear_solver") =                                             \
+          PathLinearSolverWord(workflows::GeodesicOptions().linear_solver),  \
+      py::arg("lm") = GeodesicLmWord(workflows::GeodesicOptions().lm),       \
+      py::arg("init") = std::string(                                         \
+          GeodesicInitName(workflows::GeodesicOptions().init))
 // The files of the verbs that write a path's frames: the frames' directory,
 // a film strip (PNG), a glTF 2.0 animation (.glb); none by default.
 #define SHELLSPACE_FRAME_OUTPUT_ARGS                              \

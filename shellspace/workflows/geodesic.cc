@@ -7,7 +7,6 @@
 #include "shellspace/geometry/validation.h"
 #include "shellspace/problems/calculus/exponential_map.h"
 #include "shellspace/reports/path_reports.h"
-#include "shellspace/reports/solve_choices.h"
 
 namespace shellspace {
 namespace workflows {
@@ -132,7 +131,7 @@ void MoveToUserEnd(const RigidMotion& alignment, const Positions& user_end,
 
 GeodesicResult Solve(const GeodesicOptions& options, const std::string& what) {
   if (options.steps < 1) {
-    throw InputError(options.option_prefix + "steps must be >= 1, got " +
+    throw InputError("steps must be >= 1, got " +
                      std::to_string(options.steps));
   }
   GeodesicInput input;
@@ -141,13 +140,11 @@ GeodesicResult Solve(const GeodesicOptions& options, const std::string& what) {
   input.end = alignment.Apply(options.end);
   input.steps = options.steps;
   input.fixed_vertices = options.fixed_vertices;
-  const std::string& prefix = options.option_prefix;
-  input.linear_solver =
-      ParsePathLinearSolver(options.linear_solver, prefix + "linear_solver");
-  input.lm = ParseGeodesicLm(options.lm, prefix + "lm");
-  input.init = ParseGeodesicInit(options.init, prefix + "init");
-  const MultiresolutionSettings levels = ParseMultiresolution(
-      options.multires, options.start.num_vertices(), prefix + "multires");
+  input.linear_solver = options.linear_solver;
+  input.lm = options.lm;
+  input.init = options.init;
+  const MultiresolutionSettings levels = ResolveMultiresolution(
+      options.multires, options.start.num_vertices());
 
   GeodesicResult result;
   result.start = options.start;

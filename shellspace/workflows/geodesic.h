@@ -31,16 +31,13 @@ struct GeodesicOptions {
   int steps = 8;                    // K >= 1
   std::vector<int> fixed_vertices;  // held at their linear positions
   MaterialChoice material;
-  // The solve choices as words (reports/solve_choices.h): multires
-  // auto|off|LEVELS, linear_solver auto|direct|block-jacobi, lm
-  // auto|ceres|engine, init auto|linear|ltheta. A bad word is an InputError
-  // naming option_prefix + the option ("--multires" for the CLI,
-  // "multires" for Python).
-  std::string multires = "auto";
-  std::string linear_solver = "auto";
-  std::string lm = "auto";
-  std::string init = "auto";
-  std::string option_prefix;
+  // The solve's choices (the front ends parse their words with
+  // solve_choice_words.h): the coarse levels, the Newton finish's linear
+  // solver, the LM stages' solver and the initial path.
+  MultiresolutionChoice multires = MultiresolutionChoice::Automatic();
+  PathLinearSolver linear_solver = PathLinearSolver::kAuto;
+  GeodesicLm lm = GeodesicLm::kAuto;
+  GeodesicInit init = GeodesicInit::kAuto;
   // The solves' settings; settings.stop is the front end's stop request
   // (a time limit, a signal), polled between iterations.
   SolverSettings settings;

@@ -17,6 +17,7 @@
 #include "shellspace/problems/statistics/shell_pca.h"
 #include "shellspace/solvers/solver_settings.h"
 #include "shellspace/workflows/geodesic.h"
+#include "shellspace/workflows/solve_choice_words.h"
 #include "shellspace/workflows/pca.h"
 #include "shellspace/workflows/regress.h"
 #include "shellspace/workflows/shoot.h"
@@ -106,11 +107,13 @@ TEST(OptionsDefaultsTest, GeodesicLogShootTransport) {
   const workflows::GeodesicOptions geodesic;
   for (const char* verb : {"geodesic", "log"}) {
     EXPECT_TRUE(SameDefault(verb, "steps", geodesic.steps));
-    EXPECT_TRUE(SameDefault(verb, "linear_solver", geodesic.linear_solver));
-    EXPECT_TRUE(SameDefault(verb, "lm", geodesic.lm));
-    EXPECT_TRUE(SameDefault(verb, "init", geodesic.init));
+    EXPECT_TRUE(SameDefault(verb, "linear_solver",
+                            PathLinearSolverWord(geodesic.linear_solver)));
+    EXPECT_TRUE(SameDefault(verb, "lm", GeodesicLmWord(geodesic.lm)));
+    EXPECT_TRUE(SameDefault(verb, "init", GeodesicInitName(geodesic.init)));
   }
-  EXPECT_TRUE(SameDefault("geodesic", "multires", geodesic.multires));
+  EXPECT_TRUE(SameDefault("geodesic", "multires",
+                          MultiresolutionWord(geodesic.multires)));
   EXPECT_TRUE(SameDefault("shoot", "steps", workflows::ShootOptions().steps));
   EXPECT_TRUE(SameDefault("transport", "epsilon",
                           workflows::TransportOptions().epsilon));

@@ -15,6 +15,7 @@
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/geometry/procedural_shapes.h"
 #include "shellspace/workflows/geodesic.h"
+#include "shellspace/workflows/solve_choice_words.h"
 #include "shellspace/workflows/regress.h"
 #include "shellspace/workflows/shoot.h"
 #include "shellspace/workflows/spline.h"
@@ -143,19 +144,25 @@ TEST(GeodesicWorkflowTest, LogIsKTimesTheFirstStep) {
   EXPECT_DOUBLE_EQ(result.log_max_norm, expected.cwiseAbs().maxCoeff());
 }
 
-// A bad word is bad input (InputError naming the option with its prefix),
-// not a status.
+// A bad word is bad input (InputError naming the option as the caller
+// does), not a status; the words parse to the workflow's types.
 TEST(GeodesicWorkflowTest, BadOptionsAreInputErrors) {
-  workflows::GeodesicOptions options = BentSheetGeodesic();
-  options.multires = "sometimes";
-  options.option_prefix = "--";
   try {
-    workflows::RunGeodesic(options);
+    ParseMultiresolution("sometimes", "--multires");
     FAIL() << "no InputError";
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("--multires"), std::string::npos)
         << e.what();
   }
+  EXPECT_THROW(ParseGeodesicLm("fast", "lm"), InputError);
+  EXPECT_EQ(ParseMultiresolution("3", "multires").levels, 3);
+  EXPECT_FALSE(ParseMultiresolution("off", "multires").automatic);
+  EXPECT_TRUE(ParseMultiresolution("auto", "multires").automatic);
+  EXPECT_EQ(MultiresolutionWord(ParseMultiresolution("off", "m")), "off");
+  EXPECT_EQ(ParsePathLinearSolver("block-jacobi", "linear_solver"),
+            PathLinearSolver::kBlockJacobi);
+  EXPECT_EQ(ParseGeodesicInit("rotations", "init"), GeodesicInit::kRotations);
+  workflows::GeodesicOptions options;
   options = BentSheetGeodesic();
   options.steps = 0;
   EXPECT_THROW(workflows::RunGeodesic(options), InputError);

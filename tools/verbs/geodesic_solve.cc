@@ -22,7 +22,7 @@ FlagSpec MultiresFlag() {
              "finish on the input mesh; auto: as many levels as keep the "
              "coarsest at >= " +
                  std::to_string(kAutoMinVertices) + " vertices")
-      .Default(workflows::GeodesicOptions().multires);
+      .Default(MultiresolutionWord(workflows::GeodesicOptions().multires));
 }
 
 FlagTable GeodesicEndsFlags(const std::string& start, const std::string& end) {
@@ -44,7 +44,7 @@ FlagSpec LinearSolverFlag() {
              "(memory O(K x one shape)); auto: block-jacobi from " +
                  std::to_string(kBlockJacobiFromUnknowns) +
                  " unknowns ((K - 1) x free coordinates per shape)")
-      .Default(workflows::GeodesicOptions().linear_solver);
+      .Default(PathLinearSolverWord(workflows::GeodesicOptions().linear_solver));
 }
 
 FlagSpec GeodesicLmFlag() {
@@ -55,7 +55,7 @@ FlagSpec GeodesicLmFlag() {
                   "Gauss-Newton model solved by --linear_solver (block-jacobi: "
                   "memory O(K x one shape)); auto: engine where the linear "
                   "solver is block-jacobi")
-      .Default(workflows::GeodesicOptions().lm);
+      .Default(GeodesicLmWord(workflows::GeodesicOptions().lm));
 }
 
 FlagSpec GeodesicInitFlag() {
@@ -75,7 +75,7 @@ FlagSpec GeodesicInitFlag() {
                       ratio +
                       " of its area or turns over, then rotations unless the "
                       "same holds of it, then ltheta")
-      .Default(workflows::GeodesicOptions().init);
+      .Default(GeodesicInitName(workflows::GeodesicOptions().init));
 }
 
 RunPaths GeodesicInputPaths() {
@@ -100,11 +100,11 @@ workflows::GeodesicOptions GeodesicOptionsFromFlags(const std::string& verb) {
   options.steps = FLAGS_steps;
   options.fixed_vertices = MaskFromFlags(vertices);
   options.material = MaterialChoiceFromFlags(start.mesh);
-  options.multires = FLAGS_multires;
-  options.linear_solver = FLAGS_linear_solver;
-  options.lm = FLAGS_lm;
-  options.init = FLAGS_init;
-  options.option_prefix = "--";
+  options.multires = ParseMultiresolution(FLAGS_multires, "--multires");
+  options.linear_solver =
+      ParsePathLinearSolver(FLAGS_linear_solver, "--linear_solver");
+  options.lm = ParseGeodesicLm(FLAGS_lm, "--lm");
+  options.init = ParseGeodesicInit(FLAGS_init, "--init");
   options.settings = SettingsFromFlags(verb);
   // Legal, but a path may crush them: named once, before the solve.
   if (!FLAGS_quiet) {

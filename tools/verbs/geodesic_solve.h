@@ -9,7 +9,7 @@
 #include "shellspace/io/json_writer.h"
 #include "shellspace/problems/calculus/multiresolution.h"
 #include "shellspace/reports/path_reports.h"
-#include "shellspace/reports/solve_choices.h"
+#include "shellspace/workflows/solve_choice_words.h"
 #include "shellspace/workflows/geodesic.h"
 #include "tools/run/run_paths.h"
 #include "tools/run/shell_inputs.h"

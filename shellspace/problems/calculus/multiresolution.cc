@@ -222,4 +222,22 @@ MultiresolutionResult SolveGeodesicMultiresolution(
   return result;
 }
 
+MultiresolutionSettings ResolveMultiresolution(
+    const MultiresolutionChoice& choice, int num_vertices) {
+  MultiresolutionSettings settings;
+  if (!choice.automatic) {
+    settings.levels = choice.levels;
+    // "off" was levels 0 with the default min_vertices; a number, coarse
+    // levels down to 20 vertices.
+    if (choice.levels > 0) settings.min_vertices = 20;
+    return settings;
+  }
+  settings.levels = 0;
+  settings.min_vertices = kAutoMinVertices;
+  for (double n = 0.25 * num_vertices; n >= kAutoMinVertices; n *= 0.25) {
+    ++settings.levels;
+  }
+  return settings;
+}
+
 }  // namespace shellspace

@@ -25,6 +25,25 @@ struct MultiresolutionSettings {
   double coarse_gradient_tolerance = 1e-6;
 };
 
+// Multiresolution below this many vertices per level is not used by the
+// automatic choice.
+inline constexpr int kAutoMinVertices = 2500;
+
+// How many coarse levels a caller asks for: a number, or automatic (as
+// many as keep the coarsest at kAutoMinVertices or more; none for meshes
+// below 4 kAutoMinVertices).
+struct MultiresolutionChoice {
+  bool automatic = true;
+  int levels = 0;  // when not automatic, 0 .. 8
+  static MultiresolutionChoice Automatic() { return {true, 0}; }
+  static MultiresolutionChoice Levels(int levels) { return {false, levels}; }
+};
+
+// The settings of `choice` for a mesh of `num_vertices`: automatic as
+// above; a number of levels with coarse levels down to 20 vertices.
+MultiresolutionSettings ResolveMultiresolution(
+    const MultiresolutionChoice& choice, int num_vertices);
+
 // What each level did, coarsest first; the last entry is the input mesh.
 struct MultiresolutionLevel {
   int vertices = 0;

@@ -1,4 +1,4 @@
-#include "shellspace/reports/solve_choices.h"
+#include "shellspace/workflows/solve_choice_words.h"
 
 #include <cstdlib>
 
@@ -6,32 +6,6 @@
 #include "shellspace/geometry/named_values.h"
 
 namespace shellspace {
-
-MultiresolutionSettings ParseMultiresolution(const std::string& value,
-                                             int num_vertices,
-                                             const std::string& name) {
-  MultiresolutionSettings settings;
-  if (value == "off") {
-    settings.levels = 0;
-  } else if (value == "auto") {
-    settings.levels = 0;
-    settings.min_vertices = kAutoMinVertices;
-    for (double n = 0.25 * num_vertices; n >= kAutoMinVertices; n *= 0.25) {
-      ++settings.levels;
-    }
-  } else {
-    char* end = nullptr;
-    const long levels = std::strtol(value.c_str(), &end, 10);
-    if (value.empty() || *end != '\0' || levels < 0 || levels > 8) {
-      throw InputError(name + " must be auto, off or a number of levels "
-                       "from 0 to 8, got '" + value + "'");
-    }
-    settings.levels = static_cast<int>(levels);
-    settings.min_vertices = 20;
-  }
-  return settings;
-}
-
 namespace {
 
 constexpr NamedValue<PathLinearSolver> kPathLinearSolverNames[] = {
@@ -43,13 +17,39 @@ constexpr NamedValue<GeodesicLm> kGeodesicLmNames[] = {
 
 }  // namespace
 
+MultiresolutionChoice ParseMultiresolution(const std::string& value,
+                                           const std::string& name) {
+  if (value == "auto") return MultiresolutionChoice::Automatic();
+  if (value == "off") return MultiresolutionChoice::Levels(0);
+  char* end = nullptr;
+  const long levels = std::strtol(value.c_str(), &end, 10);
+  if (value.empty() || *end != '\0' || levels < 0 || levels > 8) {
+    throw InputError(name + " must be auto, off or a number of levels "
+                     "from 0 to 8, got '" + value + "'");
+  }
+  return MultiresolutionChoice::Levels(static_cast<int>(levels));
+}
+
+std::string MultiresolutionWord(const MultiresolutionChoice& choice) {
+  if (choice.automatic) return "auto";
+  return choice.levels == 0 ? "off" : std::to_string(choice.levels);
+}
+
 PathLinearSolver ParsePathLinearSolver(const std::string& value,
                                        const std::string& name) {
   return ParseNamedValue(kPathLinearSolverNames, value, name);
 }
 
+std::string PathLinearSolverWord(PathLinearSolver solver) {
+  return NameOf(kPathLinearSolverNames, solver);
+}
+
 GeodesicLm ParseGeodesicLm(const std::string& value, const std::string& name) {
   return ParseNamedValue(kGeodesicLmNames, value, name);
+}
+
+std::string GeodesicLmWord(GeodesicLm lm) {
+  return NameOf(kGeodesicLmNames, lm);
 }
 
 GeodesicInit ParseGeodesicInit(const std::string& value,
