@@ -106,26 +106,86 @@ uint64_t MinRowBytes(const PlyElement& element, bool is_face, int face_list,
   return bytes;
 }
 
-// The header of a PLY file whose first bytes are `bytes` (the whole file, or
-// a prefix of at least kMaxHeaderBytes + 1 bytes: the same result, as no
-// line past that is parsed) and whose size is `file_size`.
-PlyHeader ParsePlyHeader(const std::string& bytes, uint64_t file_size,
-                         const MeshBuilder& b) {
-  PlyHeader header;
-  LineCursor lines(bytes, 1, b.path);
+// A header's "format" line, tokens `t`, line `number`: sets header->format.
+void ReadPlyFormatLine(const std::vector<std::string_view>& t,
+                       std::string_view line, size_t number,
+                       const MeshBuilder& b, PlyHeader* header) {
+  if (t.size() != 3 || t[2] != "1.0") {
+    b.Fail("malformed PLY format line " + Excerpt(line) + LineTag(number));
+  }
+  if (t[1] == "ascii")
+    header->format = PlyFormat::kAscii;
+  else if (t[1] == "binary_little_endian")
+    header->format = PlyFormat::kLittleEndian;
+  else if (t[1] == "binary_big_endian")
+    header->format = PlyFormat::kBigEndian;
+  else
+    b.Fail("unknown PLY format " + Excerpt(t[1]) + LineTag(number));
+}
+
+// A header's "element" line, tokens `t`, line `number`: appends the element
+// to header->elements (its name must not be in `element_names`, which gets
+// it).
+void ReadPlyElementLine(const std::vector<std::string_view>& t,
+                        std::string_view line, size_t number,
+                        const MeshBuilder& b,
+                        std::set<std::string, std::less<>>* element_names,
+                        PlyHeader* header) {
+  PlyElement element;
+  if (t.size() != 3 || !ParseInteger(t[2], &element.count) ||
+      element.count < 0 || element.count > kMaxCount) {
+    b.Fail("malformed PLY element line " + Excerpt(line) + LineTag(number));
+  }
+  element.name = std::string(t[1]);
+  if (!element_names->insert(element.name).second) {
+    b.Fail("PLY element " + Excerpt(element.name) + " declared twice" +
+           LineTag(number));
+  }
+  header->elements.push_back(element);
+}
+
+// A header's "property" line, tokens `t`, line `number`: appends the
+// property to the last element.
+void ReadPlyPropertyLine(const std::vector<std::string_view>& t,
+                         std::string_view line, size_t number,
+                         const MeshBuilder& b, PlyHeader* header) {
+  if (header->elements.empty())
+    b.Fail("PLY property before element" + LineTag(number));
+  PlyProperty property;
+  bool ok = false;
+  if (t.size() == 5 && t[1] == "list") {
+    property.is_list = true;
+    ok = ParsePlyType(std::string(t[2]), &property.count_type) &&
+         ParsePlyType(std::string(t[3]), &property.type) &&
+         IsIntegerType(property.count_type);
+    property.name = std::string(t[4]);
+  } else if (t.size() == 3) {
+    ok = ParsePlyType(std::string(t[1]), &property.type);
+    property.name = std::string(t[2]);
+  }
+  if (!ok) {
+    b.Fail("malformed PLY property line " + Excerpt(line) + LineTag(number));
+  }
+  header->elements.back().properties.push_back(property);
+}
+
+// Reads the header's lines, from "ply" through "end_header", into header's
+// format and elements; `lines` is left after end_header.
+void ReadPlyHeaderLines(LineCursor* lines, const MeshBuilder& b,
+                        PlyHeader* header) {
   std::string_view line;
   std::vector<std::string_view> t;
   std::set<std::string, std::less<>> element_names;
   bool have_format = false, ended = false;
-  while (lines.Next(&line)) {
-    if (lines.consumed() > kMaxHeaderBytes) {
+  while (lines->Next(&line)) {
+    if (lines->consumed() > kMaxHeaderBytes) {
       b.Fail("PLY header longer than " + std::to_string(kMaxHeaderBytes) +
              " bytes (no end_header before line " +
-             std::to_string(lines.number()) + ")");
+             std::to_string(lines->number()) + ")");
     }
     Tokenize(line, &t);
-    const auto where = [&lines] { return LineTag(lines.number()); };
-    if (lines.number() == 1) {
+    const size_t number = lines->number();
+    if (number == 1) {
       if (t.size() != 1 || t[0] != "ply") {
         b.Fail("cannot read: not a PLY file (first line " + Excerpt(line) +
                ")");
@@ -136,110 +196,77 @@ PlyHeader ParsePlyHeader(const std::string& bytes, uint64_t file_size,
     const std::string_view keyword = t[0];
     if (keyword == "comment" || keyword == "obj_info") continue;
     if (keyword == "format") {
-      if (t.size() != 3 || t[2] != "1.0") {
-        b.Fail("malformed PLY format line " + Excerpt(line) + where());
-      }
-      if (t[1] == "ascii")
-        header.format = PlyFormat::kAscii;
-      else if (t[1] == "binary_little_endian")
-        header.format = PlyFormat::kLittleEndian;
-      else if (t[1] == "binary_big_endian")
-        header.format = PlyFormat::kBigEndian;
-      else
-        b.Fail("unknown PLY format " + Excerpt(t[1]) + where());
+      ReadPlyFormatLine(t, line, number, b, header);
       have_format = true;
     } else if (keyword == "element") {
-      PlyElement element;
-      if (t.size() != 3 || !ParseInteger(t[2], &element.count) ||
-          element.count < 0 || element.count > kMaxCount) {
-        b.Fail("malformed PLY element line " + Excerpt(line) + where());
-      }
-      element.name = std::string(t[1]);
-      if (!element_names.insert(element.name).second) {
-        b.Fail("PLY element " + Excerpt(element.name) + " declared twice" +
-               where());
-      }
-      header.elements.push_back(element);
+      ReadPlyElementLine(t, line, number, b, &element_names, header);
     } else if (keyword == "property") {
-      if (header.elements.empty())
-        b.Fail("PLY property before element" + where());
-      PlyProperty property;
-      bool ok = false;
-      if (t.size() == 5 && t[1] == "list") {
-        property.is_list = true;
-        ok = ParsePlyType(std::string(t[2]), &property.count_type) &&
-             ParsePlyType(std::string(t[3]), &property.type) &&
-             IsIntegerType(property.count_type);
-        property.name = std::string(t[4]);
-      } else if (t.size() == 3) {
-        ok = ParsePlyType(std::string(t[1]), &property.type);
-        property.name = std::string(t[2]);
-      }
-      if (!ok) b.Fail("malformed PLY property line " + Excerpt(line) + where());
-      header.elements.back().properties.push_back(property);
+      ReadPlyPropertyLine(t, line, number, b, header);
     } else if (keyword == "end_header") {
-      if (t.size() != 1) b.Fail("malformed PLY end_header line" + where());
+      if (t.size() != 1)
+        b.Fail("malformed PLY end_header line" + LineTag(number));
       ended = true;
       break;
     } else {
-      b.Fail("unknown PLY header line " + Excerpt(line) + where());
+      b.Fail("unknown PLY header line " + Excerpt(line) + LineTag(number));
     }
   }
   if (!ended) b.Fail("PLY header has no end_header");
   if (!have_format) b.Fail("PLY header has no format line");
-  header.data_offset = bytes.size() - lines.remaining();
-  header.data_line = lines.number() + 1;
-  for (size_t e = 0; e < header.elements.size(); ++e) {
-    const PlyElement& element = header.elements[e];
-    if (element.name == "vertex") {
-      header.vertex_element = static_cast<int>(e);
-      header.num_vertices = element.count;
-      for (size_t p = 0; p < element.properties.size(); ++p) {
-        const PlyProperty& property = element.properties[p];
-        int* slot = property.name == "x"   ? &header.x
-                    : property.name == "y" ? &header.y
-                    : property.name == "z" ? &header.z
-                                           : nullptr;
-        if (slot == nullptr) continue;
-        if (property.is_list || *slot != -1) {
-          b.Fail("PLY vertex property '" + property.name +
-                 "' is a list or repeated");
-        }
-        *slot = static_cast<int>(p);
-      }
-    } else if (element.name == "face") {
-      header.face_element = static_cast<int>(e);
-      int lists = 0;
-      for (size_t p = 0; p < element.properties.size(); ++p) {
-        const PlyProperty& property = element.properties[p];
-        if (!property.is_list) continue;
-        ++lists;
-        if (property.name == "vertex_indices" ||
-            property.name == "vertex_index" || header.face_list == -1) {
-          header.face_list = static_cast<int>(p);
-        }
-      }
-      if (header.face_list == -1)
-        b.Fail("PLY face element has no list property");
-      if (lists > 1 &&
-          element.properties[header.face_list].name != "vertex_indices" &&
-          element.properties[header.face_list].name != "vertex_index") {
-        b.Fail("PLY face element has several lists and none is vertex_indices");
-      }
-      if (!IsIntegerType(element.properties[header.face_list].type)) {
-        b.Fail("PLY face vertex indices have a non-integer type");
-      }
+}
+
+// Element e is the vertex element: records it, its count and which of its
+// properties are x, y and z.
+void ReadPlyVertexElement(size_t e, const MeshBuilder& b, PlyHeader* header) {
+  const PlyElement& element = header->elements[e];
+  header->vertex_element = static_cast<int>(e);
+  header->num_vertices = element.count;
+  for (size_t p = 0; p < element.properties.size(); ++p) {
+    const PlyProperty& property = element.properties[p];
+    int* slot = property.name == "x"   ? &header->x
+                : property.name == "y" ? &header->y
+                : property.name == "z" ? &header->z
+                                       : nullptr;
+    if (slot == nullptr) continue;
+    if (property.is_list || *slot != -1) {
+      b.Fail("PLY vertex property '" + property.name +
+             "' is a list or repeated");
+    }
+    *slot = static_cast<int>(p);
+  }
+}
+
+// Element e is the face element: records it and which of its list
+// properties holds the vertex indices.
+void ReadPlyFaceElement(size_t e, const MeshBuilder& b, PlyHeader* header) {
+  const PlyElement& element = header->elements[e];
+  header->face_element = static_cast<int>(e);
+  int lists = 0;
+  for (size_t p = 0; p < element.properties.size(); ++p) {
+    const PlyProperty& property = element.properties[p];
+    if (!property.is_list) continue;
+    ++lists;
+    if (property.name == "vertex_indices" || property.name == "vertex_index" ||
+        header->face_list == -1) {
+      header->face_list = static_cast<int>(p);
     }
   }
-  if (header.vertex_element == -1) b.Fail("PLY file has no vertex element");
-  if (header.x == -1 || header.y == -1 || header.z == -1) {
-    b.Fail("PLY vertex lacks x, y, z");
+  if (header->face_list == -1) b.Fail("PLY face element has no list property");
+  if (lists > 1 &&
+      element.properties[header->face_list].name != "vertex_indices" &&
+      element.properties[header->face_list].name != "vertex_index") {
+    b.Fail("PLY face element has several lists and none is vertex_indices");
   }
-  if (header.face_element == -1)
-    b.Fail("mesh has no faces (no PLY face element)");
-  // Every declared row must fit in the data after the header, checked before
-  // any row is read or stored: a header cannot make the reader loop over,
-  // or allocate, rows the file does not hold.
+  if (!IsIntegerType(element.properties[header->face_list].type)) {
+    b.Fail("PLY face vertex indices have a non-integer type");
+  }
+}
+
+// Every declared row must fit in the data after the header, checked before
+// any row is read or stored: a header cannot make the reader loop over, or
+// allocate, rows the file does not hold.
+void CheckPlyRowsFit(const PlyHeader& header, uint64_t file_size,
+                     const MeshBuilder& b) {
   const bool binary = header.format != PlyFormat::kAscii;
   const uint64_t data_bytes = file_size - header.data_offset;
   uint64_t available = data_bytes + (binary ? 0 : 1);  // last line break
@@ -256,6 +283,32 @@ PlyHeader ParsePlyHeader(const std::string& bytes, uint64_t file_size,
                     header.face_list, binary),
         &available, data_bytes);
   }
+}
+
+// The header of a PLY file whose first bytes are `bytes` (the whole file, or
+// a prefix of at least kMaxHeaderBytes + 1 bytes: the same result, as no
+// line past that is parsed) and whose size is `file_size`.
+PlyHeader ParsePlyHeader(const std::string& bytes, uint64_t file_size,
+                         const MeshBuilder& b) {
+  PlyHeader header;
+  LineCursor lines(bytes, 1, b.path);
+  ReadPlyHeaderLines(&lines, b, &header);
+  header.data_offset = bytes.size() - lines.remaining();
+  header.data_line = lines.number() + 1;
+  for (size_t e = 0; e < header.elements.size(); ++e) {
+    if (header.elements[e].name == "vertex") {
+      ReadPlyVertexElement(e, b, &header);
+    } else if (header.elements[e].name == "face") {
+      ReadPlyFaceElement(e, b, &header);
+    }
+  }
+  if (header.vertex_element == -1) b.Fail("PLY file has no vertex element");
+  if (header.x == -1 || header.y == -1 || header.z == -1) {
+    b.Fail("PLY vertex lacks x, y, z");
+  }
+  if (header.face_element == -1)
+    b.Fail("mesh has no faces (no PLY face element)");
+  CheckPlyRowsFit(header, file_size, b);
   return header;
 }
 

@@ -60,6 +60,99 @@ void CheckInputs(const ShellSpace& space,
   }
 }
 
+// Keyframes with their time indices.
+using TimedKeyframes = std::vector<std::pair<int, const Positions*>>;
+
+// Keyframe quantities, one row per keyframe: [lengths | areas | angles].
+// Dihedral angles are unwrapped along the keyframes (each within pi of
+// the previous one) so that no spline jumps by 2 pi.
+Eigen::MatrixXd KeyframeQuantities(const ShellSpace& space,
+                                   const std::vector<Positions>& keyframes,
+                                   int num_edges, int num_faces,
+                                   int num_flaps) {
+  const int m = static_cast<int>(keyframes.size());
+  Eigen::MatrixXd values(m, num_edges + num_faces + num_flaps);
+  for (int j = 0; j < m; ++j) {
+    const LThetaQuantities q = ComputeLThetaQuantities(space, keyframes[j]);
+    Eigen::VectorXd dihedrals = q.dihedrals;
+    if (j > 0) {
+      const auto previous = values.row(j - 1).tail(num_flaps).transpose();
+      for (int e = 0; e < num_flaps; ++e) {
+        dihedrals[e] = previous[e] + WrapAngle(dihedrals[e] - previous[e]);
+      }
+    }
+    values.row(j) << q.lengths.transpose(), q.areas.transpose(),
+        dihedrals.transpose();
+  }
+  return values;
+}
+
+// Keyframes in time order with, for a periodic path, the last one
+// repeated one period earlier and the first one a period later.
+TimedKeyframes TimeOrderedKeyframes(const std::vector<Positions>& keyframes,
+                                    const std::vector<int>& at, int steps,
+                                    bool periodic) {
+  const int m = static_cast<int>(keyframes.size());
+  TimedKeyframes neighbours;
+  if (periodic) neighbours.emplace_back(at[m - 1] - steps, &keyframes[m - 1]);
+  for (int j = 0; j < m; ++j) neighbours.emplace_back(at[j], &keyframes[j]);
+  if (periodic) neighbours.emplace_back(at[0] + steps, &keyframes[0]);
+  return neighbours;
+}
+
+// Frame k's shape if it is a keyframe (true), else its reconstruction's
+// guess (false): the nearer end keyframe outside them, else the rigid blend
+// of its neighbouring keyframes.
+bool KeyframeOrGuess(const TimedKeyframes& neighbours, int k,
+                     Positions* shape) {
+  // Neighbouring keyframes: the last at or before k, the first after it.
+  int before = -1;
+  for (size_t n = 0; n < neighbours.size(); ++n) {
+    if (neighbours[n].first <= k) before = static_cast<int>(n);
+  }
+  if (before >= 0 && neighbours[before].first == k) {
+    *shape = *neighbours[before].second;  // a keyframe, exactly
+    return true;
+  }
+  if (before < 0) {
+    *shape = *neighbours.front().second;  // before the first keyframe
+  } else if (before + 1 == static_cast<int>(neighbours.size())) {
+    *shape = *neighbours.back().second;  // after the last keyframe
+  } else {
+    const auto& [index_a, a] = neighbours[before];
+    const auto& [index_b, b] = neighbours[before + 1];
+    *shape = BlendRigidly(
+        *a, *b, static_cast<double>(k - index_a) / (index_b - index_a));
+  }
+  return false;
+}
+
+// Frames 0..last_frame: a keyframe's shape into *path, exactly; the others
+// (to reconstruct) into *frames, their guesses into *guesses.
+void PlaceKeyframes(const TimedKeyframes& neighbours, int last_frame,
+                    ShellPath* path, std::vector<int>* frames,
+                    std::vector<Positions>* guesses) {
+  for (int k = 0; k <= last_frame; ++k) {
+    Positions guess;
+    if (KeyframeOrGuess(neighbours, k, &guess)) {
+      (*path)[k] = std::move(guess);  // a keyframe, exactly
+      continue;
+    }
+    frames->push_back(k);
+    guesses->push_back(std::move(guess));
+  }
+}
+
+// Frame k's target quantities: row k of the splines' `targets`.
+LThetaQuantities FrameTarget(const Eigen::MatrixXd& targets, int k,
+                             int num_edges, int num_faces, int num_flaps) {
+  LThetaQuantities target;
+  target.lengths = targets.row(k).head(num_edges).transpose();
+  target.areas = targets.row(k).segment(num_edges, num_faces).transpose();
+  target.dihedrals = targets.row(k).tail(num_flaps).transpose();
+  return target;
+}
+
 }  // namespace
 
 int LThetaSplineReport::lm_iterations() const {
@@ -88,38 +181,19 @@ ShellPath LThetaSpline(const ShellSpace& space,
                        LThetaSplineReport* report) {
   CheckInputs(space, keyframes, at, steps, periodic);
   const auto spline_start = Clock::now();
-  const int m = static_cast<int>(keyframes.size());
   const int num_edges = static_cast<int>(space.topology.edges.size());
   const int num_faces = static_cast<int>(space.faces.rows());
   const int num_flaps = static_cast<int>(space.topology.interior_edges.size());
 
-  // Keyframe quantities, one row per keyframe: [lengths | areas | angles].
-  // Dihedral angles are unwrapped along the keyframes (each within pi of
-  // the previous one) so that no spline jumps by 2 pi.
-  Eigen::MatrixXd values(m, num_edges + num_faces + num_flaps);
-  for (int j = 0; j < m; ++j) {
-    const LThetaQuantities q = ComputeLThetaQuantities(space, keyframes[j]);
-    Eigen::VectorXd dihedrals = q.dihedrals;
-    if (j > 0) {
-      const auto previous = values.row(j - 1).tail(num_flaps).transpose();
-      for (int e = 0; e < num_flaps; ++e) {
-        dihedrals[e] = previous[e] + WrapAngle(dihedrals[e] - previous[e]);
-      }
-    }
-    values.row(j) << q.lengths.transpose(), q.areas.transpose(),
-        dihedrals.transpose();
-  }
+  const Eigen::MatrixXd values =
+      KeyframeQuantities(space, keyframes, num_edges, num_faces, num_flaps);
   const LThetaWeights weights = LThetaResidualWeights(space, keyframes[0]);
   const Eigen::MatrixXd targets = InterpolateCubicSplineAtSteps(
       at, values, steps,
       periodic ? SplineEnds::kPeriodic : SplineEnds::kNatural);
 
-  // Keyframes in time order with, for a periodic path, the last one
-  // repeated one period earlier and the first one a period later.
-  std::vector<std::pair<int, const Positions*>> neighbours;
-  if (periodic) neighbours.emplace_back(at[m - 1] - steps, &keyframes[m - 1]);
-  for (int j = 0; j < m; ++j) neighbours.emplace_back(at[j], &keyframes[j]);
-  if (periodic) neighbours.emplace_back(at[0] + steps, &keyframes[0]);
+  const TimedKeyframes neighbours =
+      TimeOrderedKeyframes(keyframes, at, steps, periodic);
   if (report != nullptr) {
     *report = LThetaSplineReport();
     report->spline_seconds = SecondsSince(spline_start);
@@ -130,30 +204,7 @@ ShellPath LThetaSpline(const ShellSpace& space,
   const int last_frame = periodic ? steps - 1 : steps;
   std::vector<int> frames;  // to reconstruct, with their guesses
   std::vector<Positions> guesses;
-  for (int k = 0; k <= last_frame; ++k) {
-    // Neighbouring keyframes: the last at or before k, the first after it.
-    int before = -1;
-    for (size_t n = 0; n < neighbours.size(); ++n) {
-      if (neighbours[n].first <= k) before = static_cast<int>(n);
-    }
-    if (before >= 0 && neighbours[before].first == k) {
-      path[k] = *neighbours[before].second;  // a keyframe, exactly
-      continue;
-    }
-    Positions guess;
-    if (before < 0) {
-      guess = *neighbours.front().second;  // before the first keyframe
-    } else if (before + 1 == static_cast<int>(neighbours.size())) {
-      guess = *neighbours.back().second;  // after the last keyframe
-    } else {
-      const auto& [index_a, a] = neighbours[before];
-      const auto& [index_b, b] = neighbours[before + 1];
-      guess = BlendRigidly(
-          *a, *b, static_cast<double>(k - index_a) / (index_b - index_a));
-    }
-    frames.push_back(k);
-    guesses.push_back(std::move(guess));
-  }
+  PlaceKeyframes(neighbours, last_frame, &path, &frames, &guesses);
   // The frames are independent: solved in parallel, each on one thread
   // (Ceres' and the BLAS's), so that the digits do not depend on the thread
   // count. Cactus 2, 10, 17 at 0, 2, 4, K = 4 (two frames): 25.3 s wall /
@@ -163,11 +214,8 @@ ShellPath LThetaSpline(const ShellSpace& space,
   ParallelFor(static_cast<int>(frames.size()), settings.num_threads,
               [&](int i) {
                 const int k = frames[i];
-                LThetaQuantities target;
-                target.lengths = targets.row(k).head(num_edges).transpose();
-                target.areas =
-                    targets.row(k).segment(num_edges, num_faces).transpose();
-                target.dihedrals = targets.row(k).tail(num_flaps).transpose();
+                const LThetaQuantities target =
+                    FrameTarget(targets, k, num_edges, num_faces, num_flaps);
                 SolverSettings frame_settings = settings;
                 frame_settings.num_threads = 1;
                 frame_settings.progress_label = settings.progress_label +

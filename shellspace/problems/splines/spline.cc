@@ -200,6 +200,177 @@ SplineResult UnevaluatedStart(const SplineObjective& objective,
   return result;
 }
 
+// What the rounds of a run carry over: the reference variables (the first
+// round's preconditioner and scale), the gradient target in them, and
+// whether RoundCallback found it met.
+struct RoundState {
+  std::unique_ptr<SplinePreconditioner> reference;  // the first round's
+  double reference_scale = 1, target = 0;
+  bool met = false;
+};
+
+// How a round of Run ended.
+enum class RoundEnd {
+  kStopped,  // a stop request during the first evaluation
+  kDone,     // L-BFGS ended: no further round
+  kRefresh,  // RoundCallback found the metrics stale: a new round
+};
+
+// The preconditioner of a round at the metrics of spec.initial; null
+// without preconditioning.
+std::unique_ptr<SplinePreconditioner> RoundPreconditioner(
+    const ShellSpace& space, const SplineSpec& spec,
+    const SplineSettings& settings) {
+  std::unique_ptr<SplinePreconditioner> preconditioner;
+  if (settings.precondition) {
+    preconditioner = std::make_unique<SplinePreconditioner>(
+        space, spec, settings.preconditioner_regularization,
+        settings.inner.num_threads);
+  }
+  return preconditioner;
+}
+
+// The divisor of a round's objective (see Run) from its gradient in y at
+// the round's start x0: the trial step -gradient, mapped to x, is to move
+// no coordinate by more than max_move (with preconditioning, a shorter
+// step is left as is). Negates *gradient.
+double RoundScale(const PreconditionedObjective& scaled,
+                  const std::vector<double>& x0, bool preconditioned,
+                  double max_move, std::vector<double>* gradient) {
+  for (double& g : *gradient) g = -g;
+  std::vector<double> first_move = scaled.ToX(gradient->data());
+  for (size_t i = 0; i < x0.size(); ++i) first_move[i] -= x0[i];
+  const double move = MaxNorm(first_move) / max_move;
+  return std::max(preconditioned ? std::max(move, 1.0) : move, 1e-300);
+}
+
+// Ceres' L-BFGS options of a round with `iterations` of the run done (the
+// callbacks are the round's).
+ceres::GradientProblemSolver::Options RoundOptions(
+    const SplineSettings& settings, int iterations) {
+  ceres::GradientProblemSolver::Options options;
+  options.line_search_direction_type = ceres::LBFGS;
+  options.max_num_iterations = settings.max_iterations - iterations;
+  options.gradient_tolerance = 0;  // RoundCallback stops on the target
+  options.function_tolerance = settings.function_tolerance;
+  options.logging_type = ceres::SILENT;
+  return options;
+}
+
+// One round of Run from the free shapes *x (moved to the round's end): the
+// metrics and preconditioner at *x, the scale, and L-BFGS until the target,
+// a refresh or the end. `size` is the first shape's bounding-box diagonal,
+// `start` the run's start.
+RoundEnd RunRound(const ShellSpace& space, const SplineSettings& settings,
+                  double size, RoundCallback::Clock::time_point start,
+                  SplineSpec* spec, SplineObjective* objective,
+                  std::vector<double>* x, RoundState* state,
+                  SplineResult* result) {
+  const std::vector<double> x0 = *x;
+  if (result->rounds > 0) {  // the metrics at the current free shapes
+    const ShellPath now = objective->PathFrom(x0.data());
+    for (size_t k = 0; k < now.size(); ++k) spec->initial[k] = now[k];
+  }
+  std::unique_ptr<SplinePreconditioner> preconditioner =
+      RoundPreconditioner(space, *spec, settings);
+  // The problem owns the function; `scaled` stays valid while it lives.
+  auto* function =
+      new PreconditionedObjective(*objective, preconditioner.get(), x0);
+  ceres::GradientProblem problem(function);
+  PreconditionedObjective& scaled = *function;
+  scaled.set_reference(
+      result->rounds == 0 ? preconditioner.get() : state->reference.get(),
+      state->reference_scale);
+  std::vector<double> y(x0.size(), 0.0), gradient(x0.size());
+  double cost = 0;
+  // The first evaluation solves the midpoints from scratch: a stop
+  // request may end it (and the run) early; later ones stay exact.
+  if (result->rounds == 0) objective->set_cold_start_stop(settings.stop);
+  const bool evaluated = scaled.Evaluate(y.data(), &cost, gradient.data());
+  objective->set_cold_start_stop(nullptr);
+  if (objective->stopped()) return RoundEnd::kStopped;
+  if (!evaluated) {
+    throw InputError("the initial path has degenerate shapes or midpoints");
+  }
+  const double norm = MaxNorm(gradient);
+  const double scale = RoundScale(scaled, x0, preconditioner != nullptr,
+                                  settings.max_first_move * size, &gradient);
+  scaled.set_scale(scale);
+  if (result->rounds == 0) {
+    state->reference_scale = scale;
+    scaled.set_reference(preconditioner.get(), scale);
+    result->initial_gradient_norm = result->final_gradient_norm = norm / scale;
+    // The relative criterion, with an absolute floor: a start at a
+    // stationary point (constant keyframes: initial gradient 0) has met
+    // it, however the round-off of later evaluations moves the gradient.
+    state->target =
+        std::max(settings.gradient_tolerance * norm, kAbsoluteGradientFloor) /
+        scale;
+  }
+  ceres::GradientProblemSolver::Options options =
+      RoundOptions(settings, result->iterations);
+  bool refresh = false;
+  RoundCallback round(scaled, state->target, settings.preconditioner_refresh,
+                      settings.refresh_move * size, result->iterations, scale,
+                      settings.progress ? &settings.progress_label : nullptr,
+                      start, &result->final_gradient_norm, &state->met,
+                      &refresh);
+  options.callbacks.push_back(&round);
+  StopCallback stop(settings.stop);
+  if (settings.stop) options.callbacks.push_back(&stop);
+  ceres::Solve(options, problem, y.data(), &result->summary);
+  *x = scaled.ToX(y.data());
+  if (preconditioner && result->rounds == 0) {
+    state->reference = std::move(preconditioner);
+  }
+  ++result->rounds;
+  result->iterations +=
+      std::max(0, static_cast<int>(result->summary.iterations.size()) - 1);
+  return refresh ? RoundEnd::kRefresh : RoundEnd::kDone;
+}
+
+// The run's convergence verdict in *result, at the free shapes x (empty:
+// none, converged).
+void SetConvergence(const std::vector<double>& x, const RoundState& state,
+                    SplineResult* result) {
+  // RoundCallback's stop: what Ceres' own tolerance would say.
+  if (state.met) {
+    result->summary.termination_type = ceres::CONVERGENCE;
+    result->summary.message =
+        "Gradient tolerance reached (in the first round's variables).";
+  }
+  if (x.empty()) {  // no free shapes
+    result->gradient_criterion_met = result->converged = true;
+  } else {
+    result->relative_gradient_norm =
+        result->initial_gradient_norm > 0
+            ? result->final_gradient_norm / result->initial_gradient_norm
+            : 0.0;
+    result->gradient_criterion_met =
+        result->final_gradient_norm <= state.target ||
+        result->final_gradient_norm * state.reference_scale <=
+            kAbsoluteGradientFloor;
+    result->converged = result->gradient_criterion_met ||
+                        result->summary.termination_type == ceres::CONVERGENCE;
+  }
+}
+
+// The final path at the free shapes x, its energies and the timings in
+// *result (a periodic path closed by repeating its first shape).
+void SetFinalPath(const ShellSpace& space, const SplineSpec& spec,
+                  const SplineObjective& objective,
+                  const std::vector<double>& x, SplineResult* result) {
+  result->path = objective.PathFrom(x.data());
+  result->spline_energy = objective.SplineEnergyOf(result->path);
+  for (const SplineDatum& d : spec.data) {
+    result->data_energy +=
+        EvaluateDeformationEnergy(space, d.shape, result->path[d.index]).total;
+  }
+  result->objective = result->data_energy + spec.sigma * result->spline_energy;
+  result->timings = objective.timings();
+  if (spec.periodic) result->path.push_back(result->path.front());
+}
+
 // One round's first L-BFGS trial step is -gradient in y. The objective is
 // divided by `scale` so that this step moves no vertex by more than
 // `max_first_move` of the shape's size (a crumpled trial shape fails to
@@ -221,115 +392,23 @@ SplineResult Run(const ShellSpace& space, SplineSpec spec,
   if (!x.empty() && settings.stop && settings.stop()) {
     return UnevaluatedStart(objective, x, spec);
   }
-  std::unique_ptr<SplinePreconditioner> reference;  // the first round's
-  double reference_scale = 1, target = 0;
+  RoundState state;
   const Positions& first_shape = spec.initial.front();
   const double size =
       (first_shape.colwise().maxCoeff() - first_shape.colwise().minCoeff())
           .norm();
-  bool met = false;
   const auto start = RoundCallback::Clock::now();
   while (!x.empty()) {
-    const std::vector<double> x0 = x;
-    if (result.rounds > 0) {  // the metrics at the current free shapes
-      const ShellPath now = objective.PathFrom(x0.data());
-      for (size_t k = 0; k < now.size(); ++k) spec.initial[k] = now[k];
+    const RoundEnd end = RunRound(space, settings, size, start, &spec,
+                                  &objective, &x, &state, &result);
+    if (end == RoundEnd::kStopped) return UnevaluatedStart(objective, x, spec);
+    if (end != RoundEnd::kRefresh ||
+        result.iterations >= settings.max_iterations) {
+      break;
     }
-    std::unique_ptr<SplinePreconditioner> preconditioner;
-    if (settings.precondition) {
-      preconditioner = std::make_unique<SplinePreconditioner>(
-          space, spec, settings.preconditioner_regularization,
-          settings.inner.num_threads);
-    }
-    // The problem owns the function; `scaled` stays valid while it lives.
-    auto* function =
-        new PreconditionedObjective(objective, preconditioner.get(), x0);
-    ceres::GradientProblem problem(function);
-    PreconditionedObjective& scaled = *function;
-    scaled.set_reference(result.rounds == 0 ? preconditioner.get()
-                                            : reference.get(),
-                         reference_scale);
-    std::vector<double> y(x0.size(), 0.0), gradient(x0.size());
-    double cost = 0;
-    // The first evaluation solves the midpoints from scratch: a stop
-    // request may end it (and the run) early; later ones stay exact.
-    if (result.rounds == 0) objective.set_cold_start_stop(settings.stop);
-    const bool evaluated = scaled.Evaluate(y.data(), &cost, gradient.data());
-    objective.set_cold_start_stop(nullptr);
-    if (objective.stopped()) return UnevaluatedStart(objective, x, spec);
-    if (!evaluated) {
-      throw InputError("the initial path has degenerate shapes or midpoints");
-    }
-    const double norm = MaxNorm(gradient);
-    for (double& g : gradient) g = -g;
-    std::vector<double> first_move = scaled.ToX(gradient.data());
-    for (size_t i = 0; i < x0.size(); ++i) first_move[i] -= x0[i];
-    const double move = MaxNorm(first_move) / (settings.max_first_move * size);
-    const double scale = std::max(preconditioner ? std::max(move, 1.0) : move,
-                                  1e-300);
-    scaled.set_scale(scale);
-    if (result.rounds == 0) {
-      reference_scale = scale;
-      scaled.set_reference(preconditioner.get(), scale);
-      result.initial_gradient_norm = result.final_gradient_norm = norm / scale;
-      // The relative criterion, with an absolute floor: a start at a
-      // stationary point (constant keyframes: initial gradient 0) has met
-      // it, however the round-off of later evaluations moves the gradient.
-      target = std::max(settings.gradient_tolerance * norm,
-                        kAbsoluteGradientFloor) /
-               scale;
-    }
-    ceres::GradientProblemSolver::Options options;
-    options.line_search_direction_type = ceres::LBFGS;
-    options.max_num_iterations = settings.max_iterations - result.iterations;
-    options.gradient_tolerance = 0;  // RoundCallback stops on the target
-    options.function_tolerance = settings.function_tolerance;
-    options.logging_type = ceres::SILENT;
-    bool refresh = false;
-    RoundCallback round(scaled, target, settings.preconditioner_refresh,
-                        settings.refresh_move * size, result.iterations, scale,
-                        settings.progress ? &settings.progress_label : nullptr,
-                        start, &result.final_gradient_norm, &met, &refresh);
-    options.callbacks.push_back(&round);
-    StopCallback stop(settings.stop);
-    if (settings.stop) options.callbacks.push_back(&stop);
-    ceres::Solve(options, problem, y.data(), &result.summary);
-    x = scaled.ToX(y.data());
-    if (preconditioner && result.rounds == 0) {
-      reference = std::move(preconditioner);
-    }
-    ++result.rounds;
-    result.iterations +=
-        std::max(0, static_cast<int>(result.summary.iterations.size()) - 1);
-    if (!refresh || result.iterations >= settings.max_iterations) break;
   }
-  if (met) {  // RoundCallback's stop: what Ceres' own tolerance would say
-    result.summary.termination_type = ceres::CONVERGENCE;
-    result.summary.message =
-        "Gradient tolerance reached (in the first round's variables).";
-  }
-  if (x.empty()) {
-    result.gradient_criterion_met = result.converged = true;  // no free shapes
-  } else {
-    result.relative_gradient_norm =
-        result.initial_gradient_norm > 0
-            ? result.final_gradient_norm / result.initial_gradient_norm
-            : 0.0;
-    result.gradient_criterion_met =
-        result.final_gradient_norm <= target ||
-        result.final_gradient_norm * reference_scale <= kAbsoluteGradientFloor;
-    result.converged = result.gradient_criterion_met ||
-                       result.summary.termination_type == ceres::CONVERGENCE;
-  }
-  result.path = objective.PathFrom(x.data());
-  result.spline_energy = objective.SplineEnergyOf(result.path);
-  for (const SplineDatum& d : spec.data) {
-    result.data_energy +=
-        EvaluateDeformationEnergy(space, d.shape, result.path[d.index]).total;
-  }
-  result.objective = result.data_energy + spec.sigma * result.spline_energy;
-  result.timings = objective.timings();
-  if (spec.periodic) result.path.push_back(result.path.front());
+  SetConvergence(x, state, &result);
+  SetFinalPath(space, spec, objective, x, &result);
   return result;
 }
 

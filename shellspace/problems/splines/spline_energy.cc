@@ -175,6 +175,45 @@ class MidpointProblem : public NewtonProblem {
   NewtonResidual current_, trial_residual_;
 };
 
+// SolveNewton's settings for the midpoint's root finding, with `budget`
+// Hessian assemblies left.
+NewtonSettings MidpointNewtonSettings(int budget) {
+  NewtonSettings settings;
+  settings.mode = NewtonMode::kRootFind;
+  settings.max_steps = budget;
+  settings.tolerance = kNewtonTolerance;  // times |D_2 W[a, m]|
+  settings.forcing_rule = NewtonSettings::Forcing::kRelativeResidual;
+  settings.forcing = kForcingMax;
+  settings.forcing_min = kForcingMin;
+  settings.max_halvings = 0;
+  settings.accept_max_norm_reduction = 0.5;
+  return settings;
+}
+
+// Damped Newton: H_k is positive definite, so dm descends the midpoint
+// energy E(m) = W[a, m] + W[m, b]; halve it until E drops. False (*m
+// unchanged) if 20 halvings do not: not a usable midpoint.
+bool DampedMidpointStep(const ShellSpace& space, const Positions& a,
+                        const Positions& b, const Eigen::VectorXd& dm,
+                        Positions* m) {
+  const auto energy = [&](const Positions& x) {
+    return EvaluateDeformationEnergy(space, a, x).total +
+           EvaluateDeformationEnergy(space, x, b).total;
+  };
+  const double e0 = energy(*m);
+  bool decreased = false;
+  Positions candidate;
+  for (int halving = 1; halving <= 20 && !decreased; ++halving) {
+    candidate = *m;
+    Eigen::Map<Eigen::VectorXd>(candidate.data(), candidate.size()) +=
+        std::ldexp(1.0, -halving) * dm;
+    decreased = energy(candidate) < e0;
+  }
+  if (!decreased) return false;
+  *m = candidate;
+  return true;
+}
+
 }  // namespace
 
 // m_k, and (when `has_adjoint`) H_k at m_k for the adjoint gradient.
@@ -270,62 +309,65 @@ ShellPath SplineObjective::PathFrom(const double* parameters) const {
   return path;
 }
 
-bool SplineObjective::SolveMidpoint(const Positions& a, const Positions& b,
-                                    const Positions& cold_start, bool adjoint,
+// LM runs: from a warm start, first one capped at kMaxWarmLmIterations,
+// then (if Newton still fails) one with the full inner settings; from no
+// warm start, one full run from `cold_start`.
+bool SplineObjective::RunMidpointLm(const Positions& a, const Positions& b,
+                                    const Positions& cold_start, LmRuns* lm,
                                     Midpoint* mid) const {
-  // LM runs: from a warm start, first one capped at kMaxWarmLmIterations,
-  // then (if Newton still fails) one with the full inner settings; from no
-  // warm start, one full run from `cold_start`.
-  bool lm_done = false;  // the full run is done: no more LM
-  int lm_runs = 0;
-  const auto run_lm = [&]() {
-    SolverSettings settings = inner_settings_;
-    settings.num_threads = 1;  // the terms run in parallel
-    if (mid->m.size() == 0) {
-      mid->m = cold_start;
-      settings.stop = cold_start_stop_;
-      lm_done = true;
-    } else if (lm_runs == 0) {
-      settings.max_iterations =
-          std::min(settings.max_iterations, kMaxWarmLmIterations);
-    } else {
-      lm_done = true;
-    }
-    ++lm_runs;
-    const auto clock = std::chrono::steady_clock::now();
-    ceres::Solver::Summary summary;
-    mid->m = SolveWeightedMidpoint(space_, a, b, 1.0, 1.0, mid->m, {}, settings,
-                                   &summary);
-    mid->lm_seconds += SecondsSince(clock);
-    ++mid->lm_solves;
-    mid->lm_iterations += static_cast<int>(summary.iterations.size());
-    mid->has_adjoint = false;
-    if (settings.stop && settings.stop()) {
-      stopped_ = true;  // unfinished: not a midpoint
-      return false;
-    }
-    return summary.IsSolutionUsable();
-  };
-  mid->has_adjoint = false;
-  const double diagonal = (a.colwise().maxCoeff() - a.colwise().minCoeff())
-                              .norm();
-  if ((a - b).cwiseAbs().maxCoeff() <= kEqualEnds * diagonal) {
-    // Equal ends (to round-off; e.g. a path through one keyframe twice):
-    // W >= 0 and W[a, a] = 0, and W is quadratic about its rest, so
-    // m = (a + b) / 2 to O(|b - a|^2). No criterion relative to
-    // |D_2 W[a, m]| can be met there (every |G| is round-off).
-    mid->m = 0.5 * (a + b);
-    if (!adjoint) return true;
-    MidpointProblem problem(space_, *assembler_, a, b, /*threads=*/1, &mid->m,
-                            &mid->hessian, &mid->has_adjoint,
-                            &mid->newton_steps);
-    NewtonResidual g;
-    LinearSystem unused;
-    return problem.Residual(NewtonPoint::kCurrent, &g) ==
-               EvaluationStatus::kOk &&
-           problem.Assemble(&unused) == EvaluationStatus::kOk;
+  SolverSettings settings = inner_settings_;
+  settings.num_threads = 1;  // the terms run in parallel
+  if (mid->m.size() == 0) {
+    mid->m = cold_start;
+    settings.stop = cold_start_stop_;
+    lm->done = true;
+  } else if (lm->runs == 0) {
+    settings.max_iterations =
+        std::min(settings.max_iterations, kMaxWarmLmIterations);
+  } else {
+    lm->done = true;
   }
-  if (mid->m.size() == 0 && !run_lm()) return false;
+  ++lm->runs;
+  const auto clock = std::chrono::steady_clock::now();
+  ceres::Solver::Summary summary;
+  mid->m = SolveWeightedMidpoint(space_, a, b, 1.0, 1.0, mid->m, {}, settings,
+                                 &summary);
+  mid->lm_seconds += SecondsSince(clock);
+  ++mid->lm_solves;
+  mid->lm_iterations += static_cast<int>(summary.iterations.size());
+  mid->has_adjoint = false;
+  if (settings.stop && settings.stop()) {
+    stopped_ = true;  // unfinished: not a midpoint
+    return false;
+  }
+  return summary.IsSolutionUsable();
+}
+
+// Equal ends (to round-off; e.g. a path through one keyframe twice):
+// W >= 0 and W[a, a] = 0, and W is quadratic about its rest, so
+// m = (a + b) / 2 to O(|b - a|^2). No criterion relative to
+// |D_2 W[a, m]| can be met there (every |G| is round-off).
+bool SplineObjective::SolveEqualEndsMidpoint(const Positions& a,
+                                             const Positions& b, bool adjoint,
+                                             Midpoint* mid) const {
+  mid->m = 0.5 * (a + b);
+  if (!adjoint) return true;
+  MidpointProblem problem(space_, *assembler_, a, b, /*threads=*/1, &mid->m,
+                          &mid->hessian, &mid->has_adjoint, &mid->newton_steps);
+  NewtonResidual g;
+  LinearSystem unused;
+  return problem.Residual(NewtonPoint::kCurrent, &g) == EvaluationStatus::kOk &&
+         problem.Assemble(&unused) == EvaluationStatus::kOk;
+}
+
+// Newton (SolveNewton) within kMaxNewtonSteps iterations (Hessian
+// assemblies) in all; a step is taken if it halves max |G|. When it does
+// not: converged at the round-off floor; else LM from the current point;
+// after the full LM, the step if it lowers max |G| at all, else damped
+// Newton on the midpoint energy.
+bool SplineObjective::NewtonMidpoint(const Positions& a, const Positions& b,
+                                     const Positions& cold_start, bool adjoint,
+                                     LmRuns* lm, Midpoint* mid) const {
   const auto clock = std::chrono::steady_clock::now();
   const double lm_seconds_before = mid->lm_seconds;
   MidpointProblem problem(space_, *assembler_, a, b, /*threads=*/1, &mid->m,
@@ -333,26 +375,12 @@ bool SplineObjective::SolveMidpoint(const Positions& a, const Positions& b,
                           &mid->newton_steps);
   NewtonResidual g;  // at mid->m
   bool converged = false;
-  // Newton (SolveNewton) within kMaxNewtonSteps iterations (Hessian
-  // assemblies) in all; a step is taken if it halves max |G|. When it does
-  // not: converged at the round-off floor; else LM from the current point;
-  // after the full LM, the step if it lowers max |G| at all, else damped
-  // Newton on the midpoint energy.
   int budget = kMaxNewtonSteps;
   bool ok = problem.Residual(NewtonPoint::kCurrent, &g) ==
             EvaluationStatus::kOk;
   while (ok && budget > 0 && !converged) {
-    NewtonSettings settings;
-    settings.mode = NewtonMode::kRootFind;
-    settings.max_steps = budget;
-    settings.tolerance = kNewtonTolerance;  // times |D_2 W[a, m]|
-    settings.forcing_rule = NewtonSettings::Forcing::kRelativeResidual;
-    settings.forcing = kForcingMax;
-    settings.forcing_min = kForcingMin;
-    settings.max_halvings = 0;
-    settings.accept_max_norm_reduction = 0.5;
-    const NewtonReport report =
-        SolveNewton(&problem, mid->hessian.solver(), settings);
+    const NewtonReport report = SolveNewton(&problem, mid->hessian.solver(),
+                                            MidpointNewtonSettings(budget));
     budget -= report.iterations;
     g = problem.current();
     if (report.stop == NewtonStop::kConverged) {
@@ -368,37 +396,23 @@ bool SplineObjective::SolveMidpoint(const Positions& a, const Positions& b,
     }
     if (report.stop == NewtonStop::kLinearSolveFailed) {
       mid->has_adjoint = false;
-      if (lm_done || !run_lm()) break;  // H_k indefinite even after LM
+      // H_k indefinite even after LM
+      if (lm->done || !RunMidpointLm(a, b, cold_start, lm, mid)) break;
     } else if (report.stop == NewtonStop::kLineSearchFailed) {
       if (g.max_norm <= kRoundOffFloor * g.scale) {
         converged = true;  // at round-off; H_k is at mid->m
         break;
       }
-      if (!lm_done) {  // far from the midpoint: LM from here
-        if (!run_lm()) break;
+      if (!lm->done) {  // far from the midpoint: LM from here
+        if (!RunMidpointLm(a, b, cold_start, lm, mid)) break;
       } else if (problem.trial().max_norm < g.max_norm) {
         problem.AcceptTrial();  // a decrease after the full LM solve: take it
         g = problem.current();
         continue;
       } else {
-        // Damped Newton: H_k is positive definite, so dm descends the
-        // midpoint energy E(m) = W[a, m] + W[m, b]; halve it until E drops.
-        const Eigen::VectorXd dm = problem.last_step();
-        const auto energy = [&](const Positions& m) {
-          return EvaluateDeformationEnergy(space_, a, m).total +
-                 EvaluateDeformationEnergy(space_, m, b).total;
-        };
-        const double e0 = energy(mid->m);
-        bool decreased = false;
-        Positions candidate;
-        for (int halving = 1; halving <= 20 && !decreased; ++halving) {
-          candidate = mid->m;
-          Eigen::Map<Eigen::VectorXd>(candidate.data(), candidate.size()) +=
-              std::ldexp(1.0, -halving) * dm;
-          decreased = energy(candidate) < e0;
+        if (!DampedMidpointStep(space_, a, b, problem.last_step(), &mid->m)) {
+          break;  // not a usable midpoint
         }
-        if (!decreased) break;  // not a usable midpoint
-        mid->m = candidate;
         mid->has_adjoint = false;
       }
     } else {
@@ -414,6 +428,22 @@ bool SplineObjective::SolveMidpoint(const Positions& a, const Positions& b,
   mid->newton_seconds +=
       SecondsSince(clock) - (mid->lm_seconds - lm_seconds_before);
   return converged;
+}
+
+bool SplineObjective::SolveMidpoint(const Positions& a, const Positions& b,
+                                    const Positions& cold_start, bool adjoint,
+                                    Midpoint* mid) const {
+  LmRuns lm;
+  mid->has_adjoint = false;
+  const double diagonal =
+      (a.colwise().maxCoeff() - a.colwise().minCoeff()).norm();
+  if ((a - b).cwiseAbs().maxCoeff() <= kEqualEnds * diagonal) {
+    return SolveEqualEndsMidpoint(a, b, adjoint, mid);
+  }
+  if (mid->m.size() == 0 && !RunMidpointLm(a, b, cold_start, &lm, mid)) {
+    return false;
+  }
+  return NewtonMidpoint(a, b, cold_start, adjoint, &lm, mid);
 }
 
 bool SplineObjective::SolveMidpoints(const ShellPath& path,
@@ -466,14 +496,11 @@ double SplineObjective::SplineEnergyOf(const ShellPath& path) const {
   return 4 * K * K * K * sum;
 }
 
-bool SplineObjective::Evaluate(const double* parameters, double* cost,
-                               double* gradient) const {
-  // A degenerate shape or midpoint rejects the point (false): every energy
-  // and derivative below is the non-throwing Try twin.
-  const ShellPath path = PathFrom(parameters);
+// R = data + sigma F_K of `path` into *cost, its midpoints solved; false if
+// a shape or midpoint is degenerate or F_K is not finite.
+bool SplineObjective::RegressionCost(const ShellPath& path,
+                                     double* cost) const {
   const double K = spec_.steps;
-  const double scale = spec_.sigma * 4 * K * K * K;
-  if (!SolveMidpoints(path, gradient != nullptr)) return false;
   DeformationEnergy w;
   double spline = 0;
   for (size_t t = 0; t < terms_.size(); ++t) {
@@ -493,6 +520,57 @@ bool SplineObjective::Evaluate(const double* parameters, double* cost,
     data += w.total;
   }
   *cost = data + spec_.sigma * spline;
+  return true;
+}
+
+// Term t's adjoint parts of the gradient (unscaled) into its Midpoint:
+// D_1 W[s_k, m_k] on the centre and, for a free neighbour, the mixed block
+// times p_k (H_k p_k = -D_2 W[s_k, m_k]). False if a derivative or the solve
+// fails.
+bool SplineObjective::SolveAdjointTerm(const ShellPath& path, int t) const {
+  const Term& term = terms_[t];
+  Midpoint& mid = *midpoints_[t];
+  const Positions& s = path[term.center];
+  mid.previous_part.resize(0);
+  mid.next_part.resize(0);
+  if (!TryEnergyGradient(space_, s, mid.m, ShellSide::kReference,
+                         &mid.center_part)) {
+    return false;
+  }
+  if (!spec_.is_free[term.previous] && !spec_.is_free[term.next]) {
+    return true;
+  }
+  // H_k p_k = -D_2 W[s_k, m_k] modulo rigid motions; the mixed blocks
+  // applied to p_k as directional derivatives of the gradients.
+  Eigen::VectorXd rhs, p;
+  if (!TryEnergyGradient(space_, s, mid.m, ShellSide::kDeformed, &rhs) ||
+      !mid.hessian.Solve(-rhs, kAdjointTolerance, &p)) {
+    return false;
+  }
+  if (spec_.is_free[term.previous] &&
+      !TryEnergyGradientDerivative(space_, path[term.previous], mid.m,
+                                   ShellSide::kReference, ShellSide::kDeformed,
+                                   p, &mid.previous_part)) {
+    return false;
+  }
+  if (spec_.is_free[term.next] &&
+      !TryEnergyGradientDerivative(space_, mid.m, path[term.next],
+                                   ShellSide::kDeformed, ShellSide::kReference,
+                                   p, &mid.next_part)) {
+    return false;
+  }
+  return true;
+}
+
+bool SplineObjective::Evaluate(const double* parameters, double* cost,
+                               double* gradient) const {
+  // A degenerate shape or midpoint rejects the point (false): every energy
+  // and derivative below is the non-throwing Try twin.
+  const ShellPath path = PathFrom(parameters);
+  const double K = spec_.steps;
+  const double scale = spec_.sigma * 4 * K * K * K;
+  if (!SolveMidpoints(path, gradient != nullptr)) return false;
+  if (!RegressionCost(path, cost)) return false;
   if (gradient == nullptr) return true;
 
   const auto clock = std::chrono::steady_clock::now();
@@ -509,45 +587,10 @@ bool SplineObjective::Evaluate(const double* parameters, double* cost,
   // Per term, in parallel (each writes only its own Midpoint), then summed
   // in term order.
   std::vector<char> ok(terms_.size(), 0);
-  ParallelFor(
-      static_cast<int>(terms_.size()), inner_settings_.num_threads,
-      [&](int t) {
-        const Term& term = terms_[t];
-        Midpoint& mid = *midpoints_[t];
-        const Positions& s = path[term.center];
-        mid.previous_part.resize(0);
-        mid.next_part.resize(0);
-        if (!TryEnergyGradient(space_, s, mid.m, ShellSide::kReference,
-                               &mid.center_part)) {
-          return;
-        }
-        if (!spec_.is_free[term.previous] && !spec_.is_free[term.next]) {
-          ok[t] = 1;
-          return;
-        }
-        // H_k p_k = -D_2 W[s_k, m_k] modulo rigid motions; the mixed blocks
-        // applied to p_k as directional derivatives of the gradients.
-        Eigen::VectorXd rhs, p;
-        if (!TryEnergyGradient(space_, s, mid.m, ShellSide::kDeformed,
-                               &rhs) ||
-            !mid.hessian.Solve(-rhs, kAdjointTolerance, &p)) {
-          return;
-        }
-        if (spec_.is_free[term.previous] &&
-            !TryEnergyGradientDerivative(
-                space_, path[term.previous], mid.m, ShellSide::kReference,
-                ShellSide::kDeformed, p, &mid.previous_part)) {
-          return;
-        }
-        if (spec_.is_free[term.next] &&
-            !TryEnergyGradientDerivative(space_, mid.m, path[term.next],
-                                         ShellSide::kDeformed,
-                                         ShellSide::kReference, p,
-                                         &mid.next_part)) {
-          return;
-        }
-        ok[t] = 1;
-      });
+  ParallelFor(static_cast<int>(terms_.size()), inner_settings_.num_threads,
+              [&](int t) {
+                if (SolveAdjointTerm(path, t)) ok[t] = 1;
+              });
   for (size_t t = 0; t < terms_.size(); ++t) {
     if (!ok[t]) return false;
     const Term& term = terms_[t];

@@ -115,6 +115,27 @@ class SplineObjective : public ceres::FirstOrderFunction {
   bool SolveMidpoint(const Positions& a, const Positions& b,
                      const Positions& cold_start, bool adjoint,
                      Midpoint* midpoint) const;
+  // The LM runs of one SolveMidpoint so far, and whether the full one (the
+  // last allowed) is done.
+  struct LmRuns {
+    int runs = 0;
+    bool done = false;
+  };
+  // SolveMidpoint's parts: one LM run (false if it failed or was stopped),
+  // the midpoint of ends equal to round-off, and the Newton iteration from
+  // midpoint->m (with LM runs when Newton fails).
+  bool RunMidpointLm(const Positions& a, const Positions& b,
+                     const Positions& cold_start, LmRuns* lm,
+                     Midpoint* midpoint) const;
+  bool SolveEqualEndsMidpoint(const Positions& a, const Positions& b,
+                              bool adjoint, Midpoint* midpoint) const;
+  bool NewtonMidpoint(const Positions& a, const Positions& b,
+                      const Positions& cold_start, bool adjoint, LmRuns* lm,
+                      Midpoint* midpoint) const;
+  // Evaluate's parts: the cost of a path whose midpoints are solved (false
+  // if degenerate or not finite), and term t's adjoint gradient parts.
+  bool RegressionCost(const ShellPath& path, double* cost) const;
+  bool SolveAdjointTerm(const ShellPath& path, int t) const;
   const ShellSpace& space_;
   SplineSpec spec_;
   SolverSettings inner_settings_;
