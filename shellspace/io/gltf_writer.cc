@@ -99,6 +99,132 @@ std::vector<float> ToFloats(const Positions& positions, size_t frame) {
   return out;
 }
 
+// The morph deltas of frames 1.. against the float32 base (every frame's
+// float32 coordinates checked first).
+std::vector<std::vector<float>> MorphDeltas(
+    const std::vector<Positions>& frames, const std::vector<float>& base) {
+  std::vector<std::vector<float>> deltas;
+  for (size_t k = 1; k < frames.size(); ++k) {
+    ToFloats(frames[k], k);
+    std::vector<float> delta(base.size());
+    for (size_t i = 0; i < base.size(); ++i) {
+      delta[i] = ToFloat32(frames[k].data()[i] - static_cast<double>(base[i]),
+                           "frame " + std::to_string(k) + " morph delta");
+    }
+    deltas.push_back(std::move(delta));
+  }
+  return deltas;
+}
+
+// The key time of each frame in seconds, refused where two fall on one
+// float32 time.
+std::vector<float> KeyTimes(size_t frame_count,
+                            const GltfAnimationOptions& options) {
+  std::vector<float> times(frame_count);
+  for (size_t k = 0; k < frame_count; ++k) {
+    times[k] = ToFloat32(k / options.frames_per_second, "key time (s)");
+    // glTF's key times increase strictly; a rate so high that 1 / fps
+    // rounds to 0 (or two times to one float) cannot be played.
+    if (k > 0 && !(times[k] > times[k - 1])) {
+      std::ostringstream message;
+      message << "key times: frames " << k - 1 << " and " << k << " at "
+              << options.frames_per_second
+              << " frames per second fall on one float32 time (glTF needs "
+                 "increasing times); use a lower rate";
+      throw InputError(message.str());
+    }
+  }
+  return times;
+}
+
+// The triangle indices of `faces` as an unsigned int accessor.
+int AddIndices(const Faces& faces, GltfBuilder* builder) {
+  std::vector<std::uint32_t> indices(faces.size());
+  for (Eigen::Index i = 0; i < faces.size(); ++i) {
+    indices[i] = static_cast<std::uint32_t>(faces.data()[i]);
+  }
+  return builder->AddAccessor(indices, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT,
+                              TINYGLTF_TYPE_SCALAR, 1,
+                              TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER, false);
+}
+
+// One morph target of `primitive` per delta, and their names shape_001...
+tinygltf::Value::Array AddMorphTargets(
+    const std::vector<std::vector<float>>& deltas, int targets,
+    GltfBuilder* builder, tinygltf::Primitive* primitive) {
+  tinygltf::Value::Array names;
+  for (int t = 0; t < targets; ++t) {
+    // Deltas against the float32 base: base + delta is frames[t + 1] up to
+    // the rounding of delta and of the sum.
+    const std::vector<float>& delta = deltas[t];
+    std::map<std::string, int> target;
+    target["POSITION"] = builder->AddAccessor(
+        delta, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, 3,
+        TINYGLTF_TARGET_ARRAY_BUFFER, true);
+    primitive->targets.push_back(target);
+    char name[32];
+    std::snprintf(name, sizeof(name), "shape_%03d", t + 1);
+    names.emplace_back(std::string(name));
+  }
+  return names;
+}
+
+// The mesh "shell" of `primitive` (zero weights and the target names when
+// it has targets), and the node and default scene showing it.
+void AddMeshNodeAndScene(const tinygltf::Primitive& primitive, int targets,
+                         const tinygltf::Value::Array& names,
+                         tinygltf::Model* model) {
+  tinygltf::Mesh mesh;
+  mesh.name = "shell";
+  mesh.primitives.push_back(primitive);
+  if (targets > 0) {
+    mesh.weights.assign(targets, 0.0);
+    tinygltf::Value::Object extras;
+    extras["targetNames"] = tinygltf::Value(names);
+    mesh.extras = tinygltf::Value(extras);
+  }
+  model->meshes.push_back(mesh);
+
+  tinygltf::Node node;
+  node.mesh = 0;
+  node.name = "shell";
+  model->nodes.push_back(node);
+  tinygltf::Scene scene;
+  scene.nodes.push_back(0);
+  model->scenes.push_back(scene);
+  model->defaultScene = 0;
+}
+
+// The animation "path" of the node's morph weights: at key time k only
+// target k - 1 is weighted (1), frame 0 is the base.
+void AddWeightAnimation(size_t frame_count, int targets,
+                        const std::vector<float>& times,
+                        const GltfAnimationOptions& options,
+                        GltfBuilder* builder, tinygltf::Model* model) {
+  std::vector<float> weights(frame_count * targets, 0.0f);
+  for (size_t k = 1; k < frame_count; ++k) {
+    weights[k * targets + (k - 1)] = 1.0f;
+  }
+  tinygltf::AnimationSampler sampler;
+  sampler.input = builder->AddAccessor(times, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                       TINYGLTF_TYPE_SCALAR, 1, 0, true);
+  sampler.output = builder->AddAccessor(weights, TINYGLTF_COMPONENT_TYPE_FLOAT,
+                                        TINYGLTF_TYPE_SCALAR, 1, 0, false);
+  sampler.interpolation =
+      options.interpolation == GltfAnimationOptions::Interpolation::kStep
+          ? "STEP"
+          : "LINEAR";
+  tinygltf::AnimationChannel channel;
+  channel.sampler = 0;
+  channel.target_node = 0;
+  channel.target_path = "weights";
+  tinygltf::Animation animation;
+  animation.name = "path";
+  animation.samplers.push_back(sampler);
+  animation.channels.push_back(channel);
+  model->animations.push_back(animation);
+}
+
 }  // namespace
 
 GltfAnimationOptions::Interpolation ParseGltfInterpolation(
@@ -127,100 +253,20 @@ std::string EncodeGltfMorphAnimation(const std::vector<Positions>& frames,
   const std::vector<float> base = ToFloats(frames[0], 0);
   // Every float32 value checked before any is encoded: the deltas and the
   // key times too.
-  std::vector<std::vector<float>> deltas;
-  for (size_t k = 1; k < frames.size(); ++k) {
-    ToFloats(frames[k], k);
-    std::vector<float> delta(base.size());
-    for (size_t i = 0; i < base.size(); ++i) {
-      delta[i] = ToFloat32(frames[k].data()[i] - static_cast<double>(base[i]),
-                           "frame " + std::to_string(k) + " morph delta");
-    }
-    deltas.push_back(std::move(delta));
-  }
-  std::vector<float> times(frames.size());
-  for (size_t k = 0; k < frames.size(); ++k) {
-    times[k] = ToFloat32(k / options.frames_per_second, "key time (s)");
-    // glTF's key times increase strictly; a rate so high that 1 / fps
-    // rounds to 0 (or two times to one float) cannot be played.
-    if (k > 0 && !(times[k] > times[k - 1])) {
-      std::ostringstream message;
-      message << "key times: frames " << k - 1 << " and " << k << " at "
-              << options.frames_per_second
-              << " frames per second fall on one float32 time (glTF needs "
-                 "increasing times); use a lower rate";
-      throw InputError(message.str());
-    }
-  }
+  const std::vector<std::vector<float>> deltas = MorphDeltas(frames, base);
+  const std::vector<float> times = KeyTimes(frames.size(), options);
   primitive.attributes["POSITION"] = builder.AddAccessor(
       base, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, 3,
       TINYGLTF_TARGET_ARRAY_BUFFER, true);
-  std::vector<std::uint32_t> indices(faces.size());
-  for (Eigen::Index i = 0; i < faces.size(); ++i) {
-    indices[i] = static_cast<std::uint32_t>(faces.data()[i]);
-  }
-  primitive.indices = builder.AddAccessor(
-      indices, TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT, TINYGLTF_TYPE_SCALAR, 1,
-      TINYGLTF_TARGET_ELEMENT_ARRAY_BUFFER, false);
+  primitive.indices = AddIndices(faces, &builder);
 
   const int targets = static_cast<int>(frames.size()) - 1;
-  tinygltf::Value::Array names;
-  for (int t = 0; t < targets; ++t) {
-    // Deltas against the float32 base: base + delta is frames[t + 1] up to
-    // the rounding of delta and of the sum.
-    const std::vector<float>& delta = deltas[t];
-    std::map<std::string, int> target;
-    target["POSITION"] = builder.AddAccessor(
-        delta, TINYGLTF_COMPONENT_TYPE_FLOAT, TINYGLTF_TYPE_VEC3, 3,
-        TINYGLTF_TARGET_ARRAY_BUFFER, true);
-    primitive.targets.push_back(target);
-    char name[32];
-    std::snprintf(name, sizeof(name), "shape_%03d", t + 1);
-    names.emplace_back(std::string(name));
-  }
-
-  tinygltf::Mesh mesh;
-  mesh.name = "shell";
-  mesh.primitives.push_back(primitive);
+  const tinygltf::Value::Array names =
+      AddMorphTargets(deltas, targets, &builder, &primitive);
+  AddMeshNodeAndScene(primitive, targets, names, &model);
   if (targets > 0) {
-    mesh.weights.assign(targets, 0.0);
-    tinygltf::Value::Object extras;
-    extras["targetNames"] = tinygltf::Value(names);
-    mesh.extras = tinygltf::Value(extras);
-  }
-  model.meshes.push_back(mesh);
-
-  tinygltf::Node node;
-  node.mesh = 0;
-  node.name = "shell";
-  model.nodes.push_back(node);
-  tinygltf::Scene scene;
-  scene.nodes.push_back(0);
-  model.scenes.push_back(scene);
-  model.defaultScene = 0;
-
-  if (targets > 0) {
-    std::vector<float> weights(frames.size() * targets, 0.0f);
-    for (size_t k = 1; k < frames.size(); ++k) {
-      weights[k * targets + (k - 1)] = 1.0f;
-    }
-    tinygltf::AnimationSampler sampler;
-    sampler.input = builder.AddAccessor(times, TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                        TINYGLTF_TYPE_SCALAR, 1, 0, true);
-    sampler.output = builder.AddAccessor(weights, TINYGLTF_COMPONENT_TYPE_FLOAT,
-                                         TINYGLTF_TYPE_SCALAR, 1, 0, false);
-    sampler.interpolation =
-        options.interpolation == GltfAnimationOptions::Interpolation::kStep
-            ? "STEP"
-            : "LINEAR";
-    tinygltf::AnimationChannel channel;
-    channel.sampler = 0;
-    channel.target_node = 0;
-    channel.target_path = "weights";
-    tinygltf::Animation animation;
-    animation.name = "path";
-    animation.samplers.push_back(sampler);
-    animation.channels.push_back(channel);
-    model.animations.push_back(animation);
+    AddWeightAnimation(frames.size(), targets, times, options, &builder,
+                       &model);
   }
 
   std::ostringstream stream;

@@ -15,6 +15,79 @@
 namespace shellspace {
 namespace {
 
+// D = max(|diag H|, lm_min_diagonal mean |diag H|) of H = `matrix`.
+Eigen::VectorXd DampingScale(const NewtonSettings& settings,
+                             const Eigen::SparseMatrix<double>& matrix) {
+  const int n = static_cast<int>(matrix.rows());
+  Eigen::VectorXd diagonal = matrix.diagonal().cwiseAbs();
+  const double mean = n > 0 ? diagonal.sum() / n : 0.0;
+  diagonal =
+      diagonal.cwiseMax(settings.lm_min_diagonal * std::max(mean, 1e-300));
+  return diagonal;
+}
+
+// One LM trial judged: its ratio = actual / predicted decrease (-1 where
+// the trial cannot be evaluated or raises the merit beyond its round-off),
+// whether the merit changed by less than its round-off, and whether the
+// step is taken (with the residual at the trial point).
+struct LevenbergMarquardtTrial {
+  double ratio = -1;
+  bool round_off = false;  // |merit change| below round-off
+  double merit = 0;
+  double predicted = 0;
+  bool residual_decides = false;
+  bool take = false;
+  NewtonResidual residual;
+};
+
+// Evaluates the trial point of step `p` (if `solved`) from the current
+// point of `it` and decides whether the step is taken.
+LevenbergMarquardtTrial JudgeTrial(const NewtonIteration& it,
+                                   const Eigen::VectorXd& p, bool solved) {
+  const NewtonSettings& settings = *it.settings;
+  const NewtonResidual& current = *it.current;
+  const double merit = it.merit;
+  LevenbergMarquardtTrial trial;
+  if (solved) {
+    const Eigen::VectorXd hp =
+        it.system->matrix.selfadjointView<Eigen::Lower>() * p;
+    trial.predicted = -(current.reduced.dot(p) + 0.5 * p.dot(hp));
+    if (trial.predicted > 0) {
+      it.problem->SetTrial(p);
+      if (it.problem->Merit(NewtonPoint::kTrial, &trial.merit) ==
+              EvaluationStatus::kOk &&
+          std::isfinite(trial.merit) &&
+          trial.merit <= merit + settings.merit_round_off * std::abs(merit)) {
+        trial.ratio = (merit - trial.merit) / trial.predicted;
+        trial.round_off = std::abs(trial.merit - merit) <=
+                          settings.merit_round_off * std::abs(merit);
+      }
+    }
+  }
+  // Accepted on the model's ratio -- except where the merit changes by
+  // less than its round-off (with accept_smaller_max_norm, or where the
+  // predicted decrease itself is below it): the ratio is noise there,
+  // and the residual alone decides, as in the trust region. A step
+  // that raises the residual's max norm is not taken however good its
+  // ratio (on the triceratops bent by 75 degrees of the stress corpus
+  // such steps, E_K changing by 3e-13 relative, raised the gradient
+  // from 1.4e-4 to 3.2e-3, 65 times its target, and the solve ended
+  // there).
+  const bool model_at_round_off =
+      trial.predicted <= settings.merit_round_off * std::abs(merit);
+  trial.residual_decides =
+      trial.round_off &&
+      (settings.accept_smaller_max_norm || model_at_round_off);
+  if (trial.ratio >= settings.lm_min_ratio || trial.residual_decides) {
+    trial.take =
+        it.problem->Residual(NewtonPoint::kTrial, &trial.residual) ==
+            EvaluationStatus::kOk &&
+        (trial.residual_decides ? trial.residual.max_norm < current.max_norm
+                                : trial.ratio >= settings.lm_min_ratio);
+  }
+  return trial;
+}
+
 class LevenbergMarquardtStrategy : public NewtonStepStrategy {
  public:
   explicit LevenbergMarquardtStrategy(const NewtonSettings& settings)
@@ -26,14 +99,9 @@ class LevenbergMarquardtStrategy : public NewtonStepStrategy {
   NewtonStepOutcome Step(const NewtonIteration& it) override {
     const NewtonSettings& settings = *it.settings;
     LinearSystem& system = *it.system;
-    const NewtonResidual& current = *it.current;
-    const double merit = it.merit;
     NewtonStepOutcome outcome;
     const int n = static_cast<int>(system.matrix.rows());
-    Eigen::VectorXd diagonal = system.matrix.diagonal().cwiseAbs();
-    const double mean = n > 0 ? diagonal.sum() / n : 0.0;
-    diagonal = diagonal.cwiseMax(settings.lm_min_diagonal *
-                                 std::max(mean, 1e-300));
+    const Eigen::VectorXd diagonal = DampingScale(settings, system.matrix);
     // H + lambda D is solved in place: the stored diagonal of H is shifted
     // for the solve and restored (exactly, from `undamped`) before the
     // model is evaluated -- no copy of H (on the cactus x4 one H is about
@@ -51,70 +119,13 @@ class LevenbergMarquardtStrategy : public NewtonStepStrategy {
         outcome.failure = NewtonStop::kStopped;
         return outcome;
       }
-      for (int i = 0; i < n; ++i) {
-        *diagonal_entry[i] = undamped[i] + lambda_ * diagonal(i);
-      }
-      it.report->max_shift = std::max(it.report->max_shift, lambda_);
       Eigen::VectorXd p;
       const bool solved =
-          it.linear_solver->Solve(system, -current.reduced, it.forcing, &p) &&
-          p.allFinite();
-      for (int i = 0; i < n; ++i) *diagonal_entry[i] = undamped[i];
-      double ratio = -1;
-      bool round_off = false;  // |merit change| below round-off
-      double trial_merit = 0;
-      double predicted = 0;
-      if (solved) {
-        const Eigen::VectorXd hp =
-            system.matrix.selfadjointView<Eigen::Lower>() * p;
-        predicted = -(current.reduced.dot(p) + 0.5 * p.dot(hp));
-        if (predicted > 0) {
-          it.problem->SetTrial(p);
-          if (it.problem->Merit(NewtonPoint::kTrial, &trial_merit) ==
-                  EvaluationStatus::kOk &&
-              std::isfinite(trial_merit) &&
-              trial_merit <=
-                  merit + settings.merit_round_off * std::abs(merit)) {
-            ratio = (merit - trial_merit) / predicted;
-            round_off = std::abs(trial_merit - merit) <=
-                        settings.merit_round_off * std::abs(merit);
-          }
-        }
-      } else {
-        outcome.failure = NewtonStop::kLinearSolveFailed;
-      }
-      // Accepted on the model's ratio -- except where the merit changes by
-      // less than its round-off (with accept_smaller_max_norm, or where the
-      // predicted decrease itself is below it): the ratio is noise there,
-      // and the residual alone decides, as in the trust region. A step
-      // that raises the residual's max norm is not taken however good its
-      // ratio (on the triceratops bent by 75 degrees of the stress corpus
-      // such steps, E_K changing by 3e-13 relative, raised the gradient
-      // from 1.4e-4 to 3.2e-3, 65 times its target, and the solve ended
-      // there).
-      const bool model_at_round_off =
-          predicted <= settings.merit_round_off * std::abs(merit);
-      const bool residual_decides =
-          round_off && (settings.accept_smaller_max_norm || model_at_round_off);
-      NewtonResidual trial;
-      bool take = false;
-      if (ratio >= settings.lm_min_ratio || residual_decides) {
-        take = it.problem->Residual(NewtonPoint::kTrial, &trial) ==
-                   EvaluationStatus::kOk &&
-               (residual_decides ? trial.max_norm < current.max_norm
-                                 : ratio >= settings.lm_min_ratio);
-      }
-      if (take) {
-        // The damping follows the ratio; a step the residual decided
-        // leaves it (its ratio is noise).
-        const double c =
-            residual_decides ? 0.0 : 2 * std::clamp(ratio, 0.0, 1.0) - 1;
-        lambda_ *= std::max(1.0 / 3.0, 1 - c * c * c);
-        nu_ = 2;
-        outcome.accepted = true;
-        outcome.residual = std::move(trial);
-        outcome.merit = trial_merit;
-        outcome.shifted = true;
+          SolveDamped(it, diagonal, diagonal_entry, undamped, &p);
+      if (!solved) outcome.failure = NewtonStop::kLinearSolveFailed;
+      LevenbergMarquardtTrial trial = JudgeTrial(it, p, solved);
+      if (trial.take) {
+        TakeTrial(&trial, &outcome);
         return outcome;
       }
       lambda_ *= nu_;
@@ -126,6 +137,38 @@ class LevenbergMarquardtStrategy : public NewtonStepStrategy {
   }
 
  private:
+  // The step p of (H + lambda D) p = -g, H's stored diagonal (its
+  // `diagonal_entry`, `undamped` values) shifted for the solve and
+  // restored exactly after. False if the solve fails or p is not finite.
+  bool SolveDamped(const NewtonIteration& it, const Eigen::VectorXd& diagonal,
+                   const std::vector<double*>& diagonal_entry,
+                   const std::vector<double>& undamped, Eigen::VectorXd* p) {
+    const int n = static_cast<int>(diagonal_entry.size());
+    for (int i = 0; i < n; ++i) {
+      *diagonal_entry[i] = undamped[i] + lambda_ * diagonal(i);
+    }
+    it.report->max_shift = std::max(it.report->max_shift, lambda_);
+    const bool solved = it.linear_solver->Solve(
+                            *it.system, -it.current->reduced, it.forcing, p) &&
+                        p->allFinite();
+    for (int i = 0; i < n; ++i) *diagonal_entry[i] = undamped[i];
+    return solved;
+  }
+
+  // The outcome of taking `trial`. The damping follows the ratio; a step
+  // the residual decided leaves it (its ratio is noise).
+  void TakeTrial(LevenbergMarquardtTrial* trial, NewtonStepOutcome* outcome) {
+    const double c = trial->residual_decides
+                         ? 0.0
+                         : 2 * std::clamp(trial->ratio, 0.0, 1.0) - 1;
+    lambda_ *= std::max(1.0 / 3.0, 1 - c * c * c);
+    nu_ = 2;
+    outcome->accepted = true;
+    outcome->residual = std::move(trial->residual);
+    outcome->merit = trial->merit;
+    outcome->shifted = true;
+  }
+
   double lambda_;
   double nu_ = 2;
 };

@@ -185,6 +185,76 @@ std::optional<NewtonStop> StopAfterStep(const NewtonSettings& settings,
   return std::nullopt;
 }
 
+// The solve's end `stop` (worded for `mode`) into *report.
+void FinishReport(NewtonStop stop, NewtonMode mode, NewtonReport* report) {
+  report->stop = stop;
+  report->stop_reason = NewtonStopText(stop, mode);
+  report->converged = stop == NewtonStop::kConverged;
+}
+
+// The report of a start where the residual or merit cannot be evaluated.
+// No residual, not a residual of 0: a caller that compares final_gradient
+// with its tolerance must not see a converged start.
+void ReportInfeasibleStart(NewtonMode mode, NewtonReport* report) {
+  report->initial_gradient = report->final_gradient = HUGE_VAL;
+  report->final_merit = HUGE_VAL;
+  FinishReport(NewtonStop::kInfeasibleStart, mode, report);
+}
+
+// The residual (and, when minimising, the merit) at the start; false if
+// either cannot be evaluated.
+bool EvaluateStart(NewtonProblem* problem, const NewtonSettings& settings,
+                   NewtonResidual* current, double* merit) {
+  const bool minimize = settings.mode == NewtonMode::kMinimize;
+  return !((minimize && problem->Merit(NewtonPoint::kCurrent, merit) !=
+                            EvaluationStatus::kOk) ||
+           problem->Residual(NewtonPoint::kCurrent, current) !=
+               EvaluationStatus::kOk);
+}
+
+// H at the current point into *system, counted as an iteration and timed;
+// false if it cannot be assembled.
+bool AssembleTimed(NewtonProblem* problem, const Timer& timer,
+                   LinearSystem* system, NewtonReport* report) {
+  const double assembly_start = timer.Seconds();
+  ++report->iterations;
+  const EvaluationStatus assembled = problem->Assemble(system);
+  report->assembly_seconds += timer.Seconds() - assembly_start;
+  return assembled == EvaluationStatus::kOk;
+}
+
+// The iteration at the current point for the step strategy (without its
+// report_rejection).
+NewtonIteration IterationAt(NewtonProblem* problem, LinearSolver* linear_solver,
+                            const NewtonSettings& settings,
+                            LinearSystem* system, const NewtonResidual& current,
+                            double merit, double forcing,
+                            NewtonReport* report) {
+  NewtonIteration iteration;
+  iteration.problem = problem;
+  iteration.linear_solver = linear_solver;
+  iteration.settings = &settings;
+  iteration.system = system;
+  iteration.current = &current;
+  iteration.merit = merit;
+  iteration.forcing = forcing;
+  iteration.report = report;
+  return iteration;
+}
+
+// Moves to the trial point of an accepted step `outcome`: its residual and
+// merit become the current ones, and the step is counted.
+void TakeStep(NewtonProblem* problem, NewtonStepOutcome* outcome,
+              NewtonResidual* current, double* merit, NewtonReport* report) {
+  problem->AcceptTrial();
+  *current = std::move(outcome->residual);
+  *merit = outcome->merit;
+  report->final_gradient = current->max_norm;
+  report->final_merit = *merit;
+  ++report->steps;
+  if (outcome->shifted) ++report->shifted_steps;
+}
+
 }  // namespace
 
 std::unique_ptr<NewtonStepStrategy> MakeNewtonStepStrategy(
@@ -207,29 +277,16 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
                          const NewtonSettings& settings) {
   const Timer timer;
   const LinearSolverStats stats_before = linear_solver->stats();
-  const bool minimize = settings.mode == NewtonMode::kMinimize;
   NewtonReport report;
   report.linear_solver = linear_solver->name();
-  const auto finish = [&](NewtonStop stop) {
-    report.stop = stop;
-    report.stop_reason = NewtonStopText(stop, settings.mode);
-    report.converged = stop == NewtonStop::kConverged;
-  };
   const auto update_counters = [&]() {
     SetSolveCounters(stats_before, linear_solver->stats(), timer, &report);
   };
 
   NewtonResidual current;
   double merit = 0;
-  if ((minimize && problem->Merit(NewtonPoint::kCurrent, &merit) !=
-                       EvaluationStatus::kOk) ||
-      problem->Residual(NewtonPoint::kCurrent, &current) !=
-          EvaluationStatus::kOk) {
-    // No residual, not a residual of 0: a caller that compares
-    // final_gradient with its tolerance must not see a converged start.
-    report.initial_gradient = report.final_gradient = HUGE_VAL;
-    report.final_merit = HUGE_VAL;
-    finish(NewtonStop::kInfeasibleStart);
+  if (!EvaluateStart(problem, settings, &current, &merit)) {
+    ReportInfeasibleStart(settings.mode, &report);
     update_counters();
     return report;
   }
@@ -243,27 +300,17 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
   std::vector<double> accepted_norms;
   while (true) {
     if (const auto stop = StopBeforeStep(settings, report, current)) {
-      finish(*stop);
+      FinishReport(*stop, settings.mode, &report);
       break;
     }
-    const double assembly_start = timer.Seconds();
-    ++report.iterations;
-    const EvaluationStatus assembled = problem->Assemble(&system);
-    report.assembly_seconds += timer.Seconds() - assembly_start;
-    if (assembled != EvaluationStatus::kOk) {
-      finish(NewtonStop::kAssemblyFailed);
+    if (!AssembleTimed(problem, timer, &system, &report)) {
+      FinishReport(NewtonStop::kAssemblyFailed, settings.mode, &report);
       break;
     }
     const double previous_norm = report.final_gradient;
-    NewtonIteration iteration;
-    iteration.problem = problem;
-    iteration.linear_solver = linear_solver;
-    iteration.settings = &settings;
-    iteration.system = &system;
-    iteration.current = &current;
-    iteration.merit = merit;
-    iteration.forcing = ForcingTerm(settings, current, initial_two_norm);
-    iteration.report = &report;
+    NewtonIteration iteration =
+        IterationAt(problem, linear_solver, settings, &system, current, merit,
+                    ForcingTerm(settings, current, initial_two_norm), &report);
     iteration.report_rejection = [&]() {
       if (!settings.progress) return;
       update_counters();
@@ -271,27 +318,19 @@ NewtonReport SolveNewton(NewtonProblem* problem, LinearSolver* linear_solver,
     };
     NewtonStepOutcome outcome = strategy->Step(iteration);
     const bool accepted = outcome.accepted;
-    if (accepted) {
-      problem->AcceptTrial();
-      current = std::move(outcome.residual);
-      merit = outcome.merit;
-      report.final_gradient = current.max_norm;
-      report.final_merit = merit;
-      ++report.steps;
-      if (outcome.shifted) ++report.shifted_steps;
-    }
+    if (accepted) TakeStep(problem, &outcome, &current, &merit, &report);
     if (settings.progress && (accepted || !strategy->ReportsTrials())) {
       update_counters();
       settings.progress(report, merit, accepted);
     }
     if (!accepted) {
-      finish(outcome.failure);
+      FinishReport(outcome.failure, settings.mode, &report);
       break;
     }
     if (const auto stop =
             StopAfterStep(settings, outcome, report, previous_norm,
                           current.scale, &accepted_norms)) {
-      finish(*stop);
+      FinishReport(*stop, settings.mode, &report);
       break;
     }
   }

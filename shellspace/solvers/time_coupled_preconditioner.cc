@@ -74,6 +74,151 @@ struct BlockPattern {
 };
 
 
+// The memory of the slices' factorisation (Factorize): a slice's packed
+// factor keeps `kept` bytes, one in flight needs `in_flight`, and no wave
+// needs more than `bound`, the last slice factorised alone.
+struct WaveMemory {
+  double kept = 0;
+  double in_flight = 0;
+  double bound = 0;
+};
+
+// The WaveMemory of `count` slices of `pattern`, packed in float if
+// `single`.
+WaveMemory WaveMemoryOf(const SupernodalPattern& pattern, bool single,
+                        int count) {
+  const double value_bytes = single ? sizeof(float) : sizeof(double);
+  WaveMemory memory;
+  memory.kept = value_bytes * static_cast<double>(pattern.packed_values());
+  memory.in_flight = sizeof(double) * static_cast<double>(pattern.values());
+  memory.bound = (count - 1) * memory.kept + memory.in_flight;
+  return memory;
+}
+
+// The widths of the waves of up to `threads` slices: a wave of width w
+// after `done` slices only if done kept + w in_flight <= bound.
+std::vector<int> WaveWidths(int count, int threads, const WaveMemory& memory) {
+  const double kept = memory.kept;
+  const double in_flight = memory.in_flight;
+  const double bound = memory.bound;
+  std::vector<int> widths;
+  for (int done = 0; done < count;) {
+    int width = 1;
+    while (width < threads && done + width < count &&
+           done * kept + (width + 1) * in_flight <= bound) {
+      ++width;
+    }
+    widths.push_back(width);
+    done += width;
+  }
+  return widths;
+}
+
+// Whether no entry of `v` is 0.
+bool AllSet(const std::vector<char>& v) {
+  return std::all_of(v.begin(), v.end(), [](char c) { return c != 0; });
+}
+
+// A slice's double buffer in CHOLMOD's layout (MallocOnHugePages), freed
+// with std::free.
+struct FreeBuffer {
+  void operator()(double* p) const { std::free(p); }
+};
+using Buffer = std::unique_ptr<double[], FreeBuffer>;
+
+// The slices factorised on one analysed pattern, in the chosen precision:
+// each slice's block from the source (slice 0 takes the analysed front
+// over), factorised in a double buffer and packed; per slice, whether its
+// block has the front's pattern and whether its factor is valid.
+class SliceFactorization {
+ public:
+  SliceFactorization(int count, bool single,
+                     const TimeCoupledPreconditioner::BlockSource& block_source,
+                     const BlockPattern& front_pattern,
+                     const SupernodalCholesky& cholesky,
+                     const std::shared_ptr<const SupernodalPattern>& pattern,
+                     SparseMatrix* front)
+      : single_slices(single ? count : 0),
+        full_slices(single ? 0 : count),
+        valid(count, 0),
+        same_pattern(count, 1),
+        single_(single),
+        block_source_(block_source),
+        front_pattern_(front_pattern),
+        cholesky_(cholesky),
+        pattern_(pattern),
+        front_(front),
+        buffer_size_(sizeof(double) *
+                     static_cast<size_t>(std::max(1L, pattern->values()))) {}
+
+  // The slices in waves of `widths`: each wave's slot keeps its buffer for
+  // the next wave's slot while a packed copy also fits in the bound.
+  void RunWaves(const std::vector<int>& widths, const WaveMemory& memory) {
+    const double kept = memory.kept;
+    const double in_flight = memory.in_flight;
+    const double bound = memory.bound;
+    std::vector<Buffer> buffers;
+    for (size_t wave = 0, done = 0; wave < widths.size(); ++wave) {
+      const int width = widths[wave];
+      const int next = wave + 1 < widths.size() ? widths[wave + 1] : 0;
+      const bool copies_fit = done * kept + width * (in_flight + kept) <= bound;
+      buffers.resize(width);
+      ParallelFor(width, width, [&](int t) {
+        FactorizeSlice(static_cast<int>(done) + t, &buffers[t],
+                       copies_fit && t < next);
+      });
+      done += width;
+    }
+    buffers.clear();
+  }
+
+  std::vector<SupernodalFactor<float>> single_slices;
+  std::vector<SupernodalFactor<double>> full_slices;
+  std::vector<char> valid, same_pattern;
+
+ private:
+  // Slice i in `buffer`; `keep`: pack a copy and keep the buffer.
+  void FactorizeSlice(int i, Buffer* buffer, bool keep) {
+    SparseMatrix own_block;
+    if (i > 0) {
+      block_source_(i, &own_block);
+      if (!front_pattern_.Of(own_block)) {
+        same_pattern[i] = 0;
+        return;
+      }
+    }
+    // Slice 0 takes the analysed block over (its values are not needed
+    // after its factorisation; the others compare with its pattern).
+    if (i == 0) own_block = std::move(*front_);
+    if (!*buffer) {
+      buffer->reset(static_cast<double*>(MallocOnHugePages(buffer_size_)));
+      if (!*buffer) return;
+    }
+    const bool factorized = cholesky_.Factorize(own_block, buffer->get());
+    own_block = SparseMatrix();  // not needed for the packing
+    if (!factorized) return;
+    if (single_) {
+      single_slices[i] =
+          keep ? SupernodalFactor<float>(pattern_, buffer->get())
+               : SupernodalFactor<float>::TakeOver(pattern_, buffer->release());
+      valid[i] = single_slices[i].valid();
+    } else {
+      full_slices[i] = keep ? SupernodalFactor<double>(pattern_, buffer->get())
+                            : SupernodalFactor<double>::TakeOver(
+                                  pattern_, buffer->release());
+      valid[i] = full_slices[i].valid();
+    }
+  }
+
+  const bool single_;
+  const TimeCoupledPreconditioner::BlockSource& block_source_;
+  const BlockPattern& front_pattern_;
+  const SupernodalCholesky& cholesky_;
+  const std::shared_ptr<const SupernodalPattern>& pattern_;
+  SparseMatrix* const front_;
+  const size_t buffer_size_;
+};
+
 // 2 T_theta^-1 for T_theta = tridiag(-theta, 2, -theta).
 Eigen::MatrixXd TwiceInverseTimeMatrix(const std::vector<double>& theta) {
   const int slices = static_cast<int>(theta.size()) + 1;
@@ -113,6 +258,19 @@ struct TimeCoupledPreconditioner::Factors {
   std::vector<SupernodalFactor<float>> single;
   std::vector<SupernodalFactor<double>> full;
   std::unique_ptr<Analysis> analysis;  // kept by Clear
+  // The analysis of `front`'s pattern: the kept one if it is of that
+  // pattern, else a fresh one; null (and none kept) if it is not valid.
+  const Analysis* AnalysisOf(const SparseMatrix& front) {
+    if (!analysis || !analysis->of.Of(front)) {
+      analysis.reset();  // the old one is freed before the new one is made
+      analysis = std::make_unique<Analysis>(front);
+    }
+    if (!analysis->valid()) {
+      analysis.reset();
+      return nullptr;
+    }
+    return analysis.get();
+  }
   void Clear() {
     single.clear();
     full.clear();
@@ -150,17 +308,9 @@ TimeCoupledPreconditioner::Status TimeCoupledPreconditioner::Factorize(
   block_source(0, &front);
   // The ordering and the supernodes of the common pattern: once for all
   // slices, and kept while the pattern stays.
-  std::unique_ptr<Factors::Analysis>& analysis = factors_->analysis;
-  if (!analysis || !analysis->of.Of(front)) {
-    analysis.reset();  // the old one is freed before the new one is made
-    analysis = std::make_unique<Factors::Analysis>(front);
-  }
-  if (!analysis->valid()) {
-    analysis.reset();
-    return Status::kNotPositive;
-  }
+  const Factors::Analysis* const analysis = factors_->AnalysisOf(front);
+  if (analysis == nullptr) return Status::kNotPositive;
   const BlockPattern& front_pattern = analysis->of;
-  const SupernodalCholesky& cholesky = *analysis->cholesky;
   std::shared_ptr<const SupernodalPattern> pattern = analysis->pattern;
   // Memory. A slice in flight needs a double buffer in CHOLMOD's layout
   // (`in_flight` bytes) and its packed factor `kept` bytes. The slices go
@@ -175,84 +325,15 @@ TimeCoupledPreconditioner::Status TimeCoupledPreconditioner::Factorize(
   // factor taking it over (SupernodalFactor::TakeOver). The factors do not
   // depend on the waves.
   const bool single = precision_ == FactorPrecision::kSingle;
-  const double value_bytes = single ? sizeof(float) : sizeof(double);
-  const double kept =
-      value_bytes * static_cast<double>(pattern->packed_values());
-  const double in_flight =
-      sizeof(double) * static_cast<double>(pattern->values());
-  const double bound = (count - 1) * kept + in_flight;
-  std::vector<int> widths;
-  for (int done = 0; done < count;) {
-    int width = 1;
-    while (width < threads && done + width < count &&
-           done * kept + (width + 1) * in_flight <= bound) {
-      ++width;
-    }
-    widths.push_back(width);
-    done += width;
-  }
-  struct FreeBuffer {
-    void operator()(double* p) const { std::free(p); }
-  };
-  using Buffer = std::unique_ptr<double[], FreeBuffer>;
-  std::vector<Buffer> buffers;
-  const size_t buffer_size =
-      sizeof(double) * static_cast<size_t>(std::max(1L, pattern->values()));
-  std::vector<SupernodalFactor<float>> single_slices(single ? count : 0);
-  std::vector<SupernodalFactor<double>> full_slices(single ? 0 : count);
-  std::vector<char> valid(count, 0), same_pattern(count, 1);
-  // Slice i in `buffer`; `keep`: pack a copy and keep the buffer.
-  const auto factorize_slice = [&](int i, Buffer* buffer, bool keep) {
-    SparseMatrix own_block;
-    if (i > 0) {
-      block_source(i, &own_block);
-      if (!front_pattern.Of(own_block)) {
-        same_pattern[i] = 0;
-        return;
-      }
-    }
-    // Slice 0 takes the analysed block over (its values are not needed
-    // after its factorisation; the others compare with its pattern).
-    if (i == 0) own_block = std::move(front);
-    if (!*buffer) {
-      buffer->reset(static_cast<double*>(MallocOnHugePages(buffer_size)));
-      if (!*buffer) return;
-    }
-    const bool factorized = cholesky.Factorize(own_block, buffer->get());
-    own_block = SparseMatrix();  // not needed for the packing
-    if (!factorized) return;
-    if (single) {
-      single_slices[i] =
-          keep ? SupernodalFactor<float>(pattern, buffer->get())
-               : SupernodalFactor<float>::TakeOver(pattern, buffer->release());
-      valid[i] = single_slices[i].valid();
-    } else {
-      full_slices[i] =
-          keep ? SupernodalFactor<double>(pattern, buffer->get())
-               : SupernodalFactor<double>::TakeOver(pattern, buffer->release());
-      valid[i] = full_slices[i].valid();
-    }
-  };
-  for (size_t wave = 0, done = 0; wave < widths.size(); ++wave) {
-    const int width = widths[wave];
-    const int next = wave + 1 < widths.size() ? widths[wave + 1] : 0;
-    const bool copies_fit = done * kept + width * (in_flight + kept) <= bound;
-    buffers.resize(width);
-    ParallelFor(width, width, [&](int t) {
-      factorize_slice(static_cast<int>(done) + t, &buffers[t],
-                      copies_fit && t < next);
-    });
-    done += width;
-  }
-  buffers.clear();
-  const auto all = [](const std::vector<char>& v) {
-    return std::all_of(v.begin(), v.end(), [](char c) { return c != 0; });
-  };
-  if (!all(same_pattern)) return Status::kDifferentPatterns;
-  if (!all(valid)) return Status::kNotPositive;
+  const WaveMemory memory = WaveMemoryOf(*pattern, single, count);
+  SliceFactorization slice_factors(count, single, block_source, front_pattern,
+                                   *analysis->cholesky, pattern, &front);
+  slice_factors.RunWaves(WaveWidths(count, threads, memory), memory);
+  if (!AllSet(slice_factors.same_pattern)) return Status::kDifferentPatterns;
+  if (!AllSet(slice_factors.valid)) return Status::kNotPositive;
   factors_->pattern = std::move(pattern);
-  factors_->single = std::move(single_slices);
-  factors_->full = std::move(full_slices);
+  factors_->single = std::move(slice_factors.single_slices);
+  factors_->full = std::move(slice_factors.full_slices);
   block_size_ = static_cast<int>(front_pattern.rows);
   SetCouplings(std::vector<double>(count - 1, 1.0));
   return Status::kFactorized;

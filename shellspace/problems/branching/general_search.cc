@@ -35,13 +35,12 @@ std::vector<double> KnotS(const GeneralCellLayout& layout,
 
 double SeriesK(int r) { return SeriesConstant(1.0, 1.0, r, OptimalTheta(r)); }
 
-}  // namespace
-
-bool GeneralStart(const GeneralCellLayout& layout, double delta, double noise,
-                  unsigned seed, std::vector<double>* x) {
+// Sets *x (sized to the layout, zero elsewhere) to the start's pair
+// positions, delta, the groups' taus and the needles' p; returns the taus.
+std::vector<double> SetStartParameters(const GeneralCellLayout& layout,
+                                       double delta, std::vector<double>* x) {
   const GeneralTopology& t = layout.topology();
   const int nc = t.pairs;
-  const int T = layout.num_trajectories();
   const int G = static_cast<int>(t.groups.size());
   x->assign(layout.size(), 0.0);
   for (int i = 1; i + 1 < 2 * nc; ++i) (*x)[i - 1] = i / (2.0 * nc);
@@ -55,21 +54,67 @@ bool GeneralStart(const GeneralCellLayout& layout, double delta, double noise,
   for (const NucleationGroup& g : t.groups) {
     for (const NeedleEvent& n : g.needles) (*x)[layout.p_offset(e++)] = n.p;
   }
-  // End positions (closure) and birth positions.
+  return tau;
+}
+
+// The start's trajectories: trajectory id runs linearly in s from
+// birth_pos[id] at birth_s[id] to end[id] at s = 1.
+struct StartTrajectories {
+  std::vector<double> end, birth_s, birth_pos;
+  // Trajectory id's position at s.
+  double At(int id, double s) const {
+    return birth_pos[id] +
+           (end[id] - birth_pos[id]) * (s - birth_s[id]) / (1.0 - birth_s[id]);
+  }
+};
+
+// The trajectories closed at s = 1 (the final knot's order shifted by the
+// label offset, over delta), the initial pairs' 2 nc trajectories born
+// evenly spaced at s = 0 (births of later groups are set by PlaceBirths).
+StartTrajectories ClosedTrajectories(const GeneralCellLayout& layout,
+                                     double delta) {
+  const GeneralTopology& t = layout.topology();
+  const int nc = t.pairs;
+  const int T = layout.num_trajectories();
   const int N = layout.num_knots();
   const std::vector<int>& final_order = layout.knot(N - 1).order;
-  std::vector<double> end(T), birth_s(T, 0.0), birth_pos(T, 0.0);
+  StartTrajectories trajectories;
+  std::vector<double>& end = trajectories.end;
+  std::vector<double>& birth_pos = trajectories.birth_pos;
+  end.resize(T);
+  trajectories.birth_s.assign(T, 0.0);
+  birth_pos.assign(T, 0.0);
   for (size_t j = 0; j < final_order.size(); ++j) {
     const int c = (static_cast<int>(j) + t.label_offset) % (2 * nc);
     const int wrap = (static_cast<int>(j) + t.label_offset) / (2 * nc);
     end[final_order[j]] = delta + (c / (2.0 * nc) + wrap) / t.r;
   }
   for (int i = 0; i < 2 * nc; ++i) birth_pos[i] = i / (2.0 * nc);
-  auto at = [&](int id, double s) {
-    return birth_pos[id] + (end[id] - birth_pos[id]) * (s - birth_s[id]) /
-                               (1.0 - birth_s[id]);
-  };
-  const std::vector<double> s = KnotS(layout, tau);
+  return trajectories;
+}
+
+// The needles of `group`, sorted by piece descending = insertion order.
+std::vector<int> NeedlesByPiece(const GeneralTopology& t, int group) {
+  std::vector<int> by_piece(t.groups[group].needles.size());
+  for (size_t q = 0; q < by_piece.size(); ++q) {
+    by_piece[q] = static_cast<int>(q);
+  }
+  std::stable_sort(by_piece.begin(), by_piece.end(), [&](int a, int b) {
+    return t.groups[group].needles[a].piece > t.groups[group].needles[b].piece;
+  });
+  return by_piece;
+}
+
+// The births of the knots where a group is born (knot s values `s`): each
+// new pair born at its needle's p between its neighbours, its end kept
+// within one period of the birth.
+void PlaceBirths(const GeneralCellLayout& layout, const std::vector<double>& s,
+                 const std::vector<double>& x,
+                 StartTrajectories* trajectories) {
+  const GeneralTopology& t = layout.topology();
+  const int nc = t.pairs;
+  const int N = layout.num_knots();
+  std::vector<double>& end = trajectories->end;
   for (int m = 0; m < N; ++m) {
     const GeneralCellLayout::Knot& k = layout.knot(m);
     if (k.born_group < 0) continue;
@@ -78,13 +123,7 @@ bool GeneralStart(const GeneralCellLayout& layout, double delta, double noise,
     for (int gg = 0; gg < k.born_group; ++gg) {
       e0 += static_cast<int>(t.groups[gg].needles.size());
     }
-    // Needles of the group sorted by piece descending = insertion order.
-    std::vector<int> by_piece(t.groups[k.born_group].needles.size());
-    for (size_t q = 0; q < by_piece.size(); ++q) by_piece[q] = static_cast<int>(q);
-    std::stable_sort(by_piece.begin(), by_piece.end(), [&](int a, int b) {
-      return t.groups[k.born_group].needles[a].piece >
-             t.groups[k.born_group].needles[b].piece;
-    });
+    const std::vector<int> by_piece = NeedlesByPiece(t, k.born_group);
     int first_id = 2 * nc;
     for (int gg = 0; gg < k.born_group; ++gg) {
       first_id += 2 * static_cast<int>(t.groups[gg].needles.size());
@@ -96,20 +135,30 @@ bool GeneralStart(const GeneralCellLayout& layout, double delta, double noise,
       if (layout.birth_group(prev) == k.born_group) continue;
       const int hi_index = (j + 2) % M;
       const int hi = k.order[hi_index];
-      const double lo_pos = at(prev, s[m]);
-      const double hi_pos = at(hi, s[m]) + (hi_index == 0 ? 1.0 : 0.0);
-      const double p =
-          (*x)[layout.p_offset(e0 + by_piece[(id - first_id) / 2])];
+      const double lo_pos = trajectories->At(prev, s[m]);
+      const double hi_pos =
+          trajectories->At(hi, s[m]) + (hi_index == 0 ? 1.0 : 0.0);
+      const double p = x[layout.p_offset(e0 + by_piece[(id - first_id) / 2])];
       const double b = lo_pos + p * (hi_pos - lo_pos);
       for (int f : {id, k.order[(j + 1) % M]}) {
-        birth_s[f] = s[m];
-        birth_pos[f] = b;
+        trajectories->birth_s[f] = s[m];
+        trajectories->birth_pos[f] = b;
         // Keep the unwrapped end consistent with the birth (within one period).
         while (end[f] - b > 1.0) end[f] -= 1.0;
         while (b - end[f] > 1.0) end[f] += 1.0;
       }
     }
   }
+}
+
+// The inner knots' positions in *x: on the trajectories, plus uniform noise
+// of amplitude noise / (2 r pairs) from `seed`.
+void PlaceKnots(const GeneralCellLayout& layout, const std::vector<double>& s,
+                const StartTrajectories& trajectories, double noise,
+                unsigned seed, std::vector<double>* x) {
+  const GeneralTopology& t = layout.topology();
+  const int nc = t.pairs;
+  const int N = layout.num_knots();
   std::mt19937 rng(seed);
   std::uniform_real_distribution<double> uniform(-1.0, 1.0);
   const double scale = noise / (2.0 * t.r * nc);
@@ -117,9 +166,21 @@ bool GeneralStart(const GeneralCellLayout& layout, double delta, double noise,
     const GeneralCellLayout::Knot& k = layout.knot(m);
     for (int id : k.order) {
       if (k.param[id] < 0) continue;
-      (*x)[k.param[id]] = at(id, s[m]) + scale * uniform(rng);
+      (*x)[k.param[id]] = trajectories.At(id, s[m]) + scale * uniform(rng);
     }
   }
+}
+
+}  // namespace
+
+bool GeneralStart(const GeneralCellLayout& layout, double delta, double noise,
+                  unsigned seed, std::vector<double>* x) {
+  const std::vector<double> tau = SetStartParameters(layout, delta, x);
+  // End positions (closure) and birth positions.
+  StartTrajectories trajectories = ClosedTrajectories(layout, delta);
+  const std::vector<double> s = KnotS(layout, tau);
+  PlaceBirths(layout, s, *x, &trajectories);
+  PlaceKnots(layout, s, trajectories, noise, seed, x);
   GeneralCellGeometry geometry;
   return EvaluateGeneralGeometry(layout, x->data(), &geometry);
 }

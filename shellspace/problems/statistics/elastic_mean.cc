@@ -188,6 +188,107 @@ bool NewtonFinish(const ShellSpace& space, const std::vector<Positions>& shapes,
   return report.converged;
 }
 
+// The start of the mean: `initial` if given (refused unless it is a finite
+// shape of the space), else the aligned vertex average of `shapes`.
+Positions StartingMean(const ShellSpace& space,
+                       const std::vector<Positions>& shapes,
+                       const Positions* initial) {
+  if (initial != nullptr) {
+    if (initial->rows() != space.num_vertices || !initial->allFinite()) {
+      throw InputError("elastic mean: bad initial guess");
+    }
+    return *initial;
+  }
+  return AlignedVertexAverage(shapes);
+}
+
+// LM chunks on `problem` (the mean's Ceres problem), each followed by a
+// Newton attempt, until Newton reaches `target` or the LM iterations are
+// used up: the first chunk's summary, the LM and Newton iterations, the
+// fallbacks in *result and the last Newton stop reason in *newton_stop.
+// Returns whether the last chunk's solution is usable (`usable` if no chunk
+// ran).
+bool LmChunksWithNewton(const ShellSpace& space,
+                        const std::vector<Positions>& shapes,
+                        const SolverSettings& settings,
+                        const ElasticMeanOptions& options, double target,
+                        double reference, bool usable, ceres::Problem* problem,
+                        ElasticMeanResult* result, std::string* newton_stop) {
+  bool first_chunk = true;
+  int attempts = 0;
+  while (true) {
+    const int remaining = settings.max_iterations - result->lm_iterations -
+                          result->newton_iterations;
+    if (remaining <= 0) break;
+    // The same absolute targets for every chunk: Ceres scales the relative
+    // tolerance by max(1, |grad|) at the chunk's start.
+    const double start_norm = std::max(1.0, GradientMaxNorm(problem));
+    SolverSettings chunk = settings;
+    // After a failed Newton attempt LM aims at the final target (else it
+    // would stop at once, still at the switch tolerance); after the last
+    // attempt it gets all remaining iterations.
+    const bool last = attempts >= options.max_newton_attempts;
+    chunk.max_iterations =
+        last ? remaining : std::min(remaining, options.lm_chunk_iterations);
+    chunk.gradient_tolerance =
+        (attempts > 0
+             ? target
+             : std::max(target, options.switch_tolerance * reference)) /
+        start_norm;
+    const ceres::Solver::Summary summary = SolveWithSettings(problem, chunk);
+    if (first_chunk) result->summary = summary;
+    first_chunk = false;
+    result->lm_iterations +=
+        std::max(0, static_cast<int>(summary.iterations.size()) - 1);
+    usable = summary.IsSolutionUsable();
+    if (!usable || last || StoppedByRequest(summary)) break;
+    ++attempts;
+    ElasticMeanOptions attempt = options;
+    attempt.max_newton_iterations =
+        std::min(options.max_newton_iterations, settings.max_iterations -
+                                                    result->lm_iterations -
+                                                    result->newton_iterations);
+    if (attempt.max_newton_iterations <= 0) break;
+    if (NewtonFinish(space, shapes, target, attempt, settings, &result->mean,
+                     &result->newton_iterations, newton_stop) ||
+        StopRequested(settings)) {
+      break;
+    }
+    result->newton_fell_back = true;
+  }
+  return usable;
+}
+
+// |G(mean)|_inf, +inf if the mean has a degenerate element.
+double MeanGradientNorm(const ShellSpace& space,
+                        const std::vector<Positions>& shapes, int threads,
+                        Positions* mean) {
+  NewtonResidual g;
+  ElasticMeanProblem at_mean(space, shapes, threads, mean);
+  return at_mean.Residual(NewtonPoint::kCurrent, &g) == EvaluationStatus::kOk
+             ? g.max_norm
+             : std::numeric_limits<double>::infinity();
+}
+
+// Why the mean's solve ended, for ElasticMeanResult::termination.
+std::string ElasticMeanTermination(const ElasticMeanResult& result, bool usable,
+                                   const SolverSettings& settings,
+                                   const std::string& newton_stop) {
+  if (result.converged) {
+    return "converged";
+  } else if (!usable) {
+    return "LM failed";
+  } else if (result.lm_iterations + result.newton_iterations >=
+             settings.max_iterations) {
+    return "max iterations";
+  } else if (!newton_stop.empty()) {
+    return "Newton: " + newton_stop;
+  } else {
+    return std::string("LM: ") +
+           ceres::TerminationTypeToString(result.summary.termination_type);
+  }
+}
+
 }  // namespace
 
 ElasticMeanResult ComputeElasticMean(const ShellSpace& space,
@@ -200,14 +301,7 @@ ElasticMeanResult ComputeElasticMean(const ShellSpace& space,
     throw InputError("elastic mean: bad Newton options");
   }
   ElasticMeanResult result;
-  if (initial != nullptr) {
-    if (initial->rows() != space.num_vertices || !initial->allFinite()) {
-      throw InputError("elastic mean: bad initial guess");
-    }
-    result.mean = *initial;
-  } else {
-    result.mean = AlignedVertexAverage(shapes);
-  }
+  result.mean = StartingMean(space, shapes, initial);
   ceres::Problem problem;
   for (const Positions& shape : shapes) {
     AddDeformationEnergy(space, ShellArgument::Fixed(shape),
@@ -229,72 +323,17 @@ ElasticMeanResult ComputeElasticMean(const ShellSpace& space,
   bool usable = !options.newton || result.summary.IsSolutionUsable();
   // LM chunks, each followed by a Newton attempt, until Newton reaches the
   // target or the LM iterations are used up.
-  bool first_chunk = true;
-  int attempts = 0;
-  while (options.newton) {
-    const int remaining = settings.max_iterations - result.lm_iterations -
-                          result.newton_iterations;
-    if (remaining <= 0) break;
-    // The same absolute targets for every chunk: Ceres scales the relative
-    // tolerance by max(1, |grad|) at the chunk's start.
-    const double start_norm = std::max(1.0, GradientMaxNorm(&problem));
-    SolverSettings chunk = settings;
-    // After a failed Newton attempt LM aims at the final target (else it
-    // would stop at once, still at the switch tolerance); after the last
-    // attempt it gets all remaining iterations.
-    const bool last = attempts >= options.max_newton_attempts;
-    chunk.max_iterations =
-        last ? remaining : std::min(remaining, options.lm_chunk_iterations);
-    chunk.gradient_tolerance =
-        (attempts > 0
-             ? target
-             : std::max(target, options.switch_tolerance * reference)) /
-        start_norm;
-    const ceres::Solver::Summary summary = SolveWithSettings(&problem, chunk);
-    if (first_chunk) result.summary = summary;
-    first_chunk = false;
-    result.lm_iterations +=
-        std::max(0, static_cast<int>(summary.iterations.size()) - 1);
-    usable = summary.IsSolutionUsable();
-    if (!usable || last || StoppedByRequest(summary)) break;
-    ++attempts;
-    ElasticMeanOptions attempt = options;
-    attempt.max_newton_iterations = std::min(
-        options.max_newton_iterations,
-        settings.max_iterations - result.lm_iterations -
-            result.newton_iterations);
-    if (attempt.max_newton_iterations <= 0) break;
-    if (NewtonFinish(space, shapes, target, attempt, settings, &result.mean,
-                     &result.newton_iterations, &newton_stop) ||
-        StopRequested(settings)) {
-      break;
-    }
-    result.newton_fell_back = true;
+  if (options.newton) {
+    usable =
+        LmChunksWithNewton(space, shapes, settings, options, target, reference,
+                           usable, &problem, &result, &newton_stop);
   }
-  {
-    NewtonResidual g;
-    ElasticMeanProblem at_mean(space, shapes, settings.num_threads,
-                               &result.mean);
-    result.gradient_norm =
-        at_mean.Residual(NewtonPoint::kCurrent, &g) == EvaluationStatus::kOk
-            ? g.max_norm
-            : std::numeric_limits<double>::infinity();
-  }
+  result.gradient_norm =
+      MeanGradientNorm(space, shapes, settings.num_threads, &result.mean);
   result.gradient_target = target;
   result.converged = usable && result.gradient_norm <= target;
-  if (result.converged) {
-    result.termination = "converged";
-  } else if (!usable) {
-    result.termination = "LM failed";
-  } else if (result.lm_iterations + result.newton_iterations >=
-             settings.max_iterations) {
-    result.termination = "max iterations";
-  } else if (!newton_stop.empty()) {
-    result.termination = "Newton: " + newton_stop;
-  } else {
-    result.termination = std::string("LM: ") + ceres::TerminationTypeToString(
-                                      result.summary.termination_type);
-  }
+  result.termination =
+      ElasticMeanTermination(result, usable, settings, newton_stop);
   result.mean = AlignRigidly(result.mean, shapes[0]);
   for (const Positions& shape : shapes) {
     result.energies.push_back(
