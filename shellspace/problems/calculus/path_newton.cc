@@ -331,29 +331,14 @@ BlockJacobiSolver& PathLinearSolvers::block_jacobi() {
   return *block_jacobi_;
 }
 
-PathNewtonReport PolishPathNewton(const ShellSpace& space,
-                                  const std::vector<int>& fixed_vertices,
-                                  const PathNewtonSettings& settings,
-                                  ShellPath* path) {
-  const int K = static_cast<int>(path->size()) - 1;
-  if (K < 2) {
-    PathNewtonReport report;
-    report.converged = true;
-    report.stop = NewtonStop::kConverged;
-    report.stop_reason = "no inner shapes";
-    return report;
-  }
+namespace {
+
+// The Newton engine's settings of a path solve with these settings
+// (progress lines "LABEL step ..." when settings.progress).
+NewtonSettings EngineSettings(const PathNewtonSettings& settings) {
   const bool levenberg_marquardt =
       settings.globalisation ==
       NewtonSettings::Globalisation::kLevenbergMarquardt;
-  // The line search always runs on the exact Hessian (with its shifts).
-  const bool line_search =
-      settings.globalisation == NewtonSettings::Globalisation::kLineSearch;
-  PathEnergyProblem problem(
-      space, fixed_vertices, std::max(1, settings.num_threads),
-      line_search ? HessianModel::kExact : settings.model,
-      settings.min_area_fraction, settings.renumbering, path);
-  problem.SetElimination(settings.elimination, settings.gradient_tolerance);
   NewtonSettings newton;
   newton.mode = NewtonMode::kMinimize;
   newton.max_steps = settings.max_steps;
@@ -378,13 +363,14 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
     }
   }
   if (settings.progress) {
-    newton.progress = [&](const NewtonReport& r, double energy,
-                          bool accepted) {
+    const std::string label = settings.progress_label;
+    newton.progress = [label](const NewtonReport& r, double energy,
+                              bool accepted) {
       std::fprintf(stderr,
                    "%s step %2d  E_K %.12e  |grad| %.3e  %s%s  %.2f s"
                    " (Hessian %.2f s, %d %s factorisations %.2f s, %d CG"
                    " %.2f s)\n",
-                   settings.progress_label.c_str(), r.steps, energy,
+                   label.c_str(), r.steps, energy,
                    r.final_gradient, accepted ? "ok " : "rej",
                    r.max_shift > 0                ? " shifted"
                    : r.negative_curvature_steps > 0 ? " neg-curv"
@@ -396,6 +382,32 @@ PathNewtonReport PolishPathNewton(const ShellSpace& space,
                    r.factorization_seconds, r.cg_iterations, r.cg_seconds);
     };
   }
+  return newton;
+}
+
+}  // namespace
+
+PathNewtonReport PolishPathNewton(const ShellSpace& space,
+                                  const std::vector<int>& fixed_vertices,
+                                  const PathNewtonSettings& settings,
+                                  ShellPath* path) {
+  const int K = static_cast<int>(path->size()) - 1;
+  if (K < 2) {
+    PathNewtonReport report;
+    report.converged = true;
+    report.stop = NewtonStop::kConverged;
+    report.stop_reason = "no inner shapes";
+    return report;
+  }
+  // The line search always runs on the exact Hessian (with its shifts).
+  const bool line_search =
+      settings.globalisation == NewtonSettings::Globalisation::kLineSearch;
+  PathEnergyProblem problem(
+      space, fixed_vertices, std::max(1, settings.num_threads),
+      line_search ? HessianModel::kExact : settings.model,
+      settings.min_area_fraction, settings.renumbering, path);
+  problem.SetElimination(settings.elimination, settings.gradient_tolerance);
+  const NewtonSettings newton = EngineSettings(settings);
   // The block-Jacobi solver of the stage before (settings.solvers: its
   // analysis kept, its factors dropped) or of this stage alone.
   PathLinearSolvers own_solvers;
