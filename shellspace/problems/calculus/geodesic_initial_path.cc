@@ -160,23 +160,18 @@ ShellPath LThetaPath(const ShellSpace& space, const Positions& start,
   return path;
 }
 
-ShellPath MakeGeodesicInitialPath(const ShellSpace& space,
-                                  const Positions& start, const Positions& end,
-                                  int steps,
-                                  const std::vector<int>& fixed_vertices,
-                                  GeodesicInit init,
-                                  const SolverSettings& settings,
-                                  InitialPathReport* report) {
-  const auto clock = std::chrono::steady_clock::now();
-  InitialPathReport local;
-  InitialPathReport& r = report != nullptr ? *report : local;
-  r = InitialPathReport();
-  r.requested = init;
-  ShellPath linear = LinearPathWithoutRigidMotion(start, end, steps,
-                                                  fixed_vertices,
-                                                  &r.rotation_degrees);
-  r.rigid_motion_removed =
-      fixed_vertices.empty() && r.rotation_degrees >= kRigidBlendMinDegrees;
+namespace {
+
+// Which start `init` gives (r->used, r->reason, r->linear): the requested
+// one, or for auto and linear the linear path unless auto finds it
+// degenerate, then the rotation blend (returned, already made) unless it
+// degenerates too, then the LΘA path. Empty unless the blend was made.
+ShellPath ChooseInitialPath(const ShellSpace& space, const Positions& start,
+                            const Positions& end, int steps,
+                            const std::vector<int>& fixed_vertices,
+                            GeodesicInit init, const ShellPath& linear,
+                            InitialPathReport* report) {
+  InitialPathReport& r = *report;
   ShellPath path;
   if (init == GeodesicInit::kLTheta) {
     r.used = GeodesicInit::kLTheta;
@@ -216,13 +211,19 @@ ShellPath MakeGeodesicInitialPath(const ShellSpace& space,
       }
     }
   }
-  if (r.rigid_motion_removed) {
-    char rotation[48];
-    std::snprintf(rotation, sizeof rotation,
-                  ", rigid motion of %.1f degrees removed",
-                  r.rotation_degrees);
-    r.reason += rotation;
-  }
+  return path;
+}
+
+// The path of the chosen start r->used (`path`: the rotation blend if
+// ChooseInitialPath made it), falling back to `linear` where auto's LΘA
+// path has a degenerate triangle or the blend cannot be solved.
+ShellPath MakeChosenPath(const ShellSpace& space, const Positions& start,
+                         const Positions& end, int steps,
+                         const std::vector<int>& fixed_vertices,
+                         GeodesicInit init, const SolverSettings& settings,
+                         ShellPath path, ShellPath linear,
+                         InitialPathReport* report) {
+  InitialPathReport& r = *report;
   if (r.used == GeodesicInit::kLTheta) {
     SolverSettings frames = settings;
     if (init == GeodesicInit::kAuto) {
@@ -254,6 +255,39 @@ ShellPath MakeGeodesicInitialPath(const ShellSpace& space,
   } else if (r.used == GeodesicInit::kLinear) {
     path = std::move(linear);
   }
+  return path;
+}
+
+}  // namespace
+
+ShellPath MakeGeodesicInitialPath(const ShellSpace& space,
+                                  const Positions& start, const Positions& end,
+                                  int steps,
+                                  const std::vector<int>& fixed_vertices,
+                                  GeodesicInit init,
+                                  const SolverSettings& settings,
+                                  InitialPathReport* report) {
+  const auto clock = std::chrono::steady_clock::now();
+  InitialPathReport local;
+  InitialPathReport& r = report != nullptr ? *report : local;
+  r = InitialPathReport();
+  r.requested = init;
+  ShellPath linear = LinearPathWithoutRigidMotion(start, end, steps,
+                                                  fixed_vertices,
+                                                  &r.rotation_degrees);
+  r.rigid_motion_removed =
+      fixed_vertices.empty() && r.rotation_degrees >= kRigidBlendMinDegrees;
+  ShellPath path = ChooseInitialPath(space, start, end, steps, fixed_vertices,
+                                     init, linear, &r);
+  if (r.rigid_motion_removed) {
+    char rotation[48];
+    std::snprintf(rotation, sizeof rotation,
+                  ", rigid motion of %.1f degrees removed",
+                  r.rotation_degrees);
+    r.reason += rotation;
+  }
+  path = MakeChosenPath(space, start, end, steps, fixed_vertices, init,
+                        settings, std::move(path), std::move(linear), &r);
   r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() -
                                             clock)
                   .count();
