@@ -110,6 +110,53 @@ struct Prolongation::Solver {
   std::vector<double> face_weight;       // a_f of the fine reference
 };
 
+namespace {
+
+// For each fine face, the coarse face nearest its centroid among those
+// around the coarse vertex nearest it and their neighbours (all in the
+// reference shapes).
+std::vector<int> NearestCoarseFaces(const Faces& fine_faces,
+                                    const Positions& fine_reference,
+                                    const Faces& coarse_faces,
+                                    const Positions& coarse_reference) {
+  // Coarse faces around each coarse vertex.
+  std::vector<std::vector<int>> faces_of(coarse_reference.rows());
+  for (int t = 0; t < coarse_faces.rows(); ++t) {
+    for (int c = 0; c < 3; ++c) faces_of[coarse_faces(t, c)].push_back(t);
+  }
+  // Fine face -> coarse face: the nearest coarse triangle to the fine
+  // centroid among those around the nearest survivor and its coarse
+  // neighbours.
+  const PointGrid grid(coarse_reference);
+  std::vector<int> coarse_face_of(fine_faces.rows(), 0);
+  for (int f = 0; f < fine_faces.rows(); ++f) {
+    const Eigen::Vector3d centroid =
+        (fine_reference.row(fine_faces(f, 0)) + fine_reference.row(fine_faces(f, 1)) +
+         fine_reference.row(fine_faces(f, 2))).transpose() / 3.0;
+    const int near = grid.Nearest(centroid);
+    double best = std::numeric_limits<double>::infinity();
+    std::vector<int> candidates;
+    for (int t : faces_of[near]) {
+      for (int c = 0; c < 3; ++c) {
+        for (int u : faces_of[coarse_faces(t, c)]) candidates.push_back(u);
+      }
+    }
+    for (int t : candidates) {
+      const double d = PointTriangleDistanceSquared(
+          centroid, coarse_reference.row(coarse_faces(t, 0)).transpose(),
+          coarse_reference.row(coarse_faces(t, 1)).transpose(),
+          coarse_reference.row(coarse_faces(t, 2)).transpose());
+      if (d < best) {
+        best = d;
+        coarse_face_of[f] = t;
+      }
+    }
+  }
+  return coarse_face_of;
+}
+
+}  // namespace
+
 Prolongation::Prolongation(const Faces& fine_faces,
                            const Positions& fine_reference,
                            const SharedDecimation& level,
@@ -127,39 +174,8 @@ Prolongation::Prolongation(const Faces& fine_faces,
                      std::to_string(coarse_reference.rows()) +
                      " vertices, the coarse level " + std::to_string(nc));
   }
-  // Coarse faces around each coarse vertex.
-  std::vector<std::vector<int>> faces_of(nc);
-  for (int t = 0; t < coarse_faces_.rows(); ++t) {
-    for (int c = 0; c < 3; ++c) faces_of[coarse_faces_(t, c)].push_back(t);
-  }
-  // Fine face -> coarse face: the nearest coarse triangle to the fine
-  // centroid among those around the nearest survivor and its coarse
-  // neighbours.
-  const PointGrid grid(coarse_reference_);
-  coarse_face_of_.assign(fine_faces.rows(), 0);
-  for (int f = 0; f < fine_faces.rows(); ++f) {
-    const Eigen::Vector3d centroid =
-        (fine_reference.row(fine_faces(f, 0)) + fine_reference.row(fine_faces(f, 1)) +
-         fine_reference.row(fine_faces(f, 2))).transpose() / 3.0;
-    const int near = grid.Nearest(centroid);
-    double best = std::numeric_limits<double>::infinity();
-    std::vector<int> candidates;
-    for (int t : faces_of[near]) {
-      for (int c = 0; c < 3; ++c) {
-        for (int u : faces_of[coarse_faces_(t, c)]) candidates.push_back(u);
-      }
-    }
-    for (int t : candidates) {
-      const double d = PointTriangleDistanceSquared(
-          centroid, coarse_reference_.row(coarse_faces_(t, 0)).transpose(),
-          coarse_reference_.row(coarse_faces_(t, 1)).transpose(),
-          coarse_reference_.row(coarse_faces_(t, 2)).transpose());
-      if (d < best) {
-        best = d;
-        coarse_face_of_[f] = t;
-      }
-    }
-  }
+  coarse_face_of_ = NearestCoarseFaces(fine_faces, fine_reference,
+                                       coarse_faces_, coarse_reference_);
   // The weighted edge Laplacian, split into free and anchored vertices.
   free_index_.assign(n, 0);
   for (int v : survivors_) free_index_[v] = -1;
