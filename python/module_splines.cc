@@ -82,12 +82,14 @@ py::object SplinePy(const py::object& keyframes_object,
   options.at = Indices(at_object, steps, set.shapes.size(), "keyframes");
   options.material = MaterialChoiceOf(material_args, set.first.mesh);
   options.init = ParseSplineInit(init);
+  options.method = workflows::ParseSplineMethod(method, "method");
+  workflows::CheckSplineMethod(options.method, options.init, "method",
+                               "init");
   options.reference = set.first.mesh;
   options.topology = set.first.topology;
   options.keyframes = set.shapes;
   options.steps = steps;
   options.periodic = periodic;
-  options.method = method;
   options.init_settings = solver.Settings(init);
   options.init_settings.progress = false;
   options.settings = SplineSettingsOf(solver, "spline");
@@ -162,7 +164,8 @@ void RegisterSplines(py::module_& m) {
           "returns a SplineResult (unpacks as (path, summary))."),
       py::arg("keyframes"), py::arg("at"), py::arg("F"),
       py::arg("steps") = workflows::SplineOptions().steps,
-      py::arg("method") = workflows::SplineOptions().method,
+      py::arg("method") = std::string(
+          workflows::SplineMethodName(workflows::SplineOptions().method)),
       py::arg("init") =
           std::string(SplineInitName(workflows::SplineOptions().init)),
       py::arg("periodic") = workflows::SplineOptions().periodic,

@@ -3,6 +3,7 @@
 #include <sstream>
 #include <utility>
 
+#include "shellspace/geometry/named_values.h"
 #include "shellspace/reports/path_reports.h"
 #include "shellspace/workflows/regress.h"
 
@@ -31,20 +32,38 @@ void Log(const SplineOptions& options, const std::string& line) {
 
 }  // namespace
 
+namespace {
+
+constexpr NamedValue<SplineMethod> kSplineMethodNames[] = {
+    {SplineMethod::kNonlinear, "nonlinear"}, {SplineMethod::kLTheta, "ltheta"}};
+
+}  // namespace
+
+SplineMethod ParseSplineMethod(const std::string& value,
+                               const std::string& name) {
+  return ParseNamedValue(kSplineMethodNames, value, name);
+}
+
+const char* SplineMethodName(SplineMethod method) {
+  return NameOf(kSplineMethodNames, method);
+}
+
+void CheckSplineMethod(SplineMethod method, SplineInit init,
+                       const std::string& method_name,
+                       const std::string& init_name) {
+  if (method == SplineMethod::kLTheta && init != SplineInit::kLTheta) {
+    throw InputError(init_name + " " + SplineInitName(init) + " needs " +
+                     method_name + " nonlinear (" + method_name +
+                     " ltheta is the LΘA spline itself)");
+  }
+}
+
 SplineResult RunSpline(const SplineOptions& options) {
-  const std::string& prefix = options.option_prefix;
-  if (options.method != "nonlinear" && options.method != "ltheta") {
-    throw InputError(prefix + "method must be nonlinear or ltheta");
-  }
-  const bool alone = options.method == "ltheta";
-  if (alone && options.init != SplineInit::kLTheta) {
-    throw InputError(prefix + "init " + SplineInitName(options.init) +
-                     " needs " + prefix + "method nonlinear (" + prefix +
-                     "method ltheta is the LΘA spline itself)");
-  }
+  CheckSplineMethod(options.method, options.init, "method", "init");
+  const bool alone = options.method == SplineMethod::kLTheta;
   SplineResult result;
   result.reference = options.reference;
-  result.method = options.method;
+  result.method = SplineMethodName(options.method);
   result.material = options.material;
   const ShellSpace space(options.reference, options.topology,
                          options.material.material);

@@ -21,6 +21,19 @@
 namespace shellspace {
 namespace workflows {
 
+// How the spline is made: "nonlinear" or "ltheta" (SplineOptions::method).
+enum class SplineMethod { kNonlinear, kLTheta };
+// SplineMethod of "nonlinear" or "ltheta"; InputError starting with `name`
+// (the caller's name of the option: "--method", "method") otherwise.
+SplineMethod ParseSplineMethod(const std::string& value,
+                               const std::string& name);
+const char* SplineMethodName(SplineMethod method);
+// InputError unless `init` goes with `method` (method ltheta is the LΘA
+// spline itself: init ltheta), naming the options as the caller does.
+void CheckSplineMethod(SplineMethod method, SplineInit init,
+                       const std::string& method_name,
+                       const std::string& init_name);
+
 struct SplineOptions {
   // The first keyframe, validated, with its topology; every keyframe's
   // positions and its time index.
@@ -30,15 +43,13 @@ struct SplineOptions {
   std::vector<int> at;
   int steps = 8;
   bool periodic = false;
-  // "nonlinear" (L-BFGS on F_K from the initial path) or "ltheta" (the LΘA
-  // spline alone; init must be kLTheta). Errors name options with
-  // option_prefix ("--" for the CLI).
-  std::string method = "nonlinear";
+  // kNonlinear (L-BFGS on F_K from the initial path) or kLTheta (the LΘA
+  // spline alone; init must be SplineInit::kLTheta, CheckSplineMethod).
+  SplineMethod method = SplineMethod::kNonlinear;
   SplineInit init = SplineInit::kLTheta;
   // Method ltheta: also evaluate F_K of the path (false: the LΘA path
   // alone, "not optimised").
   bool evaluate_energy = true;
-  std::string option_prefix;
   MaterialChoice material;
   // The initial path's solves (LM per LΘA frame or per geodesic segment)
   // and the spline's (the outer L-BFGS and the midpoint solves); each stop

@@ -122,7 +122,8 @@ TEST(OptionsDefaultsTest, GeodesicLogShootTransport) {
 TEST(OptionsDefaultsTest, SplineRegressPca) {
   const workflows::SplineOptions spline;
   EXPECT_TRUE(SameDefault("spline", "steps", spline.steps));
-  EXPECT_TRUE(SameDefault("spline", "method", spline.method));
+  EXPECT_TRUE(SameDefault("spline", "method",
+                          workflows::SplineMethodName(spline.method)));
   EXPECT_TRUE(SameDefault("spline", "init", SplineInitName(spline.init)));
   const workflows::RegressOptions regress;
   EXPECT_TRUE(SameDefault("regress", "steps", regress.steps));

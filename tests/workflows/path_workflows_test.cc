@@ -316,7 +316,7 @@ workflows::SplineOptions ThreeKeyframes(const std::string& method) {
   options.keyframes = {sheets.shapes[0], sheets.shapes[2], sheets.shapes[1]};
   options.at = {0, 2, 4};
   options.steps = 4;
-  options.method = method;
+  options.method = workflows::ParseSplineMethod(method, "method");
   options.material = sheets.material;
   // The CLI's: the initial path's solves and the midpoints at most 200
   // iterations each, the midpoints to 1e-10, the L-BFGS 3 iterations.
@@ -372,17 +372,30 @@ TEST(SplineWorkflowTest, TheLThetaPathAloneAndBadMethods) {
             std::string::npos)
       << json;
   options.init = SplineInit::kGeodesic;
-  options.option_prefix = "--";
   try {
     workflows::RunSpline(options);
+    FAIL() << "no InputError";
+  } catch (const InputError& e) {
+    EXPECT_EQ(std::string(e.what()),
+              "init geodesic needs method nonlinear (method ltheta is the LΘA "
+              "spline itself)");
+  }
+  // The front ends name the options as they spell them.
+  try {
+    workflows::CheckSplineMethod(workflows::SplineMethod::kLTheta,
+                                 SplineInit::kGeodesic, "--method", "--init");
     FAIL() << "no InputError";
   } catch (const InputError& e) {
     EXPECT_EQ(std::string(e.what()),
               "--init geodesic needs --method nonlinear (--method ltheta is "
               "the LΘA spline itself)");
   }
-  options.method = "cubic";
-  EXPECT_THROW(workflows::RunSpline(options), InputError);
+  EXPECT_NO_THROW(workflows::CheckSplineMethod(
+      workflows::SplineMethod::kNonlinear, SplineInit::kGeodesic, "method",
+      "init"));
+  EXPECT_THROW(workflows::ParseSplineMethod("cubic", "--method"), InputError);
+  EXPECT_EQ(workflows::ParseSplineMethod("ltheta", "method"),
+            workflows::SplineMethod::kLTheta);
 }
 
 }  // namespace

@@ -68,7 +68,7 @@ FlagTable SplineFlags() {
                     "nonlinear (L-BFGS on F_K from the LTheta "
                     "spline) or ltheta (the fast approximation "
                     "alone)")
-               .Default(workflows::SplineOptions().method),
+               .Default(workflows::SplineMethodName(workflows::SplineOptions().method)),
            TextFlag("init",
                     "the initial path of --method nonlinear: ltheta "
                     "(the LTheta spline) or geodesic (the piecewise "
@@ -201,9 +201,8 @@ int CommitSplineRun(const RunStatus& status, const Faces& faces,
 
 // Flags -> options -> the workflow -> frames and summary.
 int RunSpline() {
-  if (FLAGS_method != "nonlinear" && FLAGS_method != "ltheta") {
-    throw InputError("--method must be nonlinear or ltheta");
-  }
+  const workflows::SplineMethod method =
+      workflows::ParseSplineMethod(FLAGS_method, "--method");
   const auto clock = std::chrono::steady_clock::now();
   RunPaths()
       .InputList("keyframes", FLAGS_keyframes)
@@ -217,6 +216,7 @@ int RunSpline() {
   options.at = ParseIndices(FLAGS_at);
   CheckIndexCount(options.at, set.shapes.size(), "keyframes");
   options.init = ParseSplineInit(FLAGS_init);
+  workflows::CheckSplineMethod(method, options.init, "--method", "--init");
   CheckSplineMemory(set.first.mesh.num_vertices(), options.at,
                     options.init == SplineInit::kGeodesic);
   options.reference = set.first.mesh;
@@ -224,9 +224,8 @@ int RunSpline() {
   options.keyframes = set.shapes;
   options.steps = FLAGS_steps;
   options.periodic = FLAGS_periodic;
-  options.method = FLAGS_method;
+  options.method = method;
   options.evaluate_energy = FLAGS_energy;
-  options.option_prefix = "--";
   options.material = MaterialChoiceFromFlags(set.first.mesh);
   options.init_settings = SettingsFromFlags("spline " + FLAGS_init);
   options.init_settings.progress = false;
