@@ -43,6 +43,7 @@ BranchingSimulateResult RunBranchingSimulate(
   }
   const DeltaExtrapolation* ex = extrapolation ? &*extrapolation : nullptr;
   JsonObject summary = SimulationJson(s, simulation, ex);
+  // Polled again: a stop during the extrapolation counts too.
   SolveStatus status =
       StatusOf(SimulationFailures(s, simulation, ex, "lm_iterations"),
                s.stop && s.stop());

@@ -25,11 +25,7 @@
 #include <string>
 #include <vector>
 
-#include "shellspace/geometry/memory_limits.h"
 #include "shellspace/geometry/mesh.h"
-#include "shellspace/problems/branching/construction_optimizer.h"
-#include "shellspace/problems/branching/general_construction.h"
-#include "shellspace/problems/branching/self_similar_series.h"
 #include "shellspace/problems/branching/km_family.h"
 #include "shellspace/problems/branching/simulation.h"
 #include "shellspace/io/atomic_file.h"
@@ -42,7 +38,6 @@
 #include "tools/run/run_status.h"
 #include "tools/run/stop_request.h"
 #include "shellspace/io/json_writer.h"
-#include "shellspace/reports/branching_reports.h"
 #include "tools/verbs/verb.h"
 
 DEFINE_double(length, 1.0, "branching: domain length L");
