@@ -149,13 +149,14 @@ const py::object& DefaultRelativeEtaObject() {
 MaterialArgs MakeMaterialArgs(double mu, double lambda,
                               std::optional<double> eta,
                               const RelativeEtaArg& relative_eta,
-                              const std::string& bending) {
+                              const std::string& bending,
+                              const std::string& membrane) {
   if (eta && relative_eta.given) {
     throw InputError(
         "eta and relative_eta: give one of them (eta is absolute, "
         "relative_eta is multiplied by the reference's area)");
   }
-  return MaterialArgs{mu, lambda, eta, relative_eta.value, bending};
+  return MaterialArgs{mu, lambda, eta, relative_eta.value, bending, membrane};
 }
 
 ShellMaterial Material(const MaterialArgs& args, const Mesh& reference) {
@@ -165,6 +166,10 @@ ShellMaterial Material(const MaterialArgs& args, const Mesh& reference) {
                      "' (discrete-shells or shape-operator; the edge-angle "
                      "variant is evaluated only by the `energy` verb of the "
                      "CLI)");
+  }
+  if (!ParseMembraneLaw(args.membrane, &material.membrane_law)) {
+    throw InputError("membrane: unknown membrane law '" + args.membrane +
+                     "' (" + MembraneLawNames() + ")");
   }
   material.mu = args.mu;
   material.lambda = args.lambda;

@@ -94,13 +94,14 @@ struct ShellPair {
 // The material keywords of every verb: mu, lambda_, and eta (absolute) or,
 // when eta is None, relative_eta x the reference's area (the CLI's --eta /
 // --relative_eta, cost_functions/shell/relative_bending_weight.h), and the
-// bending model (the CLI's --bending).
+// bending model (the CLI's --bending) and the membrane law (--membrane).
 struct MaterialArgs {
   double mu = 1;
   double lambda = 1;
   std::optional<double> eta;
   double relative_eta = kDefaultRelativeEta;
   std::string bending = "discrete-shells";  // the CLI's --bending
+  std::string membrane = "neo-hookean";     // the CLI's --membrane
 };
 
 ShellMaterial Material(const MaterialArgs& args, const Mesh& reference);
@@ -121,7 +122,8 @@ const py::object& DefaultRelativeEtaObject();
 MaterialArgs MakeMaterialArgs(double mu, double lambda,
                               std::optional<double> eta,
                               const RelativeEtaArg& relative_eta,
-                              const std::string& bending);
+                              const std::string& bending,
+                              const std::string& membrane);
 
 // The material of the keywords for `reference`, as the workflows take it.
 workflows::MaterialChoice MaterialChoiceOf(const MaterialArgs& args,
@@ -251,7 +253,8 @@ Frames FramesArgument(const py::object& frames_object, const py::object& F);
 
 // The Python signatures of the verb functions. A function f(args...,
 // const MaterialArgs&) is bound as a function of args... followed by the
-// material's keyword arguments (mu, lambda_, eta, relative_eta, bending: in
+// material's keyword arguments (mu, lambda_, eta, relative_eta, bending,
+// membrane: in
 // the order of SHELLSPACE_MATERIAL_ARGS), gathered into a MaterialArgs; one
 // that also ends with const SolverOptions& takes the solver's (tolerance,
 // max_iterations, threads, quiet, time_limit, allow_unconverged:
@@ -262,9 +265,9 @@ template <class Own, class Result, class... Params, size_t... I>
 auto GatherMaterialArgs(Result (*f)(Params...), std::index_sequence<I...>) {
   return [f](std::tuple_element_t<I, Own>... args, double mu, double lambda,
              std::optional<double> eta, const RelativeEtaArg& relative_eta,
-             const std::string& bending) {
-    return f(args...,
-             MakeMaterialArgs(mu, lambda, eta, relative_eta, bending));
+             const std::string& bending, const std::string& membrane) {
+    return f(args..., MakeMaterialArgs(mu, lambda, eta, relative_eta, bending,
+                                       membrane));
   };
 }
 template <class Own, class Result, class... Params, size_t... I>
@@ -272,7 +275,8 @@ auto GatherMaterialAndSolverArgs(Result (*f)(Params...),
                                  std::index_sequence<I...>) {
   return [f](std::tuple_element_t<I, Own>... args, double mu, double lambda,
              std::optional<double> eta, const RelativeEtaArg& relative_eta,
-             const std::string& bending, double tolerance, int max_iterations,
+             const std::string& bending, const std::string& membrane,
+             double tolerance, int max_iterations,
              int threads, bool quiet, std::optional<double> time_limit,
              bool allow_unconverged) {
     // The calling thread may not be the importing one (a thread pool's, a
@@ -282,7 +286,7 @@ auto GatherMaterialAndSolverArgs(Result (*f)(Params...),
     // The time limit counts from the call.
     auto control = std::make_shared<SolveControl>(time_limit);
     const MaterialArgs material =
-        MakeMaterialArgs(mu, lambda, eta, relative_eta, bending);
+        MakeMaterialArgs(mu, lambda, eta, relative_eta, bending, membrane);
     return f(args..., material,
              SolverOptions{tolerance, max_iterations, threads, quiet,
                            allow_unconverged, std::move(control)});
@@ -327,7 +331,9 @@ void RegisterRender(py::module_& m);
   py::arg("lambda_") = ShellMaterial().lambda, py::arg("eta") = py::none(), \
   py::arg("relative_eta") = DefaultRelativeEtaObject(),                     \
   py::arg("bending") =                                                      \
-      std::string(BendingModelName(ShellMaterial().bending_model))
+      std::string(BendingModelName(ShellMaterial().bending_model)),         \
+  py::arg("membrane") =                                                     \
+      std::string(MembraneLawName(ShellMaterial().membrane_law))
 #define SHELLSPACE_SOLVER_ARGS                                                 \
   py::arg("tolerance") = SolverSettings().gradient_tolerance,                  \
   py::arg("max_iterations") = SolverSettings().max_iterations,                 \

@@ -77,8 +77,8 @@ void RegisterParts(py::module_& m) {
   py::class_<MaterialChoice>(
       m, "Material",
       "The material of a solve as resolved: mu, lambda_, eta (absolute; "
-      "eta_absolute: given as eta rather than relative_eta) and the bending "
-      "model.")
+      "eta_absolute: given as eta rather than relative_eta), the bending "
+      "model and the membrane law.")
       .def_property_readonly(
           "mu", [](const MaterialChoice& c) { return c.material.mu; })
       .def_property_readonly(
@@ -91,8 +91,14 @@ void RegisterParts(py::module_& m) {
           [](const MaterialChoice& c) {
             return std::string(BendingModelName(c.material.bending_model));
           })
+      .def_property_readonly(
+          "membrane",
+          [](const MaterialChoice& c) {
+            return std::string(MembraneLawName(c.material.membrane_law));
+          })
       .def("__repr__", [](const py::object& self) {
-        return ReprOf(self, "Material", {"mu", "lambda_", "eta", "bending"});
+        return ReprOf(self, "Material",
+                      {"mu", "lambda_", "eta", "bending", "membrane"});
       });
 }
 

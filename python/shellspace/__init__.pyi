@@ -72,6 +72,7 @@ class GeodesicOptions:
         eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
         relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
         bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        membrane: membrane law: neo-hookean or st-venant-kirchhoff (see docs/math.md) (default 'neo-hookean')
         tolerance: stop when the gradient max-norm falls below this times max(1, its initial value) (default 1e-08)
         max_iterations: maximum iterations of the verb's outer solver (LM iterations summed over its stages; spline: L-BFGS); inner solves keep their own limits (default 200)
         threads: threads of the solves (default 2)
@@ -95,6 +96,7 @@ class GeodesicOptions:
     eta: Optional[float]
     relative_eta: float
     bending: str
+    membrane: str
     tolerance: float
     max_iterations: int
     threads: int
@@ -119,6 +121,7 @@ class GeodesicOptions:
         eta: Optional[float] = ...,
         relative_eta: float = ...,
         bending: str = ...,
+        membrane: str = ...,
         tolerance: float = ...,
         max_iterations: int = ...,
         threads: int = ...,
@@ -184,6 +187,7 @@ class LogOptions:
         eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
         relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
         bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        membrane: membrane law: neo-hookean or st-venant-kirchhoff (see docs/math.md) (default 'neo-hookean')
         tolerance: stop when the gradient max-norm falls below this times max(1, its initial value) (default 1e-08)
         max_iterations: maximum iterations of the verb's outer solver (LM iterations summed over its stages; spline: L-BFGS); inner solves keep their own limits (default 200)
         threads: threads of the solves (default 2)
@@ -204,6 +208,7 @@ class LogOptions:
     eta: Optional[float]
     relative_eta: float
     bending: str
+    membrane: str
     tolerance: float
     max_iterations: int
     threads: int
@@ -225,6 +230,7 @@ class LogOptions:
         eta: Optional[float] = ...,
         relative_eta: float = ...,
         bending: str = ...,
+        membrane: str = ...,
         tolerance: float = ...,
         max_iterations: int = ...,
         threads: int = ...,
@@ -269,7 +275,7 @@ class LogResult:
 
 
 class Material:
-    """The material of a solve as resolved: mu, lambda_, eta (absolute; eta_absolute: given as eta rather than relative_eta) and the bending model.
+    """The material of a solve as resolved: mu, lambda_, eta (absolute; eta_absolute: given as eta rather than relative_eta), the bending model and the membrane law.
     """
     @property
     def mu(self) -> float: ...
@@ -281,6 +287,8 @@ class Material:
     def eta_absolute(self) -> bool: ...
     @property
     def bending(self) -> str: ...
+    @property
+    def membrane(self) -> str: ...
 
 
 class MeanOptions:
@@ -294,6 +302,7 @@ class MeanOptions:
         eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
         relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
         bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        membrane: membrane law: neo-hookean or st-venant-kirchhoff (see docs/math.md) (default 'neo-hookean')
         tolerance: stop when the gradient max-norm falls below this times max(1, its initial value) (default 1e-08)
         max_iterations: maximum iterations of the verb's outer solver (LM iterations summed over its stages; spline: L-BFGS); inner solves keep their own limits (default 200)
         threads: threads of the solves (default 2)
@@ -309,6 +318,7 @@ class MeanOptions:
     eta: Optional[float]
     relative_eta: float
     bending: str
+    membrane: str
     tolerance: float
     max_iterations: int
     threads: int
@@ -325,6 +335,7 @@ class MeanOptions:
         eta: Optional[float] = ...,
         relative_eta: float = ...,
         bending: str = ...,
+        membrane: str = ...,
         tolerance: float = ...,
         max_iterations: int = ...,
         threads: int = ...,
@@ -387,6 +398,7 @@ class PcaOptions:
         eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
         relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
         bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        membrane: membrane law: neo-hookean or st-venant-kirchhoff (see docs/math.md) (default 'neo-hookean')
         tolerance: stop when the gradient max-norm falls below this times max(1, its initial value) (default 1e-08)
         max_iterations: maximum iterations of the verb's outer solver (LM iterations summed over its stages; spline: L-BFGS); inner solves keep their own limits (default 200)
         threads: threads of the solves (default 2)
@@ -410,6 +422,7 @@ class PcaOptions:
     eta: Optional[float]
     relative_eta: float
     bending: str
+    membrane: str
     tolerance: float
     max_iterations: int
     threads: int
@@ -434,6 +447,7 @@ class PcaOptions:
         eta: Optional[float] = ...,
         relative_eta: float = ...,
         bending: str = ...,
+        membrane: str = ...,
         tolerance: float = ...,
         max_iterations: int = ...,
         threads: int = ...,
@@ -489,6 +503,7 @@ class RegressOptions:
         eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
         relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
         bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        membrane: membrane law: neo-hookean or st-venant-kirchhoff (see docs/math.md) (default 'neo-hookean')
         tolerance: stop when the gradient max-norm falls below this times max(1, its initial value) (default 1e-08)
         max_iterations: maximum iterations of the verb's outer solver (LM iterations summed over its stages; spline: L-BFGS); inner solves keep their own limits (default 200)
         threads: threads of the solves (default 2)
@@ -507,6 +522,7 @@ class RegressOptions:
     eta: Optional[float]
     relative_eta: float
     bending: str
+    membrane: str
     tolerance: float
     max_iterations: int
     threads: int
@@ -526,6 +542,7 @@ class RegressOptions:
         eta: Optional[float] = ...,
         relative_eta: float = ...,
         bending: str = ...,
+        membrane: str = ...,
         tolerance: float = ...,
         max_iterations: int = ...,
         threads: int = ...,
@@ -586,6 +603,7 @@ class ShootOptions:
         eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
         relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
         bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        membrane: membrane law: neo-hookean or st-venant-kirchhoff (see docs/math.md) (default 'neo-hookean')
         tolerance: stop when the gradient max-norm falls below this times max(1, its initial value) (default 1e-08)
         max_iterations: maximum iterations of the verb's outer solver (LM iterations summed over its stages; spline: L-BFGS); inner solves keep their own limits (default 200)
         threads: threads of the solves (default 2)
@@ -605,6 +623,7 @@ class ShootOptions:
     eta: Optional[float]
     relative_eta: float
     bending: str
+    membrane: str
     tolerance: float
     max_iterations: int
     threads: int
@@ -625,6 +644,7 @@ class ShootOptions:
         eta: Optional[float] = ...,
         relative_eta: float = ...,
         bending: str = ...,
+        membrane: str = ...,
         tolerance: float = ...,
         max_iterations: int = ...,
         threads: int = ...,
@@ -691,6 +711,7 @@ class SplineOptions:
         eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
         relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
         bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        membrane: membrane law: neo-hookean or st-venant-kirchhoff (see docs/math.md) (default 'neo-hookean')
         tolerance: stop when the gradient max-norm falls below this times max(1, its initial value) (default 1e-08)
         max_iterations: maximum iterations of the verb's outer solver (LM iterations summed over its stages; spline: L-BFGS); inner solves keep their own limits (default 200)
         threads: threads of the solves (default 2)
@@ -711,6 +732,7 @@ class SplineOptions:
     eta: Optional[float]
     relative_eta: float
     bending: str
+    membrane: str
     tolerance: float
     max_iterations: int
     threads: int
@@ -732,6 +754,7 @@ class SplineOptions:
         eta: Optional[float] = ...,
         relative_eta: float = ...,
         bending: str = ...,
+        membrane: str = ...,
         tolerance: float = ...,
         max_iterations: int = ...,
         threads: int = ...,
@@ -789,6 +812,7 @@ class TransportOptions:
         eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
         relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
         bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        membrane: membrane law: neo-hookean or st-venant-kirchhoff (see docs/math.md) (default 'neo-hookean')
         tolerance: stop when the gradient max-norm falls below this times max(1, its initial value) (default 1e-08)
         max_iterations: maximum iterations of the verb's outer solver (LM iterations summed over its stages; spline: L-BFGS); inner solves keep their own limits (default 200)
         threads: threads of the solves (default 2)
@@ -807,6 +831,7 @@ class TransportOptions:
     eta: Optional[float]
     relative_eta: float
     bending: str
+    membrane: str
     tolerance: float
     max_iterations: int
     threads: int
@@ -826,6 +851,7 @@ class TransportOptions:
         eta: Optional[float] = ...,
         relative_eta: float = ...,
         bending: str = ...,
+        membrane: str = ...,
         tolerance: float = ...,
         max_iterations: int = ...,
         threads: int = ...,
@@ -958,6 +984,7 @@ def compare(
     eta: Optional[float] = ...,
     relative_eta: float = ...,
     bending: str = ...,
+    membrane: str = ...,
 ) -> Any:
     """Two shells (#V x 3 arrays) or two paths (sequences of them) up to rigid motion per frame: the `compare` verb's summary (max and mean vertex distance per frame, E_K of each path or W[a, b], `equal` against the tolerances).
 
@@ -972,6 +999,7 @@ def compare(
         eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
         relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
         bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        membrane: membrane law: neo-hookean or st-venant-kirchhoff (see docs/math.md) (default 'neo-hookean')
     """
 
 
@@ -984,6 +1012,7 @@ def energy(
     eta: Optional[float] = ...,
     relative_eta: float = ...,
     bending: str = ...,
+    membrane: str = ...,
 ) -> Any:
     """W[reference, deformed] = W_mem + eta W_bend: the `energy` verb's summary {membrane, bending, total, mu, lambda, eta}.
 
@@ -996,6 +1025,7 @@ def energy(
         eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
         relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
         bending: bending model: discrete-shells (default), shape-operator, shape-operator-edge-angles (the shape operator with one angle per interior edge fitted to each shell, docs/math.md, "Bending energy: two models"; energy only), or both (W_bend of all three reported; total and membrane from discrete-shells) (default 'discrete-shells')
+        membrane: membrane law: neo-hookean or st-venant-kirchhoff (see docs/math.md) (default 'neo-hookean')
     """
 
 
@@ -1009,6 +1039,7 @@ def energy_gradient(
     eta: Optional[float] = ...,
     relative_eta: float = ...,
     bending: str = ...,
+    membrane: str = ...,
 ) -> NDArray[np.float64]:
     """D_2 W (side='deformed') or D_1 W (side='reference') as a #V x 3 array (the derivative by vertex v, coordinate c at [v, c]).
 
@@ -1022,6 +1053,7 @@ def energy_gradient(
         eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
         relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
         bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        membrane: membrane law: neo-hookean or st-venant-kirchhoff (see docs/math.md) (default 'neo-hookean')
     """
 
 
@@ -1036,6 +1068,7 @@ def energy_hessian(
     eta: Optional[float] = ...,
     relative_eta: float = ...,
     bending: str = ...,
+    membrane: str = ...,
 ) -> tuple[Any, ...]:
     """The 3#V x 3#V block d_rows d_cols W (coordinate 3 v + c) as triplets (rows, cols, vals): scipy.sparse.coo_matrix((vals, (rows, cols)), shape=(3 * nV, 3 * nV)). rows/cols: 'deformed' or 'reference' ('reference', 'deformed' is the mixed D_1 D_2 W).
 
@@ -1050,6 +1083,7 @@ def energy_hessian(
         eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
         relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
         bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        membrane: membrane law: neo-hookean or st-venant-kirchhoff (see docs/math.md) (default 'neo-hookean')
     """
 
 
@@ -1072,6 +1106,7 @@ def geodesic(
     eta: Optional[float] = ...,
     relative_eta: float = ...,
     bending: str = ...,
+    membrane: str = ...,
     tolerance: float = ...,
     max_iterations: int = ...,
     threads: int = ...,
@@ -1100,6 +1135,7 @@ def geodesic(
         eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
         relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
         bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        membrane: membrane law: neo-hookean or st-venant-kirchhoff (see docs/math.md) (default 'neo-hookean')
         tolerance: stop when the gradient max-norm falls below this times max(1, its initial value) (default 1e-08)
         max_iterations: maximum iterations of the verb's outer solver (LM iterations summed over its stages; spline: L-BFGS); inner solves keep their own limits (default 200)
         threads: threads of the solves (default 2)
@@ -1125,6 +1161,7 @@ def log(
     eta: Optional[float] = ...,
     relative_eta: float = ...,
     bending: str = ...,
+    membrane: str = ...,
     tolerance: float = ...,
     max_iterations: int = ...,
     threads: int = ...,
@@ -1150,6 +1187,7 @@ def log(
         eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
         relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
         bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        membrane: membrane law: neo-hookean or st-venant-kirchhoff (see docs/math.md) (default 'neo-hookean')
         tolerance: stop when the gradient max-norm falls below this times max(1, its initial value) (default 1e-08)
         max_iterations: maximum iterations of the verb's outer solver (LM iterations summed over its stages; spline: L-BFGS); inner solves keep their own limits (default 200)
         threads: threads of the solves (default 2)
@@ -1169,6 +1207,7 @@ def mean(
     eta: Optional[float] = ...,
     relative_eta: float = ...,
     bending: str = ...,
+    membrane: str = ...,
     tolerance: float = ...,
     max_iterations: int = ...,
     threads: int = ...,
@@ -1188,6 +1227,7 @@ def mean(
         eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
         relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
         bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        membrane: membrane law: neo-hookean or st-venant-kirchhoff (see docs/math.md) (default 'neo-hookean')
         tolerance: stop when the gradient max-norm falls below this times max(1, its initial value) (default 1e-08)
         max_iterations: maximum iterations of the verb's outer solver (LM iterations summed over its stages; spline: L-BFGS); inner solves keep their own limits (default 200)
         threads: threads of the solves (default 2)
@@ -1215,6 +1255,7 @@ def pca(
     eta: Optional[float] = ...,
     relative_eta: float = ...,
     bending: str = ...,
+    membrane: str = ...,
     tolerance: float = ...,
     max_iterations: int = ...,
     threads: int = ...,
@@ -1242,6 +1283,7 @@ def pca(
         eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
         relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
         bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        membrane: membrane law: neo-hookean or st-venant-kirchhoff (see docs/math.md) (default 'neo-hookean')
         tolerance: stop when the gradient max-norm falls below this times max(1, its initial value) (default 1e-08)
         max_iterations: maximum iterations of the verb's outer solver (LM iterations summed over its stages; spline: L-BFGS); inner solves keep their own limits (default 200)
         threads: threads of the solves (default 2)
@@ -1287,6 +1329,7 @@ def regress(
     eta: Optional[float] = ...,
     relative_eta: float = ...,
     bending: str = ...,
+    membrane: str = ...,
     tolerance: float = ...,
     max_iterations: int = ...,
     threads: int = ...,
@@ -1310,6 +1353,7 @@ def regress(
         eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
         relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
         bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        membrane: membrane law: neo-hookean or st-venant-kirchhoff (see docs/math.md) (default 'neo-hookean')
         tolerance: stop when the gradient max-norm falls below this times max(1, its initial value) (default 1e-08)
         max_iterations: maximum iterations of the verb's outer solver (LM iterations summed over its stages; spline: L-BFGS); inner solves keep their own limits (default 200)
         threads: threads of the solves (default 2)
@@ -1334,6 +1378,7 @@ def shoot(
     eta: Optional[float] = ...,
     relative_eta: float = ...,
     bending: str = ...,
+    membrane: str = ...,
     tolerance: float = ...,
     max_iterations: int = ...,
     threads: int = ...,
@@ -1358,6 +1403,7 @@ def shoot(
         eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
         relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
         bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        membrane: membrane law: neo-hookean or st-venant-kirchhoff (see docs/math.md) (default 'neo-hookean')
         tolerance: stop when the gradient max-norm falls below this times max(1, its initial value) (default 1e-08)
         max_iterations: maximum iterations of the verb's outer solver (LM iterations summed over its stages; spline: L-BFGS); inner solves keep their own limits (default 200)
         threads: threads of the solves (default 2)
@@ -1403,6 +1449,7 @@ def spline(
     eta: Optional[float] = ...,
     relative_eta: float = ...,
     bending: str = ...,
+    membrane: str = ...,
     tolerance: float = ...,
     max_iterations: int = ...,
     threads: int = ...,
@@ -1428,6 +1475,7 @@ def spline(
         eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
         relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
         bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        membrane: membrane law: neo-hookean or st-venant-kirchhoff (see docs/math.md) (default 'neo-hookean')
         tolerance: stop when the gradient max-norm falls below this times max(1, its initial value) (default 1e-08)
         max_iterations: maximum iterations of the verb's outer solver (LM iterations summed over its stages; spline: L-BFGS); inner solves keep their own limits (default 200)
         threads: threads of the solves (default 2)
@@ -1451,6 +1499,7 @@ def transport(
     eta: Optional[float] = ...,
     relative_eta: float = ...,
     bending: str = ...,
+    membrane: str = ...,
     tolerance: float = ...,
     max_iterations: int = ...,
     threads: int = ...,
@@ -1474,6 +1523,7 @@ def transport(
         eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
         relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
         bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        membrane: membrane law: neo-hookean or st-venant-kirchhoff (see docs/math.md) (default 'neo-hookean')
         tolerance: stop when the gradient max-norm falls below this times max(1, its initial value) (default 1e-08)
         max_iterations: maximum iterations of the verb's outer solver (LM iterations summed over its stages; spline: L-BFGS); inner solves keep their own limits (default 200)
         threads: threads of the solves (default 2)

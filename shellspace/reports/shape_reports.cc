@@ -45,7 +45,8 @@ JsonObject MaterialJson(const ShellMaterial& material, const Mesh& reference,
                         bool eta_absolute) {
   const double area = SurfaceArea(reference);
   JsonObject json;
-  json.Add("mu", material.mu)
+  json.Add("membrane_law", MembraneLawName(material.membrane_law))
+      .Add("mu", material.mu)
       .Add("lambda", material.lambda)
       .Add("eta", material.eta)
       .Add("relative_eta", material.eta / area)

@@ -121,6 +121,26 @@ def test_bending_model_matches_cli(double_square):
         shellspace.energy(V, W, F, bending="plates")
 
 
+def test_membrane_law_matches_cli(double_square):
+    V, W, F = double_square
+    for law in ("neo-hookean", "st-venant-kirchhoff"):
+        e = shellspace.energy(V, W, F, membrane=law)
+        cli = cli_json(["energy", "--reference", DOUBLE, "--deformed",
+                        DOUBLE_BENT, "--membrane", law], quiet=False)
+        material = cli.pop("material")
+        assert material["membrane_law"] == law
+        assert e == cli
+    # The laws give different W_mem and the same W_bend; an unknown law is a
+    # Python exception naming the laws.
+    neo = shellspace.energy(V, W, F)
+    svk = shellspace.energy(V, W, F, membrane="st-venant-kirchhoff")
+    assert svk["membrane"] != neo["membrane"]
+    assert svk["bending"] == neo["bending"]
+    with pytest.raises(shellspace.InputError,
+                       match="unknown membrane law .*st-venant-kirchhoff"):
+        shellspace.energy(V, W, F, membrane="hooke")
+
+
 @pytest.mark.parametrize("side", ["deformed", "reference"])
 def test_gradient_against_finite_differences(double_square, side):
     # Derivatives are at a fixed eta: with the default relative eta, moving

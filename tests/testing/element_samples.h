@@ -87,21 +87,37 @@ std::vector<ElementSample<Group::kVertices>> SampleElements(
 
 // Calls check(element, sample) for sampled elements of every term of W on
 // the pair (each mesh pair, membrane and bending, eta of the default
-// material).
+// material), and of the membrane term of every other registered membrane law
+// (membrane_law.h).
 template <class Check>
 void ForSampledElements(const MeshPairNames& pair, int count, Check&& check) {
   const Mesh ref = LoadData(pair.reference);
   const Mesh def = LoadData(pair.deformed);
   const ShellSpace space = MakeSpace(ref);
   int groups = 0;
-  space.elements().ForEachGroup([&](const auto& group) {
+  const auto sample = [&](const auto& group) {
     ++groups;
     for (const auto& s :
          SampleElements(group, ref.positions, def.positions, count)) {
       check(group.element, s);
     }
-  });
+  };
+  space.elements().ForEachGroup(sample);
   ASSERT_EQ(groups, 2);  // membrane and bending
+  int laws = 0;
+#define SHELLSPACE_OTHER_LAW(type, value, name)                        \
+  if (MembraneLaw::value != space.material.membrane_law) {             \
+    ShellMaterial material = space.material;                          \
+    material.membrane_law = MembraneLaw::value;                       \
+    MakeSpace(ref, material).elements().ForEachGroup([&](const auto& g) { \
+      if (g.part == EnergyPart::kMembrane) sample(g);                 \
+    });                                                               \
+    ++laws;                                                           \
+  }
+  SHELLSPACE_MEMBRANE_LAWS(SHELLSPACE_OTHER_LAW)
+#undef SHELLSPACE_OTHER_LAW
+  ASSERT_EQ(groups, 2 + laws);
+  ASSERT_GE(laws, 1);  // the St. Venant-Kirchhoff law
 }
 
 }  // namespace shellspace::testing

@@ -116,6 +116,7 @@ TEST(CliTest, HelpListsOnlyTheVerbsFlags) {
                                           "eta",
                                           "relative_eta",
                                           "bending",
+                                          "membrane",
                                           "tolerance",
                                           "max_iterations",
                                           "threads",

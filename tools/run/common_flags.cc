@@ -20,6 +20,7 @@ DEFINE_double(eta, -1, SHELLSPACE_PER_VERB);
 DEFINE_double(relative_eta, shellspace::kDefaultRelativeEta,
               SHELLSPACE_PER_VERB);
 DEFINE_string(bending, "discrete-shells", SHELLSPACE_PER_VERB);
+DEFINE_string(membrane, "neo-hookean", SHELLSPACE_PER_VERB);
 DEFINE_string(png, "", SHELLSPACE_PER_VERB);
 DEFINE_string(gltf, "", SHELLSPACE_PER_VERB);
 DEFINE_string(html, "", SHELLSPACE_PER_VERB);

@@ -19,6 +19,7 @@ DECLARE_double(lambda);
 DECLARE_double(eta);
 DECLARE_double(relative_eta);
 DECLARE_string(bending);
+DECLARE_string(membrane);
 DECLARE_string(png);
 DECLARE_string(gltf);
 DECLARE_string(html);

@@ -87,6 +87,10 @@ workflows::MaterialChoice MaterialChoiceFromFlags(const Mesh& reference) {
   workflows::MaterialChoice choice;
   ShellMaterial& material = choice.material;
   material.bending_model = BendingModelFromFlags();
+  if (!ParseMembraneLaw(FLAGS_membrane, &material.membrane_law)) {
+    throw InputError("--membrane: unknown membrane law '" + FLAGS_membrane +
+                     "' (" + MembraneLawNames() + ")");
+  }
   material.mu = FLAGS_mu;
   material.lambda = FLAGS_lambda;
   choice.eta_absolute = Given("eta");

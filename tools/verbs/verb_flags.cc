@@ -93,6 +93,9 @@ FlagTable Flags(std::initializer_list<FlagTable> parts) {
 FlagTable MaterialFlags() {
   const ShellMaterial material;
   return {
+      TextFlag("membrane",
+               "membrane law: " + MembraneLawNames() + " (see docs/math.md)")
+          .Default(MembraneLawName(material.membrane_law)),
       RealFlag("mu", "membrane Lame weight mu", 0, End::kOpen)
           .Default(FlagDefault(material.mu)),
       RealFlag("lambda", "membrane Lame weight lambda", 0, End::kOpen)

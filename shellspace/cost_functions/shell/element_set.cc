@@ -11,19 +11,18 @@ ElementSet::ElementSet(const Faces& faces, const Topology& topology,
     : material_(material),
       num_faces_(static_cast<int>(faces.rows())),
       num_interior_edges_(static_cast<int>(topology.interior_edges.size())) {
-  // 1. Membrane: one element per face.
-  ElementGroup<MembraneElement> membrane;
-  membrane.term = "membrane";
-  membrane.stencil_kind = "triangle";
-  membrane.part = EnergyPart::kMembrane;
-  membrane.weight = 1;
-  membrane.element = material.membrane();
-  membrane.stencils.resize(faces.rows());
-  for (int f = 0; f < faces.rows(); ++f) {
-    membrane.stencils[f] = {faces(f, 0), faces(f, 1), faces(f, 2)};
+  // 1. Membrane: one element per face, of the material's law.
+  switch (material.membrane_law) {
+#define SHELLSPACE_MEMBRANE_LAW_CASE(type, value, name)        \
+  case MembraneLaw::value:                                    \
+    AddMembraneGroup(material.membrane<type>(), faces, labels.faces); \
+    break;
+    SHELLSPACE_MEMBRANE_LAWS(SHELLSPACE_MEMBRANE_LAW_CASE)
+#undef SHELLSPACE_MEMBRANE_LAW_CASE
+    default:
+      throw InputError("material: unknown membrane law " +
+                       std::to_string(static_cast<int>(material.membrane_law)));
   }
-  membrane.labels = labels.faces;
-  Add(std::move(membrane));
 
   // 2. Bending, weight eta, by the material's bending model.
   switch (material.bending_model) {
@@ -78,6 +77,24 @@ ElementGroup<ShapeOperatorElement<kInterior>> ShapeOperatorGroup(
 }
 
 }  // namespace
+
+template <class Law>
+void ElementSet::AddMembraneGroup(const MembraneElementOf<Law>& element,
+                                  const Faces& faces,
+                                  const std::vector<int>& face_labels) {
+  ElementGroup<MembraneElementOf<Law>> membrane;
+  membrane.term = "membrane";
+  membrane.stencil_kind = "triangle";
+  membrane.part = EnergyPart::kMembrane;
+  membrane.weight = 1;
+  membrane.element = element;
+  membrane.stencils.resize(faces.rows());
+  for (int f = 0; f < faces.rows(); ++f) {
+    membrane.stencils[f] = {faces(f, 0), faces(f, 1), faces(f, 2)};
+  }
+  membrane.labels = face_labels;
+  Add(std::move(membrane));
+}
 
 void ElementSet::AddShapeOperatorGroups(const Faces& faces,
                                         const Topology& topology,

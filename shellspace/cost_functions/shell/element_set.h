@@ -10,7 +10,7 @@
 //
 // Today's terms, in this order:
 //   1. membrane, one element per face f (stencil (i, j, k) = faces(f, .)),
-//      MembraneElement, weight 1;
+//      MembraneElementOf<the material's law> (membrane_law.h), weight 1;
 //   2. bending, weight eta, not a term of W when eta = 0 (ForEachGroup skips
 //      it), by the material's BendingModel:
 //      kDiscreteShells: one element per interior edge e (stencil (i, j, k,
@@ -125,13 +125,19 @@ struct ElementGroup {
   }
 };
 
-// The element types a set can hold, one alternative per type.
+// The element types a set can hold, one alternative per type: the membrane
+// element of every registered law (membrane_law.h), then the bending
+// elements.
+#define SHELLSPACE_MEMBRANE_GROUP(type, value, name) \
+  ElementGroup<MembraneElementOf<type>>,
 using AnyElementGroup =
-    std::variant<ElementGroup<MembraneElement>, ElementGroup<BendingElement>,
+    std::variant<SHELLSPACE_MEMBRANE_LAWS(SHELLSPACE_MEMBRANE_GROUP)
+                     ElementGroup<BendingElement>,
                  ElementGroup<ShapeOperatorElement<3>>,
                  ElementGroup<ShapeOperatorElement<2>>,
                  ElementGroup<ShapeOperatorElement<1>>,
                  ElementGroup<ShapeOperatorElement<0>>>;
+#undef SHELLSPACE_MEMBRANE_GROUP
 
 // The first element at which an evaluation over the set stopped (the lowest
 // enumeration index among the failing ones, whatever the threading).
@@ -142,7 +148,8 @@ struct ElementFailure {
 
 class ElementSet {
  public:
-  // Throws InputError for an unknown material.bending_model.
+  // Throws InputError for an unknown material.membrane_law or
+  // material.bending_model.
   ElementSet(const Faces& faces, const Topology& topology,
              const ShellMaterial& material, const ElementLabels& labels = {});
 
@@ -183,6 +190,11 @@ class ElementSet {
  private:
   template <class E>
   void Add(ElementGroup<E> group);
+  // The membrane term: `element` on every face.
+  template <class Law>
+  void AddMembraneGroup(const MembraneElementOf<Law>& element,
+                        const Faces& faces,
+                        const std::vector<int>& face_labels);
   void AddShapeOperatorGroups(const Faces& faces, const Topology& topology,
                               const ShellMaterial& material,
                               const std::vector<int>& face_labels);

@@ -1,5 +1,5 @@
-// MembraneElement's closed-form energy and second derivatives, and its
-// element_hessian.h instantiations, compiled once.
+// MembraneElementOf's closed-form energy and second derivatives, and its
+// element_hessian.h instantiations, compiled once for every registered law.
 #include "shellspace/cost_functions/shell/membrane_element.h"
 
 #include <cmath>
@@ -8,7 +8,8 @@
 
 namespace shellspace {
 
-bool MembraneElement::SecondDerivatives(
+template <class Law>
+bool MembraneElementOf<Law>::SecondDerivatives(
     const double* reference, const double* deformed, ShellSide active,
     double weight, ElementSecondDerivatives<3>::Rows rows,
     ElementSecondDerivatives<3>* out) const {
@@ -24,7 +25,7 @@ bool MembraneElement::SecondDerivatives(
   const bool want_def = D::WantsDeformed(rows);
   const bool deformed_active = active == ShellSide::kDeformed;
   MembraneFormDerivatives f;
-  if (!f.Compute(law.mu, law.lambda, p, q, want_ref && !deformed_active,
+  if (!f.Compute(law, p, q, want_ref && !deformed_active,
                  want_def && deformed_active,
                  deformed_active ? want_ref : want_def)) {
     return false;
@@ -42,13 +43,13 @@ bool MembraneElement::SecondDerivatives(
     if (deformed_active) {
       out->d_grad_reference = weight * (jp.transpose() * f.h_pq * jq);
     } else {
-      out->d_grad_reference = weight * FormHessian(jp, f.h_pp, f.grad_p);
+      out->d_grad_reference = weight * MembraneFormHessian(jp, f.h_pp, f.grad_p);
     }
   }
   if (want_def) {
     out->grad_deformed = weight * (jq.transpose() * f.grad_q);
     if (deformed_active) {
-      out->d_grad_deformed = weight * FormHessian(jq, f.h_qq, f.grad_q);
+      out->d_grad_deformed = weight * MembraneFormHessian(jq, f.h_qq, f.grad_q);
     } else {
       out->d_grad_deformed =
           weight * Mat9(jq.transpose() * f.h_pq.transpose() * jp);
@@ -57,7 +58,8 @@ bool MembraneElement::SecondDerivatives(
   return true;
 }
 
-void MembraneElement::SliceSecondDerivatives(
+template <class Law>
+void MembraneElementOf<Law>::SliceSecondDerivatives(
     const double* previous, const double* own, const double* next,
     double weight, bool want_coupling,
     ElementSliceSecondDerivatives<3>* out) const {
@@ -70,9 +72,9 @@ void MembraneElement::SliceSecondDerivatives(
   const double x[3] = {gx.g11, gx.g12, gx.g22};
   const double n[3] = {gn.g11, gn.g12, gn.g22};
   MembraneFormDerivatives before, after;
-  out->before_ok = before.Compute(law.mu, law.lambda, p, x, false, true, false);
+  out->before_ok = before.Compute(law, p, x, false, true, false);
   out->after_ok =
-      after.Compute(law.mu, law.lambda, x, n, true, false, want_coupling);
+      after.Compute(law, x, n, true, false, want_coupling);
   if (!out->after_ok) return;
   Mat39 jx;
   for (int m = 0; m < 3; ++m) {
@@ -89,11 +91,11 @@ void MembraneElement::SliceSecondDerivatives(
     out->coupling = weight * (jn.transpose() * after.h_pq.transpose() * jx);
   }
   if (!out->before_ok) return;
-  out->diagonal = weight * FormHessian(jx, before.h_qq + after.h_pp,
+  out->diagonal = weight * MembraneFormHessian(jx, before.h_qq + after.h_pp,
                                        before.grad_q + after.grad_p);
 }
 
-Eigen::Matrix<double, 9, 9> MembraneElement::FormHessian(
+Eigen::Matrix<double, 9, 9> MembraneFormHessian(
     const Eigen::Matrix<double, 3, 9>& j, const Eigen::Matrix3d& h,
     const Eigen::Vector3d& g) {
   Eigen::Matrix<double, 9, 9> out = j.transpose() * h * j;
@@ -110,7 +112,8 @@ Eigen::Matrix<double, 9, 9> MembraneElement::FormHessian(
   return out;
 }
 
-bool MembraneElement::Energy(const Vec3<double>* ref, const Vec3<double>* def,
+template <class Law>
+bool MembraneElementOf<Law>::Energy(const Vec3<double>* ref, const Vec3<double>* def,
                              double* energy) const {
   const FirstFundamentalForm<double> gbar(ref[0], ref[1], ref[2]);
   const FirstFundamentalForm<double> g(def[0], def[1], def[2]);
@@ -121,12 +124,13 @@ bool MembraneElement::Energy(const Vec3<double>* ref, const Vec3<double>* def,
       (gbar.g22 * g.g11 - 2 * gbar.g12 * g.g12 + gbar.g11 * g.g22) / det_gbar;
   const double det = det_g / det_gbar;
   const double area = 0.5 * std::sqrt(det_gbar);
-  const double mu = law.mu, lambda = law.lambda;
-  *energy = area * (mu / 2 * tr + lambda / 4 * det -
-                    (mu / 2 + lambda / 4) * std::log(det) - mu - lambda / 4);
-  return true;
+  return law.Energy(tr, det, area, energy);
 }
 
-SHELLSPACE_ELEMENT_HESSIAN_TEMPLATES(template, MembraneElement);
+#define SHELLSPACE_MEMBRANE_ELEMENT_INSTANCE(type, value, name) \
+  template struct MembraneElementOf<type>;                      \
+  SHELLSPACE_ELEMENT_HESSIAN_TEMPLATES(template, MembraneElementOf<type>);
+SHELLSPACE_MEMBRANE_LAWS(SHELLSPACE_MEMBRANE_ELEMENT_INSTANCE)
+#undef SHELLSPACE_MEMBRANE_ELEMENT_INSTANCE
 
 }  // namespace shellspace

@@ -1,8 +1,8 @@
 // One triangle's membrane residuals with Jacobians w.r.t. reference and
-// deformed vertices: the membrane law (membrane_law.h) composed with the
+// deformed vertices: a membrane law (membrane_law.h) composed with the
 // triangle distortion (geometry/triangle_distortion.h); its hand-derived
 // second derivatives through the first fundamental forms
-// (membrane_form_derivatives.h).
+// (membrane_form_derivatives.h). One element type per registered law.
 #ifndef SHELLSPACE_COST_FUNCTIONS_SHELL_MEMBRANE_ELEMENT_H_
 #define SHELLSPACE_COST_FUNCTIONS_SHELL_MEMBRANE_ELEMENT_H_
 
@@ -19,16 +19,17 @@
 namespace shellspace {
 
 // r(Xbar_i, Xbar_j, Xbar_k, X_i, X_j, X_k) in R^4 with 1/2 |r|^2 =
-// abar W_m(G) (membrane_law.h). Jacobians are 4 x 9, columns (i, j, k) x (x,
-// y, z), row-major like Ceres' Jacobian blocks. An element type of the
-// element set (element_set.h): stencil (i, j, k), weight 1.
-struct MembraneElement {
+// abar W(G) of the law `Law` (membrane_law.h). Jacobians are 4 x 9, columns
+// (i, j, k) x (x, y, z), row-major like Ceres' Jacobian blocks. An element
+// type of the element set (element_set.h): stencil (i, j, k), weight 1.
+template <class Law>
+struct MembraneElementOf {
   static constexpr int kNumVertices = 3;
   static constexpr int kNumResiduals = 4;
   template <typename T>
   using Jacobian = Eigen::Matrix<T, 4, 9, Eigen::RowMajor>;
 
-  MembraneLaw law;
+  Law law;
 
   template <typename T>
   bool Evaluate(const Vec3<T>* ref, const Vec3<T>* def, T* residuals,
@@ -64,7 +65,7 @@ struct MembraneElement {
   }
 
   // Energy, gradients and second derivatives (element_hessian.h) of e =
-  // abar W_m(gbar^-1 g) = F(p, q) (membrane_form_derivatives.h), p, q the
+  // abar W(gbar^-1 g) = F(p, q) (membrane_form_derivatives.h), p, q the
   // entries of gbar, g (FirstFundamentalForm), chained to the 9 coordinates
   // of each triangle with J_p = dp/dXbar, J_q = dq/dX (3 x 9):
   //   d_X e = J_q^T F_q,  d_Xbar e = J_p^T F_p,
@@ -93,21 +94,29 @@ struct MembraneElement {
                               bool want_coupling,
                               ElementSliceSecondDerivatives<3>* out) const;
 
-  // J^T H J + sum_m G_m d2(form entry m)/dX2 for a first fundamental form
-  // with Jacobian J (3 x 9), its Hessian H and gradient G w.r.t. the entries.
-  static Eigen::Matrix<double, 9, 9> FormHessian(
-      const Eigen::Matrix<double, 3, 9>& j, const Eigen::Matrix3d& h,
-      const Eigen::Vector3d& g);
-
-  // abar W_m(gbar^-1 g) in closed form from the first fundamental forms
+  // abar W(gbar^-1 g) in closed form from the first fundamental forms
   // (tr and det of gbar^-1 g = adj(gbar) g / det gbar), independently of the
   // residuals. False (energy unchanged) if either triangle is degenerate.
   bool Energy(const Vec3<double>* ref, const Vec3<double>* def,
               double* energy) const;
 };
 
-// Its second derivatives are compiled once, in membrane_element.cc.
-SHELLSPACE_ELEMENT_HESSIAN_TEMPLATES(extern template, MembraneElement);
+// J^T H J + sum_m G_m d2(form entry m)/dX2 for a first fundamental form
+// with Jacobian J (3 x 9), its Hessian H and gradient G w.r.t. the entries.
+Eigen::Matrix<double, 9, 9> MembraneFormHessian(
+    const Eigen::Matrix<double, 3, 9>& j, const Eigen::Matrix3d& h,
+    const Eigen::Vector3d& g);
+
+// The element of the specification's law.
+using MembraneElement = MembraneElementOf<NeoHookeanLaw>;
+
+// Every registered law's element and its second derivatives are compiled
+// once, in membrane_element.cc.
+#define SHELLSPACE_MEMBRANE_ELEMENT_EXTERN(type, value, name) \
+  extern template struct MembraneElementOf<type>;             \
+  SHELLSPACE_ELEMENT_HESSIAN_TEMPLATES(extern template, MembraneElementOf<type>);
+SHELLSPACE_MEMBRANE_LAWS(SHELLSPACE_MEMBRANE_ELEMENT_EXTERN)
+#undef SHELLSPACE_MEMBRANE_ELEMENT_EXTERN
 
 }  // namespace shellspace
 

@@ -17,6 +17,14 @@ void ShellMaterial::Validate() const {
     message << "shell material: " << what << ", got " << value;
     throw InputError(message.str());
   };
+  switch (membrane_law) {
+#define SHELLSPACE_MEMBRANE_LAW_CASE(type, value, name) case MembraneLaw::value:
+    SHELLSPACE_MEMBRANE_LAWS(SHELLSPACE_MEMBRANE_LAW_CASE)
+#undef SHELLSPACE_MEMBRANE_LAW_CASE
+    break;
+    default:
+      throw InputError("material: unknown membrane law");
+  }
   if (!(mu > 0) || !std::isfinite(mu)) {
     fail("the membrane weight mu must be a positive number", mu);
   }
@@ -88,6 +96,7 @@ const ElementSet& ShellSpace::elements() const {
   const ShellMaterial& m = elements_->material();
   if (m.mu != material.mu || m.lambda != material.lambda ||
       m.eta != material.eta || m.bending_model != material.bending_model ||
+      m.membrane_law != material.membrane_law ||
       m.shape_operator_alpha != material.shape_operator_alpha ||
       m.shape_operator_beta != material.shape_operator_beta ||
       elements_->num_faces() != faces.rows() ||

@@ -1,7 +1,7 @@
 // The space of shells of one connectivity and the material of W[Sbar, S] =
 // W_mem + eta W_bend (docs/math.md, "Deformation energy"): ShellMaterial
-// (membrane law weights, bending weight, bending model) and ShellSpace (faces,
-// topology, material and the element set of W built from them).
+// (membrane law and its weights, bending model and its weight) and ShellSpace
+// (faces, topology, material and the element set of W built from them).
 #ifndef SHELLSPACE_COST_FUNCTIONS_SHELL_SHELL_SPACE_H_
 #define SHELLSPACE_COST_FUNCTIONS_SHELL_SHELL_SPACE_H_
 
@@ -29,8 +29,9 @@ const char* BendingModelName(BendingModel model);
 // The model called `name` (BendingModelName); false if there is none.
 bool ParseBendingModel(const std::string& name, BendingModel* model);
 
-// Material parameters: membrane Lame-type weights mu, lambda > 0, bending
-// weight eta >= 0 (the squared thickness), the bending model and, for
+// Material parameters, on two independent axes: the membrane law
+// (membrane_law.h) with its Lame-type weights mu, lambda > 0, and the
+// bending model with its weight eta >= 0 (the squared thickness) and, for
 // kShapeOperator, its weights alpha (of (tr M)^2) and beta (of tr(M^2)),
 // beta >= 0 and alpha + beta / 2 >= 0 (so the energy is >= 0).
 struct ShellMaterial {
@@ -40,10 +41,14 @@ struct ShellMaterial {
   BendingModel bending_model = BendingModel::kDiscreteShells;
   double shape_operator_alpha = 0.0;
   double shape_operator_beta = 1.0;
+  // Last, so that ShellMaterial{mu, lambda, eta} keeps its meaning.
+  MembraneLaw membrane_law = MembraneLaw::kNeoHookean;
 
-  // The membrane element of this law (MembraneElement: mu, lambda).
-  MembraneElement membrane() const {
-    MembraneElement element;
+  // The membrane element of the law type `Law` with this material's mu,
+  // lambda (the caller picks Law by membrane_law).
+  template <class Law = NeoHookeanLaw>
+  MembraneElementOf<Law> membrane() const {
+    MembraneElementOf<Law> element;
     element.law.mu = mu;
     element.law.lambda = lambda;
     return element;
@@ -64,8 +69,8 @@ struct ShellMaterial {
     element.beta = shape_operator_beta;
     return element;
   }
-  // Throws InputError unless mu > 0, lambda > 0, eta >= 0 (all finite),
-  // bending_model is a BendingModel value and the shape-operator weights
+  // Throws InputError unless membrane_law is a MembraneLaw value, mu > 0,
+  // lambda > 0, eta >= 0 (all finite), bending_model is a BendingModel value and the shape-operator weights
   // are finite with beta >= 0, alpha + beta / 2 >= 0.
   void Validate() const;
 };
