@@ -103,7 +103,7 @@ print('| run | wall s | CPU s | peak RSS MB | load | iterations | E_K | own fina
 print('|---|---|---|---|---|---|---|---|---|')
 names = sorted(os.path.basename(p)[:-5] for p in glob.glob(f'{out}/logs/*.time'))
 for name in names:
-    if name.startswith('exp_'): continue
+    if name.startswith('exp_') or name.startswith('tr_'): continue
     wall, cpu, rss, load, rc = timing(name)
     if name.startswith('goast_'):
         o, e = open(f'{out}/logs/{name}.out').read(), open(f'{out}/logs/{name}.err').read()
@@ -129,26 +129,48 @@ for name in names:
             except Exception: check = 'pathcheck failed'
         print(f"| {name} | {wall:.1f} | {cpu:.1f} | {rss:.0f} | {load} | {its} | {s['path_energy']!r} | "
               f"max {s['final_gradient_norm']:.2e} | {check} |")
-# Shooting: per EXP step s_2 ... s_8, solved or not and its Newton steps.
-exp = [n for n in names if n.startswith('exp_') and not n.startswith('exp_geo_')]
-if exp:
+# GOAST's Newton solves in `text`: (steps, reached its tolerance, final norm).
+NEWTON = re.compile(r"Finished Newton's method after (\d+) steps \(max\. steps = \d+, tol = (\S+)\)\.\s*"
+                    r"Final stepsize = \S+, final norm = (\S+)")
+def newton_solves(text):
+    return [(int(n), float(r) <= float(t), float(r)) for n, t, r in NEWTON.findall(text)]
+# One table of solves per run: each solve (an EXP step, a transport rung)
+# solved or not, its Newton steps and final residual.
+def solve_table(prefix, geo_prefix, header, solves_of, total=None):
+    runs = [n for n in names if n.startswith(prefix) and not n.startswith(geo_prefix)]
+    if not runs: return
     print()
-    print('| shooting run | wall s | CPU s | peak RSS MB | load | exit | EXP steps solved | per step: Newton steps (no: not solved) / final residual (GOAST: its gradient 2-norm; shellspace: relative to the scale of F) |')
+    print(header)
     print('|---|---|---|---|---|---|---|---|')
-for name in exp:
-    wall, cpu, rss, load, rc = timing(name)
+    for name in runs:
+        wall, cpu, rss, load, rc = timing(name)
+        steps = solves_of(name)
+        solved = sum(1 for _, ok, _ in steps if ok)
+        cells = ', '.join(f"{n}{'' if ok else ' (no)'} / {r:.1e}" for n, ok, r in steps)
+        print(f'| {name} | {wall:.1f} | {cpu:.1f} | {rss:.0f} | {load} | {rc} | {solved} of {total or len(steps)} | {cells} |')
+def shellspace_json(name, key, fields):
+    try: s = json.load(open(f'{out}/logs/{name}.out'))
+    except Exception: return []
+    return [fields(x) for x in s[key]]
+# Shooting: per EXP step s_2 ... s_8, solved or not and its Newton steps.
+def shooting_solves(name):
     if name.startswith('exp_goast_'):
-        o = open(f'{out}/logs/{name}.out').read()
-        runs = re.findall(r"Finished Newton's method after (\d+) steps \(max\. steps = \d+, tol = (\S+)\)\.\s*"
-                          r"Final stepsize = \S+, final norm = (\S+)", o)
-        steps = [(int(n), float(r) <= float(t), float(r)) for n, t, r in runs]
-    else:
-        try: s = json.load(open(f'{out}/logs/{name}.out'))
-        except Exception: steps = []
-        else: steps = [(x['iterations'], x['solved'], x['relative_residual']) for x in s['stages']]
-    solved = sum(1 for _, ok, _ in steps if ok)
-    cells = ', '.join(f"{n}{'' if ok else ' (no)'} / {r:.1e}" for n, ok, r in steps)
-    print(f'| {name} | {wall:.1f} | {cpu:.1f} | {rss:.0f} | {load} | {rc} | {solved} of {len(steps)} | {cells} |')
+        return newton_solves(open(f'{out}/logs/{name}.out').read())
+    return shellspace_json(name, 'stages', lambda x: (x['iterations'], x['solved'], x['relative_residual']))
+solve_table('exp_', 'exp_geo_', '| shooting run | wall s | CPU s | peak RSS MB | load | exit | EXP steps solved | per step: Newton steps (no: not solved) / final residual (GOAST: its gradient 2-norm; shellspace: relative to the scale of F) |', shooting_solves)
+# Transport: per rung, solved or not (GOAST: every Newton solve of the rung
+# -- the midpoint's and the EXP step's -- reached its tolerance).
+def transport_solves(name):
+    if not name.startswith('tr_goast_'):
+        return shellspace_json(name, 'rungs', lambda x: (x['newton_steps'] + x['lm_iterations'], x['solved'], x['relative_residual']))
+    o = open(f'{out}/logs/{name}.out').read() + open(f'{out}/logs/{name}.err').read()
+    rungs = []
+    for part in re.split(r'^rung \d+$', o, flags=re.M)[1:]:
+        solves = newton_solves(part)
+        if solves:
+            rungs.append((sum(n for n, _, _ in solves), all(ok for _, ok, _ in solves), solves[-1][2]))
+    return rungs
+solve_table('tr_', 'tr_geo_', "| transport run | wall s | CPU s | peak RSS MB | load | exit | rungs solved | per rung: Newton steps (no: not solved) / final residual (GOAST: the EXP step's gradient 2-norm; shellspace: relative to the scale of F) |", transport_solves, 8)
 EOF
 }
 if [ -n "${TABLE_ONLY:-}" ]; then table; exit 0; fi
@@ -194,8 +216,9 @@ sed -e 's|"../../data/finger/finger0.ply"|argv[1]|' \
     -e 's|"fingerExtrapolation"|argv[7]|' \
     "$goast/examples/geodesic_extrapolation_shells.cpp" > "$side/extrapolation_args.cpp"
 require_argv "$side/extrapolation_args.cpp"
-cat > "$side/pathcheck.cpp" <<'EOF'
-// GOAST's E_K and masked gradient of a path DIR/shape_000.ply ... shape_K.ply.
+cat > "$side/side_io.h" <<'EOF'
+// What the programs of the side-by-side share: GOAST's shell deformation
+// and a reader of shellspace's PLY frames in double precision.
 #include <cstdio>
 #include <fstream>
 #include <sstream>
@@ -222,14 +245,63 @@ static bool ReadCoordinates(const std::string& path, VectorType& geom) {
   }
   return true;
 }
+// Frame k of a path directory written by shellspace.
+static std::string FramePath(const std::string& dir, int k) {
+  char name[32]; snprintf(name, sizeof name, "/shape_%03d.ply", k);
+  return dir + name;
+}
+EOF
+cat > "$side/transport_args.cpp" <<'EOF'
+// Schild's ladder of GOAST (parTranspSingleStepShort, one call per rung) along
+// a path written by shellspace: transport_args DIR K VARIATION centre ring
+// bendWeight OUT. Prints "rung k" before each rung; GOAST prints its solvers'
+// termination lines. The last transported shape goes to OUT.
+#include "side_io.h"
+int main(int argc, char** argv) {
+  if (argc != 8) { fprintf(stderr, "usage: transport_args DIR K VARIATION centre ring bendWeight OUT\n"); return 2; }
+  const std::string dir = argv[1]; const int K = std::stoi(argv[2]);
+  TriMesh mesh;
+  if (!OpenMesh::IO::read_mesh(mesh, FramePath(dir, 0))) { fprintf(stderr, "cannot read %s\n", dir.c_str()); return 1; }
+  std::vector<VectorType> frames(K + 1);
+  for (int k = 0; k <= K; ++k) {
+    if (!ReadCoordinates(FramePath(dir, k), frames[k])) { fprintf(stderr, "cannot read frame %d\n", k); return 1; }
+  }
+  VectorType variation;
+  if (!ReadCoordinates(argv[3], variation)) { fprintf(stderr, "cannot read %s\n", argv[3]); return 1; }
+  MeshTopologySaver topology(mesh);
+  Deformation W(topology, std::stod(argv[6]));
+  std::vector<int> mask;
+  topology.getVertexNRingVertices(std::stoi(argv[5]), std::stoi(argv[4]), mask);
+  extendBoundaryMask(topology.getNumVertices(), mask);
+  OptimizationParameters<DefaultConfigurator> parameters;
+  parameters.setGradientIterations(250);
+  parameters.setBFGSIterations(0);
+  parameters.setNewtonIterations(25);
+  parameters.setInitializationScheme(2);
+  parameters.setQuietMode(SHOW_TERMINATION_INFO);
+  for (int k = 0; k < K; ++k) {
+    std::cout << "rung " << k + 1 << std::endl;
+    VectorType next;
+    parTranspSingleStepShort<DefaultConfigurator>(topology, frames[k], frames[k + 1], variation, mask, W,
+                                                  parameters, next, false);
+    variation = next;
+  }
+  setGeometry(mesh, variation);
+  OpenMesh::IO::write_mesh(mesh, argv[7]);
+  return 0;
+}
+EOF
+cat > "$side/pathcheck.cpp" <<'EOF'
+// GOAST's E_K and masked gradient of a path DIR/shape_000.ply ... shape_K.ply.
+#include "side_io.h"
 int main(int argc, char** argv) {
   if (argc != 6) { fprintf(stderr, "usage: pathcheck DIR K centre ring bendWeight\n"); return 2; }
   const std::string dir = argv[1]; const int K = std::stoi(argv[2]);
   std::vector<VectorType> frames(K + 1); TriMesh mesh;
   for (int k = 0; k <= K; ++k) {
-    char name[32]; snprintf(name, sizeof name, "/shape_%03d.ply", k);
-    if ((k == 0 && !OpenMesh::IO::read_mesh(mesh, dir + name)) || !ReadCoordinates(dir + name, frames[k])) {
-      fprintf(stderr, "cannot read %s%s\n", dir.c_str(), name); return 1;
+    const std::string name = FramePath(dir, k);
+    if ((k == 0 && !OpenMesh::IO::read_mesh(mesh, name)) || !ReadCoordinates(name, frames[k])) {
+      fprintf(stderr, "cannot read %s\n", name.c_str()); return 1;
     }
   }
   MeshTopologySaver topology(mesh);
@@ -262,6 +334,8 @@ add_executable(extrapolation_args extrapolation_args.cpp)
 target_link_libraries(extrapolation_args PRIVATE GOAST::GOAST)
 add_executable(pathcheck pathcheck.cpp)
 target_link_libraries(pathcheck PRIVATE GOAST::GOAST)
+add_executable(transport_args transport_args.cpp)
+target_link_libraries(transport_args PRIVATE GOAST::GOAST)
 EOF
 cmake -S "$side" -B "$side/build" -DCMAKE_BUILD_TYPE=Release \
   -DGOAST_WITH_IPOPT=OFF -DGOAST_WITH_ADOLC=OFF -DGOAST_WITH_TRLIB=OFF \
@@ -271,14 +345,17 @@ nice -n 10 cmake --build "$side/build" -j"$jobs" > "$out/logs/side_build.log" 2>
 goast_run="$side/build/interpolation_args"
 goast_exp="$side/build/extrapolation_args"
 pathcheck="$side/build/pathcheck"
+goast_transport="$side/build/transport_args"
 
 # --- the corpus problems' meshes -----------------------------------------
-corpus=() exp_corpus=()
+corpus=() exp_corpus=() tr_corpus=()
 for entry in bull:bend:120 triceratops:pull:0.15 ChineseDragon-10kv:twist:180 \
     ChineseDragon-10kv:twist:60 triceratops:bend:120 \
     exp:ChineseDragon-10kv:bend:75 exp:ChineseDragon-10kv:bend:120 \
-    ${GOAST_EXTRA_PROBLEMS:-}; do
-  exp=""; [[ "$entry" == exp:* ]] && exp="exp_" entry="${entry#exp:}"
+    tr:ChineseDragon-10kv:twist:180 ${GOAST_EXTRA_PROBLEMS:-}; do
+  exp=""
+  [[ "$entry" == exp:* ]] && exp="exp_" entry="${entry#exp:}"
+  [[ "$entry" == tr:* ]] && exp="tr_" entry="${entry#tr:}"
   IFS=: read -r mesh kind strength <<<"$entry"
   file="$data/cgal/$mesh.off"
   if [[ "$mesh" == /* ]]; then file="$mesh" mesh="$(basename "${mesh%.*}")"; fi
@@ -289,11 +366,15 @@ for entry in bull:bend:120 triceratops:pull:0.15 ChineseDragon-10kv:twist:180 \
   "$pose" "$file" none 0 0 "$out/${problem}0.ply" norigid &&
   "$pose" "$file" "$kind" "$strength" 0 "$out/${problem}1.ply" norigid ||
     { echo "stress_pose failed on $mesh" >&2; exit 1; }
-  if [ -n "$exp" ]; then exp_corpus+=("$problem"); else corpus+=("$problem"); fi
+  case "$exp" in
+    exp_) exp_corpus+=("$problem") ;;
+    tr_) tr_corpus+=("$problem") ;;
+    *) corpus+=("$problem") ;;
+  esac
 done
 
 # --- masks, centre vertices and float32 copies of the inputs ---------------
-"$python" - "$data" "$out" "${corpus[@]}" "${exp_corpus[@]}" <<'EOF' || exit 1
+"$python" - "$data" "$out" "${corpus[@]}" "${exp_corpus[@]}" "${tr_corpus[@]}" <<'EOF' || exit 1
 import sys
 from collections import deque
 data, out = sys.argv[1], sys.argv[2]
@@ -428,6 +509,25 @@ for problem in "${exp_corpus[@]}"; do
     --first "$geo/shape_000.ply" --second "$geo/shape_001.ply" --steps 8 \
     --mask "$out/${problem}_mask.txt" --eta "$eta" --json --time_limit "$timeout_s" \
     --threads 1 --output "$out/runs/exp_ss_$problem"
+done
+
+for problem in "${tr_corpus[@]}"; do
+  centre="$(cat "$out/$problem.centre")" eta="$(cat "$out/$problem.eta")"
+  weight=$("$python" -c "print(repr(3 * float('$eta')))")
+  geo="$out/runs/tr_geo_$problem"
+  timed "tr_geo_$problem" "$cli" geodesic --steps 8 --mask "$out/${problem}_mask.txt" \
+    --eta "$eta" --json --time_limit "$timeout_s" --start "$out/${problem}0.ply" \
+    --end "$out/${problem}1.ply" --output "$geo"
+  [ -f "$geo/shape_001.ply" ] || { echo "no geodesic for tr_$problem: $out/logs/tr_geo_$problem.err" >&2; continue; }
+  variation="$out/${problem}_variation.ply"
+  "$(dirname "$cli")/bench/stress_pose" "$geo/shape_000.ply" pull 0.02 0 "$variation" norigid ||
+    { echo "stress_pose failed on $geo/shape_000.ply" >&2; continue; }
+  (cd "$out/runs" && OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 \
+    timed "tr_goast_$problem" timeout "$timeout_s" stdbuf -oL -eL \
+      "$goast_transport" "$geo" 8 "$variation" "$centre" 10 "$weight" "tr_goast_$problem.ply")
+  OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 timed "tr_ss_$problem" "$cli" transport \
+    --path "$geo" --variation "$variation" --mask "$out/${problem}_mask.txt" --eta "$eta" \
+    --json --time_limit "$timeout_s" --threads 1 --output "$out/runs/tr_ss_$problem"
 done
 
 table
