@@ -130,10 +130,12 @@ for name in names:
         print(f"| {name} | {wall:.1f} | {cpu:.1f} | {rss:.0f} | {load} | {its} | {s['path_energy']!r} | "
               f"max {s['final_gradient_norm']:.2e} | {check} |")
 # GOAST's Newton solves in `text`: (steps, reached its tolerance, final norm).
+# Some of its solvers print the tolerance with two decimals ("tol = 0.00"):
+# the tolerance is then taken as GOAST's default, 1e-8.
 NEWTON = re.compile(r"Finished Newton's method after (\d+) steps \(max\. steps = \d+, tol = (\S+)\)\.\s*"
                     r"Final stepsize = \S+, final norm = (\S+)")
 def newton_solves(text):
-    return [(int(n), float(r) <= float(t), float(r)) for n, t, r in NEWTON.findall(text)]
+    return [(int(n), float(r) <= max(float(t), 1e-8), float(r)) for n, t, r in NEWTON.findall(text)]
 # One table of solves per run: each solve (an EXP step, a transport rung)
 # solved or not, its Newton steps and final residual.
 def solve_table(prefix, geo_prefix, header, solves_of, total=None):
