@@ -86,26 +86,10 @@ py::tuple SolveModuloRigidMotionsPy(const py::object& rows_object,
     throw InputError("rhs: " + std::to_string(rhs.rows()) +
                      " rows, expected " + std::to_string(shape.rows()));
   }
-  const IndexValues rows = CheckedIndexArray(rows_object, "rows", {{"nnz"}});
-  const IndexValues cols =
-      CheckedIndexArray(cols_object, "cols", {{"nnz", static_cast<py::ssize_t>(rows.values.size())}});
-  const RealValues vals = CheckedRealArray(
-      vals_object, "vals", {{"nnz", static_cast<py::ssize_t>(rows.values.size())}});
   if (!(shift >= 0) || !std::isfinite(shift)) {
     throw InputError("shift must be finite and >= 0");
   }
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(rows.values.size());
-  for (size_t k = 0; k < rows.values.size(); ++k) {
-    const long long r = rows.values[k], c = cols.values[k];
-    if (r < 0 || r >= n || c < 0 || c >= n) {
-      throw InputError("rows/cols: index outside 0.." + std::to_string(n - 1));
-    }
-    triplets.emplace_back(static_cast<int>(r), static_cast<int>(c),
-                          vals.values[k]);
-  }
-  SparseMatrix h(n, n);
-  h.setFromTriplets(triplets.begin(), triplets.end());
+  const SparseMatrix h = TripletsArgument(rows_object, cols_object, vals_object, n);
   const GaugeReducedStep step = SolveModuloRigidMotions(
       h, Eigen::Map<const Eigen::VectorXd>(rhs.data(), rhs.size()), shape,
       shift);

@@ -220,7 +220,8 @@ int RunCollection(const std::string& verb) {
   const std::string build_dir = SHELLSPACE_PYTHON_BUILD_DIR;
   struct stat info {};
   if (!build_dir.empty() &&
-      stat((build_dir + "/shellspace/collections.py").c_str(), &info) == 0) {
+      stat((build_dir + "/shellspace/collections/__init__.py").c_str(),
+           &info) == 0) {
     const char* old = std::getenv("PYTHONPATH");
     const std::string path =
         old && *old ? build_dir + ":" + old : build_dir;
