@@ -3,6 +3,7 @@
 // this process or on a Dask cluster): elastic_mean_newton (the library's
 // Newton finish of the mean on terms the caller sums) and pca_modes (the
 // Gram matrix, its eigenpairs and the modes of given displacements),
+// shoot_from_mean (a mode shape's EXP shot with the library's safeguard),
 // aligned_vertex_average (the mean's start), and the --scheduler values of
 // the command line (_parse_scheduler, _most_local_workers).
 #include <optional>
@@ -13,6 +14,7 @@
 #include "python/array_arguments.h"
 #include "python/module_common.h"
 #include "python/parameter_docs.h"
+#include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/io/scheduler_choice.h"
 #include "shellspace/problems/statistics/elastic_mean.h"
 #include "shellspace/problems/statistics/elastic_mean_newton.h"
@@ -124,6 +126,42 @@ py::tuple PcaModesPy(const py::object& mean, const py::object& displacements,
   return py::make_tuple(gram_array, eigenvalues, mode_array);
 }
 
+// TryShootFromMean (problems/statistics/shell_pca.h): EXP_K(mean,
+// variation) with the safeguard (K = exp_steps, doubled up to
+// max_exp_steps), aligned rigidly to the mean; InputError naming the
+// failure if the shot failed.
+py::array_t<double> ShootFromMeanPy(const py::object& mean,
+                                    const py::object& variation,
+                                    const py::object& F, int exp_steps,
+                                    int max_exp_steps,
+                                    const MaterialArgs& material_args,
+                                    const SolverOptions& solver) {
+  const Shell shell = MakeShell(mean, F, "mean");
+  const Positions v = PositionsArgument(variation, "variation");
+  if (v.rows() != shell.mesh.num_vertices()) {
+    throw InputError("variation: not the mean's vertex count");
+  }
+  CheckAtLeast("exp_steps", exp_steps, 1);
+  if (max_exp_steps < exp_steps) {
+    throw InputError("max_exp_steps must be at least exp_steps");
+  }
+  const ShellSpace space(shell.mesh, shell.topology,
+                         Material(material_args, shell.mesh));
+  ShellPcaOptions options;
+  options.exp_steps = exp_steps;
+  options.max_exp_steps = max_exp_steps;
+  Positions shot;
+  ExpShotReport report;
+  bool ok = false;
+  {
+    SolveControl::Solving solving(*solver.control);
+    ok = TryShootFromMean(space, shell.mesh.positions, v, options,
+                          solver.Settings("shoot_from_mean"), &shot, &report);
+  }
+  if (!ok) throw InputError(report.failure);
+  return FromPositions(AlignRigidly(shot, shell.mesh.positions));
+}
+
 // ParseScheduler (io/scheduler_choice.h): ("none", None), ("local", N; 0
 // for the front end's default) or ("address", ADDRESS).
 py::tuple ParseSchedulerPy(const std::string& value) {
@@ -181,6 +219,20 @@ void RegisterCollections(py::module_& m) {
           "aligned rigidly to the first (A_i: align_rigidly): the start of "
           "the elastic mean.")
           .c_str());
+  m.def("shoot_from_mean", WithMaterialAndSolverArgs(&ShootFromMeanPy),
+        py::arg("mean"), py::arg("variation"), py::arg("F"),
+        py::arg("exp_steps") = 4,
+        py::arg("max_exp_steps") = ShellPcaOptions().max_exp_steps,
+        SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS,
+        WithParameters(
+            "shoot_from_mean",
+            "EXP_K(mean, variation) with shellspace.pca's safeguard (K = "
+            "exp_steps, doubled up to max_exp_steps while a step has no "
+            "solution or the step energies drift by more than half of the "
+            "first), aligned rigidly to the mean: a mode shape of the "
+            "collections' PCA. InputError naming the step if every attempt "
+            "failed.")
+            .c_str());
   m.def("_parse_scheduler", &ParseSchedulerPy, py::arg("value"),
         "The --scheduler of the collection front ends (io/scheduler_choice.h):"
         " ('none', None), ('local', N; 0: the default count) or ('address', "

@@ -1425,6 +1425,46 @@ def shoot(
     """
 
 
+def shoot_from_mean(
+    mean: ArrayLike,
+    variation: ArrayLike,
+    F: ArrayLike,
+    exp_steps: int = ...,
+    max_exp_steps: int = ...,
+    mu: float = ...,
+    lambda_: float = ...,
+    eta: Optional[float] = ...,
+    relative_eta: float = ...,
+    bending: str = ...,
+    tolerance: float = ...,
+    max_iterations: int = ...,
+    threads: int = ...,
+    quiet: bool = ...,
+    time_limit: Optional[float] = ...,
+    allow_unconverged: bool = ...,
+) -> NDArray[np.float64]:
+    """EXP_K(mean, variation) with shellspace.pca's safeguard (K = exp_steps, doubled up to max_exp_steps while a step has no solution or the step energies drift by more than half of the first), aligned rigidly to the mean: a mode shape of the collections' PCA. InputError naming the step if every attempt failed.
+
+    Parameters:
+        mean: an elastic mean of the inputs computed before (e.g. by `shellspace mean`): the mean solve starts there and only checks it (no iterations if it meets the tolerance)
+        variation: #V x 3 positions of the variation at the path's start
+        F: #F x 3 integer faces (0-based vertex indices)
+        exp_steps: K of EXP_K (default 4)
+        max_exp_steps: largest K of the EXP safeguard (default 16)
+        mu: membrane Lame weight mu (default 1.0)
+        lambda_: membrane Lame weight lambda (default 1.0)
+        eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
+        relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
+        bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        tolerance: relative gradient tolerance of every solve (default 1e-08)
+        max_iterations: per geodesic (default 200)
+        threads: threads of the solves (default 2)
+        quiet: suppress progress output (default False)
+        time_limit: stop the solves after this many seconds of wall clock (None: no limit); the partial result is raised as NotConvergedError's .result unless allow_unconverged (default None)
+        allow_unconverged: return a result whose solve missed its stopping criterion (or was cut by time_limit) instead of raising NotConvergedError (default False)
+    """
+
+
 def solve_modulo_rigid_motions(
     rows: ArrayLike,
     cols: ArrayLike,

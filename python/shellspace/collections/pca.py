@@ -1,14 +1,15 @@
 """Shell PCA of a collection at its elastic mean (shellspace.pca's model):
 the LOGs v_i = LOG_K(mean -> S_i) one task each, the Gram matrix, its
 eigenpairs and the modes by the library (shellspace.pca_modes), and the
-mode shapes EXP_K(mean, +-amplitude sqrt(lambda_j) w_j) one task each."""
+mode shapes EXP_K(mean, +-amplitude sqrt(lambda_j) w_j) one task each
+(shellspace.shoot_from_mean)."""
 import math
 
 import numpy as np
 
 import shellspace
 from .mean import elastic_mean
-from .scheduling import (OK, PENDING, LOST, MATERIAL_KEYS, BlasThreads, Clock,
+from .scheduling import (OK, PENDING, LOST, BlasThreads, Clock,
                          Progress, check_collection, check_counts, check_real,
                          check_shape, deadline_of, material_of, one_line,
                          read_only, run_tasks, solve_options, status_of)
@@ -28,41 +29,15 @@ def log_task(shapes, F, i, mean, options):
         return (i, status_of(error), None, one_line(error), clock.seconds())
 
 
-def _step_drift(path, F, material):
-    """max_k |W[s_{k-1}, s_k] - W[s_0, s_1]| / W[s_0, s_1] of a path."""
-    w = [shellspace.energy(path[k - 1], path[k], F, **material)["total"]
-         for k in range(1, len(path))]
-    return max(abs(x - w[0]) for x in w) / w[0] if w[0] > 0 else 0.0
-
-
 def shoot_task(shapes, F, name, mean, variation, options):
-    """EXP_K(mean, variation) with the library's safeguard (K = exp_steps,
-    doubled up to max_exp_steps while a step has no solution or the step
-    energies drift by more than half of the first), aligned to the mean:
-    (name, status, shape or None, message)."""
+    """A mode shape: shellspace.shoot_from_mean (EXP_K with the library's
+    safeguard, aligned to the mean): (name, status, shape or None,
+    message)."""
     options, blas_threads = solve_options(options)
-    steps, most = options.pop("exp_steps"), options.pop("max_exp_steps")
-    material = {k: options[k] for k in MATERIAL_KEYS if k in options}
-    steps = min(steps, most)
     try:
         with BlasThreads(blas_threads):
-            if not np.any(variation):
-                return (name, OK, mean.copy(), "")
-            while True:
-                last = 2 * steps > most
-                try:
-                    path, _ = shellspace.shoot(mean, mean + variation / steps,
-                                               F, steps=steps, **options)
-                    ok = _step_drift(path, F, material) <= 0.5
-                except (shellspace.NotConvergedError,
-                        shellspace.InputError):
-                    if last:
-                        raise
-                    ok, path = False, None
-                if ok or last:
-                    return (name, OK, shellspace.align_rigidly(path[-1], mean),
-                            "")
-                steps *= 2
+            shape = shellspace.shoot_from_mean(mean, variation, F, **options)
+        return (name, OK, shape, "")
     except Exception as error:
         return (name, status_of(error), None, one_line(error))
 
