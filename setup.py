@@ -7,7 +7,7 @@ module only (no tests, benchmarks or examples), builds the target
 shellspace_python with the running interpreter, and installs:
 
     shellspace.cpython-*.so            the module
-    shellspace/collections.py          shellspace.collections
+    shellspace/collections/*.py        shellspace.collections
     shellspace/__init__.pyi, py.typed  the type stubs (PEP 561)
 
 Environment: SHELLSPACE_CMAKE_ARGS (extra cmake arguments, split at
@@ -67,7 +67,7 @@ class CMakeBuild(build_ext):
 setup(
     ext_modules=[CMakeExtension("shellspace")],
     cmdclass={"build_ext": CMakeBuild},
-    packages=["shellspace"],
+    packages=["shellspace", "shellspace.collections"],
     package_dir={"shellspace": "python/shellspace"},
     package_data={"shellspace": ["__init__.pyi", "py.typed"]},
     zip_safe=False,

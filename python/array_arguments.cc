@@ -166,6 +166,29 @@ IndexValues CheckedIndexArray(const py::handle& object,
   return out;
 }
 
+Eigen::SparseMatrix<double> TripletsArgument(const py::handle& rows_object,
+                                             const py::handle& cols_object,
+                                             const py::handle& vals_object,
+                                             long long n) {
+  const IndexValues rows = CheckedIndexArray(rows_object, "rows", {{"nnz"}});
+  const auto nnz = static_cast<py::ssize_t>(rows.values.size());
+  const IndexValues cols = CheckedIndexArray(cols_object, "cols", {{"nnz", nnz}});
+  const RealValues vals = CheckedRealArray(vals_object, "vals", {{"nnz", nnz}});
+  std::vector<Eigen::Triplet<double>> triplets;
+  triplets.reserve(rows.values.size());
+  for (size_t k = 0; k < rows.values.size(); ++k) {
+    const long long r = rows.values[k], c = cols.values[k];
+    if (r < 0 || r >= n || c < 0 || c >= n) {
+      throw InputError("rows/cols: index outside 0.." + std::to_string(n - 1));
+    }
+    triplets.emplace_back(static_cast<int>(r), static_cast<int>(c),
+                          vals.values[k]);
+  }
+  Eigen::SparseMatrix<double> matrix(n, n);
+  matrix.setFromTriplets(triplets.begin(), triplets.end());
+  return matrix;
+}
+
 Positions PositionsArgument(const py::handle& object,
                             const std::string& name) {
   const RealValues v = CheckedRealArray(object, name, {{"#V"}, {"3", 3}});

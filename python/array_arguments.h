@@ -21,6 +21,7 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <Eigen/SparseCore>
 #include <string>
 #include <vector>
 
@@ -62,6 +63,14 @@ IndexValues CheckedIndexArray(const pybind11::handle& object,
 // A #V x 3 array of vertex positions (V, a shell, a variation).
 Positions PositionsArgument(const pybind11::handle& object,
                             const std::string& name);
+
+// An n x n sparse matrix of triplets: `rows` and `cols` integer arrays of
+// indices in [0, n) and `vals` a real array, all of one length (duplicates
+// summed).
+Eigen::SparseMatrix<double> TripletsArgument(const pybind11::handle& rows,
+                                             const pybind11::handle& cols,
+                                             const pybind11::handle& vals,
+                                             long long n);
 
 // A list of shapes: a K x #V x 3 array, or a sequence (list, tuple,
 // iterable) of #V x 3 arrays ("name[k]" in messages). At least one shape;

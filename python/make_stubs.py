@@ -88,6 +88,24 @@ SPECIFIC = {
     ("solve_modulo_rigid_motions", "shift"): "added to the diagonal of the "
                                              "reduced Hessian (finite, "
                                              ">= 0)",
+    ("elastic_mean_newton", "initial"): "#V x 3 positions of the start",
+    ("elastic_mean_newton", "terms"): "terms(s) -> None or (E, G #V x 3, "
+                                      "(rows, cols, vals))",
+    ("elastic_mean_newton", "tolerance"): "relative gradient tolerance: "
+                                          "|G|_inf <= tolerance * max(1, "
+                                          "|G(initial)|_inf)",
+    ("elastic_mean_newton", "max_iterations"): "accepted Newton steps",
+    ("elastic_mean_newton", "on_step"): "None, or on_step(|G|_inf, E, "
+                                        "accepted) after every line search",
+    ("elastic_mean_newton", "stop"): "None, or stop() -> True to end before "
+                                     "the next step",
+    ("pca_modes", "mean"): "#V x 3 positions of the mean",
+    ("pca_modes", "displacements"): "the displacements v_i: n x #V x 3, or "
+                                    "a list of #V x 3 arrays",
+    ("pca_modes", "relative_cutoff"): "modes of the eigenvalues above this "
+                                      "times the largest",
+    ("aligned_vertex_average", "shapes"): "the shapes: N x #V x 3, or a "
+                                          "list of #V x 3 arrays",
     ("energy_gradient", "side"): "the side differentiated: 'reference' or "
                                  "'deformed'",
     ("energy_hessian", "rows"): "the side of the rows: 'reference' or "
@@ -97,8 +115,9 @@ SPECIFIC = {
 }
 SHAPE_ARGS = {"reference", "deformed", "start", "end", "first", "second",
               "a", "b", "variation", "V", "F", "at", "source", "target",
-              "shape", "rhs", "rows", "cols", "vals"}
-STACK_ARGS = {"inputs", "keyframes", "frames", "path"}
+              "shape", "rhs", "rows", "cols", "vals", "initial", "mean"}
+STACK_ARGS = {"inputs", "keyframes", "frames", "path", "displacements",
+              "shapes"}
 
 
 def cli_flags():

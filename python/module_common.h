@@ -317,6 +317,7 @@ void RegisterEnergy(py::module_& m);
 void RegisterCalculus(py::module_& m);
 void RegisterSplines(py::module_& m);
 void RegisterStatistics(py::module_& m);
+void RegisterCollections(py::module_& m);
 void RegisterBranching(py::module_& m);
 void RegisterRender(py::module_& m);
 

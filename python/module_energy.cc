@@ -1,7 +1,6 @@
 // The module's elastic energy of one pair of shells and its derivatives:
 // energy, energy_gradient, energy_hessian; and the rigid motions:
 // solve_modulo_rigid_motions, align_rigidly.
-#include <Eigen/SparseCholesky>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -71,12 +70,9 @@ py::tuple HessianPy(const py::object& reference, const py::object& deformed,
   return py::make_tuple(r, c, v);
 }
 
-// The step of a Newton iteration on a rigidly invariant energy of one
-// shell, for a client that sums the Hessian and gradient itself
-// (shellspace.collections.elastic_mean): p = T q with T =
-// RigidGaugeBasis(shape) (solvers/gauge_reduced_solve.h) and
-// (T^T H T + shift I) q = T^T rhs by sparse LDL^T. Returns (p #V x 3,
-// positive_definite: every pivot of the reduced matrix > 0).
+// SolveModuloRigidMotions (solvers/gauge_reduced_solve.h) of the triplets
+// of H (duplicates summed), for a caller that sums the Hessian and gradient
+// itself. Returns (p #V x 3, positive_definite).
 py::tuple SolveModuloRigidMotionsPy(const py::object& rows_object,
                                     const py::object& cols_object,
                                     const py::object& vals_object,
@@ -90,44 +86,16 @@ py::tuple SolveModuloRigidMotionsPy(const py::object& rows_object,
     throw InputError("rhs: " + std::to_string(rhs.rows()) +
                      " rows, expected " + std::to_string(shape.rows()));
   }
-  const IndexValues rows = CheckedIndexArray(rows_object, "rows", {{"nnz"}});
-  const IndexValues cols =
-      CheckedIndexArray(cols_object, "cols", {{"nnz", static_cast<py::ssize_t>(rows.values.size())}});
-  const RealValues vals = CheckedRealArray(
-      vals_object, "vals", {{"nnz", static_cast<py::ssize_t>(rows.values.size())}});
   if (!(shift >= 0) || !std::isfinite(shift)) {
     throw InputError("shift must be finite and >= 0");
   }
-  std::vector<Eigen::Triplet<double>> triplets;
-  triplets.reserve(rows.values.size());
-  for (size_t k = 0; k < rows.values.size(); ++k) {
-    const long long r = rows.values[k], c = cols.values[k];
-    if (r < 0 || r >= n || c < 0 || c >= n) {
-      throw InputError("rows/cols: index outside 0.." + std::to_string(n - 1));
-    }
-    triplets.emplace_back(static_cast<int>(r), static_cast<int>(c),
-                          vals.values[k]);
-  }
-  SparseMatrix h(n, n);
-  h.setFromTriplets(triplets.begin(), triplets.end());
-  const SparseMatrix basis = RigidGaugeBasis(shape);
-  SparseMatrix reduced = SparseMatrix(basis.transpose() * h * basis);
-  if (shift > 0) {
-    SparseMatrix identity(reduced.rows(), reduced.cols());
-    identity.setIdentity();
-    reduced += shift * identity;
-  }
-  Eigen::SimplicialLDLT<SparseMatrix> ldlt(reduced);
-  const bool factorised = ldlt.info() == Eigen::Success;
-  const bool positive = factorised && ldlt.vectorD().minCoeff() > 0;
-  Positions p = Positions::Zero(shape.rows(), 3);
-  if (factorised) {
-    const Eigen::VectorXd flat_rhs =
-        Eigen::Map<const Eigen::VectorXd>(rhs.data(), rhs.size());
-    const Eigen::VectorXd step = basis * ldlt.solve(basis.transpose() * flat_rhs);
-    std::copy(step.data(), step.data() + step.size(), p.data());
-  }
-  return py::make_tuple(FromPositions(p), positive && p.allFinite());
+  const SparseMatrix h = TripletsArgument(rows_object, cols_object, vals_object, n);
+  const GaugeReducedStep step = SolveModuloRigidMotions(
+      h, Eigen::Map<const Eigen::VectorXd>(rhs.data(), rhs.size()), shape,
+      shift);
+  Positions p(shape.rows(), 3);
+  std::copy(step.p.data(), step.p.data() + step.p.size(), p.data());
+  return py::make_tuple(FromPositions(p), step.positive_definite);
 }
 
 }  // namespace

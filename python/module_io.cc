@@ -45,9 +45,11 @@ using NamedPaths = std::vector<std::pair<std::string, std::string>>;
 // The library's output-path policy (io/output_paths.h) for the Python
 // front ends that write their own files (shellspace.collections).
 void CheckOutputPathsPy(const NamedPaths& inputs, const NamedPaths& files,
-                        const NamedPaths& directories) {
+                        const NamedPaths& directories,
+                        const NamedPaths& input_lists) {
   OutputPaths paths;
   for (const auto& [name, path] : inputs) paths.InputFile(name, path);
+  for (const auto& [name, list] : input_lists) paths.InputList(name, list);
   for (const auto& [name, path] : files) {
     if (path.empty()) throw InputError(name + ": an empty path");
     paths.OutputFile(name, path);
@@ -64,8 +66,11 @@ void CheckOutputPathsPy(const NamedPaths& inputs, const NamedPaths& files,
 void RegisterIo(py::module_& m) {
   m.def("_check_output_paths", &CheckOutputPathsPy, py::arg("inputs"),
         py::arg("output_files"), py::arg("output_directories") = NamedPaths{},
+        py::arg("input_lists") = NamedPaths{},
         "The output-path policy of every front end, checked before any work: "
-        "lists of (name, path); raises InputError (one line) for an output "
+        "lists of (name, path), input_lists of (name, comma-separated "
+        "paths); raises InputError (one line) for an empty item of a list, "
+        "an output "
         "that is an input under any spelling, two outputs naming one file, "
         "an output that cannot be written or named.");
   m.def("read_mesh", &ReadMeshPy, py::arg("path"),

@@ -84,6 +84,7 @@ PYBIND11_MODULE(shellspace, m) {
   RegisterCalculus(m);
   RegisterSplines(m);
   RegisterStatistics(m);
+  RegisterCollections(m);
   RegisterBranching(m);
   RegisterRender(m);
 }

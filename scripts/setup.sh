@@ -38,7 +38,7 @@ case "$profile" in
   cli) ;;
   python|test)
     # The Python module (python/) and its tests (tests/python/);
-    # shellspace.collections on a cluster (python/shellspace/collections.py);
+    # shellspace.collections on a cluster (python/shellspace/collections/);
     # pip install . (setup.py, pyproject.toml) and its test in a venv
     # (tests/python/pip_install_test.sh).
     packages+=(python3 python3-dev pybind11-dev python3-numpy python3-scipy

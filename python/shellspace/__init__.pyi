@@ -905,6 +905,16 @@ def align_rigidly(
     """
 
 
+def aligned_vertex_average(
+    shapes: Union[ArrayLike, Sequence[ArrayLike]],
+) -> NDArray[np.float64]:
+    """The vertex average (1/n) sum_i A_i(S_i) of the shapes, each aligned rigidly to the first (A_i: align_rigidly): the start of the elastic mean.
+
+    Parameters:
+        shapes: the shapes: N x #V x 3, or a list of #V x 3 arrays
+    """
+
+
 def branching_construct(
     epsilon: float = ...,
     length: float = ...,
@@ -1000,6 +1010,28 @@ def compare(
         relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
         bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
         membrane: membrane law: neo-hookean or st-venant-kirchhoff (see docs/math.md) (default 'neo-hookean')
+    """
+
+
+def elastic_mean_newton(
+    initial: ArrayLike,
+    F: ArrayLike,
+    terms: Any,
+    tolerance: float = ...,
+    max_iterations: int = ...,
+    on_step: Any = ...,
+    stop: Any = ...,
+) -> dict:
+    """The Newton finish of the elastic mean argmin_s sum_i W[S_i, s] (the library's, as shellspace.mean ends) from `initial`, on terms the caller sums: terms(s) returns None (s degenerate) or (E(s), G(s) #V x 3, (rows, cols, vals)) with E = sum_i W[S_i, s], G = sum_i D_2 W[S_i, s] and the triplets of H = sum_i D_2^2 W[S_i, s]; it is called once per point (the start and every trial). Steps modulo rigid motions, a line search on E and H + lambda I where the Newton step fails, until |G|_inf <= tolerance * max(1, |G(initial)|_inf) or max_iterations accepted steps. on_step(|G|_inf, E, accepted) after every line search; stop() is polled before every step (True ends it). Returns {mean (not aligned), iterations, converged, termination, stopped, initial_gradient_norm, gradient_norm, gradient_target}.
+
+    Parameters:
+        initial: #V x 3 positions of the start
+        F: #F x 3 integer faces (0-based vertex indices)
+        terms: terms(s) -> None or (E, G #V x 3, (rows, cols, vals))
+        tolerance: relative gradient tolerance: |G|_inf <= tolerance * max(1, |G(initial)|_inf) (default 1e-08)
+        max_iterations: accepted Newton steps (default 100)
+        on_step: None, or on_step(|G|_inf, E, accepted) after every line search (default None)
+        stop: None, or stop() -> True to end before the next step (default None)
     """
 
 
@@ -1293,6 +1325,32 @@ def pca(
     """
 
 
+def pca_modes(
+    mean: ArrayLike,
+    displacements: Union[ArrayLike, Sequence[ArrayLike]],
+    F: ArrayLike,
+    relative_cutoff: float = ...,
+    mu: float = ...,
+    lambda_: float = ...,
+    eta: Optional[float] = ...,
+    relative_eta: float = ...,
+    bending: str = ...,
+) -> tuple[Any, ...]:
+    """Shell PCA of given displacements v_i at `mean` (shellspace.pca's model): the metric g(u, w) = 1/2 u^T D_2^2 W[mean, mean] w, the Gram matrix Gamma_ij = g(v_i, v_j) / n, its eigenvalues lambda_1 >= ... >= lambda_n and the g-orthonormal modes w_j = sum_i a^j_i v_i / sqrt(n lambda_j) of the lambda_j > relative_cutoff * lambda_1 (each signed so that its largest coefficient a^j_i is positive). Returns (gram n x n, eigenvalues n, modes m x #V x 3).
+
+    Parameters:
+        mean: #V x 3 positions of the mean
+        displacements: the displacements v_i: n x #V x 3, or a list of #V x 3 arrays
+        F: #F x 3 integer faces (0-based vertex indices)
+        relative_cutoff: modes of the eigenvalues above this times the largest (default 1e-10)
+        mu: membrane Lame weight mu (default 1.0)
+        lambda_: membrane Lame weight lambda (default 1.0)
+        eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
+        relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
+        bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+    """
+
+
 def read_mask(
     path: str,
     num_vertices: int,
@@ -1406,6 +1464,46 @@ def shoot(
         membrane: membrane law: neo-hookean or st-venant-kirchhoff (see docs/math.md) (default 'neo-hookean')
         tolerance: stop when the gradient max-norm falls below this times max(1, its initial value) (default 1e-08)
         max_iterations: maximum iterations of the verb's outer solver (LM iterations summed over its stages; spline: L-BFGS); inner solves keep their own limits (default 200)
+        threads: threads of the solves (default 2)
+        quiet: suppress progress output (default False)
+        time_limit: stop the solves after this many seconds of wall clock (None: no limit); the partial result is raised as NotConvergedError's .result unless allow_unconverged (default None)
+        allow_unconverged: return a result whose solve missed its stopping criterion (or was cut by time_limit) instead of raising NotConvergedError (default False)
+    """
+
+
+def shoot_from_mean(
+    mean: ArrayLike,
+    variation: ArrayLike,
+    F: ArrayLike,
+    exp_steps: int = ...,
+    max_exp_steps: int = ...,
+    mu: float = ...,
+    lambda_: float = ...,
+    eta: Optional[float] = ...,
+    relative_eta: float = ...,
+    bending: str = ...,
+    tolerance: float = ...,
+    max_iterations: int = ...,
+    threads: int = ...,
+    quiet: bool = ...,
+    time_limit: Optional[float] = ...,
+    allow_unconverged: bool = ...,
+) -> NDArray[np.float64]:
+    """EXP_K(mean, variation) with shellspace.pca's safeguard (K = exp_steps, doubled up to max_exp_steps while a step has no solution or the step energies drift by more than half of the first), aligned rigidly to the mean: a mode shape of the collections' PCA. InputError naming the step if every attempt failed.
+
+    Parameters:
+        mean: an elastic mean of the inputs computed before (e.g. by `shellspace mean`): the mean solve starts there and only checks it (no iterations if it meets the tolerance)
+        variation: #V x 3 positions of the variation at the path's start
+        F: #F x 3 integer faces (0-based vertex indices)
+        exp_steps: K of EXP_K (default 4)
+        max_exp_steps: largest K of the EXP safeguard (default 16)
+        mu: membrane Lame weight mu (default 1.0)
+        lambda_: membrane Lame weight lambda (default 1.0)
+        eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
+        relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
+        bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        tolerance: relative gradient tolerance of every solve (default 1e-08)
+        max_iterations: per geodesic (default 200)
         threads: threads of the solves (default 2)
         quiet: suppress progress output (default False)
         time_limit: stop the solves after this many seconds of wall clock (None: no limit); the partial result is raised as NotConvergedError's .result unless allow_unconverged (default None)

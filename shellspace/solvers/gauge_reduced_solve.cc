@@ -69,18 +69,25 @@ Eigen::SparseMatrix<double> FreeVertexBasis(
   return basis;
 }
 
-Eigen::VectorXd SolveModuloRigidMotions(const Eigen::SparseMatrix<double>& h,
-                                        const Eigen::VectorXd& rhs,
-                                        const Positions& shape) {
+GaugeReducedStep SolveModuloRigidMotions(const Eigen::SparseMatrix<double>& h,
+                                         const Eigen::VectorXd& rhs,
+                                         const Positions& shape,
+                                         double shift) {
   const Eigen::SparseMatrix<double> basis = RigidGaugeBasis(shape);
-  const Eigen::SparseMatrix<double> reduced =
+  Eigen::SparseMatrix<double> reduced =
       Eigen::SparseMatrix<double>(basis.transpose() * h * basis);
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(reduced);
-  if (ldlt.info() != Eigen::Success) {
-    throw InputError("midpoint Hessian is singular (degenerate midpoint)");
+  if (shift > 0) {
+    Eigen::SparseMatrix<double> identity(reduced.rows(), reduced.cols());
+    identity.setIdentity();
+    reduced += shift * identity;
   }
-  const Eigen::VectorXd q = ldlt.solve(basis.transpose() * rhs);
-  return basis * q;
+  GaugeReducedStep step;
+  step.p = Eigen::VectorXd::Zero(rhs.size());
+  const Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> ldlt(reduced);
+  if (ldlt.info() != Eigen::Success) return step;
+  step.p = basis * ldlt.solve(basis.transpose() * rhs);
+  step.positive_definite = ldlt.vectorD().minCoeff() > 0 && step.p.allFinite();
+  return step;
 }
 
 }  // namespace shellspace

@@ -40,17 +40,23 @@ std::vector<int> BasisColumnVertices(const Eigen::SparseMatrix<double>& basis);
 Eigen::SparseMatrix<double> FreeVertexBasis(int num_vertices,
                                             const std::vector<int>& fixed_vertices);
 
-// With T = RigidGaugeBasis(shape) (the gauge vertices (a, b, c) of ChooseGaugeVertices(shape) and u =
-// (X_b - X_a)/|.|, w the unit in-plane normal to u: p = T q, where T is the
-// identity on every other coordinate, zero on a, u on b and [u w] on c (the
-// 3n - 6 directions left by PinRigidMotions); solves (T^T H T) q = T^T rhs by
-// sparse Cholesky (LDL^T). For rhs orthogonal to the rigid motions (a
-// gradient of a rigidly invariant function) this is a solution of H p = rhs;
-// p is unique up to a rigid motion. Throws InputError if the reduced matrix is
-// not positive definite.
-Eigen::VectorXd SolveModuloRigidMotions(const Eigen::SparseMatrix<double>& h,
-                                        const Eigen::VectorXd& rhs,
-                                        const Positions& shape);
+// The step of Newton's method on a rigidly invariant energy of one shell
+// (H its Hessian at `shape`, singular along the rigid motions): p = T q with
+// T = RigidGaugeBasis(shape) (the 3n - 6 coordinates left by pinning the
+// gauge vertices of ChooseGaugeVertices(shape)) and (T^T H T + shift I) q =
+// T^T rhs by sparse LDL^T. For rhs orthogonal to the rigid motions (a
+// gradient of a rigidly invariant function) and shift 0 this solves H p =
+// rhs; p is unique up to a rigid motion. positive_definite: the
+// factorisation succeeded, every pivot is > 0 and p is finite; p is zero if
+// the factorisation failed.
+struct GaugeReducedStep {
+  Eigen::VectorXd p;
+  bool positive_definite = false;
+};
+GaugeReducedStep SolveModuloRigidMotions(const Eigen::SparseMatrix<double>& h,
+                                         const Eigen::VectorXd& rhs,
+                                         const Positions& shape,
+                                         double shift = 0);
 
 }  // namespace shellspace
 

@@ -35,7 +35,7 @@ import shellspace, shellspace.collections
 venv, src = sys.argv[1], sys.argv[2]
 site = os.path.dirname(shellspace.__file__)
 assert shellspace.__file__.startswith(venv), shellspace.__file__
-assert shellspace.collections.__file__ == os.path.join(site, "shellspace", "collections.py")
+assert shellspace.collections.__file__ == os.path.join(site, "shellspace", "collections", "__init__.py")
 for name in ("__init__.pyi", "py.typed"):
     assert os.path.isfile(os.path.join(site, "shellspace", name)), name
 subprocess.run([sys.executable, os.path.join(src, "python", "make_stubs.py"),

@@ -19,6 +19,7 @@
 
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/io/ascii_lowercase.h"
+#include "shellspace/io/scheduler_choice.h"
 #include "tools/run/run_paths.h"
 #include "tools/verbs/verb.h"
 
@@ -54,79 +55,8 @@ DEFINE_string(cache, "", "collection distances: the resumable cache");
 namespace shellspace {
 namespace {
 
-// The most local workers this machine holds: one per core (each runs one
-// solver thread), and each with kLocalWorkerBytes of memory.
-constexpr double kLocalWorkerBytes = 512.0 * (1 << 20);
-
-int MostLocalWorkers() {
-  const long cores = ::sysconf(_SC_NPROCESSORS_ONLN);
-  const double memory = static_cast<double>(::sysconf(_SC_PHYS_PAGES)) *
-                        static_cast<double>(::sysconf(_SC_PAGE_SIZE));
-  long most = std::max(2L, cores > 0 ? cores : 1L);
-  if (memory > 0) {
-    most = std::min(most, std::max(1L, static_cast<long>(
-                                           memory / kLocalWorkerBytes)));
-  }
-  return static_cast<int>(most);
-}
-
-// none, local, local:N (1 <= N <= MostLocalWorkers) or an address
-// ([tcp://|tls://]HOST:PORT, PORT in 1..65535). A keyword in another case
-// ("LOCAL:2", "None") or none with a count is refused, not taken for a host
-// named local (shellspace.collections' _parse_scheduler says the same).
-void CheckScheduler(const std::string& value) {
-  if (value == "none" || value == "local") return;
-  const std::string lower = AsciiLowercase(value);
-  if (lower != value && (lower == "none" || lower == "local" ||
-                         lower.rfind("local:", 0) == 0 ||
-                         lower.rfind("none:", 0) == 0)) {
-    throw InputError("'" + value + "': the keywords none, local and local:N "
-                     "are lower-case (did you mean '" + lower +
-                     "'?); an address is HOST:PORT");
-  }
-  if (value.rfind("none:", 0) == 0) {
-    throw InputError("'" + value + "': none takes no count (none, local, "
-                     "local:N or a scheduler address HOST:PORT)");
-  }
-  if (value.rfind("local:", 0) == 0) {
-    const std::string count = value.substr(6);
-    char* end = nullptr;
-    errno = 0;
-    const long n = std::strtol(count.c_str(), &end, 10);
-    const int most = MostLocalWorkers();
-    if (count.empty() || *end != '\0' || errno != 0 || n < 1 ||
-        count.find_first_not_of("0123456789") != std::string::npos) {
-      throw InputError("local:N needs a worker count N in 1.." +
-                       std::to_string(most) + ", got '" + value + "'");
-    }
-    if (n > most) {
-      throw InputError("local:" + count + ": this machine holds at most " +
-                       std::to_string(most) +
-                       " local workers (one per core, 512 MiB each)");
-    }
-    return;
-  }
-  std::string address = value;
-  for (const char* scheme : {"tcp://", "tls://"}) {
-    if (address.rfind(scheme, 0) == 0) address = address.substr(6);
-  }
-  const size_t colon = address.rfind(':');
-  const std::string host =
-      colon == std::string::npos ? "" : address.substr(0, colon);
-  const std::string port =
-      colon == std::string::npos ? "" : address.substr(colon + 1);
-  const bool port_ok =
-      !port.empty() && port.size() <= 5 &&
-      port.find_first_not_of("0123456789") == std::string::npos &&
-      std::stol(port) >= 1 && std::stol(port) <= 65535;
-  if (host.empty() || !port_ok ||
-      host.find_first_of(" \t\n,/") != std::string::npos ||
-      address.find("://") != std::string::npos) {
-    throw InputError("expected none, local, local:N or a scheduler address "
-                     "HOST:PORT (tcp://HOST:8786, PORT 1..65535), got '" +
-                     value + "'");
-  }
-}
+// The --scheduler flag: io/scheduler_choice.h's values.
+void CheckScheduler(const std::string& value) { ParseScheduler(value); }
 
 FlagTable CommonFlags(const std::string& output) {
   return Flags({MaterialFlags(), {
@@ -290,7 +220,8 @@ int RunCollection(const std::string& verb) {
   const std::string build_dir = SHELLSPACE_PYTHON_BUILD_DIR;
   struct stat info {};
   if (!build_dir.empty() &&
-      stat((build_dir + "/shellspace/collections.py").c_str(), &info) == 0) {
+      stat((build_dir + "/shellspace/collections/__init__.py").c_str(),
+           &info) == 0) {
     const char* old = std::getenv("PYTHONPATH");
     const std::string path =
         old && *old ? build_dir + ":" + old : build_dir;

@@ -13,6 +13,7 @@
 #include "shellspace/geometry/rigid_alignment.h"
 #include "shellspace/solvers/gauge_reduced_solve.h"
 #include "shellspace/problems/calculus/path_hessian.h"
+#include "shellspace/problems/statistics/elastic_mean_newton.h"
 #include "shellspace/solvers/newton_solver.h"
 #include "shellspace/solvers/reusable_cholesky.h"
 #include "shellspace/solvers/rigid_gauge.h"
@@ -88,72 +89,42 @@ double MeanEnergy(const ShellSpace& space,
   return energy;
 }
 
-// E(s) = sum_i W[S_i, s] over s for SolveNewton: merit E, residual G(s)
-// (norms on all 3n coordinates, reduced T^T G with T = RigidGaugeBasis(s)
-// with a gauge in each connected component),
-// H = T^T (sum_i D_2^2 W[S_i, s]) T by AssembleDeformedSum, retraction
-// s += T q (in place: the Ceres problem points into *s).
-class ElasticMeanProblem : public NewtonProblem {
+// The elastic-mean problem (elastic_mean_newton.h) with its terms summed
+// over the inputs here: E and G per point, H = T^T (sum_i D_2^2 W[S_i, s])
+// T assembled by AssembleDeformedSum on `threads` threads.
+class ElasticMeanProblem : public ElasticMeanNewtonProblem {
  public:
   ElasticMeanProblem(const ShellSpace& space,
                      const std::vector<Positions>& shapes, int threads,
                      Positions* s)
-      : space_(space), shapes_(shapes), threads_(threads), assembler_(space),
-        components_(ConnectedComponents(space.faces, space.num_vertices)),
-        s_(s) {}
+      : ElasticMeanNewtonProblem(space.faces, s), space_(space),
+        shapes_(shapes), threads_(threads), assembler_(space) {}
 
-  EvaluationStatus Merit(NewtonPoint point, double* merit) override {
-    *merit = MeanEnergy(space_, shapes_, At(point));
-    return std::isfinite(*merit) ? EvaluationStatus::kOk
-                                 : EvaluationStatus::kInfeasible;
-  }
-  EvaluationStatus Residual(NewtonPoint point,
-                            NewtonResidual* residual) override {
-    const Positions& s = At(point);
-    Eigen::VectorXd g;
-    if (!TryElasticMeanGradient(space_, shapes_, s, &g) || !g.allFinite()) {
-      return EvaluationStatus::kInfeasible;
-    }
-    SparseMatrix& basis =
-        point == NewtonPoint::kCurrent ? basis_ : trial_basis_;
-    basis = RigidGaugeBasis(s, ChooseGaugeVertices(s, components_));
-    residual->reduced = basis.transpose() * g;
-    residual->max_norm = g.cwiseAbs().maxCoeff();
-    residual->two_norm = g.norm();
-    return EvaluationStatus::kOk;
-  }
   EvaluationStatus Assemble(LinearSystem* system) override {
-    if (!assembler_.TryAssembleDeformedSum(shapes_, *s_, basis_, threads_,
+    if (!assembler_.TryAssembleDeformedSum(shapes_, At(NewtonPoint::kCurrent),
+                                           basis(), threads_,
                                            &system->matrix)) {
       return EvaluationStatus::kInfeasible;
     }
-    system->vertex_of = BasisColumnVertices(basis_);
+    system->vertex_of = BasisColumnVertices(basis());
     system->num_vertices = space_.num_vertices;
     return EvaluationStatus::kOk;
   }
-  void SetTrial(const Eigen::VectorXd& step) override {
-    trial_ = *s_;
-    Eigen::Map<Eigen::VectorXd>(trial_.data(), trial_.size()) += basis_ * step;
+
+ protected:
+  bool Energy(NewtonPoint point, double* energy) override {
+    *energy = MeanEnergy(space_, shapes_, At(point));
+    return std::isfinite(*energy);
   }
-  void AcceptTrial() override {
-    *s_ = trial_;
-    basis_ = std::move(trial_basis_);
+  bool Gradient(NewtonPoint point, Eigen::VectorXd* gradient) override {
+    return TryElasticMeanGradient(space_, shapes_, At(point), gradient);
   }
 
  private:
-  const Positions& At(NewtonPoint point) const {
-    return point == NewtonPoint::kCurrent ? *s_ : trial_;
-  }
   const ShellSpace& space_;
   const std::vector<Positions>& shapes_;
   const int threads_;
   const PathHessianAssembler assembler_;
-  // A rigid gauge in each connected component of the mesh.
-  const std::vector<std::vector<int>> components_;
-  Positions* s_;
-  SparseMatrix basis_;  // RigidGaugeBasis(*s_, its gauge vertices)
-  Positions trial_;
-  SparseMatrix trial_basis_;
 };
 
 // The safeguarded Newton iteration of ElasticMeanOptions on *s, until
@@ -163,14 +134,8 @@ bool NewtonFinish(const ShellSpace& space, const std::vector<Positions>& shapes,
                   const SolverSettings& settings, Positions* s,
                   int* iterations, std::string* stop_reason) {
   ElasticMeanProblem problem(space, shapes, settings.num_threads, s);
-  NewtonSettings newton;
-  newton.mode = NewtonMode::kMinimize;
-  newton.max_steps = options.max_newton_iterations;
-  newton.tolerance = target;
-  newton.forcing = 1e-10;
-  newton.max_halvings = 4;  // t = 1, ..., 1/16
-  newton.accept_smaller_two_norm = true;
-  newton.max_shifts = 6;  // H + lambda I where the Newton step fails
+  NewtonSettings newton =
+      ElasticMeanNewtonSettings(target, options.max_newton_iterations);
   newton.stop = settings.stop;
   const int before = *iterations;
   if (settings.progress) {

@@ -248,6 +248,21 @@ double ShellMetric::Norm(const Positions& u) const {
   return std::sqrt(std::max(0.0, Inner(u, u)));
 }
 
+Eigen::MatrixXd ShellGram(const ShellMetric& metric,
+                          const std::vector<Positions>& displacements) {
+  const int n = static_cast<int>(displacements.size());
+  const Eigen::Index size = metric.hessian().rows();
+  Eigen::MatrixXd v(size, n);
+  for (int i = 0; i < n; ++i) {
+    if (displacements[i].size() != size) {
+      throw InputError("shell metric: a displacement of the wrong size");
+    }
+    v.col(i) = Flat(displacements[i]);
+  }
+  const Eigen::MatrixXd hv = metric.hessian() * v;
+  return 0.5 * v.transpose() * hv / std::max(n, 1);
+}
+
 GramModes ModesFromGram(const Eigen::MatrixXd& gram,
                         const std::vector<Positions>& displacements,
                         double relative_cutoff) {
@@ -344,11 +359,7 @@ ShellPcaModel ComputeShellPca(const ShellSpace& space, const Positions& mean,
       model.log_iterations += geodesic.iterations;
     }
   }
-  // Gamma = V^T H V / (2 n) with the displacements as the columns of V.
-  Eigen::MatrixXd v(mean.size(), n);
-  for (int i = 0; i < n; ++i) v.col(i) = Flat(model.displacements[i]);
-  const Eigen::MatrixXd hv = model.metric.hessian() * v;
-  model.gram = 0.5 * v.transpose() * hv / n;
+  model.gram = ShellGram(model.metric, model.displacements);
   GramModes modes =
       ModesFromGram(model.gram, model.displacements, options.relative_cutoff);
   model.eigenvalues = std::move(modes.eigenvalues);

@@ -39,6 +39,11 @@ class ShellMetric {
   Eigen::SparseMatrix<double> hessian_;
 };
 
+// The Gram matrix Gamma_ij = g(v_i, v_j) / n of n displacements in the
+// metric g (Gamma = V^T H V / (2 n) with the v_i as the columns of V).
+Eigen::MatrixXd ShellGram(const ShellMetric& metric,
+                          const std::vector<Positions>& displacements);
+
 // Eigen-decomposition of a Gram matrix Gamma_ij = <v_i, v_j> / n of n
 // displacements in some inner product: eigenvalues lambda_1 >= ... >=
 // lambda_n (all n, unclipped), and the modes w_j = sum_i a^j_i v_i /
