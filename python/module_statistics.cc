@@ -125,8 +125,9 @@ py::object PcaPy(const py::object& inputs_object, const py::object& F,
     throw InputError("amplitude must be >= 0");
   }
   CheckOutputs(output, png, std::nullopt);
-  const ShellPcaOptions pca = MakeShellPcaOptions(
-      log_steps, exp_steps, max_exp_steps, displacement, "");
+  const ShellPcaOptions pca =
+      MakeShellPcaOptions(log_steps, exp_steps, max_exp_steps,
+                          ParseDisplacementKind(displacement, "displacement"));
   const auto clock = Clock::now();
   const ShapeSet set = MakeShapeSet(inputs_object, F, "inputs");
   const int n = static_cast<int>(set.shapes.size());
@@ -135,7 +136,7 @@ py::object PcaPy(const py::object& inputs_object, const py::object& F,
     throw InputError("inputs needs at least " + std::to_string(minimum) +
                      " shells, got " + std::to_string(n));
   }
-  CheckPcaModeCount(modes, n, loo, "");
+  CheckPcaModeCount(modes, n, loo, "modes", "loo");
   CheckPngMemory(png, 1 + 2 * modes);  // the mean and the mode shapes
   const int vertices = set.first.mesh.num_vertices();
   CheckSteps("log_steps", log_steps, 1, GeodesicBytes(vertices, log_steps),
@@ -149,7 +150,6 @@ py::object PcaPy(const py::object& inputs_object, const py::object& F,
   options.leave_one_out = loo;
   options.amplitude = amplitude;
   options.pca = pca;
-  options.displacement = displacement;
   workflows::PcaResult result;
   {
     SolveControl::Solving solving(*solver.control);
@@ -195,7 +195,8 @@ void RegisterStatistics(py::module_& m) {
       // LOG's K; the verb shoots with 4).
       py::arg("exp_steps") = 4,
       py::arg("max_exp_steps") = ShellPcaOptions().max_exp_steps,
-      py::arg("displacement") = workflows::PcaOptions().displacement,
+      py::arg("displacement") =
+          std::string(DisplacementKindName(ShellPcaOptions().displacement)),
       py::arg("output") = py::none(), py::arg("png") = py::none(),
       SHELLSPACE_MATERIAL_ARGS, SHELLSPACE_SOLVER_ARGS);
   DefWithOptions(

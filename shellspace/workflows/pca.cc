@@ -15,15 +15,16 @@ namespace {
 void CheckOptions(const PcaOptions& options) {
   const int n = static_cast<int>(options.shapes.size());
   const int minimum = options.leave_one_out ? 3 : 2;
-  const std::string& prefix = options.option_prefix;
   if (n < minimum) {
-    throw InputError(prefix + "inputs needs at least " +
-                     std::to_string(minimum) + " shells, got " +
-                     std::to_string(n));
+    throw InputError("shapes needs at least " + std::to_string(minimum) +
+                     " shells" +
+                     (options.leave_one_out ? " with leave_one_out" : "") +
+                     ", got " + std::to_string(n));
   }
-  CheckPcaModeCount(options.modes, n, options.leave_one_out, prefix);
+  CheckPcaModeCount(options.modes, n, options.leave_one_out, "modes",
+                    "leave_one_out");
   if (!(options.amplitude >= 0) || !std::isfinite(options.amplitude)) {
-    throw InputError(prefix + "amplitude must be >= 0");
+    throw InputError("amplitude must be >= 0");
   }
 }
 
@@ -144,7 +145,8 @@ PcaResult RunPca(const PcaOptions& options) {
   log("elastic mean done (" + std::to_string(result.mean.lm_iterations) +
       " LM + " + std::to_string(result.mean.newton_iterations) +
       " Newton iterations, " + seconds() + " s); displacements (" +
-      options.displacement + ") and the Gram matrix");
+      DisplacementKindName(options.pca.displacement) +
+      ") and the Gram matrix");
   ShellPcaModel model = ComputeShellPca(space, result.mean.mean,
                                         options.shapes, options.pca, inner);
   if (stop.stopped()) return finish("displacements");
@@ -181,7 +183,8 @@ JsonObject ToJson(const PcaResult& result, const PcaOptions& options) {
     failed_files.push_back(name + ".ply");
   }
   JsonObject json =
-      PcaJson(result.inputs, result.mean, options.displacement, options.pca,
+      PcaJson(result.inputs, result.mean,
+              DisplacementKindName(options.pca.displacement), options.pca,
               *result.model, result.shell_modes, failed_files,
               result.far_inputs, options.amplitude);
   if (result.procrustes) {

@@ -39,12 +39,8 @@ struct PcaOptions {
   bool procrustes = false;      // also the Procrustes baseline
   bool leave_one_out = false;   // also the leave-one-out table
   double amplitude = 1.0;       // mode shapes at -/+ amplitude sqrt(lambda)
-  // LOG_K / EXP_K steps and the displacement kind (MakeShellPcaOptions),
-  // and its word for the summary ("log", "difference").
+  // LOG_K / EXP_K steps and the displacement kind (MakeShellPcaOptions).
   ShellPcaOptions pca;
-  std::string displacement = "log";
-  // Errors name options with this prefix ("--" for the CLI, "" for Python).
-  std::string option_prefix;
   SolverSettings settings;  // settings.stop: the front end's stop request
   std::optional<Positions> initial_mean;  // the CLI's --mean
   // One line per finished phase, and one per leave-one-out step; may be

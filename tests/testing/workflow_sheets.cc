@@ -42,7 +42,7 @@ workflows::PcaOptions FourSheets() {
   options.material = DefaultMaterial(options.reference);
   options.modes = 1;
   // The CLI's --log_steps 2 --exp_steps 4 --max_exp_steps 16.
-  options.pca = MakeShellPcaOptions(2, 4, 16, "log", "");
+  options.pca = MakeShellPcaOptions(2, 4, 16, DisplacementKind::kLog);
   options.settings = DefaultSettings();
   return options;
 }

@@ -50,36 +50,6 @@ void AddViewerPage(RunDirectory* out, const Faces& faces,
       });
 }
 
-void CheckGeodesic(const GeodesicResult& result, const std::string& what,
-                   RunStatus* status) {
-  status->Require(result.converged,
-                  what + ": " +
-                      GradientAboveTarget(result.final_gradient,
-                                          result.gradient_target) +
-                      " (tolerance x max(1, |grad_0|)) after " +
-                      std::to_string(result.iterations) + " iterations (" +
-                      (result.stages.empty() ? std::string("no stages")
-                                             : result.stages.back().termination) +
-                      ")" + workflows::GradientPeakText(result, Faces()));
-  if (result.uneven_steps) {
-    const auto [lo, hi] = std::minmax_element(result.step_energies.begin(),
-                                              result.step_energies.end());
-    status->Warn(what + ": step energies far from equal: max/min " +
-                 Short(result.step_energy_ratio) + " (W of step " +
-                 std::to_string(hi - result.step_energies.begin() + 1) +
-                 " = " + Short(*hi) + ", of step " +
-                 std::to_string(lo - result.step_energies.begin() + 1) +
-                 " = " + Short(*lo) + "; a geodesic has equal steps)");
-  }
-  if (result.collapsing_faces) {
-    const FaceAreaRatio& f = result.smallest_face_area;
-    status->Warn(what + ": face " + std::to_string(f.face) + " of shape " +
-                 std::to_string(f.shape) + " has " + Short(f.ratio) +
-                 " of its start area: the path passes near a degenerate "
-                 "triangle (a sliver of the mesh?)");
-  }
-}
-
 void RecordWorkflow(const workflows::SolveStatus& solve,
                     const std::vector<std::string>& warnings,
                     const std::string& what, RunStatus* status) {

@@ -30,11 +30,6 @@ FlagSpec HtmlFlag();
 void AddViewerPage(RunDirectory* out, const Faces& faces,
                    const std::vector<Positions>& frames);
 
-// Records in `status` whether the geodesic met its stopping criterion
-// (naming `what`, e.g. "geodesic") and warns about uneven step energies.
-void CheckGeodesic(const GeodesicResult& result, const std::string& what,
-                   RunStatus* status);
-
 // Records in `status` what a workflow's solves missed (its SolveStatus
 // failures, each already naming its solve) and warns with each of
 // `warnings`, prefixed "WHAT: ".

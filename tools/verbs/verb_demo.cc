@@ -18,6 +18,7 @@
 #include "shellspace/problems/calculus/exponential_map.h"
 #include "shellspace/render/film_strip.h"
 #include "shellspace/render/html_viewer.h"
+#include "shellspace/workflows/geodesic.h"
 #include "shellspace/reports/relative_gradient.h"
 #include "tools/run/common_flags.h"
 #include "tools/verbs/film_strip_flags.h"
@@ -164,6 +165,22 @@ JsonObject DemoSummary(const GeodesicResult& geodesic, const ShootResult& shot,
   return summary;
 }
 
+// The geodesic workflow's options of the demo: the procedural finger to
+// the finger bent by 90 degrees about its base, --steps, the base held
+// fixed, the material and solver flags; the other choices their defaults.
+workflows::GeodesicOptions DemoGeodesicOptions(const Mesh& finger) {
+  workflows::GeodesicOptions options;
+  options.start = finger;
+  options.topology = ValidateShell(finger, "procedural finger");
+  options.end = BendAlongY(finger.positions, 4.0, 0.5 * std::acos(-1.0));
+  options.steps = FLAGS_steps;
+  options.fixed_vertices = FingerBaseVertices();
+  options.material = MaterialChoiceFromFlags(finger);
+  options.settings = SettingsFromFlags("demo geodesic");
+  return options;
+}
+
+// Flags -> the geodesic workflow -> the extrapolation -> files and summary.
 int RunDemo() {
   const std::string dir = FLAGS_output;
   RunPaths()
@@ -174,25 +191,21 @@ int RunDemo() {
   const Mesh finger = MakeFinger();
   CheckDemoMemory(finger);
   const RenderOptions options = DemoFilmStripOptions();
-  const double pi = std::acos(-1.0);
-  const Positions bent = BendAlongY(finger.positions, 4.0, 0.5 * pi);
-  const workflows::MaterialChoice material = MaterialChoiceFromFlags(finger);
-  const ShellSpace space(finger, ValidateShell(finger, "procedural finger"),
-                         material.material);
-  const std::vector<int> base = FingerBaseVertices();
-  SolverSettings settings = SettingsFromFlags("demo geodesic");
+  const workflows::GeodesicOptions geodesic_options =
+      DemoGeodesicOptions(finger);
+  const workflows::GeodesicResult result =
+      workflows::RunGeodesic(geodesic_options);
+  if (result.status.failed()) return FailedSolveExit("demo", result.status);
 
-  GeodesicInput input;
-  input.start = finger.positions;
-  input.end = bent;
-  input.steps = FLAGS_steps;
-  input.fixed_vertices = base;
-  const GeodesicResult geodesic = SolveGeodesic(space, input, settings);
-
-  ShellPath frames = geodesic.path;
-  const ShootResult shot = ExtrapolateDemoPath(space, base, &settings, &frames);
+  const ShellSpace space(finger, geodesic_options.topology,
+                         result.material.material);
+  SolverSettings settings = geodesic_options.settings;
+  ShellPath frames = result.path();
+  const ShootResult shot = ExtrapolateDemoPath(
+      space, geodesic_options.fixed_vertices, &settings, &frames);
   RunStatus status("demo");
-  CheckGeodesic(geodesic, "demo: the geodesic", &status);
+  RecordWorkflow(result.status, result.warnings, "demo: the geodesic",
+                 &status);
   CheckShoot(shot, &status);
   RunDirectory output(dir);
   WriteDemoFiles(&output, finger, frames, options);
@@ -200,8 +213,8 @@ int RunDemo() {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - clock)
           .count();
   const JsonObject summary =
-      DemoSummary(geodesic, shot, static_cast<int>(frames.size()), seconds, dir,
-                  material, finger);
+      DemoSummary(result.geodesic(), shot, static_cast<int>(frames.size()),
+                  seconds, dir, result.material, finger);
   const std::string json = output.Commit(summary);
   std::cout << json << "\n";
   return status.Finish();

@@ -99,7 +99,7 @@ FlagTable PcaFlags() {
            TextFlag("displacement",
                     "'log' (v_i = LOG_K(mean -> S_i)) or 'difference' "
                     "(v_i = S_i - mean after rigid alignment)")
-               .Default(workflows::PcaOptions().displacement),
+               .Default(DisplacementKindName(ShellPcaOptions().displacement)),
            PngFlag("the mean and the modes"),
            HtmlFlag(),
            TextFlag("mean",
@@ -223,9 +223,9 @@ workflows::PcaOptions PcaOptionsFromFlags(ShellSet* inputs) {
   if (FLAGS_max_exp_steps < FLAGS_exp_steps) {
     throw InputError("--max_exp_steps must be at least --exp_steps");
   }
-  const ShellPcaOptions pca =
-      MakeShellPcaOptions(FLAGS_log_steps, FLAGS_exp_steps,
-                          FLAGS_max_exp_steps, FLAGS_displacement, "--");
+  const ShellPcaOptions pca = MakeShellPcaOptions(
+      FLAGS_log_steps, FLAGS_exp_steps, FLAGS_max_exp_steps,
+      ParseDisplacementKind(FLAGS_displacement, "--displacement"));
   RunPaths()
       .InputList("inputs", FLAGS_inputs)
       .InputFile("mean", FLAGS_mean)
@@ -234,6 +234,8 @@ workflows::PcaOptions PcaOptionsFromFlags(ShellSet* inputs) {
       .OutputHtml("html", FLAGS_html)
       .Check();
   *inputs = LoadInputs(FLAGS_loo ? 3 : 2);
+  CheckPcaModeCount(FLAGS_modes, static_cast<int>(inputs->shapes.size()),
+                    FLAGS_loo, "--modes", "--loo");
   CheckPngMemory(1 + 2 * FLAGS_modes);  // the mean and the mode shapes
   workflows::PcaOptions options =
       OptionsOfInputs<workflows::PcaOptions>(*inputs, "pca");
@@ -242,8 +244,6 @@ workflows::PcaOptions PcaOptionsFromFlags(ShellSet* inputs) {
   options.leave_one_out = FLAGS_loo;
   options.amplitude = FLAGS_amplitude;
   options.pca = pca;
-  options.displacement = FLAGS_displacement;
-  options.option_prefix = "--";
   if (!FLAGS_mean.empty()) {
     options.initial_mean =
         LoadCompatibleShell(FLAGS_mean, inputs->first).positions;

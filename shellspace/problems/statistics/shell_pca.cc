@@ -130,33 +130,38 @@ ShotOutcome ShootOnce(const ShellSpace& space, const Positions& s0,
 
 }  // namespace
 
+DisplacementKind ParseDisplacementKind(const std::string& value,
+                                       const std::string& name) {
+  if (value == "log") return DisplacementKind::kLog;
+  if (value == "difference") return DisplacementKind::kAlignedDifference;
+  throw InputError(name + " must be 'log' or 'difference', got '" + value +
+                   "'");
+}
+
+const char* DisplacementKindName(DisplacementKind kind) {
+  return kind == DisplacementKind::kLog ? "log" : "difference";
+}
+
 ShellPcaOptions MakeShellPcaOptions(int log_steps, int exp_steps,
                                     int max_exp_steps,
-                                    const std::string& displacement,
-                                    const std::string& prefix) {
+                                    DisplacementKind displacement) {
   ShellPcaOptions options;
   options.steps = log_steps;
   options.exp_steps = exp_steps;
   options.max_exp_steps = max_exp_steps;
-  if (displacement == "log") {
-    options.displacement = DisplacementKind::kLog;
-  } else if (displacement == "difference") {
-    options.displacement = DisplacementKind::kAlignedDifference;
-  } else {
-    throw InputError(prefix + "displacement must be 'log' or 'difference', "
-                     "got '" + displacement + "'");
-  }
+  options.displacement = displacement;
   return options;
 }
 
 void CheckPcaModeCount(int modes, int inputs, bool leave_one_out,
-                       const std::string& prefix) {
+                       const std::string& modes_name,
+                       const std::string& leave_one_out_name) {
   if (modes > inputs - 1) {
-    throw InputError(prefix + "modes " + std::to_string(modes) + " exceeds " +
+    throw InputError(modes_name + " " + std::to_string(modes) + " exceeds " +
                      std::to_string(inputs - 1) + " (number of inputs - 1)");
   }
   if (leave_one_out && modes > inputs - 2) {
-    throw InputError(prefix + "loo with " + prefix + "modes " +
+    throw InputError(leave_one_out_name + " with " + modes_name + " " +
                      std::to_string(modes) + " needs at least " +
                      std::to_string(modes + 2) + " inputs");
   }

@@ -68,11 +68,12 @@ enum class DisplacementKind {
 
 // Throws InputError unless `modes` <= inputs - 1 (n shapes have at most
 // n - 1 modes) and, with `leave_one_out`, modes <= inputs - 2 (each fold
-// has one input less). The messages name the options as the caller does:
-// `prefix` + "modes", `prefix` + "loo" ("--" for the CLI's flags, "" for
-// the Python arguments).
+// has one input less). The messages name the two options as the caller
+// knows them: `modes_name` and `leave_one_out_name` ("--modes" and "--loo"
+// for the CLI's flags, "modes" and "loo" for the Python arguments).
 void CheckPcaModeCount(int modes, int inputs, bool leave_one_out,
-                       const std::string& prefix);
+                       const std::string& modes_name,
+                       const std::string& leave_one_out_name);
 
 struct ShellPcaOptions {
   DisplacementKind displacement = DisplacementKind::kLog;
@@ -85,16 +86,20 @@ struct ShellPcaOptions {
   double relative_cutoff = 1e-10;  // of ModesFromGram
 };
 
+// DisplacementKind of "log" (kLog) or "difference" (kAlignedDifference).
+// Throws InputError starting with `name` (the caller's name of the option:
+// "--displacement" for the CLI, "displacement" for Python) otherwise.
+DisplacementKind ParseDisplacementKind(const std::string& value,
+                                       const std::string& name);
+// "log" or "difference": the word ParseDisplacementKind reads.
+const char* DisplacementKindName(DisplacementKind kind);
+
 // The options of the front ends' values (the others keep their defaults):
-// log_steps (steps), exp_steps, max_exp_steps and displacement, "log"
-// (kLog) or "difference" (kAlignedDifference). Throws InputError for any
-// other displacement, naming it as the caller does: `prefix` +
-// "displacement" ("--" for the CLI's flags, "" for the Python arguments).
-// The step counts are checked by the functions that take the options.
+// log_steps (steps), exp_steps, max_exp_steps and the displacement. The
+// step counts are checked by the functions that take the options.
 ShellPcaOptions MakeShellPcaOptions(int log_steps, int exp_steps,
                                     int max_exp_steps,
-                                    const std::string& displacement,
-                                    const std::string& prefix);
+                                    DisplacementKind displacement);
 
 // How an EXP shot went: the K of the last attempt, the number of attempts,
 // the largest relative step-energy drift max_k |W[s_{k-1}, s_k] - W[s_0,
