@@ -55,30 +55,34 @@ inline void WriteScratch(const std::string& path, const uint8_t* data,
   std::abort();
 }
 
-// Installs a stop poll (io/input_file.h) that never stops but counts its
-// calls during one read of `size` bytes: the readers poll once per chunk
-// and once per 4096 lines or binary values, and a file of `size` bytes has
-// at most size + 1 lines and size values, so more than 4 + 2 (size / 4096
-// + 1) polls means a loop over rows the file does not hold (a header's
-// counts trusted) -- a finding, reported at once instead of after minutes.
+// A stop token for one read of `size` bytes (io/input_file.h) that never
+// says stop but counts the times it is asked: the readers ask once per
+// chunk and once per 4096 lines or binary values, and a file of `size`
+// bytes has at most size + 1 lines and size values, so more than 4 + 2
+// (size / 4096 + 1) polls means a loop over rows the file does not hold (a
+// header's counts trusted) -- a finding, reported at once instead of after
+// minutes. Must outlive the read.
 class ProportionalWork {
  public:
   explicit ProportionalWork(size_t size)
-      : bound_(4 + 2 * (static_cast<long>(size) / 4096 + 1)) {
-    SetReadStopPoll([this] {
-      if (++polls_ > bound_) {
-        Finding("read work not proportional to the file size (" +
-                std::to_string(polls_) + " stop polls for a file of at most " +
-                std::to_string((bound_ - 4) / 2 * 4096) + " bytes)");
-      }
-      return false;
-    });
-  }
-  ~ProportionalWork() { SetReadStopPoll(nullptr); }
+      : bound_(4 + 2 * (static_cast<long>(size) / 4096 + 1)),
+        token_([this] {
+          if (++polls_ > bound_) {
+            Finding("read work not proportional to the file size (" +
+                    std::to_string(polls_) +
+                    " stop polls for a file of at most " +
+                    std::to_string((bound_ - 4) / 2 * 4096) + " bytes)");
+          }
+          return false;
+        }) {}
+  ProportionalWork(const ProportionalWork&) = delete;
+  ProportionalWork& operator=(const ProportionalWork&) = delete;
+  const StopToken& token() const { return token_; }
 
  private:
   long bound_;
-  long polls_ = 0;
+  mutable long polls_ = 0;  // counted by the token of a const instance too
+  StopToken token_;
 };
 
 // The invariants of a mesh ReadMesh returned (ValidateMeshStructure).
@@ -109,7 +113,7 @@ inline int FuzzMesh(const uint8_t* data, size_t size, const char* ext) {
   WriteScratch(path, data, size);
   const ProportionalWork work(size);
   try {
-    const Mesh mesh = ReadMesh(path);
+    const Mesh mesh = ReadMesh(path, work.token());
     CheckReadMesh(mesh);
     ValidateShell(mesh, path);
   } catch (const InputError& error) {

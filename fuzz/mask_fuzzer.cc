@@ -9,7 +9,7 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   fuzz::WriteScratch(path, data, size);
   const fuzz::ProportionalWork work(size);
   try {
-    const std::vector<int> mask = ReadMask(path, 100);
+    const std::vector<int> mask = ReadMask(path, 100, work.token());
     for (size_t i = 0; i < mask.size(); ++i) {
       if (mask[i] < 0 || mask[i] >= 100) fuzz::Finding("mask index out of range");
       if (i > 0 && mask[i] <= mask[i - 1]) fuzz::Finding("mask not sorted unique");

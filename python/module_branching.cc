@@ -35,7 +35,7 @@ py::object BranchingSimulatePy(double epsilon, double length, double height,
   s.periods = periods;
   s.seed = static_cast<unsigned>(init_seed);
   s.max_iterations = lm_iterations;
-  s.stop = control.Poll();
+  s.stop = control.Token();
   options.delta_extrapolation = delta_extrapolation;
   workflows::CheckBranchingSimulate(options);
   std::optional<workflows::BranchingSimulateResult> run;

@@ -162,7 +162,7 @@ struct SolverOptions {
   SolverSettings Settings(const std::string& label) const {
     SolverSettings settings =
         UserSolverSettings(tolerance, max_iterations, threads, quiet, label);
-    settings.stop = control->Poll();
+    settings.stop = control->Token();
     return settings;
   }
   // `result` (a tuple whose summary is `summary`), or raised as

@@ -91,7 +91,11 @@ void RegisterIo(py::module_& m) {
             "`shellspace export` does.")
             .c_str());
   m.def(
-      "read_mask", &ReadMask, py::arg("path"), py::arg("num_vertices"),
+      "read_mask",
+      [](const std::string& path, int num_vertices) {
+        return ReadMask(path, num_vertices);
+      },
+      py::arg("path"), py::arg("num_vertices"),
       WithParameters("read_mask",
                      "Reads a vertex mask file: sorted unique 0-based indices.")
           .c_str());

@@ -44,7 +44,7 @@ SplineSettings SplineSettingsOf(const SolverOptions& solver,
   settings.inner.progress = false;
   settings.inner.gradient_tolerance = 1e-10;
   settings.stop = settings.inner.stop;
-  settings.inner.stop = nullptr;
+  settings.inner.stop = StopToken();
   settings.max_iterations = solver.max_iterations;
   settings.gradient_tolerance = solver.tolerance;
   settings.progress = !solver.quiet;

@@ -163,9 +163,9 @@ SolveControl::~SolveControl() {
   if (interrupt) PyErr_SetInterrupt();
 }
 
-StopPoll SolveControl::Poll() const {
+StopToken SolveControl::Token() const {
   std::shared_ptr<State> state = state_;
-  return [state] {
+  return StopToken([state] {
     if (state->cause.load() != 0) return true;
     int none = 0;
     if (g_sigint_count.load() != state->sigint_count) {
@@ -191,7 +191,7 @@ StopPoll SolveControl::Poll() const {
       }
     }
     return false;
-  };
+  });
 }
 
 bool SolveControl::stopped() const { return state_->cause.load() != 0; }

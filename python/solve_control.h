@@ -1,13 +1,14 @@
 // How a Python call that solves ends early, and how it says so: the
 // keyword time_limit, KeyboardInterrupt (SIGINT), and unconverged results.
 //
-// A call's solves poll SolveControl::Poll() between iterations
-// (SolverSettings::stop): true once its time limit has passed or SIGINT
-// arrived since the call began. They then end at their best state, which
-// the call returns (or writes) marked "partial": true with "stop_reason"
-// in its summary, as the CLI does for --time_limit and SIGINT. The poll
-// reads two atomics and the clock: any thread may call it, without the GIL,
-// and a run it does not stop computes the same digits as without it.
+// A call's solves ask the stop token SolveControl::Token() between
+// iterations (SolverSettings::stop): it says stop once the call's time
+// limit has passed or SIGINT arrived since the call began. They then end
+// at their best state, which the call returns (or writes) marked
+// "partial": true with "stop_reason" in its summary, as the CLI does for
+// --time_limit and SIGINT. Asking the token reads two atomics and the
+// clock: any thread may ask it, without the GIL, and a run it does not
+// stop computes the same digits as without it.
 //
 // Other signals: the polls of the calling thread run Python's signal
 // handlers every 100 ms (the GIL taken for that moment); a handler that
@@ -58,11 +59,12 @@ class SolveControl {
   SolveControl(const SolveControl&) = delete;
   SolveControl& operator=(const SolveControl&) = delete;
 
-  // For SolverSettings::stop (any thread, no GIL).
-  StopPoll Poll() const;
-  // A poll returned true: the solves were cut short.
+  // The call's token, for SolverSettings::stop (any thread may ask it,
+  // without the GIL).
+  StopToken Token() const;
+  // The token said stop: the solves were cut short.
   bool stopped() const;
-  // "time limit 2 s", "SIGINT" for a stop seen by a poll, else "".
+  // "time limit 2 s", "SIGINT" for a stop the token said, else "".
   std::string stop_reason() const;
 
   // While alive: the GIL released and SIGINT counted for the polls. At

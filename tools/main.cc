@@ -326,15 +326,12 @@ int RunVerb(const Verb& verb) {
     ApplyDefaultsAndValidate(verb);
     InstallStopHandlers(FindFlag(verb.flags, "time_limit") ? FLAGS_time_limit
                                                            : 0);
-    // SIGINT and SIGTERM end a long read of an input (io/input_file.h); the
-    // time limit stops solves only.
-    SetReadStopPoll([] { return RequestedStop() != StopCause::kNone; });
     const int code = verb.run();
-    const StopCause stop = RequestedStop();
+    const StopCause stop = RequestedStopCause();
     if (code != 0 || stop == StopCause::kNone) return code;
     std::cerr << "shellspace " << name << ": stopped (" << StopCauseText(stop)
               << "): "
-              << (ObservedStop() != StopCause::kNone
+              << (ObservedStopCause() != StopCause::kNone
                       ? "wrote the best state so far, marked partial"
                       : "after the solves; the output is complete");
     const std::string unmet = StoppedRunFailures();
@@ -343,7 +340,7 @@ int RunVerb(const Verb& verb) {
     return StopExitCode(stop);
   } catch (const ReadStopped& error) {
     // A signal while an input was read: nothing to write.
-    const StopCause stop = RequestedStop();
+    const StopCause stop = RequestedStopCause();
     std::cerr << "shellspace " << name << ": stopped (" << StopCauseText(stop)
               << ") while reading " << error.path() << "\n";
     return stop == StopCause::kNone ? 1 : StopExitCode(stop);

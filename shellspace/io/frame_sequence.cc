@@ -164,11 +164,12 @@ std::vector<std::string> ListFrameFiles(const std::string& input) {
   return files;
 }
 
-FrameSequence ReadFrameSequence(const std::string& input) {
+FrameSequence ReadFrameSequence(const std::string& input,
+                                const StopToken& stop) {
   FrameSequence sequence;
   sequence.paths = ListFrameFiles(input);
   for (const std::string& path : sequence.paths) {
-    Mesh mesh = ReadMesh(path);
+    Mesh mesh = ReadMesh(path, stop);
     if (sequence.frames.empty()) {
       sequence.faces = mesh.faces;
     } else if (mesh.num_vertices() != sequence.frames[0].rows()) {

@@ -8,6 +8,7 @@
 
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/io/atomic_file.h"
+#include "shellspace/runtime/stop_token.h"
 
 namespace shellspace {
 
@@ -28,10 +29,11 @@ struct FrameSequence {
 // list entry is empty.
 std::vector<std::string> ListFrameFiles(const std::string& input);
 
-// Reads the meshes of ListFrameFiles(input) with ReadMesh. Throws InputError
-// as ListFrameFiles and ReadMesh do, and if a mesh has another vertex count
-// or other faces than the first one.
-FrameSequence ReadFrameSequence(const std::string& input);
+// Reads the meshes of ListFrameFiles(input) with ReadMesh (each asking
+// `stop`). Throws InputError as ListFrameFiles and ReadMesh do, and if a
+// mesh has another vertex count or other faces than the first one.
+FrameSequence ReadFrameSequence(const std::string& input,
+                                const StopToken& stop = StopToken());
 
 // Creates directory `dir` (and parents) if missing; InputError naming it on
 // failure.

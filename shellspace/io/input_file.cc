@@ -13,11 +13,6 @@
 namespace shellspace {
 namespace {
 
-std::function<bool()>& StopPoll() {
-  static std::function<bool()> poll;
-  return poll;
-}
-
 // "1 GiB", "256 MiB", or the byte count.
 std::string LimitText(std::int64_t bytes) {
   if (bytes % (std::int64_t{1} << 30) == 0) {
@@ -108,15 +103,8 @@ int OpenInputFile(const std::string& path, const std::string& what,
 
 }  // namespace
 
-std::function<bool()> SetReadStopPoll(std::function<bool()> poll) {
-  std::function<bool()> previous = std::move(StopPoll());
-  StopPoll() = std::move(poll);
-  return previous;
-}
-
-void CheckReadStop(const std::string& path) {
-  const std::function<bool()>& poll = StopPoll();
-  if (poll && poll()) throw ReadStopped(path);
+void CheckReadStop(const StopToken& stop, const std::string& path) {
+  if (stop.stop_requested()) throw ReadStopped(path);
 }
 
 std::int64_t CheckInputFile(const std::string& path, const std::string& what,
@@ -125,8 +113,8 @@ std::int64_t CheckInputFile(const std::string& path, const std::string& what,
 }
 
 InputFile::InputFile(const std::string& path, const std::string& what,
-                     std::int64_t max_bytes)
-    : path_(path), what_(what), max_bytes_(max_bytes) {
+                     std::int64_t max_bytes, StopToken stop)
+    : path_(path), what_(what), max_bytes_(max_bytes), stop_(std::move(stop)) {
   fd_ = OpenInputFile(path, what, max_bytes, &size_);
 }
 
@@ -135,7 +123,7 @@ InputFile::~InputFile() {
 }
 
 const std::string& InputFile::Read(size_t limit) {
-  CheckReadStop(path_);
+  CheckReadStop(stop_, path_);
   constexpr size_t kChunk = size_t{1} << 20;
   // One allocation of the size and a spare byte that sees the end; more
   // only if more comes (files of /proc report size 0, a file may grow), but
@@ -156,7 +144,7 @@ const std::string& InputFile::Read(size_t limit) {
       const int error = errno;
       bytes_.resize(got);
       if (error == EINTR) {
-        CheckReadStop(path_);
+        CheckReadStop(stop_, path_);
         continue;
       }
       throw InputError("cannot read " + what_ + " " + path_ + " (" +
@@ -169,7 +157,7 @@ const std::string& InputFile::Read(size_t limit) {
     }
     CheckSize(path_, what_, static_cast<std::int64_t>(bytes_.size()),
               max_bytes_);
-    CheckReadStop(path_);
+    CheckReadStop(stop_, path_);
   }
   return bytes_;
 }
@@ -180,8 +168,8 @@ std::string InputFile::ReadAll() {
 }
 
 std::string ReadInputFile(const std::string& path, const std::string& what,
-                          std::int64_t max_bytes) {
-  return InputFile(path, what, max_bytes).ReadAll();
+                          std::int64_t max_bytes, const StopToken& stop) {
+  return InputFile(path, what, max_bytes, stop).ReadAll();
 }
 
 }  // namespace shellspace

@@ -1,14 +1,14 @@
 // Reading the files a run takes as input: regular files only, opened without
-// blocking, read whole up to a size limit, and a stop request polled while
-// they are read and parsed.
+// blocking, read whole up to a size limit, and the caller's stop token asked
+// while they are read and parsed.
 #ifndef SHELLSPACE_IO_INPUT_FILE_H_
 #define SHELLSPACE_IO_INPUT_FILE_H_
 
 #include <cstdint>
-#include <functional>
 #include <string>
 
 #include "shellspace/geometry/mesh.h"
+#include "shellspace/runtime/stop_token.h"
 
 namespace shellspace {
 
@@ -22,8 +22,8 @@ constexpr std::int64_t kMaxMaskFileBytes = std::int64_t{1} << 28;
 // The largest flag file read (gflags' --flagfile): 1 MiB.
 constexpr std::int64_t kMaxFlagFileBytes = std::int64_t{1} << 20;
 
-// A stop request seen while reading: the reader ends with this (an
-// InputError naming the file), and the caller reports the stop.
+// A stop seen while reading: the reader ends with this (an InputError
+// naming the file), and the caller reports the stop.
 class ReadStopped : public InputError {
  public:
   explicit ReadStopped(const std::string& path)
@@ -34,32 +34,32 @@ class ReadStopped : public InputError {
   std::string path_;
 };
 
-// The stop poll of every reader: called between chunks of a file and every
-// few thousand lines or rows of its content (so a SIGTERM ends the read of
-// the largest file within milliseconds); when it returns true the reader
-// throws ReadStopped. One per process, none by default: the CLI installs its
-// own (tools/main.cc: SIGINT, SIGTERM, --time_limit). Set it before reading
-// starts (it is not synchronised with concurrent reads). Returns the previous
-// poll.
-std::function<bool()> SetReadStopPoll(std::function<bool()> poll);
+// Every reader takes the caller's stop token (the default: none) and asks
+// it between chunks of a file and every few thousand lines or rows of its
+// content, so that a SIGTERM ends the read of the largest file within
+// milliseconds; when it says stop the reader throws ReadStopped. (The CLI
+// passes a token of SIGINT, SIGTERM and SIGHUP; tools/run/stop_request.h.)
 
-// Throws ReadStopped(path) if the poll of SetReadStopPoll says stop.
-void CheckReadStop(const std::string& path);
+// Throws ReadStopped(path) if `stop` says stop.
+void CheckReadStop(const StopToken& stop, const std::string& path);
 
 // Calls CheckReadStop every `period` calls of Tick (cheap in a loop).
+// `path` and `stop` must outlive the ticker.
 class ReadStopTicker {
  public:
-  explicit ReadStopTicker(const std::string& path, std::uint32_t period = 4096)
-      : path_(path), period_(period) {}
+  ReadStopTicker(const std::string& path, const StopToken& stop,
+                 std::uint32_t period = 4096)
+      : path_(path), stop_(stop), period_(period) {}
   void Tick() {
     if (++count_ >= period_) {
       count_ = 0;
-      CheckReadStop(path_);
+      CheckReadStop(stop_, path_);
     }
   }
 
  private:
   const std::string& path_;
+  const StopToken& stop_;
   const std::uint32_t period_;
   std::uint32_t count_ = 0;
 };
@@ -75,14 +75,14 @@ std::int64_t CheckInputFile(const std::string& path, const std::string& what,
 
 // A regular file being read: opened and checked as by CheckInputFile
 // (the descriptor checked is the one read: a file replaced after the check
-// is not read), then read in chunks of 1 MiB, polling the stop request
+// is not read), then read in chunks of 1 MiB, asking `stop`
 // (CheckReadStop) between them. Reads to the end of the file, not to the
 // size fstat gave, but refuses it once more than `max_bytes` arrived (a
 // file that grows, or reports size 0 as those of /proc do).
 class InputFile {
  public:
   InputFile(const std::string& path, const std::string& what,
-            std::int64_t max_bytes);
+            std::int64_t max_bytes, StopToken stop = StopToken());
   ~InputFile();
   InputFile(const InputFile&) = delete;
   InputFile& operator=(const InputFile&) = delete;
@@ -99,6 +99,7 @@ class InputFile {
  private:
   std::string path_, what_;
   std::int64_t max_bytes_;
+  StopToken stop_;
   std::int64_t size_ = 0;
   int fd_ = -1;
   std::string bytes_;
@@ -107,7 +108,8 @@ class InputFile {
 
 // The whole content of the regular file `path` (InputFile::ReadAll).
 std::string ReadInputFile(const std::string& path, const std::string& what,
-                          std::int64_t max_bytes);
+                          std::int64_t max_bytes,
+                          const StopToken& stop = StopToken());
 
 }  // namespace shellspace
 

@@ -34,7 +34,7 @@ std::string Extension(const std::string& path) {
 
 }  // namespace
 
-Mesh ReadMesh(const std::string& path) {
+Mesh ReadMesh(const std::string& path, const StopToken& stop) {
   const std::string ext = Extension(path);
   if (ext != "ply" && ext != "obj" && ext != "off") {
     std::error_code error;
@@ -44,9 +44,10 @@ Mesh ReadMesh(const std::string& path) {
     throw InputError("unsupported mesh format '" + ext + "' of " + path +
                      " (use .ply, .obj or .off)");
   }
-  InputFile file(path, "mesh file", kMaxMeshFileBytes);
+  InputFile file(path, "mesh file", kMaxMeshFileBytes, stop);
   MeshBuilder builder;
   builder.path = path;
+  builder.stop = stop;
   if (ext != "obj") {
     // The header first, from the first MiB: one whose counts the file size
     // cannot hold is refused before the rest of the file is read.
@@ -63,7 +64,7 @@ Mesh ReadMesh(const std::string& path) {
   const Mesh mesh = ext == "ply"   ? mesh_reading::ReadPly(bytes, &builder)
                     : ext == "obj" ? mesh_reading::ReadObj(bytes, &builder)
                                    : mesh_reading::ReadOff(bytes, &builder);
-  CheckReadStop(path);
+  CheckReadStop(stop, path);
   ValidateMeshStructure(mesh, path);
   return mesh;
 }
@@ -113,15 +114,17 @@ void WriteMesh(const Mesh& mesh, const std::string& path) {
   WriteFileAtomically(path, MeshWriter(mesh, path));
 }
 
-std::vector<int> ReadMask(const std::string& path, int num_vertices) {
-  const std::string bytes = ReadInputFile(path, "mask file", kMaxMaskFileBytes);
+std::vector<int> ReadMask(const std::string& path, int num_vertices,
+                          const StopToken& stop) {
+  const std::string bytes =
+      ReadInputFile(path, "mask file", kMaxMaskFileBytes, stop);
   if (bytes.find('\0') != std::string::npos) {
     throw InputError(path + ": not a text file (it contains NUL bytes)");
   }
   // One flag per vertex: the mask's memory is bounded by the mesh, however
   // often the file repeats an index.
   std::vector<char> in_mask(static_cast<size_t>(std::max(num_vertices, 0)), 0);
-  LineCursor lines(bytes, 1, path);
+  LineCursor lines(bytes, 1, path, stop);
   std::string_view text;
   std::vector<std::string_view> tokens;
   while (lines.Next(&text)) {

@@ -7,6 +7,7 @@
 
 #include "shellspace/geometry/mesh.h"
 #include "shellspace/io/atomic_file.h"
+#include "shellspace/runtime/stop_token.h"
 
 namespace shellspace {
 
@@ -24,14 +25,13 @@ namespace shellspace {
 // kMaxMeshFileBytes (io/input_file.h: FIFOs, devices, directories and
 // sockets are refused without blocking or reading), a PLY or OFF header
 // (up to end_header, or the counts) must end within its first MiB, and
-// every element count
-// a header declares must fit in the file's size (at least two bytes per
-// ASCII value, the type sizes in binary PLY; an element of no properties
-// with rows is refused) before a row is read or stored: the memory of a
-// read is bounded by a few times the file size, and a stop request
-// (SetReadStopPoll) ends it within a few thousand lines or rows. All formats
-// go through the same checks, on the raw file
-// data: every face a triangle of integer indices in range, no missing,
+// every element count a header declares must fit in the file's size (at
+// least two bytes per ASCII value, the type sizes in binary PLY; an element
+// of no properties with rows is refused) before a row is read or stored:
+// the memory of a read is bounded by a few times the file size, and `stop`
+// ends it (with ReadStopped, io/input_file.h) within a few thousand lines
+// or rows. All formats go through the same checks, on the raw file data:
+// every face a triangle of integer indices in range, no missing,
 // extra or malformed values, nothing after the declared elements (PLY, OFF),
 // then ValidateMeshStructure (geometry/validation.h: finite coordinates,
 // manifold edges, no duplicate faces, no isolated vertex). Every failure is
@@ -39,7 +39,7 @@ namespace shellspace {
 // number, and the line for text formats) and the problem; file content is
 // echoed only as a short escaped excerpt. Degenerate triangles are checked
 // by ValidateShell, not here.
-Mesh ReadMesh(const std::string& path);
+Mesh ReadMesh(const std::string& path, const StopToken& stop = StopToken());
 
 // Writes a mesh; the format follows the extension (.ply ASCII with double
 // coordinates, .obj, .off), atomically (io/atomic_file.h), so a failure
@@ -58,7 +58,9 @@ StreamWriter MeshWriter(const Mesh& mesh, const std::string& path);
 // (io/input_file.h), a binary file (NUL bytes), a token that is not a
 // decimal integer, or an index outside [0, num_vertices). Returns sorted
 // unique indices (memory: one byte per vertex, however long the file).
-std::vector<int> ReadMask(const std::string& path, int num_vertices);
+// `stop` ends the read with ReadStopped.
+std::vector<int> ReadMask(const std::string& path, int num_vertices,
+                          const StopToken& stop = StopToken());
 
 }  // namespace shellspace
 

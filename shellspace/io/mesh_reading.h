@@ -45,12 +45,14 @@ inline std::string Excerpt(std::string_view text, size_t max = 24) {
 
 // The lines of a text, one at a time, split at '\n' with a trailing '\r'
 // removed, without copying them (a file of blank lines costs no memory per
-// line); polls the stop request every 4096 lines.
+// line); asks `stop` every 4096 lines (`path` and `stop` must outlive the
+// cursor).
 class LineCursor {
  public:
   // `text` starts at line `first_line` (1-based) of the file `path`.
-  LineCursor(std::string_view text, size_t first_line, const std::string& path)
-      : text_(text), number_(first_line - 1), ticker_(path) {}
+  LineCursor(std::string_view text, size_t first_line, const std::string& path,
+             const StopToken& stop)
+      : text_(text), number_(first_line - 1), ticker_(path, stop) {}
 
   // The next line, or false at the end of the text.
   bool Next(std::string_view* line) {
@@ -150,9 +152,11 @@ inline constexpr long long kMaxCount = 2147483647;
 inline constexpr size_t kMaxHeaderBytes = size_t{1} << 20;
 
 // Collects vertices and triangles read from a file and checks each face's
-// indices against the vertex count on the raw data.
+// indices against the vertex count on the raw data; `stop` is the reader's
+// stop token, asked every few thousand lines or values.
 struct MeshBuilder {
   std::string path;
+  StopToken stop;
   std::vector<std::array<double, 3>> points;
   std::vector<std::array<long long, 3>> faces;
   std::vector<size_t> face_lines;  // file line of each face (0: binary)

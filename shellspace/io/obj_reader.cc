@@ -4,7 +4,7 @@
 namespace shellspace::mesh_reading {
 
 Mesh ReadObj(const std::string& bytes, MeshBuilder* b) {
-  LineCursor lines(bytes, 1, b->path);
+  LineCursor lines(bytes, 1, b->path, b->stop);
   std::string_view text;
   std::vector<std::string_view> t;
   while (lines.Next(&text)) {

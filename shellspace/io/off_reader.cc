@@ -33,7 +33,7 @@ bool ParseOffKeyword(std::string_view word, OffKeyword* k) {
 class OffRows {
  public:
   OffRows(const std::string& bytes, const MeshBuilder& b)
-      : lines_(bytes, 1, b.path), b_(b) {}
+      : lines_(bytes, 1, b.path, b.stop), b_(b) {}
   // The header (keyword and counts) was read: no limit from here on.
   void EndHeader() { in_header_ = false; }
   bool Next() {

@@ -291,7 +291,7 @@ void CheckPlyRowsFit(const PlyHeader& header, uint64_t file_size,
 PlyHeader ParsePlyHeader(const std::string& bytes, uint64_t file_size,
                          const MeshBuilder& b) {
   PlyHeader header;
-  LineCursor lines(bytes, 1, b.path);
+  LineCursor lines(bytes, 1, b.path, b.stop);
   ReadPlyHeaderLines(&lines, b, &header);
   header.data_offset = bytes.size() - lines.remaining();
   header.data_line = lines.number() + 1;
@@ -371,7 +371,7 @@ std::string RowName(const PlyElement& element, long long r) {
 void ReadAsciiPlyData(const std::string& bytes, const PlyHeader& header,
                       MeshBuilder* b) {
   LineCursor lines(std::string_view(bytes).substr(header.data_offset),
-                   header.data_line, b->path);
+                   header.data_line, b->path, b->stop);
   std::string_view text;
   std::vector<std::string_view> t;
   // The next line with a value, in `t`; false at the end of the file.
@@ -448,13 +448,15 @@ void ReadAsciiPlyData(const std::string& bytes, const PlyHeader& header,
   }
 }
 
-// Reads binary scalars of one byte order; polls the stop request every
-// 4096 values.
+// Reads binary scalars of one byte order; asks `stop` every 4096 values.
 class BinaryCursor {
  public:
   BinaryCursor(const std::string& bytes, size_t pos, bool big_endian,
-               const std::string& path)
-      : bytes_(bytes), pos_(pos), big_endian_(big_endian), ticker_(path) {}
+               const std::string& path, const StopToken& stop)
+      : bytes_(bytes),
+        pos_(pos),
+        big_endian_(big_endian),
+        ticker_(path, stop) {}
 
   size_t remaining() const { return bytes_.size() - pos_; }
 
@@ -503,7 +505,7 @@ class BinaryCursor {
 void ReadBinaryPlyData(const std::string& bytes, const PlyHeader& header,
                        MeshBuilder* b) {
   BinaryCursor in(bytes, header.data_offset,
-                  header.format == PlyFormat::kBigEndian, b->path);
+                  header.format == PlyFormat::kBigEndian, b->path, b->stop);
   for (size_t e = 0; e < header.elements.size(); ++e) {
     const PlyElement& element = header.elements[e];
     PlyRow row(header, e);

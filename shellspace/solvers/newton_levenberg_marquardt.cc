@@ -115,7 +115,7 @@ class LevenbergMarquardtStrategy : public NewtonStepStrategy {
     for (int rejected = 0; rejected <= settings.lm_max_rejections;
          ++rejected) {
       // Polled once per retry (the engine polled before the first try).
-      if (rejected > 0 && settings.stop && settings.stop()) {
+      if (rejected > 0 && settings.stop.stop_requested()) {
         outcome.failure = NewtonStop::kStopped;
         return outcome;
       }

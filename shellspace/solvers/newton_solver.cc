@@ -136,7 +136,7 @@ double ForcingTerm(const NewtonSettings& settings,
 }
 
 // The stop rules checked before a step: the tolerance, the step budget and
-// the caller's stop poll.
+// the caller's stop token.
 std::optional<NewtonStop> StopBeforeStep(const NewtonSettings& settings,
                                          const NewtonReport& report,
                                          const NewtonResidual& current) {
@@ -144,7 +144,7 @@ std::optional<NewtonStop> StopBeforeStep(const NewtonSettings& settings,
     return NewtonStop::kConverged;
   }
   if (report.steps >= settings.max_steps) return NewtonStop::kMaxSteps;
-  if (settings.stop && settings.stop()) return NewtonStop::kStopped;
+  if (settings.stop.stop_requested()) return NewtonStop::kStopped;
   return std::nullopt;
 }
 

@@ -9,6 +9,7 @@
 #include <limits>
 #include <string>
 
+#include "shellspace/runtime/stop_token.h"
 #include "shellspace/solvers/linear_solver.h"
 
 namespace shellspace {
@@ -231,8 +232,8 @@ struct NewtonSettings {
   std::function<void(const NewtonReport& report, double merit,
                      bool accepted)>
       progress;
-  // Polled before every step: true stops at the current point (kStopped).
-  std::function<bool()> stop;
+  // Asked before every step: a stop stops at the current point (kStopped).
+  StopToken stop;
 };
 
 enum class NewtonStop {
@@ -247,7 +248,7 @@ enum class NewtonStop {
   kNoProgress,         // the no-progress rule
   kHandedOver,         // the hand-over rule (hand_over_contraction)
   kOutsideBasin,       // the basin probe (tr_basin_ratio)
-  kStopped,            // NewtonSettings::stop returned true
+  kStopped,            // NewtonSettings::stop said stop
 };
 
 // The text of a stop reason (the same for every problem), e.g. "converged",

@@ -183,7 +183,7 @@ NewtonStepOutcome TrustRegionStrategy::Step(const NewtonIteration& it) {
     return outcome;
   }
   for (int rejected = 0; rejected <= settings.tr_max_rejections; ++rejected) {
-    if (rejected > 0 && settings.stop && settings.stop()) {
+    if (rejected > 0 && settings.stop.stop_requested()) {
       outcome.failure = NewtonStop::kStopped;
       return outcome;
     }

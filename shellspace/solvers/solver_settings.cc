@@ -99,18 +99,14 @@ double GradientMaxNorm(ceres::Problem* problem) {
   return norm;
 }
 
-bool StopRequested(const SolverSettings& settings) {
-  return settings.stop && settings.stop();
-}
-
 bool StoppedByRequest(const ceres::Solver::Summary& summary) {
   return summary.termination_type == ceres::USER_SUCCESS;
 }
 
 ceres::CallbackReturnType StopCallback::operator()(
     const ceres::IterationSummary&) {
-  return stop_ && stop_() ? ceres::SOLVER_TERMINATE_SUCCESSFULLY
-                          : ceres::SOLVER_CONTINUE;
+  return stop_.stop_requested() ? ceres::SOLVER_TERMINATE_SUCCESSFULLY
+                                : ceres::SOLVER_CONTINUE;
 }
 
 ceres::Solver::Summary SolveWithSettings(ceres::Problem* problem,
@@ -122,7 +118,7 @@ ceres::Solver::Summary SolveWithSettings(ceres::Problem* problem,
   ProgressPrinter printer(settings.progress_label);
   if (settings.progress) options.callbacks.push_back(&printer);
   StopCallback stop(settings.stop);
-  if (settings.stop) options.callbacks.push_back(&stop);
+  if (settings.stop.stop_possible()) options.callbacks.push_back(&stop);
   ceres::Solver::Summary summary;
   ceres::Solve(options, problem, &summary);
   return summary;

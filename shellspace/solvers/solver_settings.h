@@ -7,19 +7,12 @@
 #include <ceres/solver.h>
 
 #include <chrono>
-#include <functional>
 #include <iosfwd>
 #include <string>
 
-namespace shellspace {
+#include "shellspace/runtime/stop_token.h"
 
-// A request to stop early (the caller's stopping rule: an interrupt, a time
-// limit), polled by the solvers between iterations: when it returns true the
-// solve ends at its current iterate (Ceres: the best accepted one; Newton:
-// the last accepted point) and the loops of the problems stop at the next
-// step, keeping what they completed. Empty: never. A run the poll never
-// stops computes the same numbers with or without it.
-using StopPoll = std::function<bool()>;
+namespace shellspace {
 
 // Settings of the sparse Levenberg-Marquardt solves. Convergence is declared
 // on the relative gradient norm max|grad| / max(1, |grad_0|) <=
@@ -42,7 +35,9 @@ struct SolverSettings {
   double initial_trust_region_radius = 1e4;
   bool progress = false;  // one line per iteration on stderr
   std::string progress_label = "solve";
-  StopPoll stop;  // see StopPoll; copied into inner solves with the settings
+  // The caller's stop request (runtime/stop_token.h), asked between
+  // iterations; copied into inner solves with the settings.
+  StopToken stop;
 };
 
 // The most threads a solve accepts (num_threads).
@@ -57,23 +52,21 @@ SolverSettings UserSolverSettings(double tolerance, int max_iterations,
                                   int threads, bool quiet,
                                   const std::string& label);
 
-// True if settings.stop is set and returns true.
-bool StopRequested(const SolverSettings& settings);
-
-// A Ceres solve that `stop` ended (its termination USER_SUCCESS: the
-// parameters hold the best iterate reached).
+// A Ceres solve that a StopCallback ended (its termination USER_SUCCESS:
+// the parameters hold the best iterate reached).
 bool StoppedByRequest(const ceres::Solver::Summary& summary);
 
-// Returns SOLVER_TERMINATE_SUCCESSFULLY once `stop` returns true (Ceres
-// then keeps the best iterate; SOLVER_ABORT would restore the initial one).
+// Returns SOLVER_TERMINATE_SUCCESSFULLY once `stop` says stop (Ceres then
+// keeps the best iterate; SOLVER_ABORT would restore the initial one).
+// Added to a solve's callbacks only if stop.stop_possible().
 class StopCallback : public ceres::IterationCallback {
  public:
-  explicit StopCallback(StopPoll stop) : stop_(std::move(stop)) {}
+  explicit StopCallback(StopToken stop) : stop_(std::move(stop)) {}
   ceres::CallbackReturnType operator()(
       const ceres::IterationSummary& summary) override;
 
  private:
-  StopPoll stop_;
+  StopToken stop_;
 };
 
 // Ceres options for an LM solve (SPARSE_NORMAL_CHOLESKY over SuiteSparse,

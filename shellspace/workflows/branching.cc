@@ -35,7 +35,7 @@ BranchingSimulateResult RunBranchingSimulate(
                      " (ny, delta, epsilon, length, height)");
   }
   std::optional<DeltaExtrapolation> extrapolation;
-  const bool stopped = s.stop && s.stop();
+  const bool stopped = s.stop.stop_requested();
   if (options.delta_extrapolation >= 2 && !stopped) {
     extrapolation.emplace(ExtrapolateDelta(
         s, ExtrapolationWidths(simulation.delta, options.delta_extrapolation),
@@ -43,10 +43,10 @@ BranchingSimulateResult RunBranchingSimulate(
   }
   const DeltaExtrapolation* ex = extrapolation ? &*extrapolation : nullptr;
   JsonObject summary = SimulationJson(s, simulation, ex);
-  // Polled again: a stop during the extrapolation counts too.
+  // Asked again: a stop during the extrapolation counts too.
   SolveStatus status =
       StatusOf(SimulationFailures(s, simulation, ex, "lm_iterations"),
-               s.stop && s.stop());
+               s.stop.stop_requested());
   return BranchingSimulateResult{s, std::move(simulation),
                                  std::move(extrapolation), std::move(summary),
                                  std::move(status)};

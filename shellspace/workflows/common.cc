@@ -43,16 +43,15 @@ JsonObject EnergySplitJson(const EnergySplit& split) {
   return shellspace::EnergySplitJson(split.membrane, split.bending);
 }
 
-ObservedStop::ObservedStop(StopPoll* poll_to_wrap)
+StopRecorder::StopRecorder(StopToken* token)
     : flag_(std::make_shared<std::atomic<bool>>(false)) {
-  if (!*poll_to_wrap) return;
-  StopPoll poll = std::move(*poll_to_wrap);
+  if (!token->stop_possible()) return;
   std::shared_ptr<std::atomic<bool>> flag = flag_;
-  *poll_to_wrap = [poll, flag] {
-    if (!poll()) return false;
+  *token = StopToken([caller = *token, flag] {
+    if (!caller.stop_requested()) return false;
     flag->store(true);
     return true;
-  };
+  });
 }
 
 std::string ShortNumber(double value) {

@@ -1,6 +1,6 @@
 // What the workflows share: the resolved material of a run, the membrane /
-// bending split of an energy, the stop poll that remembers whether it
-// stopped a solve, and the numbers of the failure texts.
+// bending split of an energy, the record of whether the stop token stopped
+// a solve, and the numbers of the failure texts.
 #ifndef SHELLSPACE_WORKFLOWS_COMMON_H_
 #define SHELLSPACE_WORKFLOWS_COMMON_H_
 
@@ -52,16 +52,17 @@ EnergySplit MeanEnergySplit(const ShellSpace& space, const Positions& mean,
 // {"membrane", "bending", "bending_share"} (reports' EnergySplitJson).
 JsonObject EnergySplitJson(const EnergySplit& split);
 
-// `settings` whose stop poll also records, in stopped(), whether it
-// returned true to a solve: a workflow's stop state is what its solves
-// saw, without polls of its own (which could observe a time limit that no
-// solve was cut by).
-class ObservedStop {
+// Whether a stop token said stop to a solve: the constructor replaces the
+// token of `settings` by one that says what it says and records, in
+// stopped(), that it said stop. A workflow's stop state is what its solves
+// saw, without asking the token itself (which could see a time limit that
+// no solve was cut by).
+class StopRecorder {
  public:
-  explicit ObservedStop(SolverSettings* settings)
-      : ObservedStop(&settings->stop) {}
-  // The same for a poll of its own (SplineSettings::stop).
-  explicit ObservedStop(StopPoll* poll);
+  explicit StopRecorder(SolverSettings* settings)
+      : StopRecorder(&settings->stop) {}
+  // The same for a token of its own (SplineSettings::stop).
+  explicit StopRecorder(StopToken* token);
   bool stopped() const { return flag_->load(); }
 
  private:

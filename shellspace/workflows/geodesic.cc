@@ -164,7 +164,7 @@ GeodesicResult Solve(const GeodesicOptions& options, const std::string& what) {
   const ShellSpace space(options.start, options.topology,
                          options.material.material);
   SolverSettings settings = options.settings;
-  const ObservedStop stop(&settings);
+  const StopRecorder stop(&settings);
   result.solve = SolveGeodesicMultiresolution(space, input, settings, levels);
   result.stopped = stop.stopped();
   MoveToUserEnd(alignment, options.end, &result.solve.geodesic.path);

@@ -39,7 +39,7 @@ struct GeodesicOptions {
   GeodesicLm lm = GeodesicLm::kAuto;
   GeodesicInit init = GeodesicInit::kAuto;
   // The solves' settings; settings.stop is the front end's stop request
-  // (a time limit, a signal), polled between iterations.
+  // (a time limit, a signal), asked between iterations.
   SolverSettings settings;
   // Called before the solve with each warning about an input: which one
   // ("start" or "end") and the text (sliver triangles and folded edges of

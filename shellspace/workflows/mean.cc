@@ -40,7 +40,7 @@ MeanResult RunMean(const MeanOptions& options) {
   const ShellSpace space(options.reference, options.topology,
                          options.material.material);
   SolverSettings settings = options.settings;
-  const ObservedStop stop(&settings);
+  const StopRecorder stop(&settings);
   result.mean = ComputeElasticMean(
       space, options.shapes, settings,
       options.initial_mean ? &*options.initial_mean : nullptr);

@@ -34,7 +34,7 @@ void CheckOptions(const PcaOptions& options) {
 // has stopped.
 void AddModeShapes(const ShellSpace& space, const ShellPcaModel& model,
                    const PcaOptions& options, const SolverSettings& inner,
-                   const ObservedStop& stop, PcaResult* result) {
+                   const StopRecorder& stop, PcaResult* result) {
   for (int j = 0; j < result->shell_modes; ++j) {
     for (const double sign : {-1.0, 1.0}) {
       if (stop.stopped()) return;
@@ -109,7 +109,7 @@ PcaResult RunPca(const PcaOptions& options) {
   const ShellSpace space(options.reference, options.topology,
                          options.material.material);
   SolverSettings settings = options.settings;
-  const ObservedStop stop(&settings);
+  const StopRecorder stop(&settings);
   SolverSettings inner = settings;
   inner.progress = false;
 

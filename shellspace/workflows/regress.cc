@@ -34,7 +34,7 @@ RegressResult RunRegress(const RegressOptions& options) {
   const ShellSpace space(options.reference, options.topology,
                          options.material.material);
   SplineSettings settings = options.settings;
-  const ObservedStop stop(&settings.stop);
+  const StopRecorder stop(&settings.stop);
   result.spline = SolveRegression(space, options.inputs, options.at,
                                   options.steps, options.sigma, {}, settings);
   result.stopped = stop.stopped();

@@ -19,7 +19,7 @@ ShootResult RunShoot(const ShootOptions& options) {
   const ShellSpace space(options.first, options.topology,
                          options.material.material);
   SolverSettings settings = options.settings;
-  const ObservedStop stop(&settings);
+  const StopRecorder stop(&settings);
   result.shot = ShootWithReport(
       space, options.first.positions, options.second, options.steps,
       options.backward ? StepDirection::kBackward : StepDirection::kForward,

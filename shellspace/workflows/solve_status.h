@@ -13,7 +13,7 @@ struct SolveStatus {
   enum class Code {
     kConverged,     // every solve met its stopping criterion
     kNotConverged,  // a solve stopped short of it (iterations, stagnation)
-    kStopped,       // the stop poll (SolverSettings::stop) ended the solves
+    kStopped,       // the stop token (SolverSettings::stop) ended the solves
     kFailed,        // a solve could not run (Ceres' FAILURE, a degenerate
                     // start): the result holds what there was before it
   };
@@ -33,7 +33,7 @@ struct SolveStatus {
 const char* SolveStatusName(SolveStatus::Code code);
 
 // The status of solves with these failures (kNotConverged if any, message
-// their join), stopped by the poll or not (kStopped wins over
+// their join), stopped by the token or not (kStopped wins over
 // kNotConverged: a stopped solve is short of its criterion by choice).
 SolveStatus StatusOf(std::vector<std::string> failures, bool stopped);
 

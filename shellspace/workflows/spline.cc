@@ -69,8 +69,8 @@ SplineResult RunSpline(const SplineOptions& options) {
                          options.material.material);
   SolverSettings init_settings = options.init_settings;
   SplineSettings settings = options.settings;
-  const ObservedStop init_stop(&init_settings);
-  const ObservedStop spline_stop(&settings.stop);
+  const StopRecorder init_stop(&init_settings);
+  const StopRecorder spline_stop(&settings.stop);
 
   Log(options, options.init == SplineInit::kLTheta ? "LTheta spline"
                                                    : "piecewise geodesic");

@@ -23,7 +23,7 @@ TransportResult RunTransport(const TransportOptions& options) {
   const ShellSpace space(options.first, options.topology,
                          options.material.material);
   SolverSettings settings = options.settings;
-  const ObservedStop stop(&settings);
+  const StopRecorder stop(&settings);
   result.transport = ParallelTransport(
       space, options.path, options.variation - options.first.positions,
       options.epsilon, options.fixed_vertices, settings);

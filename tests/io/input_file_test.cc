@@ -3,8 +3,9 @@
 // file above the size limit (a sparse 20 GB file) are one line naming the
 // file and what it is, without blocking or reading; headers whose counts
 // the file size cannot hold are refused before a row is read (a counting
-// stop poll shows that no loop ran over the declared rows); blank lines cost
-// no memory per line; a stop request ends every reader with ReadStopped.
+// stop token shows that no loop ran over the declared rows); blank lines
+// cost no memory per line; a token that says stop ends every reader with
+// ReadStopped.
 #include "shellspace/io/input_file.h"
 
 #include <fcntl.h>
@@ -26,6 +27,7 @@
 #include <fstream>
 #include <functional>
 
+#include "shellspace/io/frame_sequence.h"
 #include "shellspace/io/mesh_io.h"
 #include "tests/testing/test_support.h"
 
@@ -115,22 +117,21 @@ std::string LinkTo(const std::string& dir, const std::string& name,
   return path;
 }
 
-// Counts the polls of the readers' stop request (and stops at poll
-// `stop_at`, 0: never) while it is alive.
-class CountingStopPoll {
+// A stop token for a reader that counts the times it is asked (polls) and
+// says stop at poll `stop_at` (0: never). Must outlive the read.
+class CountingStopToken {
  public:
-  explicit CountingStopPoll(long stop_at = 0) {
-    previous_ = SetReadStopPoll([this, stop_at] {
-      ++polls_;
-      return stop_at > 0 && polls_ >= stop_at;
-    });
-  }
-  ~CountingStopPoll() { SetReadStopPoll(previous_); }
+  explicit CountingStopToken(long stop_at = 0)
+      : token_([this, stop_at] {
+          ++polls_;
+          return stop_at > 0 && polls_ >= stop_at;
+        }) {}
+  const StopToken& token() const { return token_; }
   long polls() const { return polls_; }
 
  private:
   long polls_ = 0;
-  std::function<bool()> previous_;
+  StopToken token_;
 };
 
 // The largest resident set of this process so far (VmHWM), in bytes.
@@ -215,12 +216,12 @@ TEST(InputFileTest, SpecialFilesAreOneLineWithoutBlockingOrReading) {
   for (const Case& c : cases) {
     SCOPED_TRACE(c.path);
     const std::string message = InChild([&c] {
-      CountingStopPoll polls;
-      const std::string error = ErrorOf([&c] {
+      CountingStopToken polls;
+      const std::string error = ErrorOf([&c, &polls] {
         if (c.mask) {
-          ReadMask(c.path, 10);
+          ReadMask(c.path, 10, polls.token());
         } else {
-          ReadMesh(c.path);
+          ReadMesh(c.path, polls.token());
         }
       });
       // Refused before the first chunk was read.
@@ -350,8 +351,9 @@ TEST(InputFileTest, LyingHeadersAreRefusedFromTheirCountsAndTheFileSize) {
   for (const Case& c : cases) {
     const std::string path = Write(dir + "/" + c.name, c.content);
     SCOPED_TRACE(path);
-    CountingStopPoll polls;
-    EXPECT_EQ(ErrorOf([&path] { ReadMesh(path); }), path + ": " + c.expected);
+    CountingStopToken polls;
+    EXPECT_EQ(ErrorOf([&path, &polls] { ReadMesh(path, polls.token()); }),
+              path + ": " + c.expected);
     // The polls of reading the file (at the start and after its only
     // chunk; once more when the rest is read after a header that passed):
     // no line or row loop reached its first poll (every 4096 lines or
@@ -365,9 +367,9 @@ TEST(InputFileTest, LyingHeadersAreRefusedFromTheirCountsAndTheFileSize) {
       binary, "element vertex " + big + "\n" + xyz + "element face 2\n" + list);
   const std::string sparse = Write(dir + "/sparse_lying.ply", header);
   ASSERT_EQ(truncate(sparse.c_str(), kMaxMeshFileBytes), 0);
-  CountingStopPoll polls;
+  CountingStopToken polls;
   EXPECT_EQ(
-      ErrorOf([&sparse] { ReadMesh(sparse); }),
+      ErrorOf([&sparse, &polls] { ReadMesh(sparse, polls.token()); }),
       sparse +
           ": PLY file ends early in element 'vertex': the header "
           "declares 2147483647 rows of at least 12 bytes, more than the " +
@@ -478,10 +480,10 @@ std::string LongFile(const std::string& dir, const std::string& format,
   return Write(dir + "/long_mask.txt", body);
 }
 
-// A stop request ends every reader at the poll it is seen: in the chunks
-// of the file (poll 2) or in its lines or rows (poll 20), with ReadStopped
-// naming the file; the same files read whole without a stop.
-TEST(InputFileTest, AStopRequestEndsEveryReaderAtItsPoll) {
+// A token that says stop ends every reader at the poll it is seen: in the
+// chunks of the file (poll 2) or in its lines or rows (poll 20), with
+// ReadStopped naming the file; the same files read whole without a stop.
+TEST(InputFileTest, AStopTokenEndsEveryReaderAtItsPoll) {
   const std::string dir = testing::TempDir();
   const int kRows = 200000;  // 2 MB and more: several chunks
   int stopped = 0;
@@ -489,25 +491,26 @@ TEST(InputFileTest, AStopRequestEndsEveryReaderAtItsPoll) {
        {"ply_ascii", "ply_binary", "obj", "off", "mask"}) {
     const std::string path = LongFile(dir, format, kRows);
     SCOPED_TRACE(path);
-    const auto read = [&path, &format] {
+    const auto read = [&path, &format](const StopToken& stop) {
       if (format == "mask") {
-        ReadMask(path, 10);
+        ReadMask(path, 10, stop);
       } else {
-        ReadMesh(path);
+        ReadMesh(path, stop);
       }
     };
     {
       // Without a stop: the reader gets through the rows (the files are not
       // valid meshes: isolated vertices) and polls about every 4096 rows.
-      CountingStopPoll polls;
-      const std::string error = ErrorOf(read);
+      CountingStopToken polls;
+      const std::string error =
+          ErrorOf([&read, &polls] { read(polls.token()); });
       EXPECT_EQ(error.find("reading stopped"), std::string::npos) << error;
       EXPECT_GT(polls.polls(), kRows / 4096) << error;
     }
     for (long stop_at : {2L, 20L}) {
-      CountingStopPoll polls(stop_at);
+      CountingStopToken polls(stop_at);
       try {
-        read();
+        read(polls.token());
         ADD_FAILURE() << "not stopped";
       } catch (const ReadStopped& e) {
         EXPECT_EQ(e.path(), path);
@@ -519,6 +522,33 @@ TEST(InputFileTest, AStopRequestEndsEveryReaderAtItsPoll) {
     }
   }
   EXPECT_EQ(stopped, 10);
+}
+
+// A token that says stop from the start ends a read before its first
+// chunk: ReadInputFile, ReadMask, ReadMesh and ReadFrameSequence throw
+// ReadStopped naming the file; without the token they read it.
+TEST(InputFileTest, AStoppedTokenEndsEveryReadBeforeItsFirstChunk) {
+  const std::string dir = testing::TempDir();
+  const std::string mask = Write(dir + "/stopped_mask.txt", "0\n");
+  const std::string mesh = Write(
+      dir + "/stopped.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  const StopToken stopped([] { return true; });
+  const auto path_of = [](const std::function<void()>& read) {
+    try {
+      read();
+    } catch (const ReadStopped& e) {
+      return e.path();
+    }
+    return std::string("not stopped");
+  };
+  EXPECT_EQ(path_of([&] { ReadInputFile(mask, "mask", 1 << 20, stopped); }),
+            mask);
+  EXPECT_EQ(path_of([&] { ReadMask(mask, 1, stopped); }), mask);
+  EXPECT_EQ(path_of([&] { ReadMesh(mesh, stopped); }), mesh);
+  EXPECT_EQ(path_of([&] { ReadFrameSequence(mesh + "," + mesh, stopped); }),
+            mesh);
+  EXPECT_EQ(ReadMask(mask, 1), std::vector<int>{0});
+  EXPECT_EQ(ReadFrameSequence(mesh + "," + mesh).frames.size(), 2u);
 }
 
 }  // namespace

@@ -223,7 +223,7 @@ TEST(NewtonSolverTest, LevenbergMarquardtStopsOnRequest) {
   FunctionProblem stopped(c, Eigen::Vector2d(-1.2, 1), true);
   NewtonSettings s = LevenbergMarquardt(0, 100);
   int polls = 0;
-  s.stop = [&polls] { return ++polls == 3; };
+  s.stop = StopToken([&polls] { return ++polls == 3; });
   ReusableCholesky cholesky2;
   const NewtonReport r = SolveNewton(&stopped, &cholesky2, s);
   EXPECT_EQ(r.stop, NewtonStop::kStopped);

@@ -74,7 +74,7 @@ TEST(NewtonSolverTest, StopHookEndsAtTheCurrentPoint) {
                           true);
   NewtonSettings settings = Minimize(1e-13, 100);
   int polls = 0;
-  settings.stop = [&polls] { return ++polls == 3; };
+  settings.stop = StopToken([&polls] { return ++polls == 3; });
   ReusableCholesky cholesky2;
   const NewtonReport report = SolveNewton(&stopped, &cholesky2, settings);
   EXPECT_EQ(report.stop, NewtonStop::kStopped);
@@ -90,7 +90,7 @@ TEST(NewtonSolverTest, StopHookEndsAtTheCurrentPoint) {
                                       Eigen::VectorXd::Zero(6), true);
   ReusableCholesky c3, c4;
   NewtonSettings never = Minimize(1e-13, 100);
-  never.stop = [] { return false; };
+  never.stop = StopToken([] { return false; });
   const NewtonReport a = SolveNewton(&plain, &c3, Minimize(1e-13, 100));
   const NewtonReport b = SolveNewton(&hooked, &c4, never);
   EXPECT_TRUE(b.converged);

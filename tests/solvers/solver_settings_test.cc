@@ -33,7 +33,7 @@ TEST(UserSolverSettingsTest, CarriesTheValuesAndKeepsTheDefaults) {
   EXPECT_EQ(s.parameter_tolerance, defaults.parameter_tolerance);
   EXPECT_EQ(s.initial_trust_region_radius,
             defaults.initial_trust_region_radius);
-  EXPECT_FALSE(static_cast<bool>(s.stop));
+  EXPECT_FALSE(s.stop.stop_possible());
   EXPECT_TRUE(UserSolverSettings(0.5, 1, kMaxSolverThreads, false, "x")
                   .progress);
 }

@@ -1,7 +1,8 @@
-// SolverSettings::stop in a Ceres solve (SolveWithSettings): a poll that
-// fires at iteration 2 ends the solve there with USER_SUCCESS and the
+// SolverSettings::stop in a Ceres solve (SolveWithSettings): a token that
+// says stop at iteration 2 ends the solve there with USER_SUCCESS and the
 // parameters of iteration 2 (the same as a solve capped at 2 iterations);
-// a poll that never fires changes nothing.
+// one that says stop from the start ends it at its first poll, at the
+// start; one that never says stop changes nothing.
 #include <ceres/autodiff_cost_function.h>
 #include <ceres/problem.h>
 #include <gtest/gtest.h>
@@ -46,7 +47,7 @@ TEST(StopCallbackTest, StopsAtTheIterationItFiresKeepingItsIterate) {
   SolverSettings settings = capped;
   settings.max_iterations = 100;
   int polls = 0;  // iteration 0, 1, 2
-  settings.stop = [&polls] { return ++polls == 3; };
+  settings.stop = StopToken([&polls] { return ++polls == 3; });
   ceres::Solver::Summary summary;
   const auto stopped = Solve(settings, &summary);
   EXPECT_TRUE(StoppedByRequest(summary));
@@ -58,7 +59,7 @@ TEST(StopCallbackTest, StopsAtTheIterationItFiresKeepingItsIterate) {
   SolverSettings plain = capped;
   plain.max_iterations = 100;
   SolverSettings never = plain;
-  never.stop = [] { return false; };
+  never.stop = StopToken([] { return false; });
   ceres::Solver::Summary a, b;
   const auto x = Solve(plain, &a);
   const auto y = Solve(never, &b);
@@ -68,6 +69,22 @@ TEST(StopCallbackTest, StopsAtTheIterationItFiresKeepingItsIterate) {
   EXPECT_EQ(a.iterations.size(), b.iterations.size());
   EXPECT_NEAR(x[0], 1.0, 1e-6);
   EXPECT_NEAR(x[1], 1.0, 1e-6);
+}
+
+TEST(StopCallbackTest, AStoppedTokenEndsTheSolveAtItsFirstPoll) {
+  SolverSettings settings;
+  settings.linear_solver = SolverSettings::LinearSolver::kDenseQr;
+  int polls = 0;
+  settings.stop = StopToken([&polls] {
+    ++polls;
+    return true;
+  });
+  ceres::Solver::Summary summary;
+  const auto p = Solve(settings, &summary);
+  EXPECT_TRUE(StoppedByRequest(summary));
+  EXPECT_EQ(polls, 1);
+  ASSERT_EQ(summary.iterations.size(), 1u);  // iteration 0 only
+  EXPECT_EQ(p, (std::array<double, 2>{-1.2, 1.0}));
 }
 
 }  // namespace

@@ -23,7 +23,7 @@ using workflows::SolveStatus;
 // solve is the run's stop state.
 TEST(MeanWorkflowTest, AStoppedMeanIsAStatusWithItsState) {
   workflows::MeanOptions options = MeanOfFourSheets();
-  options.settings.stop = [] { return true; };
+  options.settings.stop = StopToken([] { return true; });
   workflows::MeanResult result;
   ASSERT_NO_THROW(result = workflows::RunMean(options));
   EXPECT_TRUE(result.stopped);
@@ -78,7 +78,7 @@ TEST(PcaWorkflowTest, MeanAndFirstModeShapeEqualTheCli) {
 // the mean alone, stopped_in "mean", status kStopped.
 TEST(PcaWorkflowTest, AStoppedRunReturnsTheMeanAndThePhase) {
   workflows::PcaOptions options = FourSheets();
-  options.settings.stop = [] { return true; };
+  options.settings.stop = StopToken([] { return true; });
   const workflows::PcaResult result = workflows::RunPca(options);
   EXPECT_EQ(result.stopped_in, "mean");
   EXPECT_TRUE(result.stopped);
@@ -106,18 +106,17 @@ TEST(PcaWorkflowTest, AStopAfterTheMeanEndsInALaterPhase) {
   mean_options.material = options.material;
   mean_options.settings = options.settings;
   auto polls = std::make_shared<int>(0);
-  mean_options.settings.stop = [polls] {
+  mean_options.settings.stop = StopToken([polls] {
     ++*polls;
     return false;
-  };
+  });
   const workflows::MeanResult mean = workflows::RunMean(mean_options);
   ASSERT_TRUE(mean.status.ok());
   ASSERT_GT(*polls, 0);
   const int mean_polls = *polls;
   auto count = std::make_shared<int>(0);
-  options.settings.stop = [count, mean_polls] {
-    return ++*count > mean_polls;
-  };
+  options.settings.stop =
+      StopToken([count, mean_polls] { return ++*count > mean_polls; });
   const workflows::PcaResult result = workflows::RunPca(options);
   EXPECT_EQ(result.stopped_in, "displacements");
   EXPECT_EQ(result.status.code, SolveStatus::Code::kStopped);

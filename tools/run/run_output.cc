@@ -45,7 +45,7 @@ const std::string& RunId() {
 }
 
 JsonObject& AddRunFields(JsonObject& json) {
-  const StopCause stop = ObservedStop();
+  const StopCause stop = ObservedStopCause();
   return json.Add("partial", stop != StopCause::kNone)
       .Add("stop_reason", StopCauseText(stop))
       .Add("run_id", RunId())

@@ -38,7 +38,7 @@ int RunStatus::Finish() const {
   }
   // A run cut short by a time limit or a signal: main reports the stop and
   // these failures in one line ("stopped (...)", exit 124, 130 or 143).
-  if (ObservedStop() != StopCause::kNone) {
+  if (ObservedStopCause() != StopCause::kNone) {
     g_stopped_failures = line;
     return 0;
   }

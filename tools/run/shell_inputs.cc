@@ -18,13 +18,13 @@ namespace shellspace {
 Shell LoadShell(const std::string& path) {
   Shell shell;
   shell.path = path;
-  shell.mesh = ReadMesh(path);
+  shell.mesh = ReadMesh(path, ReadStopToken());
   shell.topology = ValidateShell(shell.mesh, path);
   return shell;
 }
 
 Mesh LoadCompatibleShell(const std::string& path, const Shell& like) {
-  Mesh mesh = ReadMesh(path);
+  Mesh mesh = ReadMesh(path, ReadStopToken());
   CheckCompatible(like.mesh, like.path, mesh, path);
   mesh.faces = like.mesh.faces;
   ValidateShellPositions(mesh, like.topology, path);
@@ -108,14 +108,15 @@ workflows::MaterialChoice MaterialChoiceFromFlags(const Mesh& reference) {
 
 std::vector<int> MaskFromFlags(int num_vertices) {
   return FLAGS_mask.empty() ? std::vector<int>{}
-                            : ReadMask(FLAGS_mask, num_vertices);
+                            : ReadMask(FLAGS_mask, num_vertices,
+                                       ReadStopToken());
 }
 
 SolverSettings SettingsFromFlags(const std::string& label) {
   SolverSettings settings =
       UserSolverSettings(FLAGS_tolerance, FLAGS_max_iterations, FLAGS_threads,
                          FLAGS_quiet, label);
-  settings.stop = StopPollForRun();
+  settings.stop = SolveStopToken();
   return settings;
 }
 

@@ -12,15 +12,21 @@ namespace {
 static_assert(std::atomic<int>::is_always_lock_free,
               "the signal handler needs a lock-free atomic");
 
-std::atomic<int> g_signal{0};    // the first signal received, or 0
-std::atomic<int> g_observed{0};  // a StopCause, once a poll returned true
-double g_time_limit = 0;
-bool g_has_deadline = false;  // false: no limit, or one beyond the clock
-std::chrono::steady_clock::time_point g_deadline;
+// The run's stop state: the one a signal handler needs to exist for the
+// whole process (it can reach nothing else), with the time limit set once
+// by InstallStopHandlers before the verb runs.
+struct RunStopState {
+  std::atomic<int> signal{0};    // the first signal received, or 0
+  std::atomic<int> observed{0};  // a StopCause, once a token said stop
+  double time_limit = 0;
+  bool has_deadline = false;  // false: no limit, or one beyond the clock
+  std::chrono::steady_clock::time_point deadline;
+};
+RunStopState g_stop;
 
 extern "C" void OnStopSignal(int signal_number) {
   int none = 0;
-  if (!g_signal.compare_exchange_strong(none, signal_number)) {
+  if (!g_stop.signal.compare_exchange_strong(none, signal_number)) {
     // A second signal: the default action (terminate) now.
     ::signal(signal_number, SIG_DFL);
     ::raise(signal_number);
@@ -36,7 +42,7 @@ StopCause CauseOfSignal(int signal_number) {
 
 void Observe(StopCause cause) {
   int none = 0;
-  g_observed.compare_exchange_strong(none, static_cast<int>(cause));
+  g_stop.observed.compare_exchange_strong(none, static_cast<int>(cause));
 }
 
 // A deadline `seconds` after `now`, or false if it lies beyond the clock's
@@ -55,14 +61,16 @@ bool DeadlineAfter(double seconds,
   return true;
 }
 
-bool Poll() {
-  const int signal_number = g_signal.load();
+// What the solves' token asks.
+bool SolvesShouldStop() {
+  const int signal_number = g_stop.signal.load();
   if (signal_number != 0) {
     Observe(CauseOfSignal(signal_number));
     return true;
   }
-  if (g_observed.load() != 0) return true;  // the time limit, latched
-  if (g_has_deadline && std::chrono::steady_clock::now() >= g_deadline) {
+  if (g_stop.observed.load() != 0) return true;  // the time limit, latched
+  if (g_stop.has_deadline &&
+      std::chrono::steady_clock::now() >= g_stop.deadline) {
     Observe(StopCause::kTimeLimit);
     return true;
   }
@@ -72,11 +80,11 @@ bool Poll() {
 }  // namespace
 
 void InstallStopHandlers(double time_limit_seconds) {
-  g_time_limit = time_limit_seconds;
-  g_has_deadline =
+  g_stop.time_limit = time_limit_seconds;
+  g_stop.has_deadline =
       time_limit_seconds > 0 &&
       DeadlineAfter(time_limit_seconds, std::chrono::steady_clock::now(),
-                    &g_deadline);
+                    &g_stop.deadline);
   struct sigaction action {};
   action.sa_handler = OnStopSignal;
   sigemptyset(&action.sa_mask);
@@ -93,14 +101,20 @@ void InstallStopHandlers(double time_limit_seconds) {
   }
 }
 
-StopPoll StopPollForRun() { return [] { return Poll(); }; }
+StopToken SolveStopToken() { return StopToken(SolvesShouldStop); }
 
-StopCause ObservedStop() { return static_cast<StopCause>(g_observed.load()); }
+StopToken ReadStopToken() {
+  return StopToken([] { return RequestedStopCause() != StopCause::kNone; });
+}
 
-StopCause RequestedStop() {
-  const StopCause observed = ObservedStop();
+StopCause ObservedStopCause() {
+  return static_cast<StopCause>(g_stop.observed.load());
+}
+
+StopCause RequestedStopCause() {
+  const StopCause observed = ObservedStopCause();
   if (observed != StopCause::kNone) return observed;
-  return CauseOfSignal(g_signal.load());
+  return CauseOfSignal(g_stop.signal.load());
 }
 
 std::string StopCauseText(StopCause cause) {
@@ -109,7 +123,7 @@ std::string StopCauseText(StopCause cause) {
       return "";
     case StopCause::kTimeLimit: {
       std::ostringstream text;
-      text << "time limit " << g_time_limit << " s";
+      text << "time limit " << g_stop.time_limit << " s";
       return text.str();
     }
     case StopCause::kInterrupt:

@@ -3,10 +3,13 @@
 // process ignored (`nohup`: SIGHUP; a script's background job: SIGINT)
 // stays ignored.
 //
-// The signal handler only records the signal in a std::atomic; the solvers
-// poll StopPollForRun() between iterations (SolverSettings::stop), end at
-// their best iterate, and the verb writes what it has: complete frames, and
-// "partial": true with the reason in --json and summary.json. A second
+// The signal handler only records the signal in a std::atomic (the one
+// process-wide stop state, here in the CLI: the library keeps none). The
+// run hands stop tokens made from it down: the solvers ask
+// SolveStopToken() between iterations (SolverSettings::stop), end at their
+// best iterate, and the verb writes what it has: complete frames, and
+// "partial": true with the reason in --json and summary.json; the readers
+// of its inputs ask ReadStopToken(). A second
 // signal terminates at once (the default action; the
 // temporaries a killed run may leave are hidden or end in .tmp-PID-N, and
 // readers skip them).
@@ -23,7 +26,7 @@
 
 #include <string>
 
-#include "shellspace/solvers/solver_settings.h"
+#include "shellspace/runtime/stop_token.h"
 
 namespace shellspace {
 
@@ -33,16 +36,21 @@ enum class StopCause { kNone, kTimeLimit, kInterrupt, kTerminate, kHangup };
 // `time_limit_seconds` (<= 0: no limit). Called once by main.
 void InstallStopHandlers(double time_limit_seconds);
 
-// The poll for SolverSettings::stop: true once a signal arrived or the time
-// limit passed; the first time it returns true, that cause is recorded as
-// observed.
-StopPoll StopPollForRun();
+// The token of the run's solves (SolverSettings::stop): says stop once a
+// signal arrived or the time limit passed; the first time it says stop,
+// that cause is recorded (ObservedStopCause).
+StopToken SolveStopToken();
 
-// The cause a poll returned true for (a solve was cut short), or kNone.
-StopCause ObservedStop();
-// A signal received, observed by a solve or not (kNone if none; the time
-// limit only counts once observed).
-StopCause RequestedStop();
+// The token of the run's readers (io/input_file.h): says stop once
+// RequestedStopCause() is not kNone (the time limit stops solves only).
+StopToken ReadStopToken();
+
+// The cause the solves' token said stop for (a solve was cut short), or
+// kNone.
+StopCause ObservedStopCause();
+// That cause, else a signal received, observed by a solve or not (kNone if
+// none; the time limit only counts once observed).
+StopCause RequestedStopCause();
 
 // "time limit 10 s", "SIGINT", "SIGTERM", "SIGHUP", or "" for kNone.
 std::string StopCauseText(StopCause cause);

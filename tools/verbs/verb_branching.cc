@@ -242,7 +242,7 @@ SimulationSettings SimulationSettingsFromFlags() {
   s.periods = FLAGS_periods;
   s.seed = static_cast<unsigned>(FLAGS_init_seed);
   s.max_iterations = FLAGS_lm_iterations;
-  s.stop = StopPollForRun();
+  s.stop = SolveStopToken();
   return s;
 }
 

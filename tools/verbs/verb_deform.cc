@@ -16,6 +16,7 @@
 #include "tools/run/run_status.h"
 #include "tools/run/shell_inputs.h"
 #include "tools/verbs/verb.h"
+#include "tools/run/stop_request.h"
 
 DEFINE_string(targets, "", "deform: prescribed positions");
 
@@ -57,7 +58,8 @@ int RunDeform() {
   input.reference = reference.mesh.positions;
   input.targets = targets.positions;
   input.initial = targets.positions;
-  input.fixed_vertices = ReadMask(FLAGS_mask, reference.mesh.num_vertices());
+  input.fixed_vertices = ReadMask(FLAGS_mask, reference.mesh.num_vertices(),
+                                   ReadStopToken());
   const ElasticDeformationResult result =
       SolveElasticDeformation(space, input, SettingsFromFlags("deform"));
   if (result.summary.termination_type == ceres::FAILURE) {

@@ -11,6 +11,7 @@
 #include "tools/run/common_flags.h"
 #include "tools/run/run_paths.h"
 #include "tools/verbs/verb.h"
+#include "tools/run/stop_request.h"
 
 DECLARE_string(input);
 DEFINE_double(fps, 4.0, "export: frames per second");
@@ -48,7 +49,8 @@ int RunExport() {
       .InputFrames("input", FLAGS_input)
       .OutputGlb("output", FLAGS_output)
       .Check();
-  const FrameSequence sequence = ReadFrameSequence(FLAGS_input);
+  const FrameSequence sequence =
+      ReadFrameSequence(FLAGS_input, ReadStopToken());
   WriteGltfMorphAnimation(FLAGS_output, sequence.frames, sequence.faces,
                           options);
   if (FLAGS_json) {

@@ -15,6 +15,7 @@
 #include "tools/verbs/film_strip_flags.h"
 #include "tools/run/run_paths.h"
 #include "tools/verbs/verb.h"
+#include "tools/run/stop_request.h"
 
 DEFINE_string(input, "", "render: the meshes");
 DEFINE_string(view, "front", "render: the view direction");
@@ -98,7 +99,8 @@ int RunRender() {
                        options, "--width " + std::to_string(options.width) +
                                     " --height " +
                                     std::to_string(options.height));
-  const FrameSequence sequence = ReadFrameSequence(FLAGS_input);
+  const FrameSequence sequence =
+      ReadFrameSequence(FLAGS_input, ReadStopToken());
   const RgbImage image =
       RenderFilmStrip(sequence.frames, sequence.faces, options);
   WritePng(image, FLAGS_output);

@@ -169,7 +169,7 @@ SplineSettings SplineSettingsFromFlags(const std::string& label) {
   settings.inner.gradient_tolerance = 1e-10;
   settings.inner.max_iterations = kInnerMaxIterations;
   settings.stop = settings.inner.stop;  // the outer loop stops,
-  settings.inner.stop = nullptr;        // every F_K evaluation is exact
+  settings.inner.stop = StopToken();     // every F_K evaluation is exact
   settings.max_iterations = FLAGS_max_iterations;
   settings.gradient_tolerance = FLAGS_tolerance;
   settings.progress = !FLAGS_quiet;

@@ -14,6 +14,7 @@
 #include "tools/run/common_flags.h"
 #include "tools/run/run_paths.h"
 #include "tools/verbs/verb.h"
+#include "tools/run/stop_request.h"
 
 DECLARE_string(input);
 
@@ -48,7 +49,8 @@ std::string SummaryOf(const std::string& input) {
     return "";
   }
   const std::string text =
-      ReadInputFile(file.string(), "summary", kMaxSummaryBytes);
+      ReadInputFile(file.string(), "summary", kMaxSummaryBytes,
+                    ReadStopToken());
   const size_t first = text.find_first_not_of(" \t\r\n");
   const size_t last = text.find_last_not_of(" \t\r\n");
   if (first == std::string::npos || text[first] != '{' || text[last] != '}') {
@@ -63,7 +65,8 @@ int RunView() {
       .InputFrames("input", FLAGS_input)
       .OutputHtml("output", FLAGS_output)
       .Check();
-  const FrameSequence sequence = ReadFrameSequence(FLAGS_input);
+  const FrameSequence sequence =
+      ReadFrameSequence(FLAGS_input, ReadStopToken());
   const std::string page = EncodeHtmlViewer(
       sequence.frames, sequence.faces, FLAGS_input, SummaryOf(FLAGS_input));
   WriteFileAtomically(FLAGS_output, page);

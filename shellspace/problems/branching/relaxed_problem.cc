@@ -112,7 +112,7 @@ RelaxedStage SolveStage(RelaxedField* field, double epsilon, double delta,
       solver.callbacks.push_back(callback.get());
     }
     StopCallback stop(options.stop);
-    if (options.stop) solver.callbacks.push_back(&stop);
+    if (options.stop.stop_possible()) solver.callbacks.push_back(&stop);
     ceres::Solver::Summary summary;
     ceres::Solve(solver, &problem, &summary);
     RelaxedStage stage;
@@ -155,7 +155,7 @@ std::vector<RelaxedStage> SolveRelaxed(RelaxedField* field, double epsilon,
       break;
     }
     if (stages.back().termination == "COLLAPSED") break;
-    if (options.stop && options.stop()) break;  // the stages done so far
+    if (options.stop.stop_requested()) break;  // the stages done so far
   }
   return stages;
 }

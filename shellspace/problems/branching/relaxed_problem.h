@@ -20,6 +20,7 @@
 #include <ceres/ceres.h>
 
 #include "shellspace/models/branching/relaxed_grid.h"
+#include "shellspace/runtime/stop_token.h"
 
 namespace shellspace::branching {
 
@@ -51,9 +52,9 @@ struct RelaxedSolveOptions {
   double function_tolerance = 1e-9;
   // Called after every LM iteration (progress output); may be empty.
   std::function<void(double delta, int iteration, double energy)> progress;
-  // Polled after every LM iteration (SolverSettings::stop): true ends the
-  // stage at its best iterate and the continuation after it.
-  std::function<bool()> stop;
+  // Asked after every LM iteration (as SolverSettings::stop): a stop ends
+  // the stage at its best iterate and the continuation after it.
+  StopToken stop;
 };
 
 struct RelaxedStage {

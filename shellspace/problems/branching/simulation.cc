@@ -269,7 +269,7 @@ DeltaExtrapolation ExtrapolateDelta(
     if (progress) progress(w);
     const bool collapsed = w.termination == "COLLAPSED";
     previous.emplace(std::move(r));
-    if (collapsed || (base.stop && base.stop())) break;
+    if (collapsed || base.stop.stop_requested()) break;
   }
   out.monotone = constants.size() >= 2;
   for (size_t k = 1; k < constants.size(); ++k) {

@@ -29,7 +29,7 @@ struct SimulationSettings {
   int max_iterations = 200;      // per continuation stage
   int num_threads = 1;
   std::function<void(double, int, double)> progress;  // may be empty
-  std::function<bool()> stop;  // RelaxedSolveOptions::stop; may be empty
+  StopToken stop;  // RelaxedSolveOptions::stop
 
   double Delta() const;  // the target width after the rule
 };

@@ -84,7 +84,7 @@ bool SolveByContinuation(const ExpStepContext& step,
                          const Positions& plain_guess,
                          const SolverSettings& settings,
                          ExpStepResult* result) {
-  if (StopRequested(settings)) return false;
+  if (settings.stop.stop_requested()) return false;
   ExpContinuationSettings continuation;
   continuation.tolerance = kExpNewtonTolerance * step.scale;
   continuation.accept = kExpNewtonAccept * step.scale;
@@ -257,7 +257,7 @@ ShootResult ShootSteps(const ShellSpace& space, const Positions& s0,
   ShellPath& path = result.path;
   path = forward ? ShellPath{s0, s1} : ShellPath{s1, s0};
   for (int k = 2; k <= steps; ++k) {
-    if (StopRequested(settings)) {  // the steps done so far
+    if (settings.stop.stop_requested()) {  // the steps done so far
       result.stopped = true;
       break;
     }

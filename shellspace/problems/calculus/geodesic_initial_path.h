@@ -107,7 +107,7 @@ PathDegeneracy FindPathDegeneracy(const Faces& faces, const ShellPath& path,
 // settings.max_iterations LM iterations to settings' tolerances.
 // `iterations` (if given) gets the LM iterations summed over the frames,
 // `unconverged` the frames that stopped short of Ceres' convergence.
-// settings.stop is polled by each frame's LM: a stopped frame keeps its
+// settings.stop is asked by each frame's LM: a stopped frame keeps its
 // last iterate.
 ShellPath LThetaPath(const ShellSpace& space, const Positions& start,
                      const Positions& end, int steps,

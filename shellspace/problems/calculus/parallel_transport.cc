@@ -54,7 +54,7 @@ TransportRung SolveRung(const ShellSpace& space, const ShellPath& path,
     const Positions midpoint =
         RungMidpoint(space, start, path[k], fixed_vertices, settings,
                      &rung.midpoint_iterations);
-    if (StopRequested(settings)) {
+    if (settings.stop.stop_requested()) {
       out.stopped = true;
       break;
     }
@@ -118,7 +118,7 @@ TransportResult ParallelTransport(const ShellSpace& space,
   Positions p = path[0] + epsilon * variation;
   result.shapes.push_back(p);
   for (size_t k = 1; k < path.size(); ++k) {
-    if (StopRequested(settings)) {  // the rungs done so far
+    if (settings.stop.stop_requested()) {  // the rungs done so far
       result.all_solved = false;
       break;
     }

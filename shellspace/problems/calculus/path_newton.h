@@ -148,7 +148,7 @@ struct PathNewtonSettings {
   int num_threads = 2;  // Hessian blocks are assembled in parallel
   bool progress = false;
   std::string progress_label = "newton";
-  std::function<bool()> stop;  // NewtonSettings::stop
+  StopToken stop;  // NewtonSettings::stop
 };
 
 // The report of PolishPathNewton (solvers/newton_solver.h): steps, max |G|

@@ -287,7 +287,7 @@ RoundEnd RunRound(const ShellSpace& space, const SplineSettings& settings,
   // request may end it (and the run) early; later ones stay exact.
   if (result->rounds == 0) objective->set_cold_start_stop(settings.stop);
   const bool evaluated = scaled.Evaluate(y.data(), &cost, gradient.data());
-  objective->set_cold_start_stop(nullptr);
+  objective->set_cold_start_stop(StopToken());
   if (objective->stopped()) return RoundEnd::kStopped;
   if (!evaluated) {
     throw InputError("the initial path has degenerate shapes or midpoints");
@@ -317,7 +317,7 @@ RoundEnd RunRound(const ShellSpace& space, const SplineSettings& settings,
                       &refresh);
   options.callbacks.push_back(&round);
   StopCallback stop(settings.stop);
-  if (settings.stop) options.callbacks.push_back(&stop);
+  if (settings.stop.stop_possible()) options.callbacks.push_back(&stop);
   ceres::Solve(options, problem, y.data(), &result->summary);
   *x = scaled.ToX(y.data());
   if (preconditioner && result->rounds == 0) {
@@ -389,7 +389,7 @@ SplineResult Run(const ShellSpace& space, SplineSpec spec,
   SplineObjective objective(space, spec, settings.inner);
   std::vector<double> x = objective.InitialParameters();
   SplineResult result;
-  if (!x.empty() && settings.stop && settings.stop()) {
+  if (!x.empty() && settings.stop.stop_requested()) {
     return UnevaluatedStart(objective, x, spec);
   }
   RoundState state;

@@ -62,12 +62,12 @@ struct SplineSettings {
   bool progress = false;
   std::string progress_label = "spline";
   SolverSettings inner;  // the midpoint solves
-  // Polled on entry and by the midpoints' cold-start LM runs of the first
+  // Asked on entry and by the midpoints' cold-start LM runs of the first
   // evaluation (set: the initial path is returned unevaluated,
   // SplineResult::evaluated), then by the outer L-BFGS loop
   // (SolverSettings::stop); give the inner solves none, so that every
   // evaluation of F_K that is used stays exact.
-  StopPoll stop;
+  StopToken stop;
   // L-BFGS in the variables of SplinePreconditioner (spline_preconditioner.h;
   // metrics of the initial free shapes); false: in the vertex coordinates.
   bool precondition = true;

@@ -336,7 +336,7 @@ bool SplineObjective::RunMidpointLm(const Positions& a, const Positions& b,
   ++mid->lm_solves;
   mid->lm_iterations += static_cast<int>(summary.iterations.size());
   mid->has_adjoint = false;
-  if (settings.stop && settings.stop()) {
+  if (settings.stop.stop_requested()) {
     stopped_ = true;  // unfinished: not a midpoint
     return false;
   }

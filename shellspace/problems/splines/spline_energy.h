@@ -93,12 +93,13 @@ class SplineObjective : public ceres::FirstOrderFunction {
   int num_shapes() const { return static_cast<int>(spec_.initial.size()); }
   SplineTimings timings() const;
 
-  // A stop poll for the sparse LM runs of the midpoints without a warm start
-  // (the long part of a first evaluation: 20 s on the cactus); empty (the
-  // default) for exact evaluations. When it stops one, the evaluation
-  // returns false and stopped() is true from then on: its midpoints are
-  // unfinished and no value of this objective may be used any more.
-  void set_cold_start_stop(StopPoll stop) {
+  // A stop token for the sparse LM runs of the midpoints without a warm
+  // start (the long part of a first evaluation: 20 s on the cactus); one
+  // that never stops (the default) for exact evaluations. When it stops
+  // one, the evaluation returns false and stopped() is true from then on:
+  // its midpoints are unfinished and no value of this objective may be
+  // used any more.
+  void set_cold_start_stop(StopToken stop) {
     cold_start_stop_ = std::move(stop);
   }
   bool stopped() const { return stopped_.load(); }
@@ -145,7 +146,7 @@ class SplineObjective : public ceres::FirstOrderFunction {
   std::unique_ptr<PathHessianAssembler> assembler_;  // for the H_k
   mutable std::vector<std::unique_ptr<Midpoint>> midpoints_;  // per term
   mutable SplineTimings timings_;
-  StopPoll cold_start_stop_;
+  StopToken cold_start_stop_;
   mutable std::atomic<bool> stopped_{false};
 };
 

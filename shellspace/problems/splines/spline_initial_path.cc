@@ -33,8 +33,9 @@ ShellPath PiecewiseGeodesicPath(const ShellSpace& space,
   // Linear where a stop request leaves segments unsolved.
   ShellPath path = PiecewiseLinearPath(keyframes, at, steps, periodic);
   if (segments != nullptr) segments->clear();
-  for (int i = 0; i < (periodic ? n : n - 1) && !StopRequested(settings);
-       ++i) {
+  const int segments_to_solve = periodic ? n : n - 1;
+  for (int i = 0;
+       i < segments_to_solve && !settings.stop.stop_requested(); ++i) {
     const int next = (i + 1) % n;
     GeodesicSegment segment;
     segment.from = at[i];

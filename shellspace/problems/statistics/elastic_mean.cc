@@ -216,7 +216,7 @@ bool LmChunksWithNewton(const ShellSpace& space,
     if (attempt.max_newton_iterations <= 0) break;
     if (NewtonFinish(space, shapes, target, attempt, settings, &result->mean,
                      &result->newton_iterations, newton_stop) ||
-        StopRequested(settings)) {
+        settings.stop.stop_requested()) {
       break;
     }
     result->newton_fell_back = true;

@@ -88,7 +88,7 @@ ShotOutcome ShootOnce(const ShellSpace& space, const Positions& s0,
   const double first = energy.total;
   outcome.ok = true;
   for (int k = 2; k <= steps; ++k) {
-    if (StopRequested(settings)) {  // no further step: the caller stops
+    if (settings.stop.stop_requested()) {  // no further step: the caller stops
       outcome.ok = false;
       outcome.stopped = true;
       return outcome;

@@ -354,7 +354,8 @@ TEST_F(SplineTest, AStopBeforeTheFirstEvaluationReturnsTheStartUnevaluated) {
   const auto solve = [&](int fire_at_poll, int* polls) {
     SplineSettings s = settings;
     if (polls != nullptr) {
-      s.stop = [polls, fire_at_poll] { return ++*polls >= fire_at_poll; };
+      s.stop = StopToken(
+          [polls, fire_at_poll] { return ++*polls >= fire_at_poll; });
     }
     return SolveSpline(space_, keys, {0, 2, 4}, 4, false, start, s);
   };

@@ -114,7 +114,7 @@ TEST_F(SplineInitialPathTest, PeriodicClosureAndOneStepSegments) {
 // and reports no segment.
 TEST_F(SplineInitialPathTest, AStopRequestKeepsTheLinearPath) {
   SolverSettings stopped = tight_;
-  stopped.stop = [] { return true; };
+  stopped.stop = StopToken([] { return true; });
   std::vector<GeodesicSegment> segments;
   const ShellPath path = Piecewise({0, 2, 4}, 4, false, &segments, stopped);
   EXPECT_TRUE(segments.empty());

@@ -273,7 +273,7 @@ TEST(ShellPcaTest, ExpShotStopsOnRequest) {
   ExpShotReport status;
   ASSERT_TRUE(TryShootFromMean(space, sphere, variation, options, settings,
                                &shot, &status));
-  settings.stop = [] { return true; };
+  settings.stop = StopToken([] { return true; });
   Positions stopped;
   EXPECT_FALSE(TryShootFromMean(space, sphere, variation, options, settings,
                                 &stopped, &status));
