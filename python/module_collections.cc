@@ -75,7 +75,7 @@ py::dict ElasticMeanNewtonPy(const py::object& initial, const py::object& F,
     };
   }
   if (!stop.is_none()) {
-    settings.stop = [&stop]() { return py::cast<bool>(stop()); };
+    settings.stop = StopToken([&stop]() { return py::cast<bool>(stop()); });
   }
   Positions s = shell.mesh.positions;
   const SummedTermsMeanReport report = ElasticMeanNewtonOnTerms(

@@ -1335,6 +1335,7 @@ def pca_modes(
     eta: Optional[float] = ...,
     relative_eta: float = ...,
     bending: str = ...,
+    membrane: str = ...,
 ) -> tuple[Any, ...]:
     """Shell PCA of given displacements v_i at `mean` (shellspace.pca's model): the metric g(u, w) = 1/2 u^T D_2^2 W[mean, mean] w, the Gram matrix Gamma_ij = g(v_i, v_j) / n, its eigenvalues lambda_1 >= ... >= lambda_n and the g-orthonormal modes w_j = sum_i a^j_i v_i / sqrt(n lambda_j) of the lambda_j > relative_cutoff * lambda_1 (each signed so that its largest coefficient a^j_i is positive). Returns (gram n x n, eigenvalues n, modes m x #V x 3).
 
@@ -1348,6 +1349,7 @@ def pca_modes(
         eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
         relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
         bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        membrane: membrane law: neo-hookean or st-venant-kirchhoff (see docs/math.md) (default 'neo-hookean')
     """
 
 
@@ -1482,6 +1484,7 @@ def shoot_from_mean(
     eta: Optional[float] = ...,
     relative_eta: float = ...,
     bending: str = ...,
+    membrane: str = ...,
     tolerance: float = ...,
     max_iterations: int = ...,
     threads: int = ...,
@@ -1502,6 +1505,7 @@ def shoot_from_mean(
         eta: absolute bending weight eta of W = W_mem + eta W_bend; replaces relative_eta x area (not both) (default None)
         relative_eta: bending weight relative to the size: eta = relative_eta x the surface area of the reference shell (the first input), the same material at any scale (W_mem scales like area, W_bend not at all) (default 0.0001)
         bending: bending model: discrete-shells (default) or shape-operator (default 'discrete-shells')
+        membrane: membrane law: neo-hookean or st-venant-kirchhoff (see docs/math.md) (default 'neo-hookean')
         tolerance: relative gradient tolerance of every solve (default 1e-08)
         max_iterations: per geodesic (default 200)
         threads: threads of the solves (default 2)
