@@ -12,3 +12,15 @@ def plate(n=5):
             a = r * n + c
             F += [[a, a + 1, a + n + 1], [a, a + n + 1, a + n]]
     return V, np.array(F, dtype=np.int64)
+
+
+def bent_plates(count=5, n=6):
+    """count x (n x n) plates: the plate bent about y by a different amount and twisted a little."""
+    V, F = plate(n)
+    shapes = []
+    for k in range(count):
+        S = V.copy()
+        S[:, 2] = 0.12 * k * (S[:, 0] - 0.5) ** 2 + 0.03 * k * (
+            S[:, 0] - 0.5) * (S[:, 1] - 0.5)
+        shapes.append(S)
+    return np.stack(shapes), F
